@@ -1,0 +1,1 @@
+"""coopdrive: a cooperative automated driving stack on Zenoh."""

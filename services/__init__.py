@@ -1,0 +1,1 @@
+"""coopdrive services: one package per service."""

@@ -1,0 +1,15 @@
+"""Package layout: the framework lives in coopdrive/, each service in services/<name>/.
+
+The services folder is installed as the subpackage coopdrive.services, so a wheel holds one
+top-level package and nothing depends on the working directory.
+"""
+
+from setuptools import find_packages, setup
+
+framework = find_packages(include=["coopdrive", "coopdrive.*"])
+services = ["coopdrive.services"] + [f"coopdrive.services.{name}" for name in find_packages("services")]
+
+setup(
+    packages=framework + services,
+    package_dir={"coopdrive": "coopdrive", "coopdrive.services": "services"},
+)
