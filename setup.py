@@ -8,8 +8,9 @@ from setuptools import find_packages, setup
 
 framework = find_packages(include=["coopdrive", "coopdrive.*"])
 services = ["coopdrive.services"] + [f"coopdrive.services.{name}" for name in find_packages("services")]
+data_folders = {"coopdrive.maps": "maps", "coopdrive.scenarios": "scenarios"}
 
 setup(
-    packages=framework + services,
-    package_dir={"coopdrive": "coopdrive", "coopdrive.services": "services"},
+    packages=framework + services + list(data_folders),
+    package_dir={"coopdrive": "coopdrive", "coopdrive.services": "services", **data_folders},
 )

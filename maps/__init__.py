@@ -1,0 +1,1 @@
+"""Road maps shipped with coopdrive (GeoJSON, WGS84)."""

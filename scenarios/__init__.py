@@ -1,0 +1,1 @@
+"""Scenario definitions shipped with coopdrive (YAML)."""
