@@ -1,0 +1,98 @@
+"""Planar geometry shared by the sensor models and the judge: vehicle footprints and ray casting.
+
+Vehicle positions (VehicleTruth.x_m / y_m) are at the centre of the rear axle, like the ego frame.
+"""
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+import numpy as np
+
+# Rear axle to rear bumper as a share of the length when a vehicle does not say (typical cars and trucks).
+DEFAULT_REAR_OVERHANG_RATIO = 0.2
+
+
+def rear_overhang_m(length_m: float) -> float:
+    return DEFAULT_REAR_OVERHANG_RATIO * length_m
+
+
+def footprint_corners(x_m: float, y_m: float, heading_rad: float, length_m: float, width_m: float,
+                      rear_overhang: float | None = None) -> np.ndarray:
+    """The four corners (4 x 2) counter-clockwise from rear right, of a vehicle located at its rear axle."""
+    back_m = rear_overhang if rear_overhang is not None else rear_overhang_m(length_m)
+    front_m = length_m - back_m
+    half_w = width_m / 2.0
+    local = np.array([[-back_m, -half_w], [front_m, -half_w], [front_m, half_w], [-back_m, half_w]])
+    cos_h, sin_h = math.cos(heading_rad), math.sin(heading_rad)
+    rot = np.array([[cos_h, -sin_h], [sin_h, cos_h]])
+    return local @ rot.T + np.array([x_m, y_m])
+
+
+def to_ego_frame(points_xy: np.ndarray, ego_x_m: float, ego_y_m: float, ego_heading_rad: float) -> np.ndarray:
+    """ENU points (N x 2) into the ego frame: x forward, y left, origin at the ego rear axle."""
+    cos_h, sin_h = math.cos(ego_heading_rad), math.sin(ego_heading_rad)
+    delta = np.asarray(points_xy, dtype=float) - np.array([ego_x_m, ego_y_m])
+    return np.column_stack((delta[:, 0] * cos_h + delta[:, 1] * sin_h, -delta[:, 0] * sin_h + delta[:, 1] * cos_h))
+
+
+def _project_polygon(corners: np.ndarray, axis: np.ndarray) -> tuple[float, float]:
+    values = corners @ axis
+    return float(values.min()), float(values.max())
+
+
+def rectangles_overlap(a: np.ndarray, b: np.ndarray) -> bool:
+    """Separating-axis test of two convex quadrilaterals given as 4 x 2 corners."""
+    for corners in (a, b):
+        for i in range(4):
+            edge = corners[(i + 1) % 4] - corners[i]
+            axis = np.array([-edge[1], edge[0]])
+            a_min, a_max = _project_polygon(a, axis)
+            b_min, b_max = _project_polygon(b, axis)
+            if a_max < b_min or b_max < a_min:
+                return False
+    return True
+
+
+def cast_rays(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,
+              polygons: Sequence[np.ndarray], max_range_m: float) -> tuple[np.ndarray, np.ndarray]:
+    """Nearest hit of each ray on the polygons' edges: (range_m, index of the polygon hit or -1).
+
+    Rays start at origin_xy in the polygons' frame; a ray with no hit within max_range_m gets inf.
+    """
+    azimuths = np.asarray(azimuths_rad, dtype=float)
+    ranges = np.full(azimuths.shape, np.inf)
+    hit_index = np.full(azimuths.shape, -1, dtype=int)
+    if not len(polygons) or not azimuths.size:
+        return ranges, hit_index
+    dirs = np.column_stack((np.cos(azimuths), np.sin(azimuths)))
+    origin = np.asarray(origin_xy, dtype=float)
+    for index, corners in enumerate(polygons):
+        starts = corners
+        edges = np.roll(corners, -1, axis=0) - corners
+        # Solve origin + t d = start + u e for every ray (rows) and edge (columns).
+        denom = dirs[:, None, 0] * edges[None, :, 1] - dirs[:, None, 1] * edges[None, :, 0]
+        rel = starts - origin
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (rel[None, :, 0] * edges[None, :, 1] - rel[None, :, 1] * edges[None, :, 0]) / denom
+            u = (rel[None, :, 0] * dirs[:, None, 1] - rel[None, :, 1] * dirs[:, None, 0]) / denom
+        valid = (np.abs(denom) > 1e-12) & (t > 0.0) & (u >= 0.0) & (u <= 1.0)
+        t = np.where(valid, t, np.inf).min(axis=1)
+        closer = t < ranges
+        ranges[closer] = t[closer]
+        hit_index[closer] = index
+    beyond = ranges > max_range_m
+    ranges[beyond] = np.inf
+    hit_index[beyond] = -1
+    return ranges, hit_index
+
+
+def closest_point_on_polygon(point_xy: tuple[float, float], corners: np.ndarray) -> np.ndarray:
+    """The point of the polygon's outline nearest to point_xy."""
+    point = np.asarray(point_xy, dtype=float)
+    starts = corners
+    edges = np.roll(corners, -1, axis=0) - corners
+    lengths_sq = np.maximum((edges ** 2).sum(axis=1), 1e-12)
+    u = np.clip(((point - starts) * edges).sum(axis=1) / lengths_sq, 0.0, 1.0)
+    candidates = starts + u[:, None] * edges
+    return candidates[np.argmin(((candidates - point) ** 2).sum(axis=1))]

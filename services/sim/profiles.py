@@ -1,0 +1,52 @@
+"""Vehicle profiles: geometry, actuator dynamics and limits, with units in the field names."""
+from __future__ import annotations
+
+import enum
+
+from pydantic import BaseModel, ConfigDict, Field
+
+
+class ProfileName(enum.Enum):
+    PASSENGER_CAR = "passenger_car"
+    TRUCK = "truck"
+
+
+class VehicleProfile(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    length_m: float = Field(gt=0)
+    width_m: float = Field(gt=0)
+    height_m: float = Field(gt=0)
+    wheelbase_m: float = Field(gt=0)
+    track_width_m: float = Field(gt=0)
+    rear_overhang_m: float = Field(ge=0)
+    # First-order lag of the powertrain and brakes: a_k = alpha u_k + (1 - alpha) a_{k-1}.
+    accel_time_constant_s: float = Field(ge=0)
+    accel_dead_time_s: float = Field(ge=0)
+    max_accel_mps2: float = Field(gt=0)
+    max_decel_mps2: float = Field(gt=0)
+    max_jerk_mps3: float = Field(gt=0)
+    steer_time_constant_s: float = Field(ge=0)
+    steer_dead_time_s: float = Field(ge=0)
+    max_steer_rad: float = Field(gt=0)
+    max_steer_rate_radps: float = Field(gt=0)
+    max_speed_mps: float = Field(gt=0)
+    # Brake line pressure at a full brake pedal, reported on the CAN bus.
+    max_brake_pressure_bar: float = Field(gt=0)
+
+
+PASSENGER_CAR = VehicleProfile(
+    length_m=4.5, width_m=1.8, height_m=1.5, wheelbase_m=2.7, track_width_m=1.55, rear_overhang_m=0.9,
+    accel_time_constant_s=0.5, accel_dead_time_s=0.1, max_accel_mps2=3.0, max_decel_mps2=8.0,
+    max_jerk_mps3=10.0, steer_time_constant_s=0.1, steer_dead_time_s=0.05, max_steer_rad=0.55,
+    max_steer_rate_radps=0.6, max_speed_mps=50.0, max_brake_pressure_bar=150.0,
+)
+
+TRUCK = VehicleProfile(
+    length_m=12.0, width_m=2.55, height_m=3.8, wheelbase_m=6.0, track_width_m=2.05, rear_overhang_m=3.0,
+    accel_time_constant_s=0.8, accel_dead_time_s=0.3, max_accel_mps2=1.2, max_decel_mps2=4.5,
+    max_jerk_mps3=4.0, steer_time_constant_s=0.2, steer_dead_time_s=0.1, max_steer_rad=0.6,
+    max_steer_rate_radps=0.3, max_speed_mps=25.0, max_brake_pressure_bar=8.0,
+)
+
+PROFILES: dict[ProfileName, VehicleProfile] = {ProfileName.PASSENGER_CAR: PASSENGER_CAR, ProfileName.TRUCK: TRUCK}
