@@ -1,0 +1,132 @@
+"""A lane centre line as a polyline in the local ENU frame, with Frenet projection.
+
+The polyline is stored as numpy segment arrays built once, so projecting a point is one
+vectorised pass over the segments (no Python loop per segment).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+# Below this squared length a segment is a duplicated vertex and is dropped.
+_MIN_SEGMENT_LENGTH_M = 1e-6
+
+
+def wrap_angle_rad(angle_rad: float) -> float:
+    """Wrap an angle to [-pi, pi)."""
+    return (angle_rad + math.pi) % (2.0 * math.pi) - math.pi
+
+
+@dataclass(frozen=True)
+class Projection:
+    station_m: float
+    lateral_offset_m: float
+    heading_rad: float
+    curvature_1pm: float
+    distance_m: float
+
+
+@dataclass(eq=False)
+class Lane:
+    """One lane: centre line in driving order, ENU metres; lateral offset is positive to the left."""
+
+    lane_id: str
+    road_id: str
+    lane_index: int
+    width_m: float
+    points_xy: np.ndarray = field(repr=False)
+    speed_limit_mps: float = 0.0
+    length_m: float = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        points = np.asarray(self.points_xy, dtype=float).reshape(-1, 2)
+        keep = np.ones(len(points), dtype=bool)
+        keep[1:] = np.linalg.norm(np.diff(points, axis=0), axis=1) > _MIN_SEGMENT_LENGTH_M
+        points = points[keep]
+        if len(points) < 2:
+            raise ValueError(f"lane {self.lane_id!r} needs at least two distinct points, got {len(points)}")
+        if self.width_m <= 0.0:
+            raise ValueError(f"lane {self.lane_id!r} has a non-positive width_m {self.width_m}")
+        self.points_xy = points
+        delta = np.diff(points, axis=0)
+        self._start = points[:-1]
+        self._seg_len = np.linalg.norm(delta, axis=1)
+        self._unit = delta / self._seg_len[:, None]
+        self._seg_heading = np.arctan2(self._unit[:, 1], self._unit[:, 0])
+        self._station0 = np.concatenate(([0.0], np.cumsum(self._seg_len)[:-1]))
+        self.length_m = float(self._station0[-1] + self._seg_len[-1])
+        self._vertex_curvature = self._curvature_at_vertices()
+        self._bbox = np.concatenate((points.min(axis=0), points.max(axis=0)))
+
+    def _curvature_at_vertices(self) -> np.ndarray:
+        """Heading change over the mean length of the two adjacent segments, ends copied inward."""
+        n_vertices = len(self.points_xy)
+        curvature = np.zeros(n_vertices)
+        if n_vertices > 2:
+            turn = np.array([wrap_angle_rad(a) for a in np.diff(self._seg_heading)])
+            curvature[1:-1] = turn / (0.5 * (self._seg_len[:-1] + self._seg_len[1:]))
+            curvature[0] = curvature[1]
+            curvature[-1] = curvature[-2]
+        return curvature
+
+    def near_bbox(self, x_m: float, y_m: float, margin_m: float) -> bool:
+        """Cheap pre-filter before a full projection."""
+        x_min, y_min, x_max, y_max = self._bbox
+        return x_min - margin_m <= x_m <= x_max + margin_m and y_min - margin_m <= y_m <= y_max + margin_m
+
+    def _segment_at(self, station_m: float) -> int:
+        index = int(np.searchsorted(self._station0, station_m, side="right")) - 1
+        return min(max(index, 0), len(self._seg_len) - 1)
+
+    def pose_at(self, station_m: float, lateral_offset_m: float = 0.0) -> tuple[float, float, float]:
+        """Point at a station (extrapolated straight beyond the ends) and lateral offset: (x_m, y_m, heading_rad)."""
+        i = self._segment_at(station_m)
+        along_m = station_m - self._station0[i]
+        ux, uy = self._unit[i]
+        x_m = self._start[i, 0] + ux * along_m - uy * lateral_offset_m
+        y_m = self._start[i, 1] + uy * along_m + ux * lateral_offset_m
+        return float(x_m), float(y_m), float(self._seg_heading[i])
+
+    def curvature_at(self, station_m: float) -> float:
+        """Curvature interpolated between vertices, positive to the left, 1/m."""
+        i = self._segment_at(station_m)
+        fraction = min(max((station_m - self._station0[i]) / self._seg_len[i], 0.0), 1.0)
+        return float((1.0 - fraction) * self._vertex_curvature[i] + fraction * self._vertex_curvature[i + 1])
+
+    def project_full(self, x_m: float, y_m: float) -> Projection:
+        """Closest point on the centre line; stations run past the ends along the end segments."""
+        rel = np.array([x_m, y_m]) - self._start
+        along = np.einsum("ij,ij->i", rel, self._unit)
+        clipped = np.clip(along, 0.0, self._seg_len)
+        closest = self._start + self._unit * clipped[:, None]
+        dist_sq = np.sum((np.array([x_m, y_m]) - closest) ** 2, axis=1)
+        i = int(np.argmin(dist_sq))
+        last = len(self._seg_len) - 1
+        along_i = float(along[i])
+        if (i == 0 and along_i < 0.0) or (i == last and along_i > self._seg_len[i]):
+            along_used = along_i
+        else:
+            along_used = float(clipped[i])
+        ux, uy = self._unit[i]
+        rx, ry = rel[i]
+        cross = ux * ry - uy * rx
+        if along_used == along_i:
+            lateral_m = float(cross)
+        else:
+            lateral_m = math.copysign(math.sqrt(float(dist_sq[i])), cross)
+        station_m = float(self._station0[i] + along_used)
+        return Projection(
+            station_m=station_m,
+            lateral_offset_m=lateral_m,
+            heading_rad=float(self._seg_heading[i]),
+            curvature_1pm=self.curvature_at(station_m),
+            distance_m=abs(lateral_m),
+        )
+
+    def project(self, x_m: float, y_m: float) -> tuple[float, float, float, float]:
+        """(station_m, lateral_offset_m, heading_rad, curvature_1pm) of the closest centre-line point."""
+        p = self.project_full(x_m, y_m)
+        return p.station_m, p.lateral_offset_m, p.heading_rad, p.curvature_1pm
