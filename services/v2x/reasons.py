@@ -1,0 +1,31 @@
+"""Why a received packet was rejected: one enum, its values are the keys of V2xStatus.rejected_by_reason."""
+
+import enum
+
+
+class RejectReason(enum.Enum):
+    TRUNCATED_BASIC_HEADER = "truncated_basic_header"
+    UNSUPPORTED_GN_VERSION = "unsupported_gn_version"
+    SECURED_PACKET_UNSUPPORTED = "secured_packet_unsupported"
+    UNKNOWN_BASIC_NEXT_HEADER = "unknown_basic_next_header"
+    TRUNCATED_COMMON_HEADER = "truncated_common_header"
+    UNSUPPORTED_HEADER_TYPE = "unsupported_header_type"
+    TRUNCATED_EXTENDED_HEADER = "truncated_extended_header"
+    PAYLOAD_LENGTH_MISMATCH = "payload_length_mismatch"
+    NOT_BTP_B = "not_btp_b"
+    TRUNCATED_BTP_HEADER = "truncated_btp_header"
+    UNKNOWN_BTP_PORT = "unknown_btp_port"
+    TRUNCATED_ITS_HEADER = "truncated_its_header"
+    MESSAGE_ID_PORT_MISMATCH = "message_id_port_mismatch"
+    UNSUPPORTED_PROTOCOL_VERSION = "unsupported_protocol_version"
+    MALFORMED_ASN1 = "malformed_asn1"
+    UNMAPPABLE_CONTENT = "unmappable_content"
+
+
+class V2xDecodeError(Exception):
+    """A packet that could not be decoded; `reason` says which layer refused it and why."""
+
+    def __init__(self, reason: RejectReason, detail: str = ""):
+        super().__init__(f"{reason.value}: {detail}" if detail else reason.value)
+        self.reason = reason
+        self.detail = detail
