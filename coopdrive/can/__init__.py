@@ -1,0 +1,1 @@
+"""Vehicle CAN: the DBC, its codec and candump logging (pure logic, no transport)."""
