@@ -1,0 +1,116 @@
+"""A GNSS receiver: the true antenna position plus a fix-mode dependent error, written as NMEA 0183."""
+from __future__ import annotations
+
+import datetime as dt
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from coopdrive.services.sim.nmea_writer import NmeaFix, NmeaWriter
+from coopdrive.services.sim.sensor_config import FixModeName, GnssConfig
+from coopdrive.services.sim.sensor_timing import SensorTiming
+from coopdrive.v1 import gnss_pb2, sim_pb2
+
+# Heudiasyc Table 1 (NovAtel APN-051): horizontal accuracy per positioning mode, taken as a 2D RMS error;
+# the "< 1.0 m" and "< 2.0 m" bounds are read as 0.5 m and 1.0 m typical.
+HORIZONTAL_ACCURACY_M = {
+    gnss_pb2.FIX_MODE_RTK_FIXED: 0.01,
+    gnss_pb2.FIX_MODE_RTK_FLOAT: 0.5,
+    gnss_pb2.FIX_MODE_DGPS: 1.0,
+    gnss_pb2.FIX_MODE_SBAS: 3.0,
+    gnss_pb2.FIX_MODE_SINGLE: 5.0,
+}
+# Vertical errors of GNSS are typically one and a half times the horizontal per-axis ones.
+VERTICAL_TO_HORIZONTAL_RATIO = 1.5
+TYPICAL_HDOP = 0.9
+DIFFERENTIAL_AGE_S = 1.0
+
+ToGeodetic = Callable[[float, float, float], tuple[float, float, float]]
+
+
+def axis_sigma_m(fix_mode: int) -> float:
+    """One-sigma error per horizontal axis so that the 2D RMS equals the table's accuracy."""
+    return HORIZONTAL_ACCURACY_M.get(fix_mode, 0.0) / math.sqrt(2.0)
+
+
+@dataclass(frozen=True)
+class GnssOutput:
+    sample_time_s: float
+    delivery_time_s: float
+    fix: NmeaFix
+    sentences: list[bytes]
+    # The reported antenna position in the local ENU frame, for the judge (not sent to the stack).
+    measured_x_m: float
+    measured_y_m: float
+
+    @property
+    def data(self) -> bytes:
+        return b"".join(self.sentences)
+
+
+class GnssSensor:
+    def __init__(self, config: GnssConfig, rng: np.random.Generator, to_geodetic: ToGeodetic,
+                 utc_epoch: dt.datetime) -> None:
+        self.config = config
+        self.rng = rng
+        self.to_geodetic = to_geodetic
+        self.utc_epoch = utc_epoch
+        self.timing: SensorTiming[GnssOutput] = SensorTiming(config.timing, rng)
+        self.writer = NmeaWriter(config.talker_id)
+        self.fix_mode = config.fix_mode.proto
+        self.outage = False
+        self._error_enu_m = np.zeros(3)
+        self._last_sample_s: float | None = None
+
+    def set_fix_mode(self, fix_mode: FixModeName | int) -> None:
+        """Fault hook (fix_downgrade): the receiver reports this mode and its accuracy from now on."""
+        self.fix_mode = fix_mode.proto if isinstance(fix_mode, FixModeName) else int(fix_mode)
+
+    def set_outage(self, active: bool) -> None:
+        """Fault hook (gnss_outage): the receiver keeps talking but reports no fix."""
+        self.outage = active
+
+    @property
+    def effective_fix_mode(self) -> int:
+        return gnss_pb2.FIX_MODE_NO_FIX if self.outage else self.fix_mode
+
+    def poll(self, now_s: float, ego: sim_pb2.VehicleTruth) -> list[GnssOutput]:
+        ready = self.timing.poll(now_s, lambda sample_s: self._measure(sample_s, ego))
+        return [GnssOutput(sample_s, delivery_s, *out) for sample_s, delivery_s, out in ready]
+
+    def _update_error(self, sample_s: float, sigma_m: np.ndarray) -> np.ndarray:
+        tau_s = self.config.error_correlation_time_s
+        if tau_s > 0.0 and self._last_sample_s is not None:
+            phi = math.exp(-(sample_s - self._last_sample_s) / tau_s)
+        else:
+            phi = 0.0
+        self._last_sample_s = sample_s
+        # First-order Gauss-Markov: stationary standard deviation sigma whatever the correlation time.
+        self._error_enu_m = phi * self._error_enu_m + math.sqrt(1.0 - phi * phi) * sigma_m * self.rng.standard_normal(3)
+        return self._error_enu_m
+
+    def _measure(self, sample_s: float, ego: sim_pb2.VehicleTruth) -> tuple:
+        cfg = self.config
+        mode = self.effective_fix_mode
+        sigma_h = axis_sigma_m(mode) * cfg.accuracy_scale
+        sigma = np.array([sigma_h, sigma_h, sigma_h * VERTICAL_TO_HORIZONTAL_RATIO])
+        error = self._update_error(sample_s, sigma)
+        cos_h, sin_h = math.cos(ego.heading_rad), math.sin(ego.heading_rad)
+        true_x = ego.x_m + cfg.antenna_x_m * cos_h - cfg.antenna_y_m * sin_h
+        true_y = ego.y_m + cfg.antenna_x_m * sin_h + cfg.antenna_y_m * cos_h
+        x_m, y_m, z_m = true_x + error[0], true_y + error[1], cfg.antenna_height_m + error[2]
+        lat_deg, lon_deg, alt_m = self.to_geodetic(x_m, y_m, z_m)
+        speed = max(ego.speed_mps + cfg.speed_sigma_mps * self.rng.standard_normal(), 0.0)
+        course_deg = (90.0 - math.degrees(ego.heading_rad) + cfg.course_sigma_deg * self.rng.standard_normal()) % 360.0
+        fix = NmeaFix(
+            utc=self.utc_epoch + dt.timedelta(seconds=sample_s),
+            latitude_deg=lat_deg, longitude_deg=lon_deg, altitude_m=alt_m, fix_mode=mode,
+            speed_mps=speed, course_deg=course_deg,
+            std_north_m=sigma[1], std_east_m=sigma[0], std_up_m=sigma[2],
+            satellites=0 if mode == gnss_pb2.FIX_MODE_NO_FIX else cfg.satellites,
+            hdop=99.9 if mode == gnss_pb2.FIX_MODE_NO_FIX else TYPICAL_HDOP,
+            differential_age_s=DIFFERENTIAL_AGE_S if mode >= gnss_pb2.FIX_MODE_SBAS else None,
+        )
+        return fix, self.writer.epoch(fix), x_m, y_m

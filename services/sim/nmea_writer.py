@@ -1,0 +1,146 @@
+"""NMEA 0183 sentences (GGA, RMC, GST, VTG) as bytes with their checksums, from physical values."""
+from __future__ import annotations
+
+import datetime as dt
+import enum
+from dataclasses import dataclass
+from functools import reduce
+
+from coopdrive.v1 import gnss_pb2
+
+KNOTS_PER_MPS = 3600.0 / 1852.0
+KMH_PER_MPS = 3.6
+
+
+class GgaQuality(enum.IntEnum):
+    INVALID = 0
+    GPS = 1
+    DGPS = 2
+    RTK_FIXED = 4
+    RTK_FLOAT = 5
+
+
+# NMEA 2.3+ mode indicator of RMC and VTG.
+class ModeIndicator(enum.Enum):
+    AUTONOMOUS = "A"
+    DIFFERENTIAL = "D"
+    RTK_FLOAT = "F"
+    RTK_INTEGER = "R"
+    NOT_VALID = "N"
+
+
+_QUALITY = {
+    gnss_pb2.FIX_MODE_NO_FIX: GgaQuality.INVALID,
+    gnss_pb2.FIX_MODE_SINGLE: GgaQuality.GPS,
+    gnss_pb2.FIX_MODE_SBAS: GgaQuality.DGPS,
+    gnss_pb2.FIX_MODE_DGPS: GgaQuality.DGPS,
+    gnss_pb2.FIX_MODE_RTK_FLOAT: GgaQuality.RTK_FLOAT,
+    gnss_pb2.FIX_MODE_RTK_FIXED: GgaQuality.RTK_FIXED,
+}
+_MODE = {
+    gnss_pb2.FIX_MODE_NO_FIX: ModeIndicator.NOT_VALID,
+    gnss_pb2.FIX_MODE_SINGLE: ModeIndicator.AUTONOMOUS,
+    gnss_pb2.FIX_MODE_SBAS: ModeIndicator.DIFFERENTIAL,
+    gnss_pb2.FIX_MODE_DGPS: ModeIndicator.DIFFERENTIAL,
+    gnss_pb2.FIX_MODE_RTK_FLOAT: ModeIndicator.RTK_FLOAT,
+    gnss_pb2.FIX_MODE_RTK_FIXED: ModeIndicator.RTK_INTEGER,
+}
+
+
+def gga_quality(fix_mode: int) -> GgaQuality:
+    return _QUALITY.get(fix_mode, GgaQuality.INVALID)
+
+
+def checksum(body: str) -> str:
+    """XOR of the characters between '$' and '*', as two upper-case hex digits."""
+    return f"{reduce(lambda acc, ch: acc ^ ord(ch), body, 0):02X}"
+
+
+def sentence(body: str) -> bytes:
+    return f"${body}*{checksum(body)}\r\n".encode("ascii")
+
+
+def _latitude(lat_deg: float) -> tuple[str, str]:
+    value = abs(lat_deg)
+    degrees = int(value)
+    return f"{degrees:02d}{(value - degrees) * 60.0:010.7f}", "N" if lat_deg >= 0 else "S"
+
+
+def _longitude(lon_deg: float) -> tuple[str, str]:
+    value = abs(lon_deg)
+    degrees = int(value)
+    return f"{degrees:03d}{(value - degrees) * 60.0:010.7f}", "E" if lon_deg >= 0 else "W"
+
+
+def _position(fix: "NmeaFix", valid: bool) -> tuple[str, str, str, str]:
+    """Receivers leave the position fields empty when they have no fix."""
+    if not valid:
+        return "", "", "", ""
+    return (*_latitude(fix.latitude_deg), *_longitude(fix.longitude_deg))
+
+
+def _time(utc: dt.datetime) -> str:
+    return f"{utc:%H%M%S}.{utc.microsecond // 10_000:02d}"
+
+
+@dataclass(frozen=True)
+class NmeaFix:
+    """One receiver solution in physical units."""
+
+    utc: dt.datetime
+    latitude_deg: float
+    longitude_deg: float
+    altitude_m: float
+    fix_mode: int
+    speed_mps: float
+    course_deg: float
+    std_north_m: float
+    std_east_m: float
+    std_up_m: float
+    satellites: int
+    hdop: float
+    geoid_separation_m: float = 0.0
+    differential_age_s: float | None = None
+
+
+class NmeaWriter:
+    """Writes GGA, RMC, GST and VTG sentences with a fixed talker id ("GN" multi-constellation, "GP" GPS)."""
+
+    def __init__(self, talker_id: str = "GN") -> None:
+        if len(talker_id) != 2 or not talker_id.isalpha():
+            raise ValueError(f"NMEA talker id must be two letters, got {talker_id!r}")
+        self.talker_id = talker_id.upper()
+
+    def gga(self, fix: NmeaFix) -> bytes:
+        quality = gga_quality(fix.fix_mode)
+        lat, ns, lon, ew = _position(fix, quality is not GgaQuality.INVALID)
+        age = f"{fix.differential_age_s:.1f}" if fix.differential_age_s is not None else ""
+        station = "0000" if fix.differential_age_s is not None else ""
+        return sentence(f"{self.talker_id}GGA,{_time(fix.utc)},{lat},{ns},{lon},{ew},{int(quality)},"
+                        f"{fix.satellites:02d},{fix.hdop:.1f},{fix.altitude_m:.3f},M,"
+                        f"{fix.geoid_separation_m:.3f},M,{age},{station}")
+
+    def rmc(self, fix: NmeaFix) -> bytes:
+        mode = _MODE.get(fix.fix_mode, ModeIndicator.NOT_VALID)
+        lat, ns, lon, ew = _position(fix, mode is not ModeIndicator.NOT_VALID)
+        status = "V" if mode is ModeIndicator.NOT_VALID else "A"
+        return sentence(f"{self.talker_id}RMC,{_time(fix.utc)},{status},{lat},{ns},{lon},{ew},"
+                        f"{fix.speed_mps * KNOTS_PER_MPS:.3f},{fix.course_deg % 360.0:.2f},"
+                        f"{fix.utc:%d%m%y},,,{mode.value}")
+
+    def gst(self, fix: NmeaFix) -> bytes:
+        major = max(fix.std_north_m, fix.std_east_m)
+        minor = min(fix.std_north_m, fix.std_east_m)
+        orientation_deg = 0.0 if fix.std_north_m >= fix.std_east_m else 90.0
+        rms = (fix.std_north_m ** 2 + fix.std_east_m ** 2 + fix.std_up_m ** 2) ** 0.5
+        return sentence(f"{self.talker_id}GST,{_time(fix.utc)},{rms:.3f},{major:.3f},{minor:.3f},"
+                        f"{orientation_deg:.1f},{fix.std_north_m:.3f},{fix.std_east_m:.3f},{fix.std_up_m:.3f}")
+
+    def vtg(self, fix: NmeaFix) -> bytes:
+        mode = _MODE.get(fix.fix_mode, ModeIndicator.NOT_VALID)
+        return sentence(f"{self.talker_id}VTG,{fix.course_deg % 360.0:.2f},T,,M,"
+                        f"{fix.speed_mps * KNOTS_PER_MPS:.3f},N,{fix.speed_mps * KMH_PER_MPS:.3f},K,{mode.value}")
+
+    def epoch(self, fix: NmeaFix) -> list[bytes]:
+        """The sentences a receiver sends for one solution, in the usual order."""
+        return [self.gga(fix), self.rmc(fix), self.gst(fix), self.vtg(fix)]

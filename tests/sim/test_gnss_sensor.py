@@ -1,0 +1,97 @@
+import datetime as dt
+import math
+
+import numpy as np
+import pymap3d
+import pynmea2
+import pytest
+
+from coopdrive.services.sim.gnss_sensor import GnssSensor, axis_sigma_m
+from coopdrive.services.sim.nmea_writer import checksum
+from coopdrive.services.sim.sensor_config import FixModeName, GnssConfig, SensorTimingConfig
+from coopdrive.services.sim.sensor_timing import sensor_rng
+from coopdrive.v1 import gnss_pb2, sim_pb2
+
+ORIGIN = (51.4504, 5.6260, 20.0)  # near the A270, Helmond
+EPOCH = dt.datetime(2016, 5, 28, 10, 0, 0, tzinfo=dt.timezone.utc)
+
+
+def _to_geodetic(x_m, y_m, z_m):
+    return pymap3d.enu2geodetic(x_m, y_m, z_m, *ORIGIN)
+
+
+def _sensor(**config):
+    config.setdefault("timing", SensorTimingConfig(rate_hz=10.0))
+    return GnssSensor(GnssConfig(**config), sensor_rng(7, "ego", "gnss"), _to_geodetic, EPOCH)
+
+
+def _ego(x_m=120.0, y_m=-35.0, heading_rad=0.3, speed_mps=11.0):
+    return sim_pb2.VehicleTruth(vehicle_id="ego", x_m=x_m, y_m=y_m, heading_rad=heading_rad, speed_mps=speed_mps)
+
+
+@pytest.mark.parametrize("mode, quality", [
+    (FixModeName.RTK_FIXED, 4), (FixModeName.RTK_FLOAT, 5), (FixModeName.DGPS, 2),
+    (FixModeName.SBAS, 2), (FixModeName.SINGLE, 1)])
+def test_nmea_sentences_parse_with_valid_checksums_and_the_fix_quality_of_the_mode(mode, quality):
+    output = _sensor(fix_mode=mode).poll(0.0, _ego())[0]
+    kinds = []
+    for raw in output.sentences:
+        text = raw.decode("ascii")
+        assert text.endswith("\r\n")
+        body, given = text.strip()[1:].split("*")
+        assert given == checksum(body)
+        message = pynmea2.parse(text.strip(), check=True)
+        kinds.append(message.sentence_type)
+        if message.sentence_type == "GGA":
+            assert message.gps_qual == quality
+    assert kinds == ["GGA", "RMC", "GST", "VTG"]
+
+
+def test_a_perfect_receiver_round_trips_the_antenna_position_and_speed():
+    ego = _ego()
+    output = _sensor(accuracy_scale=0.0, speed_sigma_mps=0.0, course_sigma_deg=0.0).poll(0.0, ego)[0]
+    gga = pynmea2.parse(output.sentences[0].decode().strip())
+    x_m, y_m, _ = pymap3d.geodetic2enu(gga.latitude, gga.longitude, gga.altitude, *ORIGIN)
+    assert x_m == pytest.approx(ego.x_m, abs=0.002)
+    assert y_m == pytest.approx(ego.y_m, abs=0.002)
+    vtg = pynmea2.parse(output.sentences[3].decode().strip())
+    assert vtg.spd_over_grnd_kmph == pytest.approx(ego.speed_mps * 3.6, abs=1e-3)
+    assert vtg.true_track == pytest.approx(90.0 - math.degrees(ego.heading_rad), abs=0.01)
+    rmc = pynmea2.parse(output.sentences[1].decode().strip())
+    assert rmc.datestamp == EPOCH.date() and rmc.status == "A"
+
+
+def test_position_noise_matches_the_accuracy_of_the_fix_mode():
+    sensor = _sensor(fix_mode=FixModeName.SINGLE)
+    ego = _ego()
+    errors = []
+    for k in range(3000):
+        for output in sensor.poll(k * 0.1, ego):
+            errors.append((output.measured_x_m - ego.x_m, output.measured_y_m - ego.y_m))
+    errors = np.array(errors)
+    assert len(errors) == 3000
+    assert np.abs(errors.mean(axis=0)).max() < 0.25
+    assert errors.std(axis=0) == pytest.approx([axis_sigma_m(gnss_pb2.FIX_MODE_SINGLE)] * 2, rel=0.06)
+    gst = pynmea2.parse(output.sentences[2].decode().strip())
+    assert gst.std_dev_latitude == pytest.approx(axis_sigma_m(gnss_pb2.FIX_MODE_SINGLE), abs=1e-3)
+
+
+def test_an_outage_reports_no_fix_with_empty_position_and_a_downgrade_changes_the_quality():
+    sensor = _sensor()
+    sensor.set_outage(True)
+    gga = pynmea2.parse(sensor.poll(0.0, _ego())[0].sentences[0].decode().strip())
+    assert gga.gps_qual == 0 and gga.lat == ""
+    sensor.set_outage(False)
+    sensor.set_fix_mode(FixModeName.RTK_FLOAT)
+    gga = pynmea2.parse(sensor.poll(0.1, _ego())[0].sentences[0].decode().strip())
+    assert gga.gps_qual == 5
+
+
+def test_samples_arrive_after_the_latency_and_dropouts_are_lost():
+    sensor = _sensor(timing=SensorTimingConfig(rate_hz=10.0, latency_s=0.05, dropout_probability=0.3))
+    delivered = []
+    for k in range(0, 20000):
+        for output in sensor.poll(k * 0.01, _ego()):
+            assert output.delivery_time_s - output.sample_time_s == pytest.approx(0.05)
+            delivered.append(output)
+    assert len(delivered) / 2000 == pytest.approx(0.7, abs=0.03)
