@@ -54,33 +54,35 @@ def rectangles_overlap(a: np.ndarray, b: np.ndarray) -> bool:
     return True
 
 
-def cast_rays(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,
-              polygons: Sequence[np.ndarray], max_range_m: float) -> tuple[np.ndarray, np.ndarray]:
-    """Nearest hit of each ray on the polygons' edges: (range_m, index of the polygon hit or -1).
-
-    Rays start at origin_xy in the polygons' frame; a ray with no hit within max_range_m gets inf.
-    """
-    azimuths = np.asarray(azimuths_rad, dtype=float)
-    ranges = np.full(azimuths.shape, np.inf)
-    hit_index = np.full(azimuths.shape, -1, dtype=int)
-    if not len(polygons) or not azimuths.size:
-        return ranges, hit_index
+def ray_polygon_ranges(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,
+                       polygons: Sequence[np.ndarray]) -> np.ndarray:
+    """Distance along each ray (rows) to the first crossing of each polygon's outline (columns); inf on a miss."""
+    azimuths = np.atleast_1d(np.asarray(azimuths_rad, dtype=float))
+    ranges = np.full((azimuths.size, len(polygons)), np.inf)
     dirs = np.column_stack((np.cos(azimuths), np.sin(azimuths)))
     origin = np.asarray(origin_xy, dtype=float)
     for index, corners in enumerate(polygons):
-        starts = corners
         edges = np.roll(corners, -1, axis=0) - corners
-        # Solve origin + t d = start + u e for every ray (rows) and edge (columns).
+        # Solve origin + t d = start + u e for every ray and edge.
         denom = dirs[:, None, 0] * edges[None, :, 1] - dirs[:, None, 1] * edges[None, :, 0]
-        rel = starts - origin
+        rel = corners - origin
         with np.errstate(divide="ignore", invalid="ignore"):
             t = (rel[None, :, 0] * edges[None, :, 1] - rel[None, :, 1] * edges[None, :, 0]) / denom
             u = (rel[None, :, 0] * dirs[:, None, 1] - rel[None, :, 1] * dirs[:, None, 0]) / denom
         valid = (np.abs(denom) > 1e-12) & (t > 0.0) & (u >= 0.0) & (u <= 1.0)
-        t = np.where(valid, t, np.inf).min(axis=1)
-        closer = t < ranges
-        ranges[closer] = t[closer]
-        hit_index[closer] = index
+        ranges[:, index] = np.where(valid, t, np.inf).min(axis=1)
+    return ranges
+
+
+def cast_rays(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,
+              polygons: Sequence[np.ndarray], max_range_m: float) -> tuple[np.ndarray, np.ndarray]:
+    """Nearest hit of each ray on the polygons: (range_m, index of the polygon hit or -1); inf on a miss."""
+    azimuths = np.atleast_1d(np.asarray(azimuths_rad, dtype=float))
+    if not len(polygons):
+        return np.full(azimuths.shape, np.inf), np.full(azimuths.shape, -1, dtype=int)
+    table = ray_polygon_ranges(origin_xy, azimuths, polygons)
+    hit_index = table.argmin(axis=1)
+    ranges = table[np.arange(azimuths.size), hit_index]
     beyond = ranges > max_range_m
     ranges[beyond] = np.inf
     hit_index[beyond] = -1

@@ -58,3 +58,13 @@ class SensorTiming(Generic[Output]):
             delivery_s, _, sample_s, output = heapq.heappop(self._pending)
             ready.append((sample_s, delivery_s, output))
         return ready
+
+
+def stamp(header, sample_time_s: float, delivery_time_s: float, vehicle_id: str, sender: str,
+          sequence: int) -> None:
+    """Fill a coopdrive.v1 Header in place."""
+    header.sample_time_s = sample_time_s
+    header.sent_time_s = delivery_time_s
+    header.vehicle_id = vehicle_id
+    header.sender = sender
+    header.sequence = sequence

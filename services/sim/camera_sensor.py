@@ -1,0 +1,92 @@
+"""A front camera: detected vehicles (unoccluded, in view) and the ego lane's markings from the map."""
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+import numpy as np
+
+from coopdrive.services.sim import geometry
+from coopdrive.services.sim.road_geometry import LaneGeometry, nearest_lane
+from coopdrive.services.sim.sensor_config import CameraConfig
+from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
+from coopdrive.services.sim.world_view import WorldView
+from coopdrive.v1 import sensors_pb2
+
+SENDER = "sim"
+LANE_SAMPLES = 12
+CUBIC = 3
+# Detection confidence falls linearly from 1 at the camera to this value at max range.
+FAR_CONFIDENCE = 0.5
+
+
+class CameraSensor:
+    def __init__(self, config: CameraConfig, rng: np.random.Generator, vehicle_id: str,
+                 lanes: Sequence[LaneGeometry] = ()) -> None:
+        self.config = config
+        self.rng = rng
+        self.vehicle_id = vehicle_id
+        self.lanes = list(lanes)
+        self.timing: SensorTiming[sensors_pb2.CameraFrame] = SensorTiming(config.timing, rng)
+        self._detection_ids: dict[str, int] = {}
+        self._sequence = 0
+
+    def set_dropout(self, active: bool) -> None:
+        self.timing.forced_dropout = active
+
+    def poll(self, now_s: float, world: WorldView) -> list[sensors_pb2.CameraFrame]:
+        outputs = []
+        for sample_s, delivery_s, message in self.timing.poll(now_s, lambda _: self._measure(world)):
+            self._sequence += 1
+            stamp(message.header, sample_s, delivery_s, self.vehicle_id, SENDER, self._sequence)
+            outputs.append(message)
+        return outputs
+
+    def _measure(self, world: WorldView) -> sensors_pb2.CameraFrame:
+        frame = sensors_pb2.CameraFrame()
+        self._detect(world, frame)
+        self._lane_markings(world, frame)
+        return frame
+
+    def _detect(self, world: WorldView, frame: sensors_pb2.CameraFrame) -> None:
+        cfg = self.config
+        mount = np.array([cfg.mount_x_m, cfg.mount_y_m])
+        polygons = world.footprints_in_ego_frame()
+        for index, (other, corners) in enumerate(zip(world.others, polygons)):
+            point = geometry.closest_point_on_polygon(tuple(mount), corners)
+            rel = point - mount
+            distance_m = float(np.hypot(*rel))
+            bearing_rad = math.atan2(rel[1], rel[0])
+            if rel[0] <= 0.0 or distance_m > cfg.max_range_m or abs(bearing_rad) > cfg.half_fov_rad:
+                continue
+            centre = corners.mean(axis=0) - mount
+            _, hit = geometry.cast_rays(tuple(mount), np.array([math.atan2(centre[1], centre[0]), bearing_rad]),
+                                        polygons, cfg.max_range_m)
+            if index not in hit or self.rng.random() < cfg.miss_probability:
+                continue
+            x_m, y_m = point + cfg.position_sigma_m * self.rng.standard_normal(2)
+            frame.detections.add(
+                detection_id=self._detection_ids.setdefault(other.vehicle_id, len(self._detection_ids) + 1),
+                object_class=world.object_class(other), x_m=x_m, y_m=y_m, width_m=other.width_m,
+                confidence=1.0 - (1.0 - FAR_CONFIDENCE) * distance_m / cfg.max_range_m,
+            )
+
+    def _lane_markings(self, world: WorldView, frame: sensors_pb2.CameraFrame) -> None:
+        if not self.lanes:
+            return
+        cfg = self.config
+        ego = world.ego
+        found = nearest_lane(self.lanes, ego.x_m, ego.y_m)
+        if found is None:
+            return
+        lane, station_m, _ = found
+        stations = station_m + cfg.mount_x_m + np.linspace(0.0, cfg.lane_view_range_m, LANE_SAMPLES)
+        offset_noise_m = cfg.lane_offset_sigma_m * self.rng.standard_normal(2)
+        heading_noise = cfg.lane_heading_sigma_rad * self.rng.standard_normal()
+        for side, sign, noise_m in ((sensors_pb2.LANE_SIDE_LEFT, 1.0, offset_noise_m[0]),
+                                    (sensors_pb2.LANE_SIDE_RIGHT, -1.0, offset_noise_m[1])):
+            points = np.array([lane.pose_at(float(s), sign * lane.width_m / 2.0)[:2] for s in stations])
+            local = geometry.to_ego_frame(points, ego.x_m, ego.y_m, ego.heading_rad)
+            c3, c2, c1, c0 = np.polyfit(local[:, 0], local[:, 1], CUBIC)
+            frame.lane_markings.add(side=side, c0_m=c0 + noise_m, c1=c1 + heading_noise, c2_1pm=c2, c3_1pm2=c3,
+                                    view_range_m=cfg.lane_view_range_m, quality=1.0)

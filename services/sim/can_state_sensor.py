@@ -1,0 +1,73 @@
+"""The ego vehicle's CAN state (wheel speeds, yaw rate, steering, pedals) as VehicleCanState values."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from coopdrive.services.sim.profiles import VehicleProfile
+from coopdrive.services.sim.sensor_config import CanStateConfig
+from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
+from coopdrive.v1 import sim_pb2, vehicle_pb2
+
+SENDER = "sim"
+
+
+@dataclass(frozen=True)
+class PedalState:
+    throttle_ratio: float = 0.0
+    brake_ratio: float = 0.0
+    brake_pressure_bar: float = 0.0
+
+
+def wheel_speeds_mps(speed_mps: float, yaw_rate_radps: float, wheelbase_m: float,
+                     track_width_m: float) -> tuple[float, float, float, float]:
+    """(front left, front right, rear left, rear right) wheel speeds of a rigid body moving at speed_mps at
+    the rear axle centre and turning at yaw_rate_radps: |v + w x r| at each wheel contact point."""
+    half_track = track_width_m / 2.0
+    lateral_front = yaw_rate_radps * wheelbase_m
+
+    def at(y_m: float, lateral_mps: float) -> float:
+        return math.hypot(speed_mps - yaw_rate_radps * y_m, lateral_mps)
+
+    return at(half_track, lateral_front), at(-half_track, lateral_front), at(half_track, 0.0), at(-half_track, 0.0)
+
+
+class CanStateSensor:
+    def __init__(self, config: CanStateConfig, rng: np.random.Generator, profile: VehicleProfile,
+                 vehicle_id: str) -> None:
+        self.config = config
+        self.rng = rng
+        self.profile = profile
+        self.vehicle_id = vehicle_id
+        self.timing: SensorTiming[vehicle_pb2.VehicleCanState] = SensorTiming(config.timing, rng)
+        self._sequence = 0
+
+    def set_dropout(self, active: bool) -> None:
+        """Fault hook (sensor_dropout, can_error_burst): no frames while active."""
+        self.timing.forced_dropout = active
+
+    def poll(self, now_s: float, ego: sim_pb2.VehicleTruth, pedals: PedalState) -> list[vehicle_pb2.VehicleCanState]:
+        outputs = []
+        for sample_s, delivery_s, message in self.timing.poll(now_s, lambda _: self._measure(ego, pedals)):
+            self._sequence += 1
+            stamp(message.header, sample_s, delivery_s, self.vehicle_id, SENDER, self._sequence)
+            outputs.append(message)
+        return outputs
+
+    def _measure(self, ego: sim_pb2.VehicleTruth, pedals: PedalState) -> vehicle_pb2.VehicleCanState:
+        cfg = self.config
+        wheels = np.array(wheel_speeds_mps(ego.speed_mps, ego.yaw_rate_radps, self.profile.wheelbase_m,
+                                           self.profile.track_width_m))
+        wheels = np.maximum(wheels + cfg.wheel_speed_sigma_mps * self.rng.standard_normal(4), 0.0)
+        return vehicle_pb2.VehicleCanState(
+            wheel_speed_front_left_mps=wheels[0], wheel_speed_front_right_mps=wheels[1],
+            wheel_speed_rear_left_mps=wheels[2], wheel_speed_rear_right_mps=wheels[3],
+            yaw_rate_radps=ego.yaw_rate_radps + cfg.yaw_rate_sigma_radps * self.rng.standard_normal(),
+            steering_angle_rad=ego.steering_angle_rad + cfg.steering_sigma_rad * self.rng.standard_normal(),
+            throttle_pedal_ratio=pedals.throttle_ratio,
+            brake_pedal_ratio=pedals.brake_ratio,
+            brake_pressure_bar=pedals.brake_pressure_bar,
+            gear=vehicle_pb2.GEAR_DRIVE,
+        )

@@ -1,0 +1,48 @@
+"""Six ultrasonic sensors: the nearest echo within each beam cone, up to a few metres."""
+from __future__ import annotations
+
+import numpy as np
+
+from coopdrive.services.sim import geometry
+from coopdrive.services.sim.sensor_config import SonarConfig
+from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
+from coopdrive.services.sim.world_view import WorldView
+from coopdrive.v1 import sensors_pb2
+
+SENDER = "sim"
+
+
+class SonarSensor:
+    def __init__(self, config: SonarConfig, rng: np.random.Generator, vehicle_id: str) -> None:
+        self.config = config
+        self.rng = rng
+        self.vehicle_id = vehicle_id
+        self.timing: SensorTiming[sensors_pb2.SonarRanges] = SensorTiming(config.timing, rng)
+        self._cone_rad = np.linspace(-config.half_beam_rad, config.half_beam_rad, config.rays_per_beam)
+        self._sequence = 0
+
+    def set_dropout(self, active: bool) -> None:
+        self.timing.forced_dropout = active
+
+    def poll(self, now_s: float, world: WorldView) -> list[sensors_pb2.SonarRanges]:
+        outputs = []
+        for sample_s, delivery_s, message in self.timing.poll(now_s, lambda _: self._measure(world)):
+            self._sequence += 1
+            stamp(message.header, sample_s, delivery_s, self.vehicle_id, SENDER, self._sequence)
+            outputs.append(message)
+        return outputs
+
+    def _measure(self, world: WorldView) -> sensors_pb2.SonarRanges:
+        cfg = self.config
+        polygons = world.footprints_in_ego_frame()
+        message = sensors_pb2.SonarRanges()
+        for index, mount in enumerate(cfg.mounts):
+            ranges, _ = geometry.cast_rays((mount.x_m, mount.y_m), mount.yaw_rad + self._cone_rad, polygons,
+                                           cfg.max_range_m)
+            nearest_m = float(ranges.min()) if ranges.size else np.inf
+            echo = bool(np.isfinite(nearest_m))
+            range_m = min(max(nearest_m + cfg.range_sigma_m * self.rng.standard_normal(), 0.0), cfg.max_range_m) \
+                if echo else cfg.max_range_m
+            message.ranges.add(sensor_index=index, mount_x_m=mount.x_m, mount_y_m=mount.y_m,
+                               mount_yaw_rad=mount.yaw_rad, range_m=range_m, max_range_m=cfg.max_range_m, echo=echo)
+        return message
