@@ -1,0 +1,256 @@
+"""GeoNetworking (EN 302 636-4-1) basic + common headers, SHB and GBC extended headers.
+
+Only what GCDC-style V2X needs: single-hop broadcast (CAM, iCLCM) and geo-broadcast (DENM) with long
+position vectors. Field values stay in wire units here (1e-7 deg, 0.01 m/s, 0.1 deg); packet.py converts.
+Parsing never raises anything but GnParseError, whose reason names the first thing that was wrong.
+"""
+
+from __future__ import annotations
+
+import enum
+import struct
+from dataclasses import dataclass, field
+
+from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
+
+GN_VERSION_GCDC = 0
+GN_VERSION_CURRENT = 1
+SUPPORTED_GN_VERSIONS = (GN_VERSION_GCDC, GN_VERSION_CURRENT)
+MID_SIZE_BYTES = 6
+
+_BASIC = struct.Struct(">BBBB")
+_COMMON = struct.Struct(">BBBBHBB")
+_LONG_POSITION_VECTOR = struct.Struct(">QIiiHH")
+_SHB_TAIL = struct.Struct(">I")
+_GBC_HEAD = struct.Struct(">HH")
+_GBC_AREA = struct.Struct(">iiHHHH")
+BASIC_HEADER_SIZE = _BASIC.size
+COMMON_HEADER_SIZE = _COMMON.size
+SHB_HEADER_SIZE = _LONG_POSITION_VECTOR.size + _SHB_TAIL.size
+GBC_HEADER_SIZE = _GBC_HEAD.size + _LONG_POSITION_VECTOR.size + _GBC_AREA.size
+
+_MOBILE_FLAG = 0x80
+_PAI_FLAG = 0x8000
+_SPEED_BITS = 15
+_LIFETIME_BASES_S = (0.05, 1.0, 10.0, 100.0)
+_LIFETIME_MAX_MULTIPLIER = 63
+
+
+class GnParseError(V2xDecodeError):
+    """A GeoNetworking header that could not be parsed."""
+
+
+class BasicNextHeader(enum.IntEnum):
+    ANY = 0
+    COMMON_HEADER = 1
+    SECURED_PACKET = 2
+
+
+class CommonNextHeader(enum.IntEnum):
+    ANY = 0
+    BTP_A = 1
+    BTP_B = 2
+    IPV6 = 3
+
+
+class HeaderType(enum.IntEnum):
+    ANY = 0
+    BEACON = 1
+    GEOUNICAST = 2
+    GEOANYCAST = 3
+    GEOBROADCAST = 4
+    TOPOLOGICALLY_SCOPED_BROADCAST = 5
+    LOCATION_SERVICE = 6
+
+
+class GeoAreaShape(enum.IntEnum):
+    """Header subtype of GEOBROADCAST / GEOANYCAST."""
+
+    CIRCLE = 0
+    RECTANGLE = 1
+    ELLIPSE = 2
+
+
+TSB_SUBTYPE_SINGLE_HOP = 0
+
+
+def encode_lifetime(lifetime_s: float) -> tuple[int, int]:
+    """(multiplier, base index) of the finest base that can hold lifetime_s."""
+    for base_index, base_s in enumerate(_LIFETIME_BASES_S):
+        multiplier = round(lifetime_s / base_s)
+        if multiplier <= _LIFETIME_MAX_MULTIPLIER:
+            return max(multiplier, 0), base_index
+    return _LIFETIME_MAX_MULTIPLIER, len(_LIFETIME_BASES_S) - 1
+
+
+@dataclass
+class BasicHeader:
+    version: int = GN_VERSION_CURRENT
+    next_header: BasicNextHeader = BasicNextHeader.COMMON_HEADER
+    lifetime_multiplier: int = 1
+    lifetime_base: int = 1
+    remaining_hop_limit: int = 1
+
+    @property
+    def lifetime_s(self) -> float:
+        return self.lifetime_multiplier * _LIFETIME_BASES_S[self.lifetime_base]
+
+
+@dataclass
+class CommonHeader:
+    next_header: CommonNextHeader = CommonNextHeader.BTP_B
+    header_type: HeaderType = HeaderType.TOPOLOGICALLY_SCOPED_BROADCAST
+    header_subtype: int = TSB_SUBTYPE_SINGLE_HOP
+    # Traffic class octet: store-carry-forward (bit 7), channel offload (bit 6), TC ID (bits 5-0).
+    traffic_class: int = 0
+    mobile: bool = True
+    payload_length: int = 0
+    max_hop_limit: int = 1
+
+
+@dataclass
+class GnAddress:
+    manual: bool = False
+    station_type: int = 5
+    reserved: int = 0
+    mid: bytes = bytes(MID_SIZE_BYTES)
+
+
+@dataclass
+class LongPositionVector:
+    address: GnAddress = field(default_factory=GnAddress)
+    # TAI milliseconds mod 2^32.
+    timestamp_ms: int = 0
+    latitude_tenth_microdeg: int = 0
+    longitude_tenth_microdeg: int = 0
+    position_accurate: bool = False
+    speed_cmps: int = 0
+    # 0.1 deg from north, clockwise.
+    heading_tenth_deg: int = 0
+
+    def pack(self) -> bytes:
+        a = self.address
+        address = (int(a.manual) << 63) | ((a.station_type & 0x1F) << 58) | ((a.reserved & 0x3FF) << 48) | \
+            int.from_bytes(a.mid, "big")
+        speed = (_PAI_FLAG if self.position_accurate else 0) | (self.speed_cmps & 0x7FFF)
+        return _LONG_POSITION_VECTOR.pack(address, self.timestamp_ms & 0xFFFFFFFF, self.latitude_tenth_microdeg,
+                                          self.longitude_tenth_microdeg, speed, self.heading_tenth_deg)
+
+    @classmethod
+    def unpack_from(cls, data: bytes, offset: int) -> LongPositionVector:
+        address, timestamp, latitude, longitude, speed, heading = _LONG_POSITION_VECTOR.unpack_from(data, offset)
+        speed_cmps = speed & 0x7FFF
+        if speed_cmps >= 1 << (_SPEED_BITS - 1):
+            speed_cmps -= 1 << _SPEED_BITS
+        return cls(
+            GnAddress(bool(address >> 63), (address >> 58) & 0x1F, (address >> 48) & 0x3FF,
+                      (address & 0xFFFFFFFFFFFF).to_bytes(MID_SIZE_BYTES, "big")),
+            timestamp, latitude, longitude, bool(speed & _PAI_FLAG), speed_cmps, heading)
+
+
+@dataclass
+class ShbHeader:
+    source_position: LongPositionVector = field(default_factory=LongPositionVector)
+    # DCC / media-dependent octets (reserved in GN version 0).
+    media_dependent: int = 0
+
+
+@dataclass
+class GeoArea:
+    shape: GeoAreaShape = GeoAreaShape.CIRCLE
+    latitude_tenth_microdeg: int = 0
+    longitude_tenth_microdeg: int = 0
+    distance_a_m: int = 0
+    distance_b_m: int = 0
+    # Azimuth of the long side, degrees from north, clockwise.
+    angle_deg: int = 0
+
+
+@dataclass
+class GbcHeader:
+    sequence_number: int = 0
+    source_position: LongPositionVector = field(default_factory=LongPositionVector)
+    area: GeoArea = field(default_factory=GeoArea)
+
+
+@dataclass
+class GnPacket:
+    basic: BasicHeader
+    common: CommonHeader
+    extended: ShbHeader | GbcHeader
+    payload: bytes
+
+    def to_bytes(self) -> bytes:
+        """Serialise; payload length, header type and subtype are set from the payload and extended header."""
+        b, c = self.basic, self.common
+        c.payload_length = len(self.payload)
+        if isinstance(self.extended, GbcHeader):
+            c.header_type, c.header_subtype = HeaderType.GEOBROADCAST, int(self.extended.area.shape)
+        else:
+            c.header_type, c.header_subtype = HeaderType.TOPOLOGICALLY_SCOPED_BROADCAST, TSB_SUBTYPE_SINGLE_HOP
+        parts = [
+            _BASIC.pack((b.version << 4) | int(b.next_header), 0, (b.lifetime_multiplier << 2) | b.lifetime_base,
+                        b.remaining_hop_limit),
+            _COMMON.pack(int(c.next_header) << 4, (int(c.header_type) << 4) | c.header_subtype, c.traffic_class,
+                         _MOBILE_FLAG if c.mobile else 0, c.payload_length, c.max_hop_limit, 0),
+        ]
+        if isinstance(self.extended, GbcHeader):
+            area = self.extended.area
+            parts += [_GBC_HEAD.pack(self.extended.sequence_number, 0), self.extended.source_position.pack(),
+                      _GBC_AREA.pack(area.latitude_tenth_microdeg, area.longitude_tenth_microdeg, area.distance_a_m,
+                                     area.distance_b_m, area.angle_deg, 0)]
+        else:
+            parts += [self.extended.source_position.pack(), _SHB_TAIL.pack(self.extended.media_dependent)]
+        parts.append(self.payload)
+        return b"".join(parts)
+
+
+def parse_gn(data: bytes, accepted_versions: tuple[int, ...] = SUPPORTED_GN_VERSIONS) -> GnPacket:
+    """Parse an SHB or GBC packet. Bytes after the payload length (Ethernet padding) are dropped."""
+    if len(data) < BASIC_HEADER_SIZE:
+        raise GnParseError(RejectReason.TRUNCATED_BASIC_HEADER, f"{len(data)} bytes")
+    version_next, _, lifetime, hop_limit = _BASIC.unpack_from(data, 0)
+    version, basic_next = version_next >> 4, version_next & 0x0F
+    if version not in accepted_versions:
+        raise GnParseError(RejectReason.UNSUPPORTED_GN_VERSION, f"version {version}")
+    if basic_next == BasicNextHeader.SECURED_PACKET:
+        raise GnParseError(RejectReason.SECURED_PACKET_UNSUPPORTED)
+    if basic_next != BasicNextHeader.COMMON_HEADER:
+        raise GnParseError(RejectReason.UNKNOWN_BASIC_NEXT_HEADER, f"next header {basic_next}")
+    basic = BasicHeader(version, BasicNextHeader(basic_next), lifetime >> 2, lifetime & 0x03, hop_limit)
+    if len(data) < BASIC_HEADER_SIZE + COMMON_HEADER_SIZE:
+        raise GnParseError(RejectReason.TRUNCATED_COMMON_HEADER, f"{len(data)} bytes")
+    next_reserved, type_subtype, traffic_class, flags, payload_length, max_hop, _ = _COMMON.unpack_from(
+        data, BASIC_HEADER_SIZE)
+    header_type, subtype = type_subtype >> 4, type_subtype & 0x0F
+    offset = BASIC_HEADER_SIZE + COMMON_HEADER_SIZE
+    if header_type == HeaderType.TOPOLOGICALLY_SCOPED_BROADCAST and subtype == TSB_SUBTYPE_SINGLE_HOP:
+        extended_size = SHB_HEADER_SIZE
+    elif header_type == HeaderType.GEOBROADCAST and subtype in tuple(GeoAreaShape):
+        extended_size = GBC_HEADER_SIZE
+    else:
+        raise GnParseError(RejectReason.UNSUPPORTED_HEADER_TYPE, f"type {header_type} subtype {subtype}")
+    try:
+        common_next = CommonNextHeader(next_reserved >> 4)
+    except ValueError:
+        common_next = CommonNextHeader.ANY
+    common = CommonHeader(common_next, HeaderType(header_type), subtype, traffic_class,
+                          bool(flags & _MOBILE_FLAG), payload_length, max_hop)
+    if len(data) < offset + extended_size:
+        raise GnParseError(RejectReason.TRUNCATED_EXTENDED_HEADER, f"{len(data)} bytes")
+    if header_type == HeaderType.GEOBROADCAST:
+        sequence_number, _ = _GBC_HEAD.unpack_from(data, offset)
+        position = LongPositionVector.unpack_from(data, offset + _GBC_HEAD.size)
+        latitude, longitude, a_m, b_m, angle_deg, _ = _GBC_AREA.unpack_from(
+            data, offset + _GBC_HEAD.size + _LONG_POSITION_VECTOR.size)
+        extended = GbcHeader(sequence_number, position,
+                             GeoArea(GeoAreaShape(subtype), latitude, longitude, a_m, b_m, angle_deg))
+    else:
+        position = LongPositionVector.unpack_from(data, offset)
+        (media_dependent,) = _SHB_TAIL.unpack_from(data, offset + _LONG_POSITION_VECTOR.size)
+        extended = ShbHeader(position, media_dependent)
+    offset += extended_size
+    if len(data) - offset < payload_length:
+        raise GnParseError(RejectReason.PAYLOAD_LENGTH_MISMATCH,
+                           f"header says {payload_length} bytes, {len(data) - offset} present")
+    return GnPacket(basic, common, extended, bytes(data[offset:offset + payload_length]))

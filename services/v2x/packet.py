@@ -1,0 +1,192 @@
+"""One facade for the V2X codec: content message <-> GeoNetworking + BTP-B + UPER bytes.
+
+    packet = encode_cam(cam_content, GnParams(source_mac=..., time_tai_ms=...))
+    decoded = decode_packet(packet)          # DecodedPacket, or raises V2xDecodeError(reason)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from coopdrive.services.v2x import units
+from coopdrive.services.v2x.btp import BtpBHeader, BtpPort, parse_btp_b
+from coopdrive.services.v2x.codec import ItsCodec, ItsHeader, ItsMessageId
+from coopdrive.services.v2x.geonet import (
+    GN_VERSION_GCDC, SUPPORTED_GN_VERSIONS, BasicHeader, CommonHeader, CommonNextHeader, GbcHeader, GeoArea,
+    GeoAreaShape, GnAddress, GnPacket, LongPositionVector, ShbHeader, encode_lifetime, parse_gn)
+from coopdrive.services.v2x.mapping.cam import cam_from_asn, cam_to_asn
+from coopdrive.services.v2x.mapping.denm import denm_from_asn, denm_to_asn
+from coopdrive.services.v2x.mapping.iclcm import iclcm_from_asn, iclcm_to_asn
+from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.v1 import its_pb2
+
+MAC_SIZE_BYTES = 6
+STATION_TYPE_PASSENGER_CAR = 5
+PORT_OF_MESSAGE = {ItsMessageId.CAM: BtpPort.CAM, ItsMessageId.DENM: BtpPort.DENM, ItsMessageId.ICLCM: BtpPort.ICLCM}
+MESSAGE_OF_PORT = {int(port): message for message, port in PORT_OF_MESSAGE.items()}
+_FROM_ASN = {ItsMessageId.CAM: cam_from_asn, ItsMessageId.DENM: denm_from_asn, ItsMessageId.ICLCM: iclcm_from_asn}
+
+Content = its_pb2.CamContent | its_pb2.DenmContent | its_pb2.IclcmContent
+
+
+@dataclass
+class SourcePosition:
+    """The sender's position for the GeoNetworking long position vector, SI / ENU heading."""
+
+    latitude_deg: float
+    longitude_deg: float
+    speed_mps: float = 0.0
+    heading_rad: float | None = None
+    position_accurate: bool = True
+
+
+@dataclass
+class DestinationArea:
+    """Geo-broadcast destination; angle_rad is the ENU yaw of the distance_a axis."""
+
+    latitude_deg: float
+    longitude_deg: float
+    distance_a_m: float
+    distance_b_m: float = 0.0
+    angle_rad: float = math.pi / 2
+    shape: GeoAreaShape = GeoAreaShape.CIRCLE
+
+
+@dataclass
+class GnParams:
+    """How to wrap a message: GeoNetworking and BTP settings of the sending station."""
+
+    source_mac: bytes = bytes(MAC_SIZE_BYTES)
+    station_type: int = STATION_TYPE_PASSENGER_CAR
+    gn_version: int = GN_VERSION_GCDC
+    lifetime_s: float = 1.0
+    traffic_class: int = 0
+    max_hop_limit: int = 1
+    # Time of the position vector, TAI ms since 2004 (timebase.tai_ms_from_unix_s).
+    time_tai_ms: int = 0
+    # None: taken from the CAM's reference position and high-frequency container (CAM only).
+    source_position: SourcePosition | None = None
+    # None: single-hop broadcast; otherwise geo-broadcast to this area.
+    destination_area: DestinationArea | None = None
+    sequence_number: int = 0
+
+
+@dataclass
+class DecodedPacket:
+    message_type: ItsMessageId
+    its_header: ItsHeader
+    content: Content
+    gn: GnPacket = field(repr=False)
+    btp: BtpBHeader = field(repr=False)
+
+    @property
+    def station_id(self) -> int:
+        return self.its_header.station_id
+
+
+class V2xPacketCodec:
+    """Encodes content messages into GN packets and decodes GN packets into content messages."""
+
+    def __init__(self, its_codec: ItsCodec | None = None, accepted_gn_versions: tuple[int, ...] = SUPPORTED_GN_VERSIONS):
+        self.its_codec = its_codec or ItsCodec()
+        self.accepted_gn_versions = accepted_gn_versions
+
+    def encode_cam(self, content: its_pb2.CamContent, gn_params: GnParams) -> bytes:
+        params = gn_params
+        if params.source_position is None:
+            position, hf = content.reference_position, content.high_frequency
+            params = _with_position(params, SourcePosition(
+                position.latitude_deg, position.longitude_deg, hf.speed_mps,
+                hf.heading_rad if hf.HasField("heading_rad") else None))
+        return self._wrap(ItsMessageId.CAM, self.its_codec.encode(ItsMessageId.CAM, cam_to_asn(content)), params)
+
+    def encode_denm(self, content: its_pb2.DenmContent, gn_params: GnParams) -> bytes:
+        return self._wrap(ItsMessageId.DENM, self.its_codec.encode(ItsMessageId.DENM, denm_to_asn(content)),
+                          gn_params)
+
+    def encode_iclcm(self, content: its_pb2.IclcmContent, gn_params: GnParams) -> bytes:
+        return self._wrap(ItsMessageId.ICLCM, self.its_codec.encode(ItsMessageId.ICLCM, iclcm_to_asn(content)),
+                          gn_params)
+
+    def decode_packet(self, data: bytes) -> DecodedPacket:
+        gn = parse_gn(data, self.accepted_gn_versions)
+        if gn.common.next_header != CommonNextHeader.BTP_B:
+            raise V2xDecodeError(RejectReason.NOT_BTP_B, f"next header {gn.common.next_header.name}")
+        btp, uper = parse_btp_b(gn.payload)
+        message_type = MESSAGE_OF_PORT.get(btp.destination_port)
+        if message_type is None:
+            raise V2xDecodeError(RejectReason.UNKNOWN_BTP_PORT, str(btp.destination_port))
+        its_header, value = self.its_codec.decode(uper)
+        if its_header.message_id != message_type:
+            raise V2xDecodeError(RejectReason.MESSAGE_ID_PORT_MISMATCH,
+                                 f"messageID {its_header.message_id} on port {btp.destination_port}")
+        try:
+            content = _FROM_ASN[message_type](value)
+        except (ValueError, KeyError, TypeError) as error:
+            raise V2xDecodeError(RejectReason.UNMAPPABLE_CONTENT, str(error)) from None
+        return DecodedPacket(message_type, its_header, content, gn, btp)
+
+    def _wrap(self, message_type: ItsMessageId, uper: bytes, params: GnParams) -> bytes:
+        if params.source_position is None:
+            raise ValueError("GnParams.source_position is required for this message type")
+        multiplier, base = encode_lifetime(params.lifetime_s)
+        basic = BasicHeader(params.gn_version, lifetime_multiplier=multiplier, lifetime_base=base,
+                            remaining_hop_limit=params.max_hop_limit)
+        common = CommonHeader(traffic_class=params.traffic_class, max_hop_limit=params.max_hop_limit)
+        source = _position_vector(params)
+        extended: ShbHeader | GbcHeader = ShbHeader(source)
+        if params.destination_area is not None:
+            area = params.destination_area
+            extended = GbcHeader(params.sequence_number, source, GeoArea(
+                area.shape, units.LATITUDE_TENTH_MICRODEG.to_wire(area.latitude_deg),
+                units.LONGITUDE_TENTH_MICRODEG.to_wire(area.longitude_deg),
+                _u16(area.distance_a_m), _u16(area.distance_b_m),
+                units.heading_enu_rad_to_etsi_tenth_deg(area.angle_rad) // 10))
+        payload = BtpBHeader(PORT_OF_MESSAGE[message_type]).pack() + uper
+        return GnPacket(basic, common, extended, payload).to_bytes()
+
+
+def _with_position(params: GnParams, position: SourcePosition) -> GnParams:
+    return GnParams(**{**params.__dict__, "source_position": position})
+
+
+def _u16(value: float) -> int:
+    return min(max(round(value), 0), 0xFFFF)
+
+
+def _position_vector(params: GnParams) -> LongPositionVector:
+    position = params.source_position
+    heading = units.heading_enu_rad_to_etsi_tenth_deg(position.heading_rad)
+    return LongPositionVector(
+        GnAddress(station_type=params.station_type, mid=bytes(params.source_mac)),
+        params.time_tai_ms, units.LATITUDE_TENTH_MICRODEG.to_wire(position.latitude_deg),
+        units.LONGITUDE_TENTH_MICRODEG.to_wire(position.longitude_deg), position.position_accurate,
+        units.GN_SPEED_CMPS.to_wire(position.speed_mps),
+        0 if heading == units.HEADING_UNAVAILABLE_TENTH_DEG else heading)
+
+
+_default: V2xPacketCodec | None = None
+
+
+def default_codec() -> V2xPacketCodec:
+    global _default
+    if _default is None:
+        _default = V2xPacketCodec()
+    return _default
+
+
+def encode_cam(content: its_pb2.CamContent, gn_params: GnParams) -> bytes:
+    return default_codec().encode_cam(content, gn_params)
+
+
+def encode_denm(content: its_pb2.DenmContent, gn_params: GnParams) -> bytes:
+    return default_codec().encode_denm(content, gn_params)
+
+
+def encode_iclcm(content: its_pb2.IclcmContent, gn_params: GnParams) -> bytes:
+    return default_codec().encode_iclcm(content, gn_params)
+
+
+def decode_packet(data: bytes) -> DecodedPacket:
+    return default_codec().decode_packet(data)
