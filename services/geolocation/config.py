@@ -1,0 +1,44 @@
+"""Configuration of the geolocation logic (units in the field names)."""
+
+from __future__ import annotations
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from coopdrive.services.geolocation.motion_models import MotionModelKind
+
+
+class GeolocatorConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    vehicle_id: str = ""
+    map_name: str = "a270"
+    motion_model: MotionModelKind = MotionModelKind.CTRA
+    # Vehicle geometry: rear-wheel track for eq. 8, wheelbase for the bicycle model, antenna from the rear axle.
+    track_width_m: float = Field(1.6, gt=0.0)
+    wheelbase_m: float = Field(2.7, gt=0.0)
+    antenna_x_m: float = 1.0
+    antenna_y_m: float = 0.0
+    # Sensor noise (one sigma).
+    wheel_speed_std_mps: float = Field(0.01, gt=0.0)
+    imu_yaw_rate_std_radps: float = Field(0.005, gt=0.0)
+    imu_accel_std_mps2: float = Field(0.1, gt=0.0)
+    use_imu_accel: bool = True
+    # Process noise spectral densities.
+    jerk_std_mps3: float = Field(0.5, gt=0.0)
+    yaw_accel_std_radps2: float = Field(0.02, gt=0.0)
+    position_process_std_mps: float = Field(0.02, ge=0.0)
+    steering_std_rad: float = Field(0.002, ge=0.0)
+    # Gating and recovery.
+    gate_probability: float = Field(0.999, gt=0.5, lt=1.0)
+    gnss_reset_after_s: float = Field(3.0, gt=0.0)
+    # Latency: inputs older than the newest by up to history_s are fused at their sample time.
+    compensate_latency: bool = True
+    history_s: float = Field(1.0, gt=0.0)
+    # Localisation mode thresholds.
+    precise_std_m: float = Field(0.3, gt=0.0)
+    lost_std_m: float = Field(5.0, gt=0.0)
+    gnss_timeout_s: float = Field(0.5, gt=0.0)
+    # Initial uncertainties when the first fix arrives.
+    initial_heading_std_rad: float = Field(0.2, gt=0.0)
+    initial_speed_std_mps: float = Field(1.0, gt=0.0)
+    min_course_speed_mps: float = Field(2.0, ge=0.0)  # course over ground below this speed is noise

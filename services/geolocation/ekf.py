@@ -1,0 +1,188 @@
+"""Ego-state EKF after DRIVERTIVE (GCDC 2016): state (eq. 6), observations (eq. 7), yaw rate from the rear
+wheels (eq. 8), built on filterpy's ExtendedKalmanFilter.
+
+GNSS position noise comes from the fix mode (Heudiasyc Table 1) and, when reported, the NMEA GST sigmas;
+every update passes a chi-square gate on the normalised innovation squared (NIS) first.
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+from collections import Counter
+from dataclasses import dataclass
+
+import numpy as np
+from filterpy.kalman import ExtendedKalmanFilter
+from scipy.stats import chi2
+
+from coopdrive.services.geolocation.frames import LeverArm
+from coopdrive.services.geolocation.motion_models import (
+    ACCEL, HEADING, SPEED, STATE_DIM, YAW_RATE, CtraModel, E, MotionModel, N, ProcessNoise,
+)
+from coopdrive.v1 import gnss_pb2
+
+# Heudiasyc Table 1 (NovAtel APN-051): expected horizontal accuracy per positioning mode, m.
+# "~x" is taken as one sigma, "< x" as a two-sigma bound.
+FIX_MODE_STD_M = {
+    gnss_pb2.FIX_MODE_RTK_FIXED: 0.01,  # ~0.01 m
+    gnss_pb2.FIX_MODE_RTK_FLOAT: 0.5,  # < 1.0 m
+    gnss_pb2.FIX_MODE_DGPS: 1.0,  # < 2.0 m (PSRDIFF)
+    gnss_pb2.FIX_MODE_SBAS: 3.0,  # ~3 m
+    gnss_pb2.FIX_MODE_SINGLE: 5.0,  # ~5 m (PSRSP)
+}
+MAX_STEP_S = 0.02  # longer predictions are split so the linearisation stays good
+
+
+class UpdateKind(enum.Enum):
+    GNSS_POSITION = "gnss_position"
+    ODOMETRY = "odometry"
+    YAW_RATE = "yaw_rate"
+    ACCEL = "accel"
+
+
+@dataclass(frozen=True)
+class EkfSnapshot:
+    time_s: float
+    x: np.ndarray
+    P: np.ndarray
+
+
+def gnss_position_std_m(fix_mode: int, gst_std_east_m: float = 0.0, gst_std_north_m: float = 0.0
+                        ) -> tuple[float, float] | None:
+    """(std_east_m, std_north_m) for a fix: the receiver's GST sigmas, never below the mode's table value."""
+    table_std_m = FIX_MODE_STD_M.get(fix_mode)
+    if table_std_m is None:
+        return None
+    return max(gst_std_east_m, table_std_m), max(gst_std_north_m, table_std_m)
+
+
+def _wrap(angle_rad: float) -> float:
+    return (angle_rad + math.pi) % (2.0 * math.pi) - math.pi
+
+
+class GeolocationEkf:
+    """The filter proper: predict to a time, then gated updates; knows nothing of messages or frames."""
+
+    def __init__(self, model: MotionModel | None = None, gate_probability: float = 0.999) -> None:
+        self.model = model or CtraModel(ProcessNoise())
+        self.kf = ExtendedKalmanFilter(dim_x=STATE_DIM, dim_z=2)
+        self.kf.x = np.zeros(STATE_DIM)
+        self.time_s: float | None = None
+        self.gate_probability = gate_probability
+        self._gate_cache: dict[int, float] = {}
+        self.accepted: Counter[UpdateKind] = Counter()
+        self.rejected: Counter[UpdateKind] = Counter()
+        self.last_nis: float = 0.0
+
+    @property
+    def initialised(self) -> bool:
+        return self.time_s is not None
+
+    @property
+    def x(self) -> np.ndarray:
+        return self.kf.x
+
+    @property
+    def P(self) -> np.ndarray:
+        return self.kf.P
+
+    def initialise(self, time_s: float, x0: np.ndarray, P0: np.ndarray) -> None:
+        self.kf.x = np.asarray(x0, dtype=float).copy()
+        self.kf.P = np.asarray(P0, dtype=float).copy()
+        self.time_s = time_s
+
+    def snapshot(self) -> EkfSnapshot:
+        return EkfSnapshot(self.time_s, self.kf.x.copy(), self.kf.P.copy())
+
+    def restore(self, snap: EkfSnapshot) -> None:
+        self.time_s = snap.time_s
+        self.kf.x = snap.x.copy()
+        self.kf.P = snap.P.copy()
+
+    # --- prediction ----------------------------------------------------------------------------
+    def predict_to(self, time_s: float) -> None:
+        """Propagate to time_s in steps of at most MAX_STEP_S; earlier times are ignored."""
+        remaining_s = time_s - self.time_s
+        while remaining_s > 1e-9:
+            dt = min(remaining_s, MAX_STEP_S)
+            x_new, F, Q = self.model.step(self.kf.x, dt)
+            x_new[HEADING] = _wrap(x_new[HEADING])
+            self.kf.x = x_new
+            self.kf.P = F @ self.kf.P @ F.T + Q
+            remaining_s -= dt
+        self.time_s = max(self.time_s, time_s)
+
+    def predicted(self, time_s: float) -> tuple[np.ndarray, np.ndarray]:
+        """State and covariance at a later time, without moving the filter."""
+        snap = self.snapshot()
+        self.predict_to(time_s)
+        x, P = self.kf.x.copy(), self.kf.P.copy()
+        self.restore(snap)
+        return x, P
+
+    # --- updates -------------------------------------------------------------------------------
+    def gate(self, dim_z: int) -> float:
+        if dim_z not in self._gate_cache:
+            self._gate_cache[dim_z] = float(chi2.ppf(self.gate_probability, dim_z))
+        return self._gate_cache[dim_z]
+
+    def _gated_update(self, kind: UpdateKind, z: np.ndarray, H: np.ndarray, hx: np.ndarray, R: np.ndarray,
+                      angle_rows: tuple[int, ...] = ()) -> bool:
+        y = z - hx
+        for row in angle_rows:
+            y[row] = _wrap(y[row])
+        S = H @ self.kf.P @ H.T + R
+        self.last_nis = float(y @ np.linalg.solve(S, y))
+        if self.last_nis > self.gate(len(z)):
+            self.rejected[kind] += 1
+            return False
+        self.kf.update(z, HJacobian=lambda _x: H, Hx=lambda _x: z - y, R=R)
+        self.kf.x[HEADING] = _wrap(self.kf.x[HEADING])
+        self.accepted[kind] += 1
+        return True
+
+    def update_gnss_position(self, east_m: float, north_m: float, std_east_m: float, std_north_m: float,
+                             lever_arm: LeverArm) -> bool:
+        """Antenna position = rear axle + R(heading) lever arm; z = [E, N] (eq. 7, first two rows)."""
+        x = self.kf.x
+        hx = np.array(lever_arm.antenna_position(x[E], x[N], x[HEADING]))
+        H = np.zeros((2, STATE_DIM))
+        H[0, E] = H[1, N] = 1.0
+        H[:, HEADING] = lever_arm.d_antenna_d_heading(x[HEADING])
+        R = np.diag([std_east_m**2, std_north_m**2])
+        return self._gated_update(UpdateKind.GNSS_POSITION, np.array([east_m, north_m]), H, hx, R)
+
+    def update_odometry(self, speed_mps: float, yaw_rate_radps: float, speed_std_mps: float,
+                        yaw_rate_std_radps: float) -> bool:
+        """z = [v, yaw_rate] (eq. 7, last two rows), yaw rate from the rear wheels (eq. 8)."""
+        H = np.zeros((2, STATE_DIM))
+        H[0, SPEED] = H[1, YAW_RATE] = 1.0
+        hx = self.kf.x[[SPEED, YAW_RATE]]
+        R = np.diag([speed_std_mps**2, yaw_rate_std_radps**2])
+        return self._gated_update(UpdateKind.ODOMETRY, np.array([speed_mps, yaw_rate_radps]), H, hx, R)
+
+    def update_speed(self, speed_mps: float, speed_std_mps: float) -> bool:
+        H = np.zeros((1, STATE_DIM))
+        H[0, SPEED] = 1.0
+        return self._gated_update(UpdateKind.ODOMETRY, np.array([speed_mps]), H, self.kf.x[[SPEED]],
+                                  np.array([[speed_std_mps**2]]))
+
+    def update_yaw_rate(self, yaw_rate_radps: float, std_radps: float) -> bool:
+        H = np.zeros((1, STATE_DIM))
+        H[0, YAW_RATE] = 1.0
+        return self._gated_update(UpdateKind.YAW_RATE, np.array([yaw_rate_radps]), H, self.kf.x[[YAW_RATE]],
+                                  np.array([[std_radps**2]]))
+
+    def update_accel(self, accel_mps2: float, std_mps2: float) -> bool:
+        H = np.zeros((1, STATE_DIM))
+        H[0, ACCEL] = 1.0
+        return self._gated_update(UpdateKind.ACCEL, np.array([accel_mps2]), H, self.kf.x[[ACCEL]],
+                                  np.array([[std_mps2**2]]))
+
+    def reset_position(self, east_m: float, north_m: float, std_m: float) -> None:
+        """Jump to a position when the gate has refused the GNSS for too long (the filter was wrong)."""
+        self.kf.x[E], self.kf.x[N] = east_m, north_m
+        self.kf.P[[E, N], :] = 0.0
+        self.kf.P[:, [E, N]] = 0.0
+        self.kf.P[E, E] = self.kf.P[N, N] = std_m**2

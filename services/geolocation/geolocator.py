@@ -1,0 +1,275 @@
+"""Geolocator: GNSS fixes, CAN odometry and IMU samples in, EgoState at the rear axle out.
+
+Fed by method calls carrying their sample times; deterministic (no clock, no randomness). Each input is
+fused at its own sample time through a replay buffer (latency.py), so a late GNSS fix acts where the
+vehicle was when it was measured. The ego state is then matched to the lane map.
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+from collections import Counter
+from dataclasses import dataclass
+
+import numpy as np
+import pymap3d
+
+from coopdrive.roadmap import RoadMap
+from coopdrive.services.geolocation.config import GeolocatorConfig
+from coopdrive.services.geolocation.ekf import GeolocationEkf, gnss_position_std_m
+from coopdrive.services.geolocation.frames import LeverArm, ModeThresholds, localisation_mode
+from coopdrive.services.geolocation.latency import Insertion, ReplayBuffer
+from coopdrive.services.geolocation.motion_models import (
+    ACCEL, HEADING, SPEED, STATE_DIM, YAW_RATE, CtraModel, E, KinematicBicycleModel, MotionModelKind, N,
+    ProcessNoise,
+)
+from coopdrive.services.geolocation.odometry import Odometry, OdometrySample
+from coopdrive.v1 import ego_pb2, gnss_pb2, sensors_pb2, vehicle_pb2
+
+SENDER = "geolocation"
+STATIONARY_SPEED_MPS = 0.5
+HEADING_FROM_TRACK_MIN_M = 2.0  # two fixes this far apart give a usable heading
+INITIAL_YAW_RATE_STD_RADPS = 0.1
+INITIAL_ACCEL_STD_MPS2 = 1.0
+UNKNOWN_HEADING_STD_RAD = math.pi
+
+
+class InputEvent(enum.Enum):
+    FIX_FUSED = "fix_fused"
+    FIX_GATED = "fix_gated"
+    FIX_WITHOUT_POSITION = "fix_without_position"
+    FIX_INVALID = "fix_invalid"
+    GNSS_RESET = "gnss_reset"
+    ODOMETRY_INVALID = "odometry_invalid"
+    IMU_INVALID = "imu_invalid"
+    TOO_OLD = "too_old"
+
+
+@dataclass(frozen=True)
+class _Fix:
+    east_m: float
+    north_m: float
+    std_east_m: float
+    std_north_m: float
+    fix_mode: int
+    speed_mps: float
+    course_deg: float
+
+
+@dataclass(frozen=True)
+class _Imu:
+    yaw_rate_radps: float
+    accel_mps2: float
+
+
+@dataclass(frozen=True)
+class _Bookkeeping:
+    last_fix_time_s: float | None = None
+    last_fix_mode: int = gnss_pb2.FIX_MODE_UNSPECIFIED
+    first_gated_time_s: float | None = None
+    pending_fix: tuple[float, _Fix] | None = None
+    last_speed_mps: float | None = None
+    steering_angle_rad: float = 0.0
+
+
+class Geolocator:
+    def __init__(self, config: GeolocatorConfig, road_map: RoadMap | None = None,
+                 origin: tuple[float, float, float] | None = None) -> None:
+        self.config = config
+        if road_map is None and origin is None:
+            road_map = RoadMap.load(config.map_name)
+        self.road_map = road_map
+        self.origin = origin if origin is not None else road_map.origin
+        noise = ProcessNoise(config.jerk_std_mps3, config.yaw_accel_std_radps2, config.position_process_std_mps,
+                             config.steering_std_rad)
+        if config.motion_model is MotionModelKind.KINEMATIC_BICYCLE:
+            self._bicycle: KinematicBicycleModel | None = KinematicBicycleModel(noise, config.wheelbase_m)
+            model = self._bicycle
+        else:
+            self._bicycle = None
+            model = CtraModel(noise)
+        self.ekf = GeolocationEkf(model, config.gate_probability)
+        self.odometry = Odometry(config.track_width_m, config.wheel_speed_std_mps)
+        self.lever_arm = LeverArm(config.antenna_x_m, config.antenna_y_m)
+        self.thresholds = ModeThresholds(config.precise_std_m, config.lost_std_m, config.gnss_timeout_s)
+        self.counters: Counter[InputEvent] = Counter()
+        self._book = _Bookkeeping()
+        self._buffer = ReplayBuffer(self._apply, self._snapshot, self._restore, config.history_s)
+        self._sequence = 0
+
+    # --- inputs --------------------------------------------------------------------------------
+    def on_gnss_fix(self, fix: gnss_pb2.GnssFix) -> Insertion | None:
+        """A fix, fused at fix.header.sample_time_s. Returns how it was inserted, None if not usable."""
+        stds = gnss_position_std_m(fix.fix_mode, fix.std_east_m, fix.std_north_m)
+        if stds is None:
+            self.counters[InputEvent.FIX_WITHOUT_POSITION] += 1
+            return None
+        if not (-90.0 <= fix.latitude_deg <= 90.0 and -180.0 <= fix.longitude_deg <= 180.0
+                and all(map(math.isfinite, (fix.latitude_deg, fix.longitude_deg, fix.altitude_m)))):
+            self.counters[InputEvent.FIX_INVALID] += 1
+            return None
+        east_m, north_m, _ = pymap3d.geodetic2enu(fix.latitude_deg, fix.longitude_deg, fix.altitude_m,
+                                                  *self.origin)
+        event = _Fix(float(east_m), float(north_m), stds[0], stds[1], fix.fix_mode, fix.speed_mps, fix.course_deg)
+        return self._add(fix.header.sample_time_s, event)
+
+    def on_can_state(self, msg: vehicle_pb2.VehicleCanState) -> Insertion | None:
+        try:
+            sample = self.odometry.sample(msg)
+        except ValueError:
+            self.counters[InputEvent.ODOMETRY_INVALID] += 1
+            return None
+        return self._add(sample.time_s, sample)
+
+    def on_imu(self, msg: sensors_pb2.ImuSample) -> Insertion | None:
+        if not (math.isfinite(msg.yaw_rate_radps) and math.isfinite(msg.accel_longitudinal_mps2)):
+            self.counters[InputEvent.IMU_INVALID] += 1
+            return None
+        return self._add(msg.header.sample_time_s, _Imu(msg.yaw_rate_radps, msg.accel_longitudinal_mps2))
+
+    def _add(self, time_s: float, event: object) -> Insertion:
+        latest_s = self._buffer.latest_time_s
+        if not self.config.compensate_latency and latest_s is not None:
+            time_s = max(time_s, latest_s)
+        insertion = self._buffer.add(time_s, event)
+        if insertion is Insertion.TOO_OLD:
+            self.counters[InputEvent.TOO_OLD] += 1
+        return insertion
+
+    # --- fusion (called by the replay buffer, in time order) ------------------------------------
+    def _snapshot(self) -> tuple:
+        return self.ekf.snapshot(), self._book, self.ekf.accepted.copy(), self.ekf.rejected.copy()
+
+    def _restore(self, snap: tuple) -> None:
+        ekf_snap, self._book, accepted, rejected = snap
+        self.ekf.accepted, self.ekf.rejected = accepted.copy(), rejected.copy()
+        if ekf_snap.time_s is None:
+            self.ekf.time_s = None
+        else:
+            self.ekf.restore(ekf_snap)
+
+    def _apply(self, time_s: float, event: object) -> None:
+        if isinstance(event, _Fix):
+            self._apply_fix(time_s, event)
+        elif isinstance(event, OdometrySample):
+            self._apply_odometry(time_s, event)
+        else:
+            self._apply_imu(time_s, event)
+
+    def _apply_fix(self, time_s: float, fix: _Fix) -> None:
+        if not self.ekf.initialised:
+            self._try_initialise(time_s, fix)
+            return
+        self.ekf.predict_to(time_s)
+        book = self._book
+        if self.ekf.update_gnss_position(fix.east_m, fix.north_m, fix.std_east_m, fix.std_north_m, self.lever_arm):
+            self.counters[InputEvent.FIX_FUSED] += 1
+            self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, first_gated_time_s=None)
+            return
+        self.counters[InputEvent.FIX_GATED] += 1
+        if book.first_gated_time_s is None:
+            self._book = _replace(book, first_gated_time_s=time_s)
+        elif time_s - book.first_gated_time_s >= self.config.gnss_reset_after_s:
+            # The GNSS has disagreed for long: trust it over a filter that has drifted.
+            x, y = self.lever_arm.rear_axle_position(fix.east_m, fix.north_m, self.ekf.x[HEADING])
+            self.ekf.reset_position(x, y, max(fix.std_east_m, fix.std_north_m))
+            self.counters[InputEvent.GNSS_RESET] += 1
+            self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, first_gated_time_s=None)
+
+    def _try_initialise(self, time_s: float, fix: _Fix) -> None:
+        book = self._book
+        heading_rad, heading_std_rad = None, self.config.initial_heading_std_rad
+        if fix.speed_mps >= self.config.min_course_speed_mps:
+            heading_rad = math.pi / 2.0 - math.radians(fix.course_deg)  # course: from north, clockwise
+        elif book.pending_fix is not None:
+            _, previous = book.pending_fix
+            de, dn = fix.east_m - previous.east_m, fix.north_m - previous.north_m
+            if math.hypot(de, dn) >= HEADING_FROM_TRACK_MIN_M:
+                heading_rad = math.atan2(dn, de)
+        if heading_rad is None and book.last_speed_mps is not None and abs(book.last_speed_mps) < STATIONARY_SPEED_MPS:
+            heading_rad, heading_std_rad = 0.0, UNKNOWN_HEADING_STD_RAD
+        if heading_rad is None:
+            self._book = _replace(book, pending_fix=(time_s, fix))
+            return
+        speed_mps = book.last_speed_mps if book.last_speed_mps is not None else fix.speed_mps
+        speed_std = self.odometry.speed_std_mps if book.last_speed_mps is not None else self.config.initial_speed_std_mps
+        x0 = np.zeros(STATE_DIM)
+        x0[E], x0[N] = self.lever_arm.rear_axle_position(fix.east_m, fix.north_m, heading_rad)
+        x0[HEADING], x0[SPEED] = heading_rad, speed_mps
+        arm_m = math.hypot(self.lever_arm.x_m, self.lever_arm.y_m)
+        P0 = np.diag([fix.std_east_m**2 + (arm_m * heading_std_rad) ** 2,
+                      fix.std_north_m**2 + (arm_m * heading_std_rad) ** 2,
+                      heading_std_rad**2, speed_std**2, INITIAL_YAW_RATE_STD_RADPS**2, INITIAL_ACCEL_STD_MPS2**2])
+        self.ekf.initialise(time_s, x0, P0)
+        self.counters[InputEvent.FIX_FUSED] += 1
+        self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, pending_fix=None)
+
+    def _apply_odometry(self, time_s: float, sample: OdometrySample) -> None:
+        self._book = _replace(self._book, last_speed_mps=sample.speed_mps, steering_angle_rad=sample.steering_angle_rad)
+        if not self.ekf.initialised:
+            return
+        self.ekf.predict_to(time_s)
+        if self._bicycle is not None:
+            self._bicycle.steering_angle_rad = sample.steering_angle_rad
+            self.ekf.update_speed(sample.speed_mps, sample.speed_std_mps)
+        else:
+            self.ekf.update_odometry(sample.speed_mps, sample.yaw_rate_radps, sample.speed_std_mps,
+                                     sample.yaw_rate_std_radps)
+
+    def _apply_imu(self, time_s: float, imu: _Imu) -> None:
+        if not self.ekf.initialised:
+            return
+        self.ekf.predict_to(time_s)
+        if self._bicycle is None:
+            self.ekf.update_yaw_rate(imu.yaw_rate_radps, self.config.imu_yaw_rate_std_radps)
+        if self.config.use_imu_accel:
+            self.ekf.update_accel(imu.accel_mps2, self.config.imu_accel_std_mps2)
+
+    # --- output --------------------------------------------------------------------------------
+    @property
+    def last_fix_mode(self) -> int:
+        return self._book.last_fix_mode
+
+    def estimate(self, time_s: float) -> ego_pb2.EgoState:
+        """The ego state predicted to time_s (the filter itself is not moved)."""
+        self._sequence += 1
+        state = ego_pb2.EgoState()
+        state.header.sample_time_s = time_s
+        state.header.vehicle_id = self.config.vehicle_id
+        state.header.sender = SENDER
+        state.header.sequence = self._sequence
+        state.last_fix_mode = self._book.last_fix_mode
+        if not self.ekf.initialised:
+            state.mode = ego_pb2.LOCALISATION_MODE_LOST
+            return state
+        if self._bicycle is not None:
+            self._bicycle.steering_angle_rad = self._book.steering_angle_rad
+        x, P = self.ekf.predicted(time_s)
+        state.x_m, state.y_m, state.heading_rad = x[E], x[N], x[HEADING]
+        state.speed_mps, state.yaw_rate_radps, state.accel_mps2 = x[SPEED], x[YAW_RATE], x[ACCEL]
+        state.covariance.extend(P.ravel().tolist())
+        position_std_m = float(math.sqrt(max(np.linalg.eigvalsh(P[:2, :2])[-1], 0.0)))
+        state.position_std_m = position_std_m
+        since_fix_s = None if self._book.last_fix_time_s is None else time_s - self._book.last_fix_time_s
+        state.mode = localisation_mode(True, position_std_m, since_fix_s, self._book.last_fix_mode, self.thresholds)
+        lat, lon, _ = pymap3d.enu2geodetic(x[E], x[N], 0.0, *self.origin)
+        state.latitude_deg, state.longitude_deg = float(lat), float(lon)
+        if self.road_map is not None:
+            match = self.road_map.match(x[E], x[N], x[HEADING])
+            if match is not None:
+                lane = state.lane
+                lane.matched = True
+                lane.lane_index = match.lane_index
+                lane.lane_id = match.lane.lane_id
+                lane.road_id = match.lane.road_id
+                lane.station_m = match.station_m
+                lane.lateral_offset_m = match.lateral_offset_m
+                lane.heading_error_rad = match.heading_error_rad
+                lane.lane_width_m = match.lane.width_m
+                lane.curvature_1pm = match.curvature_1pm
+        return state
+
+
+def _replace(book: _Bookkeeping, **changes) -> _Bookkeeping:
+    return _Bookkeeping(**{**book.__dict__, **changes})

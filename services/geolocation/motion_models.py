@@ -1,0 +1,129 @@
+"""Motion models over the DRIVERTIVE state x = [E, N, heading, v, yaw_rate, a] (eq. 6).
+
+Each model returns the propagated state, its Jacobian F and the process noise Q for one step dt.
+- CTRA (constant turn rate and acceleration), the model of the DRIVERTIVE EKF: position integrated at the
+  mid-step heading and speed, which is exact to second order in dt.
+- Kinematic bicycle, rear-axle reference point, driven by the road-wheel steering angle:
+  yaw_rate = v tan(delta) / L (Chalmers kinematic single-track model).
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+E, N, HEADING, SPEED, YAW_RATE, ACCEL = range(6)
+STATE_DIM = 6
+
+
+class MotionModelKind(enum.Enum):
+    CTRA = "ctra"
+    KINEMATIC_BICYCLE = "kinematic_bicycle"
+
+
+@dataclass(frozen=True)
+class ProcessNoise:
+    """Continuous white-noise spectral densities driving the model."""
+
+    jerk_std_mps3: float = 0.5
+    yaw_accel_std_radps2: float = 0.02
+    position_std_mps: float = 0.02  # unmodelled slip, per sqrt(s)
+    steering_std_rad: float = 0.002  # bicycle model: steering angle noise
+
+
+def _integrated_pair(q: float, dt: float) -> np.ndarray:
+    """Covariance of (integral, value) of a random walk with spectral density q over dt."""
+    return q * np.array([[dt**3 / 3.0, dt**2 / 2.0], [dt**2 / 2.0, dt]])
+
+
+def _position_step(x: np.ndarray, yaw_rate: float, dt: float, F: np.ndarray, x_new: np.ndarray) -> None:
+    """Mid-point position update and its partial derivatives, shared by both models."""
+    heading_mid = x[HEADING] + 0.5 * yaw_rate * dt
+    speed_mid = x[SPEED] + 0.5 * x[ACCEL] * dt
+    cos_h, sin_h = math.cos(heading_mid), math.sin(heading_mid)
+    x_new[E] = x[E] + speed_mid * cos_h * dt
+    x_new[N] = x[N] + speed_mid * sin_h * dt
+    F[E, HEADING] = -speed_mid * sin_h * dt
+    F[N, HEADING] = speed_mid * cos_h * dt
+    F[E, SPEED] = cos_h * dt
+    F[N, SPEED] = sin_h * dt
+    F[E, ACCEL] = 0.5 * cos_h * dt * dt
+    F[N, ACCEL] = 0.5 * sin_h * dt * dt
+
+
+class CtraModel:
+    kind = MotionModelKind.CTRA
+
+    def __init__(self, noise: ProcessNoise) -> None:
+        self.noise = noise
+
+    def step(self, x: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        F = np.eye(STATE_DIM)
+        x_new = x.copy()
+        _position_step(x, x[YAW_RATE], dt, F, x_new)
+        # The mid-step heading moves by yaw_rate * dt / 2.
+        F[E, YAW_RATE] = F[E, HEADING] * 0.5 * dt
+        F[N, YAW_RATE] = F[N, HEADING] * 0.5 * dt
+        x_new[HEADING] = x[HEADING] + x[YAW_RATE] * dt
+        F[HEADING, YAW_RATE] = dt
+        x_new[SPEED] = x[SPEED] + x[ACCEL] * dt
+        F[SPEED, ACCEL] = dt
+        return x_new, F, self.process_noise(dt)
+
+    def process_noise(self, dt: float) -> np.ndarray:
+        Q = np.zeros((STATE_DIM, STATE_DIM))
+        Q[E, E] = Q[N, N] = self.noise.position_std_mps**2 * dt
+        Q[np.ix_([HEADING, YAW_RATE], [HEADING, YAW_RATE])] = _integrated_pair(self.noise.yaw_accel_std_radps2**2, dt)
+        Q[np.ix_([SPEED, ACCEL], [SPEED, ACCEL])] = _integrated_pair(self.noise.jerk_std_mps3**2, dt)
+        return Q
+
+
+class KinematicBicycleModel:
+    """Yaw rate follows the steering input; the yaw-rate state is kept equal to v tan(delta) / L."""
+
+    kind = MotionModelKind.KINEMATIC_BICYCLE
+
+    def __init__(self, noise: ProcessNoise, wheelbase_m: float) -> None:
+        if wheelbase_m <= 0.0:
+            raise ValueError(f"wheelbase_m must be positive, got {wheelbase_m}")
+        self.noise = noise
+        self.wheelbase_m = wheelbase_m
+        self.steering_angle_rad = 0.0
+
+    def step(self, x: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        tan_delta = math.tan(self.steering_angle_rad)
+        yaw_rate = x[SPEED] * tan_delta / self.wheelbase_m
+        F = np.zeros((STATE_DIM, STATE_DIM))
+        np.fill_diagonal(F, 1.0)
+        x_new = x.copy()
+        _position_step(x, yaw_rate, dt, F, x_new)
+        # Position depends on v also through the yaw rate at mid-step.
+        d_yaw_rate_dv = tan_delta / self.wheelbase_m
+        F[E, SPEED] += F[E, HEADING] * 0.5 * dt * d_yaw_rate_dv
+        F[N, SPEED] += F[N, HEADING] * 0.5 * dt * d_yaw_rate_dv
+        x_new[HEADING] = x[HEADING] + yaw_rate * dt
+        F[HEADING, SPEED] = d_yaw_rate_dv * dt
+        x_new[SPEED] = x[SPEED] + x[ACCEL] * dt
+        F[SPEED, ACCEL] = dt
+        x_new[YAW_RATE] = (x[SPEED] + x[ACCEL] * dt) * d_yaw_rate_dv
+        F[YAW_RATE, YAW_RATE] = 0.0
+        F[YAW_RATE, SPEED] = d_yaw_rate_dv
+        F[YAW_RATE, ACCEL] = d_yaw_rate_dv * dt
+        return x_new, F, self.process_noise(x, dt)
+
+    def process_noise(self, x: np.ndarray, dt: float) -> np.ndarray:
+        Q = np.zeros((STATE_DIM, STATE_DIM))
+        Q[E, E] = Q[N, N] = self.noise.position_std_mps**2 * dt
+        # Steering noise seen as yaw-rate noise: d(yaw_rate)/d(delta) = v / (L cos^2 delta).
+        gain = x[SPEED] / (self.wheelbase_m * math.cos(self.steering_angle_rad) ** 2)
+        yaw_rate_var = (gain * self.noise.steering_std_rad) ** 2
+        Q[HEADING, HEADING] = yaw_rate_var * dt * dt + self.noise.yaw_accel_std_radps2**2 * dt**3 / 3.0
+        Q[YAW_RATE, YAW_RATE] = yaw_rate_var
+        Q[np.ix_([SPEED, ACCEL], [SPEED, ACCEL])] = _integrated_pair(self.noise.jerk_std_mps3**2, dt)
+        return Q
+
+
+MotionModel = CtraModel | KinematicBicycleModel
