@@ -1,0 +1,203 @@
+"""Judging a run from ground truth: safety, comfort, tracking errors, string stability, localisation."""
+from __future__ import annotations
+
+import itertools
+import math
+from typing import Callable, Mapping, Sequence
+
+import numpy as np
+from scipy import signal
+
+from coopdrive.services.sim import geometry
+from coopdrive.services.sim.truth_series import TruthSeries
+from coopdrive.v1 import sim_pb2
+
+KMH_PER_MPS = 3.6
+DEFAULT_SAFETY_RADIUS_M = 7.5
+# Time gaps are meaningless near standstill.
+MIN_SPEED_FOR_TIME_GAP_MPS = 0.5
+# Heudiasyc eq. (4) defaults: standstill distance r and time headway h.
+DEFAULT_STANDSTILL_M = 6.0
+DEFAULT_HEADWAY_S = 1.5
+
+
+def _corners(v: sim_pb2.VehicleTruth) -> np.ndarray:
+    return geometry.footprint_corners(v.x_m, v.y_m, v.heading_rad, v.length_m, v.width_m)
+
+
+def _centre(v: sim_pb2.VehicleTruth) -> np.ndarray:
+    return _corners(v).mean(axis=0)
+
+
+def _onsets(truth: TruthSeries, condition: Callable[[sim_pb2.VehicleTruth, sim_pb2.VehicleTruth], bool]) -> int:
+    """How many times a pair of vehicles starts to satisfy `condition` (a lasting contact counts once)."""
+    active: set[tuple[str, str]] = set()
+    count = 0
+    for _, vehicles in truth.frames:
+        now = set()
+        for a, b in itertools.combinations(sorted(vehicles, key=lambda v: v.vehicle_id), 2):
+            if condition(a, b):
+                now.add((a.vehicle_id, b.vehicle_id))
+        count += len(now - active)
+        active = now
+    return count
+
+
+def collisions(truth: TruthSeries) -> int:
+    return _onsets(truth, lambda a, b: geometry.rectangles_overlap(_corners(a), _corners(b)))
+
+
+def safety_circle_violations(truth: TruthSeries, radius_m: float = DEFAULT_SAFETY_RADIUS_M) -> int:
+    """Onsets of two vehicle centres closer than radius_m (the organisers' safety circle)."""
+    return _onsets(truth, lambda a, b: float(np.hypot(*(_centre(a) - _centre(b)))) < radius_m)
+
+
+def bumper_gap_m(leader: sim_pb2.VehicleTruth, follower: sim_pb2.VehicleTruth) -> float:
+    """Leader's rear bumper to follower's front bumper along the lane (stations are at the rear axles)."""
+    leader_rear = leader.station_m - geometry.rear_overhang_m(leader.length_m)
+    follower_front = follower.station_m + follower.length_m - geometry.rear_overhang_m(follower.length_m)
+    return leader_rear - follower_front
+
+
+def following_pairs(vehicles: Sequence[sim_pb2.VehicleTruth]) -> list[tuple[sim_pb2.VehicleTruth, sim_pb2.VehicleTruth]]:
+    """(leader, follower) of consecutive vehicles in each lane."""
+    pairs = []
+    by_lane: dict[int, list[sim_pb2.VehicleTruth]] = {}
+    for vehicle in vehicles:
+        by_lane.setdefault(vehicle.lane_index, []).append(vehicle)
+    for lane_vehicles in by_lane.values():
+        ordered = sorted(lane_vehicles, key=lambda v: v.station_m, reverse=True)
+        pairs.extend(zip(ordered, ordered[1:]))
+    return pairs
+
+
+def gaps(truth: TruthSeries) -> dict[str, float]:
+    min_gap, min_time_gap = math.inf, math.inf
+    for _, vehicles in truth.frames:
+        for leader, follower in following_pairs(vehicles):
+            gap = bumper_gap_m(leader, follower)
+            min_gap = min(min_gap, gap)
+            if follower.speed_mps > MIN_SPEED_FOR_TIME_GAP_MPS:
+                min_time_gap = min(min_time_gap, gap / follower.speed_mps)
+    return {"min_gap_m": min_gap, "min_time_gap_s": min_time_gap}
+
+
+def _error_stats(errors: np.ndarray, key: str, unit: str) -> dict[str, float]:
+    errors = errors[np.isfinite(errors)]
+    if not errors.size:
+        return {}
+    return {f"{key}_{unit}": float(errors.mean()), f"{key}_sd_{unit}": float(errors.std()),
+            f"{key}_max_{unit}": float(np.abs(errors).max())}
+
+
+def comfort(truth: TruthSeries, vehicle_ids: Sequence[str]) -> dict[str, float]:
+    max_accel, jerks = 0.0, []
+    for vid in vehicle_ids:
+        accel = truth.get(vid, "accel_mps2")
+        valid = np.isfinite(accel)
+        if valid.sum() < 2:
+            continue
+        max_accel = max(max_accel, float(np.abs(accel[valid]).max()))
+        jerks.append(np.diff(accel[valid]) / np.diff(truth.time_s[valid]))
+    all_jerk = np.concatenate(jerks) if jerks else np.zeros(1)
+    return {"max_abs_accel_mps2": max_accel, "rms_jerk_mps3": float(np.sqrt(np.mean(all_jerk ** 2)))}
+
+
+def speed_error(truth: TruthSeries, reference_mps: Mapping[str, Callable[[np.ndarray], np.ndarray]]) -> dict[str, float]:
+    """Actual minus reference speed in km/h, over the vehicles given a reference (a function of time)."""
+    errors = [truth.get(vid, "speed_mps") - ref(truth.time_s) for vid, ref in reference_mps.items()]
+    return _error_stats(np.concatenate(errors) * KMH_PER_MPS, "speed_error", "kmh") if errors else {}
+
+
+def spacing_error(truth: TruthSeries, vehicle_ids: Sequence[str], standstill_m: float = DEFAULT_STANDSTILL_M,
+                  headway_s: float = DEFAULT_HEADWAY_S) -> dict[str, float]:
+    """Gap minus the desired d = r + h v (eq. 4 Heudiasyc) of the listed followers."""
+    wanted = set(vehicle_ids)
+    errors = [bumper_gap_m(leader, follower) - (standstill_m + headway_s * follower.speed_mps)
+              for _, vehicles in truth.frames for leader, follower in following_pairs(vehicles)
+              if follower.vehicle_id in wanted]
+    return _error_stats(np.array(errors), "spacing_error", "m")
+
+
+def lateral_error(truth: TruthSeries, vehicle_ids: Sequence[str]) -> dict[str, float]:
+    errors = [truth.get(vid, "lateral_offset_m") for vid in vehicle_ids]
+    return _error_stats(np.concatenate(errors), "lateral_error", "m") if errors else {}
+
+
+def speed_amplitude(speed_mps: np.ndarray, time_s: np.ndarray | None = None,
+                    frequency_hz: float | None = None) -> float:
+    """Amplitude of the detrended speed.
+
+    With the excitation frequency known, a least-squares fit of offset, linear trend and sinusoid gives the
+    exact amplitude of a sinusoid on a trend; otherwise half the peak-to-peak of the linearly detrended speed
+    (a detrended whole number of sine periods keeps a small slope bias that cancels in ratios).
+    """
+    values = np.asarray(speed_mps, dtype=float)
+    times = np.arange(values.size, dtype=float) if time_s is None else np.asarray(time_s, dtype=float)
+    valid = np.isfinite(values)
+    values, times = values[valid], times[valid]
+    if values.size < 2:
+        return 0.0
+    if frequency_hz is not None:
+        omega = 2.0 * math.pi * frequency_hz
+        basis = np.column_stack((np.ones_like(times), times - times.mean(), np.sin(omega * times),
+                                 np.cos(omega * times)))
+        coefficients, *_ = np.linalg.lstsq(basis, values, rcond=None)
+        return float(math.hypot(coefficients[2], coefficients[3]))
+    detrended = signal.detrend(values, type="linear")
+    return float(detrended.max() - detrended.min()) / 2.0
+
+
+def string_gain(speeds_mps: Sequence[np.ndarray], time_s: np.ndarray | None = None,
+                frequency_hz: float | None = None) -> float:
+    """Max over consecutive vehicles (leader first) of the ratio of follower to predecessor speed amplitude."""
+    amplitudes = [speed_amplitude(s, time_s, frequency_hz) for s in speeds_mps]
+    ratios = [b / a for a, b in zip(amplitudes, amplitudes[1:]) if a > 0.0]
+    return max(ratios) if ratios else math.nan
+
+
+def position_rmse_m(estimate_time_s: np.ndarray, estimate_xy_m: np.ndarray, true_time_s: np.ndarray,
+                    true_xy_m: np.ndarray) -> float:
+    """RMS horizontal error of the estimates against the truth interpolated at the estimates' times."""
+    estimate_time_s = np.asarray(estimate_time_s, dtype=float)
+    inside = (estimate_time_s >= true_time_s[0]) & (estimate_time_s <= true_time_s[-1])
+    if not inside.any():
+        return math.nan
+    est = np.asarray(estimate_xy_m, dtype=float)[inside]
+    true_x = np.interp(estimate_time_s[inside], true_time_s, true_xy_m[:, 0])
+    true_y = np.interp(estimate_time_s[inside], true_time_s, true_xy_m[:, 1])
+    return float(np.sqrt(np.mean((est[:, 0] - true_x) ** 2 + (est[:, 1] - true_y) ** 2)))
+
+
+def identity_switches(associations: Sequence[Mapping[str, int]]) -> int:
+    """Times a true vehicle's track id changes from one frame to a later one (a gap does not reset it)."""
+    last: dict[str, int] = {}
+    switches = 0
+    for frame in associations:
+        for vehicle_id, track_id in frame.items():
+            if vehicle_id in last and last[vehicle_id] != track_id:
+                switches += 1
+            last[vehicle_id] = track_id
+    return switches
+
+
+def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[str] | None = None,
+          reference_speed_mps: Mapping[str, Callable[[np.ndarray], np.ndarray]] | None = None,
+          safety_radius_m: float = DEFAULT_SAFETY_RADIUS_M, standstill_m: float = DEFAULT_STANDSTILL_M,
+          headway_s: float = DEFAULT_HEADWAY_S, string_start_s: float = 0.0,
+          string_frequency_hz: float | None = None) -> dict[str, float]:
+    """The run's metrics; `platoon` lists vehicle ids leader first for the string gain."""
+    judged = list(automated) if automated is not None else sorted(truth.automated) or truth.vehicle_ids
+    metrics: dict[str, float] = {"collisions": float(collisions(truth)),
+                                 "safety_circle_violations": float(safety_circle_violations(truth, safety_radius_m))}
+    metrics.update(gaps(truth))
+    metrics.update(comfort(truth, judged))
+    metrics.update(spacing_error(truth, judged, standstill_m, headway_s))
+    metrics.update(lateral_error(truth, judged))
+    if reference_speed_mps:
+        metrics.update(speed_error(truth, reference_speed_mps))
+    if len(platoon) >= 2:
+        window = truth.time_s >= string_start_s
+        metrics["string_gain"] = string_gain([truth.get(vid, "speed_mps")[window] for vid in platoon],
+                                             truth.time_s[window], string_frequency_hz)
+    return metrics

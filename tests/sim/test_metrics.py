@@ -1,0 +1,87 @@
+import math
+
+import numpy as np
+import pytest
+
+from coopdrive.services.sim import metrics
+from coopdrive.services.sim.truth_series import TruthSeries
+from coopdrive.v1 import sim_pb2
+
+
+def _truth(vid, station_m, speed_mps=10.0, lane=0, accel=0.0, lateral=0.0, automated=True, y_m=None):
+    return sim_pb2.VehicleTruth(vehicle_id=vid, x_m=station_m, y_m=3.5 * lane if y_m is None else y_m,
+                                station_m=station_m, lane_index=lane, speed_mps=speed_mps, accel_mps2=accel,
+                                length_m=4.5, width_m=1.8, lateral_offset_m=lateral, automated=automated)
+
+
+def test_string_gain_of_a_hand_built_sinusoid_chain_is_exactly_the_amplitude_ratio():
+    t = np.arange(0.0, 50.0, 0.01)
+    wave = np.sin(2.0 * np.pi * 0.2 * t)
+    speeds = [20.0 + amplitude * wave for amplitude in (10.0, 8.0, 6.4)]
+    assert metrics.string_gain(speeds) == pytest.approx(0.8, abs=1e-12)
+    assert metrics.string_gain(speeds, t, frequency_hz=0.2) == pytest.approx(0.8, abs=1e-12)
+    assert metrics.speed_amplitude(speeds[0], t, frequency_hz=0.2) == pytest.approx(10.0, abs=1e-9)
+
+
+def test_string_gain_with_the_excitation_frequency_is_exact_despite_phase_lags():
+    t = np.arange(0.0, 50.0, 0.01)
+    speeds = [20.0 + amplitude * np.sin(2.0 * np.pi * 0.2 * t - lag)
+              for amplitude, lag in ((10.0, 0.0), (8.0, 0.4), (6.4, 0.8))]
+    assert metrics.string_gain(speeds, t, frequency_hz=0.2) == pytest.approx(0.8, abs=1e-9)
+
+
+def test_string_gain_ignores_a_linear_speed_trend_and_reports_the_worst_pair():
+    t = np.arange(0.0, 50.0, 0.01)
+    wave = np.sin(2.0 * np.pi * 0.2 * t)
+    speeds = [15.0 + 0.1 * t + amplitude * wave for amplitude in (2.0, 1.6, 1.76)]
+    assert metrics.string_gain(speeds, t, frequency_hz=0.2) == pytest.approx(1.1, abs=1e-9)
+
+
+def test_overlapping_rectangles_count_as_one_collision_while_they_stay_in_contact():
+    frames = [(k * 0.1, [_truth("a", 10.0), _truth("b", s)]) for k, s in enumerate([20.0, 14.0, 13.0, 14.5, 30.0])]
+    truth = TruthSeries.from_frames(frames)
+    assert metrics.collisions(truth) == 1
+    result = metrics.gaps(truth)
+    assert result["min_gap_m"] == pytest.approx(13.0 - 0.9 - (10.0 + 3.6))
+
+
+def test_vehicles_side_by_side_in_different_lanes_do_not_collide_but_violate_the_safety_circle():
+    truth = TruthSeries.from_frames([(0.0, [_truth("a", 10.0, lane=0), _truth("b", 10.0, lane=1)])])
+    assert metrics.collisions(truth) == 0
+    assert metrics.safety_circle_violations(truth) == 1
+    assert metrics.safety_circle_violations(truth, radius_m=3.0) == 0
+
+
+def test_min_time_gap_spacing_and_lateral_errors_follow_their_definitions():
+    frames = [(k * 0.1, [_truth("lead", 40.0 + k, 20.0), _truth("f", 40.0 + k - 30.0, 20.0, lateral=0.1 * (k % 2))])
+              for k in range(10)]
+    truth = TruthSeries.from_frames(frames)
+    gap = 30.0 - 0.9 - 3.6
+    result = metrics.judge(truth, automated=["f"], standstill_m=6.0, headway_s=1.0)
+    assert result["min_time_gap_s"] == pytest.approx(gap / 20.0)
+    assert result["spacing_error_m"] == pytest.approx(gap - 26.0)
+    assert result["spacing_error_sd_m"] == pytest.approx(0.0, abs=1e-9)
+    assert result["lateral_error_m"] == pytest.approx(0.05)
+    assert result["lateral_error_sd_m"] == pytest.approx(0.05)
+    assert result["lateral_error_max_m"] == pytest.approx(0.1)
+
+
+def test_speed_error_is_reported_in_kmh_and_comfort_from_the_acceleration_series():
+    frames = [(k * 0.5, [_truth("f", 10.0 * k, 11.0, accel=(-1.0) ** k)]) for k in range(5)]
+    truth = TruthSeries.from_frames(frames)
+    result = metrics.judge(truth, reference_speed_mps={"f": lambda t: np.full_like(t, 10.0)})
+    assert result["speed_error_kmh"] == pytest.approx(3.6)
+    assert result["max_abs_accel_mps2"] == 1.0
+    assert result["rms_jerk_mps3"] == pytest.approx(4.0)
+
+
+def test_position_rmse_interpolates_the_truth_at_the_estimate_times():
+    true_t = np.array([0.0, 1.0, 2.0])
+    true_xy = np.array([[0.0, 0.0], [10.0, 0.0], [20.0, 0.0]])
+    rmse = metrics.position_rmse_m(np.array([0.5, 1.5]), np.array([[5.0, 3.0], [19.0, 0.0]]), true_t, true_xy)
+    assert rmse == pytest.approx(math.sqrt((9.0 + 16.0) / 2.0))
+
+
+def test_identity_switches_count_changes_of_a_vehicles_track_id():
+    frames = [{"a": 1, "b": 2}, {"a": 1, "b": 3}, {"a": 1}, {"a": 4, "b": 3}]
+    assert metrics.identity_switches(frames) == 2
