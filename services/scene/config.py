@@ -1,0 +1,178 @@
+"""Configuration of the scene service: front ends, tracking, confidence and V2V trust.
+
+The Chalmers thesis (Svensson 2017, Sect. 3.5 and 4.3.1) fixes the shape of the confidence scheme
+(values in [0, 1], -1 unknown, boosts on agreement, decay with time, a fade time per source) but
+publishes no numbers: it says the truck "was mostly running on default values". The numbers below
+are therefore ours, ordered the way the thesis ranks the sensors (LiDAR and radar most trusted,
+camera good at class, sonar least trusted, V2V "from excellent to worthless" depending on the sender).
+The LiDAR clustering numbers are Heudiasyc's (Fig. 12, Sect. 6).
+"""
+
+from __future__ import annotations
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from coopdrive.v1 import header_pb2
+
+
+class SourceConfig(BaseModel):
+    """How much one kind of sensor is trusted, and for how long."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    # A property keeps its value this long after this source last supported it.
+    fade_time_s: float = Field(gt=0.0)
+    # Exponential decay of this source's support while no new reading arrives.
+    decay_per_s: float = Field(ge=0.0)
+    # Ceiling of the support one source alone can give a property.
+    max_confidence: float = Field(gt=0.0, le=1.0)
+    # Fraction of the remaining room to max_confidence gained by one fully matching reading.
+    gain: float = Field(gt=0.0, le=1.0)
+
+
+class LidarConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    # Heudiasyc Sect. 6: 5 points, 1 m between consecutive points, 4 m lane margin.
+    min_points: int = Field(default=5, ge=1)
+    max_gap_m: float = Field(default=1.0, gt=0.0)
+    lane_margin_m: float = Field(default=4.0, gt=0.0)
+    # Clusters further to the side than this are off the road (ego lane plus one lane each side).
+    max_lateral_m: float = Field(default=6.0, gt=0.0)
+    # Longer clusters are guard rails or walls, not vehicles.
+    max_extent_m: float = Field(default=20.0, gt=0.0)
+    # Layers used for objects; Heudiasyc kept the two upper ones. Empty = all layers.
+    object_layers: list[int] = Field(default_factory=list)
+    range_std_m: float = Field(default=0.1, gt=0.0)
+    bearing_std_rad: float = Field(default=0.005, gt=0.0)
+
+
+class RadarConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    range_std_m: float = Field(default=0.3, gt=0.0)
+    bearing_std_rad: float = Field(default=0.01, gt=0.0)
+    range_rate_std_mps: float = Field(default=0.2, gt=0.0)
+    field_of_view_rad: float = Field(default=0.35, gt=0.0)
+    max_range_m: float = Field(default=150.0, gt=0.0)
+
+
+class CameraConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    # Chalmers 4.3.1: camera direction is a bit less trusted than LiDAR, distance even less.
+    range_std_fraction: float = Field(default=0.08, gt=0.0)
+    min_range_std_m: float = Field(default=0.5, gt=0.0)
+    bearing_std_rad: float = Field(default=0.02, gt=0.0)
+
+
+class SonarConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    range_std_m: float = Field(default=0.3, gt=0.0)
+    # Half opening angle of the sonar cone: the echo can come from anywhere inside it.
+    half_beam_rad: float = Field(default=0.3, gt=0.0)
+
+
+class V2vConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    position_std_m: float = Field(default=0.7, gt=0.0)
+    speed_std_mps: float = Field(default=0.3, gt=0.0)
+    accel_std_mps2: float = Field(default=0.5, gt=0.0)
+    # ETSI CAM reference point is the centre of the vehicle's front; the scene tracks rear bumpers.
+    reference_is_front: bool = True
+    default_length_m: float = Field(default=4.5, gt=0.0)
+
+
+class TrustConfig(BaseModel):
+    """Per-station V2V trust, in [0, 1]."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    initial: float = Field(default=0.6, ge=0.0, le=1.0)
+    # Below this a station's kinematics are not fused and its V2V-only object is never an obstacle.
+    min_trusted: float = Field(default=0.4, ge=0.0, le=1.0)
+    # Position disagreement with our own sensors beyond which the station is losing trust.
+    agree_m: float = Field(default=1.5, gt=0.0)
+    drop_per_s: float = Field(default=0.5, gt=0.0)
+    raise_per_s: float = Field(default=0.05, gt=0.0)
+    # Longest interval credited to one message, so a silent station is not judged on a gap.
+    max_step_s: float = Field(default=0.5, gt=0.0)
+    # A station is linked to a LiDAR/radar track this close even outside the fusion gate, so that an
+    # offset station is caught disagreeing instead of spawning a second object; below a rear-to-rear
+    # distance of a car length plus a gap, so the next vehicle of a platoon is not taken.
+    link_gate_m: float = Field(default=4.0, gt=0.0)
+    # Radius around a claim within which a radar track counts as seeing it.
+    radar_match_m: float = Field(default=2.5, gt=0.0)
+    # A V2V claim compared with sensor data older than this is not compared at all.
+    max_sensor_age_s: float = Field(default=0.3, gt=0.0)
+    # One free-space contradiction costs this much at once; this many make the station a ghost.
+    ghost_penalty: float = Field(default=0.3, ge=0.0, le=1.0)
+    ghost_hits: int = Field(default=2, ge=1)
+    max_speed_mps: float = Field(default=70.0, gt=0.0)
+    max_abs_accel_mps2: float = Field(default=12.0, gt=0.0)
+    max_length_m: float = Field(default=25.0, gt=0.0)
+    # Reported position may move this much more than the reported speed explains between messages.
+    jump_tolerance_m: float = Field(default=3.0, gt=0.0)
+    # Free-space test: the claim is free if beams pass this far beyond it.
+    free_margin_m: float = Field(default=1.0, gt=0.0)
+
+
+class TrackingConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    # Chi-square 99 % for two degrees of freedom (range, bearing).
+    gate_chi2: float = Field(default=9.21, gt=0.0)
+    # Chalmers 4.3.1: matching by direction and distance "with a slight emphasis on the angle".
+    angle_emphasis: float = Field(default=1.2, ge=1.0)
+    # White-jerk spectral density of the constant-acceleration model.
+    jerk_psd_m2ps5: float = Field(default=2.0, gt=0.0)
+    initial_speed_std_mps: float = Field(default=10.0, gt=0.0)
+    initial_accel_std_mps2: float = Field(default=3.0, gt=0.0)
+    confirm_hits: int = Field(default=3, ge=1)
+    # A tentative track with no hit for this long is deleted; it was never published.
+    tentative_timeout_s: float = Field(default=0.3, gt=0.0)
+    # Measurements are kept this long per track for out-of-sequence replay.
+    replay_window_s: float = Field(default=1.5, gt=0.0)
+    # Chalmers 4.3.1: distance updated "with a bias for closer readings": R is divided by this.
+    closer_bias: float = Field(default=1.5, ge=1.0)
+    # Chalmers 4.3.1: property values blend "with a heavy bias for new data".
+    new_data_bias: float = Field(default=3.0, gt=0.0)
+    # Support given to speed and heading by sensors that only see positions (the filter derives them).
+    derived_quality: float = Field(default=0.5, ge=0.0, le=1.0)
+
+
+class SceneConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    ego_length_m: float = Field(default=4.7, gt=0.0)
+    # Rear axle to rear bumper; the front bumper is ego_length_m minus this ahead of the rear axle.
+    ego_rear_overhang_m: float = Field(default=1.0, ge=0.0)
+    # Half width of the MIO corridor is lidar.lane_margin_m / 2 (Heudiasyc Fig. 4).
+    lidar: LidarConfig = Field(default_factory=LidarConfig)
+    radar: RadarConfig = Field(default_factory=RadarConfig)
+    camera: CameraConfig = Field(default_factory=CameraConfig)
+    sonar: SonarConfig = Field(default_factory=SonarConfig)
+    v2v: V2vConfig = Field(default_factory=V2vConfig)
+    trust: TrustConfig = Field(default_factory=TrustConfig)
+    tracking: TrackingConfig = Field(default_factory=TrackingConfig)
+    lidar_source: SourceConfig = SourceConfig(fade_time_s=0.5, decay_per_s=0.4, max_confidence=0.9, gain=0.5)
+    radar_source: SourceConfig = SourceConfig(fade_time_s=0.5, decay_per_s=0.4, max_confidence=0.9, gain=0.5)
+    camera_source: SourceConfig = SourceConfig(fade_time_s=0.4, decay_per_s=0.6, max_confidence=0.7, gain=0.4)
+    sonar_source: SourceConfig = SourceConfig(fade_time_s=0.3, decay_per_s=1.0, max_confidence=0.5, gain=0.3)
+    v2v_source: SourceConfig = SourceConfig(fade_time_s=1.0, decay_per_s=0.2, max_confidence=0.7, gain=0.3)
+
+    def source(self, source: int) -> SourceConfig:
+        """The confidence settings of one header_pb2.SensorSource."""
+        table = {
+            header_pb2.SENSOR_SOURCE_LIDAR: self.lidar_source,
+            header_pb2.SENSOR_SOURCE_RADAR: self.radar_source,
+            header_pb2.SENSOR_SOURCE_CAMERA: self.camera_source,
+            header_pb2.SENSOR_SOURCE_SONAR: self.sonar_source,
+            header_pb2.SENSOR_SOURCE_V2V: self.v2v_source,
+        }
+        try:
+            return table[source]
+        except KeyError:
+            raise ValueError(f"no confidence settings for sensor source {source}") from None

@@ -1,0 +1,155 @@
+"""SceneFusion: the scene service's logic, fed by method calls with protobuf values and times.
+
+Every sensor frame is turned into ENU measurements at its own sample time using the ego pose
+shifted to that time, associated jointly with the live tracks and fused; V2V observations are first
+judged (plausibility, agreement with our own LiDAR/radar, free-space check) and then fused with a
+weight that follows the station's trust. `scene(time_s)` predicts every confirmed track to time_s.
+Nothing here reads a clock or draws a random number, so the same calls give the same scene.
+"""
+
+from __future__ import annotations
+
+from coopdrive.v1 import ego_pb2, scene_pb2, sensors_pb2
+
+from .config import SceneConfig
+from .freespace import FreeSpaceOracle
+from .frontends import (
+    CameraFrontEnd,
+    LaneMarkings,
+    RadarFrontEnd,
+    RejectCounter,
+    SonarFrontEnd,
+    V2vFrontEnd,
+)
+from .lidar import LidarClusterer
+from .measurement import EgoPose, Measurement, V2vObservation
+from .scene_builder import LaneOf, ObjectView, SceneBuilder
+from .tracker import Tracker
+from .trust import V2vTrust
+
+
+class SceneFusion:
+    def __init__(self, config: SceneConfig | None = None, lane_of: LaneOf | None = None) -> None:
+        self.config = config or SceneConfig()
+        self.rejects = RejectCounter()
+        self.tracker = Tracker(self.config)
+        self.trust = V2vTrust(self.config.trust)
+        self._lidar = LidarClusterer(self.config.lidar)
+        self._radar = RadarFrontEnd(self.config.radar, self.rejects)
+        self._camera = CameraFrontEnd(self.config.camera, self.rejects)
+        self._sonar = SonarFrontEnd(self.config.sonar, self.rejects)
+        self._v2v = V2vFrontEnd(self.config.v2v, self.rejects)
+        self._free_space = FreeSpaceOracle(self.config.trust, self.config.radar)
+        self._builder = SceneBuilder(self.config, lane_of)
+        self._ego: EgoPose | None = None
+        self._free_ranges_m: list[float] = []
+        self.lane_markings: LaneMarkings | None = None
+
+    # -- inputs ----------------------------------------------------------------------------
+
+    def on_ego(self, ego: ego_pb2.EgoState) -> None:
+        self._ego = EgoPose.from_state(ego)
+
+    def on_lidar(self, scan: sensors_pb2.LidarScan, ego: ego_pb2.EgoState | None = None) -> None:
+        pose = self._pose(scan.header.sample_time_s, ego, "lidar")
+        if pose is None:
+            return
+        try:
+            measurements = self._lidar.measurements(scan, pose)
+        except ValueError as error:
+            self.rejects.reject(f"lidar scan: {error}")
+            return
+        self._free_space.set_lidar(scan, pose)
+        self._process(measurements, pose.time_s)
+
+    def on_radar(self, tracks: sensors_pb2.RadarTracks, ego: ego_pb2.EgoState | None = None) -> None:
+        pose = self._pose(tracks.header.sample_time_s, ego, "radar")
+        if pose is None:
+            return
+        measurements = self._radar.measurements(tracks, pose)
+        self._free_space.set_radar(measurements, pose)
+        self._process(measurements, pose.time_s)
+
+    def on_camera(self, frame: sensors_pb2.CameraFrame, ego: ego_pb2.EgoState | None = None) -> None:
+        pose = self._pose(frame.header.sample_time_s, ego, "camera")
+        if pose is None:
+            return
+        self.lane_markings = self._camera.lane_markings(frame)
+        self._process(self._camera.measurements(frame, pose), pose.time_s)
+
+    def on_sonar(self, ranges: sensors_pb2.SonarRanges, ego: ego_pb2.EgoState | None = None) -> None:
+        pose = self._pose(ranges.header.sample_time_s, ego, "sonar")
+        if pose is None:
+            return
+        self._free_ranges_m = self._sonar.free_ranges_m(ranges)
+        self._process(self._sonar.measurements(ranges, pose), pose.time_s)
+
+    def on_v2v(self, observation: V2vObservation) -> None:
+        pose = self._pose(observation.sample_time_s, None, "v2v")
+        if pose is None:
+            return
+        meas = self._v2v.measurement(observation, pose)
+        if meas is None:
+            return
+        reason = self.trust.implausibility(observation)
+        if reason is not None:
+            self.rejects.reject(f"v2v station {observation.station_id}: {reason}")
+        link = self.tracker.link_v2v(meas)
+        disagreement = link.disagreement_m if link is not None else None
+        trust = self.trust.observe(observation, disagreement, plausible=reason is None)
+        track = self.tracker.tracks.get(link.track_id) if link is not None else None
+        seen_by_us = track is not None and self.tracker.has_ranging(track, meas.time_s)
+        if not seen_by_us and self._free_space.is_free(meas.position_m, meas.time_s):
+            self.trust.free_space_contradiction(observation.station_id)
+            trust = self.trust.trust(observation.station_id)
+        if track is None or not seen_by_us:
+            # Nothing of ours sees it: V2V is its only source, so it follows the station, and
+            # trust decides whether it may be an obstacle (see _views).
+            fuse = True
+        else:
+            agrees = disagreement is None or disagreement <= self.config.trust.agree_m
+            fuse = reason is None and agrees and self.trust.trusted(observation.station_id)
+        self.tracker.fuse_v2v(meas, link, trust, fuse)
+
+    # -- output ----------------------------------------------------------------------------
+
+    def scene(self, time_s: float) -> scene_pb2.Scene:
+        self.tracker.expire(time_s)
+        ego = self._ego.at(time_s) if self._ego is not None else EgoPose.from_state(ego_pb2.EgoState())
+        return self._builder.build(time_s, ego, self._views(time_s), list(self._free_ranges_m))
+
+    def _views(self, time_s: float) -> list[ObjectView]:
+        views = []
+        for track in self.tracker.confirmed():
+            station = track.station_id
+            seen_by_us = self.tracker.has_ranging(track, time_s)
+            ghost = self.trust.is_ghost(station) and not seen_by_us
+            if self.tracker.v2v_only(track, time_s):
+                eligible = station is not None and self.trust.trusted(station)
+            else:
+                eligible = not ghost
+            views.append(ObjectView(track, eligible, ghost, self.trust.trust(station)))
+        return views
+
+    def counters(self) -> dict[str, int]:
+        """Diagnostics: tracker events and rejected inputs by reason."""
+        out = {f"tracker_{k}": v for k, v in vars(self.tracker.counters).items() if isinstance(v, int)}
+        out.update({f"rejected: {k}": v for k, v in self.rejects.counts.items()})
+        return out
+
+    # -- helpers ---------------------------------------------------------------------------
+
+    def _pose(self, time_s: float, ego: ego_pb2.EgoState | None, what: str) -> EgoPose | None:
+        if ego is not None:
+            given = EgoPose.from_state(ego)
+            if self._ego is None or given.time_s >= self._ego.time_s:
+                self._ego = given
+            return given.at(time_s)
+        if self._ego is None:
+            self.rejects.reject(f"{what}: no ego state yet")
+            return None
+        return self._ego.at(time_s)
+
+    def _process(self, measurements: list[Measurement], time_s: float) -> None:
+        self.tracker.process(measurements)
+        self.tracker.expire(time_s)

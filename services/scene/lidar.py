@@ -1,0 +1,148 @@
+"""LiDAR front end: Heudiasyc geometric clustering per layer, then one measurement per object.
+
+Two consecutive points (in azimuth order) belong to the same cluster when they are closer than
+max_gap_m; clusters with fewer than min_points are noise or fragments (Heudiasyc Sect. 3.2, Fig. 12).
+The layers see the same vehicle at slightly different heights, so surviving clusters of different
+layers that touch are merged before they become measurements.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from coopdrive.v1 import header_pb2, sensors_pb2
+
+from .config import LidarConfig
+from .measurement import EgoPose, Measurement, cov_to_enu, polar_cov_vehicle
+
+
+@dataclass
+class LidarCluster:
+    """A cluster in the vehicle frame: its points and axis-aligned box."""
+
+    layers: tuple[int, ...]
+    points_m: np.ndarray  # (n, 2) vehicle frame
+
+    @property
+    def x_min_m(self) -> float:
+        return float(self.points_m[:, 0].min())
+
+    @property
+    def x_max_m(self) -> float:
+        return float(self.points_m[:, 0].max())
+
+    @property
+    def y_min_m(self) -> float:
+        return float(self.points_m[:, 1].min())
+
+    @property
+    def y_max_m(self) -> float:
+        return float(self.points_m[:, 1].max())
+
+    @property
+    def width_m(self) -> float:
+        return self.y_max_m - self.y_min_m
+
+    @property
+    def extent_m(self) -> float:
+        return max(self.x_max_m - self.x_min_m, self.width_m)
+
+    @property
+    def rear_centre_m(self) -> np.ndarray:
+        """The face nearest to us: the rear bumper of a vehicle ahead."""
+        return np.array([self.x_min_m, 0.5 * (self.y_min_m + self.y_max_m)])
+
+    def box_gap_m(self, other: LidarCluster) -> float:
+        dx = max(0.0, max(self.x_min_m, other.x_min_m) - min(self.x_max_m, other.x_max_m))
+        dy = max(0.0, max(self.y_min_m, other.y_min_m) - min(self.y_max_m, other.y_max_m))
+        return math.hypot(dx, dy)
+
+
+def layer_points(layer: sensors_pb2.LidarLayer, max_range_m: float) -> np.ndarray:
+    """Valid returns of one layer in the vehicle frame, in azimuth order, projected on the ground plane."""
+    azimuth = np.asarray(layer.azimuth_rad, dtype=float)
+    ranges = np.asarray(layer.range_m, dtype=float)
+    if azimuth.shape != ranges.shape:
+        raise ValueError(f"lidar layer {layer.layer}: {azimuth.size} azimuths but {ranges.size} ranges")
+    limit = max_range_m if max_range_m > 0.0 else np.inf
+    valid = np.isfinite(ranges) & np.isfinite(azimuth) & (ranges > 0.0) & (ranges < limit)
+    order = np.argsort(azimuth[valid], kind="stable")
+    ground = ranges[valid][order] * math.cos(layer.elevation_rad)
+    angle = azimuth[valid][order]
+    return np.column_stack((ground * np.cos(angle), ground * np.sin(angle)))
+
+
+def split_consecutive(points_m: np.ndarray, max_gap_m: float) -> list[np.ndarray]:
+    """Runs of consecutive points whose neighbour distance stays within max_gap_m."""
+    if len(points_m) == 0:
+        return []
+    gaps = np.linalg.norm(np.diff(points_m, axis=0), axis=1)
+    cuts = np.flatnonzero(gaps > max_gap_m) + 1
+    return np.split(points_m, cuts)
+
+
+class LidarClusterer:
+    """Scan -> clusters -> ENU measurements."""
+
+    def __init__(self, config: LidarConfig) -> None:
+        self._config = config
+
+    def clusters(self, scan: sensors_pb2.LidarScan) -> list[LidarCluster]:
+        cfg = self._config
+        per_layer: list[LidarCluster] = []
+        for layer in scan.layers:
+            if cfg.object_layers and layer.layer not in cfg.object_layers:
+                continue
+            for run in split_consecutive(layer_points(layer, scan.max_range_m), cfg.max_gap_m):
+                if len(run) >= cfg.min_points:
+                    per_layer.append(LidarCluster(layers=(layer.layer,), points_m=run))
+        merged = self._merge_layers(per_layer)
+        return [c for c in merged if c.extent_m <= cfg.max_extent_m and self._near_road(c)]
+
+    def measurements(self, scan: sensors_pb2.LidarScan, pose: EgoPose) -> list[Measurement]:
+        cfg = self._config
+        out = []
+        for cluster in self.clusters(scan):
+            rear = cluster.rear_centre_m
+            range_m = float(np.hypot(*rear))
+            bearing = math.atan2(rear[1], rear[0])
+            cov = polar_cov_vehicle(range_m, bearing, cfg.range_std_m, cfg.bearing_std_rad)
+            # The centre of a partly seen face is uncertain by a fraction of its width.
+            cov[1, 1] += (0.1 * cluster.width_m) ** 2
+            out.append(
+                Measurement(
+                    source=header_pb2.SENSOR_SOURCE_LIDAR,
+                    time_s=pose.time_s,
+                    position_m=pose.to_enu(*rear),
+                    cov_m2=cov_to_enu(pose, cov),
+                    origin_m=pose.position_m,
+                    width_m=cluster.width_m,
+                    extras={"points": len(cluster.points_m)},
+                )
+            )
+        return out
+
+    def _near_road(self, cluster: LidarCluster) -> bool:
+        return cluster.x_max_m > 0.0 and abs(cluster.rear_centre_m[1]) <= self._config.max_lateral_m
+
+    def _merge_layers(self, clusters: list[LidarCluster]) -> list[LidarCluster]:
+        merged: list[LidarCluster] = []
+        for cluster in clusters:
+            joined = cluster
+            keep = []
+            for other in merged:
+                # Clusters of one layer were already split on purpose; only other layers may join.
+                shares_layer = bool(set(joined.layers) & set(other.layers))
+                if not shares_layer and joined.box_gap_m(other) <= self._config.max_gap_m:
+                    joined = LidarCluster(
+                        layers=tuple(sorted(set(joined.layers) | set(other.layers))),
+                        points_m=np.vstack((other.points_m, joined.points_m)),
+                    )
+                else:
+                    keep.append(other)
+            keep.append(joined)
+            merged = keep
+        return merged

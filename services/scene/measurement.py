@@ -1,0 +1,140 @@
+"""Measurements in the local ENU frame, the ego pose they were taken from, and V2V observations.
+
+Every front end turns a sensor frame into Measurement values: a position with its 2x2 covariance
+at the sample time, plus whatever else that sensor knows (radial speed, velocity, class, ...).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from coopdrive.v1 import ego_pb2, sensors_pb2
+
+
+@dataclass(frozen=True)
+class V2vObservation:
+    """One decoded CAM/iCLCM, already in the local frame (ENU metres, ENU heading)."""
+
+    station_id: int
+    x_m: float
+    y_m: float
+    speed_mps: float
+    heading_rad: float
+    accel_mps2: float
+    length_m: float
+    width_m: float
+    sample_time_s: float
+
+
+@dataclass
+class Measurement:
+    """One detection of one object by one source, ENU frame, rear-bumper reference point."""
+
+    source: int  # header_pb2.SensorSource
+    time_s: float
+    position_m: np.ndarray  # (2,)
+    cov_m2: np.ndarray  # (2, 2)
+    # Sensor origin in ENU at time_s; bearings and ranges for gating are taken from here.
+    origin_m: np.ndarray
+    # Radar: absolute speed along the line of sight from origin_m, positive away.
+    radial_speed_mps: float | None = None
+    radial_speed_std_mps: float = 0.0
+    # V2V: full velocity and acceleration vectors.
+    velocity_mps: np.ndarray | None = None
+    velocity_std_mps: float = 0.0
+    accel_mps2: float | None = None
+    heading_rad: float | None = None
+    accel_std_mps2: float = 0.0
+    length_m: float | None = None
+    width_m: float | None = None
+    object_class: int = sensors_pb2.OBJECT_CLASS_UNSPECIFIED
+    station_id: int | None = None
+    # Camera detections carry their own detector score; 1 for the rest.
+    quality: float = 1.0
+    extras: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class EgoPose:
+    """Ego rear-axle pose in ENU with the position covariance and the motion used to shift it in time."""
+
+    time_s: float
+    x_m: float
+    y_m: float
+    heading_rad: float
+    speed_mps: float
+    yaw_rate_radps: float
+    accel_mps2: float
+    position_cov_m2: np.ndarray
+
+    @classmethod
+    def from_state(cls, ego: ego_pb2.EgoState) -> EgoPose:
+        cov = np.zeros((2, 2))
+        if len(ego.covariance) >= 36:
+            full = np.asarray(ego.covariance, dtype=float).reshape(6, 6)
+            cov = full[:2, :2].copy()
+        elif ego.position_std_m > 0.0:
+            cov = np.eye(2) * ego.position_std_m**2
+        return cls(
+            time_s=ego.header.sample_time_s,
+            x_m=ego.x_m,
+            y_m=ego.y_m,
+            heading_rad=ego.heading_rad,
+            speed_mps=ego.speed_mps,
+            yaw_rate_radps=ego.yaw_rate_radps,
+            accel_mps2=ego.accel_mps2,
+            position_cov_m2=cov,
+        )
+
+    def at(self, time_s: float) -> EgoPose:
+        """This pose moved along a constant speed and yaw-rate arc to time_s."""
+        dt = time_s - self.time_s
+        if dt == 0.0:
+            return self
+        heading = self.heading_rad + self.yaw_rate_radps * dt
+        mid = self.heading_rad + 0.5 * self.yaw_rate_radps * dt
+        distance = self.speed_mps * dt + 0.5 * self.accel_mps2 * dt * dt
+        return EgoPose(
+            time_s=time_s,
+            x_m=self.x_m + distance * math.cos(mid),
+            y_m=self.y_m + distance * math.sin(mid),
+            heading_rad=heading,
+            speed_mps=self.speed_mps + self.accel_mps2 * dt,
+            yaw_rate_radps=self.yaw_rate_radps,
+            accel_mps2=self.accel_mps2,
+            position_cov_m2=self.position_cov_m2,
+        )
+
+    @property
+    def position_m(self) -> np.ndarray:
+        return np.array([self.x_m, self.y_m])
+
+    @property
+    def velocity_mps(self) -> np.ndarray:
+        return self.speed_mps * np.array([math.cos(self.heading_rad), math.sin(self.heading_rad)])
+
+    def rotation(self) -> np.ndarray:
+        c, s = math.cos(self.heading_rad), math.sin(self.heading_rad)
+        return np.array([[c, -s], [s, c]])
+
+    def to_enu(self, x_vehicle_m: float, y_vehicle_m: float) -> np.ndarray:
+        return self.position_m + self.rotation() @ np.array([x_vehicle_m, y_vehicle_m])
+
+    def to_vehicle(self, point_enu_m: np.ndarray) -> np.ndarray:
+        return self.rotation().T @ (np.asarray(point_enu_m, dtype=float) - self.position_m)
+
+
+def polar_cov_vehicle(range_m: float, bearing_rad: float, range_std_m: float, bearing_std_rad: float) -> np.ndarray:
+    """Covariance of a (range, bearing) reading mapped to Cartesian vehicle coordinates."""
+    c, s = math.cos(bearing_rad), math.sin(bearing_rad)
+    jac = np.array([[c, -range_m * s], [s, range_m * c]])
+    return jac @ np.diag([range_std_m**2, bearing_std_rad**2]) @ jac.T
+
+
+def cov_to_enu(pose: EgoPose, cov_vehicle_m2: np.ndarray) -> np.ndarray:
+    """A vehicle-frame covariance in ENU, including the ego's own position uncertainty."""
+    rot = pose.rotation()
+    return rot @ cov_vehicle_m2 @ rot.T + pose.position_cov_m2

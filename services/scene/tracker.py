@@ -1,0 +1,194 @@
+"""Multi-object tracker: gating, global assignment, track life cycle, V2V station links.
+
+Life cycle: a track starts tentative and is never published; it is confirmed after confirm_hits
+readings or as soon as two different sources see it; a tentative track with no hit for
+tentative_timeout_s is deleted, a confirmed one once every source of its position has faded.
+A false detection therefore never shows, and a false object never outlives its last reading by more
+than the longest fade time of the sources that saw it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from coopdrive.v1 import header_pb2
+
+from .association import assign, match_quality, polar_cost_matrix
+from .config import SceneConfig
+from .measurement import Measurement
+from .properties import ObjectProperties
+from .track import RANGING_SOURCES, Track, TrackStatus
+
+
+@dataclass
+class TrackerCounters:
+    created: int = 0
+    confirmed: int = 0
+    deleted: int = 0
+    too_late: int = 0
+    replayed: int = 0
+    v2v_not_fused: int = 0
+    by_reason: dict[str, int] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class V2vLink:
+    """Where a V2V measurement went and how far it was from our own ranging fix."""
+
+    track_id: int
+    disagreement_m: float | None
+
+
+class Tracker:
+    def __init__(self, config: SceneConfig, cost_fn: Callable = polar_cost_matrix) -> None:
+        self._config = config
+        self._cost_fn = cost_fn
+        self.tracks: dict[int, Track] = {}
+        self._next_id = 1
+        self._station_links: dict[int, int] = {}
+        self.counters = TrackerCounters()
+
+    # -- sensor frames ---------------------------------------------------------------------
+
+    def process(self, measurements: list[Measurement]) -> None:
+        """One frame of one sensor: associate jointly, update, start tentative tracks for the rest."""
+        if not measurements:
+            return
+        tracks = list(self.tracks.values())
+        gate = self._config.tracking.gate_chi2
+        cost = self._costs(measurements, tracks)
+        pairs, unmatched = assign(cost, gate)
+        for i, j in pairs:
+            self._fuse(tracks[j], measurements[i], match_quality(cost[i, j], gate))
+        for i in unmatched:
+            self._start(measurements[i])
+
+    def _costs(self, measurements: list[Measurement], tracks: list[Track]) -> np.ndarray:
+        if not tracks:
+            return np.zeros((len(measurements), 0))
+        time_s = measurements[0].time_s
+        predictions = [track.predicted(time_s) for track in tracks]
+        track_xy = np.array([Track.position_of(x) for x, _ in predictions])
+        track_cov = np.array([Track.position_cov_of(p) for _, p in predictions])
+        meas_xy = np.array([m.position_m for m in measurements])
+        meas_cov = np.array([m.cov_m2 for m in measurements])
+        origins = np.array([m.origin_m for m in measurements])
+        return self._cost_fn(meas_xy, meas_cov, origins, track_xy, track_cov, self._config.tracking.angle_emphasis)
+
+    # -- V2V -------------------------------------------------------------------------------
+
+    def link_v2v(self, meas: Measurement) -> V2vLink | None:
+        """The track this station is (or becomes) linked to, without fusing anything yet."""
+        station = meas.station_id
+        linked = self._station_links.get(station)
+        if linked is not None and linked in self.tracks:
+            return V2vLink(linked, self._disagreement(self.tracks[linked], meas))
+        free = [t for t in self.tracks.values() if t.station_id is None]
+        if free:
+            cost = self._costs([meas], free)[0]
+            best = int(np.argmin(cost))
+            if cost[best] <= self._config.tracking.gate_chi2:
+                return self._link(free[best], meas)
+            # An offset station lands outside the gate; a ranging track within a car length still
+            # takes it, so the offset shows up as disagreement rather than as a second object.
+            ranging = [t for t in free if t.ranging_fix is not None]
+            if ranging:
+                gaps = [float(np.linalg.norm(Track.position_of(t.predicted(meas.time_s)[0]) - meas.position_m)) for t in ranging]
+                nearest = int(np.argmin(gaps))
+                if gaps[nearest] <= self._config.trust.link_gate_m:
+                    return self._link(ranging[nearest], meas)
+        return None
+
+    def _link(self, track: Track, meas: Measurement) -> V2vLink:
+        track.station_id = meas.station_id
+        self._station_links[meas.station_id] = track.track_id
+        return V2vLink(track.track_id, self._disagreement(track, meas))
+
+    def _disagreement(self, track: Track, meas: Measurement) -> float | None:
+        """Distance from the V2V claim to our latest LiDAR/radar fix, moved to the claim's time."""
+        fix = track.ranging_fix
+        if fix is None or abs(meas.time_s - fix.time_s) > self._config.trust.max_sensor_age_s:
+            return None
+        velocity = Track.velocity_of(track.predicted(fix.time_s)[0])
+        at_claim = fix.position_m + velocity * (meas.time_s - fix.time_s)
+        return float(np.linalg.norm(meas.position_m - at_claim))
+
+    def fuse_v2v(self, meas: Measurement, link: V2vLink | None, trust: float, fuse_kinematics: bool) -> int:
+        """Fuse a V2V measurement into its linked track (or a new one); returns the track id."""
+        if link is None:
+            track = self._start(meas)
+            self._link(track, meas)
+            return track.track_id
+        track = self.tracks[link.track_id]
+        if fuse_kinematics:
+            # Less trusted stations count for less: their covariance grows as 1/trust^2.
+            scale = 1.0 / max(trust, 1e-3) ** 2
+            scaled = replace(meas, cov_m2=meas.cov_m2 * scale, velocity_std_mps=meas.velocity_std_mps * scale**0.5)
+            self._fuse(track, scaled, 1.0, v2v_weight=trust)
+        else:
+            self.counters.v2v_not_fused += 1
+            track.props.station_id.update(meas.source, meas.time_s, float(meas.station_id), trust)
+        return track.track_id
+
+    # -- life cycle ------------------------------------------------------------------------
+
+    def _fuse(self, track: Track, meas: Measurement, quality: float, v2v_weight: float = 1.0) -> None:
+        replays_before = track.replays
+        if not track.apply(meas):
+            self.counters.too_late += 1
+            return
+        self.counters.replayed += track.replays - replays_before
+        track.props.support(meas, quality, v2v_weight)
+        self._maybe_confirm(track, meas.time_s)
+
+    def _start(self, meas: Measurement) -> Track:
+        props = ObjectProperties(self._config.source, self._config.tracking)
+        track = Track(self._next_id, meas, self._config.tracking, props)
+        self._next_id += 1
+        self.tracks[track.track_id] = track
+        self.counters.created += 1
+        props.support(meas, 1.0)
+        self._maybe_confirm(track, meas.time_s)
+        return track
+
+    def _maybe_confirm(self, track: Track, time_s: float) -> None:
+        if track.status is not TrackStatus.TENTATIVE:
+            return
+        two_sources = len(track.props.position.sources(time_s)) >= 2
+        if track.hits >= self._config.tracking.confirm_hits or two_sources:
+            track.status = TrackStatus.CONFIRMED
+            self.counters.confirmed += 1
+
+    def expire(self, time_s: float) -> None:
+        """Delete tentative tracks that went quiet and confirmed ones whose position faded."""
+        timeout = self._config.tracking.tentative_timeout_s
+        for track_id in list(self.tracks):
+            track = self.tracks[track_id]
+            if track.status is TrackStatus.TENTATIVE:
+                dead = time_s - track.last_hit_s > timeout
+            else:
+                dead = track.props.position.faded(time_s)
+            if dead:
+                track.status = TrackStatus.DELETED
+                del self.tracks[track_id]
+                if track.station_id is not None and self._station_links.get(track.station_id) == track_id:
+                    del self._station_links[track.station_id]
+                self.counters.deleted += 1
+
+    def confirmed(self) -> list[Track]:
+        return [t for t in self.tracks.values() if t.status is TrackStatus.CONFIRMED]
+
+    def track_of_station(self, station_id: int) -> Track | None:
+        track_id = self._station_links.get(station_id)
+        return self.tracks.get(track_id) if track_id is not None else None
+
+    @staticmethod
+    def has_ranging(track: Track, time_s: float) -> bool:
+        return any(track.props.position.has_source(s, time_s) for s in RANGING_SOURCES)
+
+    @staticmethod
+    def v2v_only(track: Track, time_s: float) -> bool:
+        return track.props.position.sources(time_s) == [header_pb2.SENSOR_SOURCE_V2V]
