@@ -1,0 +1,29 @@
+"""Output shaping: comfort acceleration limits and a jerk limit; the emergency path has its own wider limits.
+
+    u_k = clip( clip(u_req, -a_dec, a_acc), u_{k-1} - J dt, u_{k-1} + J dt )              (eq. L1)
+The applied u_k is fed back to the laws (anti-windup and bumpless transfer), never the raw request.
+"""
+
+from __future__ import annotations
+
+from ..profiles import LimitGains
+
+
+class CommandShaper:
+    def __init__(self, limits: LimitGains) -> None:
+        self.limits = limits
+        self.last_mps2 = 0.0
+
+    def reset(self, command_mps2: float) -> None:
+        self.last_mps2 = command_mps2
+
+    def step(self, dt_s: float, request_mps2: float, emergency: bool = False) -> float:
+        lim = self.limits
+        if emergency:
+            low, jerk = -lim.emergency_decel_mps2, lim.emergency_jerk_mps3
+        else:
+            low, jerk = -lim.max_decel_mps2, lim.max_jerk_mps3
+        wanted = min(max(request_mps2, low), lim.max_accel_mps2)
+        step = jerk * dt_s
+        self.last_mps2 = min(max(wanted, self.last_mps2 - step), self.last_mps2 + step)  # (eq. L1)
+        return self.last_mps2

@@ -1,0 +1,176 @@
+"""Vehicle profiles for the control laws: physical parameters, actuator model, limits and gains.
+
+Every field carries its unit. Gains named after the equation they belong to; the defaults of the
+reference laws are the published ones (Ploeg kp = 0.2, kd = 0.7; Rajamani lambda = 0.1; DRIVERTIVE
+Table II), ours were tuned with `string_stability.py` (see docs in that module).
+"""
+
+from __future__ import annotations
+
+from pydantic import BaseModel, ConfigDict, Field
+
+STANDARD_GRAVITY_MPS2 = 9.81
+AIR_DENSITY_KGPM3 = 1.225
+
+
+class _Model(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class CaccGains(_Model):
+    """Our CACC: u = FF(a_p) + kp e + kd de/dt, e = gap - (r + h v)."""
+
+    kp_1ps2: float = Field(0.3, gt=0)
+    kd_1ps: float = Field(2.5, gt=0)
+    # Bumpless transfer: the offset between the previous command and this law decays with this constant.
+    bump_time_constant_s: float = Field(1.0, gt=0)
+
+
+class PloegGains(_Model):
+    kp_1ps2: float = Field(0.2, gt=0)
+    kd_1ps: float = Field(0.7, gt=0)
+
+
+class AccGains(_Model):
+    """Our radar-only ACC: u = kv (v_p - v) + ke (gap - r - h v) - ka h a."""
+
+    kv_1ps: float = Field(1.0, gt=0)
+    ke_1ps2: float = Field(0.15, gt=0)
+    ka: float = Field(0.2, ge=0)
+
+
+class RajamaniGains(_Model):
+    lambda_1ps: float = Field(0.1, gt=0)
+
+
+class CruiseGains(_Model):
+    """Cruise PI (Heudiasyc eq. 3 structure) on a reference-model speed."""
+
+    kp_1ps: float = Field(0.8, gt=0)
+    ki_1ps2: float = Field(0.15, ge=0)
+    # Back-calculation anti-windup: how fast the integrator follows the applied command.
+    tracking_time_constant_s: float = Field(1.0, gt=0)
+    # Reference model: first-order approach to the desired speed with bounded accel and jerk.
+    reference_time_constant_s: float = Field(3.0, gt=0)
+    reference_accel_mps2: float = Field(1.5, gt=0)
+    reference_decel_mps2: float = Field(1.5, gt=0)
+    reference_jerk_mps3: float = Field(1.0, gt=0)
+    resistance_feedforward: bool = True
+
+
+class DrivertiveGains(_Model):
+    """DRIVERTIVE adaptive proportional speed law (eq. 4-5, Table II), output read as m/s2."""
+
+    k0_1ps: float = 0.2
+    kv0_1pm: float = 0.04
+    k1_1ps: float = 1.0
+    kv1_1pm: float = 0.0
+
+
+class DcaccGains(_Model):
+    # Least-squares slope of the predecessor speed over this window estimates its acceleration.
+    estimator_window_s: float = Field(0.4, gt=0)
+    estimator_min_samples: int = Field(5, ge=3)
+
+
+class SpacingDefaults(_Model):
+    standstill_m: float = Field(6.0, ge=0)  # Heudiasyc r
+    time_gap_s: float = Field(0.7, gt=0)
+    # V2V older than this is lost (GCDC: a station not heard for 400 ms is lost).
+    v2v_timeout_s: float = Field(0.4, gt=0)
+    dcacc_time_gap_s: float = Field(1.0, gt=0)
+    acc_time_gap_s: float = Field(1.5, gt=0)
+    # Added to the planner's time gap on fallback, then floored by the values above.
+    fallback_time_gap_raise_s: float = Field(0.3, ge=0)
+    time_gap_rate_sps: float = Field(0.2, gt=0)
+
+
+class LimitGains(_Model):
+    max_accel_mps2: float = Field(2.0, gt=0)
+    max_decel_mps2: float = Field(2.0, gt=0)
+    max_jerk_mps3: float = Field(2.5, gt=0)
+    emergency_decel_mps2: float = Field(6.0, gt=0)
+    emergency_jerk_mps3: float = Field(30.0, gt=0)
+    # Emergency braking triggers below this time to collision, or when the comfort decel cannot stop in time.
+    ttc_emergency_s: float = Field(1.5, gt=0)
+    ttc_release_s: float = Field(3.0, gt=0)
+    stop_margin_m: float = Field(2.0, ge=0)
+
+
+class LateralGains(_Model):
+    # Heudiasyc eq. 10: critically damped double integrator, alpha1 = wn^2, alpha2 = 2 wn.
+    alpha1_1ps2: float = Field(0.36, gt=0)
+    alpha2_1ps: float = Field(1.2, gt=0)
+    stanley_gain: float = Field(1.0, gt=0)
+    stanley_softening_mps: float = Field(1.0, gt=0)
+    pure_pursuit_lookahead_time_s: float = Field(1.5, gt=0)
+    pure_pursuit_min_lookahead_m: float = Field(5.0, gt=0)
+    # Below this speed the L / v^2 factor of eq. 10 is evaluated at this speed (singularity at standstill).
+    min_speed_mps: float = Field(2.0, gt=0)
+    lane_change_duration_s: float = Field(6.0, gt=0)
+
+
+class VehicleProfile(_Model):
+    name: str
+    mass_kg: float = Field(gt=0)
+    wheelbase_m: float = Field(gt=0)
+    drag_area_m2: float = Field(gt=0, description="c_d * frontal area")
+    rolling_coefficient: float = Field(ge=0)
+    # Driveline: first-order lag tau and dead time (iCLCM responseTimeConstant / responseTimeDelay).
+    engine_lag_s: float = Field(gt=0)
+    actuation_delay_s: float = Field(ge=0)
+    max_steering_angle_rad: float = Field(gt=0)
+    max_steering_rate_radps: float = Field(gt=0)
+    max_lateral_accel_mps2: float = Field(2.0, gt=0)
+    cacc: CaccGains = CaccGains()
+    ploeg: PloegGains = PloegGains()
+    acc: AccGains = AccGains()
+    rajamani: RajamaniGains = RajamaniGains()
+    cruise: CruiseGains = CruiseGains()
+    drivertive: DrivertiveGains = DrivertiveGains()
+    dcacc: DcaccGains = DcaccGains()
+    spacing: SpacingDefaults = SpacingDefaults()
+    limits: LimitGains = LimitGains()
+    lateral: LateralGains = LateralGains()
+
+    def resistance_accel_mps2(self, speed_mps: float) -> float:
+        """Deceleration from rolling and aerodynamic resistance (Heudiasyc eq. 2), m/s2, >= 0 forwards."""
+        aero_n = 0.5 * AIR_DENSITY_KGPM3 * self.drag_area_m2 * speed_mps * abs(speed_mps)
+        rolling_n = self.rolling_coefficient * self.mass_kg * STANDARD_GRAVITY_MPS2 if speed_mps > 0 else 0.0
+        return (aero_n + rolling_n) / self.mass_kg
+
+
+CAR = VehicleProfile(
+    name="car",
+    mass_kg=1500.0,
+    wheelbase_m=2.7,
+    drag_area_m2=0.7,
+    rolling_coefficient=0.012,
+    engine_lag_s=0.3,
+    actuation_delay_s=0.05,
+    max_steering_angle_rad=0.5,
+    max_steering_rate_radps=0.4,
+)
+
+TRUCK = VehicleProfile(
+    name="truck",
+    mass_kg=18000.0,
+    wheelbase_m=4.5,
+    drag_area_m2=5.5,
+    rolling_coefficient=0.007,
+    engine_lag_s=0.5,
+    actuation_delay_s=0.1,
+    max_steering_angle_rad=0.6,
+    max_steering_rate_radps=0.25,
+    spacing=SpacingDefaults(time_gap_s=1.0, dcacc_time_gap_s=1.3, acc_time_gap_s=2.0),
+    limits=LimitGains(max_accel_mps2=1.0, max_decel_mps2=2.0, max_jerk_mps3=1.5, emergency_decel_mps2=4.5),
+)
+
+PROFILES: dict[str, VehicleProfile] = {p.name: p for p in (CAR, TRUCK)}
+
+
+def profile_by_name(name: str) -> VehicleProfile:
+    try:
+        return PROFILES[name]
+    except KeyError:
+        raise ValueError(f"unknown vehicle profile {name!r}; known: {sorted(PROFILES)}") from None
