@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from coopdrive.services.v2x import units
-from coopdrive.services.v2x.codec import ItsMessageId
+from coopdrive.services.v2x.codec import PROTOCOL_VERSION_CURRENT, PROTOCOL_VERSION_GCDC, ItsMessageId
 from coopdrive.services.v2x.mapping.common import (
     EnumTable, bits_to_bools, bools_to_bits, delta_position_from_asn, delta_position_to_asn, heading_to_asn,
     optional, path_point_from_asn, path_point_to_asn, reference_position_from_asn, reference_position_to_asn,
@@ -31,7 +31,9 @@ POSITIONING_SOLUTION = EnumTable([
         "noPositioningSolution", "sGNSS", "dGNSS", "sGNSSplusDR", "dGNSSplusDR", "dR"))])
 MAX_LANE_POSITION = 14
 MIN_LANE_POSITION = -1
-MAX_DRIVING_LANE_BITS = 14
+# ClosedLanes changed in CDD v1.3.1: the hard shoulder became the "outer" one and lanes count 13 bits.
+HARD_SHOULDER_KEY = {PROTOCOL_VERSION_GCDC: "hardShoulderStatus", PROTOCOL_VERSION_CURRENT: "outerhardShoulderStatus"}
+MAX_DRIVING_LANE_BITS = {PROTOCOL_VERSION_GCDC: 14, PROTOCOL_VERSION_CURRENT: 13}
 
 
 def _cause_to_asn(cause: its_pb2.CauseCode) -> dict:
@@ -67,7 +69,7 @@ def denm_to_asn(content: its_pb2.DenmContent) -> dict:
     if content.HasField("location"):
         denm["location"] = _location_to_asn(content.location)
     if content.HasField("alacarte"):
-        denm["alacarte"] = _alacarte_to_asn(content.alacarte)
+        denm["alacarte"] = _alacarte_to_asn(content.alacarte, content.protocol_version)
     return {
         "header": {"protocolVersion": content.protocol_version, "messageID": int(ItsMessageId.DENM),
                    "stationID": content.station_id},
@@ -107,7 +109,7 @@ def _location_to_asn(location: its_pb2.DenmLocation) -> dict:
     return value
 
 
-def _alacarte_to_asn(alacarte: its_pb2.DenmAlacarte) -> dict:
+def _alacarte_to_asn(alacarte: its_pb2.DenmAlacarte, protocol_version: int) -> dict:
     value = {}
     if alacarte.HasField("lane_position"):
         value["lanePosition"] = min(max(alacarte.lane_position, MIN_LANE_POSITION), MAX_LANE_POSITION)
@@ -118,10 +120,10 @@ def _alacarte_to_asn(alacarte: its_pb2.DenmAlacarte) -> dict:
         if works.HasField("light_bar_activated") or works.HasField("siren_activated"):
             road_works["lightBarSirenInUse"] = bools_to_bits([works.light_bar_activated, works.siren_activated])
         if works.HasField("closed_lanes"):
-            lanes = works.closed_lanes.driving_lane_closed[:MAX_DRIVING_LANE_BITS] or [False]
+            lanes = works.closed_lanes.driving_lane_closed[:MAX_DRIVING_LANE_BITS[protocol_version]] or [False]
             road_works["closedLanes"] = {"drivingLaneStatus": bools_to_bits(list(lanes))}
             if works.closed_lanes.hard_shoulder_status:
-                road_works["closedLanes"]["hardShoulderStatus"] = HARD_SHOULDER_STATUS.to_asn(
+                road_works["closedLanes"][HARD_SHOULDER_KEY[protocol_version]] = HARD_SHOULDER_STATUS.to_asn(
                     works.closed_lanes.hard_shoulder_status)
         if works.HasField("speed_limit_mps"):
             road_works["speedLimit"] = units.SPEED_LIMIT_KPH.to_wire(works.speed_limit_mps)
@@ -205,9 +207,11 @@ def _alacarte_from_asn(value: dict, alacarte: its_pb2.DenmAlacarte) -> None:
             works.light_bar_activated, works.siren_activated = bits_to_bools(works_value["lightBarSirenInUse"])[:2]
         if "closedLanes" in works_value:
             lanes = works_value["closedLanes"]
-            works.closed_lanes.driving_lane_closed.extend(bits_to_bools(lanes["drivingLaneStatus"]))
-            if "hardShoulderStatus" in lanes:
-                works.closed_lanes.hard_shoulder_status = HARD_SHOULDER_STATUS.to_proto(lanes["hardShoulderStatus"])
+            works.closed_lanes.SetInParent()
+            works.closed_lanes.driving_lane_closed.extend(bits_to_bools(lanes.get("drivingLaneStatus", (b"", 0))))
+            shoulder = lanes.get("hardShoulderStatus", lanes.get("outerhardShoulderStatus"))
+            if shoulder is not None:
+                works.closed_lanes.hard_shoulder_status = HARD_SHOULDER_STATUS.to_proto(shoulder)
         if "speedLimit" in works_value:
             works.speed_limit_mps = units.SPEED_LIMIT_KPH.to_si(works_value["speedLimit"])
     if "positioningSolution" in value:
