@@ -1,0 +1,200 @@
+"""Scripted road users: vehicles following a speed profile and lane changes, and an emergency vehicle.
+
+They drive themselves (no stack inside) and say what they would broadcast as plain intents; the integrator
+turns intents into CAM / DENM / iCLCM messages.
+"""
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass, field
+from typing import Any, Sequence
+
+from coopdrive.services.sim.profiles import VehicleProfile
+from coopdrive.services.sim.road_geometry import LaneGeometry
+from coopdrive.services.sim.speed_profiles import ConstantSpeed, LaneChange, SpeedProfile, smoothstep
+from coopdrive.v1 import sensors_pb2, sim_pb2
+
+DEFAULT_CAM_RATE_HZ = 25.0  # GCDC sent CAM, DENM and iCLCM at 25 Hz
+# Step of the numerical derivative of a speed profile.
+_DERIVATIVE_STEP_S = 1e-3
+# DENM cause code of an approaching emergency vehicle (ETSI EN 302 637-3).
+EMERGENCY_VEHICLE_APPROACHING_CAUSE = 95
+
+
+class IntentKind(enum.Enum):
+    CAM = "cam"
+    DENM = "denm"
+    ICLCM = "iclcm"
+
+
+@dataclass(frozen=True)
+class MessageIntent:
+    """What a participant would broadcast now; `fields` hold SI values named like the its.proto fields."""
+
+    kind: IntentKind
+    sender_id: str
+    station_id: int
+    time_s: float
+    fields: dict[str, Any] = field(default_factory=dict)
+
+
+class RateGate:
+    """True once per period; missed periods are skipped, not caught up."""
+
+    def __init__(self, rate_hz: float, start_s: float = 0.0) -> None:
+        self.period_s = 1.0 / rate_hz
+        self._next_s = start_s
+
+    def due(self, now_s: float) -> bool:
+        if now_s + 1e-9 < self._next_s:
+            return False
+        periods = math.floor((now_s + 1e-9 - self._next_s) / self.period_s) + 1
+        self._next_s += periods * self.period_s
+        return True
+
+
+class ScriptedVehicle:
+    """Drives its speed profile exactly along a lane, moving smoothly across lanes at scheduled times.
+
+    `lanes` are the lanes of its road indexed by lane_index. `ignores_protocol` marks the car that keeps
+    its script and never answers the cooperative protocol (it still sends CAMs).
+    """
+
+    object_class = sensors_pb2.OBJECT_CLASS_CAR
+
+    def __init__(self, vehicle_id: str, station_id: int, profile: VehicleProfile, lanes: Sequence[LaneGeometry],
+                 lane_index: int, station_m: float, speed_profile: SpeedProfile | None = None,
+                 lane_changes: Sequence[LaneChange] = (), lateral_offset_m: float = 0.0,
+                 ignores_protocol: bool = False, cam_rate_hz: float = DEFAULT_CAM_RATE_HZ,
+                 start_s: float = 0.0) -> None:
+        self.vehicle_id = vehicle_id
+        self.station_id = station_id
+        self.profile = profile
+        self.lanes = {lane.lane_index: lane for lane in lanes}
+        if lane_index not in self.lanes:
+            raise ValueError(f"{vehicle_id}: no lane {lane_index} among {sorted(self.lanes)}")
+        for change in lane_changes:
+            if change.target_lane not in self.lanes:
+                raise ValueError(f"{vehicle_id}: lane change to missing lane {change.target_lane}")
+        self.speed_profile = speed_profile or ConstantSpeed(speed_mps=0.0)
+        self.lane_changes = sorted(lane_changes, key=lambda c: c.start_s)
+        self.lateral_offset_m = lateral_offset_m
+        self.ignores_protocol = ignores_protocol
+        self._cam_gate = RateGate(cam_rate_hz, start_s)
+        self.lane_index = lane_index
+        self.station_m = station_m
+        self.time_s = start_s
+        self._active_change: LaneChange | None = None
+        self._source_lane = lane_index
+        self._last_heading: float | None = None
+        self._truth = self._compute_truth(0.0)
+
+    def speed_at(self, time_s: float) -> float:
+        return self.speed_profile.speed_at(time_s)
+
+    def accel_at(self, time_s: float) -> float:
+        return (self.speed_at(time_s + _DERIVATIVE_STEP_S) - self.speed_at(time_s - _DERIVATIVE_STEP_S)) / (
+            2.0 * _DERIVATIVE_STEP_S)
+
+    def step(self, now_s: float) -> sim_pb2.VehicleTruth:
+        """Advance to now_s (trapezoidal station update) and return the new truth."""
+        dt_s = now_s - self.time_s
+        if dt_s < 0.0:
+            raise ValueError(f"{self.vehicle_id}: time went back from {self.time_s} to {now_s}")
+        self.station_m += 0.5 * (self.speed_at(self.time_s) + self.speed_at(now_s)) * dt_s
+        self.time_s = now_s
+        self._update_lane_change(now_s)
+        self._truth = self._compute_truth(dt_s)
+        return self._truth
+
+    def truth(self) -> sim_pb2.VehicleTruth:
+        return self._truth
+
+    def _update_lane_change(self, now_s: float) -> None:
+        if self._active_change is None and self.lane_changes and now_s >= self.lane_changes[0].start_s:
+            self._active_change = self.lane_changes.pop(0)
+            self._source_lane = self.lane_index
+        change = self._active_change
+        if change is not None and now_s >= change.start_s + change.duration_s:
+            self.station_m = self.lanes[change.target_lane].project(*self._position()[:2])[0]
+            self.lane_index = change.target_lane
+            self._active_change = None
+
+    def _position(self) -> tuple[float, float, float]:
+        """(x_m, y_m, lane heading) of the rear axle, blending source and target lanes during a change."""
+        source = self.lanes[self._source_lane if self._active_change else self.lane_index]
+        x_m, y_m, heading = source.pose_at(self.station_m, self.lateral_offset_m)
+        change = self._active_change
+        if change is None:
+            return x_m, y_m, heading
+        share = smoothstep((self.time_s - change.start_s) / change.duration_s)
+        target = self.lanes[change.target_lane]
+        station_t, lateral_t, heading_t, _ = target.project(x_m, y_m)
+        return (*target.pose_at(station_t, (1.0 - share) * lateral_t + share * self.lateral_offset_m)[:2], heading_t)
+
+    def _compute_truth(self, dt_s: float) -> sim_pb2.VehicleTruth:
+        x_m, y_m, lane_heading = self._position()
+        heading = lane_heading
+        if self._active_change is not None:
+            # Heading follows the lateral motion: atan(lateral speed / speed) over the smooth step.
+            change = self._active_change
+            share = (self.time_s - change.start_s) / change.duration_s
+            eps = 1e-3
+            slope = (smoothstep(share + eps) - smoothstep(share - eps)) / (2 * eps) / change.duration_s
+            source = self.lanes[self._source_lane]
+            target = self.lanes[change.target_lane]
+            lateral_span_m = target.project(*source.pose_at(self.station_m, 0.0)[:2])[1]
+            speed = max(self.speed_at(self.time_s), 1e-3)
+            heading = lane_heading + math.atan2(-lateral_span_m * slope, speed)
+        yaw_rate = 0.0
+        if self._last_heading is not None and dt_s > 0.0:
+            yaw_rate = math.remainder(heading - self._last_heading, math.tau) / dt_s
+        self._last_heading = heading
+        current = self.lanes[self.lane_index]
+        station_m, lateral_m, _, _ = current.project(x_m, y_m)
+        return sim_pb2.VehicleTruth(
+            vehicle_id=self.vehicle_id, station_id=self.station_id, x_m=x_m, y_m=y_m, heading_rad=heading,
+            speed_mps=self.speed_at(self.time_s), accel_mps2=self.accel_at(self.time_s), yaw_rate_radps=yaw_rate,
+            length_m=self.profile.length_m, width_m=self.profile.width_m, lane_index=self.lane_index,
+            station_m=station_m, lateral_offset_m=lateral_m, automated=False,
+        )
+
+    def cam_fields(self) -> dict[str, Any]:
+        t = self._truth
+        return {"x_m": t.x_m, "y_m": t.y_m, "heading_rad": t.heading_rad, "speed_mps": t.speed_mps,
+                "accel_mps2": t.accel_mps2, "yaw_rate_radps": t.yaw_rate_radps, "length_m": t.length_m,
+                "width_m": t.width_m, "lane": t.lane_index}
+
+    def messages_due(self, now_s: float) -> list[MessageIntent]:
+        if not self._cam_gate.due(now_s):
+            return []
+        return [MessageIntent(IntentKind.CAM, self.vehicle_id, self.station_id, now_s, self.cam_fields())]
+
+
+class EmergencyVehicle(ScriptedVehicle):
+    """A scripted vehicle with its siren on between siren_on_s and siren_off_s: CAMs say so and a DENM
+    (emergency vehicle approaching) goes out at the CAM rate; it drives at lateral_offset_m from its lane."""
+
+    object_class = sensors_pb2.OBJECT_CLASS_EMERGENCY_VEHICLE
+
+    def __init__(self, *args: Any, siren_on_s: float = 0.0, siren_off_s: float = math.inf, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.siren_on_s = siren_on_s
+        self.siren_off_s = siren_off_s
+
+    def siren_on(self, now_s: float) -> bool:
+        return self.siren_on_s <= now_s < self.siren_off_s
+
+    def messages_due(self, now_s: float) -> list[MessageIntent]:
+        intents = super().messages_due(now_s)
+        if not intents:
+            return []
+        siren = self.siren_on(now_s)
+        intents[0].fields.update(emergency=True, light_bar=siren, siren=siren)
+        if siren:
+            t = self._truth
+            intents.append(MessageIntent(IntentKind.DENM, self.vehicle_id, self.station_id, now_s, {
+                "cause_code": EMERGENCY_VEHICLE_APPROACHING_CAUSE, "x_m": t.x_m, "y_m": t.y_m,
+                "heading_rad": t.heading_rad, "speed_mps": t.speed_mps, "lane": t.lane_index}))
+        return intents
