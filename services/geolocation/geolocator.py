@@ -25,7 +25,7 @@ from coopdrive.services.geolocation.motion_models import (
     ProcessNoise,
 )
 from coopdrive.services.geolocation.odometry import Odometry, OdometrySample
-from coopdrive.v1 import ego_pb2, gnss_pb2, sensors_pb2, vehicle_pb2
+from coopdrive.v1 import ego_pb2, gnss_pb2, vehicle_pb2
 
 SENDER = "geolocation"
 STATIONARY_SPEED_MPS = 0.5
@@ -122,7 +122,7 @@ class Geolocator:
             return None
         return self._add(sample.time_s, sample)
 
-    def on_imu(self, msg: sensors_pb2.ImuSample) -> Insertion | None:
+    def on_imu(self, msg: vehicle_pb2.ImuSample) -> Insertion | None:
         if not (math.isfinite(msg.yaw_rate_radps) and math.isfinite(msg.accel_longitudinal_mps2)):
             self.counters[InputEvent.IMU_INVALID] += 1
             return None

@@ -1,0 +1,162 @@
+import math
+
+import numpy as np
+import pytest
+from geolocation_drive import ORIGIN, drive, rmse_m, simulate
+from scipy.stats import chi2
+
+from coopdrive.roadmap import RoadMap
+from coopdrive.services.geolocation.config import GeolocatorConfig
+from coopdrive.services.geolocation.geolocator import Geolocator, InputEvent
+from coopdrive.services.geolocation.motion_models import MotionModelKind
+from coopdrive.v1 import ego_pb2, gnss_pb2
+
+RTK_STD_M = 0.05
+LEVER_X_M = 1.0
+SPEED_80_KMH_MPS = 80.0 / 3.6
+CURVE_RADIUS_M = 500.0
+SETTLE_S = 5.0
+# 2-sigma containment for a 2-D error: the probability mass of +-2 sigma in one dimension.
+TWO_SIGMA_PROBABILITY = 0.9545
+
+
+def new_geolocator(**overrides) -> Geolocator:
+    return Geolocator(GeolocatorConfig(antenna_x_m=LEVER_X_M, **overrides), origin=ORIGIN)
+
+
+def settled(run, start_s=SETTLE_S, end_s=math.inf):
+    keep = (run.time_s >= start_s) & (run.time_s < end_s)
+    return run.error_xy_m[keep]
+
+
+def raw_rmse(run, start_s=SETTLE_S, end_s=math.inf):
+    keep = (run.fix_time_s >= start_s) & (run.fix_time_s < end_s)
+    return float(np.sqrt(np.mean(run.raw_fix_error_m[keep] ** 2)))
+
+
+@pytest.fixture(scope="module")
+def straight_run():
+    truth = drive(20.0, SPEED_80_KMH_MPS, None, CURVE_RADIUS_M)
+    return simulate(new_geolocator(), truth, seed=1, gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M)
+
+
+@pytest.fixture(scope="module")
+def outage_run():
+    """Straight, into a 500 m left curve at 8 s, GNSS lost from 20 s to 30 s while on the curve."""
+    truth = drive(32.0, SPEED_80_KMH_MPS, 8.0, CURVE_RADIUS_M)
+    return simulate(new_geolocator(), truth, seed=2, gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M,
+                    outage_s=(20.0, 30.0), estimate_every=5)
+
+
+def test_on_a_straight_drive_the_rtk_estimate_beats_the_raw_fixes_and_1_5_sigma(straight_run):
+    error = rmse_m(settled(straight_run))
+    assert error < 1.5 * RTK_STD_M
+    assert error < raw_rmse(straight_run)
+
+
+def test_on_a_curve_the_rtk_estimate_beats_the_raw_fixes_and_1_5_sigma(outage_run):
+    error = rmse_m(settled(outage_run, start_s=10.0, end_s=20.0))
+    assert error < 1.5 * RTK_STD_M
+    assert error < raw_rmse(outage_run, start_s=10.0, end_s=20.0)
+
+
+def test_with_rtk_fixes_the_mode_is_gnss_precise(straight_run):
+    assert straight_run.modes[-1] == ego_pb2.LOCALISATION_MODE_GNSS_PRECISE
+    assert straight_run.states[-1].last_fix_mode == gnss_pb2.FIX_MODE_RTK_FIXED
+
+
+def test_a_ten_second_outage_at_80_kmh_on_a_curve_stays_under_one_metre(outage_run):
+    during = settled(outage_run, start_s=20.0, end_s=30.0)
+    assert np.max(np.hypot(*during.T)) < 1.0
+
+
+def test_during_an_outage_the_covariance_is_honest(outage_run):
+    keep = (outage_run.time_s >= 20.0) & (outage_run.time_s < 30.0)
+    errors, covs = outage_run.error_xy_m[keep], outage_run.position_cov[keep]
+    nees = np.einsum("ni,ni->n", errors, np.linalg.solve(covs, errors[..., None])[..., 0])
+    assert np.mean(nees <= chi2.ppf(TWO_SIGMA_PROBABILITY, 2)) >= 0.95
+
+
+def test_during_an_outage_the_mode_falls_back_to_dead_reckoning_then_recovers(outage_run):
+    modes = dict(zip(np.round(outage_run.time_s, 2), outage_run.modes))
+    assert modes[25.0] == ego_pb2.LOCALISATION_MODE_DEAD_RECKONING
+    assert modes[31.5] == ego_pb2.LOCALISATION_MODE_GNSS_PRECISE
+
+
+def test_a_five_metre_jump_is_gated_and_moves_the_estimate_less_than_20_cm():
+    truth = drive(12.0, SPEED_80_KMH_MPS, None, CURVE_RADIUS_M)
+    geolocator = new_geolocator()
+    run = simulate(geolocator, truth, seed=3, gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M,
+                   jump_at_s=10.0, jump_m=(3.0, 4.0), estimate_every=1)
+    after = settled(run, start_s=10.0, end_s=10.05)
+    assert np.max(np.hypot(*after.T)) < 0.2
+    assert geolocator.counters[InputEvent.FIX_GATED] >= 1
+
+
+def test_a_gnss_that_disagrees_for_long_resets_the_position():
+    truth = drive(10.0, SPEED_80_KMH_MPS, None, CURVE_RADIUS_M)
+    geolocator = new_geolocator(gnss_reset_after_s=1.0)
+    run = simulate(geolocator, truth, seed=4, gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M,
+                   jump_at_s=6.0, jump_m=(3.0, 4.0), jump_duration_s=math.inf)
+    assert geolocator.counters[InputEvent.GNSS_RESET] == 1
+    # From the reset on, the estimate follows the shifted fixes.
+    assert np.max(np.hypot(*(settled(run, start_s=8.0) - (3.0, 4.0)).T)) < 0.2
+
+
+def test_latency_compensation_fuses_late_fixes_where_they_were_measured():
+    truth = drive(15.0, SPEED_80_KMH_MPS, 5.0, CURVE_RADIUS_M)
+    kwargs = dict(gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M, fix_delay_s=0.1)
+    compensated = simulate(new_geolocator(), truth, seed=5, **kwargs)
+    naive = simulate(new_geolocator(compensate_latency=False), truth, seed=5, **kwargs)
+    assert rmse_m(settled(compensated)) < 1.5 * RTK_STD_M
+    assert rmse_m(settled(naive)) > 5.0 * rmse_m(settled(compensated))
+
+
+def test_the_kinematic_bicycle_model_follows_a_curve_from_the_steering_angle():
+    truth = drive(15.0, SPEED_80_KMH_MPS, 3.0, CURVE_RADIUS_M)
+    geolocator = new_geolocator(motion_model=MotionModelKind.KINEMATIC_BICYCLE, wheelbase_m=2.7)
+    run = simulate(geolocator, truth, seed=6, gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M, steering_wheelbase_m=2.7)
+    assert rmse_m(settled(run)) < 1.5 * RTK_STD_M
+    assert run.states[-1].yaw_rate_radps == pytest.approx(SPEED_80_KMH_MPS / CURVE_RADIUS_M, rel=0.02)
+
+
+def test_the_imu_gyro_is_fused_alongside_odometry():
+    truth = drive(10.0, SPEED_80_KMH_MPS, 2.0, CURVE_RADIUS_M)
+    run = simulate(new_geolocator(), truth, seed=7, gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M,
+                   imu_gyro_std_radps=0.005)
+    assert rmse_m(settled(run)) < 1.5 * RTK_STD_M
+    assert run.states[-1].yaw_rate_radps == pytest.approx(SPEED_80_KMH_MPS / CURVE_RADIUS_M, abs=0.003)
+
+
+def test_the_same_inputs_give_the_same_estimates():
+    truth = drive(3.0, SPEED_80_KMH_MPS, None, CURVE_RADIUS_M)
+    first = simulate(new_geolocator(), truth, seed=8, gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M)
+    second = simulate(new_geolocator(), truth, seed=8, gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M)
+    assert [s.SerializeToString() for s in first.states] == [s.SerializeToString() for s in second.states]
+
+
+def test_before_the_first_fix_the_ego_is_lost():
+    state = new_geolocator().estimate(1.0)
+    assert state.mode == ego_pb2.LOCALISATION_MODE_LOST
+
+
+def test_a_fix_without_position_is_counted_and_not_fused():
+    geolocator = new_geolocator()
+    assert geolocator.on_gnss_fix(gnss_pb2.GnssFix(fix_mode=gnss_pb2.FIX_MODE_NO_FIX)) is None
+    assert geolocator.counters[InputEvent.FIX_WITHOUT_POSITION] == 1
+
+
+def test_on_the_a270_the_ego_is_matched_to_its_lane():
+    road_map = RoadMap.load("a270")
+    lane = road_map.lanes_of_road("a270")[1]
+    x0, y0, heading0 = lane.pose_at(100.0, 0.3)
+    truth = drive(5.0, SPEED_80_KMH_MPS, None, CURVE_RADIUS_M, heading0_rad=heading0)
+    truth.x_m += x0
+    truth.y_m += y0
+    geolocator = Geolocator(GeolocatorConfig(antenna_x_m=LEVER_X_M), road_map=road_map)
+    run = simulate(geolocator, truth, seed=9, gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M)
+    position = run.states[-1].lane
+    assert position.matched and position.lane_index == 1 and position.road_id == "a270"
+    assert position.lateral_offset_m == pytest.approx(0.3, abs=0.1)
+    assert position.station_m == pytest.approx(100.0 + 5.0 * SPEED_80_KMH_MPS, abs=0.2)
+    assert position.lane_width_m == 3.5
