@@ -1,0 +1,56 @@
+import can
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from coopdrive.can import frames
+from coopdrive.can.codec import VehicleCanCodec
+from coopdrive.can.frames import CanDecodeError, VehicleFrame
+from coopdrive.services.actuation.actuator import Actuator
+
+KNOWN_IDS = [frames.frame_id(frame) for frame in VehicleFrame]
+
+arbitration_ids = st.one_of(st.sampled_from(KNOWN_IDS), st.integers(0, 0x7FF), st.integers(0, 0x1FFFFFFF))
+payloads = st.binary(min_size=0, max_size=8)
+frames_strategy = st.builds(
+    lambda arbitration_id, data, extended, remote, error: can.Message(
+        arbitration_id=arbitration_id if extended else arbitration_id & 0x7FF, data=data,
+        is_extended_id=extended, is_remote_frame=remote, is_error_frame=error),
+    arbitration_ids, payloads, st.booleans(), st.booleans(), st.booleans())
+
+FUZZ = settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+
+
+@FUZZ
+@given(st.lists(frames_strategy, min_size=1, max_size=20))
+def test_random_frames_only_ever_raise_can_decode_error(messages):
+    codec = VehicleCanCodec()
+    for msg in messages:
+        for decode in (codec.decode, codec.decode_vehicle_state, codec.decode_radar, codec.decode_command):
+            try:
+                decode(msg)
+            except CanDecodeError:
+                pass
+
+
+@FUZZ
+@given(st.sampled_from(frames.FEEDBACK_FRAMES + frames.RADAR_FRAMES), st.binary(min_size=8, max_size=8))
+def test_random_payloads_with_a_valid_checksum_only_ever_raise_can_decode_error(frame, payload):
+    definition = frames.message(frame)
+    data = bytearray(payload)
+    if frames.has_integrity_signals(frame):
+        index = frames.checksum_byte_index(frame)
+        data[index] = frames.checksum(definition.frame_id, bytes(data), index)
+    msg = can.Message(arbitration_id=definition.frame_id, data=bytes(data), is_extended_id=False)
+    try:
+        VehicleCanCodec().decode(msg)
+    except CanDecodeError:
+        pass
+
+
+@FUZZ
+@given(st.lists(frames_strategy, min_size=1, max_size=20))
+def test_the_actuator_counts_random_vehicle_frames_without_raising(messages):
+    actuator = Actuator()
+    for i, msg in enumerate(messages):
+        actuator.on_can_frame(msg, i * 0.01)
+        actuator.step(i * 0.01)
