@@ -143,7 +143,7 @@ class TrackingConfig(BaseModel):
     derived_quality: float = Field(default=0.5, ge=0.0, le=1.0)
 
 
-class SceneConfig(BaseModel):
+class SceneFusionConfig(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     ego_length_m: float = Field(default=4.7, gt=0.0)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from coopdrive.v1 import ego_pb2, scene_pb2, sensors_pb2
 
-from .config import SceneConfig
+from .config import SceneFusionConfig
 from .freespace import FreeSpaceOracle
 from .frontends import (
     CameraFrontEnd,
@@ -29,8 +29,8 @@ from .trust import V2vTrust
 
 
 class SceneFusion:
-    def __init__(self, config: SceneConfig | None = None, lane_of: LaneOf | None = None) -> None:
-        self.config = config or SceneConfig()
+    def __init__(self, config: SceneFusionConfig | None = None, lane_of: LaneOf | None = None) -> None:
+        self.config = config or SceneFusionConfig()
         self.rejects = RejectCounter()
         self.tracker = Tracker(self.config)
         self.trust = V2vTrust(self.config.trust)

@@ -16,7 +16,7 @@ import numpy as np
 
 from coopdrive.v1 import header_pb2, scene_pb2
 
-from .config import SceneConfig
+from .config import SceneFusionConfig
 from .confidence import UNKNOWN_CONFIDENCE, FusedProperty
 from .measurement import EgoPose
 from .track import Track
@@ -49,7 +49,7 @@ def _fill_scalar(target: scene_pb2.ScalarProperty, prop: FusedProperty, value: f
 
 
 class SceneBuilder:
-    def __init__(self, config: SceneConfig, lane_of: LaneOf | None) -> None:
+    def __init__(self, config: SceneFusionConfig, lane_of: LaneOf | None) -> None:
         self._config = config
         self._lane_of = lane_of
 

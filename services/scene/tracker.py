@@ -17,7 +17,7 @@ import numpy as np
 from coopdrive.v1 import header_pb2
 
 from .association import assign, match_quality, polar_cost_matrix
-from .config import SceneConfig
+from .config import SceneFusionConfig
 from .measurement import Measurement
 from .properties import ObjectProperties
 from .track import RANGING_SOURCES, Track, TrackStatus
@@ -43,7 +43,7 @@ class V2vLink:
 
 
 class Tracker:
-    def __init__(self, config: SceneConfig, cost_fn: Callable = polar_cost_matrix) -> None:
+    def __init__(self, config: SceneFusionConfig, cost_fn: Callable = polar_cost_matrix) -> None:
         self._config = config
         self._cost_fn = cost_fn
         self.tracks: dict[int, Track] = {}

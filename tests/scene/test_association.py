@@ -1,0 +1,80 @@
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from coopdrive.services.scene.association import assign, match_quality, polar_cost_loop, polar_cost_matrix
+
+ORIGIN = np.zeros(2)
+
+
+def costs(meas_xy, track_xy, std_m=0.5, emphasis=1.0):
+    meas_xy, track_xy = np.asarray(meas_xy, float), np.asarray(track_xy, float)
+    meas_cov = np.repeat(np.eye(2)[None] * std_m**2, len(meas_xy), axis=0)
+    track_cov = np.repeat(np.eye(2)[None] * std_m**2, len(track_xy), axis=0)
+    origins = np.zeros_like(meas_xy)
+    return polar_cost_matrix(meas_xy, meas_cov, origins, track_xy, track_cov, emphasis)
+
+
+def test_assignment_picks_the_global_optimum_where_greedy_nearest_neighbour_would_not():
+    # Greedy takes the cheapest pair (m0, t0) = 1 first and is left with (m1, t1) = 100: total 101.
+    # The optimum pairs (m0, t1) + (m1, t0) = 5 + 5 = 10.
+    cost = np.array([[1.0, 5.0], [5.0, 100.0]])
+    pairs, unmatched = assign(cost, gate=1000.0)
+    assert sorted(pairs) == [(0, 1), (1, 0)]
+    assert unmatched == []
+
+
+def test_pairs_outside_the_gate_are_never_assigned_and_their_measurements_start_tracks():
+    cost = np.array([[1.0, 50.0], [50.0, 40.0]])
+    pairs, unmatched = assign(cost, gate=9.21)
+    assert pairs == [(0, 0)]
+    assert unmatched == [1]
+
+
+def test_the_gate_is_a_mahalanobis_distance_in_range_and_bearing():
+    # 1 m further away at 20 m with 0.5 m std on both: range residual 1 over variance 0.5.
+    (cost,) = costs([[21.0, 0.0]], [[20.0, 0.0]])
+    assert cost[0] == pytest.approx(1.0 / 0.5, rel=1e-6)
+
+
+def test_the_bearing_residual_weighs_more_than_the_range_residual_by_the_angle_emphasis():
+    along = costs([[21.0, 0.0]], [[20.0, 0.0]], emphasis=1.2)[0, 0]
+    across = costs([[20.0, 1.0]], [[20.0, 0.0]], emphasis=1.2)[0, 0]
+    assert across > along
+
+
+def test_match_quality_is_one_for_a_perfect_match_and_one_half_at_the_gate():
+    assert match_quality(0.0, 9.21) == 1.0
+    assert match_quality(9.21, 9.21) == pytest.approx(0.5)
+    assert match_quality(50.0, 9.21) == pytest.approx(0.5)
+
+
+def test_an_empty_frame_or_empty_track_list_assigns_nothing():
+    assert assign(np.zeros((0, 3)), 9.21) == ([], [])
+    assert assign(np.zeros((2, 0)), 9.21) == ([], [0, 1])
+
+
+coordinate = st.floats(min_value=-60.0, max_value=60.0, allow_nan=False)
+
+
+@settings(max_examples=40, deadline=None, derandomize=True)
+@given(st.lists(st.tuples(coordinate, coordinate), min_size=1, max_size=5),
+       st.lists(st.tuples(coordinate, coordinate), min_size=1, max_size=5))
+def test_the_vectorised_cost_matrix_equals_the_pair_by_pair_baseline(meas, tracks):
+    meas_xy = np.array(meas) + 0.5  # keep off the sensor origin itself
+    track_xy = np.array(tracks) + 0.5
+    meas_cov = np.repeat(np.diag([0.3, 0.2])[None], len(meas_xy), axis=0)
+    track_cov = np.repeat(np.array([[0.4, 0.1], [0.1, 0.3]])[None], len(track_xy), axis=0)
+    origins = np.zeros_like(meas_xy)
+    fast = polar_cost_matrix(meas_xy, meas_cov, origins, track_xy, track_cov, 1.2)
+    slow = polar_cost_loop(meas_xy, meas_cov, origins, track_xy, track_cov, 1.2)
+    assert np.allclose(fast, slow, rtol=1e-6, atol=1e-9)
+
+
+def test_bearing_residuals_wrap_around_behind_the_sensor():
+    (cost,) = costs([[-20.0, 0.01]], [[-20.0, -0.01]])
+    assert cost[0] < 1.0
+    assert math.isfinite(cost[0])

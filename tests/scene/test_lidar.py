@@ -1,0 +1,93 @@
+import math
+
+import numpy as np
+import pytest
+
+from coopdrive.services.scene.config import LidarConfig
+from coopdrive.services.scene.lidar import LidarClusterer, split_consecutive
+from coopdrive.services.scene.measurement import EgoPose
+from coopdrive.v1 import header_pb2, sensors_pb2
+
+from .helpers import lidar_scan
+
+
+def scan_of_points(points_by_layer: dict[int, list[tuple[float, float]]]) -> sensors_pb2.LidarScan:
+    scan = sensors_pb2.LidarScan(max_range_m=100.0)
+    for layer_id, points in points_by_layer.items():
+        layer = scan.layers.add(layer=layer_id)
+        for x, y in points:
+            layer.azimuth_rad.append(math.atan2(y, x))
+            layer.range_m.append(math.hypot(x, y))
+    return scan
+
+
+def row(x_m: float, y_from_m: float, count: int, step_m: float = 0.2) -> list[tuple[float, float]]:
+    return [(x_m, y_from_m + i * step_m) for i in range(count)]
+
+
+def test_consecutive_points_split_where_the_gap_exceeds_one_metre():
+    points = np.array([[10.0, 0.0], [10.0, 0.9], [10.0, 1.8], [10.0, 2.81]])
+    runs = split_consecutive(points, 1.0)
+    assert [len(r) for r in runs] == [3, 1]
+
+
+def test_two_cars_1_2_m_apart_become_two_clusters_and_0_8_m_apart_one():
+    clusterer = LidarClusterer(LidarConfig())
+    apart = scan_of_points({2: row(15.0, -2.0, 8) + row(15.0, -0.6 + 1.2, 8)})
+    touching = scan_of_points({2: row(15.0, -2.0, 8) + row(15.0, -0.6 + 0.8, 8)})
+    assert len(clusterer.clusters(apart)) == 2
+    assert len(clusterer.clusters(touching)) == 1
+
+
+def test_clusters_with_fewer_than_five_points_are_dropped():
+    clusterer = LidarClusterer(LidarConfig())
+    scan = scan_of_points({2: row(12.0, -3.0, 4) + row(12.0, 1.0, 5)})
+    clusters = clusterer.clusters(scan)
+    assert [len(c.points_m) for c in clusters] == [5]
+
+
+def test_clusters_beyond_the_road_side_or_too_long_are_dropped():
+    clusterer = LidarClusterer(LidarConfig())
+    guard_rail = [(5.0 + 0.5 * i, -4.0) for i in range(60)]
+    off_road = row(20.0, 8.0, 10)
+    car = row(20.0, -0.9, 10)
+    clusters = clusterer.clusters(scan_of_points({2: guard_rail + off_road + car}))
+    assert len(clusters) == 1
+    assert clusters[0].rear_centre_m == pytest.approx([20.0, 0.0])
+
+
+def test_returns_at_or_beyond_max_range_are_not_points_and_widen_the_gap():
+    scan = lidar_scan(0.0, [(20.0, 0.0, 1.8)])
+    assert len(LidarClusterer(LidarConfig()).clusters(scan)) == 1
+    empty = lidar_scan(0.0, [])
+    assert LidarClusterer(LidarConfig()).clusters(empty) == []
+
+
+def test_the_same_car_on_two_layers_is_one_cluster_but_only_chosen_layers_count():
+    scan = scan_of_points({2: row(20.0, -0.9, 10), 3: row(20.1, -0.9, 10)})
+    assert len(LidarClusterer(LidarConfig()).clusters(scan)) == 1
+    only_layer_3 = LidarClusterer(LidarConfig(object_layers=[3])).clusters(scan)
+    assert [c.layers for c in only_layer_3] == [(3,)]
+
+
+def test_a_cluster_becomes_an_enu_measurement_of_the_rear_bumper_centre():
+    pose = EgoPose(time_s=1.0, x_m=100.0, y_m=50.0, heading_rad=math.pi / 2, speed_mps=0.0,
+                   yaw_rate_radps=0.0, accel_mps2=0.0, position_cov_m2=np.zeros((2, 2)))
+    scan = scan_of_points({2: row(20.0, -0.9, 10)})
+    (meas,) = LidarClusterer(LidarConfig()).measurements(scan, pose)
+    assert meas.source == header_pb2.SENSOR_SOURCE_LIDAR
+    assert meas.time_s == 1.0
+    assert meas.position_m == pytest.approx([100.0, 70.0])
+    assert meas.width_m == pytest.approx(1.8)
+    # Heading north: range error lies along y, bearing error along x.
+    assert meas.cov_m2[1, 1] == pytest.approx(0.1**2, rel=1e-3)
+    assert meas.cov_m2[0, 0] > meas.cov_m2[1, 1]
+
+
+def test_a_layer_with_mismatched_arrays_is_a_clear_error():
+    scan = sensors_pb2.LidarScan()
+    layer = scan.layers.add(layer=1)
+    layer.azimuth_rad.extend([0.0, 0.1])
+    layer.range_m.extend([5.0])
+    with pytest.raises(ValueError, match="layer 1"):
+        LidarClusterer(LidarConfig()).clusters(scan)
