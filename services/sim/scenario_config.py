@@ -1,0 +1,167 @@
+"""Scenario files: pydantic models and a loader whose error is one line naming the bad key path."""
+from __future__ import annotations
+
+import datetime as dt
+import enum
+import math
+from pathlib import Path
+from typing import Any
+
+import yaml
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+
+from coopdrive.services.sim.channel_config import RadioChannelConfig
+from coopdrive.services.sim.fault_config import Fault
+from coopdrive.services.sim.profiles import ProfileName
+from coopdrive.services.sim.roadside_unit import RsuEvent
+from coopdrive.services.sim.sensor_config import SensorSuiteConfig
+from coopdrive.services.sim.speed_profiles import LaneChange, SpeedProfile
+
+GCDC_2016_FINAL = dt.datetime(2016, 5, 28, 10, 0, 0, tzinfo=dt.timezone.utc)
+# Keys that select a member of a tagged union; pydantic puts their value in error paths.
+_TAG_KEYS = ("type", "kind")
+
+
+class ScenarioError(ValueError):
+    """A scenario that cannot be used; str() is one line: '<source>: <key.path>: <message>'."""
+
+
+class VehicleRole(enum.Enum):
+    STACK = "stack"          # runs the coopdrive stack (automated, judged)
+    SCRIPTED = "scripted"    # a behaviour object (participants.ScriptedVehicle)
+    EMERGENCY = "emergency"  # participants.EmergencyVehicle
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class SirenConfig(_Strict):
+    on_s: float = Field(default=0.0, ge=0)
+    off_s: float = math.inf
+
+
+class VehicleConfig(_Strict):
+    vehicle_id: str = Field(min_length=1)
+    station_id: int = Field(ge=0, lt=2 ** 32)
+    role: VehicleRole = VehicleRole.STACK
+    profile: ProfileName = ProfileName.PASSENGER_CAR
+    # Road id in the map; empty means the map's first road.
+    road: str = ""
+    lane: int = Field(ge=0)
+    station_m: float
+    speed_mps: float = Field(ge=0)
+    speed_profile: SpeedProfile | None = None
+    lane_changes: list[LaneChange] = []
+    lateral_offset_m: float = 0.0
+    ignores_protocol: bool = False
+    # GCDC platoon id (1 = A, 2 = B); None outside platoons.
+    platoon: int | None = Field(default=None, ge=1)
+    siren: SirenConfig | None = None
+    # Overrides the scenario-wide sensor suite for this vehicle.
+    sensors: SensorSuiteConfig | None = None
+
+
+class RoadsideUnitConfig(_Strict):
+    unit_id: str = Field(min_length=1)
+    station_id: int = Field(ge=0, lt=2 ** 32)
+    x_m: float
+    y_m: float
+    rate_hz: float = Field(default=25.0, gt=0)
+    events: list[RsuEvent] = []
+
+
+class JudgingConfig(_Strict):
+    # Vehicle ids leader first, for the string gain.
+    platoon: list[str] = []
+    safety_radius_m: float = Field(default=7.5, gt=0)
+    standstill_m: float = Field(default=6.0, ge=0)
+    headway_s: float = Field(default=1.5, ge=0)
+    string_start_s: float = Field(default=0.0, ge=0)
+    string_frequency_hz: float | None = Field(default=None, gt=0)
+
+
+class ScenarioConfig(_Strict):
+    name: str = Field(min_length=1)
+    description: str = ""
+    map: str = "a270"
+    seed: int = Field(default=0, ge=0)
+    duration_s: float = Field(gt=0)
+    step_s: float = Field(default=0.02, gt=0)
+    utc_epoch: dt.datetime = GCDC_2016_FINAL
+    vehicles: list[VehicleConfig] = Field(min_length=1)
+    roadside_units: list[RoadsideUnitConfig] = []
+    sensors: SensorSuiteConfig = SensorSuiteConfig()
+    channel: RadioChannelConfig = RadioChannelConfig()
+    faults: list[Fault] = []
+    judging: JudgingConfig = JudgingConfig()
+
+    @model_validator(mode="after")
+    def _references_resolve(self) -> ScenarioConfig:
+        ids = [v.vehicle_id for v in self.vehicles]
+        for index, vehicle_id in enumerate(ids):
+            if vehicle_id in ids[:index]:
+                raise ValueError(f"vehicles.{index}.vehicle_id: duplicate vehicle_id {vehicle_id!r}")
+        stations = [v.station_id for v in self.vehicles] + [u.station_id for u in self.roadside_units]
+        if len(set(stations)) != len(stations):
+            raise ValueError("station_id: every vehicle and roadside unit needs its own station_id")
+        for index, fault in enumerate(self.faults):
+            vehicle_id = getattr(fault, "vehicle_id", None)
+            if vehicle_id is not None and vehicle_id not in ids:
+                raise ValueError(f"faults.{index}.vehicle_id: unknown vehicle {vehicle_id!r}")
+        for index, vehicle_id in enumerate(self.judging.platoon):
+            if vehicle_id not in ids:
+                raise ValueError(f"judging.platoon.{index}: unknown vehicle {vehicle_id!r}")
+        return self
+
+    def sensors_of(self, vehicle: VehicleConfig) -> SensorSuiteConfig:
+        return vehicle.sensors or self.sensors
+
+
+def _key_path(loc: tuple[Any, ...], data: Any) -> str:
+    """Dotted path of a pydantic error location, without the tags pydantic adds for tagged unions."""
+    parts: list[str] = []
+    node = data
+    for element in loc:
+        if isinstance(node, dict) and element not in node and any(node.get(k) == element for k in _TAG_KEYS):
+            continue
+        parts.append(str(element))
+        if isinstance(node, dict):
+            node = node.get(element)
+        elif isinstance(node, list) and isinstance(element, int) and element < len(node):
+            node = node[element]
+        else:
+            node = None
+    return ".".join(parts)
+
+
+def _one_line(text: str) -> str:
+    return " ".join(text.split())
+
+
+def parse_scenario(data: Any, source: str = "<scenario>") -> ScenarioConfig:
+    try:
+        return ScenarioConfig.model_validate(data)
+    except ValidationError as error:
+        first = error.errors()[0]
+        path = _key_path(tuple(first["loc"]), data)
+        message = first["msg"]
+        if not path and message.startswith("Value error, ") and ": " in message:
+            # Cross-reference errors carry their own key path.
+            path, message = message.removeprefix("Value error, ").split(": ", 1)
+        more = error.error_count() - 1
+        suffix = f" (and {more} more error{'s' if more > 1 else ''})" if more else ""
+        raise ScenarioError(_one_line(f"{source}: {path or '<root>'}: {message}{suffix}")) from None
+
+
+def load_scenario(path: str | Path) -> ScenarioConfig:
+    path = Path(path)
+    try:
+        data = yaml.safe_load(path.read_text(encoding="utf-8"))
+    except OSError as error:
+        raise ScenarioError(_one_line(f"{path}: cannot read: {error.strerror or error}")) from None
+    except yaml.YAMLError as error:
+        mark = getattr(error, "problem_mark", None)
+        where = f"line {mark.line + 1}" if mark is not None else "?"
+        raise ScenarioError(_one_line(f"{path}: invalid YAML at {where}: {getattr(error, 'problem', error)}")) from None
+    return parse_scenario(data, str(path))
