@@ -17,6 +17,7 @@ import numpy as np
 
 E, N, HEADING, SPEED, YAW_RATE, ACCEL = range(6)
 STATE_DIM = 6
+MAX_CACHED_STEPS = 64
 
 
 class MotionModelKind(enum.Enum):
@@ -59,6 +60,7 @@ class CtraModel:
 
     def __init__(self, noise: ProcessNoise) -> None:
         self.noise = noise
+        self._q_by_dt: dict[float, np.ndarray] = {}  # inputs come at a few fixed rates
 
     def step(self, x: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         F = np.eye(STATE_DIM)
@@ -74,10 +76,15 @@ class CtraModel:
         return x_new, F, self.process_noise(dt)
 
     def process_noise(self, dt: float) -> np.ndarray:
+        cached = self._q_by_dt.get(dt)
+        if cached is not None:
+            return cached
         Q = np.zeros((STATE_DIM, STATE_DIM))
         Q[E, E] = Q[N, N] = self.noise.position_std_mps**2 * dt
         Q[np.ix_([HEADING, YAW_RATE], [HEADING, YAW_RATE])] = _integrated_pair(self.noise.yaw_accel_std_radps2**2, dt)
         Q[np.ix_([SPEED, ACCEL], [SPEED, ACCEL])] = _integrated_pair(self.noise.jerk_std_mps3**2, dt)
+        if len(self._q_by_dt) < MAX_CACHED_STEPS:
+            self._q_by_dt[dt] = Q
         return Q
 
 

@@ -52,6 +52,10 @@ class SentenceType(enum.Enum):
     VTG = "VTG"
 
 
+# Fields a sentence must carry to be used (pynmea2 accepts short sentences and leaves fields missing).
+MIN_FIELDS = {SentenceType.GGA: 10, SentenceType.RMC: 8, SentenceType.GST: 8, SentenceType.VTG: 8}
+
+
 def nmea_checksum(body: str) -> int:
     """XOR of the characters between '$' and '*'."""
     value = 0
@@ -146,7 +150,11 @@ class NmeaDecoder:
         return None
 
     def _sentence(self, sentence_type: SentenceType, msg: pynmea2.NMEASentence, time_s: float) -> None:
-        utc = getattr(msg, "timestamp", None) if sentence_type is not SentenceType.VTG else self._epoch_utc
+        if len(msg.data) < MIN_FIELDS[sentence_type]:
+            raise ValueError(f"{sentence_type.value} has {len(msg.data)} fields, needs {MIN_FIELDS[sentence_type]}")
+        utc = msg.timestamp if sentence_type is not SentenceType.VTG else self._epoch_utc
+        if sentence_type is not SentenceType.VTG and not isinstance(utc, datetime.time):
+            raise ValueError(f"{sentence_type.value} has no valid UTC time")
         if utc is not None and utc == self._emitted_utc:
             self.late += 1
             return
