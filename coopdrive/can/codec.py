@@ -19,6 +19,8 @@ from coopdrive.v1 import actuation_pb2, sensors_pb2, vehicle_pb2
 
 # A decoded value may sit half a resolution step beyond the DBC range through float rounding.
 RANGE_TOLERANCE_STEPS = 0.5
+# RDR_ObjectListStatus.MeasurementCounter is 16 bits wide.
+RADAR_MEASUREMENT_COUNTER_MODULO = 1 << 16
 
 
 @dataclass(frozen=True)
@@ -120,7 +122,7 @@ def clamp_to_signal_ranges(definition: Message, signals: Mapping[str, float]) ->
     for name, value in signals.items():
         signal = definition.get_signal_by_name(name)
         low, high = signal.minimum, signal.maximum
-        if value != value:
+        if math.isnan(value):
             value = low if low is not None else 0.0
         if low is not None:
             value = max(low, value)
@@ -188,7 +190,7 @@ class VehicleCanCodec:
 
     def encode_radar_tracks(self, tracks: sensors_pb2.RadarTracks, timestamp_s: float = 0.0) -> list[can.Message]:
         """Simulator side: header then one RDR_Object per track (nearest MAX_RADAR_OBJECTS only)."""
-        self._radar_measurement_counter = (self._radar_measurement_counter + 1) % (1 << 16)
+        self._radar_measurement_counter = (self._radar_measurement_counter + 1) % RADAR_MEASUREMENT_COUNTER_MODULO
         messages = []
         for frame, signals in encode_radar_frames(tracks, self._radar_measurement_counter):
             signals = clamp_to_signal_ranges(frames.message(frame), signals)

@@ -211,6 +211,19 @@ class Actuator:
         header.vehicle_id = self.config.vehicle_id
         header.sequence = self._sequence
 
+    def actuator_command(self, now_s: float):
+        """The last step's command as a coopdrive.v1 ActuatorCommand (for the bus and the simulator), or None."""
+        command = self.last_command
+        if command is None:
+            return None
+        out = actuation_pb2.ActuatorCommand(
+            throttle_ratio=command.throttle_ratio, brake_ratio=command.brake_ratio,
+            steering_angle_rad=command.steering_angle_request_rad, accel_request_mps2=self._accel_mps2,
+            indicator_left=command.indicator_left, indicator_right=command.indicator_right,
+            hazard_lights=command.hazard_lights, automation_active=command.automation_active)
+        self._fill_header(out.header, now_s)
+        return out
+
     def _status(self, command: VehicleCommand, now_s: float) -> actuation_pb2.ActuationStatus:
         status = actuation_pb2.ActuationStatus(
             mode=self.mode, throttle_ratio=command.throttle_ratio, brake_ratio=command.brake_ratio,

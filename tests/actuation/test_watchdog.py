@@ -136,3 +136,14 @@ def test_the_stop_keeps_steering_with_fresh_lateral_commands_in_autonomous():
     history = run(actuator, 0.0, 0.5, control_command(0.0, steering_angle_rad=0.05))
     assert history[-1][1].steering_angle_rad == pytest.approx(0.05)
     assert actuator.last_command.lateral_active
+
+
+@pytest.mark.skipif(not hasattr(actuation_pb2, "ActuatorCommand"), reason="ActuatorCommand not in this proto set")
+def test_the_actuator_command_message_mirrors_the_frames_of_a_stop():
+    actuator = engaged_actuator()
+    actuator.on_estop(0.0)
+    run(actuator, 0.0, 0.3, control_command(0.0))
+    out = actuator.actuator_command(0.3)
+    assert out.hazard_lights and out.automation_active
+    assert out.brake_ratio == actuator.last_command.brake_ratio > 0.0
+    assert out.accel_request_mps2 == pytest.approx(actuator.accel_request_mps2)
