@@ -1,0 +1,92 @@
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from coopdrive.services.geolocation.ekf import GeolocationEkf, UpdateKind, gnss_position_std_m
+from coopdrive.services.geolocation.frames import LeverArm
+from coopdrive.services.geolocation.motion_models import CtraModel, KinematicBicycleModel, ProcessNoise
+from coopdrive.v1 import gnss_pb2
+
+STATE = np.array([10.0, 5.0, 0.3, 20.0, 0.05, 0.5])
+
+
+def started_ekf(model=None) -> GeolocationEkf:
+    ekf = GeolocationEkf(model or CtraModel(ProcessNoise()))
+    ekf.initialise(0.0, STATE, np.diag([0.01, 0.01, 1e-4, 0.01, 1e-4, 0.1]))
+    return ekf
+
+
+@pytest.mark.parametrize(("fix_mode", "expected_m"), [
+    (gnss_pb2.FIX_MODE_RTK_FIXED, 0.01), (gnss_pb2.FIX_MODE_RTK_FLOAT, 0.5), (gnss_pb2.FIX_MODE_DGPS, 1.0),
+    (gnss_pb2.FIX_MODE_SBAS, 3.0), (gnss_pb2.FIX_MODE_SINGLE, 5.0)])
+def test_without_gst_the_fix_sigma_comes_from_the_heudiasyc_table(fix_mode, expected_m):
+    assert gnss_position_std_m(fix_mode) == (expected_m, expected_m)
+
+
+def test_gst_sigmas_are_used_but_never_below_the_table_value():
+    assert gnss_position_std_m(gnss_pb2.FIX_MODE_RTK_FIXED, 0.03, 0.002) == (0.03, 0.01)
+    assert gnss_position_std_m(gnss_pb2.FIX_MODE_NO_FIX) is None
+
+
+def test_ctra_follows_the_exact_constant_turn_rate_and_acceleration_path():
+    ekf = started_ekf()
+    ekf.predict_to(0.1)
+    # Exact CTRA: position = integral of (v0 + a t) (cos, sin)(heading0 + yaw_rate t) dt.
+    speed, heading = (lambda t: 20.0 + 0.5 * t), (lambda t: 0.3 + 0.05 * t)
+    east = 10.0 + quad(lambda t: speed(t) * math.cos(heading(t)), 0.0, 0.1)[0]
+    north = 5.0 + quad(lambda t: speed(t) * math.sin(heading(t)), 0.0, 0.1)[0]
+    assert ekf.x[:2] == pytest.approx([east, north], abs=1e-5)
+    assert ekf.x[2:] == pytest.approx([0.305, 20.05, 0.05, 0.5])
+
+
+@pytest.mark.parametrize("model", [CtraModel(ProcessNoise()), KinematicBicycleModel(ProcessNoise(), 2.7)])
+def test_the_model_jacobian_matches_finite_differences(model):
+    if isinstance(model, KinematicBicycleModel):
+        model.steering_angle_rad = 0.04
+    _, F, _ = model.step(STATE, 0.02)
+    numeric = np.zeros((6, 6))
+    for j in range(6):
+        step = np.zeros(6)
+        step[j] = 1e-6
+        numeric[:, j] = (model.step(STATE + step, 0.02)[0] - model.step(STATE - step, 0.02)[0]) / 2e-6
+    assert F == pytest.approx(numeric, abs=1e-6)
+
+
+def test_the_bicycle_model_turns_at_v_tan_delta_over_wheelbase():
+    model = KinematicBicycleModel(ProcessNoise(), wheelbase_m=2.7)
+    model.steering_angle_rad = math.atan(0.27)
+    x, _, _ = model.step(np.array([0.0, 0.0, 0.0, 10.0, 0.0, 0.0]), 0.01)
+    assert x[4] == pytest.approx(1.0)
+    assert x[2] == pytest.approx(0.01)
+
+
+def test_a_consistent_fix_is_fused_and_pulls_the_estimate():
+    ekf = started_ekf()
+    assert ekf.update_gnss_position(10.1, 5.0, 0.1, 0.1, LeverArm())
+    assert 10.0 < ekf.x[0] < 10.1
+    assert ekf.accepted[UpdateKind.GNSS_POSITION] == 1
+
+
+def test_a_fix_outside_the_chi_square_gate_is_rejected_and_counted():
+    ekf = started_ekf()
+    assert not ekf.update_gnss_position(13.0, 9.0, 0.05, 0.05, LeverArm())
+    assert ekf.x == pytest.approx(STATE)
+    assert ekf.rejected[UpdateKind.GNSS_POSITION] == 1
+    assert ekf.last_nis > ekf.gate(2)
+
+
+def test_the_antenna_lever_arm_is_part_of_the_measurement():
+    ekf = started_ekf()
+    arm = LeverArm(x_m=1.0)
+    antenna = arm.antenna_position(10.0, 5.0, 0.3)
+    assert ekf.update_gnss_position(*antenna, 0.05, 0.05, arm)
+    assert ekf.x[:2] == pytest.approx([10.0, 5.0], abs=1e-9)
+
+
+def test_predicting_ahead_does_not_move_the_filter():
+    ekf = started_ekf()
+    x, P = ekf.predicted(1.0)
+    assert ekf.time_s == 0.0 and ekf.x == pytest.approx(STATE)
+    assert x[0] > STATE[0] and P[0, 0] > 0.01
