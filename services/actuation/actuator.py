@@ -196,6 +196,9 @@ class Actuator:
         """Forces a safe stop; a stop already under way continues unless an emergency makes it harder."""
         if self.mode == m.SAFE_STOP and self._ramp is not None and not emergency:
             return
+        if self.mode == m.MANUAL:
+            # The driver must be able to override this stop even after overriding the automation earlier.
+            self.overrides.rearm()
         if self.mode != m.SAFE_STOP:
             self._stop_steers = self.mode == m.AUTONOMOUS
         self.modes.force(m.SAFE_STOP, str(trigger), now_s)

@@ -63,8 +63,10 @@ class OverrideConfig(BaseModel):
     throttle_pedal_ratio: float = Field(default=0.10, ge=0.0, le=1.0)
     # DRIVERTIVE II.B.3.c: any brake; a pedal ratio above this (sensor noise) ...
     brake_pedal_ratio: float = Field(default=0.02, ge=0.0, le=1.0)
-    # ... or brake pressure while automation is not braking.
+    # ... or brake pressure while automation is not braking ...
     brake_pressure_bar: float = Field(default=2.0, ge=0.0)
+    # ... and has not braked for this long (ours: the pressure of its own braking takes time to fall).
+    brake_release_grace_s: float = Field(default=0.3, ge=0.0)
 
 
 class ModeRequirements(BaseModel):

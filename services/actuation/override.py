@@ -28,18 +28,24 @@ class DriverOverrideDetector:
         self.steering_ratio = steering_ratio
         self.latched: OverrideDetection | None = None
         self._steering_error_since_s: float | None = None
+        self._last_braking_s: float | None = None
 
     def steering_wheel_error_deg(self, measured_angle_rad: float, commanded_angle_rad: float) -> float:
         return abs(math.degrees(measured_angle_rad - commanded_angle_rad)) * self.steering_ratio
 
-    def pedal_input(self, state: vehicle_pb2.VehicleCanState, automation_braking: bool) -> OverrideDetection | None:
+    def pedal_input(self, state: vehicle_pb2.VehicleCanState, automation_braking: bool,
+                    now_s: float | None = None) -> OverrideDetection | None:
         """The driver's throttle or brake action in this state, steering aside."""
+        if automation_braking and now_s is not None:
+            self._last_braking_s = now_s
+        releasing = self._last_braking_s is not None and now_s is not None \
+            and now_s - self._last_braking_s < self.config.brake_release_grace_s
         if state.throttle_pedal_ratio > self.config.throttle_pedal_ratio:
             return OverrideDetection(actuation_pb2.OVERRIDE_REASON_THROTTLE, state.throttle_pedal_ratio)
         if state.brake_pedal_ratio > self.config.brake_pedal_ratio:
             return OverrideDetection(actuation_pb2.OVERRIDE_REASON_BRAKE, state.brake_pedal_ratio)
         # While the automation brakes, pressure is its own; DRIVERTIVE caught the driver when r(k) >= 0 again.
-        if not automation_braking and state.brake_pressure_bar > self.config.brake_pressure_bar:
+        if not (automation_braking or releasing) and state.brake_pressure_bar > self.config.brake_pressure_bar:
             return OverrideDetection(actuation_pb2.OVERRIDE_REASON_BRAKE, state.brake_pressure_bar)
         return None
 
@@ -50,7 +56,7 @@ class DriverOverrideDetector:
         if self.latched is not None or not (longitudinal_engaged or lateral_engaged):
             self._steering_error_since_s = None
             return None
-        detection = self.pedal_input(state, automation_braking) if longitudinal_engaged else None
+        detection = self.pedal_input(state, automation_braking, now_s) if longitudinal_engaged else None
         if detection is None and lateral_engaged:
             detection = self._steering(state, now_s, commanded_angle_rad)
         elif not lateral_engaged:

@@ -62,8 +62,16 @@ def test_any_brake_pedal_is_a_brake_override_even_while_the_automation_brakes():
 
 def test_brake_pressure_while_the_automation_does_not_brake_is_a_brake_override():
     d = detector()
+    found = engaged(d, vehicle_state(brake_pressure_bar=10.0), 0.0, braking=False)
+    assert found.reason == actuation_pb2.OVERRIDE_REASON_BRAKE
+    assert found.value == 10.0
+
+
+def test_brake_pressure_just_after_the_automation_released_the_brake_is_given_time_to_fall():
+    d = detector(brake_release_grace_s=0.3)
     assert engaged(d, vehicle_state(brake_pressure_bar=10.0), 0.0, braking=True) is None
-    found = engaged(d, vehicle_state(brake_pressure_bar=10.0), 0.1, braking=False)
+    assert engaged(d, vehicle_state(brake_pressure_bar=10.0), 0.2, braking=False) is None
+    found = engaged(d, vehicle_state(brake_pressure_bar=10.0), 0.35, braking=False)
     assert found.reason == actuation_pb2.OVERRIDE_REASON_BRAKE
 
 
@@ -117,3 +125,13 @@ def test_a_driver_steering_against_the_automation_disengages_it():
         actuator.step(now_s)
     assert actuator.mode == actuation_pb2.DRIVING_MODE_MANUAL
     assert "STEERING" in actuator.modes.last_change_reason
+
+
+def test_the_driver_can_override_an_emergency_stop_started_after_an_earlier_override():
+    actuator = engaged_actuator()
+    actuator.on_vehicle_state(vehicle_state(0.0, throttle=0.5), 0.01)
+    assert actuator.mode == actuation_pb2.DRIVING_MODE_MANUAL
+    actuator.on_estop(0.02)
+    assert actuator.mode == actuation_pb2.DRIVING_MODE_SAFE_STOP
+    assert actuator.on_vehicle_state(vehicle_state(0.0, throttle=0.5), 0.03) is not None
+    assert actuator.mode == actuation_pb2.DRIVING_MODE_MANUAL
