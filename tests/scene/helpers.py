@@ -57,3 +57,35 @@ def v2v(time_s: float, station_id: int, rear_x_m: float, y_m: float, speed_mps: 
     return V2vObservation(station_id=station_id, x_m=rear_x_m + length_m, y_m=y_m, speed_mps=speed_mps,
                           heading_rad=0.0, accel_mps2=accel_mps2, length_m=length_m, width_m=1.8,
                           sample_time_s=time_s)
+
+
+class Road:
+    """Ego at 10 m/s along +x; sensors fed on a common 20 Hz tick, lidar every other tick."""
+
+    EGO_SPEED_MPS = 10.0
+    TICK_S = 0.05
+
+    def __init__(self, fusion):
+        self.fusion = fusion
+
+    def ego_x(self, time_s: float) -> float:
+        return self.EGO_SPEED_MPS * time_s
+
+    def ego(self, time_s: float) -> ego_pb2.EgoState:
+        return ego_state(time_s, x_m=self.ego_x(time_s), speed_mps=self.EGO_SPEED_MPS)
+
+    def sense(self, time_s: float, objects: list[tuple[float, float, float]], lidar: bool = True,
+              radar: bool = True) -> None:
+        """objects: (rear x ENU, y, speed) as our LiDAR and radar see them at time_s."""
+        ego = self.ego(time_s)
+        self.fusion.on_ego(ego)
+        if lidar and round(time_s / self.TICK_S) % 2 == 0:
+            boxes = [(x, y, 1.8) for x, y, _ in objects]
+            self.fusion.on_lidar(lidar_scan(time_s, boxes, ego_x_m=self.ego_x(time_s)), ego)
+        if radar:
+            self.fusion.on_radar(radar_tracks(time_s, objects, ego_x_m=self.ego_x(time_s),
+                                              ego_speed_mps=self.EGO_SPEED_MPS), ego)
+
+    def ticks(self, start_s: float, end_s: float):
+        count = round((end_s - start_s) / self.TICK_S)
+        return [round(start_s + k * self.TICK_S, 6) for k in range(count)]
