@@ -1,0 +1,157 @@
+"""Each longitudinal law against outputs computed by hand from its equation."""
+
+import math
+
+import pytest
+
+from coopdrive.services.control.longitudinal.acc import RadarAcc, RajamaniAcc
+from coopdrive.services.control.longitudinal.cacc import LagCompensatedCacc
+from coopdrive.services.control.longitudinal.cruise import CruisePi
+from coopdrive.services.control.longitudinal.dcacc import RangeRateAccelEstimator
+from coopdrive.services.control.longitudinal.drivertive import DrivertiveSpeed, drivertive_follow_accel_mps2
+from coopdrive.services.control.longitudinal.emergency import EmergencyBrake
+from coopdrive.services.control.longitudinal.ploeg import PloegCacc
+from coopdrive.services.control.longitudinal.shaper import CommandShaper
+from coopdrive.services.control.longitudinal.types import FollowInput
+from coopdrive.services.control.profiles import CAR, CaccGains, DcaccGains, PloegGains
+
+DT = 0.02
+# gap 20 m, v 20 m/s, a 0.5 m/s2, v_p 21 m/s, a_p 1 m/s2, r 6 m, h 0.5 s: e = 4 m, e' = 0.75 m/s
+CLOSE = FollowInput(gap_m=20.0, ego_speed_mps=20.0, ego_accel_mps2=0.5, pred_speed_mps=21.0,
+                    pred_accel_mps2=1.0, standstill_m=6.0, time_gap_s=0.5)
+# gap 40 m, v 20 m/s, a -0.5 m/s2, v_p 18 m/s, r 6 m, h 1.5 s: e = 4 m
+RADAR = FollowInput(gap_m=40.0, ego_speed_mps=20.0, ego_accel_mps2=-0.5, pred_speed_mps=18.0,
+                    pred_accel_mps2=0.0, standstill_m=6.0, time_gap_s=1.5)
+NO_FEEDFORWARD = CAR.model_copy(update={"cruise": CAR.cruise.model_copy(update={"resistance_feedforward": False})})
+
+
+def test_the_spacing_error_and_its_rate_follow_the_constant_time_gap_policy():
+    assert CLOSE.desired_gap_m == pytest.approx(16.0)
+    assert CLOSE.spacing_error_m == pytest.approx(4.0)
+    assert CLOSE.spacing_error_rate_mps == pytest.approx(0.75)
+
+
+def test_ploeg_integrates_its_filter_equation_one_euler_step():
+    law = PloegCacc(PloegGains())
+    law.reset(0.3)
+    # u' = (1/0.5)(-0.3 + 0.2*4 + 0.7*0.75 + 1.0) = 4.05  ->  u = 0.3 + 0.02*4.05
+    assert law.step(DT, CLOSE) == pytest.approx(0.381)
+
+
+def test_our_cacc_adds_the_lag_compensated_feedforward_to_the_spacing_pd():
+    law = LagCompensatedCacc(CaccGains(kp_1ps2=0.3, kd_1ps=2.5), engine_lag_s=0.3)
+    z = 1.0 - math.exp(-DT / 0.5)  # filter state after one exact step from 0 towards a_p = 1
+    expected = 0.6 * 1.0 + 0.4 * z + 0.3 * 4.0 + 2.5 * 0.75
+    assert law.step(DT, CLOSE) == pytest.approx(expected)
+    assert expected == pytest.approx(3.6906842, abs=1e-6)
+
+
+def test_our_cacc_passes_a_steady_predecessor_acceleration_through_unchanged():
+    law = LagCompensatedCacc(CaccGains(), engine_lag_s=0.4)
+    steady = FollowInput(16.0, 20.0, 0.8, 20.4, 0.8, 6.0, 0.5)  # e = 0, e' = 20.4 - 20 - 0.5*0.8 = 0
+    law.reset(0.8, steady)
+    assert law.step(DT, steady) == pytest.approx(0.8)
+
+
+def test_our_cacc_starts_bumplessly_when_it_would_accelerate_harder_than_the_current_command():
+    law = LagCompensatedCacc(CaccGains(kp_1ps2=0.3, kd_1ps=2.5, bump_time_constant_s=1.0), engine_lag_s=0.3)
+    law.reset(0.0, CLOSE)  # law would command 1.0 + 3.075 = 4.075
+    assert law.step(DT, CLOSE) == pytest.approx(4.075 * (1 - math.exp(-DT)))
+
+
+def test_our_cacc_never_delays_braking_for_bumpless_transfer():
+    law = LagCompensatedCacc(CaccGains(kp_1ps2=0.3, kd_1ps=2.5), engine_lag_s=0.3)
+    law.reset(10.0, CLOSE)
+    assert law.step(DT, CLOSE) == pytest.approx(4.075)
+
+
+def test_rajamani_acc_matches_its_equation():
+    # -(1/1.5)[(20 - 18) + 0.1(-40 + 1.5*20 + 6)] = -(1/1.5)(2 - 0.4)
+    assert RajamaniAcc(CAR.rajamani).step(DT, RADAR) == pytest.approx(-1.0666667, abs=1e-6)
+
+
+def test_our_acc_matches_its_equation():
+    # 1.0*(18 - 20) + 0.15*4 - 0.2*1.5*(-0.5)
+    assert RadarAcc(CAR.acc).step(DT, RADAR) == pytest.approx(-1.25)
+
+
+def test_the_range_rate_estimator_recovers_a_constant_predecessor_deceleration():
+    est = RangeRateAccelEstimator(DcaccGains(estimator_window_s=0.4, estimator_min_samples=5))
+    for k in range(40):
+        t = k * DT
+        ego = 20.0 + 0.3 * t
+        pred = 22.0 - 1.5 * t
+        est.observe(t, ego, pred - ego)
+    assert est.estimate_mps2() == pytest.approx(-1.5)
+
+
+def test_the_range_rate_estimator_gives_nothing_until_its_window_has_enough_samples():
+    est = RangeRateAccelEstimator(DcaccGains(estimator_min_samples=5))
+    for k in range(4):
+        est.observe(k * DT, 20.0, 0.0)
+    assert est.estimate_mps2() is None
+
+
+def test_resistance_feedforward_is_rolling_plus_aerodynamic_drag_over_mass():
+    # (0.5*1.225*0.7*10^2 + 0.012*1500*9.81) / 1500
+    assert CAR.resistance_accel_mps2(10.0) == pytest.approx(219.455 / 1500)
+
+
+def test_cruise_pi_follows_its_reference_model_one_step_by_hand():
+    pi = CruisePi(NO_FEEDFORWARD)
+    pi.engage(0.0, 10.0)
+    # a_ref = 1 m/s3 * 0.02 s; v_ref = 10.0004; u = a_ref + tau*jerk + kp*e + ki*e*dt
+    expected = 0.02 + 0.3 * 1.0 + 0.8 * 0.0004 + 0.15 * 0.0004 * DT
+    assert pi.step(DT, 10.0, 20.0) == pytest.approx(expected)
+
+
+def test_cruise_pi_back_calculates_its_integrator_towards_the_applied_command():
+    pi = CruisePi(NO_FEEDFORWARD)
+    pi.engage(0.0, 10.0)
+    out = pi.step(DT, 10.0, 20.0)
+    before = pi.integral_mps2
+    pi.track(DT, 0.1)
+    assert pi.integral_mps2 - before == pytest.approx(DT * (0.1 - out) / 1.0)
+
+
+def test_a_disengaged_cruise_offers_the_governor_acceleration():
+    pi = CruisePi(NO_FEEDFORWARD)
+    assert pi.step(DT, 10.0, 20.0) == pytest.approx(1.5)  # (20 - 10)/3 capped at 1.5
+    assert pi.step(DT, 19.4, 20.0) == pytest.approx(0.2)
+
+
+def test_drivertive_gain_adapts_to_speed_when_accelerating_and_is_constant_when_braking():
+    law = DrivertiveSpeed(NO_FEEDFORWARD)
+    assert law.step(DT, 10.0, 12.0) == pytest.approx((0.2 + 0.04 * 10.0) * 2.0)
+    assert law.step(DT, 10.0, 8.0) == pytest.approx(1.0 * -2.0)
+
+
+def test_drivertive_follow_law_is_zero_at_the_desired_gap_and_deadbeat_off_it():
+    at_gap = drivertive_follow_accel_mps2(30.0, 20.0, 20.0, 0.0, 10.0, 1.0, 0.05)
+    assert at_gap == pytest.approx(0.0, abs=1e-9)
+    one_metre_long = drivertive_follow_accel_mps2(31.0, 20.0, 20.0, 0.0, 10.0, 1.0, 0.05)
+    assert one_metre_long == pytest.approx(1.0 / (0.05 * 1.025))
+
+
+def test_time_to_collision_and_required_deceleration_follow_constant_deceleration_kinematics():
+    eb = EmergencyBrake(CAR.limits)
+    assert eb.ttc_s(20.0, 20.0, 10.0) == pytest.approx(2.0)
+    assert eb.ttc_s(20.0, 10.0, 20.0) == math.inf
+    assert eb.required_accel_mps2(20.0, 20.0, 10.0, 0.0) == pytest.approx(-100.0 / 36.0)
+
+
+def test_emergency_braking_starts_beyond_comfort_and_releases_with_hysteresis():
+    eb = EmergencyBrake(CAR.limits)
+    first = eb.step(20.0, [(7, 20.0, 10.0, 0.0)])
+    assert first.active and first.object_id == 7
+    assert first.accel_mps2 == pytest.approx(-100.0 / 36.0)
+    assert eb.step(20.0, [(7, 12.5, 15.0, 0.0)]).active  # TTC 2.5 s, still below the 3 s release
+    assert not eb.step(20.0, [(7, 40.0, 15.0, 0.0)]).active  # TTC 8 s, 0.33 m/s2 needed
+
+
+def test_the_shaper_clips_to_comfort_and_limits_jerk_but_the_emergency_path_goes_further():
+    shaper = CommandShaper(CAR.limits)
+    assert shaper.step(DT, 3.0) == pytest.approx(2.5 * DT)
+    shaper.reset(-2.0)
+    assert shaper.step(DT, -8.0) == pytest.approx(-2.0)
+    assert shaper.step(DT, -8.0, emergency=True) == pytest.approx(-2.0 - 30.0 * DT)
