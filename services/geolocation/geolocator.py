@@ -30,6 +30,7 @@ from coopdrive.v1 import ego_pb2, gnss_pb2, vehicle_pb2
 SENDER = "geolocation"
 STATIONARY_SPEED_MPS = 0.5
 HEADING_FROM_TRACK_MIN_M = 2.0  # two fixes this far apart give a usable heading
+PENDING_FIX_MAX_AGE_S = 5.0
 INITIAL_YAW_RATE_STD_RADPS = 0.1
 INITIAL_ACCEL_STD_MPS2 = 1.0
 UNKNOWN_HEADING_STD_RAD = math.pi
@@ -144,6 +145,8 @@ class Geolocator:
     def _restore(self, snap: tuple) -> None:
         ekf_snap, self._book, accepted, rejected = snap
         self.ekf.accepted, self.ekf.rejected = accepted.copy(), rejected.copy()
+        if self._bicycle is not None:
+            self._bicycle.steering_angle_rad = self._book.steering_angle_rad
         if ekf_snap.time_s is None:
             self.ekf.time_s = None
         else:
@@ -190,7 +193,9 @@ class Geolocator:
         if heading_rad is None and book.last_speed_mps is not None and abs(book.last_speed_mps) < STATIONARY_SPEED_MPS:
             heading_rad, heading_std_rad = 0.0, UNKNOWN_HEADING_STD_RAD
         if heading_rad is None:
-            self._book = _replace(book, pending_fix=(time_s, fix))
+            # Keep the oldest fix as the start of the track, unless it is too old to tell the heading.
+            if book.pending_fix is None or time_s - book.pending_fix[0] > PENDING_FIX_MAX_AGE_S:
+                self._book = _replace(book, pending_fix=(time_s, fix))
             return
         speed_mps = book.last_speed_mps if book.last_speed_mps is not None else fix.speed_mps
         speed_std = self.odometry.speed_std_mps if book.last_speed_mps is not None else self.config.initial_speed_std_mps

@@ -9,7 +9,7 @@ from coopdrive.roadmap import RoadMap
 from coopdrive.services.geolocation.config import GeolocatorConfig
 from coopdrive.services.geolocation.geolocator import Geolocator, InputEvent
 from coopdrive.services.geolocation.motion_models import MotionModelKind
-from coopdrive.v1 import ego_pb2, gnss_pb2
+from coopdrive.v1 import ego_pb2, gnss_pb2, vehicle_pb2
 
 RTK_STD_M = 0.05
 LEVER_X_M = 1.0
@@ -160,3 +160,34 @@ def test_on_the_a270_the_ego_is_matched_to_its_lane():
     assert position.lateral_offset_m == pytest.approx(0.3, abs=0.1)
     assert position.station_m == pytest.approx(100.0 + 5.0 * SPEED_80_KMH_MPS, abs=0.2)
     assert position.lane_width_m == 3.5
+
+
+def fix_at(east_m: float, north_m: float, time_s: float) -> gnss_pb2.GnssFix:
+    """An RTK fix without speed or course, as from a receiver sending GGA only."""
+    import pymap3d
+
+    lat, lon, alt = pymap3d.enu2geodetic(east_m, north_m, 0.0, *ORIGIN)
+    fix = gnss_pb2.GnssFix(latitude_deg=lat, longitude_deg=lon, altitude_m=alt, fix_mode=gnss_pb2.FIX_MODE_RTK_FIXED)
+    fix.header.sample_time_s = time_s
+    return fix
+
+
+def test_without_a_course_the_heading_is_taken_from_two_fixes_two_metres_apart():
+    geolocator = Geolocator(GeolocatorConfig(antenna_x_m=0.0), origin=ORIGIN)
+    geolocator.on_gnss_fix(fix_at(0.0, 0.0, 0.0))
+    assert geolocator.estimate(0.0).mode == ego_pb2.LOCALISATION_MODE_LOST
+    geolocator.on_gnss_fix(fix_at(1.0, 1.0, 0.1))  # 1.4 m: not yet
+    geolocator.on_gnss_fix(fix_at(2.0, 2.0, 0.2))
+    state = geolocator.estimate(0.2)
+    assert state.heading_rad == pytest.approx(math.pi / 4)
+    assert (state.x_m, state.y_m) == pytest.approx((2.0, 2.0))
+
+
+def test_a_standing_car_initialises_with_an_unknown_heading():
+    geolocator = Geolocator(GeolocatorConfig(antenna_x_m=0.0), origin=ORIGIN)
+    can = vehicle_pb2.VehicleCanState(gear=vehicle_pb2.GEAR_PARK)
+    geolocator.on_can_state(can)
+    geolocator.on_gnss_fix(fix_at(5.0, 6.0, 0.0))
+    state = geolocator.estimate(0.0)
+    assert state.mode != ego_pb2.LOCALISATION_MODE_LOST
+    assert np.array(state.covariance).reshape(6, 6)[2, 2] == pytest.approx(math.pi**2)
