@@ -97,7 +97,10 @@ def test_driving_faster_than_10_kmh_refuses_engaging():
 
 
 def test_a_speed_beyond_the_mode_range_refuses_it_even_when_switching_between_automated_modes():
-    manager = ready_manager()
+    config = ModesConfig()
+    config.autonomous.max_speed_mps = 50.0 / 3.6
+    manager = DrivingModeManager(config, COMMAND_TIMEOUT_S)
+    feed(manager, 0.0)
     assert manager.request(COOPERATIVE, 0.0).accepted
     feed(manager, 0.1, speed_mps=20.0)
     decision = manager.request(AUTONOMOUS, 0.1)

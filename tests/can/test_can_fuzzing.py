@@ -17,7 +17,7 @@ frames_strategy = st.builds(
         is_extended_id=extended, is_remote_frame=remote, is_error_frame=error),
     arbitration_ids, payloads, st.booleans(), st.booleans(), st.booleans())
 
-FUZZ = settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+FUZZ = settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 
 @FUZZ
