@@ -15,10 +15,12 @@ SENDER = "sim"
 
 
 @dataclass(frozen=True)
-class PedalState:
+class DriverPedals:
+    """The safety driver's own pedal positions (VEH_Pedals carries these, not the automation's requests,
+    so that actuation can detect an override); zero while the driver keeps off the pedals."""
+
     throttle_ratio: float = 0.0
     brake_ratio: float = 0.0
-    brake_pressure_bar: float = 0.0
 
 
 def wheel_speeds_mps(speed_mps: float, yaw_rate_radps: float, wheelbase_m: float,
@@ -48,15 +50,20 @@ class CanStateSensor:
         """Fault hook (sensor_dropout, can_error_burst): no frames while active."""
         self.timing.forced_dropout = active
 
-    def poll(self, now_s: float, ego: sim_pb2.VehicleTruth, pedals: PedalState) -> list[vehicle_pb2.VehicleCanState]:
+    def poll(self, now_s: float, ego: sim_pb2.VehicleTruth, brake_pressure_bar: float,
+             driver: DriverPedals = DriverPedals()) -> list[vehicle_pb2.VehicleCanState]:
+        """ego carries speed, yaw rate and road-wheel angle; brake_pressure_bar comes from
+        VehicleModel.brake_pressure_bar()."""
         outputs = []
-        for sample_s, delivery_s, message in self.timing.poll(now_s, lambda _: self._measure(ego, pedals)):
+        measure = lambda _: self._measure(ego, brake_pressure_bar, driver)  # noqa: E731
+        for sample_s, delivery_s, message in self.timing.poll(now_s, measure):
             self._sequence += 1
             stamp(message.header, sample_s, delivery_s, self.vehicle_id, SENDER, self._sequence)
             outputs.append(message)
         return outputs
 
-    def _measure(self, ego: sim_pb2.VehicleTruth, pedals: PedalState) -> vehicle_pb2.VehicleCanState:
+    def _measure(self, ego: sim_pb2.VehicleTruth, brake_pressure_bar: float,
+                 driver: DriverPedals) -> vehicle_pb2.VehicleCanState:
         cfg = self.config
         wheels = np.array(wheel_speeds_mps(ego.speed_mps, ego.yaw_rate_radps, self.profile.wheelbase_m,
                                            self.profile.track_width_m))
@@ -66,8 +73,8 @@ class CanStateSensor:
             wheel_speed_rear_left_mps=wheels[2], wheel_speed_rear_right_mps=wheels[3],
             yaw_rate_radps=ego.yaw_rate_radps + cfg.yaw_rate_sigma_radps * self.rng.standard_normal(),
             steering_angle_rad=ego.steering_angle_rad + cfg.steering_sigma_rad * self.rng.standard_normal(),
-            throttle_pedal_ratio=pedals.throttle_ratio,
-            brake_pedal_ratio=pedals.brake_ratio,
-            brake_pressure_bar=pedals.brake_pressure_bar,
+            throttle_pedal_ratio=driver.throttle_ratio,
+            brake_pedal_ratio=driver.brake_ratio,
+            brake_pressure_bar=brake_pressure_bar,
             gear=vehicle_pb2.GEAR_DRIVE,
         )

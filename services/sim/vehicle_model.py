@@ -1,7 +1,7 @@
 """Kinematic bicycle at the rear axle with lagged, delayed and limited actuators.
 
-Inputs are what actuation's CAN command frames carry: an acceleration request and a road-wheel angle
-request; a throttle/brake pedal path is mapped back to an acceleration request.
+Inputs are what actuation's CAN command frames carry: an acceleration (or deceleration) request, or throttle
+and brake ratios mapped back to one, and a road-wheel angle request.
 """
 from __future__ import annotations
 
@@ -20,7 +20,9 @@ class VehicleState:
     y_m: float = 0.0
     heading_rad: float = 0.0
     speed_mps: float = 0.0
+    # Actual longitudinal acceleration (actuator output minus driving resistance).
     accel_mps2: float = 0.0
+    # Road-wheel angle, positive to the left.
     steer_rad: float = 0.0
     yaw_rate_radps: float = 0.0
     jerk_mps3: float = 0.0
@@ -30,6 +32,10 @@ class VehicleState:
 def lag_alpha(dt_s: float, time_constant_s: float) -> float:
     """(engine lag) alpha = dt / (tau + dt) of a_k = alpha u_k + (1 - alpha) a_{k-1}."""
     return dt_s / (time_constant_s + dt_s)
+
+
+def _clip(value: float, low: float, high: float) -> float:
+    return min(max(value, low), high)
 
 
 class _DeadTime:
@@ -57,28 +63,37 @@ class VehicleModel:
         self.state = state or VehicleState()
         self._accel_alpha = lag_alpha(self.substep_s, profile.accel_time_constant_s)
         self._steer_alpha = lag_alpha(self.substep_s, profile.steer_time_constant_s)
-        self._accel_delay = _DeadTime(round(profile.accel_dead_time_s / self.substep_s), self.state.accel_mps2)
+        # The actuator starts where it holds the initial acceleration against the driving resistance.
+        self.actuator_accel_mps2 = self.state.accel_mps2 + self.resistance_mps2(self.state.speed_mps)
+        self._accel_delay = _DeadTime(round(profile.accel_dead_time_s / self.substep_s), self.actuator_accel_mps2)
         self._steer_delay = _DeadTime(round(profile.steer_dead_time_s / self.substep_s), self.state.steer_rad)
-        self.accel_request_mps2 = self.state.accel_mps2
+        self.accel_request_mps2 = self.actuator_accel_mps2
         self.steer_request_rad = self.state.steer_rad
 
-    def clip_accel_request(self, accel_mps2: float) -> float:
-        return min(max(accel_mps2, -self.profile.max_decel_mps2), self.profile.max_accel_mps2)
+    def resistance_mps2(self, speed_mps: float) -> float:
+        p = self.profile
+        if speed_mps <= 0.0:
+            return 0.0
+        return p.rolling_resistance_mps2 + p.drag_1pm * speed_mps * speed_mps
 
-    def pedals_to_accel_mps2(self, throttle_ratio: float, brake_ratio: float) -> float:
-        """Pedal ratios in [0, 1] to an acceleration request; the brake wins when both are pressed."""
-        throttle = min(max(throttle_ratio, 0.0), 1.0)
-        brake = min(max(brake_ratio, 0.0), 1.0)
+    def clip_accel_request(self, accel_mps2: float) -> float:
+        return _clip(accel_mps2, -self.profile.max_decel_mps2, self.profile.max_accel_mps2)
+
+    def command_to_accel_mps2(self, throttle_ratio: float, brake_ratio: float,
+                              deceleration_request_mps2: float = 0.0) -> float:
+        """ACT_LongitudinalCommand to an acceleration request: a brake-by-wire deceleration request wins,
+        then the brake ratio, then the throttle ratio (each scaled by the profile's full-pedal values)."""
+        if deceleration_request_mps2 > 0.0:
+            return -deceleration_request_mps2
+        brake = _clip(brake_ratio, 0.0, 1.0)
         if brake > 0.0:
             return -brake * self.profile.max_decel_mps2
-        return throttle * self.profile.max_accel_mps2
+        return _clip(throttle_ratio, 0.0, 1.0) * self.profile.max_accel_mps2
 
-    def pedals(self) -> tuple[float, float, float]:
-        """(throttle_ratio, brake_ratio, brake_pressure_bar) that produce the current acceleration."""
-        accel = self.state.accel_mps2
-        throttle = max(accel, 0.0) / self.profile.max_accel_mps2
-        brake = max(-accel, 0.0) / self.profile.max_decel_mps2
-        return throttle, brake, brake * self.profile.max_brake_pressure_bar
+    def brake_pressure_bar(self) -> float:
+        """Brake line pressure for the braking the actuator applies now."""
+        braking_share = max(-self.actuator_accel_mps2, 0.0) / self.profile.max_decel_mps2
+        return braking_share * self.profile.max_brake_pressure_bar
 
     def step(self, accel_request_mps2: float, steer_request_rad: float) -> VehicleState:
         """Advance one dt_s with the requests held constant over it."""
@@ -86,35 +101,44 @@ class VehicleModel:
             raise ValueError(f"non-finite request: accel {accel_request_mps2}, steer {steer_request_rad}")
         self.accel_request_mps2 = self.clip_accel_request(accel_request_mps2)
         limit = self.profile.max_steer_rad
-        self.steer_request_rad = min(max(steer_request_rad, -limit), limit)
+        self.steer_request_rad = _clip(steer_request_rad, -limit, limit)
         for _ in range(self.substeps):
             self._substep()
         return self.state
 
-    def step_pedals(self, throttle_ratio: float, brake_ratio: float, steer_request_rad: float) -> VehicleState:
-        return self.step(self.pedals_to_accel_mps2(throttle_ratio, brake_ratio), steer_request_rad)
+    def step_command(self, throttle_ratio: float, brake_ratio: float, deceleration_request_mps2: float,
+                     steer_request_rad: float) -> VehicleState:
+        """Advance one dt_s with the values of the ACT_ command frames."""
+        accel = self.command_to_accel_mps2(throttle_ratio, brake_ratio, deceleration_request_mps2)
+        return self.step(accel, steer_request_rad)
+
+    def _actuate_longitudinal(self) -> float:
+        p, h = self.profile, self.substep_s
+        previous = self.actuator_accel_mps2
+        delayed = self._accel_delay.push(self.accel_request_mps2)
+        accel = self._accel_alpha * delayed + (1.0 - self._accel_alpha) * previous  # (engine lag)
+        accel = _clip(accel, previous - p.max_jerk_mps3 * h, previous + p.max_jerk_mps3 * h)
+        self.actuator_accel_mps2 = _clip(accel, -p.max_decel_mps2, p.max_accel_mps2)
+        return self.actuator_accel_mps2
+
+    def _actuate_steering(self, previous: float) -> float:
+        p, h = self.profile, self.substep_s
+        delayed = self._steer_delay.push(self.steer_request_rad)
+        steer = self._steer_alpha * delayed + (1.0 - self._steer_alpha) * previous
+        steer = _clip(steer, previous - p.max_steer_rate_radps * h, previous + p.max_steer_rate_radps * h)
+        return _clip(steer, -p.max_steer_rad, p.max_steer_rad)
 
     def _substep(self) -> None:
-        p, s, h = self.profile, self.state, self.substep_s
-        delayed_accel = self._accel_delay.push(self.accel_request_mps2)
-        accel = self._accel_alpha * delayed_accel + (1.0 - self._accel_alpha) * s.accel_mps2  # (engine lag)
-        max_jerk_step = p.max_jerk_mps3 * h
-        accel = min(max(accel, s.accel_mps2 - max_jerk_step), s.accel_mps2 + max_jerk_step)
-        accel = min(max(accel, -p.max_decel_mps2), p.max_accel_mps2)
-
-        delayed_steer = self._steer_delay.push(self.steer_request_rad)
-        steer = self._steer_alpha * delayed_steer + (1.0 - self._steer_alpha) * s.steer_rad
-        max_steer_step = p.max_steer_rate_radps * h
-        steer = min(max(steer, s.steer_rad - max_steer_step), s.steer_rad + max_steer_step)
-        steer = min(max(steer, -p.max_steer_rad), p.max_steer_rad)
-
+        s, h = self.state, self.substep_s
+        accel = self._actuate_longitudinal() - self.resistance_mps2(s.speed_mps)
+        steer = self._actuate_steering(s.steer_rad)
         speed = s.speed_mps + accel * h
         if speed <= 0.0:
             # No reverse: a vehicle braking to a stop stays stopped and its acceleration vanishes.
             speed, accel = 0.0, max(accel, 0.0)
-        speed = min(speed, p.max_speed_mps)
+        speed = min(speed, self.profile.max_speed_mps)
         mean_speed = 0.5 * (s.speed_mps + speed)
-        yaw_rate = mean_speed * math.tan(steer) / p.wheelbase_m  # (eq. 5) kinematic bicycle
+        yaw_rate = mean_speed * math.tan(steer) / self.profile.wheelbase_m  # (eq. 5) kinematic bicycle
         heading = s.heading_rad + yaw_rate * h
         mid_heading = s.heading_rad + 0.5 * yaw_rate * h
         self.state = replace(

@@ -20,9 +20,16 @@ def _to_geodetic(x_m, y_m, z_m):
     return pymap3d.enu2geodetic(x_m, y_m, z_m, *ORIGIN)
 
 
-def _sensor(**config):
+def _flat_to_geodetic(x_m, y_m, z_m):
+    """A local tangent-plane approximation, fast enough for thousands of samples."""
+    lat0, lon0, alt0 = ORIGIN
+    return (lat0 + math.degrees(y_m / 6_378_137.0),
+            lon0 + math.degrees(x_m / (6_378_137.0 * math.cos(math.radians(lat0)))), alt0 + z_m)
+
+
+def _sensor(to_geodetic=_to_geodetic, **config):
     config.setdefault("timing", SensorTimingConfig(rate_hz=10.0))
-    return GnssSensor(GnssConfig(**config), sensor_rng(7, "ego", "gnss"), _to_geodetic, EPOCH)
+    return GnssSensor(GnssConfig(**config), sensor_rng(7, "ego", "gnss"), to_geodetic, EPOCH)
 
 
 def _ego(x_m=120.0, y_m=-35.0, heading_rad=0.3, speed_mps=11.0):
@@ -62,16 +69,16 @@ def test_a_perfect_receiver_round_trips_the_antenna_position_and_speed():
 
 
 def test_position_noise_matches_the_accuracy_of_the_fix_mode():
-    sensor = _sensor(fix_mode=FixModeName.SINGLE)
+    sensor = _sensor(_flat_to_geodetic, fix_mode=FixModeName.SINGLE)
     ego = _ego()
     errors = []
-    for k in range(3000):
+    for k in range(2000):
         for output in sensor.poll(k * 0.1, ego):
             errors.append((output.measured_x_m - ego.x_m, output.measured_y_m - ego.y_m))
     errors = np.array(errors)
-    assert len(errors) == 3000
+    assert len(errors) == 2000
     assert np.abs(errors.mean(axis=0)).max() < 0.25
-    assert errors.std(axis=0) == pytest.approx([axis_sigma_m(gnss_pb2.FIX_MODE_SINGLE)] * 2, rel=0.06)
+    assert errors.std(axis=0) == pytest.approx([axis_sigma_m(gnss_pb2.FIX_MODE_SINGLE)] * 2, rel=0.08)
     gst = pynmea2.parse(output.sentences[2].decode().strip())
     assert gst.std_dev_latitude == pytest.approx(axis_sigma_m(gnss_pb2.FIX_MODE_SINGLE), abs=1e-3)
 
@@ -88,10 +95,11 @@ def test_an_outage_reports_no_fix_with_empty_position_and_a_downgrade_changes_th
 
 
 def test_samples_arrive_after_the_latency_and_dropouts_are_lost():
-    sensor = _sensor(timing=SensorTimingConfig(rate_hz=10.0, latency_s=0.05, dropout_probability=0.3))
+    sensor = _sensor(_flat_to_geodetic,
+                     timing=SensorTimingConfig(rate_hz=10.0, latency_s=0.05, dropout_probability=0.3))
     delivered = []
-    for k in range(0, 20000):
-        for output in sensor.poll(k * 0.01, _ego()):
+    for k in range(0, 8000):
+        for output in sensor.poll(k * 0.025, _ego()):
             assert output.delivery_time_s - output.sample_time_s == pytest.approx(0.05)
             delivered.append(output)
     assert len(delivered) / 2000 == pytest.approx(0.7, abs=0.03)

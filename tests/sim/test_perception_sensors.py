@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from coopdrive.services.sim.camera_sensor import CameraSensor
-from coopdrive.services.sim.can_state_sensor import CanStateSensor, PedalState, wheel_speeds_mps
+from coopdrive.services.sim.can_state_sensor import CanStateSensor, DriverPedals, wheel_speeds_mps
 from coopdrive.services.sim.lidar_sensor import LidarSensor
 from coopdrive.services.sim.profiles import PASSENGER_CAR
 from coopdrive.services.sim.radar_sensor import RadarSensor
@@ -44,13 +44,14 @@ def test_can_state_noise_matches_the_configured_sigma():
     config = CanStateConfig(timing=TIMING, wheel_speed_sigma_mps=0.1, yaw_rate_sigma_radps=0.01)
     sensor = CanStateSensor(config, sensor_rng(1, "ego", "can"), PASSENGER_CAR, "ego")
     ego = _car("ego", 0.0, speed_mps=15.0)
-    states = [m for k in range(4000) for m in sensor.poll(k * 0.1, ego, PedalState(0.2, 0.0, 0.0))]
+    states = [m for k in range(4000) for m in sensor.poll(k * 0.1, ego, 12.0, DriverPedals(throttle_ratio=0.2))]
     wheels = np.array([m.wheel_speed_rear_left_mps for m in states])
     yaw = np.array([m.yaw_rate_radps for m in states])
     assert wheels.mean() == pytest.approx(15.0, abs=0.01)
     assert wheels.std() == pytest.approx(0.1, rel=0.05)
     assert yaw.std() == pytest.approx(0.01, rel=0.05)
-    assert states[-1].throttle_pedal_ratio == 0.2 and states[-1].header.sequence == 4000
+    assert states[-1].throttle_pedal_ratio == 0.2 and states[-1].brake_pressure_bar == 12.0
+    assert states[-1].header.sequence == 4000
 
 
 def test_radar_range_noise_matches_config_and_tracks_stay_in_the_narrow_field_of_view():
@@ -58,15 +59,15 @@ def test_radar_range_noise_matches_config_and_tracks_stay_in_the_narrow_field_of
     sensor = RadarSensor(config, sensor_rng(2, "ego", "radar"), "ego")
     world = _world(_car("lead", 40.0, speed_mps=18.0), _car("side", 20.0, y_m=-15.0), _car("behind", -30.0))
     ranges, rates = [], []
-    for k in range(3000):
+    for k in range(1500):
         for message in sensor.poll(k * 0.1, world):
             assert [t.track_id for t in message.tracks] == [1]
             ranges.append(message.tracks[0].range_m)
             rates.append(message.tracks[0].range_rate_mps)
     assert np.mean(ranges) == pytest.approx(_rear_gap(40.0), abs=0.03)
-    assert np.std(ranges) == pytest.approx(0.5, rel=0.05)
+    assert np.std(ranges) == pytest.approx(0.5, rel=0.08)
     assert np.mean(rates) == pytest.approx(-2.0, abs=0.02)
-    assert np.std(rates) == pytest.approx(0.2, rel=0.05)
+    assert np.std(rates) == pytest.approx(0.2, rel=0.08)
 
 
 def test_radar_reports_at_most_the_configured_number_of_tracks_nearest_first():

@@ -64,14 +64,25 @@ def test_constant_steering_drives_a_circle_of_the_bicycle_radius():
     assert model.state.yaw_rate_radps == pytest.approx(10.0 * math.tan(0.1) / profile.wheelbase_m)
 
 
-def test_pedals_map_to_acceleration_and_back():
+def test_command_frame_values_map_to_an_acceleration_request_like_actuations_pedal_map():
     model = VehicleModel(_unlimited(PASSENGER_CAR, accel_time_constant_s=0.0), dt_s=0.1,
                          state=VehicleState(speed_mps=10.0))
-    assert model.pedals_to_accel_mps2(0.5, 0.0) == pytest.approx(5.0)
-    model.step_pedals(0.0, 0.25, 0.0)
-    throttle, brake, pressure = model.pedals()
-    assert throttle == 0.0 and brake == pytest.approx(0.25)
-    assert pressure == pytest.approx(0.25 * PASSENGER_CAR.max_brake_pressure_bar)
+    assert model.command_to_accel_mps2(0.5, 0.0) == pytest.approx(5.0)
+    assert model.command_to_accel_mps2(0.5, 0.25) == pytest.approx(-0.25 * PASSENGER_CAR.max_decel_mps2)
+    assert model.command_to_accel_mps2(0.0, 0.25, deceleration_request_mps2=3.0) == -3.0
+    model.step_command(0.0, 0.25, 0.0, 0.0)
+    assert model.state.accel_mps2 == pytest.approx(-2.0)
+    assert model.brake_pressure_bar() == pytest.approx(0.25 * PASSENGER_CAR.max_brake_pressure_bar)
+
+
+def test_driving_resistance_slows_a_coasting_vehicle_and_is_held_at_start():
+    profile = PASSENGER_CAR.model_copy(update=dict(rolling_resistance_mps2=0.1, drag_1pm=0.0004))
+    model = VehicleModel(profile, dt_s=0.1, state=VehicleState(speed_mps=20.0))
+    model.step(model.actuator_accel_mps2, 0.0)
+    assert model.state.speed_mps == pytest.approx(20.0, abs=1e-9)
+    for _ in range(50):
+        model.step(0.0, 0.0)
+    assert model.state.speed_mps < 19.5
 
 
 def test_two_models_with_the_same_inputs_agree_exactly():
