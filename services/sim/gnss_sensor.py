@@ -8,7 +8,7 @@ from typing import Callable
 
 import numpy as np
 
-from coopdrive.services.sim.nmea_writer import NmeaFix, NmeaWriter
+from coopdrive.services.sim.nmea_writer import GgaQuality, NmeaFix, NmeaWriter
 from coopdrive.services.sim.sensor_config import FixModeName, GnssConfig
 from coopdrive.services.sim.sensor_timing import SensorTiming
 from coopdrive.v1 import gnss_pb2, sim_pb2
@@ -58,7 +58,7 @@ class GnssSensor:
         self.to_geodetic = to_geodetic
         self.utc_epoch = utc_epoch
         self.timing: SensorTiming[GnssOutput] = SensorTiming(config.timing, rng)
-        self.writer = NmeaWriter(config.talker_id)
+        self.writer = NmeaWriter(config.talker_id, GgaQuality(config.sbas_gga_quality))
         self.fix_mode = config.fix_mode.proto
         self.outage = False
         self._error_enu_m = np.zeros(3)

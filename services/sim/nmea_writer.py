@@ -18,6 +18,8 @@ class GgaQuality(enum.IntEnum):
     DGPS = 2
     RTK_FIXED = 4
     RTK_FLOAT = 5
+    # NovAtel (Heudiasyc's SPAN-CPT) reports a WAAS/EGNOS solution as 9; u-blox and NMEA 4.x use 2.
+    SBAS_NOVATEL = 9
 
 
 # NMEA 2.3+ mode indicator of RMC and VTG.
@@ -106,13 +108,21 @@ class NmeaFix:
 class NmeaWriter:
     """Writes GGA, RMC, GST and VTG sentences with a fixed talker id ("GN" multi-constellation, "GP" GPS)."""
 
-    def __init__(self, talker_id: str = "GN") -> None:
+    def __init__(self, talker_id: str = "GN", sbas_quality: GgaQuality = GgaQuality.SBAS_NOVATEL) -> None:
         if len(talker_id) != 2 or not talker_id.isalpha():
             raise ValueError(f"NMEA talker id must be two letters, got {talker_id!r}")
+        if sbas_quality not in (GgaQuality.DGPS, GgaQuality.SBAS_NOVATEL):
+            raise ValueError(f"an SBAS fix is reported as GGA quality 2 or 9, not {sbas_quality}")
         self.talker_id = talker_id.upper()
+        self.sbas_quality = sbas_quality
+
+    def quality(self, fix_mode: int) -> GgaQuality:
+        if fix_mode == gnss_pb2.FIX_MODE_SBAS:
+            return self.sbas_quality
+        return gga_quality(fix_mode)
 
     def gga(self, fix: NmeaFix) -> bytes:
-        quality = gga_quality(fix.fix_mode)
+        quality = self.quality(fix.fix_mode)
         lat, ns, lon, ew = _position(fix, quality is not GgaQuality.INVALID)
         age = f"{fix.differential_age_s:.1f}" if fix.differential_age_s is not None else ""
         station = "0000" if fix.differential_age_s is not None else ""

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import enum
 import math
+from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
@@ -45,6 +46,8 @@ class GnssConfig(_Strict):
     speed_sigma_mps: float = Field(default=0.03, ge=0)
     course_sigma_deg: float = Field(default=0.2, ge=0)
     talker_id: str = Field(default="GN", min_length=2, max_length=2)
+    # GGA quality of an SBAS fix: 9 as NovAtel receivers (Heudiasyc), 2 as u-blox and NMEA 4.x.
+    sbas_gga_quality: Literal[2, 9] = 9
     # Antenna position in the ego frame (x forward of the rear axle, y left).
     antenna_x_m: float = 0.0
     antenna_y_m: float = 0.0

@@ -38,7 +38,7 @@ def _ego(x_m=120.0, y_m=-35.0, heading_rad=0.3, speed_mps=11.0):
 
 @pytest.mark.parametrize("mode, quality", [
     (FixModeName.RTK_FIXED, 4), (FixModeName.RTK_FLOAT, 5), (FixModeName.DGPS, 2),
-    (FixModeName.SBAS, 2), (FixModeName.SINGLE, 1)])
+    (FixModeName.SBAS, 9), (FixModeName.SINGLE, 1)])
 def test_nmea_sentences_parse_with_valid_checksums_and_the_fix_quality_of_the_mode(mode, quality):
     output = _sensor(fix_mode=mode).poll(0.0, _ego())[0]
     kinds = []
@@ -103,3 +103,23 @@ def test_samples_arrive_after_the_latency_and_dropouts_are_lost():
             assert output.delivery_time_s - output.sample_time_s == pytest.approx(0.05)
             delivered.append(output)
     assert len(delivered) / 2000 == pytest.approx(0.7, abs=0.03)
+
+
+def test_an_sbas_fix_can_be_reported_as_quality_2_like_u_blox_receivers():
+    output = _sensor(fix_mode=FixModeName.SBAS, sbas_gga_quality=2).poll(0.0, _ego())[0]
+    assert pynmea2.parse(output.sentences[0].decode().strip()).gps_qual == 2
+
+
+def test_the_geolocation_decoder_reads_our_epochs_with_their_fix_mode_and_position():
+    decoder_module = pytest.importorskip("coopdrive.services.geolocation.nmea_decoder")
+    for mode in FixModeName:
+        fixes = []
+        decoder = decoder_module.NmeaDecoder(fixes.append)
+        output = _sensor(fix_mode=mode, accuracy_scale=0.0).poll(0.0, _ego())[0]
+        decoder.feed(output.data, 0.02)
+        decoder.flush()
+        assert not decoder.bad, decoder.bad
+        assert [f.fix_mode for f in fixes] == [mode.proto]
+        if mode is not FixModeName.NO_FIX:
+            assert (fixes[0].latitude_deg, fixes[0].longitude_deg) == pytest.approx(
+                (output.fix.latitude_deg, output.fix.longitude_deg), abs=1e-8)
