@@ -1,0 +1,147 @@
+"""The longitudinal controller: law selection, V2V fallback, min-select, limits, emergency, bad input."""
+
+import math
+
+import pytest
+
+from coopdrive.services.control.longitudinal import (
+    AccLaw,
+    CaccLaw,
+    LongitudinalController,
+    Spacing,
+    SpeedLaw,
+    Target,
+)
+from coopdrive.services.control.profiles import CAR
+from coopdrive.v1 import control_pb2, planner_pb2
+
+DT = 0.02
+M = control_pb2
+SPACING = Spacing(standstill_m=6.0, time_gap_s=0.5)
+
+
+def steady_target(object_id=1, gap_m=16.0, v2v_age_s=0.04, accel_mps2=0.0, speed_mps=20.0, **kw):
+    return Target(object_id=object_id, gap_m=gap_m, speed_mps=speed_mps, accel_mps2=accel_mps2, v2v_age_s=v2v_age_s, **kw)
+
+
+def run(ctrl, steps, targets, speed_mps=20.0, desired_mps=30.0, spacing=SPACING, start_s=0.0):
+    cmd = None
+    for k in range(steps):
+        cmd = ctrl.step(start_s + k * DT, speed_mps, 0.0, targets, desired_mps, spacing)
+    return cmd
+
+
+def test_without_targets_the_controller_cruises_and_names_no_target():
+    cmd = LongitudinalController(CAR).step(0.0, 20.0, 0.0, [], 25.0)
+    assert cmd.mode == M.LONGITUDINAL_MODE_CRUISE
+    assert cmd.target_object_id == 0
+    assert cmd.cruise_speed_mps == 25.0
+
+
+def test_fresh_v2v_runs_cacc_at_the_planner_time_gap():
+    cmd = run(LongitudinalController(CAR), 5, [steady_target()])
+    assert cmd.mode == M.LONGITUDINAL_MODE_CACC
+    assert cmd.time_gap_s == pytest.approx(0.5)
+    assert cmd.desired_gap_m == pytest.approx(6.0 + 0.5 * 20.0)
+    assert cmd.gap_m == pytest.approx(16.0)
+
+
+def test_v2v_older_than_400_ms_falls_back_to_acc_until_the_range_rate_history_allows_dcacc():
+    ctrl = LongitudinalController(CAR)
+    stale = steady_target(v2v_age_s=0.41)
+    assert ctrl.step(0.0, 20.0, 0.0, [stale], 30.0, SPACING).mode == M.LONGITUDINAL_MODE_ACC
+    cmd = run(ctrl, 10, [stale], start_s=DT)
+    assert cmd.mode == M.LONGITUDINAL_MODE_DCACC
+
+
+def test_a_target_without_any_v2v_is_followed_on_radar_at_the_raised_acc_time_gap():
+    cmd = LongitudinalController(CAR).step(0.0, 20.0, 0.0, [steady_target(v2v_age_s=None, accel_mps2=None)], 30.0, SPACING)
+    assert cmd.mode == M.LONGITUDINAL_MODE_ACC
+    assert cmd.time_gap_s == pytest.approx(CAR.spacing.acc_time_gap_s)
+
+
+def test_the_fallback_time_gap_ramps_up_instead_of_stepping():
+    ctrl = LongitudinalController(CAR)
+    run(ctrl, 50, [steady_target()])
+    cmd = run(ctrl, 50, [steady_target(v2v_age_s=1.0)], start_s=50 * DT)
+    # 1 s after the loss: 0.5 + 0.2 s/s * 1 s, below the dCACC floor of 1.0 s
+    assert cmd.time_gap_s == pytest.approx(0.5 + CAR.spacing.time_gap_rate_sps * 50 * DT)
+    cmd = run(ctrl, 200, [steady_target(v2v_age_s=1.0)], start_s=100 * DT)
+    assert cmd.time_gap_s == pytest.approx(CAR.spacing.dcacc_time_gap_s)
+
+
+def test_the_closest_target_sets_the_command_because_the_minimum_wins():
+    far, near = steady_target(object_id=3, gap_m=40.0), steady_target(object_id=9, gap_m=14.0, speed_mps=19.0)
+    cmd = run(LongitudinalController(CAR), 3, [far, near])
+    assert cmd.target_object_id == 9
+    assert min(cmd.law_outputs_mps2.values()) == cmd.law_outputs_mps2["LONGITUDINAL_MODE_CACC:9"]
+
+
+def test_a_yield_target_keeps_its_extra_gap_on_top_of_the_spacing_policy():
+    target = steady_target(role=planner_pb2.TARGET_ROLE_YIELD, extra_gap_m=4.0)
+    cmd = run(LongitudinalController(CAR), 2, [target])
+    assert cmd.desired_gap_m == pytest.approx(6.0 + 4.0 + 0.5 * 20.0)
+
+
+def test_normal_commands_respect_the_comfort_and_jerk_limits():
+    ctrl = LongitudinalController(CAR)
+    last = 0.0
+    for k in range(200):
+        cmd = ctrl.step(k * DT, 5.0, 0.0, [steady_target(gap_m=200.0, speed_mps=30.0)], 40.0, SPACING)
+        assert abs(cmd.accel_request_mps2 - last) <= CAR.limits.max_jerk_mps3 * DT + 1e-9
+        assert -CAR.limits.max_decel_mps2 <= cmd.accel_request_mps2 <= CAR.limits.max_accel_mps2
+        last = cmd.accel_request_mps2
+
+
+def test_a_stopped_vehicle_close_ahead_triggers_emergency_braking_beyond_the_comfort_limit():
+    ctrl = LongitudinalController(CAR)
+    stopped = steady_target(object_id=4, gap_m=25.0, speed_mps=0.0, v2v_age_s=None, accel_mps2=None)
+    cmd = run(ctrl, 25, [stopped])
+    assert cmd.emergency_brake
+    assert cmd.mode == M.LONGITUDINAL_MODE_EMERGENCY_BRAKE
+    assert cmd.target_object_id == 4
+    assert cmd.accel_request_mps2 == pytest.approx(-CAR.limits.emergency_decel_mps2)
+
+
+def test_the_selected_reference_laws_can_be_swapped_in_by_configuration():
+    ctrl = LongitudinalController(CAR, cacc_law=CaccLaw.PLOEG, acc_law=AccLaw.RAJAMANI, speed_law=SpeedLaw.DRIVERTIVE)
+    assert run(ctrl, 3, [steady_target()]).mode == M.LONGITUDINAL_MODE_CACC
+    assert ctrl.step(10.0, 20.0, 0.0, [], 25.0).mode == M.LONGITUDINAL_MODE_CRUISE
+
+
+def test_an_invalid_target_is_skipped_and_counted_not_fatal():
+    ctrl = LongitudinalController(CAR)
+    cmd = ctrl.step(0.0, 20.0, 0.0, [steady_target(gap_m=math.nan)], 25.0, SPACING)
+    assert cmd.mode == M.LONGITUDINAL_MODE_CRUISE
+    assert ctrl.rejected_inputs == 1
+    assert "gap_m" in ctrl.last_rejection
+
+
+def test_a_non_finite_ego_speed_raises_an_error_naming_it():
+    with pytest.raises(ValueError, match="ego_speed_mps"):
+        LongitudinalController(CAR).step(0.0, math.inf, 0.0, [], 25.0)
+
+
+def test_the_planner_spacing_policy_message_is_accepted_and_a_zero_time_gap_means_the_profile_default():
+    ctrl = LongitudinalController(CAR)
+    cmd = ctrl.step(0.0, 20.0, 0.0, [steady_target()], 30.0, planner_pb2.SpacingPolicy(standstill_m=5.0, time_gap_s=0.6))
+    assert cmd.time_gap_s == pytest.approx(0.6)
+    cmd = LongitudinalController(CAR).step(0.0, 20.0, 0.0, [steady_target()], 30.0, planner_pb2.SpacingPolicy(standstill_m=5.0))
+    assert cmd.time_gap_s == pytest.approx(CAR.spacing.time_gap_s)
+
+
+def test_the_command_fills_the_control_command_message():
+    cmd = run(LongitudinalController(CAR), 3, [steady_target(object_id=12)])
+    msg = cmd.fill(control_pb2.ControlCommand())
+    assert msg.longitudinal_mode == M.LONGITUDINAL_MODE_CACC
+    assert msg.target_object_id == 12
+    assert msg.accel_request_mps2 == pytest.approx(cmd.accel_request_mps2)
+    assert msg.response_time_constant_s == pytest.approx(CAR.engine_lag_s)
+
+
+def test_at_standstill_behind_a_stopped_vehicle_the_mode_is_standstill():
+    ctrl = LongitudinalController(CAR)
+    stopped = steady_target(gap_m=6.0, speed_mps=0.0, accel_mps2=0.0)
+    cmd = run(ctrl, 5, [stopped], speed_mps=0.0)
+    assert cmd.mode == M.LONGITUDINAL_MODE_STANDSTILL
+    assert not cmd.emergency_brake
