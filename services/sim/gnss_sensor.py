@@ -68,6 +68,10 @@ class GnssSensor:
         """Fault hook (fix_downgrade): the receiver reports this mode and its accuracy from now on."""
         self.fix_mode = fix_mode.proto if isinstance(fix_mode, FixModeName) else int(fix_mode)
 
+    def set_dropout(self, active: bool) -> None:
+        """Fault hook (sensor_dropout): the receiver sends nothing at all."""
+        self.timing.forced_dropout = active
+
     def set_outage(self, active: bool) -> None:
         """Fault hook (gnss_outage): the receiver keeps talking but reports no fix."""
         self.outage = active
