@@ -20,7 +20,7 @@ from pathlib import Path
 
 import asn1tools
 
-from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError, V2xEncodeError
 
 # ItsPduHeader: protocolVersion (8 bits), messageID (8 bits), stationID (32 bits); the PDUs start with it
 # and have no preamble, so these are the first six octets of every UPER message.
@@ -115,10 +115,13 @@ class ItsCodec:
         return asn1tools.compile_dict(parsed, "uper")
 
     def encode(self, message_id: ItsMessageId, value: dict) -> bytes:
-        """Encode a PDU dict; its header's protocolVersion picks the schema. Values must be in range."""
+        """Encode a PDU dict; its header's protocolVersion picks the schema. Raises V2xEncodeError."""
         version = value["header"]["protocolVersion"]
-        self._check_supported(message_id, version)
-        return self.spec(version).encode(PDU_TYPE_NAMES[message_id], value, check_constraints=True)
+        try:
+            self._check_supported(message_id, version)
+            return self.spec(version).encode(PDU_TYPE_NAMES[message_id], value, check_constraints=True)
+        except (V2xDecodeError, asn1tools.Error) as error:
+            raise V2xEncodeError(f"{message_id.name}: {error}") from None
 
     def decode(self, uper: bytes) -> tuple[ItsHeader, dict]:
         """Decode any known PDU; raises V2xDecodeError, never anything else."""

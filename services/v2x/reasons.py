@@ -29,3 +29,7 @@ class V2xDecodeError(Exception):
         super().__init__(f"{reason.value}: {detail}" if detail else reason.value)
         self.reason = reason
         self.detail = detail
+
+
+class V2xEncodeError(ValueError):
+    """Content that cannot be put on the wire (an identifier or code outside its ASN.1 range)."""

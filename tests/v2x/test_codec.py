@@ -42,3 +42,15 @@ def test_garbage_after_a_valid_its_header_is_malformed_asn1():
     with pytest.raises(V2xDecodeError) as error:
         ItsCodec().decode(bytes([1, 2, 0, 0, 0, 1]))
     assert error.value.reason == RejectReason.MALFORMED_ASN1
+
+
+def test_content_outside_the_asn1_ranges_is_an_encode_error_naming_the_message():
+    from coopdrive.services.v2x.reasons import V2xEncodeError
+    value = iclcm_to_asn(iclcm(False))
+    value["iclm"]["generationDeltaTime"] = 70_000
+    with pytest.raises(V2xEncodeError, match="ICLCM"):
+        ItsCodec().encode(ItsMessageId.ICLCM, value)
+    value["iclm"]["generationDeltaTime"] = 0
+    value["header"]["protocolVersion"] = 3
+    with pytest.raises(V2xEncodeError, match="unsupported_protocol_version"):
+        ItsCodec().encode(ItsMessageId.ICLCM, value)

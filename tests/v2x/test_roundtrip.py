@@ -89,3 +89,19 @@ def test_a_denm_sent_to_a_circle_carries_the_area_in_its_geo_broadcast_header():
     assert decoded.gn.extended.area.shape == GeoAreaShape.CIRCLE
     assert decoded.gn.extended.area.latitude_tenth_microdeg == 514_500_000
     assert decoded.gn.extended.area.distance_a_m == 300 and decoded.gn.extended.sequence_number == 12
+
+
+def test_an_extension_value_of_the_curvature_mode_newer_than_our_schema_reads_as_unavailable():
+    from coopdrive.services.v2x.mapping.cam import cam_from_asn, cam_to_asn
+    value = cam_to_asn(cam(True))
+    value["cam"]["camParameters"]["highFrequencyContainer"][1]["curvatureCalculationMode"] = None
+    decoded = cam_from_asn(value).high_frequency
+    assert decoded.curvature_calculation_mode == its_pb2.CURVATURE_CALCULATION_MODE_UNAVAILABLE
+
+
+def test_a_drive_direction_outside_the_enumeration_is_refused_by_the_mapping():
+    from coopdrive.services.v2x.mapping.cam import cam_from_asn, cam_to_asn
+    value = cam_to_asn(cam(True))
+    value["cam"]["camParameters"]["highFrequencyContainer"][1]["driveDirection"] = None
+    with pytest.raises(ValueError, match="unknown enumerated value"):
+        cam_from_asn(value)

@@ -13,9 +13,12 @@ from coopdrive.v1 import its_pb2
 class EnumTable:
     """ASN.1 ENUMERATED names <-> protobuf enum numbers."""
 
-    def __init__(self, pairs: Sequence[tuple[str, int]]):
+    def __init__(self, pairs: Sequence[tuple[str, int]], unknown_extension: int | None = None):
+        """unknown_extension: what an extensible ENUMERATED's value added after our schema maps to
+        (asn1tools decodes it as None); without it such a value is refused."""
         self._to_proto = dict(pairs)
         self._to_asn = {number: name for name, number in pairs}
+        self._unknown_extension = unknown_extension
 
     def to_asn(self, number: int) -> str:
         try:
@@ -23,7 +26,9 @@ class EnumTable:
         except KeyError:
             raise ValueError(f"no wire value for enum number {number}") from None
 
-    def to_proto(self, name: str) -> int:
+    def to_proto(self, name: str | None) -> int:
+        if name is None and self._unknown_extension is not None:
+            return self._unknown_extension
         try:
             return self._to_proto[name]
         except KeyError:
@@ -111,7 +116,9 @@ def path_point_to_asn(point: its_pb2.PathPoint) -> dict:
 
 def path_point_from_asn(value: dict, point: its_pb2.PathPoint) -> None:
     delta_position_from_asn(value["pathPosition"], point)
-    if "pathDeltaTime" in value:
+    # PathDeltaTime is extensible; a value beyond its root (asn1tools returns raw bytes) has no meaning
+    # we know, so that optional field is left absent.
+    if isinstance(value.get("pathDeltaTime"), int):
         point.delta_time_s = units.PATH_DELTA_TIME_10MS.to_si(value["pathDeltaTime"])
 
 

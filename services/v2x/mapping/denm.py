@@ -171,7 +171,7 @@ def _situation_from_asn(value: dict, situation: its_pb2.DenmSituation) -> None:
     for point_value in value.get("eventHistory", []):
         point = situation.event_history.add(information_quality=point_value["informationQuality"])
         delta_position_from_asn(point_value["eventPosition"], point.position)
-        if "eventDeltaTime" in point_value:
+        if isinstance(point_value.get("eventDeltaTime"), int):
             point.position.delta_time_s = units.PATH_DELTA_TIME_10MS.to_si(point_value["eventDeltaTime"])
 
 
@@ -214,5 +214,5 @@ def _alacarte_from_asn(value: dict, alacarte: its_pb2.DenmAlacarte) -> None:
                 works.closed_lanes.hard_shoulder_status = HARD_SHOULDER_STATUS.to_proto(shoulder)
         if "speedLimit" in works_value:
             works.speed_limit_mps = units.SPEED_LIMIT_KPH.to_si(works_value["speedLimit"])
-    if "positioningSolution" in value:
+    if value.get("positioningSolution") is not None:  # None: an extension value newer than our schema
         alacarte.positioning_solution = POSITIONING_SOLUTION.to_proto(value["positioningSolution"])
