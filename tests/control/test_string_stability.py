@@ -1,0 +1,71 @@
+"""Frequency-domain string stability of the following laws (eq. SS1)."""
+
+import numpy as np
+import pytest
+
+from coopdrive.services.control.profiles import CAR, TRUCK
+from coopdrive.services.control.string_stability import FollowingLaw, analyze, plot, speed_transfer
+
+TIME_GAPS_S = [0.5, 0.7, 1.0]
+LAGS_S = [0.1, 0.3, 0.5]
+
+
+def with_lag(lag_s):
+    return CAR.model_copy(update={"engine_lag_s": lag_s})
+
+
+@pytest.mark.parametrize("time_gap_s", TIME_GAPS_S)
+@pytest.mark.parametrize("lag_s", LAGS_S)
+def test_our_cacc_is_string_stable_with_lag_dead_time_and_v2v_delay(time_gap_s, lag_s):
+    result = analyze(FollowingLaw.OURS_CACC, with_lag(lag_s), time_gap_s, comm_delay_s=0.1)
+    assert result.string_stable, f"max |H| = {result.max_speed_gain:.4f}"
+
+
+@pytest.mark.parametrize("time_gap_s", TIME_GAPS_S)
+@pytest.mark.parametrize("lag_s", LAGS_S)
+def test_our_cacc_damps_at_least_as_well_as_ploeg_at_the_same_time_gap(time_gap_s, lag_s):
+    ours = analyze(FollowingLaw.OURS_CACC, with_lag(lag_s), time_gap_s)
+    ploeg = analyze(FollowingLaw.PLOEG_CACC, with_lag(lag_s), time_gap_s)
+    assert ours.max_speed_gain <= ploeg.max_speed_gain + 1e-9
+    assert ours.gain_at_hz(0.2) <= ploeg.gain_at_hz(0.2)
+
+
+def test_without_delays_our_cacc_is_exactly_the_ideal_time_gap_transfer():
+    omega = np.array([0.1, 1.0, 2 * np.pi * 0.2, 5.0])
+    profile = with_lag(0.4).model_copy(update={"actuation_delay_s": 0.0})
+    h = speed_transfer(FollowingLaw.OURS_CACC, profile, 0.5, omega, comm_delay_s=0.0)
+    assert np.abs(h) == pytest.approx(1 / np.sqrt(1 + (0.5 * omega) ** 2))
+
+
+def test_ploeg_fed_its_predecessors_command_without_lag_is_the_ideal_transfer_too():
+    omega = np.array([0.1, 1.0, 5.0])
+    profile = with_lag(1e-9).model_copy(update={"actuation_delay_s": 0.0})
+    h = speed_transfer(FollowingLaw.PLOEG_CACC, profile, 0.5, omega, comm_delay_s=0.0)
+    assert np.abs(h) == pytest.approx(1 / np.sqrt(1 + (0.5 * omega) ** 2), rel=1e-6)
+
+
+def test_ploeg_fed_the_measured_acceleration_amplifies_at_half_a_second_with_lag():
+    assert not analyze(FollowingLaw.PLOEG_CACC, with_lag(0.3), 0.5).string_stable
+
+
+@pytest.mark.parametrize("lag_s", LAGS_S)
+def test_the_fallbacks_are_string_stable_at_their_raised_time_gaps(lag_s):
+    profile = with_lag(lag_s)
+    assert analyze(FollowingLaw.DCACC, profile, profile.spacing.dcacc_time_gap_s).string_stable
+    assert analyze(FollowingLaw.OURS_ACC, profile, profile.spacing.acc_time_gap_s).string_stable
+    assert analyze(FollowingLaw.RAJAMANI_ACC, profile, profile.spacing.acc_time_gap_s).string_stable
+
+
+def test_the_truck_profile_is_string_stable_at_its_default_time_gap():
+    assert analyze(FollowingLaw.OURS_CACC, TRUCK).string_stable
+
+
+def test_the_spacing_error_gain_vanishes_at_low_frequency_for_the_cooperative_law():
+    result = analyze(FollowingLaw.OURS_CACC, CAR, 0.5)
+    assert result.spacing_error_gain_s[0] < 1e-2
+
+
+def test_the_plot_is_written_as_an_image(tmp_path):
+    results = [analyze(law, CAR, 0.5) for law in (FollowingLaw.OURS_CACC, FollowingLaw.PLOEG_CACC)]
+    path = plot(results, tmp_path / "string.png")
+    assert path.exists() and path.stat().st_size > 1000
