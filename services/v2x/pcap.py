@@ -12,6 +12,8 @@ from typing import BinaryIO
 
 ETHERTYPE_GEONETWORKING = 0x8947
 LINKTYPE_ETHERNET = 1
+# Captures of GeoNetworking carried bare (e.g. from a UDP radio bridge) use the first user link type.
+LINKTYPE_USER0_BARE_GN = 147
 BROADCAST_MAC = b"\xff" * 6
 ETHERNET_HEADER_SIZE = 14
 SNAPLEN_BYTES = 65_535
@@ -52,6 +54,27 @@ def parse_ethernet(frame: bytes) -> EthernetFrame:
         raise ValueError(f"Ethernet frame of {len(frame)} bytes")
     (ethertype,) = struct.unpack_from(">H", frame, 12)
     return EthernetFrame(frame[0:6], frame[6:12], ethertype, frame[ETHERNET_HEADER_SIZE:])
+
+
+@dataclass(frozen=True)
+class CapturedGnPacket:
+    time_s: float
+    source_mac: bytes | None
+    gn_packet: bytes
+
+
+def read_gn_packets(stream: BinaryIO) -> Iterator[CapturedGnPacket]:
+    """The GeoNetworking packets of a capture: Ethernet frames with ethertype 0x8947, or bare GN (USER0).
+
+    Frames of other ethertypes or link types, and Ethernet frames too short to hold a header, are skipped.
+    """
+    for frame in read_frames(stream):
+        if frame.link_type == LINKTYPE_USER0_BARE_GN:
+            yield CapturedGnPacket(frame.time_s, None, frame.data)
+        elif frame.link_type == LINKTYPE_ETHERNET and len(frame.data) >= ETHERNET_HEADER_SIZE:
+            ethernet = parse_ethernet(frame.data)
+            if ethernet.ethertype == ETHERTYPE_GEONETWORKING:
+                yield CapturedGnPacket(frame.time_s, ethernet.source_mac, ethernet.payload)
 
 
 class PcapWriter:

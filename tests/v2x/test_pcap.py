@@ -4,7 +4,8 @@ import struct
 import pytest
 
 from coopdrive.services.v2x.pcap import (
-    ETHERTYPE_GEONETWORKING, LINKTYPE_ETHERNET, PcapFormatError, PcapWriter, parse_ethernet, read_frames)
+    ETHERTYPE_GEONETWORKING, LINKTYPE_ETHERNET, PcapFormatError, PcapWriter, parse_ethernet, read_frames,
+    read_gn_packets)
 
 SOURCE_MAC = bytes.fromhex("02000000002a")
 
@@ -58,3 +59,19 @@ def test_a_capture_cut_inside_a_record_is_a_format_error():
     data = written([(1.0, b"0123456789")]).getvalue()[:-3]
     with pytest.raises(PcapFormatError, match="truncated record"):
         list(read_frames(io.BytesIO(data)))
+
+
+def test_only_geonetworking_frames_are_returned_as_gn_packets_with_their_source_mac():
+    stream = written([(1.0, b"gn-one")])
+    other = bytes(6) + SOURCE_MAC + struct.pack(">H", 0x0800) + b"ipv4"
+    stream.seek(0, io.SEEK_END)
+    stream.write(struct.pack("<IIII", 2, 0, len(other), len(other)) + other)
+    stream.seek(0)
+    (packet,) = read_gn_packets(stream)
+    assert (packet.time_s, packet.source_mac, packet.gn_packet) == (1.0, SOURCE_MAC, b"gn-one")
+
+
+def test_bare_geonetworking_captures_on_the_user0_link_type_are_read():
+    data = struct.pack("<IHHiIII", 0xA1B2C3D4, 2, 4, 0, 0, 65535, 147) + struct.pack("<IIII", 1, 0, 3, 3) + b"\x11gn"
+    (packet,) = read_gn_packets(io.BytesIO(data))
+    assert packet.source_mac is None and packet.gn_packet == b"\x11gn"
