@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import datetime as dt
 import enum
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import reduce
 
 from coopdrive.v1 import gnss_pb2
@@ -62,16 +62,25 @@ def sentence(body: str) -> bytes:
     return f"${body}*{checksum(body)}\r\n".encode("ascii")
 
 
+# Minutes are written with this many decimals (1e-7 min is about 0.2 mm).
+_MINUTE_DECIMALS = 7
+
+
+def _degrees_minutes(value_deg: float) -> tuple[int, float]:
+    """Whole degrees and minutes, rounded first so that minutes never print as 60."""
+    total_minutes = round(abs(value_deg) * 60.0, _MINUTE_DECIMALS)
+    degrees = int(total_minutes // 60.0)
+    return degrees, total_minutes - degrees * 60.0
+
+
 def _latitude(lat_deg: float) -> tuple[str, str]:
-    value = abs(lat_deg)
-    degrees = int(value)
-    return f"{degrees:02d}{(value - degrees) * 60.0:010.7f}", "N" if lat_deg >= 0 else "S"
+    degrees, minutes = _degrees_minutes(lat_deg)
+    return f"{degrees:02d}{minutes:0{_MINUTE_DECIMALS + 3}.{_MINUTE_DECIMALS}f}", "N" if lat_deg >= 0 else "S"
 
 
 def _longitude(lon_deg: float) -> tuple[str, str]:
-    value = abs(lon_deg)
-    degrees = int(value)
-    return f"{degrees:03d}{(value - degrees) * 60.0:010.7f}", "E" if lon_deg >= 0 else "W"
+    degrees, minutes = _degrees_minutes(lon_deg)
+    return f"{degrees:03d}{minutes:0{_MINUTE_DECIMALS + 3}.{_MINUTE_DECIMALS}f}", "E" if lon_deg >= 0 else "W"
 
 
 def _position(fix: "NmeaFix", valid: bool) -> tuple[str, str, str, str]:
@@ -79,6 +88,11 @@ def _position(fix: "NmeaFix", valid: bool) -> tuple[str, str, str, str]:
     if not valid:
         return "", "", "", ""
     return (*_latitude(fix.latitude_deg), *_longitude(fix.longitude_deg))
+
+
+def _round_to_centiseconds(utc: dt.datetime) -> dt.datetime:
+    utc = utc + dt.timedelta(microseconds=5_000)
+    return utc.replace(microsecond=utc.microsecond // 10_000 * 10_000)
 
 
 def _time(utc: dt.datetime) -> str:
@@ -105,6 +119,11 @@ class NmeaFix:
     differential_age_s: float | None = None
 
 
+def _centisecond_fix(fix: NmeaFix) -> NmeaFix:
+    """NMEA times have centiseconds: round (not truncate) so 0.2999999 s is labelled .30."""
+    return replace(fix, utc=_round_to_centiseconds(fix.utc))
+
+
 class NmeaWriter:
     """Writes GGA, RMC, GST and VTG sentences with a fixed talker id ("GN" multi-constellation, "GP" GPS)."""
 
@@ -122,6 +141,7 @@ class NmeaWriter:
         return gga_quality(fix_mode)
 
     def gga(self, fix: NmeaFix) -> bytes:
+        fix = _centisecond_fix(fix)
         quality = self.quality(fix.fix_mode)
         lat, ns, lon, ew = _position(fix, quality is not GgaQuality.INVALID)
         age = f"{fix.differential_age_s:.1f}" if fix.differential_age_s is not None else ""
@@ -131,6 +151,7 @@ class NmeaWriter:
                         f"{fix.geoid_separation_m:.3f},M,{age},{station}")
 
     def rmc(self, fix: NmeaFix) -> bytes:
+        fix = _centisecond_fix(fix)
         mode = _MODE.get(fix.fix_mode, ModeIndicator.NOT_VALID)
         lat, ns, lon, ew = _position(fix, mode is not ModeIndicator.NOT_VALID)
         status = "V" if mode is ModeIndicator.NOT_VALID else "A"
@@ -139,6 +160,7 @@ class NmeaWriter:
                         f"{fix.utc:%d%m%y},,,{mode.value}")
 
     def gst(self, fix: NmeaFix) -> bytes:
+        fix = _centisecond_fix(fix)
         major = max(fix.std_north_m, fix.std_east_m)
         minor = min(fix.std_north_m, fix.std_east_m)
         orientation_deg = 0.0 if fix.std_north_m >= fix.std_east_m else 90.0

@@ -32,6 +32,8 @@ class SensorTiming(Generic[Output]):
         self.config = config
         self.rng = rng
         self.period_s = 1.0 / config.rate_hz
+        self._start_s = start_s
+        self._sample_index = 0
         self._next_sample_s = start_s
         self._pending: list[tuple[float, int, float, Any]] = []
         self._order = itertools.count()
@@ -42,7 +44,9 @@ class SensorTiming(Generic[Output]):
     def poll(self, now_s: float, measure: Callable[[float], Output | None]) -> list[tuple[float, float, Output]]:
         while self._next_sample_s <= now_s + _SCHEDULE_EPS_S:
             sample_s = self._next_sample_s
-            self._next_sample_s += self.period_s
+            # From the index, not by accumulation, so the schedule does not drift over long runs.
+            self._sample_index += 1
+            self._next_sample_s = self._start_s + self._sample_index * self.period_s
             self.samples_taken += 1
             # The draw happens even when forced so that a fault does not shift the noise of later samples.
             lost = self.rng.random() < self.config.dropout_probability

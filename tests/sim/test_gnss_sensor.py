@@ -5,9 +5,11 @@ import numpy as np
 import pymap3d
 import pynmea2
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from coopdrive.services.sim.gnss_sensor import GnssSensor, axis_sigma_m
-from coopdrive.services.sim.nmea_writer import checksum
+from coopdrive.services.sim.nmea_writer import NmeaFix, NmeaWriter, checksum
 from coopdrive.services.sim.sensor_config import FixModeName, GnssConfig, SensorTimingConfig
 from coopdrive.services.sim.sensor_timing import sensor_rng
 from coopdrive.v1 import gnss_pb2, sim_pb2
@@ -123,3 +125,17 @@ def test_the_geolocation_decoder_reads_our_epochs_with_their_fix_mode_and_positi
         if mode is not FixModeName.NO_FIX:
             assert (fixes[0].latitude_deg, fixes[0].longitude_deg) == pytest.approx(
                 (output.fix.latitude_deg, output.fix.longitude_deg), abs=1e-8)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.floats(-89.9, 89.9), st.floats(-179.9, 179.9), st.floats(0.0, 100.0))
+def test_any_position_and_time_written_as_nmea_reads_back_within_a_millimetre(lat_deg, lon_deg, seconds):
+    fix = NmeaFix(utc=EPOCH + dt.timedelta(seconds=seconds), latitude_deg=lat_deg, longitude_deg=lon_deg,
+                  altitude_m=12.0, fix_mode=gnss_pb2.FIX_MODE_RTK_FIXED, speed_mps=1.0, course_deg=359.999,
+                  std_north_m=0.01, std_east_m=0.01, std_up_m=0.02, satellites=12, hdop=0.8)
+    gga = pynmea2.parse(NmeaWriter().gga(fix).decode().strip(), check=True)
+    assert float(gga.lat[2:]) < 60.0 and float(gga.lon[3:]) < 60.0
+    assert gga.latitude == pytest.approx(lat_deg, abs=1e-8)
+    assert gga.longitude == pytest.approx(lon_deg, abs=1e-8)
+    written = dt.datetime.combine(EPOCH.date(), gga.timestamp.replace(tzinfo=None))
+    assert abs((written - EPOCH.replace(tzinfo=None)).total_seconds() - seconds) <= 0.005 + 1e-9
