@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 from coopdrive.services.v2x import units
 from coopdrive.services.v2x.btp import BtpBHeader, BtpPort, parse_btp_b
-from coopdrive.services.v2x.codec import ItsCodec, ItsHeader, ItsMessageId
+from coopdrive.services.v2x.codec import ItsCodec, ItsHeader, ItsMessageId, peek_its_header
 from coopdrive.services.v2x.geonet import (
     GN_VERSION_GCDC, SUPPORTED_GN_VERSIONS, BasicHeader, CommonHeader, CommonNextHeader, GbcHeader, GeoArea,
     GeoAreaShape, GnAddress, GnPacket, LongPositionVector, ShbHeader, encode_lifetime, parse_gn)
@@ -117,10 +117,11 @@ class V2xPacketCodec:
         message_type = MESSAGE_OF_PORT.get(btp.destination_port)
         if message_type is None:
             raise V2xDecodeError(RejectReason.UNKNOWN_BTP_PORT, str(btp.destination_port))
-        its_header, value = self.its_codec.decode(uper)
-        if its_header.message_id != message_type:
+        announced = peek_its_header(uper)
+        if announced.message_id != message_type:
             raise V2xDecodeError(RejectReason.MESSAGE_ID_PORT_MISMATCH,
-                                 f"messageID {its_header.message_id} on port {btp.destination_port}")
+                                 f"messageID {announced.message_id} on port {btp.destination_port}")
+        its_header, value = self.its_codec.decode(uper)
         try:
             content = _FROM_ASN[message_type](value)
         except (ValueError, KeyError, TypeError) as error:

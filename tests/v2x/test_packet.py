@@ -72,3 +72,10 @@ def test_a_v2_cam_decodes_with_the_v2_schema():
     decoded = decode_packet(encode_cam(content, GnParams(source_mac=MAC, gn_version=1)))
     assert decoded.its_header.protocol_version == 2 and decoded.gn.basic.version == 1
     assert decoded.content.high_frequency.curvature_per_m == pytest.approx(0.05)
+
+
+def test_a_content_message_with_protocol_version_left_unset_is_sent_as_gcdc_version_1():
+    content = moving_cam()
+    content.ClearField("protocol_version")
+    decoded = decode_packet(encode_cam(content, GnParams(source_mac=MAC)))
+    assert decoded.its_header.protocol_version == 1 and decoded.content.protocol_version == 1

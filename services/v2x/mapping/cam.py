@@ -6,7 +6,7 @@ from coopdrive.services.v2x import units
 from coopdrive.services.v2x.codec import PROTOCOL_VERSION_GCDC, ItsMessageId
 from coopdrive.services.v2x.mapping.common import (
     EnumTable, bits_to_flags, flags_to_bits, heading_to_asn, optional, path_point_from_asn, path_point_to_asn,
-    reference_position_from_asn, reference_position_to_asn, set_optional, speed_to_asn)
+    reference_position_from_asn, reference_position_to_asn, set_optional, speed_to_asn, wire_protocol_version)
 from coopdrive.v1 import its_pb2
 
 DRIVE_DIRECTION = EnumTable([
@@ -47,6 +47,7 @@ def _acceleration(prefix: str, value_mps2: float | None, confidence_mps2: float 
 
 
 def cam_to_asn(content: its_pb2.CamContent) -> dict:
+    protocol_version = wire_protocol_version(content.protocol_version)
     parameters = {
         "basicContainer": {
             "stationType": int(content.station_type),
@@ -56,7 +57,7 @@ def cam_to_asn(content: its_pb2.CamContent) -> dict:
     }
     if content.HasField("high_frequency"):
         parameters["highFrequencyContainer"] = (
-            "basicVehicleContainerHighFrequency", _high_frequency_to_asn(content.high_frequency, content.protocol_version))
+            "basicVehicleContainerHighFrequency", _high_frequency_to_asn(content.high_frequency, protocol_version))
     if content.HasField("low_frequency"):
         low = content.low_frequency
         parameters["lowFrequencyContainer"] = ("basicVehicleContainerLowFrequency", {
@@ -65,7 +66,7 @@ def cam_to_asn(content: its_pb2.CamContent) -> dict:
             "pathHistory": [path_point_to_asn(point) for point in low.path_history],
         })
     return {
-        "header": {"protocolVersion": content.protocol_version, "messageID": int(ItsMessageId.CAM),
+        "header": {"protocolVersion": protocol_version, "messageID": int(ItsMessageId.CAM),
                    "stationID": content.station_id},
         "cam": {"generationDeltaTime": content.generation_delta_time_ms, "camParameters": parameters},
     }

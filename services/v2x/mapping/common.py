@@ -7,7 +7,13 @@ from collections.abc import Sequence
 from google.protobuf.message import Message
 
 from coopdrive.services.v2x import units
+from coopdrive.services.v2x.codec import PROTOCOL_VERSION_GCDC
 from coopdrive.v1 import its_pb2
+
+
+def wire_protocol_version(content_version: int) -> int:
+    """A content message's protocol_version left at 0 (unset) means the GCDC default."""
+    return content_version or PROTOCOL_VERSION_GCDC
 
 
 class EnumTable:

@@ -7,7 +7,7 @@ from coopdrive.services.v2x.codec import PROTOCOL_VERSION_CURRENT, PROTOCOL_VERS
 from coopdrive.services.v2x.mapping.common import (
     EnumTable, bits_to_bools, bools_to_bits, delta_position_from_asn, delta_position_to_asn, heading_to_asn,
     optional, path_point_from_asn, path_point_to_asn, reference_position_from_asn, reference_position_to_asn,
-    set_optional, speed_to_asn)
+    set_optional, speed_to_asn, wire_protocol_version)
 from coopdrive.v1 import its_pb2
 
 DEFAULT_VALIDITY_DURATION_S = 600.0
@@ -45,6 +45,7 @@ def _cause_from_asn(value: dict, cause: its_pb2.CauseCode) -> None:
 
 
 def denm_to_asn(content: its_pb2.DenmContent) -> dict:
+    protocol_version = wire_protocol_version(content.protocol_version)
     management = {
         "actionID": {"originatingStationID": content.originating_station_id,
                      "sequenceNumber": content.sequence_number},
@@ -69,9 +70,9 @@ def denm_to_asn(content: its_pb2.DenmContent) -> dict:
     if content.HasField("location"):
         denm["location"] = _location_to_asn(content.location)
     if content.HasField("alacarte"):
-        denm["alacarte"] = _alacarte_to_asn(content.alacarte, content.protocol_version)
+        denm["alacarte"] = _alacarte_to_asn(content.alacarte, protocol_version)
     return {
-        "header": {"protocolVersion": content.protocol_version, "messageID": int(ItsMessageId.DENM),
+        "header": {"protocolVersion": protocol_version, "messageID": int(ItsMessageId.DENM),
                    "stationID": content.station_id},
         "denm": denm,
     }
