@@ -91,7 +91,7 @@ class ItsCodec:
         return self._specs[protocol_version]
 
     def _compile(self, paths: list[str]) -> asn1tools.compiler.Specification:
-        if asn1tools.compiler.has_diskcache:
+        if getattr(asn1tools.compiler, "has_diskcache", False):
             return asn1tools.compile_files(paths, "uper", cache_dir=str(self._cache_dir))
         digest = hashlib.sha256(asn1tools.__version__.encode())
         for path in paths:
