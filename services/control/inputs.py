@@ -1,0 +1,54 @@
+"""From bus messages (used as plain data) to the controller inputs: targets and spacing.
+
+The planner's BehaviourRequest names the targets; the Scene gives their gap and motion. The forward MIO is
+always added as a predecessor even when the planner did not list it, so the emergency path and min-select
+never ignore the vehicle directly ahead.
+
+V2V freshness: the Scene has no per-property V2V timestamp, so a target's V2V age is the scene's age when its
+acceleration is supported by SENSOR_SOURCE_V2V and not faded (confidence >= 0), else there is no V2V.
+"""
+
+from __future__ import annotations
+
+from coopdrive.v1 import header_pb2, planner_pb2, scene_pb2
+
+from .longitudinal.types import Spacing, Target
+
+V2V = header_pb2.SENSOR_SOURCE_V2V
+
+
+def spacing_from_request(request: planner_pb2.BehaviourRequest) -> Spacing | None:
+    """None when the request carries no spacing (the controller then uses the profile's)."""
+    if not request.HasField("spacing"):
+        return None
+    return Spacing(request.spacing.standstill_m, request.spacing.time_gap_s)
+
+
+def _target(obj: scene_pb2.SceneObject, role: int, extra_gap_m: float, scene_age_s: float) -> Target:
+    accel = obj.accel_mps2
+    has_v2v = accel.confidence >= 0 and V2V in accel.sources
+    return Target(
+        object_id=obj.object_id,
+        gap_m=obj.longitudinal_gap_m,
+        speed_mps=obj.speed_mps.value,
+        accel_mps2=accel.value if has_v2v else None,
+        v2v_age_s=max(scene_age_s, 0.0) if has_v2v else None,
+        role=role,
+        extra_gap_m=extra_gap_m,
+    )
+
+
+def targets_from_scene(request: planner_pb2.BehaviourRequest, scene: scene_pb2.Scene, now_s: float) -> list[Target]:
+    """Targets ahead of the ego (gap > 0) that the scene knows; unknown ids are left out."""
+    objects = {o.object_id: o for o in scene.objects if not o.ghost}
+    age = now_s - scene.header.sample_time_s
+    targets: dict[int, Target] = {}
+    for tv in request.targets:
+        obj = objects.get(tv.object_id)
+        if obj is not None and obj.longitudinal_gap_m > 0:
+            targets[obj.object_id] = _target(obj, tv.role, tv.extra_gap_m, age)
+    if scene.has_forward_mio and scene.forward_mio_id not in targets:
+        obj = objects.get(scene.forward_mio_id)
+        if obj is not None and obj.longitudinal_gap_m > 0:
+            targets[obj.object_id] = _target(obj, planner_pb2.TARGET_ROLE_PREDECESSOR, 0.0, age)
+    return list(targets.values())

@@ -1,0 +1,69 @@
+"""Bus messages to controller inputs, and the service configuration."""
+
+import pytest
+from pydantic import ValidationError
+
+from coopdrive.services.control.config import ControlConfig
+from coopdrive.services.control.inputs import spacing_from_request, targets_from_scene
+from coopdrive.services.control.longitudinal import CaccLaw
+from coopdrive.services.control.profiles import CAR, TRUCK, profile_by_name
+from coopdrive.v1 import header_pb2, planner_pb2, scene_pb2
+
+
+def scene_object(object_id, gap_m, speed_mps, accel_mps2=None, v2v=True):
+    obj = scene_pb2.SceneObject(object_id=object_id, longitudinal_gap_m=gap_m)
+    obj.speed_mps.value = speed_mps
+    if accel_mps2 is not None:
+        obj.accel_mps2.value = accel_mps2
+        obj.accel_mps2.confidence = 0.9
+        obj.accel_mps2.sources.append(header_pb2.SENSOR_SOURCE_V2V if v2v else header_pb2.SENSOR_SOURCE_RADAR)
+    return obj
+
+
+def test_planner_targets_take_gap_and_motion_from_the_scene_and_v2v_age_from_the_scene_age():
+    scene = scene_pb2.Scene(objects=[scene_object(4, 20.0, 21.0, 0.3)])
+    scene.header.sample_time_s = 10.0
+    request = planner_pb2.BehaviourRequest(targets=[planner_pb2.TargetVehicle(object_id=4, role=planner_pb2.TARGET_ROLE_VIRTUAL, extra_gap_m=2.0)])
+    (t,) = targets_from_scene(request, scene, now_s=10.05)
+    assert (t.object_id, t.gap_m, t.speed_mps, t.accel_mps2, t.role, t.extra_gap_m) == (4, 20.0, 21.0, 0.3, planner_pb2.TARGET_ROLE_VIRTUAL, 2.0)
+    assert t.v2v_age_s == pytest.approx(0.05)
+
+
+def test_an_acceleration_without_v2v_support_is_not_used_as_feedforward():
+    scene = scene_pb2.Scene(objects=[scene_object(4, 20.0, 21.0, 0.3, v2v=False)])
+    request = planner_pb2.BehaviourRequest(targets=[planner_pb2.TargetVehicle(object_id=4)])
+    (t,) = targets_from_scene(request, scene, now_s=0.0)
+    assert t.accel_mps2 is None and t.v2v_age_s is None
+
+
+def test_the_forward_mio_is_always_a_target_and_vehicles_behind_are_not():
+    scene = scene_pb2.Scene(objects=[scene_object(1, 15.0, 20.0), scene_object(2, -8.0, 20.0)], has_forward_mio=True, forward_mio_id=1)
+    request = planner_pb2.BehaviourRequest(targets=[planner_pb2.TargetVehicle(object_id=2)])
+    targets = targets_from_scene(request, scene, now_s=0.0)
+    assert [(t.object_id, t.role) for t in targets] == [(1, planner_pb2.TARGET_ROLE_PREDECESSOR)]
+
+
+def test_the_spacing_comes_from_the_request_when_present():
+    assert spacing_from_request(planner_pb2.BehaviourRequest()) is None
+    request = planner_pb2.BehaviourRequest(spacing=planner_pb2.SpacingPolicy(standstill_m=6.0, time_gap_s=0.8))
+    assert spacing_from_request(request).time_gap_s == pytest.approx(0.8)
+
+
+def test_the_config_selects_profile_laws_and_top_level_overrides():
+    config = ControlConfig(profile="truck", cacc_law="ploeg", profile_overrides={"engine_lag_s": 0.4})
+    assert config.cacc_law is CaccLaw.PLOEG
+    profile = config.vehicle_profile()
+    assert profile.engine_lag_s == 0.4 and profile.mass_kg == TRUCK.mass_kg
+
+
+def test_the_config_rejects_unknown_fields_and_profiles():
+    with pytest.raises(ValidationError):
+        ControlConfig(rate_hz=50)
+    with pytest.raises(ValueError, match="unknown vehicle profile"):
+        profile_by_name("bus")
+
+
+def test_profiles_forbid_unknown_fields_and_carry_units():
+    with pytest.raises(ValidationError):
+        CAR.model_validate({**CAR.model_dump(), "lag": 0.3})
+    assert TRUCK.limits.max_accel_mps2 < CAR.limits.max_accel_mps2
