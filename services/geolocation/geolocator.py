@@ -183,13 +183,15 @@ class Geolocator:
     def _try_initialise(self, time_s: float, fix: _Fix) -> None:
         book = self._book
         heading_rad, heading_std_rad = None, self.config.initial_heading_std_rad
+        track_speed_mps = None
         if fix.speed_mps >= self.config.min_course_speed_mps:
             heading_rad = math.pi / 2.0 - math.radians(fix.course_deg)  # course: from north, clockwise
         elif book.pending_fix is not None:
-            _, previous = book.pending_fix
+            previous_time_s, previous = book.pending_fix
             de, dn = fix.east_m - previous.east_m, fix.north_m - previous.north_m
-            if math.hypot(de, dn) >= HEADING_FROM_TRACK_MIN_M:
+            if math.hypot(de, dn) >= HEADING_FROM_TRACK_MIN_M and time_s > previous_time_s:
                 heading_rad = math.atan2(dn, de)
+                track_speed_mps = math.hypot(de, dn) / (time_s - previous_time_s)
         if heading_rad is None and book.last_speed_mps is not None and abs(book.last_speed_mps) < STATIONARY_SPEED_MPS:
             heading_rad, heading_std_rad = 0.0, UNKNOWN_HEADING_STD_RAD
         if heading_rad is None:
@@ -197,8 +199,11 @@ class Geolocator:
             if book.pending_fix is None or time_s - book.pending_fix[0] > PENDING_FIX_MAX_AGE_S:
                 self._book = _replace(book, pending_fix=(time_s, fix))
             return
-        speed_mps = book.last_speed_mps if book.last_speed_mps is not None else fix.speed_mps
-        speed_std = self.odometry.speed_std_mps if book.last_speed_mps is not None else self.config.initial_speed_std_mps
+        speed_mps, speed_std = fix.speed_mps, self.config.initial_speed_std_mps
+        if book.last_speed_mps is not None:
+            speed_mps, speed_std = book.last_speed_mps, self.odometry.speed_std_mps
+        elif track_speed_mps is not None:
+            speed_mps = track_speed_mps
         x0 = np.zeros(STATE_DIM)
         x0[E], x0[N] = self.lever_arm.rear_axle_position(fix.east_m, fix.north_m, heading_rad)
         x0[HEADING], x0[SPEED] = heading_rad, speed_mps

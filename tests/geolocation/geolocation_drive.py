@@ -90,7 +90,8 @@ def simulate(geolocator, truth: Truth, seed: int, gnss_std_m: float, lever_x_m: 
              outage_s: tuple[float, float] | None = None, fix_delay_s: float = 0.0,
              jump_at_s: float | None = None, jump_m: tuple[float, float] = (0.0, 0.0), jump_duration_s: float = 0.01,
              imu_gyro_std_radps=None,
-             estimate_every: int = 10, steering_wheelbase_m: float | None = None) -> Run:
+             estimate_every: int = 10, steering_wheelbase_m: float | None = None,
+             fix_mode: int = gnss_pb2.FIX_MODE_RTK_FIXED) -> Run:
     """Feed the geolocator like the bus would: odometry at 100 Hz, fixes at 20 Hz arriving fix_delay_s late."""
     rng = np.random.default_rng(seed)
     pending: list[tuple[float, gnss_pb2.GnssFix]] = []
@@ -106,7 +107,7 @@ def simulate(geolocator, truth: Truth, seed: int, gnss_std_m: float, lever_x_m: 
         if i % GNSS_EVERY == 0 and not in_outage:
             jumped = jump_at_s is not None and jump_at_s - 1e-6 <= t < jump_at_s + jump_duration_s
             offset = jump_m if jumped else (0.0, 0.0)
-            fix, east, north = gnss_fix(truth, i, rng, gnss_std_m, lever_x_m, offset_m=offset)
+            fix, east, north = gnss_fix(truth, i, rng, gnss_std_m, lever_x_m, fix_mode, offset_m=offset)
             pending.append((t + fix_delay_s, fix))
             raw.append(math.hypot(east - truth.x_m[i], north - truth.y_m[i]))
             fix_times.append(t)

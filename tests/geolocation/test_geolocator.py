@@ -85,12 +85,23 @@ def test_during_an_outage_the_mode_falls_back_to_dead_reckoning_then_recovers(ou
 
 def test_a_five_metre_jump_is_gated_and_moves_the_estimate_less_than_20_cm():
     truth = drive(8.0, SPEED_80_KMH_MPS, None, CURVE_RADIUS_M)
+    kwargs = dict(gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M, estimate_every=2)
     geolocator = new_geolocator()
-    run = simulate(geolocator, truth, seed=3, gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M,
-                   jump_at_s=7.0, jump_m=(3.0, 4.0), estimate_every=2)
-    after = settled(run, start_s=7.0, end_s=7.05)
-    assert np.max(np.hypot(*after.T)) < 0.2
+    jumped = simulate(geolocator, truth, seed=3, jump_at_s=7.0, jump_m=(3.0, 4.0), **kwargs)
+    clean = simulate(new_geolocator(), truth, seed=3, **kwargs)
+    moved_m = np.hypot(*(jumped.error_xy_m - clean.error_xy_m).T)
+    assert np.max(moved_m) < 0.2
+    assert np.max(np.hypot(*settled(jumped, start_s=7.0).T)) < 0.2
     assert geolocator.counters[InputEvent.FIX_GATED] >= 1
+
+
+def test_dgps_fixes_give_a_degraded_mode_with_a_metre_level_std():
+    truth = drive(6.0, SPEED_80_KMH_MPS, None, CURVE_RADIUS_M)
+    run = simulate(new_geolocator(), truth, seed=10, gnss_std_m=1.0, lever_x_m=LEVER_X_M,
+                   fix_mode=gnss_pb2.FIX_MODE_DGPS)
+    assert run.modes[-1] == ego_pb2.LOCALISATION_MODE_GNSS_DEGRADED
+    assert run.states[-1].position_std_m < 1.0
+    assert rmse_m(settled(run, start_s=3.0)) < raw_rmse(run, start_s=3.0)
 
 
 def test_a_gnss_that_disagrees_for_long_resets_the_position():
@@ -191,3 +202,19 @@ def test_a_standing_car_initialises_with_an_unknown_heading():
     state = geolocator.estimate(0.0)
     assert state.mode != ego_pb2.LOCALISATION_MODE_LOST
     assert np.array(state.covariance).reshape(6, 6)[2, 2] == pytest.approx(math.pi**2)
+
+
+def test_fixes_decoded_from_nmea_bytes_drive_the_geolocator():
+    from coopdrive.services.geolocation.nmea_decoder import NmeaDecoder, SentenceType, with_checksum
+
+    geolocator = Geolocator(GeolocatorConfig(antenna_x_m=0.0), origin=ORIGIN)
+    decoder = NmeaDecoder(geolocator.on_gnss_fix, expected_sentences=frozenset({SentenceType.GGA}))
+    lat_min = (ORIGIN[0] - 51.0) * 60.0
+    for k in range(3):  # 10 m apart northwards, 0.5 s apart
+        north_min = lat_min + k * 10.0 / 1852.0
+        body = f"GPGGA,10153{k}.00,51{north_min:09.6f},N,00536.0600,E,4,14,0.7,20.0,M,0.0,M,,"
+        decoder.feed((with_checksum(body) + "\r\n").encode(), receive_time_s=0.5 * k)
+    state = geolocator.estimate(1.0)
+    assert state.mode == ego_pb2.LOCALISATION_MODE_GNSS_PRECISE
+    assert state.heading_rad == pytest.approx(math.pi / 2, abs=0.01)
+    assert state.y_m == pytest.approx(20.0, abs=0.05)
