@@ -6,7 +6,6 @@ import math
 from typing import Callable, Mapping, Sequence
 
 import numpy as np
-from scipy import signal
 
 from coopdrive.services.sim import geometry
 from coopdrive.services.sim.truth_series import TruthSeries
@@ -144,7 +143,8 @@ def speed_amplitude(speed_mps: np.ndarray, time_s: np.ndarray | None = None,
                                  np.cos(omega * times)))
         coefficients, *_ = np.linalg.lstsq(basis, values, rcond=None)
         return float(math.hypot(coefficients[2], coefficients[3]))
-    detrended = signal.detrend(values, type="linear")
+    slope, offset = np.polyfit(times, values, 1)
+    detrended = values - (slope * times + offset)
     return float(detrended.max() - detrended.min()) / 2.0
 
 
