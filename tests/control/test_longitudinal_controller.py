@@ -145,3 +145,15 @@ def test_at_standstill_behind_a_stopped_vehicle_the_mode_is_standstill():
     cmd = run(ctrl, 5, [stopped], speed_mps=0.0)
     assert cmd.mode == M.LONGITUDINAL_MODE_STANDSTILL
     assert not cmd.emergency_brake
+
+
+@pytest.mark.parametrize("law", list(CaccLaw), ids=lambda law: law.value)
+def test_a_cooperative_law_taking_over_starts_from_the_applied_command(law):
+    ctrl = LongitudinalController(CAR, cacc_law=law)
+    cmd = run(ctrl, 100, [], speed_mps=20.0, desired_mps=21.0)
+    applied = cmd.accel_request_mps2
+    # A predecessor pulling away, accelerating: the law wants more than cruise, yet starts where cruise was.
+    ahead = steady_target(object_id=5, gap_m=30.0, speed_mps=22.0, accel_mps2=1.0)
+    cmd = ctrl.step(100 * DT, 20.0, applied, [ahead], 21.0, SPACING)
+    # One 20 ms step of the law's own dynamics away from the applied command (the law alone would ask ~9 m/s2).
+    assert cmd.law_outputs_mps2["LONGITUDINAL_MODE_CACC:5"] == pytest.approx(applied, abs=0.2)
