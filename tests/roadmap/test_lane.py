@@ -1,9 +1,12 @@
+import functools
 import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from coopdrive.roadmap import Lane
+from coopdrive.roadmap import Lane, RoadMap
 
 L_SHAPE = np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]])
 
@@ -66,3 +69,17 @@ def test_a_straight_lane_has_zero_curvature():
 def test_a_lane_with_a_single_distinct_point_is_rejected_with_its_id():
     with pytest.raises(ValueError, match="bad"):
         Lane("bad", "r", 0, 3.5, [[1.0, 1.0], [1.0, 1.0]])
+
+
+@functools.cache
+def a270_right_lane() -> Lane:
+    return RoadMap.load("a270").lanes_of_road("a270")[0]
+
+
+@settings(max_examples=200, deadline=None)
+@given(station_m=st.floats(0.0, 3990.0), lateral_m=st.floats(-1.75, 1.75))
+def test_projecting_a_pose_on_the_a270_gives_back_its_station_and_offset(station_m, lateral_m):
+    lane = a270_right_lane()
+    x, y, heading = lane.pose_at(station_m, lateral_m)
+    # Off the centre line, the inside of a polyline corner is a few millimetres off the true arc.
+    assert lane.project(x, y)[:3] == pytest.approx((station_m, lateral_m, heading), abs=0.01)
