@@ -58,7 +58,10 @@ def bumper_gap_m(leader: sim_pb2.VehicleTruth, follower: sim_pb2.VehicleTruth) -
     return leader_rear - follower_front
 
 
-def following_pairs(vehicles: Sequence[sim_pb2.VehicleTruth]) -> list[tuple[sim_pb2.VehicleTruth, sim_pb2.VehicleTruth]]:
+Pair = tuple[sim_pb2.VehicleTruth, sim_pb2.VehicleTruth]
+
+
+def following_pairs(vehicles: Sequence[sim_pb2.VehicleTruth]) -> list[Pair]:
     """(leader, follower) of consecutive vehicles in each lane."""
     pairs = []
     by_lane: dict[int, list[sim_pb2.VehicleTruth]] = {}
@@ -102,7 +105,10 @@ def comfort(truth: TruthSeries, vehicle_ids: Sequence[str]) -> dict[str, float]:
     return {"max_abs_accel_mps2": max_accel, "rms_jerk_mps3": float(np.sqrt(np.mean(all_jerk ** 2)))}
 
 
-def speed_error(truth: TruthSeries, reference_mps: Mapping[str, Callable[[np.ndarray], np.ndarray]]) -> dict[str, float]:
+SpeedReference = Callable[[np.ndarray], np.ndarray]
+
+
+def speed_error(truth: TruthSeries, reference_mps: Mapping[str, SpeedReference]) -> dict[str, float]:
     """Actual minus reference speed in km/h, over the vehicles given a reference (a function of time)."""
     errors = [truth.get(vid, "speed_mps") - ref(truth.time_s) for vid, ref in reference_mps.items()]
     return _error_stats(np.concatenate(errors) * KMH_PER_MPS, "speed_error", "kmh") if errors else {}
@@ -182,7 +188,7 @@ def identity_switches(associations: Sequence[Mapping[str, int]]) -> int:
 
 
 def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[str] | None = None,
-          reference_speed_mps: Mapping[str, Callable[[np.ndarray], np.ndarray]] | None = None,
+          reference_speed_mps: Mapping[str, SpeedReference] | None = None,
           safety_radius_m: float = DEFAULT_SAFETY_RADIUS_M, standstill_m: float = DEFAULT_STANDSTILL_M,
           headway_s: float = DEFAULT_HEADWAY_S, string_start_s: float = 0.0,
           string_frequency_hz: float | None = None) -> dict[str, float]:

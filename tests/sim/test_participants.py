@@ -1,5 +1,3 @@
-import math
-
 import pytest
 
 from coopdrive.services.sim.participants import EmergencyVehicle, IntentKind, ScriptedVehicle

@@ -45,7 +45,8 @@ def test_a_follower_keeps_its_gap_behind_a_braking_leader_and_everything_is_obse
         cams += len(channel.due(now_s))
         gap_m = metrics.bumper_gap_m(lead, ego)
         # Rajamani's ACC law u = -(1/h)[(v - v_p) + lambda(-gap + h v + r)], lambda raised to 0.5 for a short run
-        accel = -((ego.speed_mps - lead.speed_mps) + 0.5 * (-gap_m + HEADWAY_S * ego.speed_mps + STANDSTILL_M)) / HEADWAY_S
+        spacing_error_m = -gap_m + HEADWAY_S * ego.speed_mps + STANDSTILL_M
+        accel = -((ego.speed_mps - lead.speed_mps) + 0.5 * spacing_error_m) / HEADWAY_S
         _, lateral_m, lane_heading, _ = lanes[0].project(ego.x_m, ego.y_m)
         heading_error = math.remainder(ego.heading_rad - lane_heading, math.tau)
         steer = -0.02 * lateral_m - 0.5 * heading_error
