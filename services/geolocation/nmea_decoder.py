@@ -152,10 +152,15 @@ class NmeaDecoder:
     def _sentence(self, sentence_type: SentenceType, msg: pynmea2.NMEASentence, time_s: float) -> None:
         if len(msg.data) < MIN_FIELDS[sentence_type]:
             raise ValueError(f"{sentence_type.value} has {len(msg.data)} fields, needs {MIN_FIELDS[sentence_type]}")
-        utc = msg.timestamp if sentence_type is not SentenceType.VTG else self._epoch_utc
-        if sentence_type is not SentenceType.VTG and not isinstance(utc, datetime.time):
-            raise ValueError(f"{sentence_type.value} has no valid UTC time")
-        if utc is not None and utc == self._emitted_utc:
+        if sentence_type is SentenceType.VTG:
+            if self._epoch_fix is None:
+                return  # VTG carries no time: it follows an epoch that was already complete
+            utc = self._epoch_utc
+        else:
+            utc = msg.timestamp
+            if not isinstance(utc, datetime.time):
+                raise ValueError(f"{sentence_type.value} has no valid UTC time")
+        if utc == self._emitted_utc:
             self.late += 1
             return
         if utc != self._epoch_utc or self._epoch_fix is None:
