@@ -7,7 +7,7 @@ from typing import Sequence
 import numpy as np
 
 from coopdrive.services.sim import geometry
-from coopdrive.services.sim.road_geometry import LaneGeometry, nearest_lane
+from coopdrive.services.sim.road_geometry import LaneGeometry, match_lane
 from coopdrive.services.sim.sensor_config import CameraConfig
 from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
 from coopdrive.services.sim.world_view import WorldView
@@ -76,7 +76,7 @@ class CameraSensor:
             return
         cfg = self.config
         ego = world.ego
-        found = nearest_lane(self.lanes, ego.x_m, ego.y_m)
+        found = match_lane(self.lanes, ego.x_m, ego.y_m, ego.heading_rad)
         if found is None:
             return
         lane, station_m, _ = found

@@ -65,3 +65,20 @@ def nearest_lane(lanes: Sequence[LaneGeometry], x_m: float, y_m: float) -> tuple
         if best is None or abs(lateral_m) < abs(best[2]):
             best = (lane, station_m, lateral_m)
     return best
+
+
+# A lane running more than this far from the vehicle's heading is another road's (intersections).
+MAX_LANE_HEADING_ERROR_RAD = math.radians(60.0)
+
+
+def match_lane(lanes: Sequence[LaneGeometry], x_m: float, y_m: float,
+               heading_rad: float) -> tuple[LaneGeometry, float, float] | None:
+    """(lane, station_m, lateral_offset_m) of the nearest lane driven in about the vehicle's direction."""
+    best = None
+    for lane in lanes:
+        station_m, lateral_m, lane_heading, _ = lane.project(x_m, y_m)
+        if abs(math.remainder(heading_rad - lane_heading, math.tau)) > MAX_LANE_HEADING_ERROR_RAD:
+            continue
+        if best is None or abs(lateral_m) < abs(best[2]):
+            best = (lane, station_m, lateral_m)
+    return best

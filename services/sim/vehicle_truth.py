@@ -1,30 +1,14 @@
 """Ground truth of a simulated vehicle: its model state placed on the road (lane, station, lateral offset)."""
 from __future__ import annotations
 
-import math
 from typing import Sequence
 
 from coopdrive.services.sim.profiles import VehicleProfile
-from coopdrive.services.sim.road_geometry import LaneGeometry
+from coopdrive.services.sim.road_geometry import LaneGeometry, match_lane
 from coopdrive.services.sim.vehicle_model import VehicleState
 from coopdrive.v1 import sim_pb2
 
-# A lane running more than this far from the vehicle's heading is another road's (intersections).
-MAX_LANE_HEADING_ERROR_RAD = math.radians(60.0)
 NO_LANE = -1
-
-
-def match_lane(lanes: Sequence[LaneGeometry], x_m: float, y_m: float,
-               heading_rad: float) -> tuple[LaneGeometry, float, float] | None:
-    """(lane, station_m, lateral_offset_m) of the nearest lane driven in about the vehicle's direction."""
-    best = None
-    for lane in lanes:
-        station_m, lateral_m, lane_heading, _ = lane.project(x_m, y_m)
-        if abs(math.remainder(heading_rad - lane_heading, math.tau)) > MAX_LANE_HEADING_ERROR_RAD:
-            continue
-        if best is None or abs(lateral_m) < abs(best[2]):
-            best = (lane, station_m, lateral_m)
-    return best
 
 
 def vehicle_truth(vehicle_id: str, station_id: int, state: VehicleState, profile: VehicleProfile,
