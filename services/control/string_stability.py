@@ -8,6 +8,7 @@ so the speed (and position) transfer between vehicle i-1 and i is
 and, in a homogeneous string, the spacing errors propagate with the same H (E_i / E_{i-1} = H).
 String stable iff max_w |H(jw)| <= 1.
     Ploeg:     Cp = (kp + kd s)/(1 + h s),  Cx = Cp (1 + h s),  F = 1/(1 + h s)
+               (commanded variant: A_p replaced by the predecessor's delayed input U_p = X_p / G e^{-theta s})
     ours:      Cp = kp + kd s,              Cx = Cp (1 + h s),  F = (1 + tau s)/(1 + h s)
     dCACC:     ours with A_p = s V_p filtered by the least-squares slope FIR (eq. D1), no V2V delay
     Rajamani:  Cp = (lambda + s)/h,         Cx = (lambda (1 + h s) + s)/h,  F = 0
@@ -33,6 +34,8 @@ DEFAULT_OMEGA_RADPS = np.logspace(-3, 1.5, 2000)
 class FollowingLaw(enum.Enum):
     OURS_CACC = "ours_cacc"
     PLOEG_CACC = "ploeg_cacc"
+    # Ploeg fed the predecessor's *commanded* acceleration (iCLCM targetLongitudinalAcceleration), as in his paper.
+    PLOEG_CACC_COMMANDED = "ploeg_cacc_commanded"
     DCACC = "dcacc"
     OURS_ACC = "ours_acc"
     RAJAMANI_ACC = "rajamani_acc"
@@ -93,11 +96,12 @@ def speed_transfer(
     inv_plant = s**2 * (tau * s + 1) * np.exp(phi * s)
     v2v_accel = s**2 * np.exp(-comm_delay_s * s)
     ff = np.zeros_like(s)
-    if law is FollowingLaw.PLOEG_CACC:
+    if law in (FollowingLaw.PLOEG_CACC, FollowingLaw.PLOEG_CACC_COMMANDED):
         g = profile.ploeg
         cp = (g.kp_1ps2 + g.kd_1ps * s) / (1 + h * s)
         cx = cp * (1 + h * s)
-        ff = v2v_accel / (1 + h * s)
+        sent = v2v_accel if law is FollowingLaw.PLOEG_CACC else inv_plant * np.exp(-comm_delay_s * s)
+        ff = sent / (1 + h * s)
     elif law in (FollowingLaw.OURS_CACC, FollowingLaw.DCACC):
         g = profile.cacc
         cp = g.kp_1ps2 + g.kd_1ps * s
