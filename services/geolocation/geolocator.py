@@ -241,6 +241,15 @@ class Geolocator:
     def last_fix_mode(self) -> int:
         return self._book.last_fix_mode
 
+    def stats(self) -> dict[str, int]:
+        """Counters for diagnostics: inputs by outcome, gated and accepted updates, replays."""
+        counts = {f"input_{event.value}": n for event, n in self.counters.items()}
+        counts.update({f"accepted_{kind.value}": n for kind, n in self.ekf.accepted.items()})
+        counts.update({f"gated_{kind.value}": n for kind, n in self.ekf.rejected.items()})
+        counts.update({f"insertion_{kind.value}": n for kind, n in self._buffer.counts.items()})
+        counts["replayed_events"] = self._buffer.replayed_events
+        return counts
+
     def estimate(self, time_s: float) -> ego_pb2.EgoState:
         """The ego state predicted to time_s (the filter itself is not moved)."""
         self._sequence += 1

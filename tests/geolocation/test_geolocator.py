@@ -93,6 +93,7 @@ def test_a_five_metre_jump_is_gated_and_moves_the_estimate_less_than_20_cm():
     assert np.max(moved_m) < 0.2
     assert np.max(np.hypot(*settled(jumped, start_s=7.0).T)) < 0.2
     assert geolocator.counters[InputEvent.FIX_GATED] >= 1
+    assert geolocator.stats()["gated_gnss_position"] >= 1
 
 
 def test_dgps_fixes_give_a_degraded_mode_with_a_metre_level_std():
