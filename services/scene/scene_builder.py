@@ -38,6 +38,13 @@ class ObjectView:
     v2v_trust: float
 
 
+def _larger_std_m(cov: np.ndarray) -> float:
+    """Square root of the larger eigenvalue of a symmetric 2x2 covariance."""
+    half_trace = 0.5 * (cov[0, 0] + cov[1, 1])
+    spread = math.hypot(0.5 * (cov[0, 0] - cov[1, 1]), cov[0, 1])
+    return math.sqrt(max(0.0, half_trace + spread))
+
+
 def _fill_scalar(target: scene_pb2.ScalarProperty, prop: FusedProperty, value: float, time_s: float) -> None:
     confidence = prop.confidence(time_s)
     target.confidence = confidence
@@ -87,7 +94,7 @@ class SceneBuilder:
             obj.position.x_m, obj.position.y_m = float(position[0]), float(position[1])
             obj.position.sources.extend(props.position.sources(time_s))
             obj.position.valid_until_s = props.position.valid_until_s()
-            obj.position.std_m = math.sqrt(max(np.linalg.eigvalsh(Track.position_cov_of(p))))
+            obj.position.std_m = _larger_std_m(Track.position_cov_of(p))
         _fill_scalar(obj.speed_mps, props.speed, speed, time_s)
         heading = math.atan2(velocity[1], velocity[0])
         if speed < _MIN_SPEED_FOR_HEADING_MPS and props.heading.value is not None:

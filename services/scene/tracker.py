@@ -20,7 +20,7 @@ from .association import assign, match_quality, polar_cost_matrix
 from .config import SceneFusionConfig
 from .measurement import Measurement
 from .properties import ObjectProperties
-from .track import RANGING_SOURCES, Track, TrackStatus
+from .track import RANGING_SOURCES, Track, TrackStatus, predict_positions
 
 
 @dataclass
@@ -50,6 +50,10 @@ class Tracker:
         self._next_id = 1
         self._station_links: dict[int, int] = {}
         self.counters = TrackerCounters()
+        # Looked up for every property of every object on every update: resolve the table once.
+        sources = (header_pb2.SENSOR_SOURCE_LIDAR, header_pb2.SENSOR_SOURCE_RADAR, header_pb2.SENSOR_SOURCE_CAMERA,
+                   header_pb2.SENSOR_SOURCE_SONAR, header_pb2.SENSOR_SOURCE_V2V)
+        self._source_configs = {source: config.source(source) for source in sources}
 
     # -- sensor frames ---------------------------------------------------------------------
 
@@ -70,9 +74,7 @@ class Tracker:
         if not tracks:
             return np.zeros((len(measurements), 0))
         time_s = measurements[0].time_s
-        predictions = [track.predicted(time_s) for track in tracks]
-        track_xy = np.array([Track.position_of(x) for x, _ in predictions])
-        track_cov = np.array([Track.position_cov_of(p) for _, p in predictions])
+        track_xy, track_cov = predict_positions(tracks, time_s, self._config.tracking.jerk_psd_m2ps5)
         meas_xy = np.array([m.position_m for m in measurements])
         meas_cov = np.array([m.cov_m2 for m in measurements])
         origins = np.array([m.origin_m for m in measurements])
@@ -145,7 +147,7 @@ class Tracker:
         self._maybe_confirm(track, meas.time_s)
 
     def _start(self, meas: Measurement) -> Track:
-        props = ObjectProperties(self._config.source, self._config.tracking)
+        props = ObjectProperties(self._source_configs.__getitem__, self._config.tracking)
         track = Track(self._next_id, meas, self._config.tracking, props)
         self._next_id += 1
         self.tracks[track.track_id] = track

@@ -4,7 +4,7 @@ import pytest
 from coopdrive.services.scene.config import SceneFusionConfig, TrackingConfig
 from coopdrive.services.scene.measurement import Measurement
 from coopdrive.services.scene.properties import ObjectProperties
-from coopdrive.services.scene.track import Track
+from coopdrive.services.scene.track import Track, predict_positions
 from coopdrive.v1 import header_pb2
 
 CONFIG = SceneFusionConfig()
@@ -78,3 +78,14 @@ def test_a_closer_reading_pulls_the_estimate_more_than_a_further_one_by_the_same
         return abs(Track.position_of(track.predicted(0.1)[0])[0] - 20.0)
 
     assert pulled(-1.0) > pulled(1.0)
+
+
+def test_batch_prediction_for_gating_matches_each_tracks_own_prediction():
+    tracks = [new_track(meas(0.0, 20.0)), new_track(meas(0.1, 40.0, velocity=5.0))]
+    for k in range(1, 6):
+        tracks[0].apply(meas(0.1 * k, object_at(0.1 * k)))
+    xy, cov = predict_positions(tracks, 0.9, CONFIG.tracking.jerk_psd_m2ps5)
+    for track, got_xy, got_cov in zip(tracks, xy, cov, strict=True):
+        x, p = track.predicted(0.9)
+        assert got_xy == pytest.approx(Track.position_of(x))
+        assert got_cov == pytest.approx(Track.position_cov_of(p))
