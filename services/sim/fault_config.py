@@ -13,6 +13,7 @@ from coopdrive.services.sim.sensor_config import FixModeName
 class SensorName(enum.Enum):
     GNSS = "gnss"
     CAN_STATE = "can_state"
+    IMU = "imu"
     RADAR = "radar"
     LIDAR = "lidar"
     CAMERA = "camera"

@@ -10,7 +10,7 @@ import numpy as np
 
 from coopdrive.services.sim.nmea_writer import GgaQuality, NmeaFix, NmeaWriter
 from coopdrive.services.sim.sensor_config import FixModeName, GnssConfig
-from coopdrive.services.sim.sensor_timing import SensorTiming
+from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
 from coopdrive.v1 import gnss_pb2, sim_pb2
 
 # Heudiasyc Table 1 (NovAtel APN-051): horizontal accuracy per positioning mode, taken as a 2D RMS error;
@@ -27,12 +27,24 @@ VERTICAL_TO_HORIZONTAL_RATIO = 1.5
 TYPICAL_HDOP = 0.9
 DIFFERENTIAL_AGE_S = 1.0
 
+SENDER = "sim"
+
 ToGeodetic = Callable[[float, float, float], tuple[float, float, float]]
 
 
 def axis_sigma_m(fix_mode: int) -> float:
     """One-sigma error per horizontal axis so that the 2D RMS equals the table's accuracy."""
     return HORIZONTAL_ACCURACY_M.get(fix_mode, 0.0) / math.sqrt(2.0)
+
+
+def fix_message(fix: NmeaFix) -> gnss_pb2.GnssFix:
+    """The GnssFix of one solution (header left to the caller)."""
+    valid = fix.fix_mode != gnss_pb2.FIX_MODE_NO_FIX
+    return gnss_pb2.GnssFix(
+        latitude_deg=fix.latitude_deg if valid else 0.0, longitude_deg=fix.longitude_deg if valid else 0.0,
+        altitude_m=fix.altitude_m if valid else 0.0, fix_mode=fix.fix_mode, std_east_m=fix.std_east_m,
+        std_north_m=fix.std_north_m, std_up_m=fix.std_up_m, speed_mps=fix.speed_mps, course_deg=fix.course_deg,
+        satellites=fix.satellites, hdop=fix.hdop)
 
 
 @dataclass(frozen=True)
@@ -45,6 +57,9 @@ class GnssOutput:
     measured_x_m: float
     measured_y_m: float
 
+    # The same solution as the stack's geolocation decodes it from the sentences (topic gnss/fix).
+    message: gnss_pb2.GnssFix
+
     @property
     def data(self) -> bytes:
         return b"".join(self.sentences)
@@ -52,7 +67,7 @@ class GnssOutput:
 
 class GnssSensor:
     def __init__(self, config: GnssConfig, rng: np.random.Generator, to_geodetic: ToGeodetic,
-                 utc_epoch: dt.datetime) -> None:
+                 utc_epoch: dt.datetime, vehicle_id: str = "") -> None:
         self.config = config
         self.rng = rng
         self.to_geodetic = to_geodetic
@@ -63,6 +78,8 @@ class GnssSensor:
         self.outage = False
         self._error_enu_m = np.zeros(3)
         self._last_sample_s: float | None = None
+        self.vehicle_id = vehicle_id
+        self._sequence = 0
 
     def set_fix_mode(self, fix_mode: FixModeName | int) -> None:
         """Fault hook (fix_downgrade): the receiver reports this mode and its accuracy from now on."""
@@ -81,8 +98,14 @@ class GnssSensor:
         return gnss_pb2.FIX_MODE_NO_FIX if self.outage else self.fix_mode
 
     def poll(self, now_s: float, ego: sim_pb2.VehicleTruth) -> list[GnssOutput]:
-        ready = self.timing.poll(now_s, lambda sample_s: self._measure(sample_s, ego))
-        return [GnssOutput(sample_s, delivery_s, *out) for sample_s, delivery_s, out in ready]
+        outputs = []
+        for sample_s, delivery_s, (fix, sentences, x_m, y_m) in self.timing.poll(
+                now_s, lambda sample_s: self._measure(sample_s, ego)):
+            self._sequence += 1
+            message = fix_message(fix)
+            stamp(message.header, sample_s, delivery_s, self.vehicle_id, SENDER, self._sequence)
+            outputs.append(GnssOutput(sample_s, delivery_s, fix, sentences, x_m, y_m, message))
+        return outputs
 
     def _update_error(self, sample_s: float, sigma_m: np.ndarray) -> np.ndarray:
         tau_s = self.config.error_correlation_time_s

@@ -62,6 +62,15 @@ class CanStateConfig(_Strict):
     steering_sigma_rad: float = Field(default=0.0005, ge=0)
 
 
+class ImuConfig(_Strict):
+    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=100.0, latency_s=0.005)
+    accel_sigma_mps2: float = Field(default=0.05, ge=0)
+    yaw_rate_sigma_radps: float = Field(default=0.002, ge=0)
+    # Constant biases of this unit (turn-on bias), as a fusion filter must estimate them.
+    accel_bias_mps2: float = 0.0
+    yaw_rate_bias_radps: float = 0.0
+
+
 class RadarConfig(_Strict):
     timing: SensorTimingConfig = SensorTimingConfig(rate_hz=20.0, latency_s=0.05)
     mount_x_m: float = 3.6
@@ -135,6 +144,7 @@ class SonarConfig(_Strict):
 class SensorSuiteConfig(_Strict):
     gnss: GnssConfig = GnssConfig()
     can_state: CanStateConfig = CanStateConfig()
+    imu: ImuConfig = ImuConfig()
     radar: RadarConfig = RadarConfig()
     lidar: LidarConfig = LidarConfig()
     camera: CameraConfig = CameraConfig()

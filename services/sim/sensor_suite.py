@@ -9,6 +9,7 @@ from coopdrive.services.sim.camera_sensor import CameraSensor
 from coopdrive.services.sim.can_state_sensor import CanStateSensor, DriverPedals
 from coopdrive.services.sim.fault_config import SensorName
 from coopdrive.services.sim.gnss_sensor import GnssOutput, GnssSensor, ToGeodetic
+from coopdrive.services.sim.imu_sensor import ImuSensor
 from coopdrive.services.sim.lidar_sensor import LidarSensor
 from coopdrive.services.sim.profiles import VehicleProfile
 from coopdrive.services.sim.radar_sensor import RadarSensor
@@ -26,6 +27,7 @@ class SensorOutputs:
 
     gnss: list[GnssOutput] = field(default_factory=list)
     can_state: list[vehicle_pb2.VehicleCanState] = field(default_factory=list)
+    imu: list[vehicle_pb2.ImuSample] = field(default_factory=list)
     radar: list[sensors_pb2.RadarTracks] = field(default_factory=list)
     lidar: list[sensors_pb2.LidarScan] = field(default_factory=list)
     camera: list[sensors_pb2.CameraFrame] = field(default_factory=list)
@@ -39,13 +41,14 @@ class SensorSuite:
             return sensor_rng(seed, vehicle_id, name.value)
 
         self.vehicle_id = vehicle_id
-        self.gnss = GnssSensor(config.gnss, rng(SensorName.GNSS), to_geodetic, utc_epoch)
+        self.gnss = GnssSensor(config.gnss, rng(SensorName.GNSS), to_geodetic, utc_epoch, vehicle_id)
         self.can_state = CanStateSensor(config.can_state, rng(SensorName.CAN_STATE), profile, vehicle_id)
+        self.imu = ImuSensor(config.imu, rng(SensorName.IMU), vehicle_id)
         self.radar = RadarSensor(config.radar, rng(SensorName.RADAR), vehicle_id)
         self.lidar = LidarSensor(config.lidar, rng(SensorName.LIDAR), vehicle_id)
         self.camera = CameraSensor(config.camera, rng(SensorName.CAMERA), vehicle_id, lanes)
         self.sonar = SonarSensor(config.sonar, rng(SensorName.SONAR), vehicle_id)
-        self._by_name = {SensorName.GNSS: self.gnss, SensorName.CAN_STATE: self.can_state,
+        self._by_name = {SensorName.GNSS: self.gnss, SensorName.CAN_STATE: self.can_state, SensorName.IMU: self.imu,
                          SensorName.RADAR: self.radar, SensorName.LIDAR: self.lidar,
                          SensorName.CAMERA: self.camera, SensorName.SONAR: self.sonar}
 
@@ -59,6 +62,7 @@ class SensorSuite:
         return SensorOutputs(
             gnss=self.gnss.poll(now_s, world.ego),
             can_state=self.can_state.poll(now_s, world.ego, brake_pressure_bar, driver),
+            imu=self.imu.poll(now_s, world.ego),
             radar=self.radar.poll(now_s, world),
             lidar=self.lidar.poll(now_s, world),
             camera=self.camera.poll(now_s, world),

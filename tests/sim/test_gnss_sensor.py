@@ -139,3 +139,16 @@ def test_any_position_and_time_written_as_nmea_reads_back_within_a_millimetre(la
     assert gga.longitude == pytest.approx(lon_deg, abs=1e-8)
     written = dt.datetime.combine(EPOCH.date(), gga.timestamp.replace(tzinfo=None))
     assert abs((written - EPOCH.replace(tzinfo=None)).total_seconds() - seconds) <= 0.005 + 1e-9
+
+
+def test_each_epoch_also_comes_as_a_gnss_fix_message_with_its_header():
+    sensor = GnssSensor(GnssConfig(fix_mode=FixModeName.RTK_FLOAT, timing=SensorTimingConfig(rate_hz=10.0,
+                                                                                              latency_s=0.03)),
+                        sensor_rng(7, "ego", "gnss"), _to_geodetic, EPOCH, vehicle_id="ego")
+    outputs = [o for k in range(3) for o in sensor.poll(k * 0.1, _ego())]
+    message = outputs[-1].message
+    assert message.fix_mode == gnss_pb2.FIX_MODE_RTK_FLOAT
+    assert message.latitude_deg == outputs[-1].fix.latitude_deg
+    assert message.std_east_m == pytest.approx(axis_sigma_m(gnss_pb2.FIX_MODE_RTK_FLOAT))
+    assert (message.header.vehicle_id, message.header.sequence) == ("ego", len(outputs))
+    assert message.header.sent_time_s - message.header.sample_time_s == pytest.approx(0.03)

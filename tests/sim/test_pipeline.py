@@ -9,7 +9,8 @@ from coopdrive.services.sim import metrics
 from coopdrive.services.sim.participants import IntentKind, ScriptedVehicle
 from coopdrive.services.sim.profiles import PASSENGER_CAR
 from coopdrive.services.sim.radio_channel import RadioChannel, RadioNode
-from coopdrive.services.sim.scenario_config import GCDC_2016_FINAL, RadioChannelConfig
+from coopdrive.services.sim.channel_config import RadioChannelConfig
+from coopdrive.services.sim.scenario_config import GCDC_2016_FINAL
 from coopdrive.services.sim.sensor_config import SensorSuiteConfig
 from coopdrive.services.sim.sensor_suite import SensorSuite
 from coopdrive.services.sim.speed_profiles import PiecewiseSpeed, SpeedPoint

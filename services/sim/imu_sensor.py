@@ -1,0 +1,40 @@
+"""An inertial unit at the rear axle: longitudinal and lateral acceleration and yaw rate, with noise and bias."""
+from __future__ import annotations
+
+import numpy as np
+
+from coopdrive.services.sim.sensor_config import ImuConfig
+from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
+from coopdrive.v1 import sim_pb2, vehicle_pb2
+
+SENDER = "sim"
+
+
+class ImuSensor:
+    def __init__(self, config: ImuConfig, rng: np.random.Generator, vehicle_id: str) -> None:
+        self.config = config
+        self.rng = rng
+        self.vehicle_id = vehicle_id
+        self.timing: SensorTiming[vehicle_pb2.ImuSample] = SensorTiming(config.timing, rng)
+        self._sequence = 0
+
+    def set_dropout(self, active: bool) -> None:
+        self.timing.forced_dropout = active
+
+    def poll(self, now_s: float, ego: sim_pb2.VehicleTruth) -> list[vehicle_pb2.ImuSample]:
+        outputs = []
+        for sample_s, delivery_s, message in self.timing.poll(now_s, lambda _: self._measure(ego)):
+            self._sequence += 1
+            stamp(message.header, sample_s, delivery_s, self.vehicle_id, SENDER, self._sequence)
+            outputs.append(message)
+        return outputs
+
+    def _measure(self, ego: sim_pb2.VehicleTruth) -> vehicle_pb2.ImuSample:
+        cfg = self.config
+        noise = self.rng.standard_normal(3)
+        # At the rear axle of a kinematic bicycle the lateral acceleration is centripetal only: v * yaw rate.
+        return vehicle_pb2.ImuSample(
+            accel_longitudinal_mps2=ego.accel_mps2 + cfg.accel_bias_mps2 + cfg.accel_sigma_mps2 * noise[0],
+            accel_lateral_mps2=ego.speed_mps * ego.yaw_rate_radps + cfg.accel_sigma_mps2 * noise[1],
+            yaw_rate_radps=ego.yaw_rate_radps + cfg.yaw_rate_bias_radps + cfg.yaw_rate_sigma_radps * noise[2],
+        )
