@@ -48,7 +48,13 @@ class SceneFusion:
     # -- inputs ----------------------------------------------------------------------------
 
     def on_ego(self, ego: ego_pb2.EgoState) -> None:
-        self._ego = EgoPose.from_state(ego)
+        try:
+            pose = EgoPose.from_state(ego)
+        except ValueError as error:
+            self.rejects.reject(str(error))
+            return
+        if self._ego is None or pose.time_s >= self._ego.time_s:
+            self._ego = pose
 
     def on_lidar(self, scan: sensors_pb2.LidarScan, ego: ego_pb2.EgoState | None = None) -> None:
         pose = self._pose(scan.header.sample_time_s, ego, "lidar")
@@ -105,11 +111,11 @@ class SceneFusion:
         if track is None or not seen_by_us:
             # Nothing of ours sees it: V2V is its only source, so it follows the station, and
             # trust decides whether it may be an obstacle (see _views).
-            fuse = True
-        else:
-            agrees = disagreement is None or disagreement <= self.config.trust.agree_m
-            fuse = reason is None and agrees and self.trust.trusted(observation.station_id)
-        self.tracker.fuse_v2v(meas, link, trust, fuse)
+            self.tracker.fuse_v2v(meas, link, trust, fuse_kinematics=True, scale_covariance=False)
+            return
+        agrees = disagreement is None or disagreement <= self.config.trust.agree_m
+        fuse = reason is None and agrees and self.trust.trusted(observation.station_id)
+        self.tracker.fuse_v2v(meas, link, trust, fuse_kinematics=fuse)
 
     # -- output ----------------------------------------------------------------------------
 
@@ -141,7 +147,11 @@ class SceneFusion:
 
     def _pose(self, time_s: float, ego: ego_pb2.EgoState | None, what: str) -> EgoPose | None:
         if ego is not None:
-            given = EgoPose.from_state(ego)
+            try:
+                given = EgoPose.from_state(ego)
+            except ValueError as error:
+                self.rejects.reject(f"{what}: {error}")
+                return None
             if self._ego is None or given.time_s >= self._ego.time_s:
                 self._ego = given
             return given.at(time_s)

@@ -18,6 +18,9 @@ from coopdrive.v1 import header_pb2, sensors_pb2
 from .config import LidarConfig
 from .measurement import EgoPose, Measurement, cov_to_enu, polar_cov_vehicle
 
+# A vehicle's rear face may be partly hidden, so its measured centre is off by up to a tenth of its width.
+_FACE_CENTRE_STD_FRACTION = 0.1
+
 
 @dataclass
 class LidarCluster:
@@ -111,7 +114,7 @@ class LidarClusterer:
             bearing = math.atan2(rear[1], rear[0])
             cov = polar_cov_vehicle(range_m, bearing, cfg.range_std_m, cfg.bearing_std_rad)
             # The centre of a partly seen face is uncertain by a fraction of its width.
-            cov[1, 1] += (0.1 * cluster.width_m) ** 2
+            cov[1, 1] += (_FACE_CENTRE_STD_FRACTION * cluster.width_m) ** 2
             out.append(
                 Measurement(
                     source=header_pb2.SENSOR_SOURCE_LIDAR,

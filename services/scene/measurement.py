@@ -72,10 +72,16 @@ class EgoPose:
 
     @classmethod
     def from_state(cls, ego: ego_pb2.EgoState) -> EgoPose:
+        """The pose of an EgoState; ValueError naming the field when it is not a number."""
+        for name in ("x_m", "y_m", "heading_rad", "speed_mps", "yaw_rate_radps", "accel_mps2"):
+            if not math.isfinite(getattr(ego, name)):
+                raise ValueError(f"ego state {name} is {getattr(ego, name)}")
         cov = np.zeros((2, 2))
         if len(ego.covariance) >= 36:
             full = np.asarray(ego.covariance, dtype=float).reshape(6, 6)
             cov = full[:2, :2].copy()
+            if not np.all(np.isfinite(cov)):
+                cov = np.zeros((2, 2))
         elif ego.position_std_m > 0.0:
             cov = np.eye(2) * ego.position_std_m**2
         return cls(

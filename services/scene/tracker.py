@@ -87,7 +87,16 @@ class Tracker:
         station = meas.station_id
         linked = self._station_links.get(station)
         if linked is not None and linked in self.tracks:
-            return V2vLink(linked, self._disagreement(self.tracks[linked], meas))
+            link = V2vLink(linked, self._disagreement(self.tracks[linked], meas))
+            if link.disagreement_m is None or link.disagreement_m <= self._config.trust.agree_m:
+                return link
+            # The link itself may be the mistake (two cars close together): move it to a track our
+            # own sensors see where the station says it is, if there is one; otherwise keep it.
+            better = self._agreeing_free_track(meas)
+            if better is None:
+                return link
+            self.tracks[linked].station_id = None
+            return self._link(better, meas)
         free = [t for t in self.tracks.values() if t.station_id is None]
         if free:
             cost = self._costs([meas], free)[0]
@@ -104,6 +113,14 @@ class Tracker:
                     return self._link(ranging[nearest], meas)
         return None
 
+    def _agreeing_free_track(self, meas: Measurement) -> Track | None:
+        for track in self.tracks.values():
+            if track.station_id is None:
+                disagreement = self._disagreement(track, meas)
+                if disagreement is not None and disagreement <= self._config.trust.agree_m:
+                    return track
+        return None
+
     def _link(self, track: Track, meas: Measurement) -> V2vLink:
         track.station_id = meas.station_id
         self._station_links[meas.station_id] = track.track_id
@@ -118,8 +135,12 @@ class Tracker:
         at_claim = fix.position_m + velocity * (meas.time_s - fix.time_s)
         return float(np.linalg.norm(meas.position_m - at_claim))
 
-    def fuse_v2v(self, meas: Measurement, link: V2vLink | None, trust: float, fuse_kinematics: bool) -> int:
-        """Fuse a V2V measurement into its linked track (or a new one); returns the track id."""
+    def fuse_v2v(self, meas: Measurement, link: V2vLink | None, trust: float, fuse_kinematics: bool,
+                 scale_covariance: bool = True) -> int:
+        """Fuse a V2V measurement into its linked track (or a new one); returns the track id.
+
+        scale_covariance=False for objects only V2V sees: there the station is the only source of the
+        position, and its trust shows in confidence, v2v_trust and eligibility instead."""
         if link is None:
             track = self._start(meas)
             self._link(track, meas)
@@ -127,7 +148,7 @@ class Tracker:
         track = self.tracks[link.track_id]
         if fuse_kinematics:
             # Less trusted stations count for less: their covariance grows as 1/trust^2.
-            scale = 1.0 / max(trust, 1e-3) ** 2
+            scale = 1.0 / max(trust, 1e-3) ** 2 if scale_covariance else 1.0
             scaled = replace(meas, cov_m2=meas.cov_m2 * scale, velocity_std_mps=meas.velocity_std_mps * scale**0.5)
             self._fuse(track, scaled, 1.0, v2v_weight=trust)
         else:

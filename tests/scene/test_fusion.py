@@ -2,9 +2,10 @@ import pytest
 
 from coopdrive.services.scene.config import SceneFusionConfig
 from coopdrive.services.scene.fusion import SceneFusion
+from coopdrive.services.scene.track import Track
 from coopdrive.v1 import header_pb2
 
-from .helpers import Road, lidar_scan, v2v
+from .helpers import Road, lidar_scan, radar_tracks, v2v
 
 RADAR = header_pb2.SENSOR_SOURCE_RADAR
 LIDAR = header_pb2.SENSOR_SOURCE_LIDAR
@@ -87,6 +88,8 @@ def test_a_ghost_station_claiming_a_spot_radar_and_lidar_see_free_is_flagged_and
     ghost = by_station(fusion.scene(3.0), 666)
     assert ghost is not None and ghost.ghost
     assert ghost.v2v_trust == 0.0
+    # Shown where the station claims to be, so the HMI can draw it, but flagged.
+    assert ghost.position.x_m == pytest.approx(Road.EGO_SPEED_MPS * 3.0 + 20.0, abs=0.5)
     assert ghost_ids == {ghost.object_id}
     assert ghost.object_id not in mio_ids
     assert len(mio_ids) == 1  # the car 50 m ahead, seen by both sensors
@@ -228,3 +231,33 @@ def test_sensor_frames_before_any_ego_state_are_counted_not_fatal():
     fusion.on_v2v(v2v(0.0, STATION, 20.0, 0.0, 10.0))
     assert fusion.counters()["rejected: v2v: no ego state yet"] == 1
     assert len(fusion.scene(0.0).objects) == 0
+
+
+def test_a_station_linked_to_the_wrong_car_moves_to_the_car_our_sensors_see_where_it_claims():
+    fusion = SceneFusion()
+    road = Road(fusion)
+    near, far = (lambda t: lead_rear_x(t)), (lambda t: lead_rear_x(t) + 3.5)
+    # Only the near car is seen at first, so the station of the far car links to it.
+    for t in road.ticks(0.0, 0.2):
+        road.sense(t, [(near(t), 0.0, 12.0)])
+        fusion.on_v2v(v2v(t, STATION, far(t), 0.0, 12.0))
+    first = fusion.tracker.track_of_station(STATION).track_id
+    for t in road.ticks(0.2, 1.5):
+        road.sense(t, [(near(t), 0.0, 12.0), (far(t), 1.2, 12.0)])
+        fusion.on_v2v(v2v(t, STATION, far(t), 1.2, 12.0))
+    track = fusion.tracker.track_of_station(STATION)
+    assert track.track_id != first
+    assert Track.position_of(track.predicted(1.5)[0]) == pytest.approx([far(1.5), 1.2], abs=0.5)
+
+
+def test_an_ego_state_that_is_not_a_number_is_counted_and_ignored():
+    fusion = SceneFusion()
+    road = Road(fusion)
+    fusion.on_ego(road.ego(0.0))
+    bad = road.ego(0.05)
+    bad.heading_rad = float("nan")
+    fusion.on_ego(bad)
+    fusion.on_radar(radar_tracks(0.1, [(lead_rear_x(0.1), 0.0, 12.0)]), bad)
+    assert fusion.counters()["rejected: ego state heading_rad is nan"] == 1
+    assert fusion.counters()["rejected: radar: ego state heading_rad is nan"] == 1
+    fusion.scene(0.1)
