@@ -8,6 +8,7 @@ import numpy as np
 
 from coopdrive.services.sim import geometry
 from coopdrive.services.sim.road_geometry import LaneGeometry, match_lane
+from coopdrive.services.sim.profiles import PASSENGER_CAR, VehicleProfile
 from coopdrive.services.sim.sensor_config import CameraConfig
 from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
 from coopdrive.services.sim.world_view import WorldView
@@ -22,8 +23,9 @@ FAR_CONFIDENCE = 0.5
 
 class CameraSensor:
     def __init__(self, config: CameraConfig, rng: np.random.Generator, vehicle_id: str,
-                 lanes: Sequence[LaneGeometry] = ()) -> None:
-        self.config = config
+                 lanes: Sequence[LaneGeometry] = (), profile: VehicleProfile = PASSENGER_CAR) -> None:
+        # Mounts left out of the configuration sit where they would on this vehicle.
+        self.config = config = config.placed(profile)
         self.rng = rng
         self.vehicle_id = vehicle_id
         self.lanes = list(lanes)

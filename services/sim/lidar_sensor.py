@@ -6,6 +6,7 @@ import math
 import numpy as np
 
 from coopdrive.services.sim import geometry
+from coopdrive.services.sim.profiles import PASSENGER_CAR, VehicleProfile
 from coopdrive.services.sim.sensor_config import LidarConfig
 from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
 from coopdrive.services.sim.world_view import WorldView
@@ -18,8 +19,10 @@ class LidarSensor:
     """Beams leave the mount; returns are reported as horizontal range and azimuth from the rear axle
     (ego frame), nearer vehicles occluding farther ones, a beam passing over a vehicle flying on."""
 
-    def __init__(self, config: LidarConfig, rng: np.random.Generator, vehicle_id: str) -> None:
-        self.config = config
+    def __init__(self, config: LidarConfig, rng: np.random.Generator, vehicle_id: str,
+                 profile: VehicleProfile = PASSENGER_CAR) -> None:
+        # Mounts left out of the configuration sit where they would on this vehicle.
+        self.config = config = config.placed(profile)
         self.rng = rng
         self.vehicle_id = vehicle_id
         self.timing: SensorTiming[sensors_pb2.LidarScan] = SensorTiming(config.timing, rng)

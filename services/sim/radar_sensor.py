@@ -6,6 +6,7 @@ import math
 import numpy as np
 
 from coopdrive.services.sim import geometry
+from coopdrive.services.sim.profiles import PASSENGER_CAR, VehicleProfile
 from coopdrive.services.sim.sensor_config import RadarConfig
 from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
 from coopdrive.services.sim.world_view import WorldView
@@ -17,8 +18,10 @@ SENDER = "sim"
 class RadarSensor:
     """Range and azimuth are in the ego frame (origin rear axle); visibility is judged from the mount."""
 
-    def __init__(self, config: RadarConfig, rng: np.random.Generator, vehicle_id: str) -> None:
-        self.config = config
+    def __init__(self, config: RadarConfig, rng: np.random.Generator, vehicle_id: str,
+                 profile: VehicleProfile = PASSENGER_CAR) -> None:
+        # Mounts left out of the configuration sit where they would on this vehicle.
+        self.config = config = config.placed(profile)
         self.rng = rng
         self.vehicle_id = vehicle_id
         self.timing: SensorTiming[sensors_pb2.RadarTracks] = SensorTiming(config.timing, rng)

@@ -7,7 +7,17 @@ from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from coopdrive.services.sim.profiles import PASSENGER_CAR, VehicleProfile
 from coopdrive.v1 import gnss_pb2
+
+# Where sensors sit when a configuration leaves their mount out: placed from the vehicle's profile.
+CAMERA_BEHIND_FRONT_BUMPER_M = 2.0
+SONAR_INSET_FROM_SIDE_M = 0.1
+SONAR_CORNER_YAW_RAD = math.radians(30.0)
+
+
+def front_bumper_x_m(profile: VehicleProfile) -> float:
+    return profile.length_m - profile.rear_overhang_m
 
 
 class FixModeName(enum.Enum):
@@ -73,7 +83,8 @@ class ImuConfig(_Strict):
 
 class RadarConfig(_Strict):
     timing: SensorTimingConfig = SensorTimingConfig(rate_hz=20.0, latency_s=0.05)
-    mount_x_m: float = 3.6
+    # None: centre of the front bumper of the vehicle's profile.
+    mount_x_m: float | None = None
     mount_y_m: float = 0.0
     max_range_m: float = Field(default=200.0, gt=0)
     half_fov_rad: float = Field(default=math.radians(9.0), gt=0)
@@ -81,13 +92,19 @@ class RadarConfig(_Strict):
     range_sigma_m: float = Field(default=0.25, ge=0)
     azimuth_sigma_rad: float = Field(default=math.radians(0.3), ge=0)
     range_rate_sigma_mps: float = Field(default=0.12, ge=0)
+
+    def placed(self, profile: VehicleProfile = PASSENGER_CAR) -> RadarConfig:
+        if self.mount_x_m is not None:
+            return self
+        return self.model_copy(update={"mount_x_m": front_bumper_x_m(profile)})
     # Probability that a visible target is missing from one scan.
     miss_probability: float = Field(default=0.0, ge=0, le=1)
 
 
 class LidarConfig(_Strict):
     timing: SensorTimingConfig = SensorTimingConfig(rate_hz=12.5, latency_s=0.03)
-    mount_x_m: float = 3.7
+    # None: centre of the front bumper of the vehicle's profile.
+    mount_x_m: float | None = None
     mount_y_m: float = 0.0
     mount_height_m: float = 0.5
     # Four layers like a Sick LD-MRS, the third about parallel to the ground.
@@ -100,10 +117,16 @@ class LidarConfig(_Strict):
     # Probability that one beam returns nothing.
     point_dropout_probability: float = Field(default=0.0, ge=0, le=1)
 
+    def placed(self, profile: VehicleProfile = PASSENGER_CAR) -> LidarConfig:
+        if self.mount_x_m is not None:
+            return self
+        return self.model_copy(update={"mount_x_m": front_bumper_x_m(profile)})
+
 
 class CameraConfig(_Strict):
     timing: SensorTimingConfig = SensorTimingConfig(rate_hz=15.0, latency_s=0.08)
-    mount_x_m: float = 1.8
+    # None: behind the windscreen, CAMERA_BEHIND_FRONT_BUMPER_M behind the front bumper.
+    mount_x_m: float | None = None
     mount_y_m: float = 0.0
     half_fov_rad: float = Field(default=math.radians(25.0), gt=0)
     max_range_m: float = Field(default=80.0, gt=0)
@@ -113,6 +136,11 @@ class CameraConfig(_Strict):
     lane_heading_sigma_rad: float = Field(default=0.005, ge=0)
     miss_probability: float = Field(default=0.0, ge=0, le=1)
 
+    def placed(self, profile: VehicleProfile = PASSENGER_CAR) -> CameraConfig:
+        if self.mount_x_m is not None:
+            return self
+        return self.model_copy(update={"mount_x_m": front_bumper_x_m(profile) - CAMERA_BEHIND_FRONT_BUMPER_M})
+
 
 class SonarMount(_Strict):
     x_m: float
@@ -120,25 +148,34 @@ class SonarMount(_Strict):
     yaw_rad: float
 
 
-def _default_sonar_mounts() -> list[SonarMount]:
-    front_m, rear_m, half_width_m = 3.6, -0.9, 0.8
+def sonar_mounts_for(profile: VehicleProfile) -> list[SonarMount]:
+    """Three sonars on each bumper: the corners angled outwards, one in the middle."""
+    front_m, rear_m = front_bumper_x_m(profile), -profile.rear_overhang_m
+    side_m = profile.width_m / 2.0 - SONAR_INSET_FROM_SIDE_M
+    corner = SONAR_CORNER_YAW_RAD
     return [
-        SonarMount(x_m=front_m, y_m=half_width_m, yaw_rad=math.radians(30.0)),
+        SonarMount(x_m=front_m, y_m=side_m, yaw_rad=corner),
         SonarMount(x_m=front_m, y_m=0.0, yaw_rad=0.0),
-        SonarMount(x_m=front_m, y_m=-half_width_m, yaw_rad=math.radians(-30.0)),
-        SonarMount(x_m=rear_m, y_m=half_width_m, yaw_rad=math.radians(150.0)),
+        SonarMount(x_m=front_m, y_m=-side_m, yaw_rad=-corner),
+        SonarMount(x_m=rear_m, y_m=side_m, yaw_rad=math.pi - corner),
         SonarMount(x_m=rear_m, y_m=0.0, yaw_rad=math.pi),
-        SonarMount(x_m=rear_m, y_m=-half_width_m, yaw_rad=math.radians(-150.0)),
+        SonarMount(x_m=rear_m, y_m=-side_m, yaw_rad=corner - math.pi),
     ]
 
 
 class SonarConfig(_Strict):
     timing: SensorTimingConfig = SensorTimingConfig(rate_hz=10.0, latency_s=0.02)
-    mounts: list[SonarMount] = Field(default_factory=_default_sonar_mounts)
+    # None: sonar_mounts_for(the vehicle's profile).
+    mounts: list[SonarMount] | None = None
     max_range_m: float = Field(default=4.0, gt=0)
     half_beam_rad: float = Field(default=math.radians(30.0), gt=0)
     rays_per_beam: int = Field(default=9, ge=1)
     range_sigma_m: float = Field(default=0.02, ge=0)
+
+    def placed(self, profile: VehicleProfile = PASSENGER_CAR) -> SonarConfig:
+        if self.mounts is not None:
+            return self
+        return self.model_copy(update={"mounts": sonar_mounts_for(profile)})
 
 
 class SensorSuiteConfig(_Strict):
@@ -149,3 +186,8 @@ class SensorSuiteConfig(_Strict):
     lidar: LidarConfig = LidarConfig()
     camera: CameraConfig = CameraConfig()
     sonar: SonarConfig = SonarConfig()
+
+    def placed(self, profile: VehicleProfile) -> SensorSuiteConfig:
+        """This configuration with every mount left out placed on the given vehicle."""
+        return self.model_copy(update={"radar": self.radar.placed(profile), "lidar": self.lidar.placed(profile),
+                                       "camera": self.camera.placed(profile), "sonar": self.sonar.placed(profile)})

@@ -44,10 +44,10 @@ class SensorSuite:
         self.gnss = GnssSensor(config.gnss, rng(SensorName.GNSS), to_geodetic, utc_epoch, vehicle_id)
         self.can_state = CanStateSensor(config.can_state, rng(SensorName.CAN_STATE), profile, vehicle_id)
         self.imu = ImuSensor(config.imu, rng(SensorName.IMU), vehicle_id)
-        self.radar = RadarSensor(config.radar, rng(SensorName.RADAR), vehicle_id)
-        self.lidar = LidarSensor(config.lidar, rng(SensorName.LIDAR), vehicle_id)
-        self.camera = CameraSensor(config.camera, rng(SensorName.CAMERA), vehicle_id, lanes)
-        self.sonar = SonarSensor(config.sonar, rng(SensorName.SONAR), vehicle_id)
+        self.radar = RadarSensor(config.radar, rng(SensorName.RADAR), vehicle_id, profile)
+        self.lidar = LidarSensor(config.lidar, rng(SensorName.LIDAR), vehicle_id, profile)
+        self.camera = CameraSensor(config.camera, rng(SensorName.CAMERA), vehicle_id, lanes, profile)
+        self.sonar = SonarSensor(config.sonar, rng(SensorName.SONAR), vehicle_id, profile)
         self._by_name = {SensorName.GNSS: self.gnss, SensorName.CAN_STATE: self.can_state, SensorName.IMU: self.imu,
                          SensorName.RADAR: self.radar, SensorName.LIDAR: self.lidar,
                          SensorName.CAMERA: self.camera, SensorName.SONAR: self.sonar}

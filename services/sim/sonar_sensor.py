@@ -4,6 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from coopdrive.services.sim import geometry
+from coopdrive.services.sim.profiles import PASSENGER_CAR, VehicleProfile
 from coopdrive.services.sim.sensor_config import SonarConfig
 from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
 from coopdrive.services.sim.world_view import WorldView
@@ -13,8 +14,10 @@ SENDER = "sim"
 
 
 class SonarSensor:
-    def __init__(self, config: SonarConfig, rng: np.random.Generator, vehicle_id: str) -> None:
-        self.config = config
+    def __init__(self, config: SonarConfig, rng: np.random.Generator, vehicle_id: str,
+                 profile: VehicleProfile = PASSENGER_CAR) -> None:
+        # Mounts left out of the configuration sit where they would on this vehicle.
+        self.config = config = config.placed(profile)
         self.rng = rng
         self.vehicle_id = vehicle_id
         self.timing: SensorTiming[sensors_pb2.SonarRanges] = SensorTiming(config.timing, rng)

@@ -6,7 +6,7 @@ import pytest
 from coopdrive.services.sim.camera_sensor import CameraSensor
 from coopdrive.services.sim.can_state_sensor import CanStateSensor, DriverPedals, wheel_speeds_mps
 from coopdrive.services.sim.lidar_sensor import LidarSensor
-from coopdrive.services.sim.profiles import PASSENGER_CAR
+from coopdrive.services.sim.profiles import PASSENGER_CAR, TRUCK
 from coopdrive.services.sim.radar_sensor import RadarSensor
 from coopdrive.services.sim.road_geometry import straight_road
 from coopdrive.services.sim.sensor_config import (CameraConfig, CanStateConfig, LidarConfig, RadarConfig,
@@ -88,7 +88,8 @@ def test_lidar_sees_the_nearest_vehicle_and_not_the_one_it_hides():
     assert ranges[ahead] == pytest.approx(_rear_gap(20.0), abs=0.01)
     assert ranges.max() < 25.0
     # Eq. (1): about w / (d tan phi) beams hit the back of a vehicle of width w.
-    expected_points = 1.8 / ((_rear_gap(20.0) - config.mount_x_m) * math.tan(config.azimuth_resolution_rad))
+    mount_x_m = sensor.config.mount_x_m
+    expected_points = 1.8 / ((_rear_gap(20.0) - mount_x_m) * math.tan(config.azimuth_resolution_rad))
     assert abs(len(ranges) - expected_points) <= 2
 
 
@@ -134,3 +135,15 @@ def test_a_sensor_in_forced_dropout_delivers_nothing():
     sensor = SonarSensor(SonarConfig(timing=TIMING), sensor_rng(5, "ego", "sonar"), "ego")
     sensor.set_dropout(True)
     assert sensor.poll(1.0, _world()) == []
+
+
+def test_mounts_left_out_are_placed_on_the_vehicles_bumpers():
+    truck_front_m = TRUCK.length_m - TRUCK.rear_overhang_m
+    sonar = SonarSensor(SonarConfig(timing=TIMING, range_sigma_m=0.0), sensor_rng(5, "t", "sonar"), "t", TRUCK)
+    ranges = sonar.poll(0.0, _world(_car("close", truck_front_m + 1.5 + 0.9)))[0].ranges
+    assert ranges[1].mount_x_m == truck_front_m and ranges[4].mount_x_m == -TRUCK.rear_overhang_m
+    assert ranges[1].range_m == pytest.approx(1.5, abs=1e-6)
+    radar = RadarSensor(RadarConfig(timing=TIMING), sensor_rng(2, "t", "radar"), "t", TRUCK)
+    assert radar.config.mount_x_m == truck_front_m
+    placed = RadarConfig(timing=TIMING, mount_x_m=1.0).placed(TRUCK)
+    assert placed.mount_x_m == 1.0
