@@ -23,13 +23,17 @@ from .frontends import (
 )
 from .lidar import LidarClusterer
 from .measurement import EgoPose, Measurement, V2vObservation
-from .scene_builder import LaneOf, ObjectView, SceneBuilder
+from .scene_builder import FrenetOf, LaneOf, ObjectView, SceneBuilder
 from .tracker import Tracker
 from .trust import V2vTrust
 
 
 class SceneFusion:
-    def __init__(self, config: SceneFusionConfig | None = None, lane_of: LaneOf | None = None) -> None:
+    def __init__(self, config: SceneFusionConfig | None = None, lane_of: LaneOf | None = None,
+                 frenet_of: FrenetOf | None = None) -> None:
+        """lane_of(x_m, y_m) -> lane index or None, and frenet_of(x_m, y_m) -> (station_m, lateral_m)
+        on the current ego lane or None, come from the road map; without them lanes are 4 m bands
+        (lidar.lane_margin_m) and gaps run along the ego heading."""
         self.config = config or SceneFusionConfig()
         self.rejects = RejectCounter()
         self.tracker = Tracker(self.config)
@@ -40,7 +44,7 @@ class SceneFusion:
         self._sonar = SonarFrontEnd(self.config.sonar, self.rejects)
         self._v2v = V2vFrontEnd(self.config.v2v, self.rejects)
         self._free_space = FreeSpaceOracle(self.config.trust, self.config.radar)
-        self._builder = SceneBuilder(self.config, lane_of)
+        self._builder = SceneBuilder(self.config, lane_of, frenet_of)
         self._ego: EgoPose | None = None
         self._free_ranges_m: list[float] = []
         self.lane_markings: LaneMarkings | None = None

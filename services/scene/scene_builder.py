@@ -22,6 +22,8 @@ from .measurement import EgoPose
 from .track import Track
 
 LaneOf = Callable[[float, float], "int | None"]
+# (x_m, y_m) -> (station_m, lateral_offset_m) on the current ego lane's centre line, or None.
+FrenetOf = Callable[[float, float], "tuple[float, float] | None"]
 UNKNOWN_LANE = -1
 # Below this speed the velocity direction says nothing about heading.
 _MIN_SPEED_FOR_HEADING_MPS = 0.5
@@ -56,9 +58,10 @@ def _fill_scalar(target: scene_pb2.ScalarProperty, prop: FusedProperty, value: f
 
 
 class SceneBuilder:
-    def __init__(self, config: SceneFusionConfig, lane_of: LaneOf | None) -> None:
+    def __init__(self, config: SceneFusionConfig, lane_of: LaneOf | None, frenet_of: FrenetOf | None = None) -> None:
         self._config = config
         self._lane_of = lane_of
+        self._frenet_of = frenet_of
 
     def lane(self, x_m: float, y_m: float) -> int | None:
         return self._lane_of(x_m, y_m) if self._lane_of is not None else None
@@ -123,14 +126,26 @@ class SceneBuilder:
         left = np.array([-forward[1], forward[0]])
         rel = position - ego.position_m
         front_bumper_m = self._config.ego_length_m - self._config.ego_rear_overhang_m
-        # Along the ego heading: over the few tens of metres that matter, the lane's own curvature
-        # moves this by centimetres only.
-        obj.longitudinal_gap_m = float(rel @ forward) - front_bumper_m
-        obj.lateral_offset_m = float(rel @ left)
+        along, across = self._along_ego_lane(ego, position)
+        if along is None:
+            # No lane geometry: along the ego heading, which on a straight road is the same thing.
+            along, across = float(rel @ forward), float(rel @ left)
+        obj.longitudinal_gap_m = along - front_bumper_m
+        obj.lateral_offset_m = across
         obj.relative_speed_mps = float(velocity @ forward) - ego.speed_mps
         obj.v2v_trust = view.v2v_trust
         obj.ghost = view.ghost
         return obj, lane
+
+    def _along_ego_lane(self, ego: EgoPose, position: np.ndarray) -> tuple[float | None, float]:
+        """Station and lateral offset of the object relative to the ego, on the ego lane's centre line."""
+        if self._frenet_of is None:
+            return None, 0.0
+        ego_frenet = self._frenet_of(ego.x_m, ego.y_m)
+        obj_frenet = self._frenet_of(float(position[0]), float(position[1]))
+        if ego_frenet is None or obj_frenet is None:
+            return None, 0.0
+        return obj_frenet[0] - ego_frenet[0], obj_frenet[1] - ego_frenet[1]
 
     def _in_corridor(self, obj: scene_pb2.SceneObject) -> bool:
         return abs(obj.lateral_offset_m) <= 0.5 * self._config.lidar.lane_margin_m

@@ -1,11 +1,14 @@
+import math
+
 import pytest
 
 from coopdrive.services.scene.config import SceneFusionConfig
 from coopdrive.services.scene.fusion import SceneFusion
+from coopdrive.services.scene.measurement import V2vObservation
 from coopdrive.services.scene.track import Track
 from coopdrive.v1 import header_pb2
 
-from .helpers import Road, lidar_scan, radar_tracks, v2v
+from .helpers import Road, ego_state, lidar_scan, radar_tracks, v2v
 
 RADAR = header_pb2.SENSOR_SOURCE_RADAR
 LIDAR = header_pb2.SENSOR_SOURCE_LIDAR
@@ -261,3 +264,27 @@ def test_an_ego_state_that_is_not_a_number_is_counted_and_ignored():
     assert fusion.counters()["rejected: ego state heading_rad is nan"] == 1
     assert fusion.counters()["rejected: radar: ego state heading_rad is nan"] == 1
     fusion.scene(0.1)
+
+
+def test_on_a_curve_the_gap_runs_along_the_ego_lane_not_the_straight_line():
+    radius_m = 100.0
+
+    def along_circle(x_m, y_m):
+        """A left-hand lane: circle of radius 100 m centred at (0, 100), starting at the origin heading east."""
+        dx, dy = x_m, y_m - radius_m
+        return radius_m * math.atan2(dx, -dy), radius_m - math.hypot(dx, dy)
+
+    fusion = SceneFusion(frenet_of=along_circle)
+    fusion.on_ego(ego_state(0.0))
+    arc_m = 40.0
+    angle = arc_m / radius_m
+    x, y = radius_m * math.sin(angle), radius_m * (1.0 - math.cos(angle))
+    for k in range(4):
+        t = 0.1 * k
+        fusion.on_v2v(V2vObservation(station_id=3, x_m=x, y_m=y, speed_mps=0.0, heading_rad=angle, accel_mps2=0.0,
+                                     length_m=4.5, width_m=1.8, sample_time_s=t))
+    # reference_is_front: the CAM point is the front, so the rear lies 4.5 m back along the heading
+    (obj,) = fusion.scene(0.3).objects
+    front_bumper_m = fusion.config.ego_length_m - fusion.config.ego_rear_overhang_m
+    assert obj.longitudinal_gap_m == pytest.approx(arc_m - 4.5 - front_bumper_m, abs=0.1)
+    assert obj.lateral_offset_m == pytest.approx(0.0, abs=0.15)

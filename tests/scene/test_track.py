@@ -47,7 +47,6 @@ def test_a_late_measurement_gives_the_same_state_as_if_it_had_arrived_in_order()
 
 def test_a_late_measurement_changes_the_estimate():
     track = new_track(meas(0.0, object_at(0.0)))
-    before = None
     for t in (0.1, 0.2, 0.3):
         track.apply(meas(t, object_at(t)))
     before = track.predicted(0.3)[0].copy()
