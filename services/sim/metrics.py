@@ -191,8 +191,10 @@ def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[s
           reference_speed_mps: Mapping[str, SpeedReference] | None = None,
           safety_radius_m: float = DEFAULT_SAFETY_RADIUS_M, standstill_m: float = DEFAULT_STANDSTILL_M,
           headway_s: float = DEFAULT_HEADWAY_S, string_start_s: float = 0.0,
-          string_frequency_hz: float | None = None) -> dict[str, float]:
-    """The run's metrics; `platoon` lists vehicle ids leader first for the string gain."""
+          string_frequency_hz: float | None = None,
+          position_estimates: Mapping[str, tuple[np.ndarray, np.ndarray]] | None = None) -> dict[str, float]:
+    """The run's metrics; `platoon` lists vehicle ids leader first for the string gain;
+    `position_estimates` maps a vehicle id to (time_s (N,), xy_m (N, 2)) of the stack's own estimate."""
     judged = list(automated) if automated is not None else sorted(truth.automated) or truth.vehicle_ids
     metrics: dict[str, float] = {"collisions": float(collisions(truth)),
                                  "safety_circle_violations": float(safety_circle_violations(truth, safety_radius_m))}
@@ -206,4 +208,16 @@ def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[s
         window = truth.time_s >= string_start_s
         metrics["string_gain"] = string_gain([truth.get(vid, "speed_mps")[window] for vid in platoon],
                                              truth.time_s[window], string_frequency_hz)
+    if position_estimates:
+        squared, count = 0.0, 0
+        for vid, (time_s, xy_m) in position_estimates.items():
+            true_xy = np.column_stack((truth.get(vid, "x_m"), truth.get(vid, "y_m")))
+            rmse = position_rmse_m(time_s, xy_m, truth.time_s, true_xy)
+            times = np.asarray(time_s)
+            used = int(np.count_nonzero((times >= truth.time_s[0]) & (times <= truth.time_s[-1])))
+            if math.isfinite(rmse):
+                squared += rmse ** 2 * used
+                count += used
+        if count:
+            metrics["position_rmse_m"] = math.sqrt(squared / count)
     return metrics

@@ -85,3 +85,10 @@ def test_position_rmse_interpolates_the_truth_at_the_estimate_times():
 def test_identity_switches_count_changes_of_a_vehicles_track_id():
     frames = [{"a": 1, "b": 2}, {"a": 1, "b": 3}, {"a": 1}, {"a": 4, "b": 3}]
     assert metrics.identity_switches(frames) == 2
+
+
+def test_the_judge_reports_the_localisation_rmse_of_the_given_estimates():
+    frames = [(k * 1.0, [_truth("f", 10.0 * k)]) for k in range(3)]
+    estimates = {"f": (np.array([0.5, 1.5]), np.array([[5.0, 3.0], [15.0, -4.0]]))}
+    result = metrics.judge(TruthSeries.from_frames(frames), position_estimates=estimates)
+    assert result["position_rmse_m"] == pytest.approx(math.sqrt((9.0 + 16.0) / 2.0))
