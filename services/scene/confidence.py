@@ -4,9 +4,11 @@ The thesis gives the rules in words; the equations below are our formalisation o
 
   (C1) support of source s decays between readings:  c_s(t) = c_s(t_s) * exp(-decay_s * (t - t_s)),
        and is gone once t - t_s > fade_s ("objects and surfaces have a fade time").
-  (C2) a reading of match quality q in [0, 1] raises it: c_s <- c_s(t) + gain_s * q * (max_s - c_s(t))
+  (C2) a reading of match quality q in [0, 1] moves it towards q * max_s:
+       c_s <- c_s(t) + gain_s * (q * max_s - c_s(t))
        ("a new matching reading increases the confidence ... according to sensor types and how well
-       the properties of the objects matches up").
+       the properties of the objects matches up"); readings that match poorly, or come from a V2V
+       station we trust little, cannot push one source beyond q * max_s.
   (C3) independent sources combine as c = 1 - prod_s (1 - c_s(t)), so a second sensor seeing the same
        thing is a boost ("detection of the same object by a new sensor gives a confidence boost").
   (C4) values blend as v <- (c_old v_old + b c_new v_new) / (c_old + b c_new), b the bias for new data,
@@ -60,13 +62,16 @@ class FusedProperty:
 
     def support(self, source: int, time_s: float, quality: float = 1.0) -> None:
         """One reading of this property by `source`, matching with quality q in [0, 1]."""
-        cfg = self._source_config(source)
         quality = min(1.0, max(0.0, quality))
+        if quality == 0.0:
+            # A reading that matches not at all supports nothing, and must not keep the property alive.
+            return
+        cfg = self._source_config(source)
         previous = self._support.get(source)
         # A late reading never moves the support time backwards, and does not decay into the future.
         at_s = max(time_s, previous.time_s) if previous else time_s
         current = self.source_confidence(source, at_s)
-        raised = current + cfg.gain * quality * (cfg.max_confidence - current)  # (C2)
+        raised = current + cfg.gain * (quality * cfg.max_confidence - current)  # (C2)
         self._support[source] = _Support(confidence=raised, time_s=at_s)
 
     def update(self, source: int, time_s: float, value: float, quality: float = 1.0) -> None:

@@ -107,6 +107,9 @@ class TrustConfig(BaseModel):
     radar_match_m: float = Field(default=2.5, gt=0.0)
     # A V2V claim compared with sensor data older than this is not compared at all.
     max_sensor_age_s: float = Field(default=0.3, gt=0.0)
+    # Floor of the weight a V2V reading gets in confidence: an untrusted station still keeps its own
+    # V2V-only object (flagged) and its station id alive, at low confidence.
+    min_support_weight: float = Field(default=0.1, gt=0.0, le=1.0)
     # One free-space contradiction costs this much at once; this many make the station a ghost.
     ghost_penalty: float = Field(default=0.3, ge=0.0, le=1.0)
     ghost_hits: int = Field(default=2, ge=1)

@@ -142,18 +142,19 @@ class Tracker:
         scale_covariance=False for objects only V2V sees: there the station is the only source of the
         position, and its trust shows in confidence, v2v_trust and eligibility instead."""
         if link is None:
-            track = self._start(meas)
+            track = self._start(meas, max(trust, self._config.trust.min_support_weight))
             self._link(track, meas)
             return track.track_id
         track = self.tracks[link.track_id]
+        weight = max(trust, self._config.trust.min_support_weight)
         if fuse_kinematics:
             # Less trusted stations count for less: their covariance grows as 1/trust^2.
             scale = 1.0 / max(trust, 1e-3) ** 2 if scale_covariance else 1.0
             scaled = replace(meas, cov_m2=meas.cov_m2 * scale, velocity_std_mps=meas.velocity_std_mps * scale**0.5)
-            self._fuse(track, scaled, 1.0, v2v_weight=trust)
+            self._fuse(track, scaled, 1.0, v2v_weight=weight)
         else:
             self.counters.v2v_not_fused += 1
-            track.props.station_id.update(meas.source, meas.time_s, float(meas.station_id), trust)
+            track.props.station_id.update(meas.source, meas.time_s, float(meas.station_id), weight)
         return track.track_id
 
     # -- life cycle ------------------------------------------------------------------------
@@ -167,13 +168,13 @@ class Tracker:
         track.props.support(meas, quality, v2v_weight)
         self._maybe_confirm(track, meas.time_s)
 
-    def _start(self, meas: Measurement) -> Track:
+    def _start(self, meas: Measurement, v2v_weight: float = 1.0) -> Track:
         props = ObjectProperties(self._source_configs.__getitem__, self._config.tracking)
         track = Track(self._next_id, meas, self._config.tracking, props)
         self._next_id += 1
         self.tracks[track.track_id] = track
         self.counters.created += 1
-        props.support(meas, 1.0)
+        props.support(meas, 1.0, v2v_weight)
         self._maybe_confirm(track, meas.time_s)
         return track
 

@@ -120,3 +120,20 @@ def test_a_late_reading_does_not_move_the_support_time_backwards():
     prop.support(LIDAR, 1.0)
     prop.support(LIDAR, 0.8)
     assert prop.valid_until_s() == pytest.approx(1.5)
+
+
+def test_readings_that_match_poorly_cannot_push_a_source_beyond_quality_times_its_ceiling():
+    prop = make()
+    for _ in range(60):
+        prop.support(V2V, 0.0, quality=0.5)
+    assert prop.confidence(0.0) == pytest.approx(0.35)  # 0.5 * 0.7
+    prop.support(V2V, 0.0, quality=0.1)
+    # 0.35 + 0.3 * (0.07 - 0.35)
+    assert prop.confidence(0.0) == pytest.approx(0.266)
+
+
+def test_a_reading_that_matches_not_at_all_does_not_keep_a_property_alive():
+    prop = make()
+    prop.support(LIDAR, 0.0)
+    prop.support(LIDAR, 0.4, quality=0.0)
+    assert prop.confidence(0.6) == UNKNOWN_CONFIDENCE
