@@ -87,6 +87,13 @@ class Tracker:
         station = meas.station_id
         linked = self._station_links.get(station)
         if linked is not None and linked in self.tracks:
+            if self.tracks[linked].ranging_fix is None:
+                # Our sensors now see a car near where this V2V-only object is: that is the same
+                # vehicle, so the V2V-only duplicate goes and the station moves to the seen track.
+                seen = self._nearest_free_ranging(meas)
+                if seen is not None:
+                    self._remove(linked)
+                    return self._link(seen, meas)
             link = V2vLink(linked, self._disagreement(self.tracks[linked], meas))
             if link.disagreement_m is None or link.disagreement_m <= self._config.trust.agree_m:
                 return link
@@ -105,13 +112,20 @@ class Tracker:
                 return self._link(free[best], meas)
             # An offset station lands outside the gate; a ranging track within a car length still
             # takes it, so the offset shows up as disagreement rather than as a second object.
-            ranging = [t for t in free if t.ranging_fix is not None]
-            if ranging:
-                gaps = [float(np.linalg.norm(Track.position_of(t.predicted(meas.time_s)[0]) - meas.position_m)) for t in ranging]
-                nearest = int(np.argmin(gaps))
-                if gaps[nearest] <= self._config.trust.link_gate_m:
-                    return self._link(ranging[nearest], meas)
+            seen = self._nearest_free_ranging(meas)
+            if seen is not None:
+                return self._link(seen, meas)
         return None
+
+    def _nearest_free_ranging(self, meas: Measurement) -> Track | None:
+        """The unlinked LiDAR/radar track nearest the claim, if within link_gate_m."""
+        best, best_gap = None, self._config.trust.link_gate_m
+        for track in self.tracks.values():
+            if track.station_id is None and track.ranging_fix is not None:
+                gap = float(np.linalg.norm(Track.position_of(track.predicted(meas.time_s)[0]) - meas.position_m))
+                if gap <= best_gap:
+                    best, best_gap = track, gap
+        return best
 
     def _agreeing_free_track(self, meas: Measurement) -> Track | None:
         for track in self.tracks.values():
@@ -196,11 +210,14 @@ class Tracker:
             else:
                 dead = track.props.position.faded(time_s)
             if dead:
-                track.status = TrackStatus.DELETED
-                del self.tracks[track_id]
-                if track.station_id is not None and self._station_links.get(track.station_id) == track_id:
-                    del self._station_links[track.station_id]
-                self.counters.deleted += 1
+                self._remove(track_id)
+
+    def _remove(self, track_id: int) -> None:
+        track = self.tracks.pop(track_id)
+        track.status = TrackStatus.DELETED
+        if track.station_id is not None and self._station_links.get(track.station_id) == track_id:
+            del self._station_links[track.station_id]
+        self.counters.deleted += 1
 
     def confirmed(self) -> list[Track]:
         return [t for t in self.tracks.values() if t.status is TrackStatus.CONFIRMED]

@@ -288,3 +288,19 @@ def test_on_a_curve_the_gap_runs_along_the_ego_lane_not_the_straight_line():
     front_bumper_m = fusion.config.ego_length_m - fusion.config.ego_rear_overhang_m
     assert obj.longitudinal_gap_m == pytest.approx(arc_m - 4.5 - front_bumper_m, abs=0.1)
     assert obj.lateral_offset_m == pytest.approx(0.0, abs=0.15)
+
+
+def test_an_offset_station_heard_before_our_sensors_see_its_car_ends_up_as_one_untrusted_object():
+    fusion = SceneFusion()
+    road = Road(fusion)
+    for t in road.ticks(0.0, 1.0):
+        fusion.on_ego(road.ego(t))
+        fusion.on_v2v(v2v(t, STATION, lead_rear_x(t) + 3.0, 0.0, 12.0))
+    assert len(fusion.scene(1.0).objects) == 1
+    for t in road.ticks(1.0, 3.0):
+        road.sense(t, [(lead_rear_x(t), 0.0, 12.0)])
+        fusion.on_v2v(v2v(t, STATION, lead_rear_x(t) + 3.0, 0.0, 12.0))
+    obj = only(fusion.scene(3.0))
+    assert obj.station_id.value == STATION
+    assert not fusion.trust.trusted(STATION)
+    assert obj.position.x_m == pytest.approx(lead_rear_x(3.0), abs=0.3)
