@@ -25,17 +25,17 @@ _sym_db = _symbol_database.Default()
 from coopdrive.v1 import header_pb2 as coopdrive_dot_v1_dot_header__pb2
 
 
-DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x1c\x63oopdrive/v1/actuation.proto\x12\x0c\x63oopdrive.v1\x1a\x19\x63oopdrive/v1/header.proto\"g\n\x10ModeAvailability\x12\'\n\x04mode\x18\x01 \x01(\x0e\x32\x19.coopdrive.v1.DrivingMode\x12\x11\n\tavailable\x18\x02 \x01(\x08\x12\x17\n\x0funmet_condition\x18\x03 \x01(\t\"\xf6\x02\n\x0f\x41\x63tuationStatus\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\'\n\x04mode\x18\x02 \x01(\x0e\x32\x19.coopdrive.v1.DrivingMode\x12\x16\n\x0ethrottle_ratio\x18\x03 \x01(\x01\x12\x13\n\x0b\x62rake_ratio\x18\x04 \x01(\x01\x12\x1a\n\x12steering_angle_rad\x18\x05 \x01(\x01\x12\x16\n\x0eindicator_left\x18\x06 \x01(\x08\x12\x17\n\x0findicator_right\x18\x07 \x01(\x08\x12\x15\n\rhazard_lights\x18\x08 \x01(\x08\x12\x34\n\x0c\x61vailability\x18\t \x03(\x0b\x32\x1e.coopdrive.v1.ModeAvailability\x12\x1f\n\x17last_mode_change_reason\x18\n \x01(\t\x12\x13\n\x0b\x66rames_sent\x18\x0b \x01(\x04\x12\x17\n\x0f\x66rames_rejected\x18\x0c \x01(\x04\"r\n\rOverrideEvent\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12,\n\x06reason\x18\x02 \x01(\x0e\x32\x1c.coopdrive.v1.OverrideReason\x12\r\n\x05value\x18\x03 \x01(\x01\"\x82\x01\n\x0bModeRequest\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\'\n\x04mode\x18\x02 \x01(\x0e\x32\x19.coopdrive.v1.DrivingMode\x12\x14\n\x0crequested_by\x18\x03 \x01(\t\x12\x0e\n\x06reason\x18\x04 \x01(\t\"[\n\rEmergencyStop\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x14\n\x0crequested_by\x18\x02 \x01(\t\x12\x0e\n\x06reason\x18\x03 \x01(\t*\x9b\x01\n\x0b\x44rivingMode\x12\x1c\n\x18\x44RIVING_MODE_UNSPECIFIED\x10\x00\x12\x17\n\x13\x44RIVING_MODE_MANUAL\x10\x01\x12\x1c\n\x18\x44RIVING_MODE_COOPERATIVE\x10\x02\x12\x1b\n\x17\x44RIVING_MODE_AUTONOMOUS\x10\x03\x12\x1a\n\x16\x44RIVING_MODE_SAFE_STOP\x10\x04*\x88\x01\n\x0eOverrideReason\x12\x1f\n\x1bOVERRIDE_REASON_UNSPECIFIED\x10\x00\x12\x1c\n\x18OVERRIDE_REASON_STEERING\x10\x01\x12\x1c\n\x18OVERRIDE_REASON_THROTTLE\x10\x02\x12\x19\n\x15OVERRIDE_REASON_BRAKE\x10\x03\x62\x06proto3')
+DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x1c\x63oopdrive/v1/actuation.proto\x12\x0c\x63oopdrive.v1\x1a\x19\x63oopdrive/v1/header.proto\"g\n\x10ModeAvailability\x12\'\n\x04mode\x18\x01 \x01(\x0e\x32\x19.coopdrive.v1.DrivingMode\x12\x11\n\tavailable\x18\x02 \x01(\x08\x12\x17\n\x0funmet_condition\x18\x03 \x01(\t\"\xf6\x02\n\x0f\x41\x63tuationStatus\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\'\n\x04mode\x18\x02 \x01(\x0e\x32\x19.coopdrive.v1.DrivingMode\x12\x16\n\x0ethrottle_ratio\x18\x03 \x01(\x01\x12\x13\n\x0b\x62rake_ratio\x18\x04 \x01(\x01\x12\x1a\n\x12steering_angle_rad\x18\x05 \x01(\x01\x12\x16\n\x0eindicator_left\x18\x06 \x01(\x08\x12\x17\n\x0findicator_right\x18\x07 \x01(\x08\x12\x15\n\rhazard_lights\x18\x08 \x01(\x08\x12\x34\n\x0c\x61vailability\x18\t \x03(\x0b\x32\x1e.coopdrive.v1.ModeAvailability\x12\x1f\n\x17last_mode_change_reason\x18\n \x01(\t\x12\x13\n\x0b\x66rames_sent\x18\x0b \x01(\x04\x12\x17\n\x0f\x66rames_rejected\x18\x0c \x01(\x04\"r\n\rOverrideEvent\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12,\n\x06reason\x18\x02 \x01(\x0e\x32\x1c.coopdrive.v1.OverrideReason\x12\r\n\x05value\x18\x03 \x01(\x01\"\x82\x01\n\x0bModeRequest\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\'\n\x04mode\x18\x02 \x01(\x0e\x32\x19.coopdrive.v1.DrivingMode\x12\x14\n\x0crequested_by\x18\x03 \x01(\t\x12\x0e\n\x06reason\x18\x04 \x01(\t\"[\n\rEmergencyStop\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x14\n\x0crequested_by\x18\x02 \x01(\t\x12\x0e\n\x06reason\x18\x03 \x01(\t\"\xff\x01\n\x0f\x41\x63tuatorCommand\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x16\n\x0ethrottle_ratio\x18\x02 \x01(\x01\x12\x13\n\x0b\x62rake_ratio\x18\x03 \x01(\x01\x12\x1a\n\x12steering_angle_rad\x18\x04 \x01(\x01\x12\x1a\n\x12\x61\x63\x63\x65l_request_mps2\x18\x05 \x01(\x01\x12\x16\n\x0eindicator_left\x18\x06 \x01(\x08\x12\x17\n\x0findicator_right\x18\x07 \x01(\x08\x12\x15\n\rhazard_lights\x18\x08 \x01(\x08\x12\x19\n\x11\x61utomation_active\x18\t \x01(\x08*\x9b\x01\n\x0b\x44rivingMode\x12\x1c\n\x18\x44RIVING_MODE_UNSPECIFIED\x10\x00\x12\x17\n\x13\x44RIVING_MODE_MANUAL\x10\x01\x12\x1c\n\x18\x44RIVING_MODE_COOPERATIVE\x10\x02\x12\x1b\n\x17\x44RIVING_MODE_AUTONOMOUS\x10\x03\x12\x1a\n\x16\x44RIVING_MODE_SAFE_STOP\x10\x04*\x88\x01\n\x0eOverrideReason\x12\x1f\n\x1bOVERRIDE_REASON_UNSPECIFIED\x10\x00\x12\x1c\n\x18OVERRIDE_REASON_STEERING\x10\x01\x12\x1c\n\x18OVERRIDE_REASON_THROTTLE\x10\x02\x12\x19\n\x15OVERRIDE_REASON_BRAKE\x10\x03\x62\x06proto3')
 
 _globals = globals()
 _builder.BuildMessageAndEnumDescriptors(DESCRIPTOR, _globals)
 _builder.BuildTopDescriptorsAndMessages(DESCRIPTOR, 'coopdrive.v1.actuation_pb2', _globals)
 if not _descriptor._USE_C_DESCRIPTORS:
   DESCRIPTOR._loaded_options = None
-  _globals['_DRIVINGMODE']._serialized_start=898
-  _globals['_DRIVINGMODE']._serialized_end=1053
-  _globals['_OVERRIDEREASON']._serialized_start=1056
-  _globals['_OVERRIDEREASON']._serialized_end=1192
+  _globals['_DRIVINGMODE']._serialized_start=1156
+  _globals['_DRIVINGMODE']._serialized_end=1311
+  _globals['_OVERRIDEREASON']._serialized_start=1314
+  _globals['_OVERRIDEREASON']._serialized_end=1450
   _globals['_MODEAVAILABILITY']._serialized_start=73
   _globals['_MODEAVAILABILITY']._serialized_end=176
   _globals['_ACTUATIONSTATUS']._serialized_start=179
@@ -46,4 +46,6 @@ if not _descriptor._USE_C_DESCRIPTORS:
   _globals['_MODEREQUEST']._serialized_end=802
   _globals['_EMERGENCYSTOP']._serialized_start=804
   _globals['_EMERGENCYSTOP']._serialized_end=895
+  _globals['_ACTUATORCOMMAND']._serialized_start=898
+  _globals['_ACTUATORCOMMAND']._serialized_end=1153
 # @@protoc_insertion_point(module_scope)

@@ -101,3 +101,25 @@ class EmergencyStop(_message.Message):
     requested_by: str
     reason: str
     def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., requested_by: _Optional[str] = ..., reason: _Optional[str] = ...) -> None: ...
+
+class ActuatorCommand(_message.Message):
+    __slots__ = ("header", "throttle_ratio", "brake_ratio", "steering_angle_rad", "accel_request_mps2", "indicator_left", "indicator_right", "hazard_lights", "automation_active")
+    HEADER_FIELD_NUMBER: _ClassVar[int]
+    THROTTLE_RATIO_FIELD_NUMBER: _ClassVar[int]
+    BRAKE_RATIO_FIELD_NUMBER: _ClassVar[int]
+    STEERING_ANGLE_RAD_FIELD_NUMBER: _ClassVar[int]
+    ACCEL_REQUEST_MPS2_FIELD_NUMBER: _ClassVar[int]
+    INDICATOR_LEFT_FIELD_NUMBER: _ClassVar[int]
+    INDICATOR_RIGHT_FIELD_NUMBER: _ClassVar[int]
+    HAZARD_LIGHTS_FIELD_NUMBER: _ClassVar[int]
+    AUTOMATION_ACTIVE_FIELD_NUMBER: _ClassVar[int]
+    header: _header_pb2.Header
+    throttle_ratio: float
+    brake_ratio: float
+    steering_angle_rad: float
+    accel_request_mps2: float
+    indicator_left: bool
+    indicator_right: bool
+    hazard_lights: bool
+    automation_active: bool
+    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., throttle_ratio: _Optional[float] = ..., brake_ratio: _Optional[float] = ..., steering_angle_rad: _Optional[float] = ..., accel_request_mps2: _Optional[float] = ..., indicator_left: _Optional[bool] = ..., indicator_right: _Optional[bool] = ..., hazard_lights: _Optional[bool] = ..., automation_active: _Optional[bool] = ...) -> None: ...

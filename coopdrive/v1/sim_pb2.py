@@ -25,25 +25,33 @@ _sym_db = _symbol_database.Default()
 from coopdrive.v1 import header_pb2 as coopdrive_dot_v1_dot_header__pb2
 
 
-DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x16\x63oopdrive/v1/sim.proto\x12\x0c\x63oopdrive.v1\x1a\x19\x63oopdrive/v1/header.proto\"\x86\x01\n\x08SimClock\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x0c\n\x04step\x18\x02 \x01(\x04\x12\x0e\n\x06time_s\x18\x03 \x01(\x01\x12\x0e\n\x06step_s\x18\x04 \x01(\x01\x12\x10\n\x08lockstep\x18\x05 \x01(\x08\x12\x14\n\x0cparticipants\x18\x06 \x03(\t\"O\n\x08StepDone\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x0c\n\x04step\x18\x02 \x01(\x04\x12\x0f\n\x07service\x18\x03 \x01(\t\"\xb7\x02\n\x0cVehicleTruth\x12\x12\n\nvehicle_id\x18\x01 \x01(\t\x12\x12\n\nstation_id\x18\x02 \x01(\r\x12\x0b\n\x03x_m\x18\x03 \x01(\x01\x12\x0b\n\x03y_m\x18\x04 \x01(\x01\x12\x13\n\x0bheading_rad\x18\x05 \x01(\x01\x12\x11\n\tspeed_mps\x18\x06 \x01(\x01\x12\x12\n\naccel_mps2\x18\x07 \x01(\x01\x12\x16\n\x0eyaw_rate_radps\x18\x08 \x01(\x01\x12\x10\n\x08length_m\x18\t \x01(\x01\x12\x0f\n\x07width_m\x18\n \x01(\x01\x12\x12\n\nlane_index\x18\x0b \x01(\x05\x12\x11\n\tstation_m\x18\x0c \x01(\x01\x12\x18\n\x10lateral_offset_m\x18\r \x01(\x01\x12\x1a\n\x12steering_angle_rad\x18\x0e \x01(\x01\x12\x11\n\tautomated\x18\x0f \x01(\x08\"u\n\x0bGroundTruth\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12,\n\x08vehicles\x18\x02 \x03(\x0b\x32\x1a.coopdrive.v1.VehicleTruth\x12\x12\n\ncollisions\x18\x03 \x01(\r\"\x8a\x02\n\tRunResult\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x10\n\x08scenario\x18\x02 \x01(\t\x12\x0c\n\x04seed\x18\x03 \x01(\x04\x12\x0f\n\x07success\x18\x04 \x01(\x08\x12\x16\n\x0e\x66\x61ilure_reason\x18\x05 \x01(\t\x12\x12\n\nsim_time_s\x18\x06 \x01(\x01\x12\x13\n\x0bwall_time_s\x18\x07 \x01(\x01\x12\x35\n\x07metrics\x18\x08 \x03(\x0b\x32$.coopdrive.v1.RunResult.MetricsEntry\x1a.\n\x0cMetricsEntry\x12\x0b\n\x03key\x18\x01 \x01(\t\x12\r\n\x05value\x18\x02 \x01(\x01:\x02\x38\x01\x62\x06proto3')
+DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x16\x63oopdrive/v1/sim.proto\x12\x0c\x63oopdrive.v1\x1a\x19\x63oopdrive/v1/header.proto\"\xf2\x01\n\x08SimClock\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x0c\n\x04step\x18\x02 \x01(\x04\x12\x0e\n\x06time_s\x18\x03 \x01(\x01\x12\x0e\n\x06step_s\x18\x04 \x01(\x01\x12\x10\n\x08lockstep\x18\x05 \x01(\x08\x12\x14\n\x0cparticipants\x18\x06 \x03(\t\x12\x38\n\tsequences\x18\x07 \x03(\x0b\x32%.coopdrive.v1.SimClock.SequencesEntry\x1a\x30\n\x0eSequencesEntry\x12\x0b\n\x03key\x18\x01 \x01(\t\x12\r\n\x05value\x18\x02 \x01(\x04:\x02\x38\x01\"\xce\x01\n\x08StepDone\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x0c\n\x04step\x18\x02 \x01(\x04\x12\x0f\n\x07service\x18\x03 \x01(\t\x12\x11\n\tnext_step\x18\x04 \x01(\x04\x12\x38\n\tsequences\x18\x05 \x03(\x0b\x32%.coopdrive.v1.StepDone.SequencesEntry\x1a\x30\n\x0eSequencesEntry\x12\x0b\n\x03key\x18\x01 \x01(\t\x12\r\n\x05value\x18\x02 \x01(\x04:\x02\x38\x01\"\xb7\x02\n\x0cVehicleTruth\x12\x12\n\nvehicle_id\x18\x01 \x01(\t\x12\x12\n\nstation_id\x18\x02 \x01(\r\x12\x0b\n\x03x_m\x18\x03 \x01(\x01\x12\x0b\n\x03y_m\x18\x04 \x01(\x01\x12\x13\n\x0bheading_rad\x18\x05 \x01(\x01\x12\x11\n\tspeed_mps\x18\x06 \x01(\x01\x12\x12\n\naccel_mps2\x18\x07 \x01(\x01\x12\x16\n\x0eyaw_rate_radps\x18\x08 \x01(\x01\x12\x10\n\x08length_m\x18\t \x01(\x01\x12\x0f\n\x07width_m\x18\n \x01(\x01\x12\x12\n\nlane_index\x18\x0b \x01(\x05\x12\x11\n\tstation_m\x18\x0c \x01(\x01\x12\x18\n\x10lateral_offset_m\x18\r \x01(\x01\x12\x1a\n\x12steering_angle_rad\x18\x0e \x01(\x01\x12\x11\n\tautomated\x18\x0f \x01(\x08\"u\n\x0bGroundTruth\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12,\n\x08vehicles\x18\x02 \x03(\x0b\x32\x1a.coopdrive.v1.VehicleTruth\x12\x12\n\ncollisions\x18\x03 \x01(\r\"\x8a\x02\n\tRunResult\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x10\n\x08scenario\x18\x02 \x01(\t\x12\x0c\n\x04seed\x18\x03 \x01(\x04\x12\x0f\n\x07success\x18\x04 \x01(\x08\x12\x16\n\x0e\x66\x61ilure_reason\x18\x05 \x01(\t\x12\x12\n\nsim_time_s\x18\x06 \x01(\x01\x12\x13\n\x0bwall_time_s\x18\x07 \x01(\x01\x12\x35\n\x07metrics\x18\x08 \x03(\x0b\x32$.coopdrive.v1.RunResult.MetricsEntry\x1a.\n\x0cMetricsEntry\x12\x0b\n\x03key\x18\x01 \x01(\t\x12\r\n\x05value\x18\x02 \x01(\x01:\x02\x38\x01\x62\x06proto3')
 
 _globals = globals()
 _builder.BuildMessageAndEnumDescriptors(DESCRIPTOR, _globals)
 _builder.BuildTopDescriptorsAndMessages(DESCRIPTOR, 'coopdrive.v1.sim_pb2', _globals)
 if not _descriptor._USE_C_DESCRIPTORS:
   DESCRIPTOR._loaded_options = None
+  _globals['_SIMCLOCK_SEQUENCESENTRY']._loaded_options = None
+  _globals['_SIMCLOCK_SEQUENCESENTRY']._serialized_options = b'8\001'
+  _globals['_STEPDONE_SEQUENCESENTRY']._loaded_options = None
+  _globals['_STEPDONE_SEQUENCESENTRY']._serialized_options = b'8\001'
   _globals['_RUNRESULT_METRICSENTRY']._loaded_options = None
   _globals['_RUNRESULT_METRICSENTRY']._serialized_options = b'8\001'
   _globals['_SIMCLOCK']._serialized_start=68
-  _globals['_SIMCLOCK']._serialized_end=202
-  _globals['_STEPDONE']._serialized_start=204
-  _globals['_STEPDONE']._serialized_end=283
-  _globals['_VEHICLETRUTH']._serialized_start=286
-  _globals['_VEHICLETRUTH']._serialized_end=597
-  _globals['_GROUNDTRUTH']._serialized_start=599
-  _globals['_GROUNDTRUTH']._serialized_end=716
-  _globals['_RUNRESULT']._serialized_start=719
-  _globals['_RUNRESULT']._serialized_end=985
-  _globals['_RUNRESULT_METRICSENTRY']._serialized_start=939
-  _globals['_RUNRESULT_METRICSENTRY']._serialized_end=985
+  _globals['_SIMCLOCK']._serialized_end=310
+  _globals['_SIMCLOCK_SEQUENCESENTRY']._serialized_start=262
+  _globals['_SIMCLOCK_SEQUENCESENTRY']._serialized_end=310
+  _globals['_STEPDONE']._serialized_start=313
+  _globals['_STEPDONE']._serialized_end=519
+  _globals['_STEPDONE_SEQUENCESENTRY']._serialized_start=262
+  _globals['_STEPDONE_SEQUENCESENTRY']._serialized_end=310
+  _globals['_VEHICLETRUTH']._serialized_start=522
+  _globals['_VEHICLETRUTH']._serialized_end=833
+  _globals['_GROUNDTRUTH']._serialized_start=835
+  _globals['_GROUNDTRUTH']._serialized_end=952
+  _globals['_RUNRESULT']._serialized_start=955
+  _globals['_RUNRESULT']._serialized_end=1221
+  _globals['_RUNRESULT_METRICSENTRY']._serialized_start=1175
+  _globals['_RUNRESULT_METRICSENTRY']._serialized_end=1221
 # @@protoc_insertion_point(module_scope)

@@ -8,30 +8,50 @@ from typing import ClassVar as _ClassVar, Optional as _Optional, Union as _Union
 DESCRIPTOR: _descriptor.FileDescriptor
 
 class SimClock(_message.Message):
-    __slots__ = ("header", "step", "time_s", "step_s", "lockstep", "participants")
+    __slots__ = ("header", "step", "time_s", "step_s", "lockstep", "participants", "sequences")
+    class SequencesEntry(_message.Message):
+        __slots__ = ("key", "value")
+        KEY_FIELD_NUMBER: _ClassVar[int]
+        VALUE_FIELD_NUMBER: _ClassVar[int]
+        key: str
+        value: int
+        def __init__(self, key: _Optional[str] = ..., value: _Optional[int] = ...) -> None: ...
     HEADER_FIELD_NUMBER: _ClassVar[int]
     STEP_FIELD_NUMBER: _ClassVar[int]
     TIME_S_FIELD_NUMBER: _ClassVar[int]
     STEP_S_FIELD_NUMBER: _ClassVar[int]
     LOCKSTEP_FIELD_NUMBER: _ClassVar[int]
     PARTICIPANTS_FIELD_NUMBER: _ClassVar[int]
+    SEQUENCES_FIELD_NUMBER: _ClassVar[int]
     header: _header_pb2.Header
     step: int
     time_s: float
     step_s: float
     lockstep: bool
     participants: _containers.RepeatedScalarFieldContainer[str]
-    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., step: _Optional[int] = ..., time_s: _Optional[float] = ..., step_s: _Optional[float] = ..., lockstep: _Optional[bool] = ..., participants: _Optional[_Iterable[str]] = ...) -> None: ...
+    sequences: _containers.ScalarMap[str, int]
+    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., step: _Optional[int] = ..., time_s: _Optional[float] = ..., step_s: _Optional[float] = ..., lockstep: _Optional[bool] = ..., participants: _Optional[_Iterable[str]] = ..., sequences: _Optional[_Mapping[str, int]] = ...) -> None: ...
 
 class StepDone(_message.Message):
-    __slots__ = ("header", "step", "service")
+    __slots__ = ("header", "step", "service", "next_step", "sequences")
+    class SequencesEntry(_message.Message):
+        __slots__ = ("key", "value")
+        KEY_FIELD_NUMBER: _ClassVar[int]
+        VALUE_FIELD_NUMBER: _ClassVar[int]
+        key: str
+        value: int
+        def __init__(self, key: _Optional[str] = ..., value: _Optional[int] = ...) -> None: ...
     HEADER_FIELD_NUMBER: _ClassVar[int]
     STEP_FIELD_NUMBER: _ClassVar[int]
     SERVICE_FIELD_NUMBER: _ClassVar[int]
+    NEXT_STEP_FIELD_NUMBER: _ClassVar[int]
+    SEQUENCES_FIELD_NUMBER: _ClassVar[int]
     header: _header_pb2.Header
     step: int
     service: str
-    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., step: _Optional[int] = ..., service: _Optional[str] = ...) -> None: ...
+    next_step: int
+    sequences: _containers.ScalarMap[str, int]
+    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., step: _Optional[int] = ..., service: _Optional[str] = ..., next_step: _Optional[int] = ..., sequences: _Optional[_Mapping[str, int]] = ...) -> None: ...
 
 class VehicleTruth(_message.Message):
     __slots__ = ("vehicle_id", "station_id", "x_m", "y_m", "heading_rad", "speed_mps", "accel_mps2", "yaw_rate_radps", "length_m", "width_m", "lane_index", "station_m", "lateral_offset_m", "steering_angle_rad", "automated")

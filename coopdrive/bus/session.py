@@ -1,0 +1,189 @@
+"""Bus: a Zenoh session that publishes and subscribes typed protobuf messages.
+
+Scouting by multicast is off: peers find each other through explicit endpoints (and Zenoh's
+gossip completes the mesh). Callbacks run on Zenoh's threads, so they must be short; the
+service runtime only enqueues there.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import threading
+from dataclasses import dataclass, field
+from typing import Callable
+
+import zenoh
+from google.protobuf.message import DecodeError, Message
+
+from coopdrive.bus.keys import KeyLayout
+from coopdrive.bus.topics import Topic, topic_named
+from coopdrive.bus.type_registry import message_class
+
+log = logging.getLogger(__name__)
+
+
+@dataclass
+class BusConfig:
+    # Endpoints to connect to, e.g. ["tcp/127.0.0.1:7447"] (the launcher's hub or a zenohd router).
+    connect: list[str] = field(default_factory=list)
+    # Endpoints to listen on; port 0 picks a free port, which gossip tells the other peers.
+    listen: list[str] = field(default_factory=lambda: ["tcp/127.0.0.1:0"])
+    mode: str = "peer"
+    # Optional path to a Zenoh JSON5 config file merged first (TLS, access control).
+    zenoh_config_file: str | None = None
+
+    def to_zenoh(self) -> zenoh.Config:
+        config = zenoh.Config.from_file(self.zenoh_config_file) if self.zenoh_config_file else zenoh.Config()
+        config.insert_json5("mode", json.dumps(self.mode))
+        config.insert_json5("scouting/multicast/enabled", "false")
+        config.insert_json5("listen/endpoints", json.dumps(self.listen))
+        config.insert_json5("connect/endpoints", json.dumps(self.connect))
+        return config
+
+
+@dataclass(frozen=True)
+class Envelope:
+    """A received message with where it came from."""
+
+    vehicle_id: str
+    topic: str
+    message: Message
+
+
+class Bus:
+    def __init__(self, config: BusConfig, layout: KeyLayout | None = None):
+        self.layout = layout or KeyLayout()
+        self._session = zenoh.open(config.to_zenoh())
+        self._publishers: dict[str, zenoh.Publisher] = {}
+        self._declared: list = []
+        self._lock = threading.Lock()
+        self.decode_errors = 0
+
+    @property
+    def session(self) -> zenoh.Session:
+        return self._session
+
+    def peer_count(self) -> int:
+        return len(list(self._session.info.peers_zid())) + len(list(self._session.info.routers_zid()))
+
+    def put(self, key: str, message: Message, *, reliable_block: bool = True) -> None:
+        publisher = self._publishers.get(key)
+        if publisher is None:
+            with self._lock:
+                publisher = self._publishers.get(key) or self._declare_publisher(key, message, reliable_block)
+        publisher.put(message.SerializeToString())
+
+    def publish(self, vehicle_id: str, topic: str | Topic, message: Message) -> None:
+        name = topic.name if isinstance(topic, Topic) else topic
+        self.put(self.layout.topic(vehicle_id, name), message)
+
+    def _declare_publisher(self, key: str, message: Message, reliable_block: bool) -> zenoh.Publisher:
+        encoding = zenoh.Encoding.APPLICATION_PROTOBUF.with_schema(message.DESCRIPTOR.full_name)
+        congestion = zenoh.CongestionControl.BLOCK if reliable_block else zenoh.CongestionControl.DROP
+        publisher = self._session.declare_publisher(key, encoding=encoding, congestion_control=congestion)
+        self._publishers[key] = publisher
+        return publisher
+
+    def subscribe(self, vehicle_id: str, topic: str, callback: Callable[[Envelope], None]):
+        """Subscribes to one registered topic of one vehicle ("*" for all vehicles)."""
+        spec = topic_named(topic)
+        key = self.layout.topic(vehicle_id, topic)
+
+        def on_sample(sample: zenoh.Sample) -> None:
+            envelope = self._decode(str(sample.key_expr), spec.message_type, sample.payload.to_bytes())
+            if envelope is not None:
+                callback(envelope)
+
+        return self._declare(self._session.declare_subscriber(key, on_sample))
+
+    def subscribe_key(self, key_expr: str, callback: Callable[[str, Message], None]):
+        """Subscribes to any key; the message type comes from the sample's encoding schema."""
+
+        def on_sample(sample: zenoh.Sample) -> None:
+            key = str(sample.key_expr)
+            cls = message_class(_schema_of(sample.encoding))
+            if cls is None:
+                return
+            envelope = self._decode(key, cls, sample.payload.to_bytes())
+            if envelope is not None:
+                callback(key, envelope.message)
+
+        return self._declare(self._session.declare_subscriber(key_expr, on_sample))
+
+    def _decode(self, key: str, cls: type[Message], payload: bytes) -> Envelope | None:
+        message = cls()
+        try:
+            message.ParseFromString(payload)
+        except DecodeError as error:
+            self.decode_errors += 1
+            log.warning("dropped malformed %s on %s: %s", cls.DESCRIPTOR.full_name, key, error)
+            return None
+        try:
+            vehicle_id, topic = self.layout.split(key)
+        except ValueError:
+            vehicle_id, topic = "", key
+        return Envelope(vehicle_id, topic, message)
+
+    def declare_token(self, key: str):
+        return self._declare(self._session.liveliness().declare_token(key))
+
+    def watch_liveliness(self, key_expr: str, on_change: Callable[[str, bool], None]):
+        """Calls on_change(key, alive) for tokens present now and for every change later."""
+
+        def on_sample(sample: zenoh.Sample) -> None:
+            on_change(str(sample.key_expr), sample.kind == zenoh.SampleKind.PUT)
+
+        return self._declare(self._session.liveliness().declare_subscriber(key_expr, on_sample, history=True))
+
+    def alive_tokens(self, key_expr: str, timeout_s: float = 1.0) -> list[str]:
+        replies = self._session.liveliness().get(key_expr, timeout=timeout_s)
+        return [str(reply.ok.key_expr) for reply in replies if reply.ok is not None]
+
+    def declare_queryable(self, key: str, answer: Callable[[], Message]):
+        def on_query(query: zenoh.Query) -> None:
+            with query:
+                message = answer()
+                encoding = zenoh.Encoding.APPLICATION_PROTOBUF.with_schema(message.DESCRIPTOR.full_name)
+                query.reply(key, message.SerializeToString(), encoding=encoding)
+
+        return self._declare(self._session.declare_queryable(key, on_query))
+
+    def query(self, key_expr: str, cls: type[Message], timeout_s: float = 2.0) -> list[Message]:
+        results = []
+        for reply in self._session.get(key_expr, timeout=timeout_s):
+            if reply.ok is None:
+                continue
+            message = cls()
+            try:
+                message.ParseFromString(reply.ok.payload.to_bytes())
+            except DecodeError:
+                continue
+            results.append(message)
+        return results
+
+    def _declare(self, entity):
+        self._declared.append(entity)
+        return entity
+
+    def close(self) -> None:
+        for entity in reversed(self._declared):
+            try:
+                entity.undeclare()
+            except Exception:  # already gone with a closing session
+                pass
+        self._declared.clear()
+        for publisher in self._publishers.values():
+            try:
+                publisher.undeclare()
+            except Exception:
+                pass
+        self._publishers.clear()
+        if not self._session.is_closed():
+            self._session.close()
+
+
+def _schema_of(encoding: zenoh.Encoding) -> str | None:
+    """The schema part of "application/protobuf;<type name>"."""
+    text = str(encoding)
+    return text.split(";", 1)[1] if ";" in text else None

@@ -1,0 +1,75 @@
+"""The topic registry: which message each topic carries and which service publishes it.
+
+One publisher service per topic and vehicle is what lets the lockstep barrier order data flow
+(see coopdrive.runtime.dispatcher).
+"""
+
+from dataclasses import dataclass
+
+from google.protobuf.message import Message
+
+from coopdrive.v1 import (
+    actuation_pb2,
+    control_pb2,
+    diagnostics_pb2,
+    ego_pb2,
+    gnss_pb2,
+    planner_pb2,
+    scene_pb2,
+    sensors_pb2,
+    sim_pb2,
+    v2x_pb2,
+    vehicle_pb2,
+)
+
+
+@dataclass(frozen=True)
+class Topic:
+    name: str
+    message_type: type[Message]
+    publisher: str
+
+    @property
+    def type_name(self) -> str:
+        return self.message_type.DESCRIPTOR.full_name
+
+
+_ALL = [
+    Topic("clock", sim_pb2.SimClock, "sim"),
+    Topic("ground_truth", sim_pb2.GroundTruth, "sim"),
+    Topic("result", sim_pb2.RunResult, "sim"),
+    Topic("gnss/fix", gnss_pb2.GnssFix, "sim"),
+    Topic("vehicle/state", vehicle_pb2.VehicleCanState, "sim"),
+    Topic("vehicle/imu", vehicle_pb2.ImuSample, "sim"),
+    Topic("can/vehicle", vehicle_pb2.CanFrame, "sim"),
+    Topic("can/command", vehicle_pb2.CanFrame, "actuation"),
+    Topic("radar/tracks", sensors_pb2.RadarTracks, "sim"),
+    Topic("lidar/scan", sensors_pb2.LidarScan, "sim"),
+    Topic("camera/frame", sensors_pb2.CameraFrame, "sim"),
+    Topic("sonar/ranges", sensors_pb2.SonarRanges, "sim"),
+    Topic("ego/state", ego_pb2.EgoState, "geolocation"),
+    Topic("ego/gnss", gnss_pb2.GnssFix, "geolocation"),
+    Topic("v2x/rx", v2x_pb2.GnPacket, "v2x"),
+    Topic("v2x/tx", v2x_pb2.GnPacket, "v2x"),
+    Topic("v2x/status", v2x_pb2.V2xStatus, "v2x"),
+    Topic("scene", scene_pb2.Scene, "scene"),
+    Topic("planner/state", planner_pb2.PlannerState, "planner"),
+    Topic("planner/behaviour", planner_pb2.BehaviourRequest, "planner"),
+    Topic("control/command", control_pb2.ControlCommand, "control"),
+    Topic("actuation/command", actuation_pb2.ActuatorCommand, "actuation"),
+    Topic("actuation/status", actuation_pb2.ActuationStatus, "actuation"),
+    Topic("actuation/override", actuation_pb2.OverrideEvent, "actuation"),
+    Topic("gateway/mode_request", actuation_pb2.ModeRequest, "gateway"),
+    Topic("gateway/estop", actuation_pb2.EmergencyStop, "gateway"),
+]
+for _service in ("sim", "geolocation", "v2x", "scene", "planner", "control", "actuation", "gateway"):
+    _ALL.append(Topic(f"diagnostics/{_service}", diagnostics_pb2.Diagnostics, _service))
+
+TOPICS: dict[str, Topic] = {topic.name: topic for topic in _ALL}
+
+
+def topic_named(name: str) -> Topic:
+    try:
+        return TOPICS[name]
+    except KeyError:
+        raise KeyError(f"unknown topic {name!r}; known topics: {', '.join(sorted(TOPICS))}") from None

@@ -1,0 +1,131 @@
+"""The `coopdrive` command line: thin wiring from arguments to the library."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import sys
+from pathlib import Path
+
+from coopdrive.runtime.config import ConfigError
+
+EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    logging.basicConfig(level=logging.WARNING if not getattr(args, "verbose", False) else logging.INFO,
+                        format="%(asctime)s %(name)s %(levelname)s %(message)s")
+    try:
+        return args.handler(args)
+    except ConfigError as error:
+        print(f"coopdrive: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        return EXIT_FAILED
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="coopdrive", description="Cooperative automated driving stack")
+    commands = parser.add_subparsers(dest="command", required=True)
+
+    service = commands.add_parser("service", help="run one service (what docker compose runs)")
+    service.add_argument("name")
+    service.add_argument("--config", type=Path, help="YAML or JSON config of the service")
+    service.add_argument("--vehicle", default="ego", help="vehicle id, the second level of every key")
+    service.add_argument("--connect", action="append", default=[], help="Zenoh endpoint to connect to")
+    service.add_argument("--listen", action="append", default=[], help="Zenoh endpoint to listen on")
+    service.add_argument("--zenoh-config", type=Path, help="Zenoh JSON5 config (TLS, access control)")
+    service.add_argument("--clock", choices=["wall", "sim"], default="wall")
+    service.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="override a config key")
+    service.add_argument("-v", "--verbose", action="store_true")
+    service.set_defaults(handler=_service)
+
+    run = commands.add_parser("run", help="run a scenario with the full stack")
+    run.add_argument("scenario")
+    run.add_argument("--seed", type=int, default=1)
+    run.add_argument("--realtime", action="store_true", help="pace the simulation to wall time")
+    run.add_argument("--record", type=Path, metavar="FILE.mcap")
+    run.add_argument("--gateway", type=int, metavar="PORT", help="serve the gateway HTTP API on this port")
+    run.add_argument("--duration", type=float, help="simulated seconds (default: the scenario's)")
+    run.add_argument("--logs", type=Path, help="folder for each service's log")
+    run.add_argument("--json", action="store_true", help="print the summary as JSON")
+    run.set_defaults(handler=_run)
+
+    record = commands.add_parser("record", help="record a live bus to MCAP until Ctrl-C")
+    record.add_argument("file", type=Path)
+    record.add_argument("--connect", action="append", default=[])
+    record.add_argument("--key", default="coopdrive/**")
+    record.set_defaults(handler=_record)
+
+    replay = commands.add_parser("replay", help="replay a recording through one service")
+    replay.add_argument("file", type=Path)
+    replay.add_argument("--service", required=True)
+    replay.add_argument("--vehicle")
+    replay.add_argument("--out", type=Path, required=True)
+    replay.set_defaults(handler=_replay)
+    return parser
+
+
+def _service(args) -> int:
+    from coopdrive.bus import BusConfig
+    from coopdrive.runtime.config import load_config
+    from coopdrive.runtime.registry import service_class
+    from coopdrive.runtime.runner import ClockMode, ServiceRunner
+
+    try:
+        cls = service_class(args.name)
+    except KeyError as error:
+        print(f"coopdrive: {error.args[0]}", file=sys.stderr)
+        return EXIT_USAGE
+    config = load_config(cls.Config, args.config, args.set)
+    bus = BusConfig(connect=args.connect, listen=args.listen or ["tcp/127.0.0.1:0"],
+                    zenoh_config_file=str(args.zenoh_config) if args.zenoh_config else None)
+    runner = ServiceRunner(cls, config, args.vehicle, bus, ClockMode(args.clock))
+    runner.run()
+    return EXIT_OK
+
+
+def _run(args) -> int:
+    from coopdrive.launch.run import RunOptions, run_scenario
+    from coopdrive.launch.summary import print_summary, summary_dict
+
+    options = RunOptions(scenario=args.scenario, seed=args.seed, realtime=args.realtime, record=args.record,
+                         gateway_port=args.gateway, duration_s=args.duration, log_dir=args.logs)
+    result = run_scenario(options)
+    if args.json:
+        print(json.dumps(summary_dict(result), indent=2))
+    else:
+        print_summary(result, recording=args.record)
+    return EXIT_OK if result.success else EXIT_FAILED
+
+
+def _record(args) -> int:
+    from coopdrive.launch.live_record import record_live
+
+    count = record_live(args.file, args.connect, args.key)
+    print(f"recorded {count} messages to {args.file}")
+    return EXIT_OK
+
+
+def _replay(args) -> int:
+    from coopdrive.recording.replay import ReplayError, replay_service
+
+    try:
+        result = replay_service(args.file, args.service, args.vehicle, args.out)
+    except ReplayError as error:
+        print(f"coopdrive: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    problems = result.mismatches()
+    print(f"replayed {result.steps} steps through {args.service}: {len(result.outputs)} messages to {args.out}")
+    if problems:
+        print("differs from the recording: " + "; ".join(problems))
+        return EXIT_FAILED
+    print("identical to the recorded outputs")
+    return EXIT_OK
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,112 @@
+"""Runs a scenario: a hub session, an optional recorder, the simulator and every stack's services."""
+
+from __future__ import annotations
+
+import signal
+import threading
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from coopdrive.bus import Bus, BusConfig
+from coopdrive.bus.keys import WORLD_ID
+from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
+from coopdrive.launch.processes import ServiceProcesses, ServiceSpec
+from coopdrive.recording.writer import McapRecorder, config_metadata
+from coopdrive.runtime.registry import VEHICLE_STACK
+from coopdrive.services.sim.service import SimConfig
+from coopdrive.v1 import sim_pb2
+
+
+@dataclass
+class RunOptions:
+    scenario: str = "follow"
+    seed: int = 1
+    realtime: bool = False
+    record: Path | None = None
+    gateway_port: int | None = None
+    duration_s: float | None = None
+    log_dir: Path | None = None
+    # Extra config per service name, merged over the defaults (e.g. {"control": {...}}).
+    service_overrides: dict[str, dict] = field(default_factory=dict)
+
+
+class RunAborted(RuntimeError):
+    pass
+
+
+def build_specs(options: RunOptions) -> list[ServiceSpec]:
+    sim = SimConfig(scenario=options.scenario, seed=options.seed, lockstep=not options.realtime)
+    if options.duration_s is not None:
+        sim.duration_s = options.duration_s
+    stacks = [v.vehicle_id for v in sim.world.vehicles if not v.speed_profile]
+    specs = [ServiceSpec(name, vehicle, dict(options.service_overrides.get(name, {})))
+             for vehicle in stacks for name in VEHICLE_STACK]
+    sim.participants = [spec.participant for spec in specs]
+    sim_config = sim.model_dump(mode="json")
+    sim_config.update(options.service_overrides.get("sim", {}))
+    return [ServiceSpec("sim", WORLD_ID, sim_config)] + specs
+
+
+def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
+    endpoint = loopback_endpoint(free_tcp_port())
+    hub = Bus(BusConfig(listen=[endpoint]))
+    finished = threading.Event()
+    stop_reason: list[str] = []
+    results: list[sim_pb2.RunResult] = []
+    specs = build_specs(options)
+
+    def on_result(envelope) -> None:
+        results.append(envelope.message)
+        finished.set()
+
+    def on_signal(signum, _frame) -> None:
+        stop_reason.append(signal.Signals(signum).name)
+        finished.set()
+
+    previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
+    recorder = None
+    if options.record is not None:
+        recorder = McapRecorder(options.record, config_metadata(
+            {spec.participant: _full_config(spec) for spec in specs}))
+        hub.subscribe_key("coopdrive/**", lambda key, message: None if "/_" in key else recorder.write(key, message))
+    hub.subscribe(WORLD_ID, "result", on_result)
+    processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir)
+    started = time.monotonic()
+    try:
+        for spec in specs:
+            processes.start(spec)
+        if options.gateway_port is not None:
+            processes.start(ServiceSpec("gateway", "ego", {"port": options.gateway_port}))
+        while not finished.wait(0.2):
+            crashed = {name: code for name, code in processes.exited().items()
+                       if code != 0 and not name.endswith("/gateway")}
+            if "world/sim" in processes.exited():
+                finished.wait(1.0)  # the result may still be on its way
+                break
+            if crashed and len(crashed) == len(specs):
+                raise RunAborted(f"every service exited: {crashed}")
+    finally:
+        processes.stop_all()
+        if recorder is not None:
+            time.sleep(0.1)
+            recorder.close()
+        hub.close()
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+    if not results:
+        reason = f"stopped by {stop_reason[0]}" if stop_reason else "the simulator ended without a result"
+        result = sim_pb2.RunResult(scenario=options.scenario, seed=options.seed, success=False, failure_reason=reason,
+                                   wall_time_s=time.monotonic() - started)
+        return result
+    return results[0]
+
+
+def _full_config(spec: ServiceSpec) -> str:
+    """The config a service will actually run with: its defaults completed by the spec."""
+    import json
+
+    from coopdrive.runtime.registry import service_class
+
+    model = service_class(spec.service).Config.model_validate(spec.config)
+    return json.dumps(model.model_dump(mode="json"))

@@ -1,0 +1,44 @@
+"""The end-of-run summary: a table for people, JSON for scripts."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from rich.console import Console
+from rich.table import Table
+
+from coopdrive.v1 import sim_pb2
+
+
+def summary_dict(result: sim_pb2.RunResult) -> dict:
+    summary = {
+        "scenario": result.scenario,
+        "seed": result.seed,
+        "success": result.success,
+        "failure_reason": result.failure_reason,
+        "sim_time_s": round(result.sim_time_s, 6),
+        "wall_time_s": round(result.wall_time_s, 3),
+        "realtime_factor": round(result.sim_time_s / result.wall_time_s, 2) if result.wall_time_s > 0 else 0.0,
+    }
+    for key, value in sorted(result.metrics.items()):
+        summary[key] = int(value) if key in ("collisions", "participants_lost") else round(value, 6)
+    summary.setdefault("collisions", 0)
+    summary.setdefault("min_gap_m", -1.0)
+    return summary
+
+
+def print_summary(result: sim_pb2.RunResult, recording: Path | None = None) -> None:
+    summary = summary_dict(result)
+    table = Table(title=f"coopdrive run {result.scenario} (seed {result.seed})")
+    table.add_column("metric")
+    table.add_column("value", justify="right")
+    for key, value in summary.items():
+        if key in ("scenario", "seed"):
+            continue
+        table.add_row(key, f"{value:.3f}" if isinstance(value, float) else str(value))
+    console = Console()
+    console.print(table)
+    verdict = "[bold green]PASS[/]" if result.success else f"[bold red]FAIL[/]: {result.failure_reason}"
+    console.print(verdict)
+    if recording is not None:
+        console.print(f"recording: {recording}")

@@ -1,0 +1,1 @@
+"""MCAP recording of bus traffic with protobuf schemas (Foxglove opens the files), and replay."""

@@ -1,0 +1,58 @@
+"""McapRecorder: writes protobuf messages to MCAP with their schemas, safe to call from many threads."""
+
+from __future__ import annotations
+
+import json
+import threading
+from pathlib import Path
+
+from google.protobuf.message import Message
+from mcap_protobuf.writer import Writer
+
+NANOSECONDS = 1_000_000_000
+
+
+def message_time_ns(message: Message) -> int:
+    header = getattr(message, "header", None)
+    if header is None:
+        return 0
+    return max(0, int(round(header.sent_time_s * NANOSECONDS)))
+
+
+class McapRecorder:
+    def __init__(self, path: str | Path, metadata: dict[str, dict[str, str]] | None = None):
+        self.path = Path(path)
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        self._file = open(self.path, "wb")
+        self._writer = Writer(self._file)
+        self._lock = threading.Lock()
+        self._closed = False
+        self.messages_written = 0
+        for name, values in (metadata or {}).items():
+            self.add_metadata(name, values)
+
+    def add_metadata(self, name: str, values: dict[str, str]) -> None:
+        with self._lock:
+            self._writer.add_metadata(name, values)
+
+    def write(self, topic: str, message: Message) -> None:
+        time_ns = message_time_ns(message)
+        with self._lock:
+            if self._closed:
+                return
+            self._writer.write_message(topic, message, log_time=time_ns, publish_time=time_ns)
+            self.messages_written += 1
+
+    def close(self) -> None:
+        with self._lock:
+            if self._closed:
+                return
+            self._closed = True
+            self._writer.finish()
+            self._file.close()
+
+
+def config_metadata(configs: dict[str, str]) -> dict[str, dict[str, str]]:
+    """Service configs as MCAP metadata: {"coopdrive.config": {"<vehicle>/<service>": json}}."""
+    return {"coopdrive.config": {key: value if isinstance(value, str) else json.dumps(value)
+                                 for key, value in configs.items()}}

@@ -1,0 +1,62 @@
+"""StepBarrier: knows when every service this one takes data from has finished a step.
+
+A service depends only on the publishers of the topics it subscribes to. It needs step k
+finished by those upstream of it (lower pipeline rank) and step k-1 by those downstream
+(feedback). A marker also promises quiet until the sender's next time trigger, so idle
+steps cost nothing. Services with no data between them never wait for each other, so a vehicle's
+pipeline overlaps consecutive steps on several cores; (step, rank) only ever decreases
+along a wait, so the waits cannot form a cycle.
+"""
+
+from __future__ import annotations
+
+from coopdrive.runtime.pipeline import PIPELINE_RANK, split_participant
+
+
+class StepBarrier:
+    def __init__(self, own_service: str):
+        self._own_rank = PIPELINE_RANK[own_service]
+        self._done_step: dict[str, int] = {}
+        self._promised_sequences: dict[str, dict[str, int]] = {}
+        self._received_sequences: dict[str, int] = {}
+        self.dependencies: set[str] = set()
+        # "<vehicle>/<topic>" this service subscribes to; only their sequences are awaited.
+        self.subscribed: set[str] = set()
+
+    def depend_on(self, participant: str) -> None:
+        _, service = split_participant(participant)
+        if service in PIPELINE_RANK and PIPELINE_RANK[service] != self._own_rank:
+            self.dependencies.add(participant)
+
+    def mark_done(self, participant: str, step: int, next_step: int = 0,
+                  sequences: dict[str, int] | None = None) -> None:
+        """Step `step` is finished, and nothing will come before `next_step` (0: the next step)."""
+        covered = max(step, next_step - 1)
+        if covered > self._done_step.get(participant, -1):
+            self._done_step[participant] = covered
+            self._promised_sequences[participant] = {
+                key: value for key, value in (sequences or {}).items() if key in self.subscribed}
+
+    def mark_received(self, vehicle_topic: str, sequence: int) -> None:
+        if sequence > self._received_sequences.get(vehicle_topic, 0):
+            self._received_sequences[vehicle_topic] = sequence
+
+    def holds(self, sequences) -> bool:
+        """True once every subscribed message counted in `sequences` has been received."""
+        return all(self._received_sequences.get(key, 0) >= value
+                   for key, value in sequences.items() if key in self.subscribed)
+
+    def done_step(self, participant: str) -> int:
+        return self._done_step.get(participant, -1)
+
+    def missing(self, step: int, participants: list[str]) -> list[str]:
+        """Running dependencies whose step marker this service still needs before handling `step`."""
+        waiting = []
+        for participant in participants:
+            if participant not in self.dependencies:
+                continue
+            rank = PIPELINE_RANK[split_participant(participant)[1]]
+            needed = step if rank < self._own_rank else step - 1
+            if self.done_step(participant) < needed or not self.holds(self._promised_sequences.get(participant, {})):
+                waiting.append(participant)
+        return waiting

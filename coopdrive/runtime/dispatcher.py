@@ -1,0 +1,59 @@
+"""StepDispatcher: which received messages a service handles in a lockstep step, in which order.
+
+The same rule runs live and in replay, which is why a replayed service produces exactly the
+messages it produced live.
+"""
+
+from __future__ import annotations
+
+import heapq
+from dataclasses import dataclass, field
+
+from coopdrive.bus import Envelope
+from coopdrive.runtime.pipeline import PIPELINE_RANK
+
+# Times are sums of step lengths; this absorbs their rounding.
+TIME_EPSILON_S = 1e-9
+
+
+@dataclass(order=True)
+class _Pending:
+    sort_key: tuple
+    envelope: Envelope = field(compare=False)
+
+
+class StepDispatcher:
+    def __init__(self, own_service: str, own_vehicle_id: str):
+        self._own_rank = PIPELINE_RANK[own_service]
+        self._own_vehicle = own_vehicle_id
+        self._pending: list[_Pending] = []
+        self._arrivals = 0
+
+    def add(self, envelope: Envelope) -> None:
+        header = envelope.message.header
+        self._arrivals += 1
+        sort_key = (header.sent_time_s, PIPELINE_RANK.get(header.sender, 99), envelope.topic,
+                    envelope.vehicle_id, header.sequence, self._arrivals)
+        heapq.heappush(self._pending, _Pending(sort_key, envelope))
+
+    def __len__(self) -> int:
+        return len(self._pending)
+
+    def eligible(self, step_time_s: float) -> list[Envelope]:
+        """Removes and returns, in deterministic order, what may be handled at step_time_s."""
+        ready: list[_Pending] = []
+        held: list[_Pending] = []
+        while self._pending and self._pending[0].sort_key[0] <= step_time_s + TIME_EPSILON_S:
+            item = heapq.heappop(self._pending)
+            (ready if self._may_handle(item.envelope, step_time_s) else held).append(item)
+        for item in held:
+            heapq.heappush(self._pending, item)
+        return [item.envelope for item in ready]
+
+    def _may_handle(self, envelope: Envelope, step_time_s: float) -> bool:
+        header = envelope.message.header
+        sender_rank = PIPELINE_RANK.get(header.sender, 99)
+        if sender_rank < self._own_rank:
+            return True  # upstream of us: same-step data is already complete
+        # Feedback from downstream (or a peer): only what it published in earlier steps.
+        return header.sent_time_s < step_time_s - TIME_EPSILON_S

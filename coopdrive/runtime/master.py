@@ -1,0 +1,142 @@
+"""ClockMaster: the simulator's side of time. Steps the world in lockstep or paced to wall time."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from coopdrive.bus.keys import WORLD_ID
+from coopdrive.v1 import sim_pb2
+
+if TYPE_CHECKING:
+    from coopdrive.runtime.runner import ServiceRunner
+
+# Subscriptions of freshly started peers take a moment to reach the publishers.
+SETTLE_S = 0.3
+STALL_WARNING_S = 10.0
+
+
+@dataclass
+class ClockSettings:
+    step_s: float = 0.01
+    lockstep: bool = True
+    # Wall pacing when not in lockstep: 1.0 = real time.
+    realtime_factor: float = 1.0
+    # "<vehicle>/<service>" of every service in the barrier.
+    participants: list[str] = field(default_factory=list)
+    startup_timeout_s: float = 60.0
+
+
+class ParticipantsMissing(RuntimeError):
+    pass
+
+
+class ClockMaster:
+    class Driven:
+        """Mixin for the one service that owns simulated time."""
+
+        def clock_settings(self) -> ClockSettings:
+            raise NotImplementedError
+
+        def on_clock_started(self, wall_start_monotonic_s: float) -> None:
+            """Called once every participant is up, just before step 0."""
+
+        def on_participant_lost(self, participant: str) -> None:
+            """Called when a participant's liveliness token disappears mid-run."""
+
+    def __init__(self, runner: ServiceRunner):
+        self._runner = runner
+        self._settings: ClockSettings = runner.service.clock_settings()
+        self._participants = list(self._settings.participants)
+        self._alive: set[str] = set()
+        self._step = 0
+        self.wall_time_s = 0.0
+
+    @property
+    def participants(self) -> list[str]:
+        return list(self._participants)
+
+    def run(self) -> None:
+        self._wait_for_participants()
+        wall_start = time.monotonic()
+        self._runner.service.on_clock_started(wall_start)
+        while not self._runner.stopping:
+            time_s = self._step * self._settings.step_s
+            if self._settings.lockstep:
+                if self._step > 0 and not self._wait_for_step_done(self._step - 1):
+                    break
+            elif not self._wait_until(wall_start + time_s / self._settings.realtime_factor):
+                break
+            self._runner.run_step(self._step, time_s)
+            self._publish_clock()
+            self._step += 1
+
+    def _publish_clock(self) -> None:
+        clock = sim_pb2.SimClock(step=self._step, time_s=self._runner.now_s(), step_s=self._settings.step_s,
+                                 lockstep=self._settings.lockstep, participants=self._participants,
+                                 sequences=self._runner.published_sequences)
+        self._runner.publish_for(WORLD_ID, "clock", clock)
+
+    def _wait_for_participants(self) -> None:
+        deadline = time.monotonic() + self._settings.startup_timeout_s
+        while not self._runner.stopping and not set(self._participants) <= self._alive:
+            if time.monotonic() > deadline:
+                missing = sorted(set(self._participants) - self._alive)
+                raise ParticipantsMissing(f"services did not come up: {', '.join(missing)}")
+            self._handle(self._runner.next_event(0.05))
+        settle_until = time.monotonic() + SETTLE_S
+        while time.monotonic() < settle_until:
+            self._handle(self._runner.next_event(settle_until - time.monotonic()))
+
+    def _wait_for_step_done(self, step: int) -> bool:
+        warned_at = time.monotonic()
+        while not self._runner.stopping:
+            if not self._runner.barrier.missing(step + 1, self._participants):
+                return True
+            self._handle(self._runner.next_event(0.5))
+            if time.monotonic() - warned_at > STALL_WARNING_S:
+                warned_at = time.monotonic()
+                waiting = self._runner.barrier.missing(step + 1, self._participants)
+                self._runner.log.warning("step %d still waits for %s", step, ", ".join(waiting))
+        return False
+
+    def _wait_until(self, wall_deadline: float) -> bool:
+        while not self._runner.stopping:
+            remaining = wall_deadline - time.monotonic()
+            if remaining <= 0:
+                return True
+            self._handle(self._runner.next_event(remaining))
+        return False
+
+    def _handle(self, event) -> None:
+        if event is None:
+            return
+        from coopdrive.runtime.runner import _Event
+
+        kind, payload = event
+        if kind is _Event.DATA:
+            self._runner.note_received(payload)
+            self._runner.dispatcher.add(payload)
+        elif kind is _Event.DONE:
+            self._runner.barrier.mark_done(*payload)
+        elif kind is _Event.ALIVE:
+            participant, alive = payload
+            if alive:
+                self._alive.add(participant)
+            else:
+                self._on_participant_lost(participant)
+
+    def _on_participant_lost(self, participant: str) -> None:
+        self._alive.discard(participant)
+        if participant not in self._participants:
+            return
+        self._participants.remove(participant)
+        self._runner.service.count("participants_lost")
+        self._runner.log.warning("%s left the run; continuing without it", participant)
+        self._runner.service.on_participant_lost(participant)
+        if self._step > 0 and self._settings.lockstep:
+            # Followers blocked on the lost service's marker re-read the participant list.
+            self._step -= 1
+            self._publish_clock()
+            self._step += 1

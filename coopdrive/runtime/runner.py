@@ -1,0 +1,290 @@
+"""ServiceRunner: runs one Service on a live bus, with wall, simulated or lockstep time.
+
+Zenoh callbacks only enqueue; a single worker loop handles every message and time trigger,
+so a service's code never runs on two threads at once.
+
+Lockstep: the simulator (the clock master) publishes SimClock(step k) after its sensor data
+and waits for StepDone(k) from every participant. A follower handles step k once every
+upstream service of its vehicle has reported step k and every downstream one step k-1
+(see pipeline.py); messages a publisher sends before its StepDone travel the same link, so
+they have arrived by then.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import os
+import queue
+import signal
+import threading
+import time
+from collections import defaultdict, deque
+from enum import Enum, auto
+from typing import Callable
+
+from google.protobuf.message import Message
+
+from coopdrive.bus import Bus, BusConfig, Envelope
+from coopdrive.bus.topics import topic_named
+from coopdrive.bus.keys import WORLD_ID
+from coopdrive.runtime.barrier import StepBarrier
+from coopdrive.runtime.clock import SimulationClock, WallClock
+from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
+from coopdrive.runtime.master import ClockMaster
+from coopdrive.runtime.pipeline import participant_name, split_participant
+from coopdrive.runtime.service import Service, ServiceConfig
+from coopdrive.runtime.timers import TriggerSet
+from coopdrive.v1 import diagnostics_pb2, sim_pb2
+
+DIAGNOSTICS_PERIOD_S = 1.0
+
+
+class ClockMode(Enum):
+    WALL = "wall"
+    SIM = "sim"
+
+
+class _Event(Enum):
+    DATA = auto()
+    CLOCK = auto()
+    DONE = auto()
+    ALIVE = auto()
+    STOP = auto()
+
+
+class ServiceRunner:
+    def __init__(self, service_cls: type[Service], config: ServiceConfig, vehicle_id: str,
+                 bus_config: BusConfig, clock_mode: ClockMode = ClockMode.WALL):
+        self.vehicle_id = vehicle_id
+        self.log = logging.getLogger(f"coopdrive.{service_cls.name}")
+        self._service_name = service_cls.name
+        self._clock_mode = clock_mode
+        self._clock = WallClock() if clock_mode is ClockMode.WALL else SimulationClock()
+        self._events: queue.SimpleQueue = queue.SimpleQueue()
+        self._handlers: dict[str, list[tuple[str, Callable[[Envelope], None]]]] = defaultdict(list)
+        self._bus_subscriptions: set[tuple[str, str]] = set()
+        self._triggers = TriggerSet()
+        self._sequence: dict[str, int] = defaultdict(int)
+        self._stop = threading.Event()
+        self._stop_reason = ""
+        self._started_monotonic = time.monotonic()
+        self._dispatcher = StepDispatcher(service_cls.name, vehicle_id)
+        self._barrier = StepBarrier(service_cls.name)
+        self._pending_clocks: deque[sim_pb2.SimClock] = deque()
+        self._last_step = -1
+        self._step_s = 0.0
+        self.bus = Bus(bus_config)
+        self.service = service_cls(config, self)
+        self._master = ClockMaster(self) if isinstance(self.service, ClockMaster.Driven) else None
+
+    # ----- ServiceContext -------------------------------------------------------------------
+    def now_s(self) -> float:
+        return self._clock.now_s()
+
+    def subscribe(self, topic: str, handler: Callable[[Envelope], None], vehicle_id: str | None = None) -> None:
+        source = vehicle_id or self.vehicle_id
+        publisher = topic_named(topic).publisher
+        if source != "*":
+            self._barrier.depend_on(participant_name(source, publisher))
+        if (source, topic) not in self._bus_subscriptions:
+            self._bus_subscriptions.add((source, topic))
+            self._barrier.subscribed.add(f"{source}/{topic}")
+            self.bus.subscribe(source, topic, lambda envelope: self._events.put((_Event.DATA, envelope)))
+        self._handlers[topic].append((source, handler))
+
+    def publish(self, topic: str, message: Message, sample_time_s: float | None = None) -> None:
+        self.publish_for(self.vehicle_id, topic, message, sample_time_s)
+
+    def publish_for(self, vehicle_id: str, topic: str, message: Message, sample_time_s: float | None = None) -> None:
+        """Publishes under another vehicle's namespace (the simulator feeds every vehicle)."""
+        now = self._clock.now_s()
+        self._sequence[f"{vehicle_id}/{topic}"] += 1
+        header = message.header
+        header.sent_time_s = now
+        header.sample_time_s = now if sample_time_s is None else sample_time_s
+        header.vehicle_id = vehicle_id
+        header.sender = self._service_name
+        header.sequence = self._sequence[f"{vehicle_id}/{topic}"]
+        self.bus.publish(vehicle_id, topic, message)
+
+    def every(self, period_s: float, handler: Callable[[float], None]) -> None:
+        self._triggers.add(period_s, handler)
+
+    def request_stop(self, reason: str) -> None:
+        self._stop_reason = reason
+        self._stop.set()
+        self._events.put((_Event.STOP, None))
+
+    # ----- life cycle -----------------------------------------------------------------------
+    def run(self) -> str:
+        """Runs until SIGINT/SIGTERM or request_stop; returns the stop reason."""
+        if threading.current_thread() is threading.main_thread():
+            for signum in (signal.SIGINT, signal.SIGTERM):
+                signal.signal(signum, lambda sig, _frame: self.request_stop(signal.Signals(sig).name))
+        try:
+            self.service.start()
+            self._triggers.add(DIAGNOSTICS_PERIOD_S, self._publish_diagnostics)
+            self._declare_runtime_entities()
+            if self._master is not None:
+                self._master.run()
+            else:
+                self._follow()
+        finally:
+            try:
+                self.service.stop()
+            finally:
+                self.bus.close()
+        return self._stop_reason
+
+    def _declare_runtime_entities(self) -> None:
+        layout = self.bus.layout
+        if self._clock_mode is ClockMode.SIM and self._master is None:
+            self.bus.subscribe(WORLD_ID, "clock", lambda env: self._events.put((_Event.CLOCK, env.message)))
+        for participant in sorted(self._barrier.dependencies):
+            vehicle_id, service = split_participant(participant)
+            self.bus.subscribe_key(layout.step_done(vehicle_id, service), self._on_step_marker)
+        if self._master is not None:
+            self.bus.watch_liveliness(layout.all_liveliness(), self._on_liveliness)
+        self.bus.declare_queryable(layout.service_info(self.vehicle_id, self._service_name), self._service_info)
+        # Last: the token tells the others that every subscription above is in place.
+        self.bus.declare_token(layout.liveliness(self.vehicle_id, self._service_name))
+
+    def _on_step_marker(self, key: str, message: Message) -> None:
+        vehicle_id, topic = self.bus.layout.split(key)
+        service = topic.rsplit("/", 1)[-1]
+        self._events.put((_Event.DONE, (participant_name(vehicle_id, service), message.step, message.next_step,
+                                        dict(message.sequences))))
+
+    def _on_liveliness(self, key: str, alive: bool) -> None:
+        parts = key.split("/")
+        if len(parts) == 4:
+            self._events.put((_Event.ALIVE, (participant_name(parts[1], parts[3]), alive)))
+
+    # ----- followers ------------------------------------------------------------------------
+    def _follow(self) -> None:
+        while not self._stop.is_set():
+            if self._clock_mode is ClockMode.WALL:
+                timeout = min(self._triggers.seconds_until_next(self._clock.now_s()), 0.1)
+            else:
+                timeout = 0.1
+            event = self.next_event(timeout)
+            if event is not None:
+                self._handle_follower_event(*event)
+            if self._clock_mode is ClockMode.WALL:
+                self._triggers.run_due(self._clock.now_s())
+            else:
+                self._run_ready_steps()
+
+    def _handle_follower_event(self, kind: _Event, payload) -> None:
+        if kind is _Event.DATA:
+            self.note_received(payload)
+            if self._pending_clocks or self._in_lockstep():
+                self._dispatcher.add(payload)
+            else:
+                self.dispatch(payload)
+        elif kind is _Event.CLOCK:
+            if payload.lockstep:
+                self._queue_clock(payload)
+            else:
+                self._clock.set(payload.time_s)
+                self._triggers.run_due(payload.time_s)
+        elif kind is _Event.DONE:
+            self._barrier.mark_done(*payload)
+
+    def _in_lockstep(self) -> bool:
+        return self._last_step >= 0
+
+    def _queue_clock(self, clock: sim_pb2.SimClock) -> None:
+        if clock.step <= self._last_step:
+            return
+        if self._pending_clocks and self._pending_clocks[-1].step == clock.step:
+            self._pending_clocks[-1] = clock  # re-sent with fewer participants after a crash
+        else:
+            self._pending_clocks.append(clock)
+
+    def _run_ready_steps(self) -> None:
+        while self._pending_clocks:
+            clock = self._pending_clocks[0]
+            self._step_s = clock.step_s
+            if not self._triggers.any_due(clock.time_s):
+                self._pending_clocks.popleft()  # idle step: our last marker already covers it
+                continue
+            if self._barrier.missing(clock.step, list(clock.participants)) or not self._barrier.holds(clock.sequences):
+                return
+            self._pending_clocks.popleft()
+            self.run_step(clock.step, clock.time_s)
+            self.publish_step_done(clock.step)
+
+    # ----- shared by followers and the master -----------------------------------------------
+    def next_event(self, timeout_s: float):
+        try:
+            return self._events.get(timeout=max(timeout_s, 0.0))
+        except queue.Empty:
+            return None
+
+    def run_step(self, step: int, time_s: float) -> None:
+        self._clock.set(time_s)
+        for envelope in self._dispatcher.eligible(time_s):
+            self.dispatch(envelope)
+        self._triggers.run_due(time_s)
+        self._last_step = step
+
+    def publish_step_done(self, step: int) -> None:
+        marker = sim_pb2.StepDone(step=step, service=self._service_name, next_step=self._next_active_step(step),
+                                  sequences=self._sequence)
+        marker.header.sent_time_s = self._clock.now_s()
+        marker.header.vehicle_id = self.vehicle_id
+        marker.header.sender = self._service_name
+        self.bus.put(self.bus.layout.step_done(self.vehicle_id, self._service_name), marker)
+
+    def note_received(self, envelope: Envelope) -> None:
+        self._barrier.mark_received(f"{envelope.vehicle_id}/{envelope.topic}", envelope.message.header.sequence)
+
+    @property
+    def published_sequences(self) -> dict[str, int]:
+        return dict(self._sequence)
+
+    def _next_active_step(self, step: int) -> int:
+        next_due = self._triggers.next_due_s()
+        if next_due is None or self._step_s <= 0:
+            return step + 1
+        return max(step + 1, math.ceil(next_due / self._step_s - TIME_EPSILON_S * 1e3))
+
+    def dispatch(self, envelope: Envelope) -> None:
+        for source, handler in self._handlers.get(envelope.topic, ()):
+            if source not in ("*", envelope.vehicle_id):
+                continue
+            try:
+                handler(envelope)
+            except Exception:  # a bad message must not take the service down
+                self.service.count("handler_errors")
+                self.log.exception("handler for %s failed", envelope.topic)
+
+    @property
+    def dispatcher(self) -> StepDispatcher:
+        return self._dispatcher
+
+    @property
+    def barrier(self) -> StepBarrier:
+        return self._barrier
+
+    @property
+    def stopping(self) -> bool:
+        return self._stop.is_set()
+
+    def _publish_diagnostics(self, now_s: float) -> None:
+        message = diagnostics_pb2.Diagnostics(level=diagnostics_pb2.HEALTH_LEVEL_OK)
+        for name, value in self.service.counters.items():
+            message.counters[name] = value
+        message.counters["bus_decode_errors"] = self.bus.decode_errors
+        self.publish(f"diagnostics/{self._service_name}", message)
+
+    def _service_info(self) -> Message:
+        from coopdrive.v1 import diagnostics_pb2 as diag
+
+        return diag.ServiceInfo(
+            service=self._service_name, vehicle_id=self.vehicle_id,
+            state="stopping" if self._stop.is_set() else "running",
+            config_json=self.service.config.model_dump_json(),
+            uptime_s=time.monotonic() - self._started_monotonic, pid=os.getpid())

@@ -1,0 +1,57 @@
+"""The Service base class and the context through which a service reaches the bus.
+
+A service is configured (constructed with its validated config and a context), started
+(declares its data triggers with `ctx.subscribe` and time triggers with `ctx.every`) and
+stopped. The context is a live bus in `coopdrive service`, and a recording in `coopdrive
+replay`: the service cannot tell the difference, which is what makes replay exact.
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import Callable, ClassVar, Protocol
+
+from google.protobuf.message import Message
+from pydantic import BaseModel, ConfigDict
+
+from coopdrive.bus import Envelope
+
+
+class ServiceContext(Protocol):
+    vehicle_id: str
+    log: logging.Logger
+
+    def now_s(self) -> float: ...
+
+    def subscribe(self, topic: str, handler: Callable[[Envelope], None], vehicle_id: str | None = None) -> None: ...
+
+    def publish(self, topic: str, message: Message, sample_time_s: float | None = None) -> None: ...
+
+    def every(self, period_s: float, handler: Callable[[float], None]) -> None: ...
+
+    def request_stop(self, reason: str) -> None: ...
+
+
+class ServiceConfig(BaseModel):
+    """Base of every service's config: unknown keys are errors, not silently ignored."""
+
+    model_config = ConfigDict(extra="forbid")
+
+
+class Service:
+    name: ClassVar[str]
+    Config: ClassVar[type[ServiceConfig]] = ServiceConfig
+
+    def __init__(self, config: ServiceConfig, ctx: ServiceContext):
+        self.config = config
+        self.ctx = ctx
+        self.counters: dict[str, float] = {}
+
+    def start(self) -> None:
+        """Declare data triggers (ctx.subscribe) and time triggers (ctx.every)."""
+
+    def stop(self) -> None:
+        """Release what start() acquired (files, sockets). The runtime closes the bus."""
+
+    def count(self, counter: str, increment: float = 1) -> None:
+        self.counters[counter] = self.counters.get(counter, 0) + increment

@@ -1,0 +1,59 @@
+"""Time triggers: a handler that runs at a fixed period on whichever clock the service uses."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+from coopdrive.runtime.dispatcher import TIME_EPSILON_S
+
+
+@dataclass
+class TimeTrigger:
+    period_s: float
+    handler: Callable[[float], None]
+    next_due_s: float | None = None
+
+    def due(self, now_s: float) -> bool:
+        return self.next_due_s is None or now_s >= self.next_due_s - TIME_EPSILON_S
+
+    def fire(self, now_s: float) -> None:
+        if self.next_due_s is None:
+            self.next_due_s = now_s
+        # Skip missed periods instead of bursting to catch up.
+        missed = max(0, math.floor((now_s - self.next_due_s) / self.period_s + TIME_EPSILON_S))
+        self.next_due_s += (missed + 1) * self.period_s
+        self.handler(now_s)
+
+
+class TriggerSet:
+    def __init__(self) -> None:
+        self._triggers: list[TimeTrigger] = []
+
+    def add(self, period_s: float, handler: Callable[[float], None]) -> TimeTrigger:
+        if not period_s > 0:
+            raise ValueError(f"a time trigger needs a positive period, got {period_s}")
+        trigger = TimeTrigger(period_s, handler)
+        self._triggers.append(trigger)
+        return trigger
+
+    def run_due(self, now_s: float) -> None:
+        for trigger in self._triggers:
+            if trigger.due(now_s):
+                trigger.fire(now_s)
+
+    def next_due_s(self) -> float | None:
+        """When the next trigger is due; None when one has never fired (it is due at once)."""
+        if not self._triggers or any(t.next_due_s is None for t in self._triggers):
+            return None
+        return min(t.next_due_s for t in self._triggers)
+
+    def any_due(self, now_s: float) -> bool:
+        return any(t.due(now_s) for t in self._triggers)
+
+    def seconds_until_next(self, now_s: float) -> float:
+        pending = [t.next_due_s - now_s for t in self._triggers if t.next_due_s is not None]
+        if any(t.next_due_s is None for t in self._triggers):
+            return 0.0
+        return max(0.0, min(pending)) if pending else 1.0
