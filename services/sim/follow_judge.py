@@ -1,0 +1,58 @@
+"""Judges a follow run from ground truth: collisions, gaps, speed and spacing errors."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+MIN_SPEED_FOR_TIME_GAP_MPS = 1.0
+
+
+@dataclass
+class FollowJudge:
+    standstill_m: float
+    time_gap_s: float
+    collisions: int = 0
+    min_gap_m: float = math.inf
+    min_time_gap_s: float = math.inf
+    _in_collision: set = field(default_factory=set)
+    _spacing_errors_m: list = field(default_factory=list)
+    _speed_errors_mps: list = field(default_factory=list)
+    _max_abs_accel_mps2: float = 0.0
+
+    def observe(self, vehicle_id: str, gap_m: float | None, speed_mps: float, leader_speed_mps: float | None,
+                accel_mps2: float) -> None:
+        self._max_abs_accel_mps2 = max(self._max_abs_accel_mps2, abs(accel_mps2))
+        if gap_m is None:
+            return
+        if gap_m <= 0 and vehicle_id not in self._in_collision:
+            self.collisions += 1
+            self._in_collision.add(vehicle_id)
+        elif gap_m > 0:
+            self._in_collision.discard(vehicle_id)
+        self.min_gap_m = min(self.min_gap_m, gap_m)
+        if speed_mps > MIN_SPEED_FOR_TIME_GAP_MPS:
+            self.min_time_gap_s = min(self.min_time_gap_s, gap_m / speed_mps)
+        self._spacing_errors_m.append(gap_m - (self.standstill_m + self.time_gap_s * speed_mps))
+        if leader_speed_mps is not None:
+            self._speed_errors_mps.append(speed_mps - leader_speed_mps)
+
+    def metrics(self) -> dict[str, float]:
+        spacing = [abs(e) for e in self._spacing_errors_m] or [0.0]
+        speed = [abs(e) for e in self._speed_errors_mps] or [0.0]
+        return {
+            "collisions": float(self.collisions),
+            "min_gap_m": self.min_gap_m if math.isfinite(self.min_gap_m) else -1.0,
+            "min_time_gap_s": self.min_time_gap_s if math.isfinite(self.min_time_gap_s) else -1.0,
+            "spacing_error_mean_m": sum(spacing) / len(spacing),
+            "spacing_error_max_m": max(spacing),
+            "speed_error_mean_kmh": 3.6 * sum(speed) / len(speed),
+            "max_abs_accel_mps2": self._max_abs_accel_mps2,
+        }
+
+    def verdict(self) -> tuple[bool, str]:
+        if self.collisions:
+            return False, f"{self.collisions} collision(s)"
+        if self.min_gap_m <= self.standstill_m:
+            return False, f"minimum gap {self.min_gap_m:.2f} m not above the standstill distance {self.standstill_m} m"
+        return True, ""

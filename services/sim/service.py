@@ -1,0 +1,172 @@
+"""The simulator service: owns simulated time, moves the world, feeds every stack its sensors."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import pymap3d
+from pydantic import Field
+
+from coopdrive.bus import Envelope
+from coopdrive.bus.keys import WORLD_ID
+from coopdrive.runtime.master import ClockMaster, ClockSettings
+from coopdrive.runtime.service import Service, ServiceConfig
+from coopdrive.services.sim.follow_judge import FollowJudge
+from coopdrive.services.sim.world_config import VehicleSpec, WorldConfig
+from coopdrive.services.sim.world_service import FollowWorld
+from coopdrive.v1 import gnss_pb2, sensors_pb2, sim_pb2, vehicle_pb2
+
+
+def default_follow_world() -> WorldConfig:
+    leader_profile = [(0, 15), (10, 15), (16, 22), (28, 22), (32, 10), (42, 10), (50, 15), (60, 15)]
+    return WorldConfig(vehicles=[
+        VehicleSpec(vehicle_id="leader", station_id=1001, station_m=45.0, speed_profile=leader_profile),
+        VehicleSpec(vehicle_id="ego", station_id=1002, station_m=0.0),
+    ])
+
+
+class SimConfig(ServiceConfig):
+    scenario: str = "follow"
+    seed: int = 1
+    duration_s: float = 60.0
+    step_s: float = 0.01
+    lockstep: bool = True
+    realtime_factor: float = 1.0
+    participants: list[str] = Field(default_factory=list)
+    startup_timeout_s: float = 60.0
+    # Spacing policy d = r + h v the run is judged against.
+    standstill_m: float = 6.0
+    time_gap_s: float = 1.5
+    world: WorldConfig = Field(default_factory=default_follow_world)
+
+
+class SimService(Service, ClockMaster.Driven):
+    name = "sim"
+    Config = SimConfig
+
+    def start(self) -> None:
+        config: SimConfig = self.config
+        self.world = FollowWorld(config.world)
+        self.rng = np.random.default_rng(config.seed)
+        self.judge = FollowJudge(config.standstill_m, config.time_gap_s)
+        self.stack_vehicles = [s.vehicle_id for s in config.world.vehicles if not s.speed_profile]
+        self.accel_requests: dict[str, float] = {}
+        self.steering_requests: dict[str, float] = {}
+        self.wall_start_s = time.monotonic()
+        self.finished = False
+        for vehicle_id in self.stack_vehicles:
+            self.ctx.subscribe("actuation/command", self.on_actuator_command, vehicle_id=vehicle_id)
+        world = config.world
+        self.ctx.every(config.step_s, self.on_step)
+        self.ctx.every(1.0 / world.can.rate_hz, self.publish_can_state)
+        self.ctx.every(1.0 / world.gnss.rate_hz, self.publish_gnss)
+        self.ctx.every(1.0 / world.radar.rate_hz, self.publish_radar)
+        self.ctx.every(1.0 / world.ground_truth_rate_hz, self.publish_ground_truth)
+
+    # ----- ClockMaster.Driven ---------------------------------------------------------------
+    def clock_settings(self) -> ClockSettings:
+        c: SimConfig = self.config
+        return ClockSettings(step_s=c.step_s, lockstep=c.lockstep, realtime_factor=c.realtime_factor,
+                             participants=list(c.participants), startup_timeout_s=c.startup_timeout_s)
+
+    def on_clock_started(self, wall_start_monotonic_s: float) -> None:
+        self.wall_start_s = wall_start_monotonic_s
+
+    # ----- inputs ---------------------------------------------------------------------------
+    def on_actuator_command(self, envelope: Envelope) -> None:
+        command = envelope.message
+        if not (math.isfinite(command.accel_request_mps2) and math.isfinite(command.steering_angle_rad)):
+            self.count("rejected_actuator_commands")
+            return
+        self.accel_requests[envelope.vehicle_id] = command.accel_request_mps2
+        self.steering_requests[envelope.vehicle_id] = command.steering_angle_rad
+
+    # ----- time triggers --------------------------------------------------------------------
+    def on_step(self, now_s: float) -> None:
+        config: SimConfig = self.config
+        if now_s > 0:
+            self.world.step(now_s - config.step_s, config.step_s, self.accel_requests, self.steering_requests)
+        for vehicle_id in self.stack_vehicles:
+            body = self.world.bodies[vehicle_id]
+            ahead = self.world.vehicle_ahead(vehicle_id)
+            self.judge.observe(vehicle_id, self.world.gap_m(vehicle_id), body.speed_mps,
+                               ahead.speed_mps if ahead else None, body.accel_mps2)
+        if now_s >= config.duration_s - 1e-9 and not self.finished:
+            self.finish(now_s)
+
+    def publish_can_state(self, now_s: float) -> None:
+        noise = self.config.world.can
+        for vehicle_id in self.stack_vehicles:
+            body = self.world.bodies[vehicle_id]
+            half_track = body.spec.track_width_m / 2
+            wheel = lambda offset: body.speed_mps + offset + self.rng.normal(0, noise.wheel_speed_sigma_mps)  # noqa: E731
+            state = vehicle_pb2.VehicleCanState(
+                wheel_speed_front_left_mps=wheel(-body.yaw_rate_radps * half_track),
+                wheel_speed_front_right_mps=wheel(body.yaw_rate_radps * half_track),
+                wheel_speed_rear_left_mps=wheel(-body.yaw_rate_radps * half_track),
+                wheel_speed_rear_right_mps=wheel(body.yaw_rate_radps * half_track),
+                yaw_rate_radps=body.yaw_rate_radps + self.rng.normal(0, noise.yaw_rate_sigma_radps),
+                steering_angle_rad=body.steering_angle_rad, gear=vehicle_pb2.GEAR_DRIVE)
+            self.ctx.publish_for(vehicle_id, "vehicle/state", state)
+
+    def publish_gnss(self, now_s: float) -> None:
+        world = self.config.world
+        for vehicle_id in self.stack_vehicles:
+            body = self.world.bodies[vehicle_id]
+            east = body.x_m + self.rng.normal(0, world.gnss.sigma_m)
+            north = body.y_m + self.rng.normal(0, world.gnss.sigma_m)
+            lat, lon, alt = pymap3d.enu2geodetic(east, north, 0.0, world.origin_lat_deg, world.origin_lon_deg,
+                                                 world.origin_alt_m)
+            fix = gnss_pb2.GnssFix(
+                latitude_deg=float(lat), longitude_deg=float(lon), altitude_m=float(alt),
+                fix_mode=gnss_pb2.FIX_MODE_RTK_FIXED, std_east_m=world.gnss.sigma_m,
+                std_north_m=world.gnss.sigma_m, std_up_m=2 * world.gnss.sigma_m, speed_mps=body.speed_mps,
+                course_deg=(90.0 - math.degrees(body.heading_rad)) % 360.0, satellites=14, hdop=0.8)
+            self.ctx.publish_for(vehicle_id, "gnss/fix", fix)
+
+    def publish_radar(self, now_s: float) -> None:
+        radar = self.config.world.radar
+        for vehicle_id in self.stack_vehicles:
+            me = self.world.bodies[vehicle_id]
+            tracks = sensors_pb2.RadarTracks()
+            for other_id, other in self.world.bodies.items():
+                if other_id == vehicle_id:
+                    continue
+                dx, dy = other.rear_bumper_x_m - me.x_m, other.y_m - me.y_m
+                forward = dx * math.cos(me.heading_rad) + dy * math.sin(me.heading_rad)
+                left = -dx * math.sin(me.heading_rad) + dy * math.cos(me.heading_rad)
+                range_m, azimuth = math.hypot(forward, left), math.atan2(left, forward)
+                if forward <= 0 or range_m > radar.max_range_m or abs(azimuth) > radar.half_fov_rad:
+                    continue
+                tracks.tracks.add(track_id=other.spec.station_id % 64,
+                                  range_m=range_m + self.rng.normal(0, radar.range_sigma_m), azimuth_rad=azimuth,
+                                  range_rate_mps=other.speed_mps - me.speed_mps
+                                  + self.rng.normal(0, radar.range_rate_sigma_mps),
+                                  width_m=other.spec.width_m)
+            self.ctx.publish_for(vehicle_id, "radar/tracks", tracks)
+
+    def publish_ground_truth(self, now_s: float) -> None:
+        truth = sim_pb2.GroundTruth(collisions=self.judge.collisions)
+        for vehicle_id, body in self.world.bodies.items():
+            truth.vehicles.add(vehicle_id=vehicle_id, station_id=body.spec.station_id, x_m=body.x_m, y_m=body.y_m,
+                               heading_rad=body.heading_rad, speed_mps=body.speed_mps, accel_mps2=body.accel_mps2,
+                               yaw_rate_radps=body.yaw_rate_radps, length_m=body.spec.length_m,
+                               width_m=body.spec.width_m, station_m=body.x_m, lateral_offset_m=body.y_m,
+                               steering_angle_rad=body.steering_angle_rad,
+                               automated=vehicle_id in self.stack_vehicles)
+        self.ctx.publish_for(WORLD_ID, "ground_truth", truth)
+
+    def finish(self, now_s: float) -> None:
+        self.finished = True
+        config: SimConfig = self.config
+        success, reason = self.judge.verdict()
+        result = sim_pb2.RunResult(scenario=config.scenario, seed=config.seed, success=success,
+                                   failure_reason=reason, sim_time_s=now_s,
+                                   wall_time_s=time.monotonic() - self.wall_start_s)
+        for key, value in self.judge.metrics().items():
+            result.metrics[key] = value
+        result.metrics["participants_lost"] = self.counters.get("participants_lost", 0)
+        self.ctx.publish_for(WORLD_ID, "result", result)
+        self.ctx.request_stop("scenario finished")
