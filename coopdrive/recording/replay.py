@@ -68,6 +68,9 @@ class ReplayContext:
     def every(self, period_s: float, handler: Callable[[float], None]) -> None:
         self.triggers.add(period_s, handler)
 
+    def watch_liveliness(self, handler: Callable[[str, bool], None]) -> None:
+        """A recording has no liveliness; replayed services see no peers come or go."""
+
     def request_stop(self, reason: str) -> None:
         self.log.info("service asked to stop: %s", reason)
 

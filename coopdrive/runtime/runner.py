@@ -64,6 +64,7 @@ class ServiceRunner:
         self._events: queue.SimpleQueue = queue.SimpleQueue()
         self._handlers: dict[str, list[tuple[str, Callable[[Envelope], None]]]] = defaultdict(list)
         self._bus_subscriptions: set[tuple[str, str]] = set()
+        self._liveliness_handlers: list[Callable[[str, bool], None]] = []
         self._triggers = TriggerSet()
         self._sequence: dict[str, int] = defaultdict(int)
         self._stop = threading.Event()
@@ -111,6 +112,9 @@ class ServiceRunner:
     def every(self, period_s: float, handler: Callable[[float], None]) -> None:
         self._triggers.add(period_s, handler)
 
+    def watch_liveliness(self, handler: Callable[[str, bool], None]) -> None:
+        self._liveliness_handlers.append(handler)
+
     def request_stop(self, reason: str) -> None:
         self._stop_reason = reason
         self._stop.set()
@@ -144,7 +148,7 @@ class ServiceRunner:
         for participant in sorted(self._barrier.dependencies):
             vehicle_id, service = split_participant(participant)
             self.bus.subscribe_key(layout.step_done(vehicle_id, service), self._on_step_marker)
-        if self._master is not None:
+        if self._master is not None or self._liveliness_handlers:
             self.bus.watch_liveliness(layout.all_liveliness(), self._on_liveliness)
         self.bus.declare_queryable(layout.service_info(self.vehicle_id, self._service_name), self._service_info)
         # Last: the token tells the others that every subscription above is in place.
@@ -191,6 +195,9 @@ class ServiceRunner:
                 self._triggers.run_due(payload.time_s)
         elif kind is _Event.DONE:
             self._barrier.mark_done(*payload)
+        elif kind is _Event.ALIVE:
+            for handler in self._liveliness_handlers:
+                handler(*payload)
 
     def _in_lockstep(self) -> bool:
         return self._last_step >= 0

@@ -29,6 +29,9 @@ class ServiceContext(Protocol):
 
     def every(self, period_s: float, handler: Callable[[float], None]) -> None: ...
 
+    def watch_liveliness(self, handler: Callable[[str, bool], None]) -> None:
+        """handler("<vehicle>/<service>", alive) for every service present now and every change."""
+
     def request_stop(self, reason: str) -> None: ...
 
 
