@@ -45,6 +45,8 @@ class LidarConfig(BaseModel):
     object_layers: list[int] = Field(default_factory=list)
     range_std_m: float = Field(default=0.1, gt=0.0)
     bearing_std_rad: float = Field(default=0.005, gt=0.0)
+    # A cluster narrower than this is a partly seen vehicle, whose centre is correspondingly uncertain.
+    typical_width_m: float = Field(default=1.8, gt=0.0)
 
 
 class RadarConfig(BaseModel):

@@ -64,6 +64,12 @@ class LidarCluster:
         return math.hypot(dx, dy)
 
 
+def _across_beam(bearing_rad: float) -> np.ndarray:
+    """Projector onto the direction across the beam, vehicle frame."""
+    normal = np.array([-math.sin(bearing_rad), math.cos(bearing_rad)])
+    return np.outer(normal, normal)
+
+
 def layer_points(layer: sensors_pb2.LidarLayer, max_range_m: float) -> np.ndarray:
     """Valid returns of one layer in the vehicle frame, in azimuth order, projected on the ground plane."""
     azimuth = np.asarray(layer.azimuth_rad, dtype=float)
@@ -113,8 +119,11 @@ class LidarClusterer:
             range_m = float(np.hypot(*rear))
             bearing = math.atan2(rear[1], rear[0])
             cov = polar_cov_vehicle(range_m, bearing, cfg.range_std_m, cfg.bearing_std_rad)
-            # The centre of a partly seen face is uncertain by a fraction of its width.
-            cov[1, 1] += (_FACE_CENTRE_STD_FRACTION * cluster.width_m) ** 2
+            # A face narrower than a vehicle is partly hidden (occluded, or cut by the edge of the
+            # field of view): its true centre may lie anywhere within the missing width.
+            missing_m = max(0.0, cfg.typical_width_m - cluster.width_m)
+            face_std_m = max(_FACE_CENTRE_STD_FRACTION * cluster.width_m, 0.5 * missing_m)
+            cov += face_std_m**2 * _across_beam(bearing)
             out.append(
                 Measurement(
                     source=header_pb2.SENSOR_SOURCE_LIDAR,

@@ -1,7 +1,7 @@
 """Multi-object tracker: gating, global assignment, track life cycle, V2V station links.
 
 Life cycle: a track starts tentative and is never published; it is confirmed after confirm_hits
-readings or as soon as two different sources see it; a tentative track with no hit for
+readings; a tentative track with no hit for
 tentative_timeout_s is deleted, a confirmed one once every source of its position has faded.
 A false detection therefore never shows, and a false object never outlives its last reading by more
 than the longest fade time of the sources that saw it.
@@ -16,7 +16,7 @@ import numpy as np
 
 from coopdrive.v1 import header_pb2
 
-from .association import assign, match_quality, polar_cost_matrix
+from .association import assign, likelihood_cost, match_quality, polar_cost_matrix
 from .config import SceneFusionConfig
 from .measurement import Measurement
 from .properties import ObjectProperties
@@ -63,22 +63,24 @@ class Tracker:
             return
         tracks = list(self.tracks.values())
         gate = self._config.tracking.gate_chi2
-        cost = self._costs(measurements, tracks)
-        pairs, unmatched = assign(cost, gate)
+        d2, log_det = self._costs(measurements, tracks)
+        pairs, unmatched = assign(likelihood_cost(d2, log_det), gate, gate_cost=d2)
         for i, j in pairs:
-            self._fuse(tracks[j], measurements[i], match_quality(cost[i, j], gate))
+            self._fuse(tracks[j], measurements[i], match_quality(d2[i, j], gate))
         for i in unmatched:
             self._start(measurements[i])
 
-    def _costs(self, measurements: list[Measurement], tracks: list[Track]) -> np.ndarray:
+    def _costs(self, measurements: list[Measurement], tracks: list[Track]) -> tuple[np.ndarray, np.ndarray]:
+        """Squared Mahalanobis distances and innovation log-determinants, measurements x tracks."""
         if not tracks:
-            return np.zeros((len(measurements), 0))
+            return np.zeros((len(measurements), 0)), np.zeros((len(measurements), 0))
         time_s = measurements[0].time_s
         track_xy, track_cov = predict_positions(tracks, time_s, self._config.tracking.jerk_psd_m2ps5)
         meas_xy = np.array([m.position_m for m in measurements])
         meas_cov = np.array([m.cov_m2 for m in measurements])
         origins = np.array([m.origin_m for m in measurements])
-        return self._cost_fn(meas_xy, meas_cov, origins, track_xy, track_cov, self._config.tracking.angle_emphasis)
+        return self._cost_fn(meas_xy, meas_cov, origins, track_xy, track_cov, self._config.tracking.angle_emphasis,
+                             with_log_det=True)
 
     # -- V2V -------------------------------------------------------------------------------
 
@@ -106,7 +108,7 @@ class Tracker:
             return self._link(better, meas)
         free = [t for t in self.tracks.values() if t.station_id is None]
         if free:
-            cost = self._costs([meas], free)[0]
+            cost = self._costs([meas], free)[0][0]
             best = int(np.argmin(cost))
             if cost[best] <= self._config.tracking.gate_chi2:
                 return self._link(free[best], meas)
@@ -180,7 +182,7 @@ class Tracker:
             return
         self.counters.replayed += track.replays - replays_before
         track.props.support(meas, quality, v2v_weight)
-        self._maybe_confirm(track, meas.time_s)
+        self._maybe_confirm(track)
 
     def _start(self, meas: Measurement, v2v_weight: float = 1.0) -> Track:
         props = ObjectProperties(self._source_configs.__getitem__, self._config.tracking)
@@ -189,14 +191,14 @@ class Tracker:
         self.tracks[track.track_id] = track
         self.counters.created += 1
         props.support(meas, 1.0, v2v_weight)
-        self._maybe_confirm(track, meas.time_s)
+        self._maybe_confirm(track)
         return track
 
-    def _maybe_confirm(self, track: Track, time_s: float) -> None:
+    def _maybe_confirm(self, track: Track) -> None:
         if track.status is not TrackStatus.TENTATIVE:
             return
-        two_sources = len(track.props.position.sources(time_s)) >= 2
-        if track.hits >= self._config.tracking.confirm_hits or two_sources:
+        # Hits only: a clutter point and a radar false alarm that happen to coincide are two sources.
+        if track.hits >= self._config.tracking.confirm_hits:
             track.status = TrackStatus.CONFIRMED
             self.counters.confirmed += 1
 
