@@ -5,7 +5,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coopdrive.services.scene.association import assign, match_quality, polar_cost_loop, polar_cost_matrix
+from coopdrive.services.scene.association import (
+    assign,
+    likelihood_cost,
+    match_quality,
+    polar_cost_loop,
+    polar_cost_matrix,
+)
 
 ORIGIN = np.zeros(2)
 
@@ -78,3 +84,14 @@ def test_bearing_residuals_wrap_around_behind_the_sensor():
     (cost,) = costs([[-20.0, 0.01]], [[-20.0, -0.01]])
     assert cost[0] < 1.0
     assert math.isfinite(cost[0])
+
+
+def test_a_vague_new_track_does_not_outbid_a_sharp_established_track_for_a_measurement():
+    meas_xy = np.array([[20.0, 0.2]])
+    meas_cov = np.eye(2)[None] * 0.05
+    track_xy = np.array([[20.0, 0.0], [20.5, 0.5]])  # sharp, vague
+    track_cov = np.stack((np.eye(2) * 0.05, np.eye(2) * 4.0))
+    d2, log_det = polar_cost_matrix(meas_xy, meas_cov, np.zeros((1, 2)), track_xy, track_cov, 1.2, with_log_det=True)
+    assert d2[0, 1] < d2[0, 0]  # by distance alone the vague track looks closer
+    pairs, _ = assign(likelihood_cost(d2, log_det), 9.21, gate_cost=d2)
+    assert pairs == [(0, 0)]
