@@ -64,6 +64,16 @@ class LidarCluster:
         return math.hypot(dx, dy)
 
 
+def expected_points(width_m: float, distance_m: float, resolution_rad: float) -> float:
+    """Beams hitting the back of a vehicle: n = w / (d* tan phi)."""
+    return width_m / (distance_m * math.tan(resolution_rad))  # (eq. 1) Heudiasyc
+
+
+def max_detection_range_m(width_m: float, min_points: int, resolution_rad: float) -> float:
+    """Eq. (1) inverted: beyond this a vehicle returns fewer than min_points and is dropped."""
+    return width_m / (min_points * math.tan(resolution_rad))  # (eq. 1) Heudiasyc, inverted
+
+
 def _across_beam(bearing_rad: float) -> np.ndarray:
     """Projector onto the direction across the beam, vehicle frame."""
     normal = np.array([-math.sin(bearing_rad), math.cos(bearing_rad)])

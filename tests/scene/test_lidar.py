@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from coopdrive.services.scene.config import LidarConfig
-from coopdrive.services.scene.lidar import LidarClusterer, split_consecutive
+from coopdrive.services.scene.lidar import LidarClusterer, expected_points, max_detection_range_m, split_consecutive
 from coopdrive.services.scene.measurement import EgoPose
 from coopdrive.v1 import header_pb2, sensors_pb2
 
@@ -91,3 +91,9 @@ def test_a_layer_with_mismatched_arrays_is_a_clear_error():
     layer.range_m.extend([5.0])
     with pytest.raises(ValueError, match="layer 1"):
         LidarClusterer(LidarConfig()).clusters(scan)
+
+
+def test_heudiasyc_eq_1_gives_about_ten_points_on_a_2_m_car_at_22_m_with_half_degree_beams():
+    assert expected_points(2.0, 22.0, math.radians(0.5)) == pytest.approx(10.4, abs=0.1)
+    # With five points required, such a car is detected out to about 46 m.
+    assert max_detection_range_m(2.0, 5, math.radians(0.5)) == pytest.approx(45.8, abs=0.1)
