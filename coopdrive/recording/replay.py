@@ -42,6 +42,7 @@ class ReplayContext:
     triggers: TriggerSet = field(default_factory=TriggerSet)
     handlers: dict = field(default_factory=lambda: defaultdict(list))
     outputs: list[tuple[str, Message]] = field(default_factory=list)
+    liveliness_handlers: list = field(default_factory=list)
     _sequence: dict = field(default_factory=lambda: defaultdict(int))
     layout: KeyLayout = field(default_factory=KeyLayout)
 
@@ -69,7 +70,7 @@ class ReplayContext:
         self.triggers.add(period_s, handler)
 
     def watch_liveliness(self, handler: Callable[[str, bool], None]) -> None:
-        """A recording has no liveliness; replayed services see no peers come or go."""
+        self.liveliness_handlers.append(handler)
 
     def request_stop(self, reason: str) -> None:
         self.log.info("service asked to stop: %s", reason)
@@ -126,6 +127,11 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
             inputs.append(item)
     inputs.sort(key=lambda m: m.message.header.sent_time_s)
 
+    if clocks:
+        # Live, every participant was up before step 0 (the simulator waits for all of them).
+        for participant in [f"{WORLD_ID}/sim", *clocks[0].participants]:
+            for handler in ctx.liveliness_handlers:
+                handler(participant, True)
     dispatcher = StepDispatcher(service_name, vehicle_id)
     next_input = 0
     steps = 0

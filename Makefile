@@ -1,0 +1,37 @@
+# Two commands a user needs: `make run` and `make test`. Both set up .venv when it is missing.
+PYTHON ?= python3
+VENV := .venv
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.installed
+
+.PHONY: run test bench proto proto-check clean
+
+$(STAMP): pyproject.toml setup.py
+	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e '.[test]'
+	@touch $(STAMP)
+
+## run: the follow scenario with every service as its own process; prints the summary
+run: $(STAMP)
+	$(BIN)/coopdrive run follow --record out/follow.mcap
+
+## test: the whole test suite (and a check that generated protobuf code is current)
+test: $(STAMP) proto-check
+	$(BIN)/python -m pytest
+
+## bench: benchmarks, each against a baseline measured in the same run
+bench: $(STAMP)
+	$(BIN)/python -m bench
+
+## proto: regenerate coopdrive/v1/*_pb2.py from proto/
+proto: $(STAMP)
+	PYTHON=$(BIN)/python tools/gen_proto.sh
+
+proto-check: $(STAMP)
+	@tmp=$$(mktemp -d) && PYTHON=$(BIN)/python tools/gen_proto.sh $$tmp && \
+	  diff -r -q -x __init__.py -x __pycache__ $$tmp/coopdrive/v1 coopdrive/v1 \
+	  || { echo "generated protobuf code is stale: run 'make proto' and commit"; exit 1; }
+
+clean:
+	rm -rf $(VENV) out build *.egg-info
