@@ -60,6 +60,13 @@ def build_parser() -> argparse.ArgumentParser:
     record.add_argument("--key", default="coopdrive/**")
     record.set_defaults(handler=_record)
 
+    health = commands.add_parser("health", help="exit 0 when a service is alive on the bus (container healthcheck)")
+    health.add_argument("--connect", action="append", default=[])
+    health.add_argument("--vehicle", default="ego")
+    health.add_argument("--service", required=True)
+    health.add_argument("--timeout", type=float, default=2.0)
+    health.set_defaults(handler=_health)
+
     replay = commands.add_parser("replay", help="replay a recording through one service")
     replay.add_argument("file", type=Path)
     replay.add_argument("--service", required=True)
@@ -108,6 +115,19 @@ def _record(args) -> int:
     count = record_live(args.file, args.connect, args.key)
     print(f"recorded {count} messages to {args.file}")
     return EXIT_OK
+
+
+def _health(args) -> int:
+    from coopdrive.bus import Bus, BusConfig
+
+    bus = Bus(BusConfig(connect=args.connect, listen=[]))
+    try:
+        key = bus.layout.liveliness(args.vehicle, args.service)
+        alive = key in bus.alive_tokens(key, timeout_s=args.timeout)
+    finally:
+        bus.close()
+    print(f"{args.vehicle}/{args.service}: {'alive' if alive else 'not alive'}")
+    return EXIT_OK if alive else EXIT_FAILED
 
 
 def _replay(args) -> int:

@@ -1,0 +1,58 @@
+"""Deployment files: compose validates, maps to real services, and the wheel is a normal one."""
+
+import shutil
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+import yaml
+
+from coopdrive.runtime.registry import service_class
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def compose_services() -> dict:
+    return yaml.safe_load((ROOT / "docker-compose.yml").read_text())["services"]
+
+
+def test_every_compose_service_runs_a_real_coopdrive_service():
+    for name, spec in compose_services().items():
+        if name == "zenohd":
+            assert spec["image"].startswith("eclipse/zenoh")
+            continue
+        command = spec["command"]
+        assert command[:2] == ["service", name], f"{name} does not run 'coopdrive service {name}'"
+        assert service_class(name).name == name
+        assert spec["restart"] == "on-failure" and "healthcheck" in spec
+        config = command[command.index("--config") + 1]
+        assert (ROOT / "deploy" / "config" / Path(config).name).exists(), f"{name}: {config} is not in deploy/config"
+
+
+@pytest.mark.skipif(shutil.which("docker-compose") is None, reason="Debian's docker-compose is installed by .ci/run")
+def test_docker_compose_accepts_the_file():
+    result = subprocess.run(["docker-compose", "-f", str(ROOT / "docker-compose.yml"), "config", "-q"],
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stderr
+
+
+def test_the_health_command_reports_a_missing_service_as_not_alive(endpoint):
+    result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "health", "--connect", endpoint,
+                             "--service", "control", "--timeout", "0.5"], capture_output=True, text=True, timeout=60)
+    assert result.returncode == 1
+    assert "ego/control: not alive" in result.stdout
+
+
+def test_pip_builds_a_normal_wheel_with_one_top_level_package(tmp_path):
+    subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w",
+                    str(tmp_path), str(ROOT)], check=True, timeout=300, capture_output=True)
+    [wheel] = tmp_path.glob("coopdrive-*.whl")
+    names = zipfile.ZipFile(wheel).namelist()
+    top_level = {name.split("/")[0] for name in names if not name.startswith("coopdrive-")}
+    assert top_level == {"coopdrive"}
+    for expected in ("coopdrive/services/control/service.py", "coopdrive/v1/ego_pb2.py", "coopdrive/cli.py"):
+        assert expected in names
+    entry_points = next(n for n in names if n.endswith("entry_points.txt"))
+    assert "coopdrive = coopdrive.cli:main" in zipfile.ZipFile(wheel).read(entry_points).decode()
