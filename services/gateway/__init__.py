@@ -1,1 +1,1 @@
-"""The gateway service."""
+"""The gateway service: the vehicle's health and live state over HTTP (FastAPI on uvicorn)."""
