@@ -65,7 +65,7 @@ def run(count: int, cost_fn, timed_frames: int = TIMED_FRAMES) -> tuple[float, i
     fusion = SceneFusion()
     fusion.tracker = Tracker(fusion.config, cost_fn=cost_fn)
     # A radar that sees everything: the field of view is not what is being measured here.
-    fusion.config.radar.field_of_view_rad = math.pi
+    fusion.config.radar.half_fov_rad = math.pi
     timings = []
     scene = None
     for k, (t, ego, radar) in enumerate(frames(objects, rng, WARMUP_FRAMES + timed_frames)):

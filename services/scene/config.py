@@ -10,6 +10,8 @@ The LiDAR clustering numbers are Heudiasyc's (Fig. 12, Sect. 6).
 
 from __future__ import annotations
 
+import math
+
 from pydantic import BaseModel, ConfigDict, Field
 
 from coopdrive.v1 import header_pb2
@@ -41,8 +43,11 @@ class LidarConfig(BaseModel):
     max_lateral_m: float = Field(default=6.0, gt=0.0)
     # Longer clusters are guard rails or walls, not vehicles.
     max_extent_m: float = Field(default=20.0, gt=0.0)
-    # Layers used for objects; Heudiasyc kept the two upper ones. Empty = all layers.
-    object_layers: list[int] = Field(default_factory=list)
+    # Layers used for objects and free space; Heudiasyc (Sect. 3.2) kept the two upper layers of the
+    # four-layer LD-MRS, the lower two seeing the ground. Empty = all layers.
+    object_layers: list[int] = Field(default_factory=lambda: [2, 3])
+    # Beams without a return may be left out of a scan; inside this half angle that means free space.
+    half_fov_rad: float = Field(default=math.radians(50.0), gt=0.0)
     range_std_m: float = Field(default=0.1, gt=0.0)
     bearing_std_rad: float = Field(default=0.005, gt=0.0)
     # A cluster narrower than this is a partly seen vehicle, whose centre is correspondingly uncertain.
@@ -55,7 +60,7 @@ class RadarConfig(BaseModel):
     range_std_m: float = Field(default=0.3, gt=0.0)
     bearing_std_rad: float = Field(default=0.01, gt=0.0)
     range_rate_std_mps: float = Field(default=0.2, gt=0.0)
-    field_of_view_rad: float = Field(default=0.35, gt=0.0)
+    half_fov_rad: float = Field(default=math.radians(9.0), gt=0.0)
     max_range_m: float = Field(default=150.0, gt=0.0)
 
 

@@ -1,7 +1,8 @@
 """Is a claimed spot free? Answers from the latest LiDAR beams and radar tracks.
 
-A spot is free for the LiDAR when every beam that would hit an object there passed at least
-free_margin_m beyond it; for the radar when it lies inside the radar field of view and no radar
+A spot is free for the LiDAR when it lies in the field of view and every return of the object
+layers that would come from an object there lies at least free_margin_m beyond it (beams without
+a return may be missing from the scan: the simulator leaves them out); for the radar when it lies inside the radar field of view and no radar
 track is at it or in front of it along the same bearing. Each answer is None when that sensor
 does not cover the spot or its data is too old to say.
 """
@@ -14,7 +15,7 @@ import numpy as np
 
 from coopdrive.v1 import sensors_pb2
 
-from .config import RadarConfig, TrustConfig
+from .config import LidarConfig, RadarConfig, TrustConfig
 from .measurement import EgoPose, Measurement
 
 # Half width of a vehicle as seen by the beams that should hit it.
@@ -26,25 +27,29 @@ def _wrap(angle: np.ndarray | float) -> np.ndarray | float:
 
 
 class FreeSpaceOracle:
-    def __init__(self, trust: TrustConfig, radar: RadarConfig) -> None:
+    def __init__(self, trust: TrustConfig, radar: RadarConfig, lidar: LidarConfig) -> None:
         self._trust = trust
         self._radar = radar
-        self._lidar: tuple[float, np.ndarray, np.ndarray, np.ndarray] | None = None
+        self._lidar_config = lidar
+        self._lidar: tuple[EgoPose, np.ndarray, np.ndarray] | None = None
         self._radar_frame: tuple[EgoPose, np.ndarray] | None = None
 
     def set_lidar(self, scan: sensors_pb2.LidarScan, pose: EgoPose) -> None:
+        """Keep the object layers' returns: azimuth in the vehicle frame and how far each beam got."""
         angles, free = [], []
+        limit = scan.max_range_m if scan.max_range_m > 0.0 else np.inf
         for layer in scan.layers:
+            if self._lidar_config.object_layers and layer.layer not in self._lidar_config.object_layers:
+                continue
             azimuth = np.asarray(layer.azimuth_rad, dtype=float)
             ranges = np.asarray(layer.range_m, dtype=float)
             if azimuth.shape != ranges.shape:
                 continue
-            limit = scan.max_range_m if scan.max_range_m > 0.0 else np.inf
             no_return = ~np.isfinite(ranges) | (ranges <= 0.0) | (ranges >= limit)
-            angles.append(pose.heading_rad + azimuth)
-            free.append(np.where(no_return, limit, ranges * math.cos(layer.elevation_rad)))
-        if angles:
-            self._lidar = (pose.time_s, pose.position_m, np.concatenate(angles), np.concatenate(free))
+            angles.append(azimuth)
+            free.append(np.where(no_return, np.inf, ranges))
+        self._lidar = (pose, np.concatenate(angles) if angles else np.zeros(0),
+                       np.concatenate(free) if free else np.zeros(0))
 
     def set_radar(self, measurements: list[Measurement], pose: EgoPose) -> None:
         points = np.array([m.position_m for m in measurements]).reshape(-1, 2)
@@ -53,17 +58,17 @@ class FreeSpaceOracle:
     def lidar_free(self, point_m: np.ndarray, time_s: float) -> bool | None:
         if self._lidar is None:
             return None
-        scan_time, origin, angles, free = self._lidar
-        if abs(time_s - scan_time) > self._trust.max_sensor_age_s:
+        pose, angles, free = self._lidar
+        if abs(time_s - pose.time_s) > self._trust.max_sensor_age_s:
             return None
-        rel = point_m - origin
-        distance = float(np.hypot(*rel))
-        if distance <= 0.0:
+        local = pose.to_vehicle(point_m)
+        distance = float(np.hypot(*local))
+        bearing = math.atan2(local[1], local[0])
+        if distance <= 0.0 or abs(bearing) > self._lidar_config.half_fov_rad:
             return None
         half_angle = math.atan2(_HALF_WIDTH_M, distance)
-        covering = np.abs(_wrap(angles - math.atan2(rel[1], rel[0]))) <= half_angle
-        if not covering.any():
-            return None
+        covering = np.abs(_wrap(angles - bearing)) <= half_angle
+        # Beams left out of the scan had no return: with none covering the spot, it is free too.
         return bool(np.all(free[covering] > distance + self._trust.free_margin_m))
 
     def radar_free(self, point_m: np.ndarray, time_s: float) -> bool | None:
@@ -75,7 +80,7 @@ class FreeSpaceOracle:
         local = pose.to_vehicle(point_m)
         distance = float(np.hypot(*local))
         bearing = math.atan2(local[1], local[0])
-        if abs(bearing) > self._radar.field_of_view_rad or distance > self._radar.max_range_m:
+        if abs(bearing) > self._radar.half_fov_rad or distance > self._radar.max_range_m:
             return None
         for seen in points:
             if np.linalg.norm(seen - point_m) <= self._trust.radar_match_m:

@@ -43,7 +43,7 @@ class SceneFusion:
         self._camera = CameraFrontEnd(self.config.camera, self.rejects)
         self._sonar = SonarFrontEnd(self.config.sonar, self.rejects)
         self._v2v = V2vFrontEnd(self.config.v2v, self.rejects)
-        self._free_space = FreeSpaceOracle(self.config.trust, self.config.radar)
+        self._free_space = FreeSpaceOracle(self.config.trust, self.config.radar, self.config.lidar)
         self._builder = SceneBuilder(self.config, lane_of, frenet_of)
         self._ego: EgoPose | None = None
         self._free_ranges_m: list[float] = []

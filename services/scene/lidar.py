@@ -81,7 +81,9 @@ def _across_beam(bearing_rad: float) -> np.ndarray:
 
 
 def layer_points(layer: sensors_pb2.LidarLayer, max_range_m: float) -> np.ndarray:
-    """Valid returns of one layer in the vehicle frame, in azimuth order, projected on the ground plane."""
+    """Valid returns of one layer in the vehicle frame, in azimuth order. range_m is taken as the
+    horizontal range, as the simulator reports it; at LiDAR elevations of a degree or two the
+    difference from the slant range is under a millimetre per metre anyway."""
     azimuth = np.asarray(layer.azimuth_rad, dtype=float)
     ranges = np.asarray(layer.range_m, dtype=float)
     if azimuth.shape != ranges.shape:
@@ -89,9 +91,9 @@ def layer_points(layer: sensors_pb2.LidarLayer, max_range_m: float) -> np.ndarra
     limit = max_range_m if max_range_m > 0.0 else np.inf
     valid = np.isfinite(ranges) & np.isfinite(azimuth) & (ranges > 0.0) & (ranges < limit)
     order = np.argsort(azimuth[valid], kind="stable")
-    ground = ranges[valid][order] * math.cos(layer.elevation_rad)
+    horizontal = ranges[valid][order]
     angle = azimuth[valid][order]
-    return np.column_stack((ground * np.cos(angle), ground * np.sin(angle)))
+    return np.column_stack((horizontal * np.cos(angle), horizontal * np.sin(angle)))
 
 
 def split_consecutive(points_m: np.ndarray, max_gap_m: float) -> list[np.ndarray]:

@@ -19,8 +19,10 @@ def ego_state(time_s: float, x_m: float = 0.0, speed_mps: float = 0.0, y_m: floa
     return ego
 
 
-def lidar_scan(time_s: float, boxes: list[tuple[float, float, float]], ego_x_m: float = 0.0) -> sensors_pb2.LidarScan:
-    """One-layer scan seeing the rear faces of boxes (rear x ENU, centre y, width), ego heading east."""
+def lidar_scan(time_s: float, boxes: list[tuple[float, float, float]], ego_x_m: float = 0.0,
+               omit_misses: bool = False) -> sensors_pb2.LidarScan:
+    """One-layer scan seeing the rear faces of boxes (rear x ENU, centre y, width), ego heading east.
+    Misses read max range, or are left out of the scan as the simulator does with omit_misses."""
     scan = sensors_pb2.LidarScan(max_range_m=LIDAR_MAX_RANGE_M)
     scan.header.sample_time_s = time_s
     layer = scan.layers.add(layer=2, elevation_rad=0.0)
@@ -33,6 +35,8 @@ def lidar_scan(time_s: float, boxes: list[tuple[float, float, float]], ego_x_m: 
             lateral = distance * math.tan(azimuth)
             if abs(lateral - centre_y) <= 0.5 * width:
                 hit = min(hit, distance / math.cos(azimuth))
+        if omit_misses and hit >= LIDAR_MAX_RANGE_M:
+            continue
         layer.azimuth_rad.append(float(azimuth))
         layer.range_m.append(float(hit))
     return scan
@@ -65,14 +69,15 @@ class Road:
     EGO_SPEED_MPS = 10.0
     TICK_S = 0.05
 
-    def __init__(self, fusion):
-        self.fusion = fusion
-
     def ego_x(self, time_s: float) -> float:
         return self.EGO_SPEED_MPS * time_s
 
     def ego(self, time_s: float) -> ego_pb2.EgoState:
         return ego_state(time_s, x_m=self.ego_x(time_s), speed_mps=self.EGO_SPEED_MPS)
+
+    def __init__(self, fusion, omit_misses: bool = False):
+        self.fusion = fusion
+        self.omit_misses = omit_misses
 
     def sense(self, time_s: float, objects: list[tuple[float, float, float]], lidar: bool = True,
               radar: bool = True) -> None:
@@ -81,7 +86,8 @@ class Road:
         self.fusion.on_ego(ego)
         if lidar and round(time_s / self.TICK_S) % 2 == 0:
             boxes = [(x, y, 1.8) for x, y, _ in objects]
-            self.fusion.on_lidar(lidar_scan(time_s, boxes, ego_x_m=self.ego_x(time_s)), ego)
+            scan = lidar_scan(time_s, boxes, ego_x_m=self.ego_x(time_s), omit_misses=self.omit_misses)
+            self.fusion.on_lidar(scan, ego)
         if radar:
             self.fusion.on_radar(radar_tracks(time_s, objects, ego_x_m=self.ego_x(time_s),
                                               ego_speed_mps=self.EGO_SPEED_MPS), ego)

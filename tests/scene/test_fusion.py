@@ -77,9 +77,10 @@ def test_during_a_two_second_radar_dropout_the_object_stays_on_v2v_alone_with_lo
     assert set(back.position.sources) == {RADAR, V2V}
 
 
-def test_a_ghost_station_claiming_a_spot_radar_and_lidar_see_free_is_flagged_and_never_mio():
+@pytest.mark.parametrize("omit_misses", [False, True], ids=["misses-at-max-range", "misses-left-out"])
+def test_a_ghost_station_claiming_a_spot_radar_and_lidar_see_free_is_flagged_and_never_mio(omit_misses):
     fusion = SceneFusion()
-    road = Road(fusion)
+    road = Road(fusion, omit_misses=omit_misses)
     ghost_ids, mio_ids = set(), set()
     for t in road.ticks(0.0, 3.0):
         road.sense(t, [(road.ego_x(t) + 50.0, 0.0, 10.0)])

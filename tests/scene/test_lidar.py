@@ -86,10 +86,10 @@ def test_a_cluster_becomes_an_enu_measurement_of_the_rear_bumper_centre():
 
 def test_a_layer_with_mismatched_arrays_is_a_clear_error():
     scan = sensors_pb2.LidarScan()
-    layer = scan.layers.add(layer=1)
+    layer = scan.layers.add(layer=2)
     layer.azimuth_rad.extend([0.0, 0.1])
     layer.range_m.extend([5.0])
-    with pytest.raises(ValueError, match="layer 1"):
+    with pytest.raises(ValueError, match="layer 2"):
         LidarClusterer(LidarConfig()).clusters(scan)
 
 
@@ -97,3 +97,10 @@ def test_heudiasyc_eq_1_gives_about_ten_points_on_a_2_m_car_at_22_m_with_half_de
     assert expected_points(2.0, 22.0, math.radians(0.5)) == pytest.approx(10.4, abs=0.1)
     # With five points required, such a car is detected out to about 46 m.
     assert max_detection_range_m(2.0, 5, math.radians(0.5)) == pytest.approx(45.8, abs=0.1)
+
+
+def test_the_lower_layers_that_see_the_ground_are_not_used_for_objects_by_default():
+    ground_arc = [(23.9 * math.cos(a), 23.9 * math.sin(a)) for a in np.arange(-0.3, 0.3, math.radians(0.5))]
+    scan = scan_of_points({0: ground_arc, 2: row(20.0, -0.9, 10)})
+    (cluster,) = LidarClusterer(LidarConfig()).clusters(scan)
+    assert cluster.layers == (2,)
