@@ -95,7 +95,7 @@ class Bus:
             if envelope is not None:
                 callback(envelope)
 
-        return self._declare(self._session.declare_subscriber(key, on_sample))
+        return self._declare(self._session.declare_subscriber(key, _direct(on_sample)))
 
     def subscribe_key(self, key_expr: str, callback: Callable[[str, Message], None]):
         """Subscribes to any key; the message type comes from the sample's encoding schema."""
@@ -109,7 +109,7 @@ class Bus:
             if envelope is not None:
                 callback(key, envelope.message)
 
-        return self._declare(self._session.declare_subscriber(key_expr, on_sample))
+        return self._declare(self._session.declare_subscriber(key_expr, _direct(on_sample)))
 
     def _decode(self, key: str, cls: type[Message], payload: bytes) -> Envelope | None:
         message = cls()
@@ -181,6 +181,15 @@ class Bus:
         self._publishers.clear()
         if not self._session.is_closed():
             self._session.close()
+
+
+def _direct(callback: Callable[[zenoh.Sample], None]) -> zenoh.handlers.Callback:
+    """Runs the callback on Zenoh's receive thread instead of handing it to a Python thread first.
+
+    Saves a thread switch per message and keeps the wire order across subscribers of one link.
+    Our callbacks only decode and enqueue, so they never hold the receive thread up.
+    """
+    return zenoh.handlers.Callback(callback, indirect=False)
 
 
 def _schema_of(encoding: zenoh.Encoding) -> str | None:

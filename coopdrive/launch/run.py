@@ -7,6 +7,9 @@ import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Callable
+
+from google.protobuf.message import Message
 
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.bus.keys import WORLD_ID
@@ -29,6 +32,8 @@ class RunOptions:
     log_dir: Path | None = None
     # Extra config per service name, merged over the defaults (e.g. {"control": {...}}).
     service_overrides: dict[str, dict] = field(default_factory=dict)
+    # Called as observer(key, message) for every message on the bus (benchmarks, live tools).
+    observer: Callable[[str, Message], None] | None = None
 
 
 class RunAborted(RuntimeError):
@@ -70,6 +75,8 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         recorder = McapRecorder(options.record, config_metadata(
             {spec.participant: _full_config(spec) for spec in specs}))
         hub.subscribe_key("coopdrive/**", lambda key, message: None if "/_" in key else recorder.write(key, message))
+    if options.observer is not None:
+        hub.subscribe_key("coopdrive/**", options.observer)
     hub.subscribe(WORLD_ID, "result", on_result)
     processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir)
     started = time.monotonic()

@@ -1,0 +1,1 @@
+"""Benchmarks: each measures coopdrive against a baseline in the same run (`make bench`)."""

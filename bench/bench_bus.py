@@ -1,0 +1,101 @@
+"""Bus latency: coopdrive's typed layer against raw Zenoh put/subscribe, two processes, same run.
+
+A pinger publishes, an echo process sends each message straight back; one-way latency is half
+the round trip. The raw path sends bytes with a plain callback; the typed path goes through
+Bus.publish / Bus.subscribe with protobuf encode/decode and the runtime's worker queue.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import queue
+import time
+
+import numpy as np
+import zenoh
+from rich.console import Console
+from rich.table import Table
+
+from coopdrive.bus import Bus, BusConfig
+from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
+
+ROUND_TRIPS = 2000
+WARMUP = 100
+
+
+def _config(listen, connect) -> BusConfig:
+    return BusConfig(listen=listen, connect=connect)
+
+
+def _echo(endpoint: str, typed: bool) -> None:
+    bus = Bus(_config(["tcp/127.0.0.1:0"], [endpoint]))
+    if typed:
+        inbox: queue.SimpleQueue = queue.SimpleQueue()
+        bus.subscribe("bench", "ego/state", inbox.put)
+        for _ in range(ROUND_TRIPS + WARMUP):
+            envelope = inbox.get()
+            bus.publish("bench", "ego/gnss", _fix_from(envelope.message))
+    else:
+        inbox = queue.SimpleQueue()
+        bus.session.declare_subscriber("bench/raw/ping", lambda s: inbox.put(s.payload.to_bytes()))
+        publisher = bus.session.declare_publisher("bench/raw/pong")
+        for _ in range(ROUND_TRIPS + WARMUP):
+            publisher.put(inbox.get())
+    time.sleep(0.5)
+    bus.close()
+
+
+def _fix_from(state):
+    from coopdrive.v1 import gnss_pb2
+
+    fix = gnss_pb2.GnssFix(latitude_deg=state.x_m)
+    fix.header.CopyFrom(state.header)
+    return fix
+
+
+def _measure(typed: bool) -> np.ndarray:
+    from coopdrive.v1 import ego_pb2
+
+    endpoint = loopback_endpoint(free_tcp_port())
+    bus = Bus(_config([endpoint], []))
+    inbox: queue.SimpleQueue = queue.SimpleQueue()
+    if typed:
+        bus.subscribe("bench", "ego/gnss", inbox.put)
+    else:
+        bus.session.declare_subscriber("bench/raw/pong", lambda s: inbox.put(s.payload.to_bytes()))
+        raw_publisher = bus.session.declare_publisher("bench/raw/ping")
+    echo = multiprocessing.get_context("spawn").Process(target=_echo, args=(endpoint, typed))
+    echo.start()
+    time.sleep(2.0)
+    state = ego_pb2.EgoState(x_m=1.0, y_m=2.0, speed_mps=20.0, covariance=[0.1] * 36)
+    payload = state.SerializeToString()
+    samples = []
+    for index in range(ROUND_TRIPS + WARMUP):
+        started = time.perf_counter()
+        if typed:
+            state.header.sequence = index + 1
+            bus.publish("bench", "ego/state", state)
+        else:
+            raw_publisher.put(payload)
+        inbox.get(timeout=5)
+        if index >= WARMUP:
+            samples.append((time.perf_counter() - started) / 2)
+    echo.join(timeout=10)
+    bus.close()
+    return np.array(samples) * 1e6
+
+
+def main() -> None:
+    raw = _measure(typed=False)
+    typed = _measure(typed=True)
+    table = Table(title=f"bus one-way latency, 2 processes, {ROUND_TRIPS} round trips (us)")
+    for column in ("path", "p50", "p99", "ratio p50 to raw"):
+        table.add_column(column, justify="right")
+    for name, samples in (("raw zenoh bytes", raw), ("coopdrive typed", typed)):
+        table.add_row(name, f"{np.percentile(samples, 50):.0f}", f"{np.percentile(samples, 99):.0f}",
+                      f"{np.percentile(samples, 50) / np.percentile(raw, 50):.2f}")
+    Console().print(table)
+
+
+if __name__ == "__main__":
+    main()
