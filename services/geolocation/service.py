@@ -1,24 +1,43 @@
-"""Geolocation service: fuses GNSS fixes and CAN odometry into the ego state."""
+"""Geolocation service: feeds GNSS fixes, CAN odometry and IMU samples to the Geolocator, publishes the ego state."""
 
 from __future__ import annotations
 
-import math
-
-import pymap3d
+from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from coopdrive.bus import Envelope
+from coopdrive.roadmap import RoadMap
 from coopdrive.runtime.service import Service, ServiceConfig
-from coopdrive.v1 import ego_pb2, gnss_pb2
+from coopdrive.services.geolocation.config import GeolocatorConfig
+from coopdrive.services.geolocation.geolocator import Geolocator
+
+
+class LocalOrigin(BaseModel):
+    """WGS84 origin of the local ENU frame."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    lat_deg: float = Field(51.4758, ge=-90.0, le=90.0)
+    lon_deg: float = Field(5.6247, ge=-180.0, le=180.0)
+    alt_m: float = 20.0
 
 
 class GeolocationConfig(ServiceConfig):
-    origin_lat_deg: float = 51.4758
-    origin_lon_deg: float = 5.6247
-    origin_alt_m: float = 20.0
-    output_rate_hz: float = 50.0
-    odometry_rate_hz: float = 100.0
-    # Share of the GNSS innovation taken per fix by the complementary filter.
-    gnss_gain: float = 0.3
+    geolocator: GeolocatorConfig = GeolocatorConfig()
+    # Lane map (a shipped name such as "a270" or a GeoJSON path) for lane matching; its origin is the local frame.
+    # None: no lane matching (lane.matched stays false), e.g. the follow world, which lies off every map.
+    map_name: str | None = None
+    # The local frame's origin, only when there is no map.
+    origin: LocalOrigin = LocalOrigin()
+    output_rate_hz: float = Field(50.0, gt=0.0)
+    use_imu: bool = True
+
+    @model_validator(mode="after")
+    def _one_source_of_the_frame(self) -> GeolocationConfig:
+        if self.map_name is not None and "origin" in self.model_fields_set:
+            raise ValueError("origin is only used without a map: the map brings its own origin")
+        if "map_name" in self.geolocator.model_fields_set:
+            raise ValueError("geolocator.map_name is not read by the service: set map_name instead")
+        return self
 
 
 class GeolocationService(Service):
@@ -26,49 +45,28 @@ class GeolocationService(Service):
     Config = GeolocationConfig
 
     def start(self) -> None:
-        self.initialised = False
-        self.x_m = self.y_m = self.heading_rad = 0.0
-        self.speed_mps = self.yaw_rate_radps = self.accel_mps2 = 0.0
-        self.last_time_s: float | None = None
-        self.last_fix_mode = gnss_pb2.FIX_MODE_UNSPECIFIED
+        c: GeolocationConfig = self.config
+        logic_config = c.geolocator.model_copy(update={"vehicle_id": self.ctx.vehicle_id})
+        if c.map_name is not None:
+            self.geolocator = Geolocator(logic_config, road_map=RoadMap.load(c.map_name))
+        else:
+            self.geolocator = Geolocator(logic_config, origin=(c.origin.lat_deg, c.origin.lon_deg, c.origin.alt_m))
         self.ctx.subscribe("gnss/fix", self.on_gnss_fix)
-        self.ctx.subscribe("vehicle/state", self.on_vehicle_state)
-        self.ctx.every(1.0 / self.config.odometry_rate_hz, self.propagate)
-        self.ctx.every(1.0 / self.config.output_rate_hz, self.publish_state)
+        self.ctx.subscribe("vehicle/state", self.on_can_state)
+        if c.use_imu:
+            self.ctx.subscribe("vehicle/imu", self.on_imu)
+        self.ctx.every(1.0 / c.output_rate_hz, self.publish_estimate)
 
     def on_gnss_fix(self, envelope: Envelope) -> None:
-        fix = envelope.message
-        c: GeolocationConfig = self.config
-        east, north, _ = pymap3d.geodetic2enu(fix.latitude_deg, fix.longitude_deg, fix.altitude_m,
-                                              c.origin_lat_deg, c.origin_lon_deg, c.origin_alt_m)
-        self.last_fix_mode = fix.fix_mode
-        if not self.initialised:
-            self.x_m, self.y_m = float(east), float(north)
-            self.heading_rad = math.radians(90.0 - fix.course_deg)
-            self.initialised = True
-            return
-        self.x_m += c.gnss_gain * (float(east) - self.x_m)
-        self.y_m += c.gnss_gain * (float(north) - self.y_m)
-        self.count("gnss_fixes")
+        self.geolocator.on_gnss_fix(envelope.message)
 
-    def on_vehicle_state(self, envelope: Envelope) -> None:
-        state = envelope.message
-        speed = 0.5 * (state.wheel_speed_rear_left_mps + state.wheel_speed_rear_right_mps)
-        self.yaw_rate_radps = state.yaw_rate_radps
-        self.speed_mps = speed
+    def on_can_state(self, envelope: Envelope) -> None:
+        self.geolocator.on_can_state(envelope.message)
 
-    def propagate(self, now_s: float) -> None:
-        if self.last_time_s is not None and self.initialised:
-            dt = now_s - self.last_time_s
-            self.heading_rad += self.yaw_rate_radps * dt
-            self.x_m += self.speed_mps * math.cos(self.heading_rad) * dt
-            self.y_m += self.speed_mps * math.sin(self.heading_rad) * dt
-        self.last_time_s = now_s
+    def on_imu(self, envelope: Envelope) -> None:
+        self.geolocator.on_imu(envelope.message)
 
-    def publish_state(self, now_s: float) -> None:
-        if not self.initialised:
-            return
-        state = ego_pb2.EgoState(x_m=self.x_m, y_m=self.y_m, heading_rad=self.heading_rad,
-                                 speed_mps=self.speed_mps, yaw_rate_radps=self.yaw_rate_radps,
-                                 mode=ego_pb2.LOCALISATION_MODE_GNSS_PRECISE, last_fix_mode=self.last_fix_mode)
-        self.ctx.publish("ego/state", state)
+    def publish_estimate(self, now_s: float) -> None:
+        self.ctx.publish("ego/state", self.geolocator.estimate(now_s), sample_time_s=now_s)
+        # stats() are running totals, so they replace the counters rather than add to them.
+        self.counters.update(self.geolocator.stats())
