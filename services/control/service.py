@@ -1,62 +1,88 @@
-"""Control service: turns the behaviour request and the scene into acceleration and steering requests."""
+"""Control service: turns the behaviour request, the scene and the ego state into acceleration and steering requests.
+
+Data handlers only keep the latest messages; the control period runs the longitudinal controller (min-select over
+CACC / dCACC / ACC per target and cruise) and, when the ego state is matched to a lane, the lateral controller.
+"""
 
 from __future__ import annotations
 
 from coopdrive.bus import Envelope
 from coopdrive.runtime.service import Service, ServiceConfig
-from coopdrive.v1 import control_pb2, planner_pb2
+from coopdrive.services.control.config import ControlConfig
+from coopdrive.services.control.inputs import spacing_from_request, targets_from_scene
+from coopdrive.services.control.lateral import LateralController
+from coopdrive.services.control.longitudinal import LongitudinalController
+from coopdrive.v1 import control_pb2, ego_pb2
 
 
-class ControlConfig(ServiceConfig):
-    rate_hz: float = 50.0
-    gap_gain_1ps2: float = 0.23
-    speed_gain_1ps: float = 0.7
-    cruise_gain_1ps: float = 0.4
-    comfort_accel_mps2: float = 2.0
-    emergency_decel_mps2: float = 8.0
-    emergency_ttc_s: float = 1.5
+class ControlServiceConfig(ServiceConfig, ControlConfig):
+    """The logic's ControlConfig as the service config; period_s is the control period."""
 
 
 class ControlService(Service):
     name = "control"
-    Config = ControlConfig
+    Config = ControlServiceConfig
 
     def start(self) -> None:
-        self.ego = self.scene = self.behaviour = None
-        self.ctx.subscribe("ego/state", lambda e: setattr(self, "ego", e.message))
-        self.ctx.subscribe("scene", lambda e: setattr(self, "scene", e.message))
-        self.ctx.subscribe("planner/behaviour", lambda e: setattr(self, "behaviour", e.message))
-        self.ctx.every(1.0 / self.config.rate_hz, self.control)
+        c: ControlServiceConfig = self.config
+        profile = c.vehicle_profile()
+        self.longitudinal = LongitudinalController(profile, c.cacc_law, c.acc_law, c.speed_law)
+        self.lateral = LateralController(profile, c.lateral_law)
+        self.lateral_active = False
+        self.ego: ego_pb2.EgoState | None = None
+        self.scene = None
+        self.behaviour = None
+        self.ctx.subscribe("ego/state", self.on_ego)
+        self.ctx.subscribe("scene", self.on_scene)
+        self.ctx.subscribe("planner/behaviour", self.on_behaviour)
+        self.ctx.every(c.period_s, self.control)
+
+    def on_ego(self, envelope: Envelope) -> None:
+        self.ego = envelope.message
+
+    def on_scene(self, envelope: Envelope) -> None:
+        self.scene = envelope.message
+
+    def on_behaviour(self, envelope: Envelope) -> None:
+        self.behaviour = envelope.message
 
     def control(self, now_s: float) -> None:
-        if self.ego is None or self.behaviour is None:
+        ego, behaviour = self.ego, self.behaviour
+        if ego is None or behaviour is None:
             return
-        c: ControlConfig = self.config
-        speed = self.ego.speed_mps
-        command = control_pb2.ControlCommand(longitudinal_mode=control_pb2.LONGITUDINAL_MODE_CRUISE,
-                                             lateral_mode=control_pb2.LATERAL_MODE_OFF)
-        accel = c.cruise_gain_1ps * (self.behaviour.desired_speed_mps - speed)
-        target = self._predecessor()
-        if target is not None:
-            spacing = self.behaviour.spacing
-            desired_gap = spacing.standstill_m + spacing.time_gap_s * speed  # d = r + h v
-            follow = c.gap_gain_1ps2 * (target.longitudinal_gap_m - desired_gap) + c.speed_gain_1ps * target.relative_speed_mps
-            if follow < accel:
-                accel = follow
-                command.longitudinal_mode = control_pb2.LONGITUDINAL_MODE_ACC
-            command.target_object_id, command.gap_m, command.desired_gap_m = target.object_id, target.longitudinal_gap_m, desired_gap
-            command.time_gap_s = spacing.time_gap_s
-            closing = -target.relative_speed_mps
-            if closing > 0 and target.longitudinal_gap_m / closing < c.emergency_ttc_s:
-                command.emergency_brake = True
-                command.longitudinal_mode = control_pb2.LONGITUDINAL_MODE_EMERGENCY_BRAKE
-        low = -c.emergency_decel_mps2 if command.emergency_brake else -c.comfort_accel_mps2
-        command.accel_request_mps2 = min(max(accel, low), c.comfort_accel_mps2)
-        command.cruise_speed_mps = self.behaviour.desired_speed_mps
-        self.ctx.publish("control/command", command, sample_time_s=self.ego.header.sample_time_s)
+        if ego.mode == ego_pb2.LOCALISATION_MODE_LOST:
+            # Without a position estimate its speed is not one either; actuation's watchdog stops the vehicle.
+            self.count("skipped_ego_lost")
+            return
+        targets = [] if self.scene is None else targets_from_scene(behaviour, self.scene, now_s)
+        command = control_pb2.ControlCommand()
+        try:
+            self.longitudinal.step(now_s, ego.speed_mps, ego.accel_mps2, targets, behaviour.desired_speed_mps,
+                                   spacing_from_request(behaviour)).fill(command)
+            self._steer(now_s, ego, command)
+        except ValueError as error:
+            self.count("skipped_invalid_input")
+            self.ctx.log.warning("control step skipped: %s", error)
+            return
+        finally:
+            self._count_rejections()
+        self.ctx.publish("control/command", command, sample_time_s=ego.header.sample_time_s)
 
-    def _predecessor(self):
-        if self.scene is None:
-            return None
-        wanted = {t.object_id for t in self.behaviour.targets if t.role == planner_pb2.TARGET_ROLE_PREDECESSOR}
-        return next((o for o in self.scene.objects if o.object_id in wanted), None)
+    def _steer(self, now_s: float, ego: ego_pb2.EgoState, command: control_pb2.ControlCommand) -> None:
+        """Lane keeping needs the lane; without a matched lane the request is straight ahead and lateral off."""
+        lane = ego.lane
+        if not lane.matched:
+            if self.lateral_active:
+                self.lateral.reset()
+                self.lateral_active = False
+            command.steering_angle_request_rad = 0.0
+            command.lateral_mode = control_pb2.LATERAL_MODE_OFF
+            return
+        self.lateral_active = True
+        self.lateral.step(now_s, ego.speed_mps, lane.lateral_offset_m, lane.heading_error_rad,
+                          lane.curvature_1pm).fill(command)
+
+    def _count_rejections(self) -> None:
+        # The controllers count the targets and inputs they drop; mirror the running totals for diagnostics.
+        self.counters["longitudinal_rejected_inputs"] = self.longitudinal.rejected_inputs
+        self.counters["lateral_rejected_inputs"] = self.lateral.rejected_inputs
