@@ -72,6 +72,9 @@ class ReplayContext:
     def watch_liveliness(self, handler: Callable[[str, bool], None]) -> None:
         self.liveliness_handlers.append(handler)
 
+    def call_soon(self, function: Callable[[], None]) -> None:
+        function()
+
     def request_stop(self, reason: str) -> None:
         self.log.info("service asked to stop: %s", reason)
 

@@ -120,6 +120,8 @@ class ClockMaster:
             self._runner.dispatcher.add(payload)
         elif kind is _Event.DONE:
             self._runner.barrier.mark_done(*payload)
+        elif kind is _Event.CALL:
+            self._runner._call(payload)
         elif kind is _Event.ALIVE:
             participant, alive = payload
             if alive:

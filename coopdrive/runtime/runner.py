@@ -51,6 +51,7 @@ class _Event(Enum):
     DONE = auto()
     ALIVE = auto()
     STOP = auto()
+    CALL = auto()
 
 
 class ServiceRunner:
@@ -114,6 +115,9 @@ class ServiceRunner:
 
     def watch_liveliness(self, handler: Callable[[str, bool], None]) -> None:
         self._liveliness_handlers.append(handler)
+
+    def call_soon(self, function: Callable[[], None]) -> None:
+        self._events.put((_Event.CALL, function))
 
     def request_stop(self, reason: str) -> None:
         self._stop_reason = reason
@@ -198,6 +202,15 @@ class ServiceRunner:
         elif kind is _Event.ALIVE:
             for handler in self._liveliness_handlers:
                 handler(*payload)
+        elif kind is _Event.CALL:
+            self._call(payload)
+
+    def _call(self, function: Callable[[], None]) -> None:
+        try:
+            function()
+        except Exception:  # an input callback must not take the service down
+            self.service.count("handler_errors")
+            self.log.exception("call_soon function failed")
 
     def _in_lockstep(self) -> bool:
         return self._last_step >= 0

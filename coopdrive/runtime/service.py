@@ -29,6 +29,12 @@ class ServiceContext(Protocol):
 
     def every(self, period_s: float, handler: Callable[[float], None]) -> None: ...
 
+    def call_soon(self, function: Callable[[], None]) -> None:
+        """Runs function on the service's worker thread; for inputs from sockets, serial ports, CAN.
+
+        Thread-safe. In lockstep the call runs before the next step the service handles.
+        """
+
     def watch_liveliness(self, handler: Callable[[str, bool], None]) -> None:
         """handler("<vehicle>/<service>", alive) for every service present now and every change."""
 
