@@ -45,7 +45,7 @@ def test_a_service_process_publishes_typed_messages_with_a_filled_header(endpoin
 def test_a_running_service_shows_a_liveliness_token_and_answers_its_info_query(endpoint, spawn):
     hub = Bus(BusConfig(listen=[endpoint]))
     layout = KeyLayout()
-    spawn("service", "control", "--vehicle", "car7", "--connect", endpoint, "--set", "rate_hz=20")
+    spawn("service", "control", "--vehicle", "car7", "--connect", endpoint, "--set", "period_s=0.05")
     try:
         end = time.monotonic() + DEADLINE_S
         while layout.liveliness("car7", "control") not in hub.alive_tokens(layout.all_liveliness()):
@@ -53,7 +53,7 @@ def test_a_running_service_shows_a_liveliness_token_and_answers_its_info_query(e
             time.sleep(0.2)
         [info] = hub.query(layout.service_info("car7", "control"), diagnostics_pb2.ServiceInfo)
         assert info.service == "control" and info.vehicle_id == "car7" and info.state == "running"
-        assert '"rate_hz":20.0' in info.config_json.replace(" ", "")
+        assert '"period_s":0.05' in info.config_json.replace(" ", "")
     finally:
         hub.close()
 
