@@ -60,6 +60,9 @@ class RadarConfig(BaseModel):
     range_std_m: float = Field(default=0.3, gt=0.0)
     bearing_std_rad: float = Field(default=0.01, gt=0.0)
     range_rate_std_mps: float = Field(default=0.2, gt=0.0)
+    # The radar reports the nearest point of a target (the simulator does), not its rear centre.
+    reports_nearest_point: bool = True
+    default_width_m: float = Field(default=1.8, gt=0.0)
     half_fov_rad: float = Field(default=math.radians(9.0), gt=0.0)
     max_range_m: float = Field(default=150.0, gt=0.0)
 
@@ -71,6 +74,9 @@ class CameraConfig(BaseModel):
     range_std_fraction: float = Field(default=0.08, gt=0.0)
     min_range_std_m: float = Field(default=0.5, gt=0.0)
     bearing_std_rad: float = Field(default=0.02, gt=0.0)
+    # The detector reports the nearest point of a vehicle (the simulator does), not its rear centre.
+    reports_nearest_point: bool = True
+    default_width_m: float = Field(default=1.8, gt=0.0)
 
 
 class SonarConfig(BaseModel):

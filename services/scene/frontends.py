@@ -21,6 +21,21 @@ def _finite(*values: float) -> bool:
     return all(math.isfinite(v) for v in values)
 
 
+# Shifted nearest points still carry this fraction of the width as lateral uncertainty (headings differ).
+_SHIFTED_CENTRE_STD_FRACTION = 0.25
+
+
+def nearest_point_to_rear_centre(x_m: float, y_m: float, width_m: float) -> tuple[np.ndarray, float]:
+    """Radar and camera report the point of a vehicle nearest to them: for a vehicle beside our axis
+    its near rear corner, for one across our axis the point straight ahead. Returns the rear-centre
+    estimate (vehicle frame) and the lateral standard deviation left over."""
+    half_width = 0.5 * width_m
+    if abs(y_m) >= half_width:
+        return np.array([x_m, y_m + math.copysign(half_width, y_m)]), _SHIFTED_CENTRE_STD_FRACTION * width_m
+    # Straddling our axis: the centre is anywhere within half a width of the reported point.
+    return np.array([x_m, y_m]), half_width
+
+
 @dataclass
 class RejectCounter:
     """Bad readings per reason, for diagnostics."""
@@ -45,8 +60,11 @@ class RadarFrontEnd:
                 continue
             local = track.range_m * np.array([math.cos(track.azimuth_rad), math.sin(track.azimuth_rad)])
             cov = polar_cov_vehicle(track.range_m, track.azimuth_rad, cfg.range_std_m, cfg.bearing_std_rad)
+            line_of_sight = (pose.to_enu(*local) - pose.position_m) / track.range_m
+            if cfg.reports_nearest_point:
+                local, lateral_std = nearest_point_to_rear_centre(*local, track.width_m or cfg.default_width_m)
+                cov[1, 1] += lateral_std**2
             position = pose.to_enu(*local)
-            line_of_sight = (position - pose.position_m) / track.range_m
             # Range rate is relative; adding our own speed along the beam makes it absolute.
             radial = track.range_rate_mps + float(pose.velocity_mps @ line_of_sight)
             out.append(
@@ -58,6 +76,7 @@ class RadarFrontEnd:
                     origin_m=pose.position_m,
                     radial_speed_mps=radial,
                     radial_speed_std_mps=cfg.range_rate_std_mps,
+                    line_of_sight=line_of_sight,
                     width_m=track.width_m if track.width_m > 0.0 else None,
                     extras={"radar_track_id": track.track_id},
                 )
@@ -89,12 +108,16 @@ class CameraFrontEnd:
             bearing = math.atan2(det.y_m, det.x_m)
             range_std = max(cfg.min_range_std_m, cfg.range_std_fraction * range_m)
             cov = polar_cov_vehicle(range_m, bearing, range_std, cfg.bearing_std_rad)
+            local = np.array([det.x_m, det.y_m])
+            if cfg.reports_nearest_point:
+                local, lateral_std = nearest_point_to_rear_centre(det.x_m, det.y_m, det.width_m or cfg.default_width_m)
+                cov[1, 1] += lateral_std**2
             quality = det.confidence if 0.0 < det.confidence <= 1.0 else 1.0
             out.append(
                 Measurement(
                     source=header_pb2.SENSOR_SOURCE_CAMERA,
                     time_s=pose.time_s,
-                    position_m=pose.to_enu(det.x_m, det.y_m),
+                    position_m=pose.to_enu(*local),
                     cov_m2=cov_to_enu(pose, cov),
                     origin_m=pose.position_m,
                     width_m=det.width_m if det.width_m > 0.0 else None,

@@ -136,6 +136,10 @@ class SceneFusion:
             ghost = self.trust.is_ghost(station) and not seen_by_us
             if self.tracker.v2v_only(track, time_s):
                 eligible = station is not None and self.trust.trusted(station)
+            elif self.tracker.sonar_only(track, time_s):
+                # Chalmers 4.3.1: sonars only tell that something is at our side, not where; such an
+                # object is reported (and narrows free space) but is no MIO or lane neighbour.
+                eligible = False
             else:
                 eligible = not ghost
             views.append(ObjectView(track, eligible, ghost, self.trust.trust(station)))

@@ -42,6 +42,9 @@ class Measurement:
     # Radar: absolute speed along the line of sight from origin_m, positive away.
     radial_speed_mps: float | None = None
     radial_speed_std_mps: float = 0.0
+    # Unit ENU line of sight the radial speed was measured along (to the reflection point, which need
+    # not be the reference point in position_m).
+    line_of_sight: np.ndarray | None = None
     # V2V: full velocity and acceleration vectors.
     velocity_mps: np.ndarray | None = None
     velocity_std_mps: float = 0.0

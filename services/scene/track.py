@@ -107,8 +107,7 @@ class Track:
             x0[_IVX], x0[_IVY] = first.velocity_mps
             p0[_IVX, _IVX] = p0[_IVY, _IVY] = first.velocity_std_mps**2
         elif first.radial_speed_mps is not None:
-            line_of_sight = first.position_m - first.origin_m
-            x0[[_IVX, _IVY]] = first.radial_speed_mps * line_of_sight / max(np.linalg.norm(line_of_sight), 1e-6)
+            x0[[_IVX, _IVY]] = first.radial_speed_mps * _line_of_sight(first)
         self._kf.x = x0
         self._kf.P = p0
         self.time_s = first.time_s
@@ -218,8 +217,7 @@ class Track:
         values = [meas.position_m[0], meas.position_m[1]]
         variances: list[float] = []
         if meas.radial_speed_mps is not None:
-            los = meas.position_m - meas.origin_m
-            los = los / max(np.linalg.norm(los), 1e-6)
+            los = _line_of_sight(meas)
             rows.append(los[0] * _unit(_IVX) + los[1] * _unit(_IVY))
             values.append(meas.radial_speed_mps)
             variances.append(meas.radial_speed_std_mps**2)
@@ -233,6 +231,13 @@ class Track:
             values.append(meas.accel_mps2)
             variances.append(meas.accel_std_mps2**2)
         return rows, values, variances
+
+
+def _line_of_sight(meas: Measurement) -> np.ndarray:
+    if meas.line_of_sight is not None:
+        return meas.line_of_sight
+    los = meas.position_m - meas.origin_m
+    return los / max(float(np.linalg.norm(los)), 1e-6)
 
 
 def _unit(index: int) -> np.ndarray:

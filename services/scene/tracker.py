@@ -235,3 +235,7 @@ class Tracker:
     @staticmethod
     def v2v_only(track: Track, time_s: float) -> bool:
         return track.props.position.sources(time_s) == [header_pb2.SENSOR_SOURCE_V2V]
+
+    @staticmethod
+    def sonar_only(track: Track, time_s: float) -> bool:
+        return track.props.position.sources(time_s) == [header_pb2.SENSOR_SOURCE_SONAR]

@@ -42,12 +42,19 @@ def lidar_scan(time_s: float, boxes: list[tuple[float, float, float]], ego_x_m: 
     return scan
 
 
+def nearest_face_y(centre_y_m: float, width_m: float = 1.8) -> float:
+    """Lateral position of the point of a rear face nearest to our x axis."""
+    return centre_y_m - math.copysign(min(abs(centre_y_m), 0.5 * width_m), centre_y_m)
+
+
 def radar_tracks(time_s: float, objects: list[tuple[float, float, float]], ego_x_m: float = 0.0,
                  ego_speed_mps: float = 0.0) -> sensors_pb2.RadarTracks:
-    """Radar tracks for objects (rear x ENU, y, speed along x)."""
+    """Radar tracks for 1.8 m wide objects (rear x ENU, centre y, speed along x), reported like the
+    simulator's radar at the point of the rear face nearest to us."""
     frame = sensors_pb2.RadarTracks()
     frame.header.sample_time_s = time_s
-    for index, (x_m, y_m, speed_mps) in enumerate(objects, start=1):
+    for index, (x_m, centre_y_m, speed_mps) in enumerate(objects, start=1):
+        y_m = nearest_face_y(centre_y_m)
         dx = x_m - ego_x_m
         rng = math.hypot(dx, y_m)
         frame.tracks.add(track_id=index, range_m=rng, azimuth_rad=math.atan2(y_m, dx),

@@ -10,6 +10,7 @@ from coopdrive.services.scene.frontends import (
     RejectCounter,
     SonarFrontEnd,
     V2vFrontEnd,
+    nearest_point_to_rear_centre,
 )
 from coopdrive.services.scene.measurement import EgoPose, V2vObservation
 from coopdrive.v1 import ego_pb2, sensors_pb2
@@ -85,3 +86,20 @@ def test_the_ego_pose_is_moved_along_its_arc_to_the_sensor_sample_time():
     later = EgoPose.from_state(ego).at(1.1)
     assert later.x_m == pytest.approx(1.0)
     assert later.to_enu(10.0, 0.0) == pytest.approx([11.0, 0.0])
+
+
+def test_a_nearest_point_beside_our_axis_is_a_rear_corner_and_moves_out_to_the_rear_centre():
+    centre, lateral_std = nearest_point_to_rear_centre(12.0, 3.1, 1.8)
+    assert centre == pytest.approx([12.0, 4.0])
+    assert lateral_std == pytest.approx(0.45)
+    straddling, wide_std = nearest_point_to_rear_centre(12.0, 0.2, 1.8)
+    assert straddling == pytest.approx([12.0, 0.2])
+    assert wide_std == pytest.approx(0.9)
+
+
+def test_radar_speed_stays_along_the_beam_to_the_reflection_point_after_the_shift():
+    frame = sensors_pb2.RadarTracks()
+    frame.tracks.add(track_id=1, range_m=math.hypot(9.0, 3.1), azimuth_rad=math.atan2(3.1, 9.0), width_m=1.8)
+    (meas,) = RadarFrontEnd(RadarConfig(), RejectCounter()).measurements(frame, pose(x_m=0.0, y_m=0.0))
+    assert meas.position_m == pytest.approx([9.0, 4.0])
+    assert meas.line_of_sight == pytest.approx(np.array([9.0, 3.1]) / math.hypot(9.0, 3.1))

@@ -240,18 +240,18 @@ def test_sensor_frames_before_any_ego_state_are_counted_not_fatal():
 def test_a_station_linked_to_the_wrong_car_moves_to_the_car_our_sensors_see_where_it_claims():
     fusion = SceneFusion()
     road = Road(fusion)
-    near, far = (lambda t: lead_rear_x(t)), (lambda t: lead_rear_x(t) + 3.5)
-    # Only the near car is seen at first, so the station of the far car links to it.
+    near, far = (lambda t: lead_rear_x(t)), (lambda t: lead_rear_x(t) + 2.5)
+    # Only the near car is seen at first, so the station of the far car, 3.9 m off, links to it.
     for t in road.ticks(0.0, 0.2):
         road.sense(t, [(near(t), 0.0, 12.0)])
-        fusion.on_v2v(v2v(t, STATION, far(t), 0.0, 12.0))
+        fusion.on_v2v(v2v(t, STATION, far(t), 3.0, 12.0))
     first = fusion.tracker.track_of_station(STATION).track_id
     for t in road.ticks(0.2, 1.5):
-        road.sense(t, [(near(t), 0.0, 12.0), (far(t), 1.2, 12.0)])
-        fusion.on_v2v(v2v(t, STATION, far(t), 1.2, 12.0))
+        road.sense(t, [(near(t), 0.0, 12.0), (far(t), 3.0, 12.0)])
+        fusion.on_v2v(v2v(t, STATION, far(t), 3.0, 12.0))
     track = fusion.tracker.track_of_station(STATION)
     assert track.track_id != first
-    assert Track.position_of(track.predicted(1.5)[0]) == pytest.approx([far(1.5), 1.2], abs=0.5)
+    assert Track.position_of(track.predicted(1.5)[0]) == pytest.approx([far(1.5), 3.0], abs=0.5)
 
 
 def test_an_ego_state_that_is_not_a_number_is_counted_and_ignored():

@@ -7,7 +7,7 @@ import numpy as np
 from coopdrive.services.scene.fusion import SceneFusion
 from coopdrive.v1 import sensors_pb2
 
-from .helpers import ego_state, lidar_scan, v2v
+from .helpers import ego_state, lidar_scan, nearest_face_y, v2v
 
 SEED = 2016
 TICK_S = 0.05
@@ -49,7 +49,8 @@ def drive():
         cars = [lead(t), left(t)]
         radar = sensors_pb2.RadarTracks()
         radar.header.sample_time_s = t
-        for index, (x, y, speed) in enumerate(cars, start=1):
+        for index, (x, centre_y, speed) in enumerate(cars, start=1):
+            y = nearest_face_y(centre_y)
             dx = x - ego_x
             rng_m = math.hypot(dx, y)
             radar.tracks.add(track_id=index, range_m=rng_m + rng.normal(0.0, 0.2),
