@@ -1,1 +1,10 @@
-"""The gateway service: the vehicle's health and live state over HTTP (FastAPI on uvicorn)."""
+"""The gateway service: the vehicle's health and live state over HTTP (FastAPI on uvicorn).
+
+- service.py: wiring; bus handlers feed the store, the HTTP server reads it.
+- state_store.py: StateStore, latest messages, liveliness and wall-time rates (thread-safe, no network).
+- reports.py: /health and /state responses from a store snapshot; ages on the vehicle clock.
+- models.py: the pydantic response models (bus messages stay proto, served as proto3 JSON).
+- api.py: the FastAPI routes and the optional read token.
+- server.py: HttpServerThread, uvicorn on a daemon thread with a bounded stop.
+- config.py: GatewayConfig.
+"""
