@@ -173,11 +173,16 @@ class SceneFusionConfig(BaseModel):
     v2v: V2vConfig = Field(default_factory=V2vConfig)
     trust: TrustConfig = Field(default_factory=TrustConfig)
     tracking: TrackingConfig = Field(default_factory=TrackingConfig)
-    lidar_source: SourceConfig = SourceConfig(fade_time_s=0.5, decay_per_s=0.4, max_confidence=0.9, gain=0.5)
-    radar_source: SourceConfig = SourceConfig(fade_time_s=0.5, decay_per_s=0.4, max_confidence=0.9, gain=0.5)
-    camera_source: SourceConfig = SourceConfig(fade_time_s=0.4, decay_per_s=0.6, max_confidence=0.7, gain=0.4)
-    sonar_source: SourceConfig = SourceConfig(fade_time_s=0.3, decay_per_s=1.0, max_confidence=0.5, gain=0.3)
-    v2v_source: SourceConfig = SourceConfig(fade_time_s=1.0, decay_per_s=0.2, max_confidence=0.7, gain=0.3)
+    lidar_source: SourceConfig = Field(
+        default_factory=lambda: SourceConfig(fade_time_s=0.5, decay_per_s=0.4, max_confidence=0.9, gain=0.5))
+    radar_source: SourceConfig = Field(
+        default_factory=lambda: SourceConfig(fade_time_s=0.5, decay_per_s=0.4, max_confidence=0.9, gain=0.5))
+    camera_source: SourceConfig = Field(
+        default_factory=lambda: SourceConfig(fade_time_s=0.4, decay_per_s=0.6, max_confidence=0.7, gain=0.4))
+    sonar_source: SourceConfig = Field(
+        default_factory=lambda: SourceConfig(fade_time_s=0.3, decay_per_s=1.0, max_confidence=0.5, gain=0.3))
+    v2v_source: SourceConfig = Field(
+        default_factory=lambda: SourceConfig(fade_time_s=1.0, decay_per_s=0.2, max_confidence=0.7, gain=0.3))
 
     def source(self, source: int) -> SourceConfig:
         """The confidence settings of one header_pb2.SensorSource."""

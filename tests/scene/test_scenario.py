@@ -3,6 +3,7 @@
 import math
 
 import numpy as np
+import pytest
 
 from coopdrive.services.scene.fusion import SceneFusion
 from coopdrive.v1 import sensors_pb2
@@ -74,8 +75,13 @@ def drive():
     return fusion, scenes
 
 
-def test_a_noisy_drive_keeps_both_cars_ids_and_stations_and_no_false_object_lasts_half_a_second():
-    fusion, scenes = drive()
+@pytest.fixture(scope="module")
+def noisy_drive():
+    return drive()
+
+
+def test_a_noisy_drive_keeps_both_cars_ids_and_stations_and_no_false_object_lasts_half_a_second(noisy_drive):
+    fusion, scenes = noisy_drive
     settled = [(t, s) for t, s in scenes if t >= 1.0]
     ids_of = {LEAD: set(), LEFT: set()}
     runs, longest = {}, {}
@@ -105,8 +111,8 @@ def test_a_noisy_drive_keeps_both_cars_ids_and_stations_and_no_false_object_last
     assert fusion.tracker.counters.replayed > 0 and fusion.tracker.counters.too_late == 0
 
 
-def test_a_noisy_drive_tracks_the_lead_cars_gap_and_speed():
-    fusion, scenes = drive()
+def test_a_noisy_drive_tracks_the_lead_cars_gap_and_speed(noisy_drive):
+    fusion, scenes = noisy_drive
     t, scene = scenes[-1]
     obj = next(o for o in scene.objects if o.object_id == scene.mio_id)
     x, _, speed = lead(t)
