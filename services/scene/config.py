@@ -162,9 +162,10 @@ class TrackingConfig(BaseModel):
 class SceneFusionConfig(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
-    ego_length_m: float = Field(default=4.7, gt=0.0)
+    # Defaults: the simulator's passenger car profile.
+    ego_length_m: float = Field(default=4.5, gt=0.0)
     # Rear axle to rear bumper; the front bumper is ego_length_m minus this ahead of the rear axle.
-    ego_rear_overhang_m: float = Field(default=1.0, ge=0.0)
+    ego_rear_overhang_m: float = Field(default=0.9, ge=0.0)
     # Half width of the MIO corridor is lidar.lane_margin_m / 2 (Heudiasyc Fig. 4).
     lidar: LidarConfig = Field(default_factory=LidarConfig)
     radar: RadarConfig = Field(default_factory=RadarConfig)
