@@ -178,3 +178,9 @@ class Machine(Generic[C]):
 
     def last_transition(self) -> planner_pb2.StateTransition | None:
         return self.history[-1] if self.history else None
+
+
+def from_each(sources: list[enum.Enum], event: enum.Enum, target: enum.Enum, reason: str,
+              guard: Guard | None = None) -> tuple[Transition, ...]:
+    """The same transition from several states (scenario end, lost partner)."""
+    return tuple(Transition(s, event, target, guard=guard, reason=reason) for s in sources if s is not target)

@@ -1,0 +1,118 @@
+"""Configuration of the planner's scenario logic (the integrator's service.py reads it)."""
+
+from __future__ import annotations
+
+import enum
+
+from pydantic import BaseModel, ConfigDict, Field
+
+KPH = 1.0 / 3.6
+
+
+class Intention(enum.IntEnum):
+    """iCLCM intention at the intersection (values equal the wire and its_pb2.Intention codes)."""
+
+    STRAIGHT = 1
+    LEFT = 2
+    RIGHT = 3
+
+
+class PlatoonConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    platoon_a_speed_mps: float = Field(80.0 * KPH, gt=0)
+    platoon_b_speed_mps: float = Field(60.0 * KPH, gt=0)
+    # With V2V (CACC) and without it (ACC fallback, larger gap, Ploeg et al. 2015 degradation).
+    cacc_time_gap_s: float = Field(0.5, gt=0)
+    acc_time_gap_s: float = Field(1.5, gt=0)
+    leave_time_gap_s: float = Field(2.5, gt=0)
+    join_gap_tolerance_m: float = Field(3.0, gt=0)
+    join_timeout_s: float = Field(30.0, gt=0)
+    leave_timeout_s: float = Field(15.0, gt=0)
+
+
+class MergeConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    # 0 = rightmost lane; GCDC: platoon A left at 80 km/h, B right at 60 km/h, both slow to 40 km/h.
+    lane_a_index: int = 1
+    lane_b_index: int = 0
+    merge_speed_mps: float = Field(40.0 * KPH, gt=0)
+    pairing_timeout_s: float = Field(5.0, gt=0)
+    head_flag_timeout_s: float = Field(60.0, gt=0)
+    gap_making_timeout_s: float = Field(20.0, gt=0)
+    stom_timeout_s: float = Field(10.0, gt=0)
+    merge_wait_timeout_s: float = Field(15.0, gt=0)
+    lane_change_duration_s: float = Field(6.0, gt=0)
+    # Heudiasyc: lane change done in < 10 s.
+    lane_change_timeout_s: float = Field(12.0, gt=0)
+    # Gap asked of the gap maker on top of the spacing policy, for the merging car's length.
+    merge_extra_gap_m: float = Field(6.0, ge=0)
+    # After an escape the protocol is tried again this long later while the road works last.
+    retry_after_s: float = Field(5.0, gt=0)
+    roadworks_cause_code: int = 3
+
+
+class IntersectionConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    # Intersection reference point in the local ENU frame.
+    reference_x_m: float = 0.0
+    reference_y_m: float = 0.0
+    competition_zone_radius_m: float = Field(100.0, gt=0)
+    # Absolute stack time at which to enter the competition zone; 0 = as soon as possible.
+    arrival_time_s: float = 0.0
+    arrival_speed_mps: float = Field(30.0 * KPH, gt=0)
+    speed_limit_mps: float = Field(50.0 * KPH, gt=0)
+    # (unconfirmed) GCDC safety circle around each vehicle.
+    safety_circle_m: float = Field(7.5, gt=0)
+    # A priority vehicle this close to the reference point, coming closer, has to be given way to.
+    conflict_radius_m: float = Field(60.0, gt=0)
+    # Half size of the intersection box: the stop line is this far before the reference point and the
+    # box is cleared this far after it.
+    box_half_size_m: float = Field(15.0, gt=0)
+    organiser_station_ids: list[int] = Field(default_factory=list)
+    intention: Intention = Intention.STRAIGHT
+    approach_timeout_s: float = Field(120.0, gt=0)
+    give_way_timeout_s: float = Field(30.0, gt=0)
+    crossing_timeout_s: float = Field(30.0, gt=0)
+    # How long the scene must show the conflict area free before a held vehicle crosses.
+    clear_hold_s: float = Field(2.0, gt=0)
+
+
+class EmergencyConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    # ETSI cause code emergencyVehicleApproaching.
+    denm_cause_code: int = 95
+    # Lanes with this index or higher open the corridor to their left edge, the others to their right.
+    left_of_corridor_lane_index: int = 1
+    corridor_offset_m: float = Field(0.9, gt=0)
+    corridor_speed_mps: float = Field(30.0 * KPH, gt=0)
+    corridor_settled_m: float = Field(0.2, gt=0)
+    open_timeout_s: float = Field(8.0, gt=0)
+    hold_timeout_s: float = Field(60.0, gt=0)
+    close_timeout_s: float = Field(8.0, gt=0)
+    # The emergency vehicle is past when its rear is this far ahead of our front.
+    passed_margin_m: float = Field(10.0, ge=0)
+    # Only an emergency vehicle behind us and closer than this asks for a corridor.
+    relevance_m: float = Field(500.0, gt=0)
+    # Losing the emergency vehicle's messages this long ends the corridor (it is gone or never came).
+    lost_after_s: float = Field(3.0, gt=0)
+
+
+class PlannerLogicConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    history_length: int = Field(32, gt=0)
+    # How often the Mermaid graph is attached to PlannerState (it is large and static).
+    graph_period_s: float = Field(5.0, gt=0)
+    # A vehicle not heard for 400 ms was shown as lost at GCDC.
+    partner_silent_s: float = Field(0.4, gt=0)
+    cruise_speed_mps: float = Field(25.0, gt=0)
+    # (eq. 4) Heudiasyc spacing r + h v, standstill r.
+    standstill_m: float = Field(6.0, ge=0)
+    platoon: PlatoonConfig = Field(default_factory=PlatoonConfig)
+    merge: MergeConfig = Field(default_factory=MergeConfig)
+    intersection: IntersectionConfig = Field(default_factory=IntersectionConfig)
+    emergency: EmergencyConfig = Field(default_factory=EmergencyConfig)
