@@ -1,0 +1,146 @@
+"""Configuration of the v2x service (units in the field names)."""
+
+from __future__ import annotations
+
+import enum
+from datetime import datetime
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator
+
+from coopdrive.runtime.service import ServiceConfig
+from coopdrive.services.v2x.geonet import GN_VERSION_GCDC, SUPPORTED_GN_VERSIONS
+from coopdrive.v1 import its_pb2
+
+MAC_SIZE_BYTES = 6
+GCDC_RATE_HZ = 25.0
+
+
+class CamMode(enum.Enum):
+    # GCDC 2016: every CAM at 25 Hz.
+    GCDC = "gcdc"
+    # EN 302 637-2 generation rules: 1-10 Hz, triggered by the vehicle dynamics.
+    ETSI = "etsi"
+
+
+class _Section(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class RadioLinkConfig(_Section):
+    """UDP to the radio box: it sends us raw GN packets on listen_port and takes ours on its port."""
+
+    radio_host: str = "127.0.0.1"
+    radio_port: int = Field(4400, ge=1, le=65535)
+    listen_host: str = "127.0.0.1"
+    # 0: any free port (tests).
+    listen_port: int = Field(4401, ge=0, le=65535)
+    max_packet_bytes: int = Field(2048, gt=0)
+
+
+class WgsOrigin(_Section):
+    """WGS84 origin of the local ENU frame (used when an EgoState carries no latitude/longitude)."""
+
+    lat_deg: float = Field(51.4758, ge=-90.0, le=90.0)
+    lon_deg: float = Field(5.6247, ge=-180.0, le=180.0)
+    alt_m: float = 20.0
+
+
+class VehicleDimensions(_Section):
+    length_m: float = Field(4.5, gt=0.0)
+    width_m: float = Field(1.8, gt=0.0)
+    # Rear axle to the front bumper: the iCLCM rearAxleLocation.
+    rear_axle_location_m: float = Field(3.5, ge=0.0)
+
+
+class PlausibilityLimits(_Section):
+    max_speed_mps: float = Field(70.0, gt=0.0)
+    max_accel_mps2: float = Field(15.0, gt=0.0)
+    # Position noise allowed on top of max_speed_mps * dt between two CAMs of a station.
+    position_jump_tolerance_m: float = Field(5.0, ge=0.0)
+    # Speed noise allowed on top of max_accel_mps2 * dt.
+    speed_jump_tolerance_mps: float = Field(2.0, ge=0.0)
+    max_age_s: float = Field(1.0, gt=0.0)
+    max_future_s: float = Field(0.2, ge=0.0)
+
+
+class V2xConfig(ServiceConfig):
+    link: RadioLinkConfig = RadioLinkConfig()
+    # Source MAC of our GN packets ("02:00:00:00:00:01"); also how our own looped-back packets are recognised.
+    vehicle_mac: str = "02:00:00:00:00:01"
+    station_id: int = Field(1001, ge=0, le=2**32 - 1)
+    # ETSI StationType: a code (5) or a name ("passenger_car", "road_side_unit").
+    station_type: int = its_pb2.STATION_TYPE_PASSENGER_CAR
+    gn_version: int = GN_VERSION_GCDC
+    # ItsPduHeader.protocolVersion of CAM and DENM (1 GCDC, 2 current); the iCLCM is always 1.
+    its_protocol_version: int = Field(1, ge=1, le=2)
+    cam_mode: CamMode = CamMode.GCDC
+    send_cam: bool = True
+    send_iclcm: bool = True
+    # Every packet sent and received, as Ethernet frames (ethertype 0x8947); None: no capture.
+    pcap_path: str | None = None
+    origin: WgsOrigin = WgsOrigin()
+    vehicle: VehicleDimensions = VehicleDimensions()
+    # The service clock plus this instant is UTC. None: the clock already is unix time (the wall clock);
+    # in simulation give the UTC instant of sim time 0, e.g. "2016-05-28T10:00:00Z".
+    clock_epoch_utc: datetime | None = None
+    loss_timeout_s: float = Field(0.4, gt=0.0)
+    # Rate at which remote CAMs and iCLCMs are expected, for the reception ratio.
+    expected_rate_hz: float = Field(GCDC_RATE_HZ, gt=0.0)
+    statistics_window_s: float = Field(5.0, gt=0.0)
+    status_rate_hz: float = Field(5.0, gt=0.0)
+    iclcm_rate_hz: float = Field(GCDC_RATE_HZ, gt=0.0)
+    # How often received packets are handed to the bus (publishing happens only in time triggers).
+    receive_flush_period_s: float = Field(0.02, gt=0.0)
+    plausibility: PlausibilityLimits = PlausibilityLimits()
+
+    @field_validator("gn_version")
+    @classmethod
+    def _known_gn_version(cls, value: int) -> int:
+        if value not in SUPPORTED_GN_VERSIONS:
+            raise ValueError(f"gn_version {value}: supported {SUPPORTED_GN_VERSIONS}")
+        return value
+
+    @field_validator("station_type", mode="before")
+    @classmethod
+    def _station_type_code(cls, value: int | str) -> int:
+        if isinstance(value, str) and not value.isdigit():
+            try:
+                return its_pb2.StationType.Value("STATION_TYPE_" + value.upper())
+            except ValueError:
+                raise ValueError(f"unknown station type {value!r}") from None
+        if int(value) not in its_pb2.StationType.values():
+            raise ValueError(f"unknown station type code {value}")
+        return int(value)
+
+    @field_validator("clock_epoch_utc")
+    @classmethod
+    def _aware_epoch(cls, value: datetime | None) -> datetime | None:
+        if value is not None and value.tzinfo is None:
+            raise ValueError("clock_epoch_utc needs a time zone, e.g. 2016-05-28T10:00:00Z")
+        return value
+
+    @field_validator("vehicle_mac")
+    @classmethod
+    def _six_byte_mac(cls, value: str) -> str:
+        parse_mac(value)
+        return value
+
+    @property
+    def mac_bytes(self) -> bytes:
+        return parse_mac(self.vehicle_mac)
+
+    @property
+    def clock_epoch_unix_s(self) -> float:
+        return 0.0 if self.clock_epoch_utc is None else self.clock_epoch_utc.timestamp()
+
+
+def parse_mac(text: str) -> bytes:
+    """'02:00:00:00:00:01' (or with '-', or bare hex) as 6 bytes; ValueError naming the text otherwise."""
+    digits = text.replace(":", "").replace("-", "")
+    try:
+        mac = bytes.fromhex(digits)
+    except ValueError:
+        raise ValueError(f"MAC address {text!r} is not hexadecimal") from None
+    if len(mac) != MAC_SIZE_BYTES:
+        raise ValueError(f"MAC address {text!r} is not {MAC_SIZE_BYTES} bytes")
+    return mac

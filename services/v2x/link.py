@@ -1,0 +1,85 @@
+"""UDP link to the radio box, and the pcap log of every packet that crosses it.
+
+The radio box forwards each received GeoNetworking packet as one UDP datagram (no Ethernet header) and
+transmits each datagram we send it. A reader thread hands datagrams to a callback; the service passes
+that callback through ctx.call_soon so its own code stays on its worker thread.
+"""
+
+from __future__ import annotations
+
+import socket
+import struct
+import threading
+from typing import BinaryIO, Callable
+
+from coopdrive.services.v2x.pcap import BROADCAST_MAC, ETHERTYPE_GEONETWORKING, US_PER_S, PcapWriter
+
+RECEIVE_POLL_S = 0.1
+
+
+class CaptureLog(PcapWriter):
+    """A pcap file whose frames carry each packet's own source MAC (ours when sent, the sender's when received)."""
+
+    def __init__(self, stream: BinaryIO, own_mac: bytes):
+        super().__init__(stream, own_mac)
+        self._own_mac = own_mac
+        self._lock = threading.Lock()
+
+    def write_packet(self, gn_packet: bytes, time_s: float, source_mac: bytes | None = None) -> None:
+        mac = source_mac if source_mac is not None and len(source_mac) == len(self._own_mac) else self._own_mac
+        frame = BROADCAST_MAC + mac + struct.pack(">H", ETHERTYPE_GEONETWORKING) + gn_packet
+        whole_s, fraction_us = divmod(round(time_s * US_PER_S), US_PER_S)
+        with self._lock:
+            self._stream.write(struct.pack("<IIII", whole_s, fraction_us, len(frame), len(frame)) + frame)
+            self._stream.flush()
+
+
+class UdpLink:
+    """Sends datagrams to the radio box and reads the ones it sends us on a daemon thread."""
+
+    def __init__(self, listen: tuple[str, int], radio: tuple[str, int], on_datagram: Callable[[bytes], None],
+                 max_packet_bytes: int = 2048):
+        self.radio = radio
+        self._on_datagram = on_datagram
+        self._max_packet_bytes = max_packet_bytes
+        self._socket = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        self._socket.bind(listen)
+        self._socket.settimeout(RECEIVE_POLL_S)
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._receive_loop, name="v2x-udp", daemon=True)
+        self.send_errors = 0
+
+    @property
+    def local_address(self) -> tuple[str, int]:
+        return self._socket.getsockname()
+
+    def start(self) -> None:
+        self._thread.start()
+
+    def send(self, datagram: bytes) -> bool:
+        """False (and counted) when the OS refused the datagram, e.g. the radio box is unreachable."""
+        try:
+            self._socket.sendto(datagram, self.radio)
+            return True
+        except OSError:
+            self.send_errors += 1
+            return False
+
+    def close(self) -> None:
+        self._stop.set()
+        if self._thread.is_alive():
+            self._thread.join(timeout=2 * RECEIVE_POLL_S + 1.0)
+        self._socket.close()
+
+    def _receive_loop(self) -> None:
+        while not self._stop.is_set():
+            try:
+                datagram = self._socket.recv(self._max_packet_bytes)
+            except socket.timeout:
+                continue
+            except OSError:
+                # Closed under us, or an ICMP port-unreachable echo of an earlier send: keep listening.
+                if self._stop.is_set():
+                    return
+                continue
+            self._on_datagram(datagram)

@@ -1,0 +1,121 @@
+"""What happens to a GN packet from the radio: decode, drop our own, check plausibility, keep statistics.
+
+Pure logic: fed bytes with the service time, returns the accepted DecodedPacket (or None) and builds the
+V2xStatus. Rejections are counted by reason: the decoder's RejectReason and the PlausibilityReason values.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass
+
+from coopdrive.services.v2x.codec import ItsMessageId
+from coopdrive.services.v2x.config import PlausibilityLimits
+from coopdrive.services.v2x.its_clock import ItsClock
+from coopdrive.services.v2x.packet import DecodedPacket, V2xPacketCodec, default_codec
+from coopdrive.services.v2x.plausibility import Observation, PlausibilityChecker
+from coopdrive.services.v2x.reasons import V2xDecodeError
+from coopdrive.services.v2x.station_stats import StationStats
+from coopdrive.services.v2x.timebase import tai_ms_from_delta
+from coopdrive.v1 import v2x_pb2
+
+# A station silent this long leaves the status (it stays LOST in it until then).
+FORGET_AFTER_S = 60.0
+
+
+@dataclass(frozen=True)
+class OwnIdentity:
+    mac: bytes
+    station_id: int
+
+
+def source_mac(decoded: DecodedPacket) -> bytes:
+    """The GN address MID of the sender's position vector: its MAC address."""
+    return bytes(decoded.gn.extended.source_position.address.mid)
+
+
+def message_time_tai_ms(decoded: DecodedPacket, receive_tai_ms: int) -> int:
+    """Generation time (CAM, iCLCM, from generationDeltaTime near the receive time) or DENM reference time."""
+    if decoded.message_type == ItsMessageId.DENM:
+        return decoded.content.reference_time_tai_ms
+    return tai_ms_from_delta(decoded.content.generation_delta_time_ms, receive_tai_ms)
+
+
+def observation_of(decoded: DecodedPacket, mac: bytes, time_tai_ms: int) -> Observation:
+    content = decoded.content
+    if decoded.message_type == ItsMessageId.CAM:
+        position, hf = content.reference_position, content.high_frequency
+        has_hf = content.HasField("high_frequency")
+        return Observation(
+            mac, decoded.station_id, decoded.message_type, time_tai_ms,
+            position.latitude_deg if position.HasField("latitude_deg") else None,
+            position.longitude_deg if position.HasField("longitude_deg") else None,
+            hf.speed_mps if has_hf and hf.HasField("speed_mps") else None,
+            hf.longitudinal_acceleration_mps2 if has_hf and hf.HasField("longitudinal_acceleration_mps2") else None)
+    if decoded.message_type == ItsMessageId.DENM:
+        return Observation(mac, decoded.station_id, decoded.message_type, time_tai_ms,
+                           detection_tai_ms=content.detection_time_tai_ms, validity_s=content.validity_duration_s)
+    accel = content.target_longitudinal_acceleration_mps2 \
+        if content.HasField("target_longitudinal_acceleration_mps2") else None
+    return Observation(mac, decoded.station_id, decoded.message_type, time_tai_ms, accel_mps2=accel)
+
+
+class Reception:
+    def __init__(self, own: OwnIdentity, clock: ItsClock, limits: PlausibilityLimits, loss_timeout_s: float,
+                 expected_rate_hz: float, window_s: float, codec: V2xPacketCodec | None = None):
+        self.own = own
+        self.clock = clock
+        self.loss_timeout_s = loss_timeout_s
+        self.expected_rate_hz = expected_rate_hz
+        self.window_s = window_s
+        self.codec = codec or default_codec()
+        self.plausibility = PlausibilityChecker(limits, loss_timeout_s)
+        self.stations: dict[int, StationStats] = {}
+        self.rejected_by_reason: Counter[str] = Counter()
+        self.packets_received = 0
+        self.own_packets_ignored = 0
+
+    def on_packet(self, data: bytes, receive_s: float) -> DecodedPacket | None:
+        """The decoded packet when accepted; None when it was ours, undecodable or implausible (counted)."""
+        self.packets_received += 1
+        try:
+            decoded = self.codec.decode_packet(data)
+        except V2xDecodeError as error:
+            self.rejected_by_reason[error.reason.value] += 1
+            return None
+        mac = source_mac(decoded)
+        if mac == self.own.mac or decoded.station_id == self.own.station_id:
+            self.own_packets_ignored += 1
+            return None
+        receive_tai_ms = self.clock.tai_ms(receive_s)
+        time_tai_ms = message_time_tai_ms(decoded, receive_tai_ms)
+        stats = self._stats(decoded.station_id)
+        reason = self.plausibility.check(observation_of(decoded, mac, time_tai_ms), receive_tai_ms)
+        if reason is not None:
+            self.rejected_by_reason[reason.value] += 1
+            stats.on_rejected()
+            return None
+        periodic = decoded.message_type != ItsMessageId.DENM
+        delay_s = ItsClock.seconds_between(time_tai_ms, receive_tai_ms) if periodic else None
+        stats.on_message(decoded.message_type, receive_s, time_tai_ms if periodic else None, delay_s)
+        return decoded
+
+    def status(self, now_s: float) -> v2x_pb2.V2xStatus:
+        for station_id in [s.station_id for s in self.stations.values()
+                           if s.last_heard_s is not None and now_s - s.last_heard_s > FORGET_AFTER_S]:
+            del self.stations[station_id]
+            self.plausibility.forget(station_id)
+        status = v2x_pb2.V2xStatus(packets_received=self.packets_received)
+        for station_id in sorted(self.stations):
+            stats = self.stations[station_id]
+            if stats.last_heard_s is not None:
+                status.stations.append(stats.to_proto(now_s, self.loss_timeout_s))
+        for reason, count in sorted(self.rejected_by_reason.items()):
+            status.rejected_by_reason[reason] = count
+        return status
+
+    def _stats(self, station_id: int) -> StationStats:
+        stats = self.stations.get(station_id)
+        if stats is None:
+            stats = self.stations[station_id] = StationStats(station_id, self.expected_rate_hz, self.window_s)
+        return stats

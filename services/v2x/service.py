@@ -1,0 +1,134 @@
+"""V2X service: GN packets to and from the radio box over UDP; CAM, iCLCM and DENM out; decoded content,
+raw packets and per-station link statistics onto the bus.
+
+Socket input only updates state (through ctx.call_soon); everything is published from time triggers.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from coopdrive.bus import Envelope
+from coopdrive.runtime.service import Service
+from coopdrive.services.v2x.codec import ItsMessageId
+from coopdrive.services.v2x.config import V2xConfig
+from coopdrive.services.v2x.denm_manager import ActionId
+from coopdrive.services.v2x.geonet import parse_gn
+from coopdrive.services.v2x.its_clock import ItsClock
+from coopdrive.services.v2x.link import CaptureLog, UdpLink
+from coopdrive.services.v2x.reasons import V2xDecodeError
+from coopdrive.services.v2x.reception import OwnIdentity, Reception
+from coopdrive.services.v2x.transmission import Transmitter
+from coopdrive.v1 import its_pb2, v2x_pb2
+
+TOPIC_OF_MESSAGE = {ItsMessageId.CAM: "v2x/cam", ItsMessageId.DENM: "v2x/denm", ItsMessageId.ICLCM: "v2x/iclcm"}
+
+
+@dataclass
+class _Received:
+    receive_s: float
+    packet: v2x_pb2.GnPacket
+    message_type: ItsMessageId | None = None
+    content: its_pb2.CamContent | its_pb2.DenmContent | its_pb2.IclcmContent | None = None
+
+
+def gn_source_mac(data: bytes) -> bytes | None:
+    try:
+        return bytes(parse_gn(data).extended.source_position.address.mid)
+    except V2xDecodeError:
+        return None
+
+
+class V2xService(Service):
+    name = "v2x"
+    Config = V2xConfig
+
+    def start(self) -> None:
+        c: V2xConfig = self.config
+        self.clock = ItsClock(c.clock_epoch_unix_s)
+        self.transmitter = Transmitter(c, self.clock)
+        self.reception = Reception(OwnIdentity(c.mac_bytes, c.station_id), self.clock, c.plausibility,
+                                   c.loss_timeout_s, c.expected_rate_hz, c.statistics_window_s)
+        self.packets_sent = 0
+        self._received: list[_Received] = []
+        self._sent: list[tuple[float, v2x_pb2.GnPacket]] = []
+        self._capture_file = open(c.pcap_path, "wb") if c.pcap_path else None
+        self.capture = CaptureLog(self._capture_file, c.mac_bytes) if self._capture_file else None
+        self.link = UdpLink((c.link.listen_host, c.link.listen_port), (c.link.radio_host, c.link.radio_port),
+                            lambda datagram: self.ctx.call_soon(lambda: self.on_datagram(datagram)),
+                            c.link.max_packet_bytes)
+        self.ctx.subscribe("ego/state", lambda envelope: self.transmitter.on_ego_state(envelope.message))
+        self.ctx.subscribe("planner/behaviour", self.on_behaviour)
+        self.ctx.subscribe("control/command", self.on_command)
+        self.ctx.every(1.0 / max(c.iclcm_rate_hz, 25.0), self.transmit)
+        self.ctx.every(c.receive_flush_period_s, self.flush_received)
+        self.ctx.every(1.0 / c.status_rate_hz, self.publish_status)
+        self.link.start()
+
+    def stop(self) -> None:
+        link = getattr(self, "link", None)
+        if link is not None:
+            link.close()
+        if getattr(self, "_capture_file", None) is not None:
+            self._capture_file.close()
+            self._capture_file = None
+
+    # ----- inputs: state updates only ---------------------------------------------------------
+    def on_behaviour(self, envelope: Envelope) -> None:
+        self.transmitter.on_behaviour(envelope.message)
+
+    def on_command(self, envelope: Envelope) -> None:
+        self.transmitter.on_command(envelope.message)
+
+    def on_datagram(self, data: bytes) -> None:
+        now_s = self.ctx.now_s()
+        mac = gn_source_mac(data)
+        if self.capture is not None:
+            self.capture.write_packet(data, self.clock.unix_s(now_s), mac)
+        received = _Received(now_s, v2x_pb2.GnPacket(direction=v2x_pb2.PACKET_DIRECTION_RECEIVED, payload=data,
+                                                     source_mac=mac or b""))
+        decoded = self.reception.on_packet(data, now_s)
+        if decoded is not None:
+            received.message_type, received.content = decoded.message_type, decoded.content
+            self.count(f"received_{decoded.message_type.name.lower()}")
+        self._received.append(received)
+
+    # DENM API for in-process callers (roadside unit logic, hazard detection).
+    def trigger_denm(self, event: its_pb2.DenmContent, repetition_interval_s: float | None = None,
+                     repetition_duration_s: float | None = None) -> ActionId:
+        return self.transmitter.trigger_denm(event, self.ctx.now_s(), repetition_interval_s, repetition_duration_s)
+
+    def update_denm(self, action: ActionId, event: its_pb2.DenmContent) -> None:
+        self.transmitter.update_denm(action, event, self.ctx.now_s())
+
+    def cancel_denm(self, action: ActionId, repetition_duration_s: float = 1.0) -> None:
+        self.transmitter.cancel_denm(action, self.ctx.now_s(), repetition_duration_s)
+
+    # ----- time triggers: the only place that publishes -----------------------------------------
+    def transmit(self, now_s: float) -> None:
+        for outgoing in self.transmitter.due(now_s):
+            if self.capture is not None:
+                self.capture.write_packet(outgoing.data, self.clock.unix_s(now_s))
+            if self.link.send(outgoing.data):
+                self.packets_sent += 1
+                self.count(f"sent_{outgoing.message_type.name.lower()}")
+            packet = v2x_pb2.GnPacket(direction=v2x_pb2.PACKET_DIRECTION_SENT, payload=outgoing.data,
+                                      source_mac=self.config.mac_bytes)
+            self.ctx.publish("v2x/tx", packet, sample_time_s=now_s)
+        self.counters["encode_errors"] = self.transmitter.encode_errors
+        self.counters["send_errors"] = self.link.send_errors
+
+    def flush_received(self, now_s: float) -> None:
+        received, self._received = self._received, []
+        for item in received:
+            self.ctx.publish("v2x/rx", item.packet, sample_time_s=item.receive_s)
+            if item.content is not None:
+                self.ctx.publish(TOPIC_OF_MESSAGE[item.message_type], item.content, sample_time_s=item.receive_s)
+
+    def publish_status(self, now_s: float) -> None:
+        status = self.reception.status(now_s)
+        status.packets_sent = self.packets_sent
+        self.counters["own_packets_ignored"] = self.reception.own_packets_ignored
+        self.counters["packets_received"] = self.reception.packets_received
+        self.counters["rejected"] = sum(self.reception.rejected_by_reason.values())
+        self.ctx.publish("v2x/status", status, sample_time_s=now_s)

@@ -1,0 +1,116 @@
+"""Reception statistics of one remote station over a sliding window.
+
+- message rate: accepted messages per second of the station's busiest stream (its CAMs at GCDC);
+- reception ratio: received / expected messages of its periodic streams (CAM, iCLCM), where the expected
+  count comes from the generationDeltaTime gaps at the known rate (a 120 ms gap at 25 Hz = 3 slots, 2 lost);
+- update delay: receive time - generation time, p50 / p95 / max;
+- LOST once nothing was heard for the loss timeout (400 ms at GCDC).
+"""
+
+from __future__ import annotations
+
+from collections import deque
+
+import numpy as np
+
+from coopdrive.services.v2x.codec import ItsMessageId
+from coopdrive.services.v2x.timebase import MS_PER_S
+from coopdrive.v1 import v2x_pb2
+
+PERIODIC_TYPES = (ItsMessageId.CAM, ItsMessageId.ICLCM)
+
+
+class StreamWindow:
+    """One message type of one station: (receive time, slots the message closes) in the window."""
+
+    def __init__(self, expected_period_ms: float, window_s: float):
+        self.expected_period_ms = expected_period_ms
+        self.window_s = window_s
+        self._entries: deque[tuple[float, int]] = deque()
+        self._last_generation_tai_ms: int | None = None
+
+    def add(self, receive_s: float, generation_tai_ms: int | None) -> None:
+        slots = 1
+        if generation_tai_ms is not None and self._last_generation_tai_ms is not None:
+            gap_ms = generation_tai_ms - self._last_generation_tai_ms
+            # Cap: a silence longer than the window says nothing about the window.
+            max_slots = max(1, round(self.window_s * MS_PER_S / self.expected_period_ms))
+            slots = min(max(1, round(gap_ms / self.expected_period_ms)), max_slots)
+        if generation_tai_ms is not None:
+            self._last_generation_tai_ms = generation_tai_ms
+        self._entries.append((receive_s, slots))
+        self.prune(receive_s)
+
+    def prune(self, now_s: float) -> None:
+        while self._entries and self._entries[0][0] < now_s - self.window_s:
+            self._entries.popleft()
+
+    def received_and_expected(self) -> tuple[int, int]:
+        # The first message of the window closes a gap that started before it: count it as one slot.
+        expected = sum(slots for _, slots in self._entries) - (self._entries[0][1] - 1 if self._entries else 0)
+        return len(self._entries), expected
+
+    def rate_hz(self, now_s: float, first_heard_s: float) -> float:
+        span_s = min(self.window_s, now_s - first_heard_s)
+        if span_s <= 0:
+            return 0.0
+        return len(self._entries) / span_s
+
+
+class StationStats:
+    def __init__(self, station_id: int, expected_rate_hz: float, window_s: float):
+        self.station_id = station_id
+        self.expected_period_ms = MS_PER_S / expected_rate_hz
+        self.window_s = window_s
+        self.first_heard_s: float | None = None
+        self.last_heard_s: float | None = None
+        self.messages_received = 0
+        self.messages_rejected = 0
+        self._streams: dict[ItsMessageId, StreamWindow] = {}
+        self._delays: deque[tuple[float, float]] = deque()
+
+    def on_message(self, message_type: ItsMessageId, receive_s: float, generation_tai_ms: int | None,
+                   delay_s: float | None) -> None:
+        if self.first_heard_s is None:
+            self.first_heard_s = receive_s
+        self.last_heard_s = receive_s
+        self.messages_received += 1
+        stream = self._streams.get(message_type)
+        if stream is None:
+            stream = self._streams[message_type] = StreamWindow(self.expected_period_ms, self.window_s)
+        stream.add(receive_s, generation_tai_ms if message_type in PERIODIC_TYPES else None)
+        if delay_s is not None:
+            self._delays.append((receive_s, delay_s))
+
+    def on_rejected(self) -> None:
+        self.messages_rejected += 1
+
+    def is_lost(self, now_s: float, loss_timeout_s: float) -> bool:
+        return self.last_heard_s is None or now_s - self.last_heard_s > loss_timeout_s
+
+    def reception_ratio(self, now_s: float) -> float:
+        received = expected = 0
+        for message_type, stream in self._streams.items():
+            if message_type in PERIODIC_TYPES:
+                stream.prune(now_s)
+                got, wanted = stream.received_and_expected()
+                received, expected = received + got, expected + wanted
+        return received / expected if expected else 0.0
+
+    def to_proto(self, now_s: float, loss_timeout_s: float) -> v2x_pb2.StationLinkStats:
+        for stream in self._streams.values():
+            stream.prune(now_s)
+        while self._delays and self._delays[0][0] < now_s - self.window_s:
+            self._delays.popleft()
+        stats = v2x_pb2.StationLinkStats(
+            station_id=self.station_id,
+            state=v2x_pb2.LINK_STATE_LOST if self.is_lost(now_s, loss_timeout_s) else v2x_pb2.LINK_STATE_ACTIVE,
+            last_heard_s=self.last_heard_s or 0.0, reception_ratio=self.reception_ratio(now_s),
+            messages_received=self.messages_received, messages_rejected=self.messages_rejected)
+        if self.first_heard_s is not None and self._streams:
+            stats.message_rate_hz = max(stream.rate_hz(now_s, self.first_heard_s) for stream in self._streams.values())
+        if self._delays:
+            delays = np.array([delay for _, delay in self._delays])
+            stats.update_delay_p50_s, stats.update_delay_p95_s = (float(v) for v in np.percentile(delays, [50, 95]))
+            stats.update_delay_max_s = float(delays.max())
+        return stats
