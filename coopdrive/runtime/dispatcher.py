@@ -23,8 +23,10 @@ class _Pending:
 
 
 class StepDispatcher:
-    def __init__(self, own_service: str, own_vehicle_id: str):
+    def __init__(self, own_service: str, own_vehicle_id: str, feedback_lag_s: float = 0.0):
         self._own_rank = PIPELINE_RANK[own_service]
+        # Feedback is handled at least this long after the step it was sent in (besides one step).
+        self.feedback_lag_s = feedback_lag_s
         self._own_vehicle = own_vehicle_id
         self._pending: list[_Pending] = []
         self._arrivals = 0
@@ -56,4 +58,4 @@ class StepDispatcher:
         if sender_rank < self._own_rank:
             return True  # upstream of us: same-step data is already complete
         # Feedback from downstream (or a peer): only what it published in earlier steps.
-        return header.sent_time_s < step_time_s - TIME_EPSILON_S
+        return header.sent_time_s < step_time_s - self.feedback_lag_s - TIME_EPSILON_S

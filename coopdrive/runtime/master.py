@@ -25,6 +25,10 @@ class ClockSettings:
     realtime_factor: float = 1.0
     # "<vehicle>/<service>" of every service in the barrier.
     participants: list[str] = field(default_factory=list)
+    # Steps between a command's step and the step that applies it. 2 lets the simulator compute
+    # step k+1 while the stacks still work on step k (two steps in flight on two cores); the
+    # world model subtracts the extra step from the actuators' dead time.
+    feedback_delay_steps: int = 1
     startup_timeout_s: float = 60.0
 
 
@@ -52,6 +56,8 @@ class ClockMaster:
         self._alive: set[str] = set()
         self._step = 0
         self.wall_time_s = 0.0
+        lag = max(1, self._settings.feedback_delay_steps)
+        runner.dispatcher.feedback_lag_s = (lag - 1) * self._settings.step_s
 
     @property
     def participants(self) -> list[str]:
@@ -64,7 +70,8 @@ class ClockMaster:
         while not self._runner.stopping:
             time_s = self._step * self._settings.step_s
             if self._settings.lockstep:
-                if self._step > 0 and not self._wait_for_step_done(self._step - 1):
+                lag = max(1, self._settings.feedback_delay_steps)
+                if self._step >= lag and not self._wait_for_step_done(self._step - lag):
                     break
             elif not self._wait_until(wall_start + time_s / self._settings.realtime_factor):
                 break

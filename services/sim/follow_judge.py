@@ -12,6 +12,9 @@ MIN_SPEED_FOR_TIME_GAP_MPS = 1.0
 class FollowJudge:
     standstill_m: float
     time_gap_s: float
+    # Spacing is judged once the start-up transient is over, and must stay near d = r + h v.
+    settle_time_s: float = 15.0
+    max_mean_spacing_error_m: float = 3.0
     collisions: int = 0
     min_gap_m: float = math.inf
     min_time_gap_s: float = math.inf
@@ -20,8 +23,8 @@ class FollowJudge:
     _speed_errors_mps: list = field(default_factory=list)
     _max_abs_accel_mps2: float = 0.0
 
-    def observe(self, vehicle_id: str, gap_m: float | None, speed_mps: float, leader_speed_mps: float | None,
-                accel_mps2: float) -> None:
+    def observe(self, time_s: float, vehicle_id: str, gap_m: float | None, speed_mps: float,
+                leader_speed_mps: float | None, accel_mps2: float) -> None:
         self._max_abs_accel_mps2 = max(self._max_abs_accel_mps2, abs(accel_mps2))
         if gap_m is None:
             return
@@ -33,7 +36,9 @@ class FollowJudge:
         self.min_gap_m = min(self.min_gap_m, gap_m)
         if speed_mps > MIN_SPEED_FOR_TIME_GAP_MPS:
             self.min_time_gap_s = min(self.min_time_gap_s, gap_m / speed_mps)
-        self._spacing_errors_m.append(gap_m - (self.standstill_m + self.time_gap_s * speed_mps))
+        if time_s < self.settle_time_s:
+            return
+        self._spacing_errors_m.append(gap_m - (self.standstill_m + self.time_gap_s * speed_mps))  # d = r + h v
         if leader_speed_mps is not None:
             self._speed_errors_mps.append(speed_mps - leader_speed_mps)
 
@@ -55,4 +60,8 @@ class FollowJudge:
             return False, f"{self.collisions} collision(s)"
         if self.min_gap_m <= self.standstill_m:
             return False, f"minimum gap {self.min_gap_m:.2f} m not above the standstill distance {self.standstill_m} m"
+        spacing = self.metrics()["spacing_error_mean_m"]
+        if not self._spacing_errors_m or spacing > self.max_mean_spacing_error_m:
+            return False, (f"not following: mean spacing error {spacing:.2f} m after {self.settle_time_s:.0f} s "
+                           f"exceeds {self.max_mean_spacing_error_m} m")
         return True, ""

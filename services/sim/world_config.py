@@ -30,13 +30,13 @@ class VehicleSpec(_Strict):
 
 
 class GnssSensorConfig(_Strict):
-    rate_hz: float = 20.0
+    rate_hz: float = 10.0
     sigma_m: float = 0.02
     latency_s: float = 0.0
 
 
 class RadarSensorConfig(_Strict):
-    rate_hz: float = 20.0
+    rate_hz: float = 25.0
     range_sigma_m: float = 0.05
     range_rate_sigma_mps: float = 0.05
     max_range_m: float = 200.0
@@ -44,7 +44,7 @@ class RadarSensorConfig(_Strict):
 
 
 class CanSensorConfig(_Strict):
-    rate_hz: float = 100.0
+    rate_hz: float = 50.0
     wheel_speed_sigma_mps: float = 0.02
     yaw_rate_sigma_radps: float = 0.001
 

@@ -27,12 +27,14 @@ class VehicleBody:
     accel_mps2: float = 0.0
     steering_angle_rad: float = 0.0
     yaw_rate_radps: float = 0.0
+    # Steps of delay the command already had before reaching the model (lockstep pipelining).
+    already_delayed_steps: int = 0
     _delayed_requests: deque = field(default_factory=deque)
 
     def step(self, dt_s: float, accel_request_mps2: float, steering_request_rad: float) -> None:
         spec = self.spec
         self._delayed_requests.append(accel_request_mps2)
-        delay_steps = max(1, round(spec.dead_time_s / dt_s))
+        delay_steps = max(1, round(spec.dead_time_s / dt_s) - self.already_delayed_steps)
         while len(self._delayed_requests) > delay_steps:
             self._delayed_requests.popleft()
         applied = self._delayed_requests[0]
@@ -69,12 +71,13 @@ class SpeedProfile:
 
 
 class FollowWorld:
-    def __init__(self, config: WorldConfig):
+    def __init__(self, config: WorldConfig, already_delayed_steps: int = 0):
         self.config = config
         self.bodies: dict[str, VehicleBody] = {}
         self.profiles: dict[str, SpeedProfile] = {}
         for spec in config.vehicles:
-            self.bodies[spec.vehicle_id] = VehicleBody(spec, spec.station_m, spec.lateral_m, 0.0, spec.speed_mps)
+            self.bodies[spec.vehicle_id] = VehicleBody(spec, spec.station_m, spec.lateral_m, 0.0, spec.speed_mps,
+                                                       already_delayed_steps=already_delayed_steps)
             if spec.speed_profile:
                 self.profiles[spec.vehicle_id] = SpeedProfile(spec.speed_profile)
 
