@@ -205,19 +205,30 @@ class GnPacket:
         return b"".join(parts)
 
 
-def parse_gn(data: bytes, accepted_versions: tuple[int, ...] = SUPPORTED_GN_VERSIONS) -> GnPacket:
-    """Parse an SHB or GBC packet. Bytes after the payload length (Ethernet padding) are dropped."""
+def parse_basic_header(data: bytes, accepted_versions: tuple[int, ...] = SUPPORTED_GN_VERSIONS) -> BasicHeader:
+    """The basic header of a packet whose next header is the common header or a secured packet."""
     if len(data) < BASIC_HEADER_SIZE:
         raise GnParseError(RejectReason.TRUNCATED_BASIC_HEADER, f"{len(data)} bytes")
     version_next, _, lifetime, hop_limit = _BASIC.unpack_from(data, 0)
     version, basic_next = version_next >> 4, version_next & 0x0F
     if version not in accepted_versions:
         raise GnParseError(RejectReason.UNSUPPORTED_GN_VERSION, f"version {version}")
-    if basic_next == BasicNextHeader.SECURED_PACKET:
-        raise GnParseError(RejectReason.SECURED_PACKET_UNSUPPORTED)
-    if basic_next != BasicNextHeader.COMMON_HEADER:
+    if basic_next not in (BasicNextHeader.COMMON_HEADER, BasicNextHeader.SECURED_PACKET):
         raise GnParseError(RejectReason.UNKNOWN_BASIC_NEXT_HEADER, f"next header {basic_next}")
-    basic = BasicHeader(version, BasicNextHeader(basic_next), lifetime >> 2, lifetime & 0x03, hop_limit)
+    return BasicHeader(version, BasicNextHeader(basic_next), lifetime >> 2, lifetime & 0x03, hop_limit)
+
+
+def with_basic_next_header(packet: bytes, next_header: BasicNextHeader, rest: bytes) -> bytes:
+    """packet's basic header with next_header, followed by rest (to wrap or unwrap a security envelope)."""
+    first = (packet[0] & 0xF0) | int(next_header)
+    return bytes([first]) + bytes(packet[1:BASIC_HEADER_SIZE]) + rest
+
+
+def parse_gn(data: bytes, accepted_versions: tuple[int, ...] = SUPPORTED_GN_VERSIONS) -> GnPacket:
+    """Parse an SHB or GBC packet. Bytes after the payload length (Ethernet padding) are dropped."""
+    basic = parse_basic_header(data, accepted_versions)
+    if basic.next_header == BasicNextHeader.SECURED_PACKET:
+        raise GnParseError(RejectReason.SECURED_PACKET_UNSUPPORTED)
     if len(data) < BASIC_HEADER_SIZE + COMMON_HEADER_SIZE:
         raise GnParseError(RejectReason.TRUNCATED_COMMON_HEADER, f"{len(data)} bytes")
     next_reserved, type_subtype, traffic_class, flags, payload_length, max_hop, _ = _COMMON.unpack_from(

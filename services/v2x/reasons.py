@@ -20,6 +20,26 @@ class RejectReason(enum.Enum):
     UNSUPPORTED_PROTOCOL_VERSION = "unsupported_protocol_version"
     MALFORMED_ASN1 = "malformed_asn1"
     UNMAPPABLE_CONTENT = "unmappable_content"
+    # Security envelope (IEEE 1609.2 / TS 103 097 v1.3.1), see services/v2x/security/.
+    MALFORMED_SECURITY_ENVELOPE = "malformed_security_envelope"
+    UNSUPPORTED_SECURED_CONTENT = "unsupported_secured_content"
+    UNSUPPORTED_HASH_ALGORITHM = "unsupported_hash_algorithm"
+    UNSUPPORTED_SIGNER = "unsupported_signer"
+    MISSING_GENERATION_TIME = "missing_generation_time"
+    STALE_GENERATION_TIME = "stale_generation_time"
+    FUTURE_GENERATION_TIME = "future_generation_time"
+    UNKNOWN_SIGNER_DIGEST = "unknown_signer_digest"
+    INVALID_CERTIFICATE = "invalid_certificate"
+    UNKNOWN_ISSUER = "unknown_issuer"
+    UNTRUSTED_ROOT = "untrusted_root"
+    INVALID_CERTIFICATE_SIGNATURE = "invalid_certificate_signature"
+    CERTIFICATE_NOT_YET_VALID = "certificate_not_yet_valid"
+    CERTIFICATE_EXPIRED = "certificate_expired"
+    OUTSIDE_CERTIFICATE_REGION = "outside_certificate_region"
+    PSID_NOT_PERMITTED = "psid_not_permitted"
+    PSID_PORT_MISMATCH = "psid_port_mismatch"
+    INVALID_SIGNATURE = "invalid_signature"
+    UNSECURED_PACKET_REFUSED = "unsecured_packet_refused"
 
 
 class V2xDecodeError(Exception):

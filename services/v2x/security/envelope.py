@@ -1,0 +1,99 @@
+"""Build the EtsiTs103097Data of a signed GeoNetworking packet, and read its parts back.
+
+The envelope follows the 4-byte basic header (next header 2). In canonical OER the to-be-signed data starts
+at byte 3 of it: protocolVersion (1 byte), the content choice tag (1 byte), hashId (1 byte, SignedData has
+neither optional fields nor an extension marker), then tbsData.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from cryptography.hazmat.primitives.asymmetric import ec
+
+from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.services.v2x.security import asn
+from coopdrive.services.v2x.security.certificate import Certificate
+from coopdrive.services.v2x.security.crypto import data_digest, sign_digest
+from coopdrive.services.v2x.security.profile import SECURED_DATA_PROTOCOL_VERSION
+
+TBS_OFFSET_IN_ENVELOPE = 3
+
+
+@dataclass(frozen=True)
+class GenerationLocation:
+    """0.1 microdegree latitude / longitude, 0.1 m elevation (as HeaderInfo.generationLocation)."""
+
+    latitude: int
+    longitude: int
+    elevation: int
+
+
+def build_signed_data(unsecured: bytes, psid: int, generation_time_us: int, ticket: Certificate,
+                      key: ec.EllipticCurvePrivateKey, full_certificate: bool,
+                      location: GenerationLocation | None = None) -> bytes:
+    header: dict = {"psid": psid, "generationTime": generation_time_us}
+    if location is not None:
+        header["generationLocation"] = {"latitude": location.latitude, "longitude": location.longitude,
+                                        "elevation": location.elevation}
+    tbs = {"payload": {"data": {"protocolVersion": SECURED_DATA_PROTOCOL_VERSION,
+                                "content": ("unsecuredData", unsecured)}},
+           "headerInfo": header}
+    digest = data_digest(asn.encode(asn.TBS_DATA_TYPE, tbs), ticket.encoded)
+    signer = ("certificate", [ticket.value]) if full_certificate else ("digest", ticket.digest)
+    signed = {"hashId": "sha256", "tbsData": tbs, "signer": signer, "signature": sign_digest(key, digest)}
+    return asn.encode(asn.DATA_TYPE, {"protocolVersion": SECURED_DATA_PROTOCOL_VERSION,
+                                      "content": ("signedData", signed)})
+
+
+@dataclass(frozen=True)
+class SignedEnvelope:
+    signed: dict
+    tbs_bytes: bytes
+    unsecured: bytes
+    psid: int
+    generation_time_us: int | None
+    expiry_time_us: int | None
+    location: GenerationLocation | None
+
+    @property
+    def signer(self) -> tuple[str, object]:
+        return self.signed["signer"]
+
+    @property
+    def signature(self) -> tuple[str, dict]:
+        return self.signed["signature"]
+
+
+def parse_signed_data(envelope: bytes) -> SignedEnvelope:
+    """Decode and check the shape of a signed envelope; raises V2xDecodeError, never anything else.
+
+    Non-canonical encodings are refused: the signature covers the bytes as sent, and a second encoding of
+    the same values must not pass for the first one.
+    """
+    try:
+        value = asn.decode(asn.DATA_TYPE, envelope)
+        canonical = asn.encode(asn.DATA_TYPE, value)
+    except Exception as error:  # noqa: BLE001 -- asn1tools raises many types on garbage input
+        raise V2xDecodeError(RejectReason.MALFORMED_SECURITY_ENVELOPE, f"{type(error).__name__}: {error}") from None
+    if canonical != envelope:
+        raise V2xDecodeError(RejectReason.MALFORMED_SECURITY_ENVELOPE, "not canonical OER (or trailing bytes)")
+    if value["protocolVersion"] != SECURED_DATA_PROTOCOL_VERSION:
+        raise V2xDecodeError(RejectReason.MALFORMED_SECURITY_ENVELOPE, f"protocolVersion {value['protocolVersion']}")
+    kind, signed = value["content"]
+    if kind != "signedData":
+        raise V2xDecodeError(RejectReason.UNSUPPORTED_SECURED_CONTENT, kind)
+    if signed["hashId"] != "sha256":
+        raise V2xDecodeError(RejectReason.UNSUPPORTED_HASH_ALGORITHM, str(signed["hashId"]))
+    tbs = signed["tbsData"]
+    data = tbs["payload"].get("data")
+    if data is None or data["protocolVersion"] != SECURED_DATA_PROTOCOL_VERSION or \
+            data["content"][0] != "unsecuredData":
+        raise V2xDecodeError(RejectReason.UNSUPPORTED_SECURED_CONTENT, "payload is not unsecured data")
+    tbs_bytes = asn.encode(asn.TBS_DATA_TYPE, tbs)
+    header = tbs["headerInfo"]
+    location = header.get("generationLocation")
+    return SignedEnvelope(
+        signed, tbs_bytes, data["content"][1], header["psid"], header.get("generationTime"),
+        header.get("expiryTime"),
+        GenerationLocation(location["latitude"], location["longitude"], location["elevation"]) if location else None)
