@@ -1,65 +1,157 @@
-"""Actuation service: the only door to the vehicle. Maps requests to pedals and steering, stops safely."""
+"""Actuation service: the only door to the vehicle. Feeds the Actuator and sends its ACT_ frames every cycle.
+
+Data handlers feed the Actuator (commands, vehicle state, ego state, V2X health, mode requests, liveliness); the
+50 Hz cycle steps it and publishes the three ACT_ frames on can/command, the ActuatorCommand on actuation/command
+and any driver override; the status goes out at 10 Hz.
+"""
 
 from __future__ import annotations
 
-import math
+import enum
+
+import can
+from pydantic import Field
 
 from coopdrive.bus import Envelope
 from coopdrive.runtime.service import Service, ServiceConfig
-from coopdrive.v1 import actuation_pb2
+from coopdrive.services.actuation.actuator import Actuator
+from coopdrive.services.actuation.config import ActuationConfig, ModeRequirements
+from coopdrive.v1 import actuation_pb2, v2x_pb2, vehicle_pb2
+
+V2X_SERVICE = "v2x"
+ENGAGE_REQUESTER = "engage_on_start"
 
 
-class ActuationConfig(ServiceConfig):
-    rate_hz: float = 100.0
-    status_rate_hz: float = 10.0
-    command_timeout_s: float = 0.1
-    safe_stop_decel_mps2: float = 3.0
-    max_throttle_accel_mps2: float = 3.0
-    max_brake_decel_mps2: float = 8.0
-    max_command_accel_mps2: float = 10.0
-    initial_mode: str = "autonomous"
+class EngageMode(enum.Enum):
+    NONE = "none"
+    COOPERATIVE = "cooperative"
+    AUTONOMOUS = "autonomous"
+
+
+ENGAGE_MODES = {EngageMode.COOPERATIVE: actuation_pb2.DRIVING_MODE_COOPERATIVE,
+                EngageMode.AUTONOMOUS: actuation_pb2.DRIVING_MODE_AUTONOMOUS}
+
+
+class ActuationServiceConfig(ServiceConfig):
+    actuator: ActuationConfig = ActuationConfig()
+    # Sim steps are 10 ms; a 20 ms cycle halves the steps this service takes part in.
+    rate_hz: float = Field(50.0, gt=0.0)
+    status_rate_hz: float = Field(10.0, gt=0.0)
+    # The mode requested on every cycle from the start until the actuator accepts it once, as a safety driver
+    # pressing "engage" would (simulation runs). On a vehicle it stays none: the driver engages via the gateway.
+    engage_on_start: EngageMode = EngageMode.NONE
+    # Whether the automated modes need a live v2x service with a healthy V2X status. A stack without a v2x
+    # service (the follow run follows by radar alone) sets it false, else no automated mode could be entered.
+    require_v2x: bool = True
+
+    def actuator_config(self, vehicle_id: str) -> ActuationConfig:
+        config = self.actuator.model_copy(update={"vehicle_id": vehicle_id})
+        if self.require_v2x:
+            return config
+        modes = config.modes.model_copy(update={"cooperative": _without_v2x(config.modes.cooperative),
+                                                "autonomous": _without_v2x(config.modes.autonomous)})
+        return config.model_copy(update={"modes": modes})
+
+
+def _without_v2x(requirements: ModeRequirements) -> ModeRequirements:
+    return requirements.model_copy(update={
+        "v2x_required": False,
+        "required_services": [name for name in requirements.required_services if name != V2X_SERVICE]})
+
+
+def v2x_healthy(status: v2x_pb2.V2xStatus) -> bool:
+    """Cooperative driving needs someone to cooperate with: healthy while at least one station is heard."""
+    return any(station.state == v2x_pb2.LINK_STATE_ACTIVE for station in status.stations)
+
+
+def can_frame(message: can.Message) -> vehicle_pb2.CanFrame:
+    return vehicle_pb2.CanFrame(channel=message.channel or "", arbitration_id=message.arbitration_id,
+                                is_extended_id=message.is_extended_id, data=bytes(message.data),
+                                timestamp_s=message.timestamp, is_error_frame=message.is_error_frame,
+                                is_remote_frame=message.is_remote_frame)
 
 
 class ActuationService(Service):
     name = "actuation"
-    Config = ActuationConfig
+    Config = ActuationServiceConfig
 
     def start(self) -> None:
-        self.command = None
-        self.mode = actuation_pb2.DRIVING_MODE_AUTONOMOUS
-        self.mode_reason = "initial mode from config"
-        self.last_accel_mps2 = 0.0
+        c: ActuationServiceConfig = self.config
+        self.actuator = Actuator(c.actuator_config(self.ctx.vehicle_id))
+        self.engage_pending = ENGAGE_MODES.get(c.engage_on_start)
+        self.last_refusal = ""
+        self.status: actuation_pb2.ActuationStatus | None = None
         self.ctx.subscribe("control/command", self.on_control_command)
-        self.ctx.every(1.0 / self.config.rate_hz, self.actuate)
-        self.ctx.every(1.0 / self.config.status_rate_hz, self.publish_status)
+        self.ctx.subscribe("vehicle/state", self.on_vehicle_state)
+        self.ctx.subscribe("ego/state", self.on_ego_state)
+        if c.require_v2x:
+            self.ctx.subscribe("v2x/status", self.on_v2x_status)
+        self.ctx.subscribe("gateway/mode_request", self.on_mode_request)
+        self.ctx.subscribe("gateway/estop", self.on_estop)
+        self.ctx.watch_liveliness(self.on_liveliness)
+        self.ctx.every(1.0 / c.rate_hz, self.actuate)
+        self.ctx.every(1.0 / c.status_rate_hz, self.publish_status)
 
+    # ----- inputs ---------------------------------------------------------------------------
     def on_control_command(self, envelope: Envelope) -> None:
-        command = envelope.message
-        if not math.isfinite(command.accel_request_mps2) or abs(command.accel_request_mps2) > self.config.max_command_accel_mps2:
+        if not self.actuator.on_control_command(envelope.message, self.ctx.now_s()):
             self.count("rejected_commands")
-            return
-        self.command = command
 
+    def on_vehicle_state(self, envelope: Envelope) -> None:
+        if self.actuator.on_vehicle_state(envelope.message, self.ctx.now_s()) is not None:
+            self.count("driver_overrides")
+
+    def on_ego_state(self, envelope: Envelope) -> None:
+        self.actuator.on_ego_state(envelope.message, self.ctx.now_s())
+
+    def on_v2x_status(self, envelope: Envelope) -> None:
+        self.actuator.on_v2x_health(v2x_healthy(envelope.message), self.ctx.now_s())
+
+    def on_mode_request(self, envelope: Envelope) -> None:
+        request = envelope.message
+        decision = self.actuator.on_mode_request(request, self.ctx.now_s())
+        if not decision.accepted:
+            self.count("mode_requests_refused")
+            self.ctx.log.info("refused %s from %s: %s", actuation_pb2.DrivingMode.Name(request.mode),
+                              request.requested_by or "unspecified", decision.unmet)
+
+    def on_estop(self, envelope: Envelope) -> None:
+        self.actuator.on_estop(self.ctx.now_s(), envelope.message.requested_by)
+        self.count("emergency_stops")
+
+    def on_liveliness(self, participant: str, alive: bool) -> None:
+        vehicle_id, _, service = participant.partition("/")
+        if vehicle_id == self.ctx.vehicle_id:
+            self.actuator.on_service_liveness(service, alive)
+
+    # ----- time triggers --------------------------------------------------------------------
     def actuate(self, now_s: float) -> None:
-        c: ActuationConfig = self.config
-        stale = self.command is None or now_s - self.command.header.sent_time_s > c.command_timeout_s
-        if stale and self.command is not None:
-            if self.mode != actuation_pb2.DRIVING_MODE_SAFE_STOP:
-                self.mode, self.mode_reason = actuation_pb2.DRIVING_MODE_SAFE_STOP, "control commands stale"
-                self.count("watchdog_stops")
-            accel = max(-c.safe_stop_decel_mps2, self.last_accel_mps2 - c.safe_stop_decel_mps2 / c.rate_hz)
-        elif self.command is None:
-            accel = 0.0
-        else:
-            accel = self.command.accel_request_mps2
-        self.last_accel_mps2 = accel
-        out = actuation_pb2.ActuatorCommand(
-            accel_request_mps2=accel, throttle_ratio=max(accel, 0.0) / c.max_throttle_accel_mps2,
-            brake_ratio=max(-accel, 0.0) / c.max_brake_decel_mps2,
-            steering_angle_rad=0.0 if self.command is None else self.command.steering_angle_request_rad,
-            hazard_lights=self.mode == actuation_pb2.DRIVING_MODE_SAFE_STOP, automation_active=True)
-        self.ctx.publish("actuation/command", out)
+        if self.engage_pending is not None:
+            self._engage(now_s)
+        frames, self.status = self.actuator.step(now_s)
+        for frame in frames:
+            self.ctx.publish("can/command", can_frame(frame), sample_time_s=now_s)
+        command = self.actuator.actuator_command(now_s)
+        if command is not None:
+            self.ctx.publish("actuation/command", command, sample_time_s=now_s)
+        for event in self.actuator.take_override_events():
+            self.ctx.publish("actuation/override", event, sample_time_s=event.header.sample_time_s)
+        self.counters["frames_sent"] = self.actuator.frames_sent
+        self.counters["frames_rejected"] = self.actuator.frames_rejected
+
+    def _engage(self, now_s: float) -> None:
+        request = actuation_pb2.ModeRequest(mode=self.engage_pending, requested_by=ENGAGE_REQUESTER)
+        decision = self.actuator.on_mode_request(request, now_s)
+        if decision.accepted:
+            self.engage_pending = None
+            self.ctx.log.info("engaged %s at %.2f s", actuation_pb2.DrivingMode.Name(request.mode), now_s)
+            return
+        self.count("engage_refused")
+        refusal = str(decision.unmet)
+        if refusal != self.last_refusal:
+            self.last_refusal = refusal
+            self.ctx.log.info("engage at start refused at %.2f s: %s", now_s, refusal)
 
     def publish_status(self, now_s: float) -> None:
-        status = actuation_pb2.ActuationStatus(mode=self.mode, last_mode_change_reason=self.mode_reason)
-        self.ctx.publish("actuation/status", status)
+        if self.status is not None:
+            self.ctx.publish("actuation/status", self.status, sample_time_s=self.status.header.sample_time_s)
