@@ -5,18 +5,30 @@ from __future__ import annotations
 import math
 import time
 
+import can
 import numpy as np
 import pymap3d
 from pydantic import Field
 
 from coopdrive.bus import Envelope
 from coopdrive.bus.keys import WORLD_ID
+from coopdrive.can.codec import VehicleCanCodec
+from coopdrive.can.frames import CanDecodeError
 from coopdrive.runtime.master import ClockMaster, ClockSettings
 from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.services.sim.follow_judge import FollowJudge
+from coopdrive.services.sim.profiles import PROFILES, ProfileName
+from coopdrive.services.sim.vehicle_model import VehicleModel
 from coopdrive.services.sim.world_config import VehicleSpec, WorldConfig
 from coopdrive.services.sim.world_service import FollowWorld
 from coopdrive.v1 import gnss_pb2, sensors_pb2, sim_pb2, vehicle_pb2
+
+
+# In manual mode the simulated driver holds the speed and keeps to the straight lane.
+MANUAL_ACCEL_MPS2 = 0.0
+MANUAL_STEERING_RAD = 0.0
+# Stacks engage at their starting speed; the margin covers the wheel-speed noise.
+FLYING_START_MARGIN_MPS = 1.0
 
 
 def default_follow_world() -> WorldConfig:
@@ -36,10 +48,43 @@ class SimConfig(ServiceConfig):
     realtime_factor: float = 1.0
     participants: list[str] = Field(default_factory=list)
     startup_timeout_s: float = 60.0
+    # Full-throttle and full-brake accelerations the stack vehicles' ACT_ pedal ratios are scaled by.
+    pedal_profile: ProfileName = ProfileName.PASSENGER_CAR
     # Spacing policy d = r + h v the run is judged against.
     standstill_m: float = 6.0
     time_gap_s: float = 1.5
     world: WorldConfig = Field(default_factory=default_follow_world)
+
+    def stack_overrides(self) -> dict[str, dict]:
+        """What this world needs in every stack's service configs; the launcher merges its own over them.
+
+        Geolocation: the follow world lies off every lane map, so the world's origin and no lane matching; the
+        simulated GNSS antenna sits at the vehicle reference point; the odometry needs the simulated track width
+        and wheel-speed noise. Actuation: the stacks have no v2x service and start moving, so they engage
+        cooperative (longitudinal) control at once, at speed, without the V2X condition (a vehicle's default is
+        to wait for its driver, below 10 km/h, with V2X).
+        """
+        world = self.world
+        stacks = [v for v in world.vehicles if not v.speed_profile]
+        if not stacks:
+            return {}
+        # One set of overrides serves every stack, so the first stack vehicle stands for all.
+        return {
+            "geolocation": {
+                "map_name": None,
+                "origin": {"lat_deg": world.origin_lat_deg, "lon_deg": world.origin_lon_deg,
+                           "alt_m": world.origin_alt_m},
+                "geolocator": {"antenna_x_m": 0.0, "antenna_y_m": 0.0, "track_width_m": stacks[0].track_width_m,
+                               "wheelbase_m": stacks[0].wheelbase_m,
+                               "wheel_speed_std_mps": world.can.wheel_speed_sigma_mps},
+            },
+            "actuation": {
+                "engage_on_start": "cooperative",
+                "require_v2x": False,
+                "actuator": {"modes": {"max_engage_speed_mps": max(v.speed_mps for v in stacks)
+                                       + FLYING_START_MARGIN_MPS}},
+            },
+        }
 
 
 class SimService(Service, ClockMaster.Driven):
@@ -54,10 +99,13 @@ class SimService(Service, ClockMaster.Driven):
         self.stack_vehicles = [s.vehicle_id for s in config.world.vehicles if not s.speed_profile]
         self.accel_requests: dict[str, float] = {}
         self.steering_requests: dict[str, float] = {}
+        # One codec per vehicle bus (rolling counters are per receiver); the model only maps pedals to a request.
+        self.command_codecs = {vehicle_id: VehicleCanCodec() for vehicle_id in self.stack_vehicles}
+        self.pedals = VehicleModel(PROFILES[config.pedal_profile], config.step_s)
         self.wall_start_s = time.monotonic()
         self.finished = False
         for vehicle_id in self.stack_vehicles:
-            self.ctx.subscribe("actuation/command", self.on_actuator_command, vehicle_id=vehicle_id)
+            self.ctx.subscribe("can/command", self.on_can_command, vehicle_id=vehicle_id)
         world = config.world
         self.ctx.every(config.step_s, self.on_step)
         self.ctx.every(1.0 / world.can.rate_hz, self.publish_can_state)
@@ -75,13 +123,28 @@ class SimService(Service, ClockMaster.Driven):
         self.wall_start_s = wall_start_monotonic_s
 
     # ----- inputs ---------------------------------------------------------------------------
-    def on_actuator_command(self, envelope: Envelope) -> None:
-        command = envelope.message
-        if not (math.isfinite(command.accel_request_mps2) and math.isfinite(command.steering_angle_rad)):
-            self.count("rejected_actuator_commands")
+    def on_can_command(self, envelope: Envelope) -> None:
+        """An ACT_ frame from a stack's actuation; the latest values of all three are applied every step."""
+        frame = envelope.message
+        message = can.Message(arbitration_id=frame.arbitration_id, is_extended_id=frame.is_extended_id,
+                              data=frame.data, timestamp=frame.timestamp_s, is_error_frame=frame.is_error_frame,
+                              is_remote_frame=frame.is_remote_frame)
+        try:
+            command = self.command_codecs[envelope.vehicle_id].decode_command(message)
+        except CanDecodeError as error:
+            self.count("rejected_can_commands")
+            if self.counters["rejected_can_commands"] == 1:
+                self.ctx.log.warning("rejected a CAN command frame from %s: %s", envelope.vehicle_id, error)
             return
-        self.accel_requests[envelope.vehicle_id] = command.accel_request_mps2
-        self.steering_requests[envelope.vehicle_id] = command.steering_angle_rad
+        vehicle_id = envelope.vehicle_id
+        if command.longitudinal_active:
+            self.accel_requests[vehicle_id] = self.pedals.command_to_accel_mps2(
+                command.throttle_ratio, command.brake_ratio, command.deceleration_request_mps2)
+        else:
+            self.accel_requests[vehicle_id] = MANUAL_ACCEL_MPS2
+        # Without lateral automation the driver steers, and the follow world's road is straight.
+        self.steering_requests[vehicle_id] = command.steering_angle_request_rad if command.lateral_active \
+            else MANUAL_STEERING_RAD
 
     # ----- time triggers --------------------------------------------------------------------
     def on_step(self, now_s: float) -> None:
