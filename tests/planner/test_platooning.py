@@ -1,0 +1,99 @@
+from planner_world import DT_S, ego, iclcm, inputs, obj, planner, rsu_end, rsu_start, scene, transitions
+
+from coopdrive.v1 import planner_pb2
+
+PARTNER = 7
+CLOSE_GAP_M = 13.5  # 6 m + 0.5 s * 15 m/s
+FAR_GAP_M = 40.0
+
+
+def step(p, t, gap_m=FAR_GAP_M, heard_at=None, start=True, end=False, leave=False):
+    msgs = {PARTNER: iclcm(PARTNER, t if heard_at is None else heard_at)}
+    if start:
+        msgs[900] = rsu_end(t) if end else rsu_start(t)
+    world = inputs(planner_pb2.SCENARIO_PLATOON, platoon_id=2, ego=ego(), iclcms=msgs, leave_requested=leave,
+                   scene=scene(obj(1, PARTNER, gap_m), forward_mio=1))
+    return p.step(t, world)
+
+
+def joined(p):
+    step(p, 0.0, start=False)
+    step(p, 0.1)
+    return step(p, 0.2, gap_m=CLOSE_GAP_M)
+
+
+def test_the_platoon_waits_for_the_rsu_then_joins_behind_the_partner_and_platoons():
+    p = planner()
+    _, state = step(p, 0.0, start=False)
+    assert state.state == "IDLE" and state.machine == "platooning"
+    request, state = step(p, 0.1)
+    assert state.state == "JOINING"
+    assert request.targets[0].station_id == PARTNER and request.spacing.time_gap_s == 0.5
+    assert request.desired_speed_mps == __import__("pytest").approx(60 / 3.6)
+    _, state = step(p, 0.2, gap_m=CLOSE_GAP_M)
+    assert state.state == "PLATOONING"
+    assert ("JOINING", "PLATOONING") in transitions(state)
+
+
+def test_a_silent_partner_degrades_the_platoon_to_acc_and_its_return_rejoins():
+    p = planner()
+    joined(p)
+    request, state = step(p, 0.8, gap_m=CLOSE_GAP_M, heard_at=0.3)
+    assert state.state == "DEGRADED_ACC" and request.spacing.time_gap_s == 1.5
+    assert "400 ms" in state.recent_transitions[-1].reason
+    _, state = step(p, 0.9, gap_m=CLOSE_GAP_M)
+    assert state.state == "PLATOONING"
+    assert ("DEGRADED_ACC", "JOINING") in transitions(state)
+
+
+def test_joining_that_never_closes_the_gap_escapes_to_follow_safe_after_its_timeout():
+    p = planner()
+    step(p, 0.0, start=False)
+    step(p, 0.1)
+    _, state = step(p, 30.2)
+    assert state.state == "FOLLOW_SAFE"
+    assert state.recent_transitions[-1].event == "TIMEOUT"
+
+
+def test_a_partner_silent_while_joining_ends_in_follow_safe_and_rejoins_when_heard():
+    p = planner()
+    step(p, 0.0, start=False)
+    step(p, 0.1)
+    _, state = step(p, 0.7, heard_at=0.1)
+    assert state.state == "FOLLOW_SAFE"
+    _, state = step(p, 0.8)
+    assert state.state == "JOINING"
+
+
+def test_a_leave_request_opens_the_gap_and_ends_out_of_the_platoon():
+    p = planner()
+    joined(p)
+    request, state = step(p, 0.3, gap_m=CLOSE_GAP_M, leave=True)
+    assert state.state == "LEAVING" and request.spacing.time_gap_s == 2.5
+    _, state = step(p, 0.4, gap_m=50.0, leave=True)
+    assert state.state == "DONE"
+
+
+def test_leaving_ends_after_its_timeout_even_if_the_gap_never_opens():
+    p = planner()
+    joined(p)
+    step(p, 0.3, gap_m=CLOSE_GAP_M, end=True)
+    _, state = step(p, 15.3 + DT_S, gap_m=CLOSE_GAP_M, end=True)
+    assert state.state == "DONE" and state.recent_transitions[-1].event == "TIMEOUT"
+
+
+def test_the_rsu_end_of_scenario_makes_the_platoon_leave():
+    p = planner()
+    joined(p)
+    _, state = step(p, 0.3, gap_m=CLOSE_GAP_M, end=True)
+    assert state.state == "LEAVING" and state.recent_transitions[-1].reason == "RSU endOfScenario"
+
+
+def test_the_operator_can_force_the_platoon_out_of_joining():
+    p = planner()
+    step(p, 0.0, start=False)
+    step(p, 0.1)
+    p.force("FOLLOW_SAFE", 0.15, who="operator HMI")
+    _, state = step(p, 0.15, start=False)
+    last = [t for t in state.recent_transitions if t.forced][-1]
+    assert last.to_state == "FOLLOW_SAFE" and last.reason == "forced by operator HMI"
