@@ -1,0 +1,170 @@
+import pytest
+from planner_world import ME, ROADWORKS, denm, ego, iclcm, inputs, obj, planner, rsu_end, rsu_start, scene
+
+from coopdrive.v1 import planner_pb2
+
+A_PARTNER, B_PARTNER, B_AHEAD, A_AHEAD, B_MIO = 21, 31, 41, 51, 11
+LANE_A, LANE_B = 1, 0
+
+
+def gap_maker(t, partner_msg=None, partner_gap_m=5.0, partner_lane=LANE_A, heard_at=None, start=True,
+              roadworks=True, partner=True, end=False):
+    msgs = {}
+    if start:
+        msgs[900] = rsu_end(t) if end else rsu_start(t)
+    if partner:
+        msgs[A_PARTNER] = iclcm(A_PARTNER, t if heard_at is None else heard_at, **(partner_msg or {}))
+    objects = [obj(1, B_MIO, 20.0, LANE_B)]
+    if partner:
+        objects.append(obj(2, A_PARTNER, partner_gap_m, partner_lane))
+    world = scene(*objects, forward_mio=1, ego_lane=LANE_B, neighbours={1: (2 if partner else None, None)})
+    return inputs(planner_pb2.SCENARIO_MERGE, platoon_id=2, ego=ego(LANE_B), scene=world, iclcms=msgs,
+                  denms={900: denm(ROADWORKS)} if roadworks else {})
+
+
+def merger(t, partner_msg=None, head=False, ego_lane=LANE_A, heard_at=None, partner=True):
+    msgs = {900: rsu_start(t)}
+    if partner:
+        msgs[B_PARTNER] = iclcm(B_PARTNER, t if heard_at is None else heard_at, **(partner_msg or {}))
+    objects = [obj(4, B_AHEAD, 15.0, LANE_B)]
+    if partner:
+        objects.append(obj(3, B_PARTNER, -10.0, LANE_B))
+    if not head:
+        objects.append(obj(5, A_AHEAD, 20.0, LANE_A))
+    world = scene(*objects, forward_mio=None if head else 5, ego_lane=ego_lane,
+                  neighbours={-1: (4, 3 if partner else None)})
+    return inputs(planner_pb2.SCENARIO_MERGE, platoon_id=1, ego=ego(ego_lane), scene=world, iclcms=msgs,
+                  denms={900: denm(ROADWORKS)})
+
+
+ACKED = {"backward_id": ME, "acknowledge_flag": True}
+
+
+def gap_maker_pairing(p):
+    p.step(0.0, gap_maker(0.0, start=False, roadworks=False))
+    p.step(0.1, gap_maker(0.1, roadworks=False))
+    return p.step(0.2, gap_maker(0.2))
+
+
+def test_a_lane_b_vehicle_pairs_makes_a_gap_sends_stom_and_platoons_behind_its_merged_partner():
+    p = planner()
+    _, state = p.step(0.0, gap_maker(0.0, start=False, roadworks=False))
+    assert state.state == "IDLE"
+    request, state = p.step(0.1, gap_maker(0.1, roadworks=False))
+    assert state.state == "PLATOONING" and request.desired_speed_mps == pytest.approx(60 / 3.6)
+    request, state = p.step(0.2, gap_maker(0.2))
+    assert state.state == "PAIRING" and request.iclcm.forward_id == A_PARTNER
+    request, state = p.step(0.3, gap_maker(0.3, ACKED))
+    assert state.state == "GAP_MAKING"
+    virtual = [t for t in request.targets if t.role == planner_pb2.TARGET_ROLE_VIRTUAL]
+    assert virtual[0].station_id == A_PARTNER and virtual[0].extra_gap_m == 6.0
+    assert request.desired_speed_mps == pytest.approx(40 / 3.6)
+    assert any(t.role == planner_pb2.TARGET_ROLE_PREDECESSOR and t.station_id == B_MIO for t in request.targets)
+    request, state = p.step(0.4, gap_maker(0.4, ACKED, partner_gap_m=25.0))
+    assert state.state == "WAIT_MERGE" and request.iclcm.safe_to_merge
+    _, state = p.step(0.5, gap_maker(0.5, ACKED, partner_gap_m=25.0, partner_lane=LANE_B))
+    assert state.state == "DONE"
+
+
+def test_a_lane_b_vehicle_with_nobody_ahead_in_lane_a_has_no_gap_to_make():
+    p = planner()
+    p.step(0.0, gap_maker(0.0, partner=False))
+    _, state = p.step(0.1, gap_maker(0.1, partner=False))
+    assert state.state == "DONE"
+
+
+@pytest.mark.parametrize("reach, timeout_s", [
+    (lambda p: gap_maker_pairing(p), 5.0),
+    (lambda p: p.step(0.3, gap_maker(0.3, ACKED)), 20.0),
+    (lambda p: p.step(0.4, gap_maker(0.4, ACKED, partner_gap_m=25.0)), 15.0),
+], ids=["missing acknowledge", "gap never opens", "partner never merges"])
+def test_each_gap_maker_wait_escapes_to_keep_lane_after_its_timeout(reach, timeout_s):
+    p = planner()
+    gap_maker_pairing(p)
+    _, state = reach(p)
+    waiting, since = state.state, state.recent_transitions[-1].time_s
+    t = round(since + timeout_s, 3)
+    msg = ACKED if waiting != "PAIRING" else None
+    gap = 25.0 if waiting == "WAIT_MERGE" else 5.0
+    _, state = p.step(t, gap_maker(t, msg, partner_gap_m=gap))
+    assert state.state == "SAFE_KEEP_LANE"
+    last = state.recent_transitions[-1]
+    assert (last.from_state, last.event) == (waiting, "TIMEOUT")
+
+
+def test_keep_lane_retries_the_pairing_while_the_road_works_last():
+    p = planner()
+    gap_maker_pairing(p)
+    p.step(5.2, gap_maker(5.2))
+    _, state = p.step(10.3, gap_maker(10.3))
+    assert state.state == "PAIRING" and state.recent_transitions[-1].event == "RETRY"
+
+
+def test_a_partner_silent_for_400_ms_ends_the_gap_making_at_once():
+    p = planner()
+    gap_maker_pairing(p)
+    p.step(0.3, gap_maker(0.3, ACKED))
+    request, state = p.step(0.8, gap_maker(0.8, ACKED, heard_at=0.3))
+    assert state.state == "SAFE_KEEP_LANE" and "silent" in state.recent_transitions[-1].reason
+    assert request.target_lane_index == LANE_B and not request.iclcm.safe_to_merge
+
+
+def test_a_scene_that_puts_the_forward_partner_behind_us_ends_the_pairing():
+    p = planner()
+    gap_maker_pairing(p)
+    _, state = p.step(0.3, gap_maker(0.3, partner_gap_m=-20.0))
+    assert state.state == "SAFE_KEEP_LANE"
+    assert state.recent_transitions[-1].event == "SCENE_CONTRADICTS_V2V"
+
+
+def test_a_lane_a_vehicle_pairs_waits_for_the_head_flag_and_merges_on_stom():
+    p = planner()
+    p.step(0.0, merger(0.0))
+    request, state = p.step(0.1, merger(0.1))
+    assert state.state == "PAIRING" and request.iclcm.backward_id == B_PARTNER
+    request, state = p.step(0.2, merger(0.2, {"forward_id": ME}))
+    assert state.state == "WAIT_HEAD" and request.iclcm.acknowledge and not request.iclcm.merge_flag_head
+    request, state = p.step(0.3, merger(0.3, {"forward_id": ME}, head=True))
+    assert state.state == "WAIT_STOM" and request.iclcm.merge_flag_head and request.iclcm.merge_request
+    assert request.iclcm.merge_flag_tail
+    assert any(t.role == planner_pb2.TARGET_ROLE_VIRTUAL and t.station_id == B_AHEAD for t in request.targets)
+    request, state = p.step(0.4, merger(0.4, {"forward_id": ME, "merge_safe_to_merge": True}, head=True))
+    assert state.state == "MERGING" and request.target_lane_index == LANE_B
+    assert request.lane_change_duration_s == 6.0 and request.iclcm.merge_flag
+    request, state = p.step(5.0, merger(5.0, {"forward_id": ME}, head=True, ego_lane=LANE_B))
+    assert state.state == "DONE" and not request.iclcm.merge_flag_head
+
+
+def test_a_lane_a_vehicle_with_nobody_behind_in_lane_b_merges_on_the_scenes_gap():
+    p = planner()
+    p.step(0.0, merger(0.0, partner=False))
+    _, state = p.step(0.1, merger(0.1, partner=False, head=True))
+    assert state.state == "MERGING"
+
+
+@pytest.mark.parametrize("head, timeout_s, waiting", [(False, 60.0, "WAIT_HEAD"), (True, 10.0, "WAIT_STOM")],
+                         ids=["head flag never ours", "missing STOM"])
+def test_each_merger_wait_escapes_to_keep_lane_after_its_timeout(head, timeout_s, waiting):
+    p = planner()
+    p.step(0.0, merger(0.0))
+    p.step(0.1, merger(0.1, {"forward_id": ME}, head=head))
+    _, state = p.step(0.2, merger(0.2, {"forward_id": ME}, head=head))
+    assert state.state == waiting
+    since = state.recent_transitions[-1].time_s
+    request, state = p.step(since + timeout_s, merger(since + timeout_s, {"forward_id": ME}, head=head))
+    assert state.state == "SAFE_KEEP_LANE" and request.target_lane_index == LANE_A
+
+
+def test_a_lane_change_not_done_in_time_escapes_to_keep_lane():
+    p = planner()
+    p.step(0.0, merger(0.0, partner=False))
+    p.step(0.1, merger(0.1, partner=False, head=True))
+    _, state = p.step(12.1, merger(12.1, partner=False, head=True))
+    assert state.state == "SAFE_KEEP_LANE" and state.recent_transitions[-1].from_state == "MERGING"
+
+
+def test_the_rsu_end_of_scenario_ends_the_merge_from_a_waiting_state():
+    p = planner()
+    gap_maker_pairing(p)
+    _, state = p.step(0.3, gap_maker(0.3, end=True))
+    assert state.state == "DONE"
