@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Protocol
 
 from coopdrive.services.v2x import units
 from coopdrive.services.v2x.btp import BtpBHeader, BtpPort, parse_btp_b
@@ -72,6 +73,13 @@ class GnParams:
     sequence_number: int = 0
 
 
+class SecurityLayer(Protocol):
+    """Unwraps (and per its mode verifies) secured packets: services/v2x/security/layer.py."""
+
+    def open(self, packet: bytes) -> tuple[bytes, object | None]:
+        """(the packet without its security envelope, what the layer found) or raise V2xDecodeError."""
+
+
 @dataclass
 class DecodedPacket:
     message_type: ItsMessageId
@@ -79,6 +87,8 @@ class DecodedPacket:
     content: Content
     gn: GnPacket = field(repr=False)
     btp: BtpBHeader = field(repr=False)
+    # What the security layer reported (security.verifier.OpenedPacket); None without a security layer.
+    security: object | None = field(default=None, repr=False)
 
     @property
     def station_id(self) -> int:
@@ -88,9 +98,12 @@ class DecodedPacket:
 class V2xPacketCodec:
     """Encodes content messages into GN packets and decodes GN packets into content messages."""
 
-    def __init__(self, its_codec: ItsCodec | None = None, accepted_gn_versions: tuple[int, ...] = SUPPORTED_GN_VERSIONS):
+    def __init__(self, its_codec: ItsCodec | None = None, accepted_gn_versions: tuple[int, ...] = SUPPORTED_GN_VERSIONS,
+                 security: SecurityLayer | None = None):
         self.its_codec = its_codec or ItsCodec()
         self.accepted_gn_versions = accepted_gn_versions
+        # Without one, secured packets are refused as SECURED_PACKET_UNSUPPORTED.
+        self.security = security
 
     def encode_cam(self, content: its_pb2.CamContent, gn_params: GnParams) -> bytes:
         params = gn_params
@@ -110,6 +123,9 @@ class V2xPacketCodec:
                           gn_params)
 
     def decode_packet(self, data: bytes) -> DecodedPacket:
+        security = None
+        if self.security is not None:
+            data, security = self.security.open(data)
         gn = parse_gn(data, self.accepted_gn_versions)
         if gn.common.next_header != CommonNextHeader.BTP_B:
             raise V2xDecodeError(RejectReason.NOT_BTP_B, f"next header {gn.common.next_header.name}")
@@ -126,7 +142,7 @@ class V2xPacketCodec:
             content = _FROM_ASN[message_type](value)
         except (ValueError, KeyError, TypeError) as error:
             raise V2xDecodeError(RejectReason.UNMAPPABLE_CONTENT, str(error)) from None
-        return DecodedPacket(message_type, its_header, content, gn, btp)
+        return DecodedPacket(message_type, its_header, content, gn, btp, security)
 
     def _wrap(self, message_type: ItsMessageId, uper: bytes, params: GnParams) -> bytes:
         if params.source_position is None:

@@ -65,8 +65,9 @@ def security_spec(cache_dir: Path | None = None) -> asn1tools.compiler.Specifica
     return _spec
 
 
-def encode(type_name: str, value: dict) -> bytes:
-    return security_spec().encode(type_name, value)
+def encode(type_name: str, value: dict, check_types: bool = True) -> bytes:
+    """check_types=False only for values that came out of decode (a third of the cost is the type check)."""
+    return security_spec().encode(type_name, value, check_types=check_types)
 
 
 def decode(type_name: str, data: bytes) -> dict:

@@ -18,6 +18,9 @@ from coopdrive.services.v2x.security.crypto import data_digest, sign_digest
 from coopdrive.services.v2x.security.profile import SECURED_DATA_PROTOCOL_VERSION
 
 TBS_OFFSET_IN_ENVELOPE = 3
+# Choice tag + HashedId8; choice tag + SEQUENCE OF quantity (length byte, count byte) before the certificate.
+SIGNER_DIGEST_SIZE = 1 + 8
+SIGNER_CERTIFICATE_OVERHEAD = 3
 
 
 @dataclass(frozen=True)
@@ -49,7 +52,9 @@ def build_signed_data(unsecured: bytes, psid: int, generation_time_us: int, tick
 @dataclass(frozen=True)
 class SignedEnvelope:
     signed: dict
+    # Byte spans of the envelope as received: what was hashed, and the signer's certificate (None: digest).
     tbs_bytes: bytes
+    certificate_bytes: bytes | None
     unsecured: bytes
     psid: int
     generation_time_us: int | None
@@ -68,19 +73,22 @@ class SignedEnvelope:
 def parse_signed_data(envelope: bytes) -> SignedEnvelope:
     """Decode and check the shape of a signed envelope; raises V2xDecodeError, never anything else.
 
-    Non-canonical encodings are refused: the signature covers the bytes as sent, and a second encoding of
-    the same values must not pass for the first one.
+    Non-canonical encodings (and trailing bytes) are refused: the signature covers the bytes as sent, and a
+    second encoding of the same values must not pass for the first one. Being canonical, the envelope is
+    exactly tbsData | signer | signature, so the spans are cut from the received bytes.
     """
     try:
         value = asn.decode(asn.DATA_TYPE, envelope)
-        canonical = asn.encode(asn.DATA_TYPE, value)
+        canonical = asn.encode(asn.DATA_TYPE, value, check_types=False)
+        kind, signed = value["content"]
+        signature_size = len(asn.encode("Signature", signed["signature"], check_types=False)) \
+            if kind == "signedData" else 0
     except Exception as error:  # noqa: BLE001 -- asn1tools raises many types on garbage input
         raise V2xDecodeError(RejectReason.MALFORMED_SECURITY_ENVELOPE, f"{type(error).__name__}: {error}") from None
     if canonical != envelope:
         raise V2xDecodeError(RejectReason.MALFORMED_SECURITY_ENVELOPE, "not canonical OER (or trailing bytes)")
     if value["protocolVersion"] != SECURED_DATA_PROTOCOL_VERSION:
         raise V2xDecodeError(RejectReason.MALFORMED_SECURITY_ENVELOPE, f"protocolVersion {value['protocolVersion']}")
-    kind, signed = value["content"]
     if kind != "signedData":
         raise V2xDecodeError(RejectReason.UNSUPPORTED_SECURED_CONTENT, kind)
     if signed["hashId"] != "sha256":
@@ -90,10 +98,20 @@ def parse_signed_data(envelope: bytes) -> SignedEnvelope:
     if data is None or data["protocolVersion"] != SECURED_DATA_PROTOCOL_VERSION or \
             data["content"][0] != "unsecuredData":
         raise V2xDecodeError(RejectReason.UNSUPPORTED_SECURED_CONTENT, "payload is not unsecured data")
-    tbs_bytes = asn.encode(asn.TBS_DATA_TYPE, tbs)
+    signer_kind, signer = signed["signer"]
+    end_of_signer = len(envelope) - signature_size
+    if signer_kind == "digest":
+        end_of_tbs, certificate_bytes = end_of_signer - SIGNER_DIGEST_SIZE, None
+    elif signer_kind == "certificate" and len(signer) == 1:
+        # SEQUENCE OF with one element: the choice tag, then quantity length (1) and quantity (1).
+        size = len(asn.encode(asn.CERTIFICATE_TYPE, signer[0], check_types=False))
+        end_of_tbs = end_of_signer - size - SIGNER_CERTIFICATE_OVERHEAD
+        certificate_bytes = envelope[end_of_signer - size:end_of_signer]
+    else:
+        raise V2xDecodeError(RejectReason.UNSUPPORTED_SIGNER, signer_kind)
     header = tbs["headerInfo"]
     location = header.get("generationLocation")
     return SignedEnvelope(
-        signed, tbs_bytes, data["content"][1], header["psid"], header.get("generationTime"),
-        header.get("expiryTime"),
+        signed, envelope[TBS_OFFSET_IN_ENVELOPE:end_of_tbs], certificate_bytes, data["content"][1], header["psid"],
+        header.get("generationTime"), header.get("expiryTime"),
         GenerationLocation(location["latitude"], location["longitude"], location["elevation"]) if location else None)

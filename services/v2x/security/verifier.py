@@ -19,7 +19,7 @@ from coopdrive.services.v2x.geonet import (
     with_basic_next_header)
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.services.v2x.security.certificate import Certificate, CertificateError
-from coopdrive.services.v2x.security.crypto import data_digest, verify_digest
+from coopdrive.services.v2x.security.crypto import data_digest, hashed_id8, verify_digest
 from coopdrive.services.v2x.security.envelope import SignedEnvelope, parse_signed_data
 from coopdrive.services.v2x.security.profile import MAX_CLOCK_AHEAD_S, MAX_MESSAGE_AGE_S, PSID_OF_PORT, US_PER_S
 from coopdrive.services.v2x.security.store import CertificateStore
@@ -71,15 +71,16 @@ class SecurityVerifier:
         """Verify and unwrap; a failure is counted and returned, never raised."""
         return self._guarded(packet, now_tai_us, verify=True)
 
-    def unwrap(self, packet: bytes) -> OpenedPacket:
+    def unwrap(self, packet: bytes, count: bool = True) -> OpenedPacket:
         """Read the envelope without checking signature, chain or time (security modes off / sign_only)."""
-        return self._guarded(packet, 0, verify=False)
+        return self._guarded(packet, 0, verify=False, count=count)
 
-    def _guarded(self, packet: bytes, now_tai_us: int, verify: bool) -> OpenedPacket:
+    def _guarded(self, packet: bytes, now_tai_us: int, verify: bool, count: bool = True) -> OpenedPacket:
         try:
             opened = self._open(bytes(packet), now_tai_us, verify)
         except _Rejected as rejected:
-            self.rejected_by_reason[rejected.reason] += 1
+            if count:
+                self.rejected_by_reason[rejected.reason] += 1
             return OpenedPacket(VerificationResult(False, rejected.reason, rejected.signer_digest))
         if verify:
             self.verified_count += 1
@@ -97,7 +98,7 @@ class SecurityVerifier:
         except V2xDecodeError as error:
             raise _Rejected(error.reason, None) from None
         signer_kind, signer = envelope.signer
-        certificate, digest = self._signer(signer_kind, signer, verify)
+        certificate, digest = self._signer(envelope, verify)
         unsecured = with_basic_next_header(packet, BasicNextHeader.COMMON_HEADER, envelope.unsecured)
         gn = self._check_psid_against_port(unsecured, envelope.psid, digest)
         if verify:
@@ -106,21 +107,21 @@ class SecurityVerifier:
         return OpenedPacket(VerificationResult(True, None, digest), unsecured, envelope.psid,
                             envelope.generation_time_us, signer_kind == "certificate", verify)
 
-    def _signer(self, kind: str, signer: object, verify: bool) -> tuple[Certificate | None, bytes]:
+    def _signer(self, envelope: SignedEnvelope, verify: bool) -> tuple[Certificate | None, bytes]:
+        kind, signer = envelope.signer
         if kind == "certificate":
-            if len(signer) != 1:
-                raise _Rejected(RejectReason.UNSUPPORTED_SIGNER, None)
+            digest = hashed_id8(envelope.certificate_bytes)
+            known = self.store.resolve(digest)
+            if known is not None and known.encoded == envelope.certificate_bytes:
+                return known, digest
             try:
-                certificate = Certificate.from_value(signer[0])
+                return Certificate.from_value(signer[0]), digest
             except CertificateError as error:
                 raise _Rejected(error.reason, None) from None
-            return certificate, certificate.digest
-        if kind == "digest":
-            certificate = self.store.resolve(signer)
-            if certificate is None and verify:
-                raise _Rejected(RejectReason.UNKNOWN_SIGNER_DIGEST, signer)
-            return certificate, signer
-        raise _Rejected(RejectReason.UNSUPPORTED_SIGNER, None)
+        certificate = self.store.resolve(signer)
+        if certificate is None and verify:
+            raise _Rejected(RejectReason.UNKNOWN_SIGNER_DIGEST, signer)
+        return certificate, signer
 
     def _check_psid_against_port(self, unsecured: bytes, psid: int, digest: bytes) -> GnPacket:
         try:
