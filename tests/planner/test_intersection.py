@@ -1,0 +1,121 @@
+import math
+
+import pytest
+from planner_world import ego, iclcm, inputs, obj, planner, rsu_start, scene
+
+from coopdrive.services.planner.speed_profile import QuinticArrival
+from coopdrive.v1 import planner_pb2
+
+ORGANISER, COMPETITOR = 77, 55
+NORTH = math.pi / 2
+
+
+def cross_planner(**intersection):
+    return planner(intersection={"organiser_station_ids": [ORGANISER], "arrival_time_s": 20.0, **intersection})
+
+
+def world(t, x_m, organiser_y_m=None, organiser_heard=False, extra=(), start=True, msgs=None):
+    objects = list(extra)
+    if organiser_y_m is not None:
+        objects.append(obj(9, ORGANISER, gap_m=-x_m, lane=0, x_m=0.0, y_m=organiser_y_m, speed_mps=8.0,
+                           heading_rad=NORTH))
+    iclcms = {900: rsu_start(t)} if start else {}
+    if organiser_heard or organiser_y_m is not None:
+        iclcms[ORGANISER] = iclcm(ORGANISER, t)
+    iclcms.update(msgs or {})
+    return inputs(planner_pb2.SCENARIO_INTERSECTION, ego=ego(speed_mps=8.0, x_m=x_m), iclcms=iclcms,
+                  scene=scene(*objects))
+
+
+def test_the_quintic_profile_arrives_at_the_point_on_time_at_the_speed_without_acceleration():
+    profile = QuinticArrival.plan(200.0, 20.0, 15.0, 0.5, 30 / 3.6)
+    assert profile.position_m(20.0) == pytest.approx(200.0)
+    assert profile.speed_mps(0.0) == pytest.approx(15.0)
+    assert profile.accel_mps2(0.0) == pytest.approx(0.5)
+    assert profile.speed_mps(20.0 - 1e-9) == pytest.approx(30 / 3.6)
+    assert profile.accel_mps2(20.0 - 1e-9) == pytest.approx(0.0, abs=1e-6)
+    assert QuinticArrival.plan(200.0, 0.0, 15.0, 0.0, 8.0) is None
+
+
+def test_the_vehicle_approaches_on_the_arrival_profile_gives_way_to_the_organiser_then_crosses_and_exits():
+    p = cross_planner()
+    _, state = p.step(0.0, world(0.0, -300.0, start=False))
+    assert state.state == "IDLE"
+    request, state = p.step(0.1, world(0.1, -300.0))
+    assert state.state == "APPROACH" and request.has_arrival
+    assert request.arrival_time_s == 20.0 and request.arrival_speed_mps == pytest.approx(30 / 3.6)
+    assert 0 < request.desired_speed_mps < 50 / 3.6
+    request, state = p.step(0.2, world(0.2, -90.0, organiser_y_m=-50.0))
+    assert state.state == "GIVE_WAY"
+    assert request.has_stop_line and request.stop_line_distance_m == pytest.approx(75.0)
+    assert [t.station_id for t in request.targets if t.role == planner_pb2.TARGET_ROLE_YIELD] == [ORGANISER]
+    request, state = p.step(0.3, world(0.3, -80.0, organiser_y_m=30.0))
+    assert state.state == "CROSSING" and request.desired_speed_mps == pytest.approx(50 / 3.6)
+    request, state = p.step(1.3, world(1.3, 20.0))
+    assert state.state == "EXITED"
+    assert request.iclcm.counter_intersection == 1 and request.iclcm.intention == 1
+    assert request.iclcm.distance_travelled_cz_m == pytest.approx(8.0 * 1.2)
+
+
+def test_a_clear_competition_zone_is_crossed_without_stopping():
+    p = cross_planner()
+    p.step(0.0, world(0.0, -300.0))
+    _, state = p.step(0.1, world(0.1, -95.0))
+    assert state.state == "CROSSING"
+
+
+def test_a_competitor_further_into_the_zone_has_priority():
+    p = cross_planner()
+    p.step(0.0, world(0.0, -300.0))
+    rival = obj(8, COMPETITOR, gap_m=90.0, x_m=0.0, y_m=-20.0, heading_rad=NORTH)
+    msgs = {COMPETITOR: iclcm(COMPETITOR, 0.1, distance_travelled_cz_m=80.0)}
+    _, state = p.step(0.1, world(0.1, -95.0, extra=[rival], msgs=msgs))
+    assert state.state == "GIVE_WAY"
+
+
+def test_giving_way_escapes_to_hold_after_its_timeout_and_holds_at_the_stop_line():
+    p = cross_planner()
+    p.step(0.0, world(0.0, -300.0))
+    p.step(0.1, world(0.1, -90.0, organiser_y_m=-50.0))
+    request, state = p.step(30.1, world(30.1, -20.0, organiser_y_m=-40.0))
+    assert state.state == "HOLD_SAFE" and state.recent_transitions[-1].event == "TIMEOUT"
+    assert request.has_stop_line and request.stop_line_distance_m == pytest.approx(5.0)
+
+
+def test_an_organiser_heard_but_never_seen_is_a_contradiction_and_the_scene_decides():
+    p = cross_planner()
+    p.step(0.0, world(0.0, -300.0))
+    _, state = p.step(0.1, world(0.1, -90.0, organiser_heard=True))
+    assert state.state == "GIVE_WAY"
+    _, state = p.step(2.1, world(2.1, -80.0, organiser_heard=True))
+    hold, cross = state.recent_transitions[-2:]
+    assert (hold.to_state, hold.event) == ("HOLD_SAFE", "SCENE_CONTRADICTS_V2V")
+    assert (cross.to_state, cross.event) == ("CROSSING", "PATH_CLEAR_BY_SCENE")
+    assert state.state == "CROSSING"
+
+
+def test_an_approach_that_never_reaches_the_zone_escapes_to_hold():
+    p = cross_planner()
+    p.step(0.0, world(0.0, -300.0))
+    _, state = p.step(120.0, world(120.0, -300.0))
+    assert state.state == "HOLD_SAFE"
+
+
+def test_crossing_keeps_the_safety_circle_and_escapes_to_hold_when_it_never_ends():
+    p = cross_planner()
+    p.step(0.0, world(0.0, -300.0))
+    p.step(0.1, world(0.1, -95.0))
+    close = obj(6, 0, gap_m=5.0, x_m=-5.0, y_m=0.0, speed_mps=0.0)
+    request, state = p.step(0.2, world(0.2, -10.0, extra=[close]))
+    assert state.state == "CROSSING" and request.desired_speed_mps == 0.0
+    assert request.targets[0].role == planner_pb2.TARGET_ROLE_YIELD and request.targets[0].extra_gap_m == 7.5
+    _, state = p.step(30.1, world(30.1, -10.0, extra=[close]))
+    assert state.state == "HOLD_SAFE"
+
+
+def test_a_priority_vehicle_appearing_before_the_stop_line_sends_a_crossing_vehicle_back_to_give_way():
+    p = cross_planner()
+    p.step(0.0, world(0.0, -300.0))
+    p.step(0.1, world(0.1, -95.0))
+    _, state = p.step(0.2, world(0.2, -60.0, organiser_y_m=-40.0))
+    assert state.state == "GIVE_WAY"
