@@ -40,12 +40,24 @@ class RunAborted(RuntimeError):
     pass
 
 
+# What the follow world's sensors are like, told to the stack: its radar reports the centre of
+# the target's rear face, not the nearest corner the full sensor models report.
+FOLLOW_STACK_CONFIG: dict[str, dict] = {"scene": {"fusion": {"radar": {"reports_nearest_point": False}}}}
+
+
+def merged(base: dict, override: dict) -> dict:
+    result = dict(base)
+    for key, value in override.items():
+        result[key] = merged(result[key], value) if isinstance(value, dict) and isinstance(result.get(key), dict) else value
+    return result
+
+
 def build_specs(options: RunOptions) -> list[ServiceSpec]:
     sim = SimConfig(scenario=options.scenario, seed=options.seed, lockstep=not options.realtime)
     if options.duration_s is not None:
         sim.duration_s = options.duration_s
     stacks = [v.vehicle_id for v in sim.world.vehicles if not v.speed_profile]
-    specs = [ServiceSpec(name, vehicle, dict(options.service_overrides.get(name, {})))
+    specs = [ServiceSpec(name, vehicle, merged(FOLLOW_STACK_CONFIG.get(name, {}), options.service_overrides.get(name, {})))
              for vehicle in stacks for name in VEHICLE_STACK]
     sim.participants = [spec.participant for spec in specs]
     sim_config = sim.model_dump(mode="json")

@@ -1,20 +1,30 @@
-"""Scene service: turns sensor objects into the fused object list with the most-important objects."""
+"""Scene service: wires sensor frames, the ego state and decoded CAMs into SceneFusion."""
 
 from __future__ import annotations
 
-import math
+import pymap3d
+from pydantic import Field
 
 from coopdrive.bus import Envelope
+from coopdrive.roadmap import RoadMap
 from coopdrive.runtime.service import Service, ServiceConfig
-from coopdrive.v1 import header_pb2, scene_pb2
+from coopdrive.services.scene.config import SceneFusionConfig
+from coopdrive.services.scene.fusion import SceneFusion
+from coopdrive.services.scene.measurement import V2vObservation
+
+SENSOR_TOPICS = {"radar/tracks": "on_radar", "lidar/scan": "on_lidar", "camera/frame": "on_camera",
+                 "sonar/ranges": "on_sonar"}
 
 
 class SceneConfig(ServiceConfig):
     output_rate_hz: float = 25.0
-    # Ego geometry: distance from the rear axle to the front bumper.
-    ego_front_bumper_m: float = 3.5
-    ego_lane_half_width_m: float = 1.75
-    radar_fade_time_s: float = 0.3
+    # Lanes come from this map when set; without one, lanes are bands along the ego heading.
+    map_name: str | None = None
+    # WGS84 origin of the local ENU frame (used for V2V positions when no map is set).
+    origin_lat_deg: float = 51.4758
+    origin_lon_deg: float = 5.6247
+    origin_alt_m: float = 20.0
+    fusion: SceneFusionConfig = Field(default_factory=SceneFusionConfig)
 
 
 class SceneService(Service):
@@ -22,46 +32,47 @@ class SceneService(Service):
     Config = SceneConfig
 
     def start(self) -> None:
-        self.ego = None
-        self.radar = None
-        self.ctx.subscribe("ego/state", self.on_ego)
-        self.ctx.subscribe("radar/tracks", self.on_radar)
-        self.ctx.every(1.0 / self.config.output_rate_hz, self.publish_scene)
+        config: SceneConfig = self.config
+        self.road_map = RoadMap.load(config.map_name) if config.map_name else None
+        if self.road_map is not None:
+            self.origin = self.road_map.origin
+        else:
+            self.origin = (config.origin_lat_deg, config.origin_lon_deg, config.origin_alt_m)
+        self.fusion = SceneFusion(config.fusion, lane_of=self._lane_of if self.road_map else None)
+        self.ctx.subscribe("ego/state", lambda envelope: self.fusion.on_ego(envelope.message))
+        for topic, method in SENSOR_TOPICS.items():
+            self.ctx.subscribe(topic, self._sensor_handler(method))
+        self.ctx.subscribe("v2x/cam", self.on_cam)
+        self.ctx.every(1.0 / config.output_rate_hz, self.publish_scene)
 
-    def on_ego(self, envelope: Envelope) -> None:
-        self.ego = envelope.message
+    def _sensor_handler(self, method_name: str):
+        method = getattr(self.fusion, method_name)
+        return lambda envelope: method(envelope.message)
 
-    def on_radar(self, envelope: Envelope) -> None:
-        self.radar = envelope.message
+    def _lane_of(self, x_m: float, y_m: float) -> int | None:
+        match = self.road_map.match(x_m, y_m)
+        return None if match is None else match.lane_index
+
+    def on_cam(self, envelope: Envelope) -> None:
+        cam = envelope.message
+        position = cam.reference_position
+        if not (position.HasField("latitude_deg") and position.HasField("longitude_deg")):
+            self.count("cam_without_position")
+            return
+        east, north, _ = pymap3d.geodetic2enu(position.latitude_deg, position.longitude_deg, self.origin[2],
+                                              *self.origin)
+        high = cam.high_frequency
+        self.fusion.on_v2v(V2vObservation(
+            station_id=cam.station_id, x_m=float(east), y_m=float(north),
+            speed_mps=high.speed_mps if high.HasField("speed_mps") else float("nan"),
+            heading_rad=high.heading_rad if high.HasField("heading_rad") else float("nan"),
+            accel_mps2=high.longitudinal_acceleration_mps2 if high.HasField("longitudinal_acceleration_mps2") else 0.0,
+            length_m=high.vehicle_length_m if high.HasField("vehicle_length_m") else 0.0,
+            width_m=high.vehicle_width_m if high.HasField("vehicle_width_m") else 0.0,
+            sample_time_s=cam.header.sample_time_s))
 
     def publish_scene(self, now_s: float) -> None:
-        if self.ego is None:
-            return
-        c: SceneConfig = self.config
-        scene = scene_pb2.Scene()
-        ego = self.ego
-        radar_fresh = self.radar is not None and now_s - self.radar.header.sample_time_s <= c.radar_fade_time_s
-        best = None
-        for track in self.radar.tracks if radar_fresh else ():
-            forward = track.range_m * math.cos(track.azimuth_rad)
-            left = track.range_m * math.sin(track.azimuth_rad)
-            obj = scene.objects.add(object_id=track.track_id)
-            obj.position.x_m = ego.x_m + forward * math.cos(ego.heading_rad) - left * math.sin(ego.heading_rad)
-            obj.position.y_m = ego.y_m + forward * math.sin(ego.heading_rad) + left * math.cos(ego.heading_rad)
-            obj.position.confidence = 1.0
-            obj.position.sources.append(header_pb2.SENSOR_SOURCE_RADAR)
-            obj.position.valid_until_s = self.radar.header.sample_time_s + c.radar_fade_time_s
-            obj.speed_mps.value = ego.speed_mps + track.range_rate_mps
-            obj.speed_mps.confidence = 1.0
-            obj.speed_mps.sources.append(header_pb2.SENSOR_SOURCE_RADAR)
-            obj.width_m.value = track.width_m
-            obj.longitudinal_gap_m = forward - c.ego_front_bumper_m
-            obj.lateral_offset_m = left
-            obj.relative_speed_mps = track.range_rate_mps
-            obj.v2v_trust = 1.0
-            if abs(left) <= c.ego_lane_half_width_m and (best is None or forward < best[0]):
-                best = (forward, track.track_id)
-        if best is not None:
-            scene.has_forward_mio = scene.has_mio = True
-            scene.forward_mio_id = scene.mio_id = best[1]
-        self.ctx.publish("scene", scene, sample_time_s=self.radar.header.sample_time_s if radar_fresh else now_s)
+        scene = self.fusion.scene(now_s)
+        for name, value in self.fusion.counters().items():
+            self.counters[name] = value
+        self.ctx.publish("scene", scene, sample_time_s=now_s)
