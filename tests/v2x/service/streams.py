@@ -17,11 +17,11 @@ METRES_PER_DEGREE_LATITUDE = 111_195.0
 
 
 def remote_cam(generation_s: float, station_id: int = REMOTE_STATION_ID, speed_mps: float = 20.0,
-               north_m: float | None = None, accel_mps2: float = 0.0) -> its_pb2.CamContent:
+               north_m: float | None = None, accel_mps2: float = 0.0, clock: ItsClock = CLOCK) -> its_pb2.CamContent:
     """A CAM of a car driving north at speed_mps, generated at sim time generation_s."""
     north_m = speed_mps * generation_s if north_m is None else north_m
     content = its_pb2.CamContent(protocol_version=1, station_id=station_id, station_type=5,
-                                 generation_delta_time_ms=generation_delta_time_ms(CLOCK.tai_ms(generation_s)))
+                                 generation_delta_time_ms=generation_delta_time_ms(clock.tai_ms(generation_s)))
     content.reference_position.latitude_deg = LATITUDE_DEG + north_m / METRES_PER_DEGREE_LATITUDE
     content.reference_position.longitude_deg = LONGITUDE_DEG
     content.high_frequency.speed_mps = speed_mps
@@ -30,5 +30,6 @@ def remote_cam(generation_s: float, station_id: int = REMOTE_STATION_ID, speed_m
     return content
 
 
-def cam_packet(content: its_pb2.CamContent, generation_s: float, mac: bytes = REMOTE_MAC, gn_version: int = 0) -> bytes:
-    return encode_cam(content, GnParams(source_mac=mac, gn_version=gn_version, time_tai_ms=CLOCK.tai_ms(generation_s)))
+def cam_packet(content: its_pb2.CamContent, generation_s: float, mac: bytes = REMOTE_MAC, gn_version: int = 0,
+               clock: ItsClock = CLOCK) -> bytes:
+    return encode_cam(content, GnParams(source_mac=mac, gn_version=gn_version, time_tai_ms=clock.tai_ms(generation_s)))
