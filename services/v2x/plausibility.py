@@ -81,6 +81,8 @@ class PlausibilityChecker:
     def forget(self, station_id: int) -> None:
         for key in [key for key in self._last if key[0] == station_id]:
             del self._last[key]
+        for mac in [mac for mac, identity in self._identities.items() if identity.station_id == station_id]:
+            del self._identities[mac]
 
     def _identity_reason(self, o: Observation, receive_tai_ms: int) -> PlausibilityReason | None:
         known = self._identities.get(o.source_mac) if o.source_mac else None

@@ -93,7 +93,7 @@ class Reception:
         reason = self.plausibility.check(observation_of(decoded, mac, time_tai_ms), receive_tai_ms)
         if reason is not None:
             self.rejected_by_reason[reason.value] += 1
-            stats.on_rejected()
+            stats.on_rejected(receive_s)
             return None
         periodic = decoded.message_type != ItsMessageId.DENM
         delay_s = ItsClock.seconds_between(time_tai_ms, receive_tai_ms) if periodic else None
@@ -102,7 +102,7 @@ class Reception:
 
     def status(self, now_s: float) -> v2x_pb2.V2xStatus:
         for station_id in [s.station_id for s in self.stations.values()
-                           if s.last_heard_s is not None and now_s - s.last_heard_s > FORGET_AFTER_S]:
+                           if s.last_seen_s is not None and now_s - s.last_seen_s > FORGET_AFTER_S]:
             del self.stations[station_id]
             self.plausibility.forget(station_id)
         status = v2x_pb2.V2xStatus(packets_received=self.packets_received)

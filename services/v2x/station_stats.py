@@ -64,6 +64,8 @@ class StationStats:
         self.window_s = window_s
         self.first_heard_s: float | None = None
         self.last_heard_s: float | None = None
+        # Last packet of any kind, accepted or not: when the station may be forgotten.
+        self.last_seen_s: float | None = None
         self.messages_received = 0
         self.messages_rejected = 0
         self._streams: dict[ItsMessageId, StreamWindow] = {}
@@ -73,7 +75,7 @@ class StationStats:
                    delay_s: float | None) -> None:
         if self.first_heard_s is None:
             self.first_heard_s = receive_s
-        self.last_heard_s = receive_s
+        self.last_heard_s = self.last_seen_s = receive_s
         self.messages_received += 1
         stream = self._streams.get(message_type)
         if stream is None:
@@ -82,7 +84,8 @@ class StationStats:
         if delay_s is not None:
             self._delays.append((receive_s, delay_s))
 
-    def on_rejected(self) -> None:
+    def on_rejected(self, receive_s: float) -> None:
+        self.last_seen_s = receive_s
         self.messages_rejected += 1
 
     def is_lost(self, now_s: float, loss_timeout_s: float) -> bool:

@@ -131,3 +131,13 @@ def test_an_accepted_cam_is_returned_decoded():
     assert decoded.station_id == REMOTE_STATION_ID
     assert decoded.content.high_frequency.speed_mps == pytest.approx(20.0)
     assert decoded.content.station_type == its_pb2.STATION_TYPE_PASSENGER_CAR
+
+
+def test_a_station_silent_for_a_minute_leaves_the_status_even_if_it_only_sent_rejected_packets():
+    rx = reception()
+    receive(rx, 0.0)
+    receive(rx, 0.5, station_id=4004, speed_mps=99.0)
+    assert {s.station_id for s in rx.status(1.0).stations} == {REMOTE_STATION_ID}
+    assert set(rx.stations) == {REMOTE_STATION_ID, 4004}
+    rx.status(61.0)
+    assert rx.stations == {}
