@@ -226,7 +226,8 @@ def build_spec(config: PlannerLogicConfig) -> MachineSpec:
         Transition(S.APPROACH, E.CZ_ENTERED, S.GIVE_WAY, guard=Ctx.has_conflict,
                    reason="in the CZ, a priority vehicle is coming"),
         Transition(S.APPROACH, E.CZ_ENTERED, S.CROSSING, guard=Ctx.has_no_conflict, reason="in the CZ, way clear"),
-        Transition(S.CROSSING, E.CONFLICT, S.GIVE_WAY, guard=Ctx.before_stop_line,
+        # To HOLD_SAFE, not GIVE_WAY: a flickering conflict must not cycle between two unsafe states.
+        Transition(S.CROSSING, E.CONFLICT, S.HOLD_SAFE, guard=Ctx.before_stop_line,
                    reason="a priority vehicle is coming before the stop line"),
         Transition(S.GIVE_WAY, E.PATH_CLEAR, S.CROSSING, reason="no priority vehicle coming"),
         Transition(S.GIVE_WAY, E.SCENE_CONTRADICTS_V2V, S.HOLD_SAFE,

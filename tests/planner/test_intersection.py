@@ -113,9 +113,9 @@ def test_crossing_keeps_the_safety_circle_and_escapes_to_hold_when_it_never_ends
     assert state.state == "HOLD_SAFE"
 
 
-def test_a_priority_vehicle_appearing_before_the_stop_line_sends_a_crossing_vehicle_back_to_give_way():
+def test_a_priority_vehicle_appearing_before_the_stop_line_makes_a_crossing_vehicle_hold_at_the_line():
     p = cross_planner()
     p.step(0.0, world(0.0, -300.0))
     p.step(0.1, world(0.1, -95.0))
-    _, state = p.step(0.2, world(0.2, -60.0, organiser_y_m=-40.0))
-    assert state.state == "GIVE_WAY"
+    request, state = p.step(0.2, world(0.2, -60.0, organiser_y_m=-40.0))
+    assert state.state == "HOLD_SAFE" and request.has_stop_line
