@@ -1,0 +1,76 @@
+"""Every single-bit change of a signed packet is refused with a counted reason, and nothing crashes."""
+
+from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE
+from coopdrive.services.v2x.reasons import RejectReason
+from coopdrive.services.v2x.security.profile import US_PER_S
+from coopdrive.services.v2x.security.verifier import SecurityVerifier
+
+from .signed import cam_packet, denm_packet, now_tai_us
+
+BITS_PER_BYTE = 8
+# Basic header bits outside the signature by design (EN 302 636-4-1: routers rewrite them hop by hop):
+# byte 1 reserved, byte 2 lifetime, byte 3 remaining hop limit; and bit 3, the version's low bit, since
+# versions 0 (GCDC 2016) and 1 are both accepted.
+UNSIGNED_BASIC_HEADER_BITS = {3} | set(range(8, 32))
+
+
+def flipped(packet: bytes, bit: int) -> bytes:
+    changed = bytearray(packet)
+    changed[bit // BITS_PER_BYTE] ^= 0x80 >> (bit % BITS_PER_BYTE)
+    return bytes(changed)
+
+
+def signed_pair(pki):
+    """A learned verifier, a packet carrying the full certificate and one carrying the digest."""
+    signer, now = pki.signer("a"), now_tai_us()
+    full = signer.sign(cam_packet(signer), now)
+    digest = signer.sign(cam_packet(signer), now + US_PER_S // 10)
+    verifier = SecurityVerifier(pki.store())
+    assert verifier.verify(full, now).ok and verifier.verify(digest, now).ok
+    return verifier, now, full, digest
+
+
+def outcomes(verifier, packet, now, bits):
+    failures = {}
+    for bit in bits:
+        before = sum(verifier.rejected_by_reason.values())
+        result = verifier.verify(flipped(packet, bit), now)
+        if result.ok:
+            failures[bit] = None
+        else:
+            assert isinstance(result.reason, RejectReason)
+            assert sum(verifier.rejected_by_reason.values()) == before + 1
+            failures[bit] = result.reason
+    return failures
+
+
+def test_flipping_any_single_bit_of_the_secured_part_makes_verification_fail_with_a_counted_reason(pki):
+    verifier, now, full, digest = signed_pair(pki)
+    for packet in (full, digest):
+        bits = range(BASIC_HEADER_SIZE * BITS_PER_BYTE, len(packet) * BITS_PER_BYTE)
+        results = outcomes(verifier, packet, now, bits)
+        assert [bit for bit, reason in results.items() if reason is None] == []
+        assert RejectReason.INVALID_SIGNATURE in results.values()
+        # the learned ticket is still there, untouched by the forgeries
+        assert verifier.verify(digest, now).ok
+
+
+def test_a_denm_is_as_tamper_proof_as_a_cam(p256_pki):
+    signer, now = p256_pki.signer("a"), now_tai_us()
+    packet = signer.sign(denm_packet(signer), now)
+    verifier = SecurityVerifier(p256_pki.store())
+    bits = range(BASIC_HEADER_SIZE * BITS_PER_BYTE, len(packet) * BITS_PER_BYTE)
+    assert None not in outcomes(verifier, packet, now, bits).values()
+
+
+def test_in_the_basic_header_only_the_hop_by_hop_fields_and_the_version_low_bit_are_left_unchecked(p256_pki):
+    verifier, now, full, _ = signed_pair(p256_pki)
+    results = outcomes(verifier, full, now, range(BASIC_HEADER_SIZE * BITS_PER_BYTE))
+    assert {bit for bit, reason in results.items() if reason is None} == UNSIGNED_BASIC_HEADER_BITS
+
+
+def test_every_truncation_of_a_signed_packet_is_refused_without_a_crash(p256_pki):
+    verifier, now, full, _ = signed_pair(p256_pki)
+    for length in range(len(full)):
+        result = verifier.verify(full[:length], now)
+        assert not result.ok and isinstance(result.reason, RejectReason)
