@@ -1,0 +1,81 @@
+import pytest
+
+from coopdrive.services.v2x.packet import V2xPacketCodec
+from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.services.v2x.security.layer import SecurityLayer
+from coopdrive.services.v2x.security.pki import tamper_packet
+from coopdrive.services.v2x.security.profile import SecurityMode
+from coopdrive.services.v2x.security.verifier import SecurityVerifier
+
+from .signed import cam_packet, now_tai_us
+
+
+def receiver(pki, mode, now):
+    layer = SecurityLayer(mode, SecurityVerifier(pki.store()), pki.signer("b"), clock_tai_us=lambda: now)
+    return layer, V2xPacketCodec(security=layer)
+
+
+def refused(codec, packet, reason):
+    with pytest.raises(V2xDecodeError) as error:
+        codec.decode_packet(packet)
+    assert error.value.reason == reason
+
+
+def test_without_a_security_layer_a_secured_packet_is_still_refused_as_unsupported(p256_pki):
+    signer = p256_pki.signer("a")
+    refused(V2xPacketCodec(), signer.sign(cam_packet(signer), now_tai_us()), RejectReason.SECURED_PACKET_UNSUPPORTED)
+
+
+def test_verify_required_delivers_verified_packets_and_drops_unsecured_and_tampered_ones(p256_pki):
+    now = now_tai_us()
+    layer, codec = receiver(p256_pki, SecurityMode.VERIFY_REQUIRED, now)
+    signer = p256_pki.signer("a")
+    secured = signer.sign(cam_packet(signer), now)
+    decoded = codec.decode_packet(secured)
+    assert decoded.station_id == signer.station_id and decoded.security.verified
+    assert decoded.security.result.signer_digest == signer.identity.ticket.digest
+    refused(codec, cam_packet(signer), RejectReason.UNSECURED_PACKET_REFUSED)
+    refused(codec, tamper_packet(secured), RejectReason.INVALID_SIGNATURE)
+    assert layer.status["verified"] == 1 and layer.status["invalid_signature"] == 1
+
+
+def test_sign_and_verify_delivers_a_failing_packet_marked_unverified_and_counts_why(p256_pki):
+    now = now_tai_us()
+    layer, codec = receiver(p256_pki, SecurityMode.SIGN_AND_VERIFY, now)
+    signer = p256_pki.signer("a")
+    signer.sign(cam_packet(signer), now)
+    digest_only = signer.sign(cam_packet(signer), now + 1)
+    decoded = codec.decode_packet(digest_only)
+    assert decoded.security.verified is False
+    assert decoded.security.result.reason == RejectReason.UNKNOWN_SIGNER_DIGEST
+    assert codec.decode_packet(cam_packet(signer)).security is None
+    assert layer.status == {"verified": 0, "delivered_unverified": 1, "unknown_signer_digest": 1}
+
+
+def test_off_sends_unsigned_and_unwraps_secured_packets_without_checking_them(p256_pki):
+    now = now_tai_us()
+    layer = SecurityLayer(SecurityMode.OFF, SecurityVerifier(p256_pki.store()), clock_tai_us=lambda: now)
+    codec = V2xPacketCodec(security=layer)
+    signer = p256_pki.signer("a")
+    assert layer.seal(cam_packet(signer)) == cam_packet(signer)
+    decoded = codec.decode_packet(tamper_packet(signer.sign(cam_packet(signer), now), bit_in_message=40))
+    assert decoded.security.verified is False and decoded.station_id == signer.station_id
+
+
+def test_a_station_heard_for_the_first_time_makes_our_next_packet_carry_the_full_certificate(p256_pki):
+    now = now_tai_us()
+    layer, codec = receiver(p256_pki, SecurityMode.SIGN_AND_VERIFY, now)
+    ours = layer.signer
+    layer.seal(cam_packet(ours))
+    assert layer.signer.full_certificate_count == 1
+    other = p256_pki.signer("a")
+    codec.decode_packet(other.sign(cam_packet(other), now))
+    layer.seal(cam_packet(ours), now + 1)
+    codec.decode_packet(other.sign(cam_packet(other), now + 2))
+    layer.seal(cam_packet(ours), now + 3)
+    assert layer.signer.full_certificate_count == 2
+
+
+def test_a_signing_mode_needs_a_signer(p256_pki):
+    with pytest.raises(ValueError, match="sign_only needs a signer"):
+        SecurityLayer(SecurityMode.SIGN_ONLY, SecurityVerifier(p256_pki.store()))
