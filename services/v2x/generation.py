@@ -6,6 +6,7 @@ message is due; they return the content to send or None.
 
 from __future__ import annotations
 
+import enum
 import math
 from dataclasses import dataclass
 
@@ -41,7 +42,7 @@ CONTROLLER_OF_MODE = {
 }
 
 
-class CamTrigger:
+class CamTrigger(enum.Enum):
     """Why a CAM was generated (for counters and tests)."""
 
     GCDC_PERIOD = "gcdc_period"
@@ -77,7 +78,7 @@ class CamGenerator:
         self.origin = origin
         self.vehicle = vehicle
         self.ego: ego_pb2.EgoState | None = None
-        self.last_trigger: str | None = None
+        self.last_trigger: CamTrigger | None = None
         self._last: _Sent | None = None
         self._last_low_frequency_s: float | None = None
         self._t_gen_cam_s = T_GEN_CAM_MAX_S
@@ -101,7 +102,7 @@ class CamGenerator:
             content.low_frequency.SetInParent()
         return content
 
-    def _trigger(self, now_s: float) -> str | None:
+    def _trigger(self, now_s: float) -> CamTrigger | None:
         last = self._last
         if last is None:
             return CamTrigger.FIRST
@@ -123,7 +124,7 @@ class CamGenerator:
             return CamTrigger.T_GEN_CAM
         return None
 
-    def _dynamics_trigger(self, last: _Sent) -> str | None:
+    def _dynamics_trigger(self, last: _Sent) -> CamTrigger | None:
         ego = self.ego
         if abs(wrap_angle_rad(ego.heading_rad - last.heading_rad)) > HEADING_TRIGGER_RAD:
             return CamTrigger.HEADING

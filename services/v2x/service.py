@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from coopdrive.bus import Envelope
 from coopdrive.runtime.service import Service
 from coopdrive.services.v2x.codec import ItsMessageId
-from coopdrive.services.v2x.config import V2xConfig
+from coopdrive.services.v2x.config import GCDC_RATE_HZ, V2xConfig
 from coopdrive.services.v2x.denm_manager import ActionId
 from coopdrive.services.v2x.geonet import parse_gn
 from coopdrive.services.v2x.its_clock import ItsClock
@@ -60,7 +60,8 @@ class V2xService(Service):
         self.ctx.subscribe("ego/state", lambda envelope: self.transmitter.on_ego_state(envelope.message))
         self.ctx.subscribe("planner/behaviour", self.on_behaviour)
         self.ctx.subscribe("control/command", self.on_command)
-        self.ctx.every(1.0 / max(c.iclcm_rate_hz, 25.0), self.transmit)
+        # The fastest message rate; ETSI CAM rules are checked as often (T_CheckCamGen <= T_GenCamMin).
+        self.ctx.every(1.0 / max(c.iclcm_rate_hz, GCDC_RATE_HZ), self.transmit)
         self.ctx.every(c.receive_flush_period_s, self.flush_received)
         self.ctx.every(1.0 / c.status_rate_hz, self.publish_status)
         self.link.start()
