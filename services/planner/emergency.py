@@ -58,7 +58,9 @@ class EmergencyScenario:
         return self.sit.cam_along_m(station)
 
     def _vehicles(self) -> list[int]:
-        stations = set(self.sit.emergency_stations())
+        # A CAM older than the loss limit says nothing about where the emergency vehicle is now.
+        lost_s = self.config.emergency.lost_after_s
+        stations = {s for s in self.sit.emergency_stations() if not self.sit.silent(s, lost_s)}
         denm = self._live_denm()
         if denm is not None:
             stations.add(denm.originating_station_id)

@@ -6,6 +6,7 @@ Deterministic: the same sequence of (now_s, inputs) gives the same requests, sta
 from __future__ import annotations
 
 import enum
+import math
 
 from coopdrive.v1 import planner_pb2
 
@@ -19,6 +20,10 @@ from .merge import MergeScenario
 from .platooning import PlatooningScenario
 from .scenario import ScenarioLogic
 from .situation import Situation
+
+
+class PlannerInputError(ValueError):
+    """The step's inputs cannot be planned with; the message names what was wrong."""
 
 
 def make_scenario(scenario: int, config: PlannerLogicConfig) -> ScenarioLogic:
@@ -40,9 +45,16 @@ class Planner:
         self.machine: Machine | None = None
         self._graph_sent_s: float | None = None
         self._last: tuple[float, PlannerInputs] | None = None
+        # Steps refused for bad inputs (PlannerInputError), for the service's counters.
+        self.input_errors = 0
 
     def step(self, now_s: float, inputs: PlannerInputs) -> tuple[planner_pb2.BehaviourRequest, planner_pb2.PlannerState]:
-        """Events first (so a success beats a timeout in the same step), then timeouts, then the behaviour."""
+        """Events first (so a success beats a timeout in the same step), then timeouts, then the behaviour.
+
+        Raises PlannerInputError (and counts it in `input_errors`) for inputs it cannot plan with; the
+        machine is then left as it was.
+        """
+        self._check(now_s, inputs)
         self._ensure_machine(now_s, inputs.scenario)
         sit = Situation(now_s, inputs, self.config)
         machine = self.machine
@@ -52,6 +64,20 @@ class Planner:
         self._last = (now_s, inputs)
         request = self.logic.behaviour(machine.state)
         return request, self.state(now_s)
+
+    def _check(self, now_s: float, inputs: PlannerInputs) -> None:
+        problem = ""
+        if not math.isfinite(now_s):
+            problem = f"now_s is not finite: {now_s}"
+        elif self._last is not None and now_s < self._last[0]:
+            problem = f"time went backwards: now_s {now_s} < previous step {self._last[0]}"
+        elif inputs.station_id <= 0:
+            problem = f"own station_id must be positive, got {inputs.station_id}"
+        elif inputs.scenario not in planner_pb2.Scenario.values():
+            problem = f"unknown scenario value {inputs.scenario}"
+        if problem:
+            self.input_errors += 1
+            raise PlannerInputError(problem)
 
     def force(self, state_name: str, now_s: float, who: str, why: str = "") -> None:
         """Operator supervision (Heudiasyc HMI): put the machine in a state by name; logged as forced."""

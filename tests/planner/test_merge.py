@@ -74,7 +74,7 @@ def test_a_lane_b_vehicle_with_nobody_ahead_in_lane_a_has_no_gap_to_make():
 
 
 @pytest.mark.parametrize("reach, timeout_s", [
-    (lambda p: gap_maker_pairing(p), 5.0),
+    (lambda p: p.step(0.2, gap_maker(0.2)), 5.0),
     (lambda p: p.step(0.3, gap_maker(0.3, ACKED)), 20.0),
     (lambda p: p.step(0.4, gap_maker(0.4, ACKED, partner_gap_m=25.0)), 15.0),
 ], ids=["missing acknowledge", "gap never opens", "partner never merges"])

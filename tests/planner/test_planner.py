@@ -7,6 +7,7 @@ from coopdrive.services.planner.config import PlannerLogicConfig
 from coopdrive.services.planner.engine import MachineSpec
 from coopdrive.services.planner.export_graphs import machine_specs, markdown
 from coopdrive.services.planner.graph import to_mermaid
+from coopdrive.services.planner.planner import PlannerInputError
 from coopdrive.v1 import planner_pb2
 
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "planner.md"
@@ -75,3 +76,19 @@ def test_every_state_that_is_not_safe_has_a_timeout_and_the_unsafe_states_form_n
 def test_the_docs_page_is_what_the_export_script_writes():
     with open(DOCS, encoding="utf-8") as f:
         assert f.read() == markdown(PlannerLogicConfig())
+
+
+@pytest.mark.parametrize("now_s, station_id, scenario, message", [
+    (float("nan"), 100, planner_pb2.SCENARIO_PLATOON, "not finite"),
+    (0.5, 0, planner_pb2.SCENARIO_PLATOON, "station_id must be positive"),
+    (0.5, 100, 42, "unknown scenario value 42"),
+    (0.05, 100, planner_pb2.SCENARIO_PLATOON, "time went backwards"),
+])
+def test_bad_inputs_are_refused_with_a_clear_error_and_counted(now_s, station_id, scenario, message):
+    p = planner()
+    p.step(0.1, platoon_inputs(0.1))
+    bad = platoon_inputs(now_s)
+    bad.station_id, bad.scenario = station_id, scenario
+    with pytest.raises(PlannerInputError, match=message):
+        p.step(now_s, bad)
+    assert p.input_errors == 1 and p.state_name == "JOINING"
