@@ -21,6 +21,8 @@ from coopdrive.services.v2x.reception import OwnIdentity, Reception
 from coopdrive.services.v2x.transmission import Transmitter
 from coopdrive.v1 import its_pb2, v2x_pb2
 
+# Source MAC in the pcap for a received packet whose GN header cannot be parsed (e.g. a secured one).
+UNKNOWN_MAC = bytes(6)
 TOPIC_OF_MESSAGE = {ItsMessageId.CAM: "v2x/cam", ItsMessageId.DENM: "v2x/denm", ItsMessageId.ICLCM: "v2x/iclcm"}
 
 
@@ -51,7 +53,6 @@ class V2xService(Service):
                                    c.loss_timeout_s, c.expected_rate_hz, c.statistics_window_s)
         self.packets_sent = 0
         self._received: list[_Received] = []
-        self._sent: list[tuple[float, v2x_pb2.GnPacket]] = []
         self._capture_file = open(c.pcap_path, "wb") if c.pcap_path else None
         self.capture = CaptureLog(self._capture_file, c.mac_bytes) if self._capture_file else None
         self.link = UdpLink((c.link.listen_host, c.link.listen_port), (c.link.radio_host, c.link.radio_port),
@@ -85,7 +86,7 @@ class V2xService(Service):
         now_s = self.ctx.now_s()
         mac = gn_source_mac(data)
         if self.capture is not None:
-            self.capture.write_packet(data, self.clock.unix_s(now_s), mac)
+            self.capture.write_packet(data, self.clock.unix_s(now_s), mac or UNKNOWN_MAC)
         received = _Received(now_s, v2x_pb2.GnPacket(direction=v2x_pb2.PACKET_DIRECTION_RECEIVED, payload=data,
                                                      source_mac=mac or b""))
         decoded = self.reception.on_packet(data, now_s)
