@@ -26,6 +26,20 @@ escape target. Every waiting state has a timeout whose escape is a safe state (k
 a silent partner (400 ms) or a scene contradicting V2V leaves a waiting state at once. The operator can
 force any state (`Planner.force`), logged as `forced by <who>`. `TIMEOUT` edges are the escapes; states
 noted `safe` need nobody's cooperation; `[*]` marks terminal states. Times are the default configuration's.
+
+Use from a service:
+
+```python
+from coopdrive.services.planner.config import PlannerLogicConfig
+from coopdrive.services.planner.inputs import PlannerInputs, Received
+from coopdrive.services.planner.planner import Planner, PlannerInputError
+
+planner = Planner(PlannerLogicConfig())
+inputs = PlannerInputs(station_id=..., scenario=planner_pb2.SCENARIO_MERGE, platoon_id=2, ego=ego, scene=scene,
+                       iclcms={station: Received(iclcm, receive_time_s)}, cams={...}, denms={...})
+request, state = planner.step(now_s, inputs)   # BehaviourRequest, PlannerState
+planner.force("SAFE_KEEP_LANE", now_s, who="operator HMI", why="partner stuck")
+```
 """
 
 

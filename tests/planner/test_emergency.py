@@ -93,3 +93,12 @@ def test_plain_following_is_the_emergency_machines_normal_driving():
     request, state = p.step(0.0, world(0.0, scenario=planner_pb2.SCENARIO_FOLLOW))
     assert state.scenario == planner_pb2.SCENARIO_FOLLOW and state.machine == "emergency"
     assert state.state == "NORMAL" and request.desired_speed_mps == 25.0
+
+
+def test_a_stale_cam_of_a_lost_ev_does_not_reopen_the_corridor():
+    p = planner()
+    opened(p)
+    p.step(3.3, world(3.3, -80.0, offset_m=0.9, heard_at=0.2))
+    p.step(4.0, world(4.0, -80.0, offset_m=0.0, heard_at=0.2))
+    _, state = p.step(4.1, world(4.1, -80.0, offset_m=0.0, heard_at=0.2))
+    assert state.state == "NORMAL"
