@@ -1,0 +1,93 @@
+"""Signed-CAM verification rate on one core: our full path against a bare `cryptography` ECDSA verify.
+
+    python bench/bench_security.py [--seconds 1.0]
+
+"full path" = basic header, OER decode and canonical check of EtsiTs103097Data, PSID/port, freshness,
+chain (cached after the first full certificate) and the ECDSA verify. The realistic mix is a 10 Hz CAM
+stream with the full certificate once per second (1 packet in 10). The target is 100 stations at 10 Hz.
+"""
+
+from __future__ import annotations
+
+import argparse
+import tempfile
+import time
+from collections.abc import Callable
+
+from cryptography.hazmat.primitives import hashes
+from cryptography.hazmat.primitives.asymmetric import ec
+
+from coopdrive.services.v2x.packet import GnParams, SourcePosition, V2xPacketCodec
+from coopdrive.services.v2x.security.crypto import Curve
+from coopdrive.services.v2x.security.pki import create_test_pki
+from coopdrive.services.v2x.security.verifier import SecurityVerifier
+from coopdrive.services.v2x.timebase import tai_ms_from_unix_s
+from coopdrive.v1 import its_pb2
+
+STATIONS = 100
+CAM_RATE_HZ = 10
+TARGET_PER_S = STATIONS * CAM_RATE_HZ
+FULL_CERTIFICATE_SHARE = 1 / CAM_RATE_HZ
+US_PER_MS = 1000
+CAM_PERIOD_US = 100_000
+
+
+def rate_per_s(operation: Callable[[], object], seconds: float) -> float:
+    operation()
+    count, start = 0, time.perf_counter()
+    deadline = start + seconds
+    while True:
+        for _ in range(50):
+            operation()
+        count += 50
+        now = time.perf_counter()
+        if now >= deadline:
+            return count / (now - start)
+
+
+def signed_cams(curve: Curve, directory: str) -> tuple[SecurityVerifier, int, bytes, bytes]:
+    pki = create_test_pki(directory, ["bench"], curve, tickets_per_vehicle=1)
+    signer = pki.signer("bench", station_id=1001)
+    content = its_pb2.CamContent(protocol_version=1, station_id=1001, station_type=5)
+    content.reference_position.latitude_deg, content.reference_position.longitude_deg = 57.7089, 11.9735
+    content.high_frequency.speed_mps, content.high_frequency.heading_rad = 22.2, 0.3
+    packet = V2xPacketCodec().encode_cam(content, GnParams(
+        source_mac=signer.mac, gn_version=1, source_position=SourcePosition(57.7089, 11.9735, 22.2, 0.3)))
+    now = tai_ms_from_unix_s(time.time()) * US_PER_MS
+    full = signer.sign(packet, now)
+    digest = signer.sign(packet, now + CAM_PERIOD_US)
+    verifier = SecurityVerifier(pki.store())
+    assert verifier.verify(full, now).ok and verifier.verify(digest, now).ok
+    return verifier, now, full, digest
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--seconds", type=float, default=1.0, help="time per measurement")
+    seconds = parser.parse_known_args()[0].seconds
+    print(f"{'curve':18} {'path':34} {'bytes':>6} {'verify/s':>10}")
+    verdicts = []
+    with tempfile.TemporaryDirectory() as directory:
+        for curve in Curve:
+            verifier, now, full, digest = signed_cams(curve, f"{directory}/{curve.value}")
+            key = ec.generate_private_key(curve.ec_curve())
+            message = digest[4:]
+            signature, public_key = key.sign(message, ec.ECDSA(hashes.SHA256())), key.public_key()
+            bare = rate_per_s(lambda: public_key.verify(signature, message, ec.ECDSA(hashes.SHA256())), seconds)
+            with_digest = rate_per_s(lambda: verifier.verify(digest, now), seconds)
+            with_certificate = rate_per_s(lambda: verifier.verify(full, now), seconds)
+            mix = 1 / (FULL_CERTIFICATE_SHARE / with_certificate + (1 - FULL_CERTIFICATE_SHARE) / with_digest)
+            for path, size, rate in (("bare cryptography ECDSA verify", len(message), bare),
+                                     ("signed CAM, digest signer", len(digest), with_digest),
+                                     ("signed CAM, full certificate", len(full), with_certificate),
+                                     ("10 Hz mix (1 in 10 with cert)", 0, mix)):
+                print(f"{curve.name:18} {path:34} {size if size else '':>6} {rate:10.0f}")
+            verdicts.append((curve, mix))
+    for curve, mix in verdicts:
+        fits = "fits" if mix >= TARGET_PER_S else "does NOT fit"
+        print(f"{curve.name}: {STATIONS} stations x {CAM_RATE_HZ} Hz = {TARGET_PER_S} CAM/s {fits} on one core "
+              f"({TARGET_PER_S / mix:.0%} of a core)")
+
+
+if __name__ == "__main__":
+    main()
