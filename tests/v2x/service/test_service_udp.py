@@ -11,6 +11,7 @@ import pytest
 
 from coopdrive.bus import Envelope
 from coopdrive.services.v2x.cli_commands import decode_capture, send_from_yaml
+from coopdrive.services.v2x.geonet import GbcHeader
 from coopdrive.services.v2x.packet import decode_packet
 from coopdrive.services.v2x.service import V2xService
 from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2, v2x_pb2
@@ -185,3 +186,19 @@ def test_the_service_publishes_only_from_the_time_triggers_it_registered(running
     handlers = {handler.__name__ for _, handler in ctx.triggers}
     assert handlers == {"transmit", "flush_received", "publish_status"}
     assert dict((h.__name__, p) for p, h in ctx.triggers)["publish_status"] == pytest.approx(0.2)
+
+
+def test_a_denm_triggered_through_the_service_is_geo_broadcast_around_its_event(running, radio):
+    service, ctx, _ = running
+    event = its_pb2.DenmContent(relevance_distance=its_pb2.RELEVANCE_DISTANCE_LESS_THAN_200M, validity_duration_s=5.0)
+    event.event_position.latitude_deg, event.event_position.longitude_deg = 51.46, 5.63
+    event.situation.event_type.cause_code = 3
+    action = service.trigger_denm(event, repetition_interval_s=0.04)
+    service.transmit(START_S)
+    decoded = decode_packet(radio.recvfrom(4096)[0])
+    assert isinstance(decoded.gn.extended, GbcHeader) and decoded.gn.extended.area.distance_a_m == 200
+    assert (decoded.content.originating_station_id, decoded.content.sequence_number) == \
+        (OWN_STATION_ID, action.sequence_number)
+    service.cancel_denm(action)
+    service.transmit(START_S + 0.04)
+    assert decode_packet(radio.recvfrom(4096)[0]).content.termination == its_pb2.DENM_TERMINATION_CANCELLATION
