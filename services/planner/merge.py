@@ -19,9 +19,9 @@ from coopdrive.v1 import planner_pb2
 from .behaviour import add_target, keep_lane, spacing_m
 from .config import PlannerLogicConfig
 from .engine import MachineSpec, StateSpec, Transition, from_each
+from .platooning import PLATOON_A, PLATOON_B
 from .situation import Situation
 
-PLATOON_A, PLATOON_B = 1, 2
 # A partner counted as ahead (or behind) must be at least this far on that side: a car's length.
 SIDE_TOLERANCE_M = 5.0
 

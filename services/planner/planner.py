@@ -48,7 +48,8 @@ class Planner:
         # Steps refused for bad inputs (PlannerInputError), for the service's counters.
         self.input_errors = 0
 
-    def step(self, now_s: float, inputs: PlannerInputs) -> tuple[planner_pb2.BehaviourRequest, planner_pb2.PlannerState]:
+    def step(self, now_s: float, inputs: PlannerInputs
+             ) -> tuple[planner_pb2.BehaviourRequest, planner_pb2.PlannerState]:
         """Events first (so a success beats a timeout in the same step), then timeouts, then the behaviour.
 
         Raises PlannerInputError (and counts it in `input_errors`) for inputs it cannot plan with; the

@@ -32,6 +32,7 @@ class PlatoonEvent(enum.Enum):
     START_PLATOON = enum.auto()
     PARTNER_HEARD = enum.auto()
     PARTNER_LOST = enum.auto()
+    SCENE_CONTRADICTS_V2V = enum.auto()
     JOINED = enum.auto()
     LEAVE_REQUESTED = enum.auto()
     GAP_OPENED = enum.auto()
@@ -57,6 +58,12 @@ class PlatooningScenario:
     def has_started(self) -> bool:
         return self.started
 
+    def no_cut_in(self) -> bool:
+        return not self._cut_in()
+
+    def may_rejoin(self) -> bool:
+        return self.started and not self._cut_in()
+
     def platoon_speed_mps(self) -> float:
         p = self.config.platoon
         platoon_id = self.sit.inputs.platoon_id
@@ -70,6 +77,13 @@ class PlatooningScenario:
     def _partner_gap_m(self) -> float | None:
         obj = self.sit.object_of_station(self.partner_station_id) or self.sit.forward_mio()
         return obj.longitudinal_gap_m if obj is not None else None
+
+    def _cut_in(self) -> bool:
+        """The scene has someone else between us and the V2V partner: CACC on the partner would be blind."""
+        partner = self.sit.object_of_station(self.partner_station_id)
+        mio = self.sit.forward_mio()
+        return partner is not None and mio is not None and mio.object_id != partner.object_id \
+            and mio.longitudinal_gap_m < partner.longitudinal_gap_m
 
     # --- ScenarioLogic
     def observe(self, sit: Situation, state: enum.Enum, time_in_state_s: float) -> list[enum.Enum]:
@@ -87,6 +101,8 @@ class PlatooningScenario:
             events.append(PlatoonEvent.PARTNER_LOST)
         if self.partner_station_id and not sit.silent(self.partner_station_id):
             events.append(PlatoonEvent.PARTNER_HEARD)
+        if self._cut_in():
+            events.append(PlatoonEvent.SCENE_CONTRADICTS_V2V)
         gap = self._partner_gap_m()
         p = self.config.platoon
         if gap is not None and abs(gap - spacing_m(sit, p.cacc_time_gap_s)) <= p.join_gap_tolerance_m:
@@ -126,8 +142,11 @@ def build_spec(config: PlannerLogicConfig) -> MachineSpec:
         Transition(S.JOINING, E.JOINED, S.PLATOONING, reason="gap within tolerance of the CACC gap"),
         Transition(S.JOINING, E.PARTNER_LOST, S.FOLLOW_SAFE, reason="partner silent for 400 ms"),
         Transition(S.PLATOONING, E.PARTNER_LOST, S.DEGRADED_ACC, reason="partner silent for 400 ms"),
-        Transition(S.DEGRADED_ACC, E.PARTNER_HEARD, S.JOINING, reason="partner heard again"),
-        Transition(S.FOLLOW_SAFE, E.PARTNER_HEARD, S.JOINING, guard=PlatooningScenario.has_started,
+        Transition(S.JOINING, E.SCENE_CONTRADICTS_V2V, S.FOLLOW_SAFE, reason="scene: a vehicle cut in"),
+        Transition(S.PLATOONING, E.SCENE_CONTRADICTS_V2V, S.DEGRADED_ACC, reason="scene: a vehicle cut in"),
+        Transition(S.DEGRADED_ACC, E.PARTNER_HEARD, S.JOINING, guard=PlatooningScenario.no_cut_in,
+                   reason="partner heard again"),
+        Transition(S.FOLLOW_SAFE, E.PARTNER_HEARD, S.JOINING, guard=PlatooningScenario.may_rejoin,
                    reason="partner heard again"),
         Transition(S.LEAVING, E.GAP_OPENED, S.DONE, reason="gap opened to the leave time gap"),
         *from_each([S.JOINING, S.PLATOONING, S.DEGRADED_ACC, S.FOLLOW_SAFE], E.LEAVE_REQUESTED, S.LEAVING,

@@ -19,7 +19,7 @@ from coopdrive.services.planner.planner import Planner
 from coopdrive.v1 import planner_pb2
 
 DT_S = 0.1
-STEPS = 400
+STEPS = 300
 LANE_A, LANE_B = 1, 0
 PARTNER = 21
 NORTH = 1.5707963
@@ -185,7 +185,7 @@ def run_until_bound(world: World) -> None:
     assert outside_since_s is None or STEPS * DT_S - outside_since_s <= bound_s
 
 
-FAST_PROPERTY = settings(max_examples=12, derandomize=True, deadline=None, database=None)
+FAST_PROPERTY = settings(max_examples=10, derandomize=True, deadline=None, database=None)
 
 
 @FAST_PROPERTY

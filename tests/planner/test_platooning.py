@@ -97,3 +97,18 @@ def test_the_operator_can_force_the_platoon_out_of_joining():
     _, state = step(p, 0.15, start=False)
     last = [t for t in state.recent_transitions if t.forced][-1]
     assert last.to_state == "FOLLOW_SAFE" and last.reason == "forced by operator HMI"
+
+
+def test_a_vehicle_cutting_in_before_the_partner_degrades_the_platoon_until_it_leaves():
+    p = planner()
+    joined(p)
+    world = inputs(planner_pb2.SCENARIO_PLATOON, platoon_id=2, ego=ego(),
+                   iclcms={PARTNER: iclcm(PARTNER, 0.3), 900: rsu_start(0.3)},
+                   scene=scene(obj(1, PARTNER, 30.0), obj(2, 0, 10.0), forward_mio=2))
+    request, state = p.step(0.3, world)
+    assert state.state == "DEGRADED_ACC" and state.recent_transitions[-1].event == "SCENE_CONTRADICTS_V2V"
+    assert request.spacing.time_gap_s == 1.5
+    _, state = p.step(0.4, world)
+    assert state.state == "DEGRADED_ACC"
+    _, state = step(p, 0.5, gap_m=CLOSE_GAP_M)
+    assert state.state == "PLATOONING"
