@@ -12,7 +12,8 @@ def _label(text: str) -> str:
 def _edges(spec: MachineSpec) -> list[tuple[str, str, str]]:
     edges: list[tuple[str, str, str]] = []
     for t in spec.transitions:
-        edges.append((t.source.name, t.target.name, t.event.name))
+        guard = f" [{t.guard.__name__}]" if t.guard is not None else ""
+        edges.append((t.source.name, t.target.name, t.event.name + guard))
     for s in spec.states:
         if s.escape is not None:
             edges.append((s.state.name, s.escape.name, f"{EngineEvent.TIMEOUT.name} {s.timeout_s:g} s"))
@@ -37,7 +38,7 @@ def to_mermaid(spec: MachineSpec) -> str:
             lines.append(f"    {s.state.name} --> [*]")
     for s in spec.states:
         if s.safe:
-            lines.append(f"    note right of {s.state.name}: safe")
+            lines.append(f"    note right of {s.state.name} : safe")
     return "\n".join(lines) + "\n"
 
 
