@@ -12,7 +12,7 @@ def _label(text: str) -> str:
 def _edges(spec: MachineSpec) -> list[tuple[str, str, str]]:
     edges: list[tuple[str, str, str]] = []
     for t in spec.transitions:
-        guard = f" [{t.guard.__name__}]" if t.guard is not None else ""
+        guard = f" if {t.guard.__name__}" if t.guard is not None else ""
         edges.append((t.source.name, t.target.name, t.event.name + guard))
     for s in spec.states:
         if s.escape is not None:
