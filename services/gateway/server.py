@@ -7,10 +7,13 @@ from __future__ import annotations
 
 import logging
 import socket
+import ssl
 import threading
 
 import uvicorn
 from fastapi import FastAPI
+
+from coopdrive.services.gateway.config import TlsConfig
 
 log = logging.getLogger(__name__)
 
@@ -20,9 +23,15 @@ LISTEN_BACKLOG = 64
 
 
 class HttpServerThread:
-    def __init__(self, app: FastAPI, host: str, port: int):
+    def __init__(self, app: FastAPI, host: str, port: int, tls: TlsConfig | None = None):
+        """tls: HTTPS; with tls.client_ca, mutual TLS (ssl_cert_reqs=CERT_REQUIRED): no client certificate, no API."""
+        https = {}
+        if tls is not None:
+            https = {"ssl_certfile": str(tls.certfile), "ssl_keyfile": str(tls.keyfile)}
+            if tls.client_ca is not None:
+                https.update(ssl_ca_certs=str(tls.client_ca), ssl_cert_reqs=ssl.CERT_REQUIRED)
         self._config = uvicorn.Config(app, host=host, port=port, log_config=None, access_log=False, lifespan="off",
-                                      ws="none", timeout_graceful_shutdown=GRACEFUL_SHUTDOWN_S)
+                                      ws="websockets-sansio", timeout_graceful_shutdown=GRACEFUL_SHUTDOWN_S, **https)
         self._server = uvicorn.Server(self._config)
         self._thread: threading.Thread | None = None
         self._socket: socket.socket | None = None
