@@ -43,11 +43,14 @@ class SimConfig(ServiceConfig):
     scenario: str = "follow"
     seed: int = 1
     duration_s: float = 60.0
-    step_s: float = 0.01
+    step_s: float = 0.02
     lockstep: bool = True
     realtime_factor: float = 1.0
     participants: list[str] = Field(default_factory=list)
     startup_timeout_s: float = 60.0
+    # Lockstep: a command computed in step k moves the vehicle from step k + feedback_delay_steps.
+    # 2 keeps two steps in flight; the vehicle model takes the extra step off its dead time.
+    feedback_delay_steps: int = 2
     # Full-throttle and full-brake accelerations the stack vehicles' ACT_ pedal ratios are scaled by.
     pedal_profile: ProfileName = ProfileName.PASSENGER_CAR
     # Spacing policy d = r + h v the run is judged against.
@@ -93,7 +96,7 @@ class SimService(Service, ClockMaster.Driven):
 
     def start(self) -> None:
         config: SimConfig = self.config
-        self.world = FollowWorld(config.world)
+        self.world = FollowWorld(config.world, already_delayed_steps=config.feedback_delay_steps - 1)
         self.rng = np.random.default_rng(config.seed)
         self.judge = FollowJudge(config.standstill_m, config.time_gap_s)
         self.stack_vehicles = [s.vehicle_id for s in config.world.vehicles if not s.speed_profile]
@@ -117,7 +120,8 @@ class SimService(Service, ClockMaster.Driven):
     def clock_settings(self) -> ClockSettings:
         c: SimConfig = self.config
         return ClockSettings(step_s=c.step_s, lockstep=c.lockstep, realtime_factor=c.realtime_factor,
-                             participants=list(c.participants), startup_timeout_s=c.startup_timeout_s)
+                             participants=list(c.participants), startup_timeout_s=c.startup_timeout_s,
+                             feedback_delay_steps=c.feedback_delay_steps if c.lockstep else 1)
 
     def on_clock_started(self, wall_start_monotonic_s: float) -> None:
         self.wall_start_s = wall_start_monotonic_s
@@ -154,7 +158,7 @@ class SimService(Service, ClockMaster.Driven):
         for vehicle_id in self.stack_vehicles:
             body = self.world.bodies[vehicle_id]
             ahead = self.world.vehicle_ahead(vehicle_id)
-            self.judge.observe(vehicle_id, self.world.gap_m(vehicle_id), body.speed_mps,
+            self.judge.observe(now_s, vehicle_id, self.world.gap_m(vehicle_id), body.speed_mps,
                                ahead.speed_mps if ahead else None, body.accel_mps2)
         if now_s >= config.duration_s - 1e-9 and not self.finished:
             self.finish(now_s)
