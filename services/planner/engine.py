@@ -147,9 +147,9 @@ class Machine(Generic[C]):
             return True
         return False
 
-    def dispatch_all(self, events: list[enum.Enum], now_s: float) -> int:
-        """Offers every event in order to the machine (each to the state it is in then)."""
-        return sum(self.dispatch(event, now_s) for event in events)
+    def dispatch_first(self, events: list[enum.Enum], now_s: float) -> bool:
+        """Offers the events in order until one fires a transition; the rest were seen from the old state."""
+        return any(self.dispatch(event, now_s) for event in events)
 
     def tick(self, now_s: float) -> bool:
         """Escapes from the current state if it has been in it longer than its timeout."""

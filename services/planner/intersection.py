@@ -85,6 +85,11 @@ class IntersectionScenario:
     def before_stop_line(self) -> bool:
         return self.reference_ahead() and self.distance_to_reference_m() > self.config.intersection.box_half_size_m
 
+    def seen_conflict_before_stop_line(self) -> bool:
+        """Only a conflict the scene confirms stops a crossing: HOLD_SAFE let it cross on the scene's word,
+        so a V2V-only conflict here would cycle CROSSING -> HOLD_SAFE -> CROSSING."""
+        return any(s not in self.v2v_only for s in self.conflicting) and self.before_stop_line()
+
     # --- what the step shows
     def _priority_stations(self) -> list[int]:
         c, sit = self.config.intersection, self.sit
@@ -227,7 +232,7 @@ def build_spec(config: PlannerLogicConfig) -> MachineSpec:
                    reason="in the CZ, a priority vehicle is coming"),
         Transition(S.APPROACH, E.CZ_ENTERED, S.CROSSING, guard=Ctx.has_no_conflict, reason="in the CZ, way clear"),
         # To HOLD_SAFE, not GIVE_WAY: a flickering conflict must not cycle between two unsafe states.
-        Transition(S.CROSSING, E.CONFLICT, S.HOLD_SAFE, guard=Ctx.before_stop_line,
+        Transition(S.CROSSING, E.CONFLICT, S.HOLD_SAFE, guard=Ctx.seen_conflict_before_stop_line,
                    reason="a priority vehicle is coming before the stop line"),
         Transition(S.GIVE_WAY, E.PATH_CLEAR, S.CROSSING, reason="no priority vehicle coming"),
         Transition(S.GIVE_WAY, E.SCENE_CONTRADICTS_V2V, S.HOLD_SAFE,

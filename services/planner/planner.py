@@ -21,6 +21,9 @@ from .platooning import PlatooningScenario
 from .scenario import ScenarioLogic
 from .situation import Situation
 
+# Transitions one step may chain (IDLE -> APPROACH -> CROSSING when the RSU starts us inside the zone).
+MAX_TRANSITIONS_PER_STEP = 8
+
 
 class PlannerInputError(ValueError):
     """The step's inputs cannot be planned with; the message names what was wrong."""
@@ -59,8 +62,12 @@ class Planner:
         self._ensure_machine(now_s, inputs.scenario)
         sit = Situation(now_s, inputs, self.config)
         machine = self.machine
-        events = self.logic.observe(sit, machine.state, machine.time_in_state_s(now_s))
-        machine.dispatch_all(events, now_s)
+        # One transition per look: after each, the scenario looks again from the new state (its entry
+        # action may have changed what it watches, e.g. the partner), up to a bound against livelock.
+        for _ in range(MAX_TRANSITIONS_PER_STEP):
+            events = self.logic.observe(sit, machine.state, machine.time_in_state_s(now_s))
+            if not machine.dispatch_first(events, now_s):
+                break
         machine.tick(now_s)
         self._last = (now_s, inputs)
         request = self.logic.behaviour(machine.state)

@@ -185,7 +185,7 @@ def run_until_bound(world: World) -> None:
     assert outside_since_s is None or STEPS * DT_S - outside_since_s <= bound_s
 
 
-FAST_PROPERTY = settings(max_examples=10, derandomize=True, deadline=None, database=None)
+FAST_PROPERTY = settings(max_examples=8, derandomize=True, deadline=None, database=None)
 
 
 @FAST_PROPERTY
