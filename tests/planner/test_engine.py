@@ -123,3 +123,10 @@ def test_mermaid_and_dot_exports_name_every_state_and_the_timeout_edge():
     assert "WAIT --> SAFE: TIMEOUT 2 s" in mermaid
     assert '"WAIT" -> "SAFE" [label="TIMEOUT 2 s"]' in dot
     assert "GO --> [*]" in mermaid
+
+
+def test_dispatch_first_fires_only_the_first_event_that_matches():
+    m = started()
+    assert m.dispatch_first([E.ACK, E.ASK, E.ACK], 1.0)
+    assert m.state is S.WAIT and len(m.history) == 2
+    assert not m.dispatch_first([E.ASK], 1.1)

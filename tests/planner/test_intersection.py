@@ -119,3 +119,11 @@ def test_a_priority_vehicle_appearing_before_the_stop_line_makes_a_crossing_vehi
     p.step(0.1, world(0.1, -95.0))
     request, state = p.step(0.2, world(0.2, -60.0, organiser_y_m=-40.0))
     assert state.state == "HOLD_SAFE" and request.has_stop_line
+
+
+def test_without_an_arrival_time_the_approach_holds_the_arrival_speed():
+    p = cross_planner(arrival_time_s=0.0)
+    p.step(0.0, world(0.0, -300.0))
+    request, state = p.step(0.1, world(0.1, -300.0))
+    assert state.state == "APPROACH" and not request.has_arrival
+    assert request.desired_speed_mps == pytest.approx(30 / 3.6)
