@@ -57,7 +57,8 @@ def build_specs(options: RunOptions) -> list[ServiceSpec]:
     if options.duration_s is not None:
         sim.duration_s = options.duration_s
     stacks = [v.vehicle_id for v in sim.world.vehicles if not v.speed_profile]
-    specs = [ServiceSpec(name, vehicle, merged(FOLLOW_STACK_CONFIG.get(name, {}), options.service_overrides.get(name, {})))
+    world_needs = merged(FOLLOW_STACK_CONFIG, sim.stack_overrides())
+    specs = [ServiceSpec(name, vehicle, merged(world_needs.get(name, {}), options.service_overrides.get(name, {})))
              for vehicle in stacks for name in VEHICLE_STACK]
     sim.participants = [spec.participant for spec in specs]
     sim_config = sim.model_dump(mode="json")

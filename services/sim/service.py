@@ -29,6 +29,8 @@ MANUAL_ACCEL_MPS2 = 0.0
 MANUAL_STEERING_RAD = 0.0
 # Stacks engage at their starting speed; the margin covers the wheel-speed noise.
 FLYING_START_MARGIN_MPS = 1.0
+# Comfort deceleration of the follow stacks: above the leader's 3 m/s2 braking, within the car's 8 m/s2.
+FOLLOW_COMFORT_DECEL_MPS2 = 3.5
 
 
 def default_follow_world() -> WorldConfig:
@@ -63,9 +65,10 @@ class SimConfig(ServiceConfig):
 
         Geolocation: the follow world lies off every lane map, so the world's origin and no lane matching; the
         simulated GNSS antenna sits at the vehicle reference point; the odometry needs the simulated track width
-        and wheel-speed noise. Actuation: the stacks have no v2x service and start moving, so they engage
-        cooperative (longitudinal) control at once, at speed, without the V2X condition (a vehicle's default is
-        to wait for its driver, below 10 km/h, with V2X).
+        and wheel-speed noise. Control: radar-only following at the judged time gap, braking as hard as the
+        leader does without an emergency. Actuation: the stacks have no v2x service and start moving, so they
+        engage cooperative (longitudinal) control at once, at speed, without the V2X condition (a vehicle's
+        default is to wait for its driver, below 10 km/h, with V2X).
         """
         world = self.world
         stacks = [v for v in world.vehicles if not v.speed_profile]
@@ -81,6 +84,13 @@ class SimConfig(ServiceConfig):
                                "wheelbase_m": stacks[0].wheelbase_m,
                                "wheel_speed_std_mps": world.can.wheel_speed_sigma_mps},
             },
+            "control": {"profile_overrides": {
+                # Nothing to fall back from: without V2X the planner's time gap already is the ACC gap.
+                "spacing": {"fallback_time_gap_raise_s": 0.0},
+                # The scripted leader brakes at 3 m/s2 for 4 s; below that the comfort limit sends every such
+                # braking through the emergency path, which overshoots and leaves the gap open for seconds.
+                "limits": {"max_decel_mps2": FOLLOW_COMFORT_DECEL_MPS2},
+            }},
             "actuation": {
                 "engage_on_start": "cooperative",
                 "require_v2x": False,
