@@ -1,68 +1,88 @@
-"""The HTTP API on a loopback port, fed by fixed responses: routes, models in the OpenAPI document, read token."""
+"""The read endpoints over real HTTP: each answers its documented model, and closed ones need a token."""
 
-import httpx
 import pytest
 
-from coopdrive.launch.ports import free_tcp_port
-from coopdrive.services.gateway.api import build_app
-from coopdrive.services.gateway.models import HealthResponse, HealthStatus, StateResponse
-from coopdrive.services.gateway.server import HttpServerThread
+from conftest import OBSERVER_TOKEN, OPERATOR_TOKEN, TOKENS
+from coopdrive.services.gateway.models import HealthResponse, StateResponse
+from coopdrive.services.gateway.view_models import PlannerResponse, SceneResponse, V2xStationsResponse
 
-# Generous: a loaded machine may be slow to schedule the server thread.
-REQUEST_TIMEOUT_S = 20.0
-STOP_TIMEOUT_S = 5.0
-
-
-def health() -> HealthResponse:
-    return HealthResponse(status=HealthStatus.OK, vehicle_id="ego", clock_s=1.0, services={})
-
-
-def state() -> StateResponse:
-    return StateResponse(vehicle_id="ego", clock_s=1.0, ego_state=None, scene=None, planner_state=None,
-                         control_command=None, actuation_status=None)
-
-
-def serve(read_token: str | None = None):
-    port = free_tcp_port()
-    server = HttpServerThread(build_app(health, state, read_token), "127.0.0.1", port)
-    server.start()
-    with httpx.Client(base_url=f"http://127.0.0.1:{port}", timeout=REQUEST_TIMEOUT_S) as client:
-        yield client
-    server.stop(STOP_TIMEOUT_S)
+READ_ENDPOINTS = {"/health": HealthResponse, "/state": StateResponse, "/v2x/stations": V2xStationsResponse,
+                  "/scene": SceneResponse, "/planner": PlannerResponse}
 
 
 @pytest.fixture
-def client():
-    yield from serve()
+def gateway(make_gateway, feed):
+    gateway = make_gateway()
+    feed(gateway.ctx)
+    return gateway
 
 
-@pytest.fixture
-def closed_client():
-    yield from serve(read_token="s3cret")
+def test_every_read_endpoint_answers_its_model_without_credentials_by_default(gateway):
+    for path, model in READ_ENDPOINTS.items():
+        response = gateway.http.get(path)
+        assert response.status_code == 200, path
+        model.model_validate(response.json())
 
 
-def test_health_and_state_answer_without_credentials_by_default(client):
-    assert client.get("/health").json()["status"] == "ok"
-    assert client.get("/state").json()["vehicle_id"] == "ego"
+def test_the_stations_carry_link_statistics_and_trust_from_the_v2x_status(gateway):
+    stations = gateway.http.get("/v2x/stations").json()
+    by_id = {s["station_id"]: s for s in stations["stations"]}
+    assert by_id[4242]["state"] == "active" and by_id[4242]["trust"] == 0.9 and by_id[4242]["verified"]
+    assert by_id[4242]["reception_ratio"] == 0.98 and by_id[4242]["message_rate_hz"] == 25.0
+    assert by_id[99]["state"] == "lost"
+    assert (stations["active_count"], stations["lost_count"]) == (1, 1)
+    assert stations["rejected_by_reason"] == {"implausible_speed": 3}
 
 
-def test_the_openapi_document_names_the_response_models_of_every_path(client):
-    document = client.get("/openapi.json").json()
-    assert {"/health", "/state"} <= set(document["paths"])
-    schemas = document["components"]["schemas"]
-    assert {"HealthResponse", "ServiceHealth", "StateResponse", "MessageEntry", "HealthStatus"} <= set(schemas)
-    health_schema = document["paths"]["/health"]["get"]["responses"]["200"]["content"]["application/json"]["schema"]
-    assert health_schema["$ref"].endswith("/HealthResponse")
+def test_scene_objects_carry_each_property_s_confidence_and_unknown_ones_as_null(gateway):
+    scene = gateway.http.get("/scene").json()
+    lead = scene["objects"][0]
+    assert lead["object_class"] == "car" and lead["is_forward_mio"]
+    assert lead["position"]["confidence"] == 0.8 and lead["position"]["sources"] == ["radar", "v2v"]
+    assert lead["speed_mps"] == {"value": 14.0, "confidence": 0.7, "sources": []}
+    assert lead["accel_mps2"]["value"] is None and lead["accel_mps2"]["confidence"] is None
+    assert scene["forward_mio_id"] == 7
 
 
-def test_closed_read_endpoints_refuse_a_request_without_the_token(closed_client):
-    assert closed_client.get("/health").status_code == 401
-    assert closed_client.get("/state", headers={"Authorization": "Bearer wrong"}).status_code == 401
+def test_the_planner_view_has_the_machine_its_graph_and_recent_transitions(gateway):
+    planner = gateway.http.get("/planner").json()
+    assert (planner["scenario"], planner["machine"], planner["state"]) == ("platoon", "platooning", "FOLLOWING")
+    assert planner["graph_mermaid"].startswith("stateDiagram-v2")
+    assert planner["recent_transitions"][0]["reason"] == "gap reached"
 
 
-def test_closed_read_endpoints_answer_with_the_token(closed_client):
-    assert closed_client.get("/health", headers={"Authorization": "Bearer s3cret"}).status_code == 200
+def test_the_planner_graph_stays_known_when_later_states_are_sent_without_it(gateway):
+    from coopdrive.v1 import planner_pb2
+    gateway.ctx.deliver("planner/state", planner_pb2.PlannerState(machine="platooning", state="LEAVING"))
+    planner = gateway.http.get("/planner").json()
+    assert planner["state"] == "LEAVING" and "JOINING --> FOLLOWING" in planner["graph_mermaid"]
 
 
-def test_the_interactive_docs_are_served(client):
-    assert client.get("/docs").status_code == 200
+def test_the_openapi_document_names_the_model_of_every_endpoint(gateway):
+    document = gateway.http.get("/openapi.json").json()
+    for path, model in READ_ENDPOINTS.items():
+        schema = document["paths"][path]["get"]["responses"]["200"]["content"]["application/json"]["schema"]
+        assert schema["$ref"].endswith(f"/{model.__name__}")
+    assert {"/mode", "/estop", "/planner/force", "/recording", "/metrics"} <= set(document["paths"])
+    assert {"StationView", "SceneObjectView", "PropertyView", "TransitionView", "ModeCommand"} <= set(
+        document["components"]["schemas"])
+
+
+def test_the_hmi_and_the_interactive_docs_are_served(gateway):
+    page = gateway.http.get("/")
+    assert page.status_code == 200 and "birdseye" in page.text
+    assert gateway.http.get("/hmi.js").status_code == 200
+    assert gateway.http.get("/docs").status_code == 200
+
+
+def test_closed_read_endpoints_refuse_a_request_without_a_known_token(make_gateway):
+    gateway = make_gateway(readonly_open=False, tokens=TOKENS)
+    for path in [*READ_ENDPOINTS, "/metrics", "/commands"]:
+        assert gateway.http.get(path).status_code == 401, path
+        assert gateway.http.get(path, headers={"Authorization": "Bearer wrong"}).status_code == 401, path
+
+
+def test_closed_read_endpoints_answer_any_configured_token(make_gateway):
+    gateway = make_gateway(readonly_open=False, tokens=TOKENS, read_token="legacy-read")
+    for token in (OBSERVER_TOKEN, OPERATOR_TOKEN, "legacy-read"):
+        assert gateway.http.get("/scene", headers={"Authorization": f"Bearer {token}"}).status_code == 200, token

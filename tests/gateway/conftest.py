@@ -1,0 +1,119 @@
+"""A GatewayService on a loopback port with a stand-in context (no Zenoh), and bus messages to feed it."""
+
+import logging
+
+import httpx
+import pytest
+
+from coopdrive.bus import Envelope
+from coopdrive.launch.ports import free_tcp_port
+from coopdrive.services.gateway.service import GatewayService
+from coopdrive.v1 import actuation_pb2, ego_pb2, header_pb2, planner_pb2, scene_pb2, v2x_pb2
+
+# Generous: a loaded 2-core machine may be slow to schedule the server thread.
+REQUEST_TIMEOUT_S = 20.0
+OPERATOR_TOKEN = "operator-secret-1"
+OBSERVER_TOKEN = "observer-secret-1"
+TOKENS = {"alice": {"token": OPERATOR_TOKEN, "role": "operator"},
+          "dashboard": {"token": OBSERVER_TOKEN, "role": "observer"}}
+
+
+class RecordingContext:
+    """Runs call_soon at once (as the worker would, later) and remembers what was published from it."""
+
+    vehicle_id = "ego"
+    log = logging.getLogger("test.gateway")
+
+    def __init__(self):
+        self.clock_s = 0.0
+        self.subscriptions: dict[tuple[str, str], object] = {}
+        self.liveliness = []
+        self.timers = []
+        self.published: list[tuple[str, object]] = []
+        self.stop_reason = None
+
+    def now_s(self) -> float:
+        return self.clock_s
+
+    def subscribe(self, topic, handler, vehicle_id=None):
+        self.subscriptions[(vehicle_id or self.vehicle_id, topic)] = handler
+
+    def publish(self, topic, message, sample_time_s=None):
+        self.published.append((topic, message))
+
+    def every(self, period_s, handler):
+        self.timers.append(handler)
+
+    def call_soon(self, function):
+        function()
+
+    def watch_liveliness(self, handler):
+        self.liveliness.append(handler)
+
+    def request_stop(self, reason):
+        self.stop_reason = reason
+
+    def deliver(self, topic: str, message, vehicle_id: str = "ego") -> None:
+        message.header.sent_time_s = self.clock_s
+        self.subscriptions[(vehicle_id, topic)](Envelope(vehicle_id, topic, message))
+
+
+class Gateway:
+    def __init__(self, service: GatewayService, ctx: RecordingContext, client: httpx.Client):
+        self.service, self.ctx, self.http = service, ctx, client
+        self.port = service.config.port
+
+
+@pytest.fixture
+def make_gateway():
+    started: list[Gateway] = []
+
+    def make(**config) -> Gateway:
+        ctx = RecordingContext()
+        service = GatewayService(GatewayService.Config(port=free_tcp_port(), **config), ctx)
+        service.start()
+        client = httpx.Client(base_url=f"http://127.0.0.1:{service.config.port}", timeout=REQUEST_TIMEOUT_S)
+        started.append(Gateway(service, ctx, client))
+        return started[-1]
+
+    yield make
+    for gateway in started:
+        gateway.http.close()
+        gateway.service.stop()
+
+
+def feed_a_following_vehicle(ctx: RecordingContext, clock_s: float = 10.0, speed_mps: float = 15.0) -> None:
+    """One of each message the views read: ego at (100, 0) heading north, a lead car 30 m ahead with V2V."""
+    ctx.clock_s = clock_s
+    ego = ego_pb2.EgoState(x_m=100.0, y_m=0.0, heading_rad=1.5707963267948966, speed_mps=speed_mps)
+    ego.lane.matched, ego.lane.lane_width_m, ego.lane.lane_index = True, 3.5, 0
+    ctx.deliver("ego/state", ego)
+    scene = scene_pb2.Scene(has_forward_mio=True, forward_mio_id=7, has_mio=True, mio_id=7, ego_lane_index=0)
+    lead = scene.objects.add(object_id=7, object_class=1, longitudinal_gap_m=30.0, v2v_trust=0.9)
+    lead.position.x_m, lead.position.y_m, lead.position.confidence = 100.0, 34.0, 0.8
+    lead.position.sources.extend([header_pb2.SENSOR_SOURCE_RADAR, header_pb2.SENSOR_SOURCE_V2V])
+    lead.speed_mps.value, lead.speed_mps.confidence = 14.0, 0.7
+    lead.accel_mps2.confidence = -1.0
+    lead.station_id.value, lead.station_id.confidence = 4242, 1.0
+    ctx.deliver("scene", scene)
+    state = planner_pb2.PlannerState(scenario=planner_pb2.SCENARIO_PLATOON, machine="platooning", state="FOLLOWING",
+                                     time_in_state_s=2.5, graph_mermaid="stateDiagram-v2\n  JOINING --> FOLLOWING")
+    state.recent_transitions.add(time_s=7.5, from_state="JOINING", to_state="FOLLOWING", event="joined",
+                                 reason="gap reached", forced=False)
+    ctx.deliver("planner/state", state)
+    status = v2x_pb2.V2xStatus(packets_sent=120, packets_received=250)
+    status.stations.add(station_id=4242, state=v2x_pb2.LINK_STATE_ACTIVE, message_rate_hz=25.0, reception_ratio=0.98,
+                        trust=0.9, signed=True, verified=True, messages_received=250)
+    status.stations.add(station_id=99, state=v2x_pb2.LINK_STATE_LOST, trust=0.4)
+    status.rejected_by_reason["implausible_speed"] = 3
+    ctx.deliver("v2x/status", status)
+    actuation = actuation_pb2.ActuationStatus(mode=actuation_pb2.DRIVING_MODE_MANUAL,
+                                              last_mode_change_reason="driver")
+    actuation.availability.add(mode=actuation_pb2.DRIVING_MODE_COOPERATIVE, available=False,
+                               unmet_condition="slow enough to engage")
+    ctx.deliver("actuation/status", actuation)
+
+
+@pytest.fixture
+def feed():
+    return feed_a_following_vehicle
