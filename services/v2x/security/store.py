@@ -74,10 +74,12 @@ class CertificateStore:
                 if current.digest not in self._trusted:
                     raise CertificateError(RejectReason.UNTRUSTED_ROOT, current.name)
                 return
-            issuer = self._issuers.get(current.issuer_digest)
+            issuer_digest = current.issuer_digest
+            if issuer_digest is None:
+                raise CertificateError(RejectReason.UNKNOWN_ISSUER, f"{current.name}: issuer not a SHA-256 digest")
+            issuer = self._issuers.get(issuer_digest)
             if issuer is None:
-                raise CertificateError(RejectReason.UNKNOWN_ISSUER, f"{current.name} issued by "
-                                       f"{current.issuer_digest.hex()}")
+                raise CertificateError(RejectReason.UNKNOWN_ISSUER, f"{current.name} issued by {issuer_digest.hex()}")
             if current.digest not in self._signature_checked:
                 if not current.signature_is_from(issuer):
                     raise CertificateError(RejectReason.INVALID_CERTIFICATE_SIGNATURE, current.name)
