@@ -23,6 +23,7 @@ from coopdrive.recording.reader import RecordedMessage, read_messages, read_meta
 from coopdrive.recording.writer import McapRecorder
 from coopdrive.runtime.clock import SimulationClock
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
+from coopdrive.runtime.participants import ParticipantTracker
 from coopdrive.runtime.registry import service_class
 from coopdrive.runtime.timers import TriggerSet
 
@@ -130,11 +131,7 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
             inputs.append(item)
     inputs.sort(key=lambda m: m.message.header.sent_time_s)
 
-    if clocks:
-        # Live, every participant was up before step 0 (the simulator waits for all of them).
-        for participant in [f"{WORLD_ID}/sim", *clocks[0].participants]:
-            for handler in ctx.liveliness_handlers:
-                handler(participant, True)
+    participants = ParticipantTracker()
     dispatcher = StepDispatcher(service_name, vehicle_id)
     next_input = 0
     steps = 0
@@ -144,6 +141,9 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
             dispatcher.add(Envelope(vehicle, topic, inputs[next_input].message))
             next_input += 1
         ctx.clock.set(clock.time_s)
+        for participant, alive in participants.update(clock.participants):
+            for handler in ctx.liveliness_handlers:
+                handler(participant, alive)
         for envelope in dispatcher.eligible(clock.time_s):
             for source, handler in ctx.handlers.get(envelope.topic, ()):
                 if source in ("*", envelope.vehicle_id):

@@ -32,6 +32,7 @@ from coopdrive.runtime.barrier import StepBarrier
 from coopdrive.runtime.clock import SimulationClock, WallClock
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
 from coopdrive.runtime.master import ClockMaster
+from coopdrive.runtime.participants import ParticipantTracker
 from coopdrive.runtime.pipeline import participant_name, split_participant
 from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.runtime.timers import TriggerSet
@@ -66,6 +67,7 @@ class ServiceRunner:
         self._handlers: dict[str, list[tuple[str, Callable[[Envelope], None]]]] = defaultdict(list)
         self._bus_subscriptions: set[tuple[str, str]] = set()
         self._liveliness_handlers: list[Callable[[str, bool], None]] = []
+        self._participant_tracker = ParticipantTracker()
         self._triggers = TriggerSet()
         self._sequence: dict[str, int] = defaultdict(int)
         self._stop = threading.Event()
@@ -152,7 +154,8 @@ class ServiceRunner:
         for participant in sorted(self._barrier.dependencies):
             vehicle_id, service = split_participant(participant)
             self.bus.subscribe_key(layout.step_done(vehicle_id, service), self._on_step_marker)
-        if self._master is not None or self._liveliness_handlers:
+        if self._master is not None or (self._liveliness_handlers and self._clock_mode is ClockMode.WALL):
+            # In simulation, followers learn liveliness from the clock (see participants.py).
             self.bus.watch_liveliness(layout.all_liveliness(), self._on_liveliness)
         self.bus.declare_queryable(layout.service_info(self.vehicle_id, self._service_name), self._service_info)
         # Last: the token tells the others that every subscription above is in place.
@@ -187,8 +190,8 @@ class ServiceRunner:
     def _handle_follower_event(self, kind: _Event, payload) -> None:
         if kind is _Event.DATA:
             self.note_received(payload)
-            if self._pending_clocks or self._in_lockstep():
-                self._dispatcher.add(payload)
+            if self._clock_mode is ClockMode.SIM:
+                self._dispatcher.add(payload)  # handled in step order, never in arrival order
             else:
                 self.dispatch(payload)
         elif kind is _Event.CLOCK:
@@ -196,6 +199,9 @@ class ServiceRunner:
                 self._queue_clock(payload)
             else:
                 self._clock.set(payload.time_s)
+                self._track_participants(payload.participants)
+                for envelope in self._dispatcher.eligible(payload.time_s):
+                    self.dispatch(envelope)
                 self._triggers.run_due(payload.time_s)
         elif kind is _Event.DONE:
             self._barrier.mark_done(*payload)
@@ -205,15 +211,17 @@ class ServiceRunner:
         elif kind is _Event.CALL:
             self._call(payload)
 
+    def _track_participants(self, participants) -> None:
+        for participant, alive in self._participant_tracker.update(participants):
+            for handler in self._liveliness_handlers:
+                handler(participant, alive)
+
     def _call(self, function: Callable[[], None]) -> None:
         try:
             function()
         except Exception:  # an input callback must not take the service down
             self.service.count("handler_errors")
             self.log.exception("call_soon function failed")
-
-    def _in_lockstep(self) -> bool:
-        return self._last_step >= 0
 
     def _queue_clock(self, clock: sim_pb2.SimClock) -> None:
         if clock.step <= self._last_step:
@@ -233,6 +241,8 @@ class ServiceRunner:
             if self._barrier.missing(clock.step, list(clock.participants)) or not self._barrier.holds(clock.sequences):
                 return
             self._pending_clocks.popleft()
+            self._clock.set(clock.time_s)
+            self._track_participants(clock.participants)
             self.run_step(clock.step, clock.time_s)
             self.publish_step_done(clock.step)
 

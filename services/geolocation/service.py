@@ -33,9 +33,10 @@ class GeolocationConfig(ServiceConfig):
 
     @model_validator(mode="after")
     def _one_source_of_the_frame(self) -> GeolocationConfig:
-        if self.map_name is not None and "origin" in self.model_fields_set:
+        # Compared by value, not by which keys were given, so a recorded full config loads again.
+        if self.map_name is not None and self.origin != LocalOrigin():
             raise ValueError("origin is only used without a map: the map brings its own origin")
-        if "map_name" in self.geolocator.model_fields_set:
+        if self.geolocator.map_name != GeolocatorConfig().map_name:
             raise ValueError("geolocator.map_name is not read by the service: set map_name instead")
         return self
 
