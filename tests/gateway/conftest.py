@@ -1,6 +1,10 @@
 """A GatewayService on a loopback port with a stand-in context (no Zenoh), and bus messages to feed it."""
 
 import logging
+import signal
+import subprocess
+import sys
+import time
 
 import httpx
 import pytest
@@ -117,3 +121,56 @@ def feed_a_following_vehicle(ctx: RecordingContext, clock_s: float = 10.0, speed
 @pytest.fixture
 def feed():
     return feed_a_following_vehicle
+
+
+# ----- one real `coopdrive run follow --realtime --gateway PORT` for the session ------------------
+RUN_DURATION_S = 40
+RUN_POLL_PERIOD_S = 0.5
+RUN_REQUEST_TIMEOUT_S = 10.0
+RUN_STOP_TIMEOUT_S = 10.0
+
+
+class Run:
+    def __init__(self, process: subprocess.Popen, port: int):
+        self.process = process
+        self.port = port
+        self.http = httpx.Client(base_url=f"http://127.0.0.1:{port}", timeout=RUN_REQUEST_TIMEOUT_S)
+
+    def poll_json(self, path: str, until, deadline_s: float, what: str) -> dict:
+        """GETs `path` until `until(body)` holds; fails naming `what` and the last answer."""
+        deadline = time.monotonic() + deadline_s
+        last: object = "no answer yet"
+        while time.monotonic() < deadline:
+            if self.process.poll() is not None:
+                pytest.fail(f"the run exited with {self.process.returncode} while waiting for {what}")
+            try:
+                body = self.http.get(path).json()
+            except httpx.TransportError as error:  # the gateway is not listening yet
+                last = repr(error)
+            else:
+                if until(body):
+                    return body
+                last = body
+            time.sleep(RUN_POLL_PERIOD_S)
+        pytest.fail(f"no {what} within {deadline_s} s; last answer: {last}")
+
+
+@pytest.fixture(scope="session")
+def follow_run(tmp_path_factory):
+    port = free_tcp_port()
+    output = open(tmp_path_factory.mktemp("run") / "run.log", "w")
+    process = subprocess.Popen(
+        [sys.executable, "-m", "coopdrive.cli", "run", "follow", "--realtime", "--gateway", str(port),
+         "--duration", str(RUN_DURATION_S)],
+        stdin=subprocess.DEVNULL, stdout=output, stderr=subprocess.STDOUT, start_new_session=True)
+    live = Run(process, port)
+    yield live
+    live.http.close()
+    if process.poll() is None:
+        process.send_signal(signal.SIGTERM)
+        try:
+            process.wait(timeout=RUN_STOP_TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
+    output.close()

@@ -1,72 +1,26 @@
 """Over real HTTP: `coopdrive run follow --realtime --gateway PORT` serves the live stack, and stops on SIGTERM.
 
-One run is shared by the module; the tests read it in file order and the last one stops it.
+One run is shared by the session (conftest.follow_run, also read by test_follow_run_browser.py, which sorts
+before this file); the tests read it in file order and the last one stops it.
 Deadlines for polling are generous (a loaded 2-core machine starts seven Python processes);
 the only timed assertion is the issue's: the run exits within 3 s of SIGTERM.
 """
 
 import signal
-import subprocess
-import sys
-import time
 
 import httpx
 import pytest
 
-from coopdrive.launch.ports import free_tcp_port
 from coopdrive.runtime.registry import VEHICLE_STACK
 
-RUN_DURATION_S = 30
 STARTUP_DEADLINE_S = 90.0
 DATA_DEADLINE_S = 30.0
-POLL_PERIOD_S = 0.5
-REQUEST_TIMEOUT_S = 10.0
 SHUTDOWN_LIMIT_S = 3.0
 
 
-class Run:
-    def __init__(self, process: subprocess.Popen, port: int):
-        self.process = process
-        self.http = httpx.Client(base_url=f"http://127.0.0.1:{port}", timeout=REQUEST_TIMEOUT_S)
-
-    def poll_json(self, path: str, until, deadline_s: float, what: str) -> dict:
-        """GETs `path` until `until(body)` holds; fails naming `what` and the last answer."""
-        deadline = time.monotonic() + deadline_s
-        last: object = "no answer yet"
-        while time.monotonic() < deadline:
-            if self.process.poll() is not None:
-                pytest.fail(f"the run exited with {self.process.returncode} while waiting for {what}")
-            try:
-                body = self.http.get(path).json()
-            except httpx.TransportError as error:  # the gateway is not listening yet
-                last = repr(error)
-            else:
-                if until(body):
-                    return body
-                last = body
-            time.sleep(POLL_PERIOD_S)
-        pytest.fail(f"no {what} within {deadline_s} s; last answer: {last}")
-
-
 @pytest.fixture(scope="module")
-def run(tmp_path_factory):
-    port = free_tcp_port()
-    output = open(tmp_path_factory.mktemp("run") / "run.log", "w")
-    process = subprocess.Popen(
-        [sys.executable, "-m", "coopdrive.cli", "run", "follow", "--realtime", "--gateway", str(port),
-         "--duration", str(RUN_DURATION_S)],
-        stdin=subprocess.DEVNULL, stdout=output, stderr=subprocess.STDOUT, start_new_session=True)
-    live = Run(process, port)
-    yield live
-    live.http.close()
-    if process.poll() is None:
-        process.send_signal(signal.SIGTERM)
-        try:
-            process.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            process.kill()
-            process.wait()
-    output.close()
+def run(follow_run):
+    return follow_run
 
 
 def stack_alive(health: dict) -> bool:

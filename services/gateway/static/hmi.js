@@ -2,7 +2,8 @@
 // window.hmi holds what was drawn last, so tests and operators' tools can read it.
 "use strict";
 
-const VIEW = { behindM: 25, aheadM: 95, lanesEachSide: 1 };
+// Lateral distances are drawn stretched: at one scale a lane would be a thin strip across the canvas.
+const VIEW = { behindM: 20, aheadM: 90, lanesEachSide: 1, lateralStretch: 2.5 };
 const GAUGES = { speedKmh: 150, gapM: 100, timeGapS: 4 };
 const SHORT_TIME_GAP_S = 0.8;
 const ALERT_REPEAT_MS = 10000;
@@ -59,10 +60,11 @@ function watchForAlerts(previous, frame) {
 function drawBirdseye(frame) {
   const canvas = $("birdseye"), ctx = canvas.getContext("2d");
   const w = canvas.width, h = canvas.height;
-  const scale = w / (VIEW.behindM + VIEW.aheadM);  // px per metre, same both axes
+  const scale = w / (VIEW.behindM + VIEW.aheadM);  // px per metre along the road
+  const lat = scale * VIEW.lateralStretch;  // px per metre across it
   // Ego frame: x ahead (to the right on screen), y left (up on screen).
   const toX = (xm) => (xm + VIEW.behindM) * scale;
-  const toY = (ym) => h / 2 - ym * scale;
+  const toY = (ym) => h / 2 - ym * lat;
   ctx.clearRect(0, 0, w, h);
   const laneW = frame.lane_width_m, egoCentreY = -frame.lateral_offset_m;
   const lanes = [];
@@ -76,7 +78,7 @@ function drawBirdseye(frame) {
   for (let k = lowest; k <= highest + 1; k++) {
     const y = egoCentreY + (k - egoLane - 0.5) * laneW, outer = k === lowest || k === highest + 1;
     ctx.strokeStyle = "#e8edf2"; ctx.lineWidth = outer ? 3 : 2;
-    ctx.setLineDash(outer ? [] : [3 * scale, 6 * scale]);
+    ctx.setLineDash(outer ? [] : [3 * scale, 9 * scale]);
     ctx.beginPath(); ctx.moveTo(0, toY(y)); ctx.lineTo(w, toY(y)); ctx.stroke();
     lanes.push({ boundary_y_m: y, outer });
   }
@@ -90,15 +92,23 @@ function drawBirdseye(frame) {
   for (const o of frame.objects) {
     ctx.save();
     ctx.translate(toX(o.x_m), toY(o.y_m));
+    ctx.scale(1, VIEW.lateralStretch);
     ctx.rotate(-o.heading_rad);
     const alpha = 0.2 + 0.8 * Math.min(1, Math.max(0, o.confidence));
     ctx.fillStyle = `rgba(${CLASS_COLOURS[o.object_class] || CLASS_COLOURS.unspecified},${alpha.toFixed(2)})`;
     ctx.fillRect(0, -o.width_m / 2 * scale, o.length_m * scale, o.width_m * scale);
-    if (o.forward_mio) { ctx.strokeStyle = "#ffcf5c"; ctx.lineWidth = 3;
+    if (o.forward_mio) { ctx.strokeStyle = "#ffcf5c"; ctx.lineWidth = 2;
       ctx.strokeRect(0, -o.width_m / 2 * scale, o.length_m * scale, o.width_m * scale); }
     ctx.restore();
     ctx.fillStyle = "#e8edf2";
-    ctx.fillText(`#${o.id} ${Math.round(o.confidence * 100)}%`, toX(o.x_m), toY(o.y_m) - o.width_m / 2 * scale - 4);
+    ctx.fillText(`#${o.id} ${Math.round(o.confidence * 100)}%`, toX(o.x_m), toY(o.y_m) - o.width_m / 2 * lat - 4);
+    if (o.forward_mio && frame.gap_m !== null) {
+      const y = toY(o.y_m) + o.width_m / 2 * lat + 14;
+      ctx.strokeStyle = "#ffcf5c"; ctx.lineWidth = 1;
+      ctx.beginPath(); ctx.moveTo(toX(o.x_m - frame.gap_m), y); ctx.lineTo(toX(o.x_m), y); ctx.stroke();
+      ctx.fillStyle = "#ffcf5c";
+      ctx.fillText(`${frame.gap_m.toFixed(1)} m`, toX(o.x_m - frame.gap_m / 2) - 16, y + 14);
+    }
     const station = o.station_id !== null ? stations.get(o.station_id) : undefined;
     if (station) {
       ctx.strokeStyle = station.state === "active" ? "#4cd07d" : "#e5534b";
@@ -112,7 +122,7 @@ function drawBirdseye(frame) {
   }
   // The ego: reference at its rear axle, body from about 1 m behind it.
   ctx.fillStyle = "#3fa9f5";
-  ctx.fillRect(toX(-1.0), toY(0.9), 4.5 * scale, 1.8 * scale);
+  ctx.fillRect(toX(-1.0), toY(0.9), 4.5 * scale, 1.8 * lat);
   hmi.drawn = { objects: drawn, lanes, links, scale };
   canvas.dataset.objects = String(drawn.length);
   canvas.dataset.forwardMio = String((drawn.find((o) => o.forward_mio) || {}).id ?? "");
