@@ -6,6 +6,7 @@ token whose role allows them (401 without a known token, 403 with a role that ma
 
 from __future__ import annotations
 
+import asyncio
 import logging
 from pathlib import Path
 from typing import Protocol
@@ -150,10 +151,16 @@ def build_app(backend: GatewayBackend, tokens: TokenBook) -> FastAPI:
             await websocket.close(code=WS_POLICY_VIOLATION)
             return
         await websocket.accept()
+        sending = asyncio.create_task(backend.live.serve(websocket.send_text))
+        sending.add_done_callback(lambda task: task.cancelled() or task.exception())  # retrieved: no warning
         try:
-            await backend.live.serve(websocket.send_text)
-        except Exception as error:  # noqa: BLE001 - any send failure means the client is gone
+            # Listening too notices a close at once, not at the next send (a prompt shutdown, no stale clients).
+            while (await websocket.receive())["type"] != "websocket.disconnect" and not sending.done():
+                pass
+        except Exception as error:  # noqa: BLE001 - any receive failure means the client is gone
             log.debug("live client left: %r", error)
+        finally:
+            sending.cancel()
 
     app.mount("/", StaticFiles(directory=STATIC_DIR, html=True), name="hmi")
     return app
