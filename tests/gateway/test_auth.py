@@ -1,6 +1,9 @@
 """TokenBook and the token settings of GatewayConfig."""
 
+from pathlib import Path
+
 import pytest
+import yaml
 from pydantic import ValidationError
 
 from coopdrive.services.gateway.auth import Command, Principal, TokenBook
@@ -51,3 +54,19 @@ def test_mutual_tls_is_configured_with_a_client_ca(tmp_path):
     config = GatewayConfig(tls={"certfile": tmp_path / "c.pem", "keyfile": tmp_path / "k.pem",
                                 "client_ca": tmp_path / "ca.pem"})
     assert config.tls.client_ca == tmp_path / "ca.pem"
+
+
+def test_the_example_gateway_config_is_valid():
+    example = Path(__file__).resolve().parents[2] / "services" / "gateway" / "examples" / "gateway-secure.yaml"
+    config = GatewayConfig.model_validate(yaml.safe_load(example.read_text()))
+    assert config.tls.client_ca is not None and not config.readonly_open
+    assert {entry.role for entry in config.tokens.values()} == {Role.OPERATOR, Role.OBSERVER}
+
+
+def test_the_example_zenoh_config_with_tls_and_access_control_parses():
+    import zenoh
+
+    example = Path(__file__).resolve().parents[2] / "services" / "gateway" / "examples" / "zenoh-secure.json5"
+    config = zenoh.Config.from_file(str(example))
+    assert config.get_json("access_control/default_permission") == '"deny"'
+    assert config.get_json("transport/link/tls/enable_mtls") == "true"
