@@ -59,7 +59,7 @@ class GatewayConfig(ServiceConfig):
     readonly_open: bool = True
     # Bearer token for read-only endpoints when they are not open.
     read_token: SecretStr | None = None
-    # Named bearer tokens and their roles; the name is who a command is logged as. None: no commands.
+    # Named bearer tokens and their roles; the name is who a command is logged as. Empty: no commands.
     tokens: dict[str, ApiToken] = Field(default_factory=dict)
     tls: TlsConfig | None = None
     # Services whose absence makes the overall status degraded.

@@ -9,10 +9,12 @@ slows the producer, the other clients, or the bus (which only writes to the stor
 from __future__ import annotations
 
 import asyncio
+import logging
 from typing import Awaitable, Callable
 
 # Behind by more than this many periods (a stalled loop): restart the schedule instead of bursting.
 MAX_LAG_PERIODS = 2
+log = logging.getLogger(__name__)
 
 
 class LiveClient:
@@ -63,8 +65,12 @@ class LiveBroadcaster:
         due = loop.time()
         while self._clients:
             self._seq += 1
-            frame = self._make_frame(self._seq)
-            for client in list(self._clients):
+            try:
+                frame = self._make_frame(self._seq)
+            except Exception:  # noqa: BLE001 - one bad frame must not end the stream for every client
+                log.exception("live frame %d could not be built", self._seq)
+                frame = None
+            for client in list(self._clients) if frame is not None else []:
                 if client.offer(frame):
                     self._on_drop()
             due += self._period_s

@@ -34,7 +34,7 @@ def service_participant(vehicle_id: str, service: str) -> str:
     return participant_name(WORLD_ID if service in WORLD_SERVICES else vehicle_id, service)
 
 
-def _age_s(clock_s: float | None, sent_time_s: float | None) -> float | None:
+def message_age_s(clock_s: float | None, sent_time_s: float | None) -> float | None:
     if clock_s is None or sent_time_s is None:
         return None
     # The gateway hears the clock after the publishers do, so it may trail them by a step.
@@ -45,7 +45,7 @@ def health_report(snapshot: StoreSnapshot, vehicle_id: str, topics_by_service: d
                   required: list[str], silent_after_s: float) -> HealthResponse:
     services: dict[str, ServiceHealth] = {}
     for service, activity in snapshot.services.items():
-        age_s = _age_s(snapshot.clock_s, activity.last_sent_time_s)
+        age_s = message_age_s(snapshot.clock_s, activity.last_sent_time_s)
         if not activity.alive:
             status = ServiceStatus.DOWN
         elif activity.message_rate_hz <= 0 or age_s is None or age_s > silent_after_s:
@@ -70,8 +70,8 @@ def message_entry(latest: LatestMessage | None, clock_s: float | None) -> Messag
     if latest is None:
         return None
     body = MessageToDict(latest.message, preserving_proto_field_name=True, always_print_fields_with_no_presence=True)
-    return MessageEntry(type_name=latest.message.DESCRIPTOR.full_name, age_s=_age_s(clock_s, latest.sent_time_s),
-                        message=body)
+    return MessageEntry(type_name=latest.message.DESCRIPTOR.full_name,
+                        age_s=message_age_s(clock_s, latest.sent_time_s), message=body)
 
 
 def state_report(snapshot: StoreSnapshot, vehicle_id: str) -> StateResponse:

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 
-from coopdrive.services.gateway.reports import _age_s
+from coopdrive.services.gateway.reports import message_age_s
 from coopdrive.services.gateway.state_store import StoreSnapshot
 from coopdrive.services.gateway.view_models import (
     LinkStateName,
@@ -66,7 +66,7 @@ def _property(prop) -> PropertyView:
 
 def _latest(snapshot: StoreSnapshot, topic: str):
     latest = snapshot.latest.get(topic)
-    return (latest.message, _age_s(snapshot.clock_s, latest.sent_time_s)) if latest else (None, None)
+    return (latest.message, message_age_s(snapshot.clock_s, latest.sent_time_s)) if latest else (None, None)
 
 
 def _station_link(station: v2x_pb2.StationLinkStats) -> LinkStateName:
