@@ -65,6 +65,7 @@ _ALL = [
     Topic("actuation/override", actuation_pb2.OverrideEvent, "actuation"),
     Topic("gateway/mode_request", actuation_pb2.ModeRequest, "gateway"),
     Topic("gateway/estop", actuation_pb2.EmergencyStop, "gateway"),
+    Topic("gateway/planner_force", planner_pb2.PlannerForce, "gateway"),
 ]
 for _service in ("sim", "geolocation", "v2x", "scene", "planner", "control", "actuation", "gateway"):
     _ALL.append(Topic(f"diagnostics/{_service}", diagnostics_pb2.Diagnostics, _service))

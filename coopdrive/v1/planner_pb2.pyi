@@ -149,3 +149,15 @@ class BehaviourRequest(_message.Message):
     stop_line_distance_m: float
     iclcm: IclcmIntent
     def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., target_lane_index: _Optional[int] = ..., desired_speed_mps: _Optional[float] = ..., spacing: _Optional[_Union[SpacingPolicy, _Mapping]] = ..., targets: _Optional[_Iterable[_Union[TargetVehicle, _Mapping]]] = ..., lateral_offset_m: _Optional[float] = ..., lane_change_duration_s: _Optional[float] = ..., has_arrival: _Optional[bool] = ..., arrival_station_m: _Optional[float] = ..., arrival_time_s: _Optional[float] = ..., arrival_speed_mps: _Optional[float] = ..., has_stop_line: _Optional[bool] = ..., stop_line_distance_m: _Optional[float] = ..., iclcm: _Optional[_Union[IclcmIntent, _Mapping]] = ...) -> None: ...
+
+class PlannerForce(_message.Message):
+    __slots__ = ("header", "state", "requested_by", "reason")
+    HEADER_FIELD_NUMBER: _ClassVar[int]
+    STATE_FIELD_NUMBER: _ClassVar[int]
+    REQUESTED_BY_FIELD_NUMBER: _ClassVar[int]
+    REASON_FIELD_NUMBER: _ClassVar[int]
+    header: _header_pb2.Header
+    state: str
+    requested_by: str
+    reason: str
+    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., state: _Optional[str] = ..., requested_by: _Optional[str] = ..., reason: _Optional[str] = ...) -> None: ...

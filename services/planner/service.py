@@ -1,17 +1,36 @@
-"""Planner service: decides the behaviour (speed, spacing, whom to follow)."""
+"""Planner service: feeds the scenario state machines the ego state, the scene and the V2X conversation."""
 
 from __future__ import annotations
 
+from pydantic import Field
+
 from coopdrive.bus import Envelope
 from coopdrive.runtime.service import Service, ServiceConfig
+from coopdrive.services.planner.config import PlannerLogicConfig
+from coopdrive.services.planner.inputs import PlannerInputs, Received
+from coopdrive.services.planner.planner import Planner, PlannerInputError
 from coopdrive.v1 import planner_pb2
+
+V2X_TOPICS = {"v2x/iclcm": "iclcms", "v2x/cam": "cams", "v2x/denm": "denms"}
 
 
 class PlannerConfig(ServiceConfig):
-    rate_hz: float = 10.0
-    desired_speed_mps: float = 25.0
-    standstill_m: float = 6.0
-    time_gap_s: float = 1.5
+    rate_hz: float = Field(10.0, gt=0)
+    # Our ITS station id (as the v2x service sends it).
+    station_id: int = Field(1, gt=0)
+    # A coopdrive.v1.Scenario name, e.g. SCENARIO_FOLLOW, SCENARIO_MERGE.
+    scenario: str = "SCENARIO_FOLLOW"
+    # 1 platoon A, 2 platoon B; 0 when not in a platoon.
+    platoon_id: int = 0
+    partner_station_id: int = 0
+    logic: PlannerLogicConfig = Field(default_factory=PlannerLogicConfig)
+
+    def scenario_value(self) -> int:
+        try:
+            return planner_pb2.Scenario.Value(self.scenario)
+        except ValueError:
+            names = ", ".join(planner_pb2.Scenario.keys())
+            raise ValueError(f"scenario {self.scenario!r} is not one of {names}") from None
 
 
 class PlannerService(Service):
@@ -19,34 +38,41 @@ class PlannerService(Service):
     Config = PlannerConfig
 
     def start(self) -> None:
-        self.scene = None
-        self.state = "cruise"
-        self.state_since_s = 0.0
-        self.transitions: list[planner_pb2.StateTransition] = []
-        self.ctx.subscribe("scene", self.on_scene)
-        self.ctx.every(1.0 / self.config.rate_hz, self.plan)
+        config: PlannerConfig = self.config
+        self.planner = Planner(config.logic)
+        self.inputs = PlannerInputs(station_id=config.station_id, scenario=config.scenario_value(),
+                                    platoon_id=config.platoon_id, partner_station_id=config.partner_station_id)
+        self.pending_force: list[planner_pb2.PlannerForce] = []
+        self.ctx.subscribe("ego/state", lambda envelope: setattr(self.inputs, "ego", envelope.message))
+        self.ctx.subscribe("scene", lambda envelope: setattr(self.inputs, "scene", envelope.message))
+        for topic, field_name in V2X_TOPICS.items():
+            self.ctx.subscribe(topic, self._v2x_handler(field_name))
+        self.ctx.subscribe("gateway/planner_force", lambda envelope: self.pending_force.append(envelope.message))
+        self.ctx.every(1.0 / config.rate_hz, self.plan)
 
-    def on_scene(self, envelope: Envelope) -> None:
-        self.scene = envelope.message
+    def _v2x_handler(self, field_name: str):
+        def store(envelope: Envelope) -> None:
+            message = envelope.message
+            getattr(self.inputs, field_name)[message.station_id] = Received(message, self.ctx.now_s())
+        return store
 
     def plan(self, now_s: float) -> None:
-        c: PlannerConfig = self.config
-        request = planner_pb2.BehaviourRequest(desired_speed_mps=c.desired_speed_mps)
-        request.spacing.standstill_m = c.standstill_m
-        request.spacing.time_gap_s = c.time_gap_s
-        following = self.scene is not None and self.scene.has_forward_mio
-        if following:
-            request.targets.add(object_id=self.scene.forward_mio_id, role=planner_pb2.TARGET_ROLE_PREDECESSOR)
-        self._enter("follow" if following else "cruise", now_s)
+        self._apply_forced_states(now_s)
+        try:
+            request, state = self.planner.step(now_s, self.inputs)
+        except PlannerInputError as error:
+            self.count("planner_input_errors")
+            self.ctx.log.warning("planner refused its inputs: %s", error)
+            return
         self.ctx.publish("planner/behaviour", request)
-        state = planner_pb2.PlannerState(scenario=planner_pb2.SCENARIO_FOLLOW, machine="follow", state=self.state,
-                                         time_in_state_s=now_s - self.state_since_s,
-                                         recent_transitions=self.transitions[-10:])
         self.ctx.publish("planner/state", state)
 
-    def _enter(self, state: str, now_s: float) -> None:
-        if state == self.state:
-            return
-        self.transitions.append(planner_pb2.StateTransition(time_s=now_s, from_state=self.state, to_state=state,
-                                                            event="forward_mio_changed"))
-        self.state, self.state_since_s = state, now_s
+    def _apply_forced_states(self, now_s: float) -> None:
+        for force in self.pending_force:
+            try:
+                self.planner.force(force.state, now_s, who=force.requested_by, why=force.reason)
+                self.count("forced_transitions")
+            except (KeyError, ValueError, RuntimeError) as error:
+                self.count("forced_transitions_refused")
+                self.ctx.log.warning("refused to force state %r: %s", force.state, error)
+        self.pending_force.clear()
