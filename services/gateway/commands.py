@@ -18,6 +18,7 @@ from coopdrive.services.gateway.auth import Command, Principal
 from coopdrive.v1 import actuation_pb2
 
 MAX_REASON_CHARS = 500
+PLANNER_FORCE_TOPIC = "gateway/planner_force"
 # Commands remembered for GET /commands.
 AUDIT_LENGTH = 100
 
@@ -106,3 +107,14 @@ class CommandDesk:
         stop = actuation_pb2.EmergencyStop(requested_by=who.name, reason=body.reason)
         self._run_on_worker(lambda: publish("gateway/estop", stop))
         return self.record(Command.ESTOP, who, body.reason, CommandOutcome.SENT, "emergency stop sent")
+
+    def planner_force(self, who: Principal, body: PlannerForceCommand, publish: Callable[[str, object], None],
+                      message_type: type | None) -> CommandResponse:
+        """message_type: what the planner_force topic carries; None while the bus has no such topic."""
+        if message_type is None:
+            return self.record(Command.PLANNER_FORCE, who, body.reason, CommandOutcome.REFUSED,
+                               f"the bus has no {PLANNER_FORCE_TOPIC} topic: the planner cannot be forced")
+        force = message_type(state=body.state, requested_by=who.name, reason=body.reason)
+        self._run_on_worker(lambda: publish(PLANNER_FORCE_TOPIC, force))
+        return self.record(Command.PLANNER_FORCE, who, body.reason, CommandOutcome.SENT,
+                           f"planner forced to {body.state} requested")

@@ -18,6 +18,7 @@ from coopdrive.runtime.service import Service
 from coopdrive.services.gateway.api import build_app
 from coopdrive.services.gateway.auth import Command, Principal, TokenBook
 from coopdrive.services.gateway.commands import (
+    PLANNER_FORCE_TOPIC,
     CommandDesk,
     CommandOutcome,
     CommandResponse,
@@ -42,8 +43,6 @@ from coopdrive.services.gateway.views import live_frame, planner_view, scene_vie
 WORLD_TOPICS = frozenset({"clock", "ground_truth", "result"})
 # Keeps the store's view of the vehicle clock current when no message arrives.
 CLOCK_TICK_S = 0.1
-# Until the bus carries a planner force request, the gateway cannot deliver one.
-NO_PLANNER_FORCE_TOPIC = "the bus has no topic for forcing the planner yet (gateway/planner_force is not registered)"
 
 
 def topics_by_service() -> dict[str, list[str]]:
@@ -168,8 +167,8 @@ class GatewayService(Service):
         return self.desk.estop(who, body, self._publish)
 
     def planner_force(self, who: Principal, body: PlannerForceCommand) -> CommandResponse:
-        return self.desk.record(Command.PLANNER_FORCE, who, body.reason, CommandOutcome.REFUSED,
-                                NO_PLANNER_FORCE_TOPIC)
+        topic = TOPICS.get(PLANNER_FORCE_TOPIC)
+        return self.desk.planner_force(who, body, self._publish, topic.message_type if topic else None)
 
     def recording(self, who: Principal, body: RecordingCommand) -> CommandResponse:
         directory = self.recorder.directory

@@ -3,6 +3,7 @@
 import pytest
 
 from conftest import OBSERVER_TOKEN, OPERATOR_TOKEN, TOKENS
+from coopdrive.bus import TOPICS
 from coopdrive.recording.reader import read_messages
 from coopdrive.v1 import actuation_pb2
 
@@ -60,10 +61,20 @@ def test_a_command_without_a_reason_or_with_an_unknown_mode_is_422(gateway):
     assert gateway.ctx.published == []
 
 
-def test_forcing_the_planner_is_refused_with_409_until_the_bus_has_a_topic_for_it(gateway):
+def test_forcing_the_planner_is_refused_with_409_while_the_bus_has_no_topic_for_it(gateway, monkeypatch):
+    monkeypatch.delitem(TOPICS, "gateway/planner_force", raising=False)
     response = gateway.http.post("/planner/force", json=COMMANDS["/planner/force"], headers=OPERATOR)
     assert response.status_code == 409
     assert response.json()["outcome"] == "refused" and "gateway/planner_force" in response.json()["detail"]
+    assert gateway.ctx.published == []
+
+
+@pytest.mark.skipif("gateway/planner_force" not in TOPICS, reason="the bus has no planner force topic")
+def test_forcing_the_planner_publishes_the_state_with_who_and_why(gateway):
+    assert gateway.http.post("/planner/force", json=COMMANDS["/planner/force"], headers=OPERATOR).status_code == 202
+    [(topic, force)] = gateway.ctx.published
+    assert (topic, force.state, force.requested_by, force.reason) == (
+        "gateway/planner_force", "LEAVING", "alice", "end of test")
 
 
 def test_recording_writes_what_the_gateway_hears_to_mcap_until_stopped(gateway, feed, tmp_path):
