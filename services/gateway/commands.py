@@ -98,10 +98,16 @@ class CommandDesk:
         with self._lock:
             return list(self._audit)
 
-    def mode(self, who: Principal, body: ModeCommand, publish: Callable[[str, object], None]) -> CommandResponse:
+    def mode(self, who: Principal, body: ModeCommand, publish: Callable[[str, object], None],
+             status: actuation_pb2.ActuationStatus | None = None) -> CommandResponse:
+        """status: the latest actuation status, to say at once if the mode is unavailable and why."""
         request = actuation_pb2.ModeRequest(mode=MODES[body.mode], requested_by=who.name, reason=body.reason)
         self._run_on_worker(lambda: publish("gateway/mode_request", request))
-        return self.record(Command.MODE, who, body.reason, CommandOutcome.SENT, f"mode {body.mode.value} requested")
+        detail = f"mode {body.mode.value} requested"
+        for availability in status.availability if status is not None else []:
+            if availability.mode == request.mode and not availability.available:
+                detail += f"; currently unavailable: {availability.unmet_condition}"
+        return self.record(Command.MODE, who, body.reason, CommandOutcome.SENT, detail)
 
     def estop(self, who: Principal, body: EstopCommand, publish: Callable[[str, object], None]) -> CommandResponse:
         stop = actuation_pb2.EmergencyStop(requested_by=who.name, reason=body.reason)

@@ -161,7 +161,8 @@ class GatewayService(Service):
         self.prometheus.commands.labels(command.value, "unauthorized").inc()
 
     def mode(self, who: Principal, body: ModeCommand) -> CommandResponse:
-        return self.desk.mode(who, body, self._publish)
+        status = self.store.latest("actuation/status")
+        return self.desk.mode(who, body, self._publish, status.message if status else None)
 
     def estop(self, who: Principal, body: EstopCommand) -> CommandResponse:
         return self.desk.estop(who, body, self._publish)

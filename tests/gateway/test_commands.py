@@ -48,6 +48,13 @@ def test_a_mode_request_from_an_operator_is_published_with_who_and_why(gateway):
                                                 reason="test drive")
 
 
+def test_a_mode_request_says_at_once_why_the_mode_is_unavailable_now(gateway, feed):
+    feed(gateway.ctx)  # actuation status: cooperative unavailable, "slow enough to engage"
+    response = gateway.http.post("/mode", json=COMMANDS["/mode"], headers=OPERATOR)
+    assert response.status_code == 202
+    assert response.json()["detail"] == "mode cooperative requested; currently unavailable: slow enough to engage"
+
+
 def test_an_emergency_stop_from_an_operator_is_published_on_gateway_estop(gateway):
     assert gateway.http.post("/estop", json=COMMANDS["/estop"], headers=OPERATOR).status_code == 202
     [(topic, stop)] = gateway.ctx.published

@@ -226,9 +226,7 @@ async function requestMode() {
     const response = await fetch("/mode", { method: "POST", headers, body: JSON.stringify(body) });
     const answer = await response.json().catch(() => ({}));
     if (response.ok) {
-      outcome = "sent"; text = `Requested ${body.mode}: ${answer.detail || "sent"}`;
-      const unmet = (hmi.frame?.availability || []).find((a) => a.mode === body.mode && !a.available);
-      if (unmet) text += ` (currently unavailable: ${unmet.unmet_condition})`;
+      outcome = "sent"; text = `Sent: ${answer.detail || body.mode}`;
     } else {
       const detail = typeof answer.detail === "string" ? answer.detail
         : Array.isArray(answer.detail) ? answer.detail.map((d) => `${d.loc?.slice(-1)[0]}: ${d.msg}`).join("; ")
