@@ -8,6 +8,7 @@ import logging
 import sys
 from pathlib import Path
 
+from coopdrive.cli_v2x import add_commands as add_v2x_commands
 from coopdrive.runtime.config import ConfigError
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
@@ -66,6 +67,8 @@ def build_parser() -> argparse.ArgumentParser:
     health.add_argument("--service", required=True)
     health.add_argument("--timeout", type=float, default=2.0)
     health.set_defaults(handler=_health)
+
+    add_v2x_commands(commands)
 
     replay = commands.add_parser("replay", help="replay a recording through one service")
     replay.add_argument("file", type=Path)

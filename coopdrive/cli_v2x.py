@@ -1,0 +1,76 @@
+"""`coopdrive v2x ...` and `coopdrive pki ...`: thin wiring to the v2x service's tools."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+
+def add_commands(commands) -> None:
+    v2x = commands.add_parser("v2x", help="V2X tools: decode captures, inject messages")
+    v2x_commands = v2x.add_subparsers(dest="v2x_command", required=True)
+    decode = v2x_commands.add_parser("decode", help="print the messages of a pcap or pcapng capture")
+    decode.add_argument("file", type=Path)
+    decode.add_argument("--json", action="store_true", help="one JSON object per line")
+    decode.add_argument("--pki", type=Path, help="a PKI folder (coopdrive pki init) whose root to trust when verifying")
+    decode.set_defaults(handler=_decode)
+    send = v2x_commands.add_parser("send", help="send one CAM/DENM/iCLCM described in YAML to a radio box")
+    send.add_argument("file", type=Path)
+    send.add_argument("--address", default="127.0.0.1")
+    send.add_argument("--port", type=int, default=4401)
+    send.set_defaults(handler=_send)
+
+    pki = commands.add_parser("pki", help="test PKI for signed V2X (ETSI TS 103 097)")
+    pki_commands = pki.add_subparsers(dest="pki_command", required=True)
+    init = pki_commands.add_parser("init", help="create a root CA, an authorisation authority and tickets")
+    init.add_argument("directory", type=Path)
+    init.add_argument("--vehicles", nargs="+", default=["ego", "leader"])
+    init.set_defaults(handler=_pki_init)
+
+
+def _decode(args: argparse.Namespace) -> int:
+    from coopdrive.services.v2x.cli_commands import decode_capture
+    from coopdrive.services.v2x.pcap import PcapFormatError
+    from coopdrive.services.v2x.security.capture import security_report
+
+    try:
+        for line in decode_capture(args.file, as_json=args.json):
+            print(line)
+        verifier = _verifier(args.pki) if args.pki else None
+        with open(args.file, "rb") as stream:
+            for packet in security_report(stream, verifier):
+                if not packet.signed:
+                    continue
+                record = {"index": packet.index, "signed": True, "signer_digest": packet.signer_digest,
+                          "full_certificate": packet.full_certificate, "verified": packet.verified,
+                          "reason": packet.reason.value if packet.reason else None}
+                print(json.dumps(record) if args.json else
+                      f"#{packet.index} signed by {packet.signer_digest} "
+                      f"verified={packet.verified} {record['reason'] or ''}".rstrip())
+    except (OSError, PcapFormatError) as error:
+        print(f"coopdrive: {args.file}: {error}", file=sys.stderr)
+        return 2
+    return 0
+
+
+def _verifier(pki_directory: Path):
+    from coopdrive.services.v2x.security.pki import load_test_pki
+    from coopdrive.services.v2x.security.verifier import SecurityVerifier
+
+    return SecurityVerifier(load_test_pki(pki_directory).store())
+
+
+def _send(args: argparse.Namespace) -> int:
+    from coopdrive.services.v2x.cli_commands import send_from_yaml
+
+    message_id = send_from_yaml(args.file, args.address, args.port)
+    print(f"sent {message_id.name} to {args.address}:{args.port}")
+    return 0
+
+
+def _pki_init(args: argparse.Namespace) -> int:
+    from coopdrive.services.v2x.security.pki import pki_init
+
+    return pki_init(args.directory, args.vehicles)
