@@ -1,0 +1,56 @@
+"""RunMessages: what the judge scores from a run (ground truth, the stacks' ego states and scenes), by topic."""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from google.protobuf.message import Message
+
+from coopdrive.recording.reader import read_messages
+from coopdrive.v1 import ego_pb2, scene_pb2, sim_pb2
+
+TRUTH_SUFFIX = "/ground_truth"
+EGO_STATE_SUFFIX = "/ego/state"
+SCENE_SUFFIX = "/scene"
+
+
+def vehicle_of(topic: str) -> str:
+    """The vehicle id of a key coopdrive/<vehicle>/<topic>."""
+    parts = topic.split("/")
+    return parts[1] if len(parts) > 2 else ""
+
+
+@dataclass
+class RunMessages:
+    """Collects the scored messages; add() is safe from many threads (the bus observer's)."""
+
+    truth: list[sim_pb2.GroundTruth] = field(default_factory=list)
+    ego_states: dict[str, list[ego_pb2.EgoState]] = field(default_factory=dict)
+    scenes: dict[str, list[scene_pb2.Scene]] = field(default_factory=dict)
+    _lock: threading.Lock = field(default_factory=threading.Lock, repr=False, compare=False)
+
+    def add(self, topic: str, message: Message) -> None:
+        with self._lock:
+            if isinstance(message, sim_pb2.GroundTruth):
+                self.truth.append(message)
+            elif isinstance(message, ego_pb2.EgoState) and topic.endswith(EGO_STATE_SUFFIX):
+                self.ego_states.setdefault(vehicle_of(topic), []).append(message)
+            elif isinstance(message, scene_pb2.Scene) and topic.endswith(SCENE_SUFFIX):
+                self.scenes.setdefault(vehicle_of(topic), []).append(message)
+
+    @classmethod
+    def from_recording(cls, path: str | Path) -> RunMessages:
+        messages = cls()
+        for recorded in read_messages(path):
+            messages.add(recorded.topic, recorded.message)
+        return messages
+
+    def sorted_truth(self) -> list[sim_pb2.GroundTruth]:
+        """Truth in sample-time order, one message per sample time (Zenoh keeps no order across threads)."""
+        by_time: dict[float, sim_pb2.GroundTruth] = {}
+        with self._lock:
+            for message in self.truth:
+                by_time.setdefault(message.header.sample_time_s, message)
+        return [by_time[t] for t in sorted(by_time)]

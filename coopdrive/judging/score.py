@@ -1,0 +1,143 @@
+"""Scores a run from its messages with the simulator's judge (services/sim/metrics.py).
+
+Everything is computed from the recorded GroundTruth samples (10 Hz in the follow world), so scoring a
+recording afterwards and scoring the same messages live give the same numbers.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from coopdrive.judging.run_messages import RunMessages
+from coopdrive.services.sim import metrics as judge_metrics
+from coopdrive.services.sim.truth_series import TruthSeries
+
+# Counts are integers in the output; everything else is a float with its unit in the key.
+COUNT_KEYS = ("collisions", "safety_circle_violations", "id_switches", "truth_samples")
+# A scene object is taken for the true vehicle whose rear bumper centre is this close.
+ASSOCIATION_GATE_M = 3.0
+
+
+class ScoreError(ValueError):
+    """A recording that cannot be scored; str() says why."""
+
+
+@dataclass(frozen=True)
+class JudgingParameters:
+    """What the judge needs beyond the truth; defaults are the follow scenario's (eq. 4 Heudiasyc r, h)."""
+
+    safety_radius_m: float = judge_metrics.DEFAULT_SAFETY_RADIUS_M
+    standstill_m: float = judge_metrics.DEFAULT_STANDSTILL_M
+    headway_s: float = judge_metrics.DEFAULT_HEADWAY_S
+    string_start_s: float = 0.0
+    string_frequency_hz: float | None = None
+    # Leader first; empty: the vehicles of the leading lane ordered along it at the first sample.
+    platoon: tuple[str, ...] = ()
+
+
+def truth_series(messages: RunMessages) -> TruthSeries:
+    truth = messages.sorted_truth()
+    if not truth:
+        raise ScoreError("no world/ground_truth messages to score")
+    return TruthSeries.from_ground_truth(truth)
+
+
+def default_platoon(series: TruthSeries) -> list[str]:
+    """Vehicles in the first vehicle's lane at the first sample, front to back."""
+    _, vehicles = series.frames[0]
+    if not vehicles:
+        return []
+    lane = vehicles[0].lane_index
+    in_lane = [v for v in vehicles if v.lane_index == lane]
+    return [v.vehicle_id for v in sorted(in_lane, key=lambda v: v.station_m, reverse=True)]
+
+
+def _predecessor_references(series: TruthSeries, platoon: list[str]) -> dict[str, judge_metrics.SpeedReference]:
+    """Each automated follower's reference speed is its predecessor's (what the live follow judge uses)."""
+    references = {}
+    for leader, follower in zip(platoon, platoon[1:]):
+        if follower in series.automated:
+            references[follower] = lambda _t, speeds=series.get(leader, "speed_mps"): speeds
+    return references
+
+
+def _rear_centres(series: TruthSeries, vehicle_id: str, time_s: float) -> tuple[float, float]:
+    """The true rear bumper centre at a time (the scene's object reference point), interpolated."""
+    def at(name: str) -> float:
+        values = series.get(vehicle_id, name)
+        valid = np.isfinite(values)
+        return float(np.interp(time_s, series.time_s[valid], values[valid])) if valid.any() else math.nan
+
+    x, y, heading, length = at("x_m"), at("y_m"), at("heading_rad"), at("length_m")
+    back = judge_metrics.geometry.rear_overhang_m(length)
+    return x - back * math.cos(heading), y - back * math.sin(heading)
+
+
+def associations(series: TruthSeries, messages: RunMessages, gate_m: float = ASSOCIATION_GATE_M) -> list[dict]:
+    """Per scene message, true vehicle id -> the object id the stack gave it (nearest within the gate)."""
+    frames = []
+    start, end = series.time_s[0], series.time_s[-1]
+    for observer, scenes in sorted(messages.scenes.items()):
+        others = [vid for vid in series.vehicle_ids if vid != observer]
+        for scene in sorted(scenes, key=lambda s: s.header.sample_time_s):
+            time_s = scene.header.sample_time_s
+            if not start <= time_s <= end:
+                continue
+            truths = {vid: _rear_centres(series, vid, time_s) for vid in others}
+            best: dict[str, tuple[float, int]] = {}
+            for obj in scene.objects:
+                for vid, (x, y) in truths.items():
+                    distance = math.hypot(obj.position.x_m - x, obj.position.y_m - y)
+                    if distance < gate_m and distance < best.get(vid, (math.inf, 0))[0]:
+                        best[vid] = (distance, obj.object_id)
+            frames.append({f"{observer}:{vid}": object_id for vid, (_, object_id) in best.items()})
+    return frames
+
+
+def _position_estimates(series: TruthSeries, messages: RunMessages) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    estimates = {}
+    for vehicle_id, states in messages.ego_states.items():
+        if vehicle_id not in series.values or not states:
+            continue
+        times = np.array([s.header.sample_time_s for s in states])
+        xy = np.array([[s.x_m, s.y_m] for s in states])
+        estimates[vehicle_id] = (times, xy)
+    return estimates
+
+
+def _clean(metrics: dict[str, float]) -> dict[str, float | int | None]:
+    """JSON-ready: counts as int, non-finite values (nothing to measure) as None."""
+    cleaned: dict[str, float | int | None] = {}
+    for key, value in sorted(metrics.items()):
+        if value is None or not math.isfinite(value):
+            cleaned[key] = None
+        elif key in COUNT_KEYS:
+            cleaned[key] = int(value)
+        else:
+            cleaned[key] = float(value)
+    return cleaned
+
+
+def score_messages(messages: RunMessages, parameters: JudgingParameters = JudgingParameters()) -> dict:
+    series = truth_series(messages)
+    platoon = list(parameters.platoon) or default_platoon(series)
+    scored = judge_metrics.judge(
+        series, platoon=platoon, reference_speed_mps=_predecessor_references(series, platoon),
+        safety_radius_m=parameters.safety_radius_m, standstill_m=parameters.standstill_m,
+        headway_s=parameters.headway_s, string_start_s=parameters.string_start_s,
+        string_frequency_hz=parameters.string_frequency_hz,
+        position_estimates=_position_estimates(series, messages))
+    if messages.scenes:
+        scored["id_switches"] = float(judge_metrics.identity_switches(associations(series, messages)))
+    scored["truth_samples"] = float(series.time_s.size)
+    scored["truth_duration_s"] = float(series.time_s[-1] - series.time_s[0])
+    return _clean(scored)
+
+
+def score_recording(path: str | Path, parameters: JudgingParameters = JudgingParameters()) -> dict:
+    """The judge's metrics of an MCAP recording, snake_case keys with units (see score_messages)."""
+    return score_messages(RunMessages.from_recording(path), parameters)
