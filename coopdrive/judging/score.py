@@ -122,8 +122,11 @@ def _clean(metrics: dict[str, float]) -> dict[str, float | int | None]:
     return cleaned
 
 
-def score_messages(messages: RunMessages, parameters: JudgingParameters = JudgingParameters()) -> dict:
-    series = truth_series(messages)
+def score_series(series: TruthSeries, parameters: JudgingParameters = JudgingParameters(),
+                 messages: RunMessages | None = None) -> dict:
+    """The judge's metrics of a truth series; the stacks' ego states and scenes in `messages` add
+    position_rmse_m and id_switches."""
+    messages = messages if messages is not None else RunMessages()
     platoon = list(parameters.platoon) or default_platoon(series)
     scored = judge_metrics.judge(
         series, platoon=platoon, reference_speed_mps=_predecessor_references(series, platoon),
@@ -136,6 +139,10 @@ def score_messages(messages: RunMessages, parameters: JudgingParameters = Judgin
     scored["truth_samples"] = float(series.time_s.size)
     scored["truth_duration_s"] = float(series.time_s[-1] - series.time_s[0])
     return _clean(scored)
+
+
+def score_messages(messages: RunMessages, parameters: JudgingParameters = JudgingParameters()) -> dict:
+    return score_series(truth_series(messages), parameters, messages)
 
 
 def score_recording(path: str | Path, parameters: JudgingParameters = JudgingParameters()) -> dict:
