@@ -53,7 +53,18 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--duration", type=float, help="simulated seconds (default: the scenario's)")
     run.add_argument("--logs", type=Path, help="folder for each service's log")
     run.add_argument("--json", action="store_true", help="print the summary as JSON")
+    run.add_argument("--report", type=Path, metavar="DIR",
+                     help="write metrics.json, plots and index.html to DIR (records to DIR/run.mcap without --record)")
     run.set_defaults(handler=_run)
+
+    score = commands.add_parser("score", help="judge a recording from its ground truth")
+    score.add_argument("file", type=Path)
+    score.add_argument("--scenario", help="judging settings of this scenario (default: the recorded one)")
+    score.add_argument("--json", action="store_true", help="print the metrics as JSON")
+    score.set_defaults(handler=_score)
+
+    scenarios = commands.add_parser("scenarios", help="list the scenarios with a one-line description")
+    scenarios.set_defaults(handler=_scenarios)
 
     record = commands.add_parser("record", help="record a live bus to MCAP until Ctrl-C")
     record.add_argument("file", type=Path)
@@ -104,12 +115,30 @@ def _run(args) -> int:
 
     options = RunOptions(scenario=args.scenario, seed=args.seed, realtime=args.realtime, record=args.record,
                          gateway_port=args.gateway, duration_s=args.duration, log_dir=args.logs)
-    result = run_scenario(options)
+    if args.report is not None:
+        from coopdrive.judging.commands import report_notice, run_with_report
+
+        result = run_with_report(options, args.report)
+        report_notice(args.report)
+    else:
+        result = run_scenario(options)
     if args.json:
         print(json.dumps(summary_dict(result), indent=2))
     else:
         print_summary(result, recording=args.record)
     return EXIT_OK if result.success else EXIT_FAILED
+
+
+def _score(args) -> int:
+    from coopdrive.judging.commands import score_command
+
+    return score_command(args.file, args.json, args.scenario)
+
+
+def _scenarios(args) -> int:
+    from coopdrive.judging.commands import scenarios_command
+
+    return scenarios_command()
 
 
 def _record(args) -> int:

@@ -29,6 +29,8 @@ class RunMessages:
     truth: list[sim_pb2.GroundTruth] = field(default_factory=list)
     ego_states: dict[str, list[ego_pb2.EgoState]] = field(default_factory=dict)
     scenes: dict[str, list[scene_pb2.Scene]] = field(default_factory=dict)
+    # The simulator's world/result, when the run got that far (names the scenario).
+    result: sim_pb2.RunResult | None = None
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False, compare=False)
 
     def add(self, topic: str, message: Message) -> None:
@@ -39,6 +41,8 @@ class RunMessages:
                 self.ego_states.setdefault(vehicle_of(topic), []).append(message)
             elif isinstance(message, scene_pb2.Scene) and topic.endswith(SCENE_SUFFIX):
                 self.scenes.setdefault(vehicle_of(topic), []).append(message)
+            elif isinstance(message, sim_pb2.RunResult) and self.result is None:
+                self.result = message
 
     @classmethod
     def from_recording(cls, path: str | Path) -> RunMessages:
