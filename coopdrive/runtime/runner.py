@@ -78,6 +78,8 @@ class ServiceRunner:
         self._pending_clocks: deque[sim_pb2.SimClock] = deque()
         self._last_step = -1
         self._step_s = 0.0
+        # From the first simulator clock: lockstep or paced to wall time; None before it.
+        self._lockstep: bool | None = None
         self.bus = Bus(bus_config)
         self.service = service_cls(config, self)
         self._master = ClockMaster(self) if isinstance(self.service, ClockMaster.Driven) else None
@@ -190,11 +192,13 @@ class ServiceRunner:
     def _handle_follower_event(self, kind: _Event, payload) -> None:
         if kind is _Event.DATA:
             self.note_received(payload)
-            if self._clock_mode is ClockMode.SIM:
-                self._dispatcher.add(payload)  # handled in step order, never in arrival order
+            if self._clock_mode is ClockMode.SIM and self._lockstep is not False:
+                # Lockstep (or not known yet): handled in step order, never in arrival order.
+                self._dispatcher.add(payload)
             else:
                 self.dispatch(payload)
         elif kind is _Event.CLOCK:
+            self._lockstep = payload.lockstep
             if payload.lockstep:
                 self._queue_clock(payload)
             else:

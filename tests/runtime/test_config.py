@@ -14,8 +14,8 @@ def test_overrides_keep_their_types(tmp_path):
     path.write_text("rate_hz: 5\n")
     from coopdrive.services.planner.service import PlannerService
 
-    config = load_config(PlannerService.Config, path, ["desired_speed_mps=22.5"])
-    assert config.rate_hz == 5 and config.desired_speed_mps == 22.5
+    config = load_config(PlannerService.Config, path, ["station_id=7"])
+    assert config.rate_hz == 5 and config.station_id == 7
 
 
 def test_an_unknown_key_is_named_with_the_file(tmp_path):
