@@ -1,0 +1,113 @@
+import math
+
+import pytest
+
+from coopdrive.judging.run_messages import RunMessages
+from coopdrive.judging.score import JudgingParameters, ScoreError, score_messages, score_recording
+from tests.judging.synthetic import sinusoid_chain_frames, truth_at, write_two_car_recording
+
+
+@pytest.fixture(scope="module")
+def two_car_metrics(tmp_path_factory):
+    return score_recording(write_two_car_recording(tmp_path_factory.mktemp("score") / "two_cars.mcap"))
+
+
+def test_the_gap_is_bumper_to_bumper_and_its_minimum_is_at_the_last_sample(two_car_metrics):
+    # gap = (30 + 10 t - 1) - (12 t + 4) = 25 - 2 t, smallest at t = 1 s
+    assert two_car_metrics["min_gap_m"] == pytest.approx(23.0)
+    assert two_car_metrics["min_time_gap_s"] == pytest.approx(23.0 / 12.0)
+    assert two_car_metrics["collisions"] == 0
+    assert two_car_metrics["safety_circle_violations"] == 0
+
+
+def test_spacing_error_is_the_gap_minus_six_metres_plus_one_and_a_half_seconds_of_speed(two_car_metrics):
+    # 25 - 2 t - (6 + 1.5 * 12) = 1 - 2 t over t = 0, 0.1, ..., 1
+    assert two_car_metrics["spacing_error_m"] == pytest.approx(0.0, abs=1e-9)
+    assert two_car_metrics["spacing_error_max_m"] == pytest.approx(1.0)
+    assert two_car_metrics["spacing_error_sd_m"] == pytest.approx(2 * math.sqrt(0.1))
+
+
+def test_speed_error_is_the_followers_speed_minus_its_predecessors_in_kmh(two_car_metrics):
+    assert two_car_metrics["speed_error_kmh"] == pytest.approx(7.2)
+    assert two_car_metrics["speed_error_max_kmh"] == pytest.approx(7.2)
+    assert two_car_metrics["speed_error_sd_kmh"] == pytest.approx(0.0, abs=1e-9)
+
+
+def test_comfort_and_lateral_figures_are_those_of_the_automated_follower(two_car_metrics):
+    assert two_car_metrics["max_abs_accel_mps2"] == pytest.approx(1.0)
+    assert two_car_metrics["rms_jerk_mps3"] == pytest.approx(1.0)
+    assert two_car_metrics["lateral_error_m"] == pytest.approx(0.1)
+    assert two_car_metrics["lateral_error_max_m"] == pytest.approx(0.1)
+
+
+def test_position_rmse_compares_the_ego_state_with_the_truth_of_the_same_vehicle(two_car_metrics):
+    assert two_car_metrics["position_rmse_m"] == pytest.approx(0.5)
+
+
+def test_an_object_id_change_for_the_same_true_vehicle_is_one_identity_switch(two_car_metrics):
+    assert two_car_metrics["id_switches"] == 1
+
+
+def test_counts_are_integers_and_the_truth_samples_are_reported(two_car_metrics):
+    assert two_car_metrics["truth_samples"] == 11
+    assert two_car_metrics["truth_duration_s"] == pytest.approx(1.0)
+    assert all(isinstance(two_car_metrics[key], int) for key in ("collisions", "safety_circle_violations",
+                                                                 "id_switches"))
+
+
+def test_a_recording_without_ego_states_nor_scenes_has_no_position_rmse_nor_id_switches(tmp_path):
+    from coopdrive.recording.writer import McapRecorder
+    from tests.judging.synthetic import two_car_frames
+
+    recorder = McapRecorder(tmp_path / "truth.mcap")
+    for t, vehicles in two_car_frames():
+        recorder.write("coopdrive/world/ground_truth", truth_at(t, vehicles))
+    recorder.close()
+    metrics = score_recording(tmp_path / "truth.mcap")
+    assert "position_rmse_m" not in metrics and "id_switches" not in metrics
+    assert metrics["min_gap_m"] == pytest.approx(23.0)
+
+
+def test_vehicles_overlapping_for_a_while_count_as_one_collision():
+    messages = RunMessages()
+    for k in range(5):
+        overlap = 1 <= k <= 3
+        messages.add("coopdrive/world/ground_truth", truth_at(k * 0.1, [
+            dict(vehicle_id="a", x_m=10.0, y_m=0.0), dict(vehicle_id="b", x_m=7.0 if overlap else 0.0, y_m=0.0)]))
+    metrics = score_messages(messages)
+    assert metrics["collisions"] == 1
+    assert metrics["min_gap_m"] == pytest.approx(-2.0)
+
+
+def test_messages_arriving_out_of_order_are_scored_in_sample_time_order():
+    frames = [(t, [dict(vehicle_id="a", x_m=t, y_m=0.0, accel_mps2=t)]) for t in (0.0, 0.1, 0.2)]
+    in_order, shuffled = RunMessages(), RunMessages()
+    for t, vehicles in frames:
+        in_order.add("coopdrive/world/ground_truth", truth_at(t, vehicles))
+    for t, vehicles in reversed(frames):
+        shuffled.add("coopdrive/world/ground_truth", truth_at(t, vehicles))
+    assert score_messages(shuffled) == score_messages(in_order)
+
+
+def test_string_gain_of_a_sinusoid_chain_is_the_largest_amplitude_ratio_leader_first():
+    messages = RunMessages()
+    for t, vehicles in sinusoid_chain_frames([2.0, 1.5, 1.2], frequency_hz=0.2):
+        messages.add("coopdrive/world/ground_truth", truth_at(t, vehicles))
+    metrics = score_messages(messages, JudgingParameters(string_frequency_hz=0.2))
+    assert metrics["string_gain"] == pytest.approx(max(1.5 / 2.0, 1.2 / 1.5), rel=1e-6)
+
+
+def test_an_amplifying_chain_has_a_string_gain_above_one():
+    messages = RunMessages()
+    for t, vehicles in sinusoid_chain_frames([1.0, 1.3], frequency_hz=0.25):
+        messages.add("coopdrive/world/ground_truth", truth_at(t, vehicles))
+    assert score_messages(messages, JudgingParameters(string_frequency_hz=0.25))["string_gain"] == \
+        pytest.approx(1.3, rel=1e-6)
+
+
+def test_a_recording_without_ground_truth_cannot_be_scored(tmp_path):
+    from coopdrive.recording.writer import McapRecorder
+
+    McapRecorder(tmp_path / "empty.mcap").close()
+    with pytest.raises(ScoreError, match="ground_truth"):
+        score_recording(tmp_path / "empty.mcap")
