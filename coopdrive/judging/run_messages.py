@@ -9,11 +9,12 @@ from pathlib import Path
 from google.protobuf.message import Message
 
 from coopdrive.recording.reader import read_messages
-from coopdrive.v1 import ego_pb2, scene_pb2, sim_pb2
+from coopdrive.v1 import ego_pb2, scene_pb2, sim_pb2, v2x_pb2
 
 TRUTH_SUFFIX = "/ground_truth"
 EGO_STATE_SUFFIX = "/ego/state"
 SCENE_SUFFIX = "/scene"
+V2X_STATUS_SUFFIX = "/v2x/status"
 
 
 def vehicle_of(topic: str) -> str:
@@ -29,6 +30,8 @@ class RunMessages:
     truth: list[sim_pb2.GroundTruth] = field(default_factory=list)
     ego_states: dict[str, list[ego_pb2.EgoState]] = field(default_factory=dict)
     scenes: dict[str, list[scene_pb2.Scene]] = field(default_factory=dict)
+    # The latest v2x/status of each vehicle (its counters are cumulative).
+    v2x_status: dict[str, v2x_pb2.V2xStatus] = field(default_factory=dict)
     # The simulator's world/result, when the run got that far (names the scenario).
     result: sim_pb2.RunResult | None = None
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False, compare=False)
@@ -41,6 +44,11 @@ class RunMessages:
                 self.ego_states.setdefault(vehicle_of(topic), []).append(message)
             elif isinstance(message, scene_pb2.Scene) and topic.endswith(SCENE_SUFFIX):
                 self.scenes.setdefault(vehicle_of(topic), []).append(message)
+            elif isinstance(message, v2x_pb2.V2xStatus) and topic.endswith(V2X_STATUS_SUFFIX):
+                vehicle_id = vehicle_of(topic)
+                latest = self.v2x_status.get(vehicle_id)
+                if latest is None or message.header.sample_time_s >= latest.header.sample_time_s:
+                    self.v2x_status[vehicle_id] = message
             elif isinstance(message, sim_pb2.RunResult) and self.result is None:
                 self.result = message
 

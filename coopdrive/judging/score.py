@@ -17,7 +17,8 @@ from coopdrive.services.sim import metrics as judge_metrics
 from coopdrive.services.sim.truth_series import TruthSeries
 
 # Counts are integers in the output; everything else is a float with its unit in the key.
-COUNT_KEYS = ("collisions", "safety_circle_violations", "id_switches", "truth_samples")
+COUNT_KEYS = ("collisions", "safety_circle_violations", "id_switches", "truth_samples", "v2x_packets_sent",
+              "v2x_packets_received", "v2x_packets_rejected")
 # A scene object is taken for the true vehicle whose rear bumper centre is this close.
 ASSOCIATION_GATE_M = 3.0
 
@@ -109,6 +110,21 @@ def _position_estimates(series: TruthSeries, messages: RunMessages) -> dict[str,
     return estimates
 
 
+def v2x_metrics(messages: RunMessages) -> dict[str, float]:
+    """V2X figures from each vehicle's last v2x/status: packet totals, the worst link's reception and delay."""
+    statuses = list(messages.v2x_status.values())
+    if not statuses:
+        return {}
+    stations = [station for status in statuses for station in status.stations]
+    figures = {"v2x_packets_sent": float(sum(s.packets_sent for s in statuses)),
+               "v2x_packets_received": float(sum(s.packets_received for s in statuses)),
+               "v2x_packets_rejected": float(sum(sum(s.rejected_by_reason.values()) for s in statuses))}
+    if stations:
+        figures["v2x_reception_ratio_min"] = min(s.reception_ratio for s in stations)
+        figures["v2x_update_delay_p95_max_s"] = max(s.update_delay_p95_s for s in stations)
+    return figures
+
+
 def _clean(metrics: dict[str, float]) -> dict[str, float | int | None]:
     """JSON-ready: counts as int, non-finite values (nothing to measure) as None."""
     cleaned: dict[str, float | int | None] = {}
@@ -136,6 +152,7 @@ def score_series(series: TruthSeries, parameters: JudgingParameters = JudgingPar
         position_estimates=_position_estimates(series, messages))
     if messages.scenes:
         scored["id_switches"] = float(judge_metrics.identity_switches(associations(series, messages)))
+    scored.update(v2x_metrics(messages))
     scored["truth_samples"] = float(series.time_s.size)
     scored["truth_duration_s"] = float(series.time_s[-1] - series.time_s[0])
     return _clean(scored)

@@ -111,3 +111,26 @@ def test_a_recording_without_ground_truth_cannot_be_scored(tmp_path):
     McapRecorder(tmp_path / "empty.mcap").close()
     with pytest.raises(ScoreError, match="ground_truth"):
         score_recording(tmp_path / "empty.mcap")
+
+
+def test_v2x_figures_come_from_each_vehicles_last_status_when_there_is_one():
+    from coopdrive.v1 import v2x_pb2
+    from tests.judging.synthetic import two_car_frames
+
+    messages = RunMessages()
+    for t, vehicles in two_car_frames():
+        messages.add("coopdrive/world/ground_truth", truth_at(t, vehicles))
+    assert not any(key.startswith("v2x_") for key in score_messages(messages))
+    for vehicle_id, sent, ratio, delay_s in (("leader", 10, 0.9, 0.1), ("follower", 12, 0.8, 0.3)):
+        early = v2x_pb2.V2xStatus(packets_sent=1)
+        early.header.sample_time_s = 0.5
+        late = v2x_pb2.V2xStatus(packets_sent=sent, packets_received=sent - 1, rejected_by_reason={"malformed_gn": 2})
+        late.header.sample_time_s = 1.0
+        late.stations.add(station_id=1, reception_ratio=ratio, update_delay_p95_s=delay_s)
+        messages.add(f"coopdrive/{vehicle_id}/v2x/status", late)
+        messages.add(f"coopdrive/{vehicle_id}/v2x/status", early)
+    metrics = score_messages(messages)
+    assert (metrics["v2x_packets_sent"], metrics["v2x_packets_received"], metrics["v2x_packets_rejected"]) == \
+        (22, 20, 4)
+    assert metrics["v2x_reception_ratio_min"] == pytest.approx(0.8)
+    assert metrics["v2x_update_delay_p95_max_s"] == pytest.approx(0.3)
