@@ -115,17 +115,19 @@ def _run(args) -> int:
 
     options = RunOptions(scenario=args.scenario, seed=args.seed, realtime=args.realtime, record=args.record,
                          gateway_port=args.gateway, duration_s=args.duration, log_dir=args.logs)
+    recorded_to = args.record
     if args.report is not None:
-        from coopdrive.judging.commands import report_notice, run_with_report
+        from coopdrive.judging.commands import RECORDING_FILE, report_notice, run_with_report
 
         result = run_with_report(options, args.report)
         report_notice(args.report)
+        recorded_to = recorded_to or args.report / RECORDING_FILE
     else:
         result = run_scenario(options)
     if args.json:
         print(json.dumps(summary_dict(result), indent=2))
     else:
-        print_summary(result, recording=args.record)
+        print_summary(result, recording=recorded_to)
     return EXIT_OK if result.success else EXIT_FAILED
 
 
