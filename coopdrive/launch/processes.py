@@ -12,7 +12,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-TERMINATE_GRACE_S = 2.5
+TERMINATE_GRACE_S = 1.5
 
 
 @dataclass

@@ -53,7 +53,8 @@ def merged(base: dict, override: dict) -> dict:
 
 
 def build_specs(options: RunOptions) -> list[ServiceSpec]:
-    sim = SimConfig(scenario=options.scenario, seed=options.seed, lockstep=not options.realtime)
+    # --realtime paces the lockstep run to the wall clock: it is watchable and still deterministic.
+    sim = SimConfig(scenario=options.scenario, seed=options.seed, lockstep=True, paced=options.realtime)
     if options.duration_s is not None:
         sim.duration_s = options.duration_s
     stacks = [v.vehicle_id for v in sim.world.vehicles if not v.speed_profile]

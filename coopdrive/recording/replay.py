@@ -25,6 +25,7 @@ from coopdrive.runtime.clock import SimulationClock
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
 from coopdrive.runtime.participants import ParticipantTracker
 from coopdrive.runtime.registry import service_class
+from coopdrive.runtime.service import SequenceCounter
 from coopdrive.runtime.timers import TriggerSet
 
 
@@ -44,7 +45,7 @@ class ReplayContext:
     handlers: dict = field(default_factory=lambda: defaultdict(list))
     outputs: list[tuple[str, Message]] = field(default_factory=list)
     liveliness_handlers: list = field(default_factory=list)
-    _sequence: dict = field(default_factory=lambda: defaultdict(int))
+    _sequence: SequenceCounter | None = None
     layout: KeyLayout = field(default_factory=KeyLayout)
 
     def now_s(self) -> float:
@@ -57,14 +58,9 @@ class ReplayContext:
         self.publish_for(self.vehicle_id, topic, message, sample_time_s)
 
     def publish_for(self, vehicle_id: str, topic: str, message: Message, sample_time_s: float | None = None) -> None:
-        now = self.clock.now_s()
-        self._sequence[f"{vehicle_id}/{topic}"] += 1
-        header = message.header
-        header.sent_time_s = now
-        header.sample_time_s = now if sample_time_s is None else sample_time_s
-        header.vehicle_id = vehicle_id
-        header.sender = self.service_name
-        header.sequence = self._sequence[f"{vehicle_id}/{topic}"]
+        if self._sequence is None:
+            self._sequence = SequenceCounter(self.service_name)
+        self._sequence.stamp(message, vehicle_id, topic, self.clock.now_s(), sample_time_s)
         self.outputs.append((self.layout.topic(vehicle_id, topic), message))
 
     def every(self, period_s: float, handler: Callable[[float], None]) -> None:

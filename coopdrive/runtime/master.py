@@ -21,7 +21,9 @@ STALL_WARNING_S = 10.0
 class ClockSettings:
     step_s: float = 0.01
     lockstep: bool = True
-    # Wall pacing when not in lockstep: 1.0 = real time.
+    # Never run ahead of the wall clock scaled by realtime_factor (1.0 = real time). With lockstep
+    # too, a machine too slow for real time runs slower instead of starving the stack.
+    paced: bool = False
     realtime_factor: float = 1.0
     # "<vehicle>/<service>" of every service in the barrier.
     participants: list[str] = field(default_factory=list)
@@ -73,8 +75,9 @@ class ClockMaster:
                 lag = max(1, self._settings.feedback_delay_steps)
                 if self._step >= lag and not self._wait_for_step_done(self._step - lag):
                     break
-            elif not self._wait_until(wall_start + time_s / self._settings.realtime_factor):
-                break
+            if self._settings.paced or not self._settings.lockstep:
+                if not self._wait_until(wall_start + time_s / self._settings.realtime_factor):
+                    break
             self._runner.run_step(self._step, time_s)
             self._publish_clock()
             self._step += 1

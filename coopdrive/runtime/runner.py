@@ -34,7 +34,7 @@ from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
 from coopdrive.runtime.master import ClockMaster
 from coopdrive.runtime.participants import ParticipantTracker
 from coopdrive.runtime.pipeline import participant_name, split_participant
-from coopdrive.runtime.service import Service, ServiceConfig
+from coopdrive.runtime.service import SequenceCounter, Service, ServiceConfig
 from coopdrive.runtime.timers import TriggerSet
 from coopdrive.v1 import diagnostics_pb2, sim_pb2
 
@@ -69,7 +69,7 @@ class ServiceRunner:
         self._liveliness_handlers: list[Callable[[str, bool], None]] = []
         self._participant_tracker = ParticipantTracker()
         self._triggers = TriggerSet()
-        self._sequence: dict[str, int] = defaultdict(int)
+        self._sequence = SequenceCounter(service_cls.name)
         self._stop = threading.Event()
         self._stop_reason = ""
         self._started_monotonic = time.monotonic()
@@ -104,14 +104,7 @@ class ServiceRunner:
 
     def publish_for(self, vehicle_id: str, topic: str, message: Message, sample_time_s: float | None = None) -> None:
         """Publishes under another vehicle's namespace (the simulator feeds every vehicle)."""
-        now = self._clock.now_s()
-        self._sequence[f"{vehicle_id}/{topic}"] += 1
-        header = message.header
-        header.sent_time_s = now
-        header.sample_time_s = now if sample_time_s is None else sample_time_s
-        header.vehicle_id = vehicle_id
-        header.sender = self._service_name
-        header.sequence = self._sequence[f"{vehicle_id}/{topic}"]
+        self._sequence.stamp(message, vehicle_id, topic, self._clock.now_s(), sample_time_s)
         self.bus.publish(vehicle_id, topic, message)
 
     def every(self, period_s: float, handler: Callable[[float], None]) -> None:
@@ -266,7 +259,7 @@ class ServiceRunner:
 
     def publish_step_done(self, step: int) -> None:
         marker = sim_pb2.StepDone(step=step, service=self._service_name, next_step=self._next_active_step(step),
-                                  sequences=self._sequence)
+                                  sequences=self._sequence.last)
         marker.header.sent_time_s = self._clock.now_s()
         marker.header.vehicle_id = self.vehicle_id
         marker.header.sender = self._service_name
@@ -277,7 +270,7 @@ class ServiceRunner:
 
     @property
     def published_sequences(self) -> dict[str, int]:
-        return dict(self._sequence)
+        return dict(self._sequence.last)
 
     def _next_active_step(self, step: int) -> int:
         next_due = self._triggers.next_due_s()

@@ -41,6 +41,24 @@ class ServiceContext(Protocol):
     def request_stop(self, reason: str) -> None: ...
 
 
+class SequenceCounter:
+    """Numbers each service's messages per "<vehicle>/<topic>" and fills their Header."""
+
+    def __init__(self, sender: str):
+        self.sender = sender
+        self.last: dict[str, int] = {}
+
+    def stamp(self, message: Message, vehicle_id: str, topic: str, now_s: float, sample_time_s: float | None) -> None:
+        key = f"{vehicle_id}/{topic}"
+        self.last[key] = self.last.get(key, 0) + 1
+        header = message.header
+        header.sent_time_s = now_s
+        header.sample_time_s = now_s if sample_time_s is None else sample_time_s
+        header.vehicle_id = vehicle_id
+        header.sender = self.sender
+        header.sequence = self.last[key]
+
+
 class ServiceConfig(BaseModel):
     """Base of every service's config: unknown keys are errors, not silently ignored."""
 

@@ -47,6 +47,8 @@ class SimConfig(ServiceConfig):
     duration_s: float = 60.0
     step_s: float = 0.02
     lockstep: bool = True
+    # Pace to the wall clock (--realtime); with lockstep the stack still never falls behind.
+    paced: bool = False
     realtime_factor: float = 1.0
     participants: list[str] = Field(default_factory=list)
     startup_timeout_s: float = 60.0
@@ -129,7 +131,7 @@ class SimService(Service, ClockMaster.Driven):
     # ----- ClockMaster.Driven ---------------------------------------------------------------
     def clock_settings(self) -> ClockSettings:
         c: SimConfig = self.config
-        return ClockSettings(step_s=c.step_s, lockstep=c.lockstep, realtime_factor=c.realtime_factor,
+        return ClockSettings(step_s=c.step_s, lockstep=c.lockstep, paced=c.paced, realtime_factor=c.realtime_factor,
                              participants=list(c.participants), startup_timeout_s=c.startup_timeout_s,
                              feedback_delay_steps=c.feedback_delay_steps if c.lockstep else 1)
 
