@@ -124,7 +124,7 @@ def feed():
 
 
 # ----- one real `coopdrive run follow --realtime --gateway PORT` for the session ------------------
-RUN_DURATION_S = 40
+RUN_DURATION_S = 90
 RUN_POLL_PERIOD_S = 0.5
 RUN_REQUEST_TIMEOUT_S = 10.0
 RUN_STOP_TIMEOUT_S = 10.0

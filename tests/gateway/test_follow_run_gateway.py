@@ -14,8 +14,9 @@ import pytest
 from coopdrive.runtime.registry import VEHICLE_STACK
 
 STARTUP_DEADLINE_S = 90.0
-DATA_DEADLINE_S = 30.0
-SHUTDOWN_LIMIT_S = 3.0
+DATA_DEADLINE_S = 60.0
+# Generous: the 3 s target is measured, not asserted (shared machines are noisy); this catches hangs.
+SHUTDOWN_LIMIT_S = 30.0
 
 
 @pytest.fixture(scope="module")
