@@ -60,7 +60,8 @@ def test_the_v2x_process_exchanges_packets_with_the_radio_box_and_reports_the_re
             while not statuses.empty():
                 status = statuses.get().message
                 # ACTIVE or, on a loaded machine, LOST between two of our sends: either way it was heard.
-                if any(s.station_id == REMOTE_STATION_ID and s.messages_received > 0 for s in status.stations):
+                if status.packets_sent > 0 and any(
+                        s.station_id == REMOTE_STATION_ID and s.messages_received > 0 for s in status.stations):
                     active_status = status
             time.sleep(PERIOD_S)
         assert process.poll() is None, process.stderr.read()
