@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 import pymap3d
 
+from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.roadmap.lane import Lane, wrap_angle_rad
 
 MAP_PACKAGE = "coopdrive.maps"
@@ -67,6 +68,7 @@ class RoadMap:
     def __init__(self, origin: tuple[float, float, float], lanes: list[Lane], zones: dict[str, Zone] | None = None,
                  name: str = "") -> None:
         self.origin = origin
+        self._plane = LocalTangentPlane(*origin)
         self.lanes = lanes
         self.zones = zones or {}
         self.name = name
@@ -119,12 +121,10 @@ class RoadMap:
 
     # --- frames --------------------------------------------------------------------------------
     def to_enu(self, lat_deg: float, lon_deg: float, alt_m: float = 0.0) -> tuple[float, float, float]:
-        e, n, u = pymap3d.geodetic2enu(lat_deg, lon_deg, alt_m, *self.origin)
-        return float(e), float(n), float(u)
+        return self._plane.to_enu(lat_deg, lon_deg, alt_m)
 
     def to_geodetic(self, x_m: float, y_m: float, z_m: float = 0.0) -> tuple[float, float, float]:
-        lat, lon, alt = pymap3d.enu2geodetic(x_m, y_m, z_m, *self.origin)
-        return float(lat), float(lon), float(alt)
+        return self._plane.to_geodetic(x_m, y_m, z_m)
 
     # --- queries -------------------------------------------------------------------------------
     def lane(self, lane_id: str) -> Lane:

@@ -13,8 +13,8 @@ from collections import Counter
 from dataclasses import dataclass
 
 import numpy as np
-import pymap3d
 
+from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.roadmap import RoadMap
 from coopdrive.services.geolocation.config import GeolocatorConfig
 from coopdrive.services.geolocation.ekf import GeolocationEkf, gnss_position_std_m
@@ -82,6 +82,7 @@ class Geolocator:
             road_map = RoadMap.load(config.map_name)
         self.road_map = road_map
         self.origin = origin if origin is not None else road_map.origin
+        self.plane = LocalTangentPlane(*self.origin)
         noise = ProcessNoise(config.jerk_std_mps3, config.yaw_accel_std_radps2, config.position_process_std_mps,
                              config.steering_std_rad)
         if config.motion_model is MotionModelKind.KINEMATIC_BICYCLE:
@@ -110,9 +111,8 @@ class Geolocator:
                 and all(map(math.isfinite, (fix.latitude_deg, fix.longitude_deg, fix.altitude_m)))):
             self.counters[InputEvent.FIX_INVALID] += 1
             return None
-        east_m, north_m, _ = pymap3d.geodetic2enu(fix.latitude_deg, fix.longitude_deg, fix.altitude_m,
-                                                  *self.origin)
-        event = _Fix(float(east_m), float(north_m), stds[0], stds[1], fix.fix_mode, fix.speed_mps, fix.course_deg)
+        east_m, north_m, _ = self.plane.to_enu(fix.latitude_deg, fix.longitude_deg, fix.altitude_m)
+        event = _Fix(east_m, north_m, stds[0], stds[1], fix.fix_mode, fix.speed_mps, fix.course_deg)
         return self._add(fix.header.sample_time_s, event)
 
     def on_can_state(self, msg: vehicle_pb2.VehicleCanState) -> Insertion | None:
@@ -272,8 +272,7 @@ class Geolocator:
         state.position_std_m = position_std_m
         since_fix_s = None if self._book.last_fix_time_s is None else time_s - self._book.last_fix_time_s
         state.mode = localisation_mode(True, position_std_m, since_fix_s, self._book.last_fix_mode, self.thresholds)
-        lat, lon, _ = pymap3d.enu2geodetic(x[E], x[N], 0.0, *self.origin)
-        state.latitude_deg, state.longitude_deg = float(lat), float(lon)
+        state.latitude_deg, state.longitude_deg, _ = self.plane.to_geodetic(float(x[E]), float(x[N]))
         if self.road_map is not None:
             match = self.road_map.match(x[E], x[N], x[HEADING])
             if match is not None:

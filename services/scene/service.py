@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-import pymap3d
 from pydantic import Field
 
 from coopdrive.bus import Envelope
+from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.roadmap import RoadMap
 from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.services.scene.config import SceneFusionConfig
@@ -38,6 +38,7 @@ class SceneService(Service):
             self.origin = self.road_map.origin
         else:
             self.origin = (config.origin_lat_deg, config.origin_lon_deg, config.origin_alt_m)
+        self.plane = LocalTangentPlane(*self.origin)
         self.fusion = SceneFusion(config.fusion, lane_of=self._lane_of if self.road_map else None)
         self.ctx.subscribe("ego/state", lambda envelope: self.fusion.on_ego(envelope.message))
         for topic, method in SENSOR_TOPICS.items():
@@ -59,8 +60,7 @@ class SceneService(Service):
         if not (position.HasField("latitude_deg") and position.HasField("longitude_deg")):
             self.count("cam_without_position")
             return
-        east, north, _ = pymap3d.geodetic2enu(position.latitude_deg, position.longitude_deg, self.origin[2],
-                                              *self.origin)
+        east, north, _ = self.plane.to_enu(position.latitude_deg, position.longitude_deg, self.origin[2])
         high = cam.high_frequency
         self.fusion.on_v2v(V2vObservation(
             station_id=cam.station_id, x_m=float(east), y_m=float(north),

@@ -10,8 +10,7 @@ import enum
 import math
 from dataclasses import dataclass
 
-import pymap3d
-
+from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.services.v2x.config import GCDC_RATE_HZ, CamMode, VehicleDimensions, WgsOrigin
 from coopdrive.services.v2x.timebase import generation_delta_time_ms
 from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2
@@ -76,6 +75,7 @@ class CamGenerator:
         self.station_type = station_type
         self.protocol_version = protocol_version
         self.origin = origin
+        self.plane = LocalTangentPlane(origin.lat_deg, origin.lon_deg, origin.alt_m)
         self.vehicle = vehicle
         self.ego: ego_pb2.EgoState | None = None
         self.last_trigger: CamTrigger | None = None
@@ -139,8 +139,7 @@ class CamGenerator:
         o = self.origin
         if ego.latitude_deg or ego.longitude_deg:
             return ego.latitude_deg, ego.longitude_deg, o.alt_m
-        lat, lon, alt = pymap3d.enu2geodetic(ego.x_m, ego.y_m, 0.0, o.lat_deg, o.lon_deg, o.alt_m)
-        return float(lat), float(lon), float(alt)
+        return self.plane.to_geodetic(ego.x_m, ego.y_m)
 
     def _content(self, ego: ego_pb2.EgoState, tai_ms: int) -> its_pb2.CamContent:
         content = its_pb2.CamContent(protocol_version=self.protocol_version, station_id=self.station_id,

@@ -1,0 +1,3 @@
+from coopdrive.geodesy.local_tangent_plane import LocalTangentPlane
+
+__all__ = ["LocalTangentPlane"]
