@@ -44,9 +44,23 @@ def build_parser() -> argparse.ArgumentParser:
     service.add_argument("-v", "--verbose", action="store_true")
     service.set_defaults(handler=_service)
 
+    group = commands.add_parser("group", help="run several services in one process (a whole stack in simulation)")
+    group.add_argument("spec", type=Path, help='JSON: [{"service": NAME, "vehicle": ID, "config": {...}}, ...]')
+    group.add_argument("--connect", action="append", default=[], help="Zenoh endpoint to connect to")
+    group.add_argument("--listen", action="append", default=[], help="Zenoh endpoint to listen on")
+    group.add_argument("--clock", choices=["wall", "sim"], default="wall")
+    group.add_argument("-v", "--verbose", action="store_true")
+    group.set_defaults(handler=_group)
+
     run = commands.add_parser("run", help="run a scenario with the full stack")
-    run.add_argument("scenario")
+    run.add_argument("scenario", help="a scenario name (see `coopdrive scenarios`), a YAML file, or `all`")
     run.add_argument("--seed", type=int, default=1)
+    run.add_argument("--seeds", metavar="A-B", help="run every seed of a range (e.g. 1-20 or 1,4,7-9) in parallel")
+    run.add_argument("--stacks", type=int, metavar="N", help="run the stack on the first N stack vehicles only")
+    run.add_argument("--workers", type=int, default=2, help="parallel runs for `all` and --seeds")
+    run.add_argument("--out", type=Path, metavar="DIR", help="batch runs: metrics.json per run and summary files")
+    run.add_argument("--processes", choices=["service", "vehicle"],
+                     help="one process per service or per vehicle (default: per vehicle when several stacks run)")
     run.add_argument("--realtime", action="store_true", help="pace the simulation to wall time")
     run.add_argument("--record", type=Path, metavar="FILE.mcap")
     run.add_argument("--gateway", type=int, metavar="PORT", help="serve the gateway HTTP API on this port")
@@ -109,12 +123,44 @@ def _service(args) -> int:
     return EXIT_OK
 
 
+def _group(args) -> int:
+    from coopdrive.bus import BusConfig
+    from coopdrive.runtime.config import ConfigError, validate_config
+    from coopdrive.runtime.group import GroupMember, ServiceGroup
+    from coopdrive.runtime.registry import service_class
+    from coopdrive.runtime.runner import ClockMode
+
+    try:
+        entries = json.loads(args.spec.read_text())
+        members = []
+        for index, entry in enumerate(entries):
+            cls = service_class(entry["service"])
+            members.append(GroupMember(cls, validate_config(cls.Config, entry.get("config", {}),
+                                                            f"{args.spec}[{index}]"), entry.get("vehicle", "ego")))
+    except (OSError, ValueError, KeyError, TypeError) as error:
+        raise ConfigError(f"{args.spec}: {error.args[0] if error.args else error}") from None
+    bus = BusConfig(connect=args.connect, listen=args.listen or ["tcp/127.0.0.1:0"])
+    group = ServiceGroup(members, bus, ClockMode(args.clock))
+    group.run()
+    return EXIT_FAILED if group.failed else EXIT_OK
+
+
 def _run(args) -> int:
-    from coopdrive.launch.run import RunOptions, run_scenario
+    from coopdrive.launch.run import RunOptions, build_specs, run_scenario
     from coopdrive.launch.summary import print_summary, summary_dict
 
+    from coopdrive.services.sim.scenario_config import ScenarioError
+
+    if args.scenario == "all" or args.seeds:
+        return _batch(args)
     options = RunOptions(scenario=args.scenario, seed=args.seed, realtime=args.realtime, record=args.record,
-                         gateway_port=args.gateway, duration_s=args.duration, log_dir=args.logs)
+                         gateway_port=args.gateway, duration_s=args.duration, log_dir=args.logs, stacks=args.stacks,
+                         group_per_vehicle=None if args.processes is None else args.processes == "vehicle")
+    try:
+        build_specs(options)  # a bad scenario file stops here, before anything starts
+    except ScenarioError as error:
+        print(f"coopdrive: {error}", file=sys.stderr)
+        return EXIT_USAGE
     recorded_to = args.record
     if args.report is not None:
         from coopdrive.judging.commands import RECORDING_FILE, report_notice, run_with_report
@@ -129,6 +175,20 @@ def _run(args) -> int:
     else:
         print_summary(result, recording=recorded_to)
     return EXIT_OK if result.success else EXIT_FAILED
+
+
+def _batch(args) -> int:
+    from coopdrive.launch.batch import BatchOptions, parse_seeds, run_batch, scenario_names
+
+    try:
+        seeds = parse_seeds(args.seeds) if args.seeds else [args.seed]
+    except ValueError as error:
+        print(f"coopdrive: --seeds: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    scenarios = scenario_names() if args.scenario == "all" else [args.scenario]
+    summary = run_batch(BatchOptions(scenarios=scenarios, seeds=seeds, stacks=args.stacks, workers=args.workers,
+                                     out_dir=args.out, duration_s=args.duration))
+    return EXIT_OK if summary.all_passed else EXIT_FAILED
 
 
 def _score(args) -> int:

@@ -55,10 +55,24 @@ class Bus:
     def __init__(self, config: BusConfig, layout: KeyLayout | None = None):
         self.layout = layout or KeyLayout()
         self._session = zenoh.open(config.to_zenoh())
+        self._owns_session = True
         self._publishers: dict[str, zenoh.Publisher] = {}
         self._declared: list = []
         self._lock = threading.Lock()
         self.decode_errors = 0
+
+    def sharing(self) -> Bus:
+        """Another Bus on this one's session: services composed in one process reach each other without
+        a socket. Its close() undeclares only its own entities; the session closes with this Bus."""
+        shared = object.__new__(Bus)
+        shared.layout = self.layout
+        shared._session = self._session
+        shared._owns_session = False
+        shared._publishers = {}
+        shared._declared = []
+        shared._lock = threading.Lock()
+        shared.decode_errors = 0
+        return shared
 
     @property
     def session(self) -> zenoh.Session:
@@ -179,7 +193,7 @@ class Bus:
             except Exception:
                 pass
         self._publishers.clear()
-        if not self._session.is_closed():
+        if self._owns_session and not self._session.is_closed():
             self._session.close()
 
 

@@ -1,4 +1,5 @@
-"""ServiceProcesses: one OS process per service, each running `coopdrive service NAME`."""
+"""ServiceProcesses: the OS processes of a run, one per service (`coopdrive service NAME`) or one per
+group of services (`coopdrive group SPEC`, a vehicle's whole stack in simulation)."""
 
 from __future__ import annotations
 
@@ -32,28 +33,44 @@ class ServiceProcesses:
         self._clock = clock
         self._config_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-"))
         self._log_dir = log_dir
+        # Process name ("<vehicle>/<service>" or "<vehicle>/group") -> process.
         self.processes: dict[str, subprocess.Popen] = {}
+        # Participant -> the name of the process it runs in.
+        self.process_of: dict[str, str] = {}
 
     def start(self, spec: ServiceSpec) -> None:
         config_path = self._config_dir / f"{spec.vehicle_id}-{spec.service}.json"
         config_path.write_text(json.dumps(spec.config))
-        command = [sys.executable, "-m", "coopdrive.cli", "service", spec.service, "--vehicle", spec.vehicle_id,
-                   "--connect", self._connect, "--clock", self._clock, "--config", str(config_path)]
+        self._spawn(spec.participant, [spec], ["service", spec.service, "--vehicle", spec.vehicle_id,
+                                               "--config", str(config_path)])
+
+    def start_group(self, name: str, specs: list[ServiceSpec]) -> None:
+        """Runs `specs` in one process named `name` (e.g. "v3/group")."""
+        spec_path = self._config_dir / f"{name.replace('/', '-')}.json"
+        spec_path.write_text(json.dumps([{"service": s.service, "vehicle": s.vehicle_id, "config": s.config}
+                                         for s in specs]))
+        self._spawn(name, specs, ["group", str(spec_path)])
+
+    def _spawn(self, name: str, specs: list[ServiceSpec], arguments: list[str]) -> None:
+        command = [sys.executable, "-m", "coopdrive.cli", *arguments, "--connect", self._connect,
+                   "--clock", self._clock]
         output = None
         if self._log_dir is not None:
             self._log_dir.mkdir(parents=True, exist_ok=True)
-            output = open(self._log_dir / f"{spec.vehicle_id}-{spec.service}.log", "wb")
-        self.processes[spec.participant] = subprocess.Popen(
+            output = open(self._log_dir / f"{name.replace('/', '-')}.log", "wb")
+        self.processes[name] = subprocess.Popen(
             command, stdin=subprocess.DEVNULL, stdout=output, stderr=subprocess.STDOUT if output else None,
             start_new_session=True)
+        for spec in specs:
+            self.process_of[spec.participant] = name
 
     def exited(self) -> dict[str, int]:
-        """Participants whose process has ended, with their exit codes."""
+        """Processes that have ended, with their exit codes."""
         return {name: p.returncode for name, p in self.processes.items() if p.poll() is not None}
 
     def kill(self, participant: str) -> None:
-        """Kills one service abruptly (fault injection: a service crash)."""
-        self.processes[participant].kill()
+        """Kills the process running a service abruptly (fault injection: a service crash)."""
+        self.processes[self.process_of[participant]].kill()
 
     def stop_all(self) -> None:
         for process in self.processes.values():

@@ -15,6 +15,7 @@ from coopdrive.bus import Bus, BusConfig
 from coopdrive.bus.keys import WORLD_ID
 from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
 from coopdrive.launch.processes import ServiceProcesses, ServiceSpec
+from coopdrive.launch.scenario_source import resolve_scenario
 from coopdrive.recording.writer import McapRecorder, config_metadata
 from coopdrive.runtime.registry import VEHICLE_STACK
 from coopdrive.services.sim.service import SimConfig
@@ -29,6 +30,10 @@ class RunOptions:
     record: Path | None = None
     gateway_port: int | None = None
     duration_s: float | None = None
+    # Scenario files: how many of the file's stack vehicles run a stack (None: all of them); the others are scripted.
+    stacks: int | None = None
+    # Each vehicle's services in one process (`coopdrive group`); None: only when several stacks run.
+    group_per_vehicle: bool | None = None
     log_dir: Path | None = None
     # Extra config per service name, merged over the defaults (e.g. {"control": {...}}).
     service_overrides: dict[str, dict] = field(default_factory=dict)
@@ -53,12 +58,20 @@ def merged(base: dict, override: dict) -> dict:
 
 
 def build_specs(options: RunOptions) -> list[ServiceSpec]:
+    source = resolve_scenario(options.scenario)
     # --realtime paces the lockstep run to the wall clock: it is watchable and still deterministic.
-    sim = SimConfig(scenario=options.scenario, seed=options.seed, lockstep=True, paced=options.realtime)
+    sim = SimConfig(scenario=source.name, seed=options.seed, lockstep=True, paced=options.realtime)
+    if source.config is not None:
+        sim.scenario_file = str(source.file)
+        sim.stacks = source.stack_vehicles(options.stacks)
+        sim.duration_s, sim.step_s = source.config.duration_s, source.config.step_s
+        stacks = list(sim.stacks)
+        world_needs = sim.stack_overrides()
+    else:
+        stacks = [v.vehicle_id for v in sim.world.vehicles if not v.speed_profile]
+        world_needs = merged(FOLLOW_STACK_CONFIG, sim.stack_overrides())
     if options.duration_s is not None:
         sim.duration_s = options.duration_s
-    stacks = [v.vehicle_id for v in sim.world.vehicles if not v.speed_profile]
-    world_needs = merged(FOLLOW_STACK_CONFIG, sim.stack_overrides())
     specs = [ServiceSpec(name, vehicle, merged(world_needs.get(name, {}), options.service_overrides.get(name, {})))
              for vehicle in stacks for name in VEHICLE_STACK]
     sim.participants = [spec.participant for spec in specs]
@@ -95,17 +108,17 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir)
     started = time.monotonic()
     try:
-        for spec in specs:
-            processes.start(spec)
+        start_processes(processes, specs, options)
         if options.gateway_port is not None:
-            processes.start(ServiceSpec("gateway", "ego", {"port": options.gateway_port}))
+            watched = next(spec.vehicle_id for spec in specs if spec.vehicle_id != WORLD_ID)
+            processes.start(ServiceSpec("gateway", watched, {"port": options.gateway_port}))
         while not finished.wait(0.2):
             crashed = {name: code for name, code in processes.exited().items()
                        if code != 0 and not name.endswith("/gateway")}
             if "world/sim" in processes.exited():
                 finished.wait(1.0)  # the result may still be on its way
                 break
-            if crashed and len(crashed) == len(specs):
+            if crashed and len(crashed) == len(processes.processes):
                 raise RunAborted(f"every service exited: {crashed}")
     finally:
         processes.stop_all()
@@ -121,6 +134,22 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
                                    wall_time_s=time.monotonic() - started)
         return result
     return results[0]
+
+
+def start_processes(processes: ServiceProcesses, specs: list[ServiceSpec], options: RunOptions) -> None:
+    """The simulator alone; each stack as one process per service, or with several stacks (or when asked)
+    one process per vehicle: eight stacks of five services would be forty interpreters on a laptop."""
+    by_vehicle: dict[str, list[ServiceSpec]] = {}
+    for spec in specs:
+        by_vehicle.setdefault(spec.vehicle_id, []).append(spec)
+    stack_count = len(by_vehicle) - (WORLD_ID in by_vehicle)
+    grouped = options.group_per_vehicle if options.group_per_vehicle is not None else stack_count > 1
+    for vehicle_id, vehicle_specs in by_vehicle.items():
+        if grouped and vehicle_id != WORLD_ID:
+            processes.start_group(f"{vehicle_id}/group", vehicle_specs)
+        else:
+            for spec in vehicle_specs:
+                processes.start(spec)
 
 
 def _full_config(spec: ServiceSpec) -> str:

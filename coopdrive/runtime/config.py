@@ -61,7 +61,12 @@ def load_config(model: type[BaseModel], path: str | Path | None = None, override
     data = read_mapping(path) if path else {}
     for assignment in overrides:
         apply_override(data, assignment)
+    return validate_config(model, data, str(path or "--set"))
+
+
+def validate_config(model: type[BaseModel], data: dict[str, Any], source: str) -> BaseModel:
+    """A mapping already in memory (e.g. one entry of a group spec), with the same one-line errors."""
     try:
         return model.model_validate(data)
     except ValidationError as error:
-        raise ConfigError(format_validation_error(str(path or "--set"), error)) from None
+        raise ConfigError(format_validation_error(source, error)) from None

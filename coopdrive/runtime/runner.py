@@ -57,7 +57,8 @@ class _Event(Enum):
 
 class ServiceRunner:
     def __init__(self, service_cls: type[Service], config: ServiceConfig, vehicle_id: str,
-                 bus_config: BusConfig, clock_mode: ClockMode = ClockMode.WALL):
+                 bus_config: BusConfig | None, clock_mode: ClockMode = ClockMode.WALL, bus: Bus | None = None):
+        """`bus`: an existing (shared) Bus to run on instead of opening one from `bus_config`."""
         self.vehicle_id = vehicle_id
         self.log = logging.getLogger(f"coopdrive.{service_cls.name}")
         self._service_name = service_cls.name
@@ -80,7 +81,7 @@ class ServiceRunner:
         self._step_s = 0.0
         # From the first simulator clock: lockstep or paced to wall time; None before it.
         self._lockstep: bool | None = None
-        self.bus = Bus(bus_config)
+        self.bus = bus if bus is not None else Bus(bus_config)
         self.service = service_cls(config, self)
         self._master = ClockMaster(self) if isinstance(self.service, ClockMaster.Driven) else None
 

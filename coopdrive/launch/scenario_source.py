@@ -1,0 +1,46 @@
+"""Finds the scenario a run names: the built-in follow world, a packaged YAML file, or a user's own file."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+from coopdrive.judging.catalogue import BUILT_IN, SCENARIO_PACKAGE
+from coopdrive.services.sim.scenario_config import ScenarioConfig, ScenarioError, VehicleRole, load_scenario
+
+
+@dataclass(frozen=True)
+class ScenarioSource:
+    name: str
+    # None: a world the simulator builds in code.
+    file: Path | None = None
+    config: ScenarioConfig | None = None
+
+    def stack_vehicles(self, stacks: int | None) -> list[str]:
+        """The vehicle ids that run a coopdrive stack: the file's stack vehicles, the first `stacks` of them."""
+        if self.config is None:
+            return []
+        ids = [v.vehicle_id for v in self.config.vehicles if v.role is VehicleRole.STACK]
+        if stacks is not None:
+            if not 1 <= stacks <= len(ids):
+                raise ScenarioError(f"{self.file}: --stacks {stacks}: the scenario has {len(ids)} stack vehicles")
+            ids = ids[:stacks]
+        return ids
+
+
+def resolve_scenario(name_or_path: str) -> ScenarioSource:
+    """Raises ScenarioError (one line) for an unknown name or a file that does not validate."""
+    if name_or_path in BUILT_IN:
+        return ScenarioSource(name_or_path)
+    path = Path(name_or_path)
+    if path.suffix not in (".yaml", ".yml") or not path.exists():
+        packaged = resources.files(SCENARIO_PACKAGE) / f"{name_or_path}.yaml"
+        if not packaged.is_file():
+            known = sorted(set(BUILT_IN) | {entry.name.rsplit(".", 1)[0]
+                                            for entry in resources.files(SCENARIO_PACKAGE).iterdir()
+                                            if entry.name.endswith(".yaml")})
+            raise ScenarioError(f"{name_or_path}: no such scenario or file; known: {', '.join(known)}")
+        path = Path(str(packaged))
+    config = load_scenario(path)
+    return ScenarioSource(config.name, path.resolve(), config)

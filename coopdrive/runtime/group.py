@@ -1,0 +1,75 @@
+"""ServiceGroup: several services in one process, each on its own worker thread, sharing one Zenoh session.
+
+On the vehicle every service is its own process; in simulation a vehicle's whole stack can run as one
+process (`coopdrive group`), which saves a Python interpreter per service and lets the vehicle's services
+reach each other through the shared session without a socket. Each service keeps its own runner, so its
+life cycle, triggers, liveliness token and lockstep barrier are exactly those of a lone process.
+"""
+
+from __future__ import annotations
+
+import logging
+import signal
+import threading
+from dataclasses import dataclass
+
+from coopdrive.bus import Bus, BusConfig
+from coopdrive.runtime.runner import ClockMode, ServiceRunner
+from coopdrive.runtime.service import Service, ServiceConfig
+
+log = logging.getLogger("coopdrive.group")
+
+
+@dataclass
+class GroupMember:
+    service_cls: type[Service]
+    config: ServiceConfig
+    vehicle_id: str
+
+    @property
+    def participant(self) -> str:
+        return f"{self.vehicle_id}/{self.service_cls.name}"
+
+
+class ServiceGroup:
+    def __init__(self, members: list[GroupMember], bus_config: BusConfig, clock_mode: ClockMode = ClockMode.WALL):
+        if not members:
+            raise ValueError("a service group needs at least one service")
+        self._bus = Bus(bus_config)
+        self.runners = [ServiceRunner(m.service_cls, m.config, m.vehicle_id, None, clock_mode, bus=self._bus.sharing())
+                        for m in members]
+        self._members = members
+        self.failed: dict[str, str] = {}
+
+    def run(self) -> dict[str, str]:
+        """Runs every service until SIGINT/SIGTERM or until all have stopped; returns participant -> stop reason."""
+        reasons: dict[str, str] = {}
+        threads = [threading.Thread(target=self._run_one, args=(member, runner, reasons), name=member.participant)
+                   for member, runner in zip(self._members, self.runners)]
+        previous = {}
+        if threading.current_thread() is threading.main_thread():
+            previous = {s: signal.signal(s, lambda sig, _frame: self.request_stop(signal.Signals(sig).name))
+                        for s in (signal.SIGINT, signal.SIGTERM)}
+        try:
+            for thread in threads:
+                thread.start()
+            for thread in threads:
+                while thread.is_alive():
+                    thread.join(0.2)  # short joins keep the main thread responsive to signals
+        finally:
+            for signum, handler in previous.items():
+                signal.signal(signum, handler)
+            self._bus.close()
+        return reasons
+
+    def request_stop(self, reason: str) -> None:
+        for runner in self.runners:
+            runner.request_stop(reason)
+
+    def _run_one(self, member: GroupMember, runner: ServiceRunner, reasons: dict[str, str]) -> None:
+        try:
+            reasons[member.participant] = runner.run()
+        except Exception as error:  # one service failing must not take its neighbours down
+            log.exception("%s stopped with an error", member.participant)
+            self.failed[member.participant] = f"{type(error).__name__}: {error}"
+            reasons[member.participant] = self.failed[member.participant]
