@@ -40,6 +40,8 @@ _ALL = [
     Topic("ground_truth", sim_pb2.GroundTruth, "sim"),
     Topic("result", sim_pb2.RunResult, "sim"),
     Topic("gnss/fix", gnss_pb2.GnssFix, "sim"),
+    Topic("gnss/serial_mark", sim_pb2.WireMark, "sim"),
+    Topic("radio/mark", sim_pb2.WireMark, "sim"),
     Topic("vehicle/state", vehicle_pb2.VehicleCanState, "sim"),
     Topic("vehicle/imu", vehicle_pb2.ImuSample, "sim"),
     Topic("can/vehicle", vehicle_pb2.CanFrame, "sim"),

@@ -123,3 +123,11 @@ class RunResult(_message.Message):
     wall_time_s: float
     metrics: _containers.ScalarMap[str, float]
     def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., scenario: _Optional[str] = ..., seed: _Optional[int] = ..., success: _Optional[bool] = ..., failure_reason: _Optional[str] = ..., sim_time_s: _Optional[float] = ..., wall_time_s: _Optional[float] = ..., metrics: _Optional[_Mapping[str, float]] = ...) -> None: ...
+
+class WireMark(_message.Message):
+    __slots__ = ("header", "written")
+    HEADER_FIELD_NUMBER: _ClassVar[int]
+    WRITTEN_FIELD_NUMBER: _ClassVar[int]
+    header: _header_pb2.Header
+    written: int
+    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., written: _Optional[int] = ...) -> None: ...
