@@ -26,8 +26,20 @@ class _Section(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
 
+class LinkSync(enum.Enum):
+    # A reader thread takes datagrams as they come (the vehicle).
+    FREE = "free"
+    # The simulated radio box publishes radio/mark with how many datagrams it has sent us; each mark is
+    # read up to in step order, so lockstep runs stay deterministic.
+    MARKS = "marks"
+
+
 class RadioLinkConfig(_Section):
     """UDP to the radio box: it sends us raw GN packets on listen_port and takes ours on its port."""
+
+    sync: LinkSync = LinkSync.FREE
+    # How long a mark may wait for its datagrams before they are counted missing.
+    mark_timeout_s: float = Field(2.0, gt=0)
 
     radio_host: str = "127.0.0.1"
     radio_port: int = Field(4400, ge=1, le=65535)

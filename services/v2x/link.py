@@ -10,6 +10,7 @@ from __future__ import annotations
 import socket
 import struct
 import threading
+import time
 from typing import BinaryIO, Callable
 
 from coopdrive.services.v2x.pcap import BROADCAST_MAC, ETHERTYPE_GEONETWORKING, US_PER_S, PcapWriter
@@ -48,6 +49,9 @@ class UdpLink:
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._receive_loop, name="v2x-udp", daemon=True)
         self.send_errors = 0
+        # Lockstep reading (receive_until): datagrams read so far, and those the radio box sent that never came.
+        self.received_count = 0
+        self.missing_datagrams = 0
 
     @property
     def local_address(self) -> tuple[str, int]:
@@ -64,6 +68,27 @@ class UdpLink:
         except OSError:
             self.send_errors += 1
             return False
+
+    def receive_until(self, total_datagrams: int, timeout_s: float) -> list[bytes]:
+        """Lockstep: reads until `total_datagrams` have arrived since the link opened (the radio box's count).
+
+        Returns the datagrams read now; fewer when the timeout passes first (counted in missing_datagrams).
+        """
+        datagrams: list[bytes] = []
+        deadline = time.monotonic() + timeout_s
+        while self.received_count < total_datagrams:
+            remaining = deadline - time.monotonic()
+            if remaining <= 0:
+                self.missing_datagrams += total_datagrams - self.received_count
+                self.received_count = total_datagrams
+                break
+            self._socket.settimeout(min(remaining, RECEIVE_POLL_S))
+            try:
+                datagrams.append(self._socket.recv(self._max_packet_bytes))
+                self.received_count += 1
+            except (socket.timeout, OSError):
+                continue
+        return datagrams
 
     def close(self) -> None:
         self._stop.set()

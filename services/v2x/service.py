@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from coopdrive.bus import Envelope
 from coopdrive.runtime.service import Service
 from coopdrive.services.v2x.codec import ItsMessageId
-from coopdrive.services.v2x.config import GCDC_RATE_HZ, V2xConfig
+from coopdrive.services.v2x.config import GCDC_RATE_HZ, LinkSync, V2xConfig
 from coopdrive.services.v2x.denm_manager import ActionId
 from coopdrive.services.v2x.geonet import parse_gn
 from coopdrive.services.v2x.its_clock import ItsClock
@@ -65,7 +65,10 @@ class V2xService(Service):
         self.ctx.every(1.0 / max(c.iclcm_rate_hz, GCDC_RATE_HZ), self.transmit)
         self.ctx.every(c.receive_flush_period_s, self.flush_received)
         self.ctx.every(1.0 / c.status_rate_hz, self.publish_status)
-        self.link.start()
+        if c.link.sync is LinkSync.MARKS:
+            self.ctx.subscribe("radio/mark", self.on_radio_mark)
+        else:
+            self.link.start()
 
     def stop(self) -> None:
         link = getattr(self, "link", None)
@@ -81,6 +84,11 @@ class V2xService(Service):
 
     def on_command(self, envelope: Envelope) -> None:
         self.transmitter.on_command(envelope.message)
+
+    def on_radio_mark(self, envelope: Envelope) -> None:
+        for datagram in self.link.receive_until(envelope.message.written, self.config.link.mark_timeout_s):
+            self.on_datagram(datagram)
+        self.counters["missing_datagrams"] = self.link.missing_datagrams
 
     def on_datagram(self, data: bytes) -> None:
         now_s = self.ctx.now_s()
