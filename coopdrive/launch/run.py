@@ -13,11 +13,13 @@ from google.protobuf.message import Message
 
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.bus.keys import WORLD_ID
-from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
+from coopdrive.launch.ports import free_tcp_port, free_udp_port, loopback_endpoint
 from coopdrive.launch.processes import ServiceProcesses, ServiceSpec
 from coopdrive.launch.scenario_source import resolve_scenario
+from coopdrive.launch.stack_config import vehicle_overrides
 from coopdrive.recording.writer import McapRecorder, config_metadata
 from coopdrive.runtime.registry import VEHICLE_STACK
+from coopdrive.services.sim.radio_box import RadioPorts
 from coopdrive.services.sim.service import SimConfig
 from coopdrive.v1 import sim_pb2
 
@@ -61,19 +63,25 @@ def build_specs(options: RunOptions) -> list[ServiceSpec]:
     source = resolve_scenario(options.scenario)
     # --realtime paces the lockstep run to the wall clock: it is watchable and still deterministic.
     sim = SimConfig(scenario=source.name, seed=options.seed, lockstep=True, paced=options.realtime)
+    per_vehicle: dict[str, dict[str, dict]] = {}
     if source.config is not None:
-        sim.scenario_file = str(source.file)
-        sim.stacks = source.stack_vehicles(options.stacks)
+        stacks = source.stack_vehicles(options.stacks)
+        radio = {vehicle_id: RadioPorts(free_udp_port(), free_udp_port()) for vehicle_id in stacks}
+        sim.scenario_file, sim.stacks = str(source.file), stacks
+        sim.radio_links = {vehicle_id: vars(ports) for vehicle_id, ports in radio.items()}
         sim.duration_s, sim.step_s = source.config.duration_s, source.config.step_s
-        stacks = list(sim.stacks)
         world_needs = sim.stack_overrides()
+        services = VEHICLE_STACK + ("v2x",)
+        per_vehicle = {v: vehicle_overrides(source.config, v, radio[v]) for v in stacks}
     else:
         stacks = [v.vehicle_id for v in sim.world.vehicles if not v.speed_profile]
         world_needs = merged(FOLLOW_STACK_CONFIG, sim.stack_overrides())
+        services = VEHICLE_STACK
     if options.duration_s is not None:
         sim.duration_s = options.duration_s
-    specs = [ServiceSpec(name, vehicle, merged(world_needs.get(name, {}), options.service_overrides.get(name, {})))
-             for vehicle in stacks for name in VEHICLE_STACK]
+    specs = [ServiceSpec(name, vehicle, merged(merged(world_needs.get(name, {}), per_vehicle.get(vehicle, {}).get(name, {})),
+                                               options.service_overrides.get(name, {})))
+             for vehicle in stacks for name in services]
     sim.participants = [spec.participant for spec in specs]
     sim_config = sim.model_dump(mode="json")
     sim_config.update(options.service_overrides.get("sim", {}))

@@ -81,9 +81,20 @@ class JudgingConfig(_Strict):
     string_frequency_hz: float | None = Field(default=None, gt=0)
 
 
+class Mission(enum.Enum):
+    """What the stacks' planners do in the scenario (coopdrive.v1.Scenario)."""
+
+    FOLLOW = "follow"
+    PLATOON = "platoon"
+    MERGE = "merge"
+    INTERSECTION = "intersection"
+    EMERGENCY = "emergency"
+
+
 class ScenarioConfig(_Strict):
     name: str = Field(min_length=1)
     description: str = ""
+    mission: Mission = Mission.FOLLOW
     map: str = "a270"
     seed: int = Field(default=0, ge=0)
     duration_s: float = Field(gt=0)

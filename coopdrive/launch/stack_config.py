@@ -1,0 +1,37 @@
+"""What each stack vehicle's services must know of its own vehicle in a scenario-file run.
+
+The simulator's stack_overrides() hold what every stack shares (the map, the sensor mounting); this adds
+what differs per vehicle: its ITS station id and MAC, its radio box's ports, its size, its platoon.
+"""
+
+from __future__ import annotations
+
+from coopdrive.services.sim.profiles import PROFILES, ProfileName
+from coopdrive.services.sim.radio_box import RadioPorts
+from coopdrive.services.sim.scenario_config import ScenarioConfig
+
+STATION_TYPE = {ProfileName.PASSENGER_CAR: "passenger_car", ProfileName.TRUCK: "heavy_truck"}
+
+
+def station_mac(station_id: int) -> str:
+    """A locally administered unicast MAC that carries the station id, so captures show who sent what."""
+    octets = [0x02, 0x00] + list(station_id.to_bytes(4, "big"))
+    return ":".join(f"{octet:02x}" for octet in octets)
+
+
+def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts | None) -> dict[str, dict]:
+    vehicle = next(v for v in config.vehicles if v.vehicle_id == vehicle_id)
+    profile = PROFILES[vehicle.profile]
+    v2x: dict = {
+        "station_id": vehicle.station_id,
+        "vehicle_mac": station_mac(vehicle.station_id),
+        "station_type": STATION_TYPE[vehicle.profile],
+        "clock_epoch_utc": config.utc_epoch.isoformat(),
+        "vehicle": {"length_m": profile.length_m, "width_m": profile.width_m,
+                    "rear_axle_location_m": profile.length_m - profile.rear_overhang_m},
+    }
+    if radio is not None:
+        v2x["link"] = {"radio_port": radio.box_port, "listen_port": radio.stack_port, "sync": "marks"}
+    planner = {"station_id": vehicle.station_id, "scenario": f"SCENARIO_{config.mission.name}",
+               "platoon_id": vehicle.platoon or 0}
+    return {"v2x": v2x, "planner": planner}
