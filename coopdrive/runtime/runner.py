@@ -306,6 +306,8 @@ class ServiceRunner:
         for name, value in self.service.counters.items():
             message.counters[name] = value
         message.counters["bus_decode_errors"] = self.bus.decode_errors
+        # CPU the service's own worker thread has used (handlers and triggers): where a run's time goes.
+        message.counters["worker_cpu_s"] = time.thread_time()
         self.publish(f"diagnostics/{self._service_name}", message)
 
     def _service_info(self) -> Message:

@@ -1,0 +1,62 @@
+"""Real-time factor of 1, 4 and 8 full stacks in lockstep (the string scenario), and where the time goes.
+
+Each stack runs as one process (`coopdrive group`); the per-service figures are the CPU seconds of each
+service's worker thread (its handlers and triggers), from the last diagnostics every service published.
+BENCH_STACKS_DURATION_S sets the simulated seconds per run (default 10).
+"""
+
+from __future__ import annotations
+
+import os
+from collections import defaultdict
+
+from rich.console import Console
+from rich.table import Table
+
+from coopdrive.launch.run import RunOptions, run_scenario
+
+SCENARIO = "string"
+STACK_COUNTS = (1, 4, 8)
+DURATION_S = float(os.environ.get("BENCH_STACKS_DURATION_S", "10"))
+
+
+def run(stacks: int) -> tuple[float, dict[str, dict[str, float]]]:
+    worker_cpu_s: dict[str, dict[str, float]] = defaultdict(dict)
+
+    def observe(key: str, message) -> None:
+        parts = key.split("/")
+        if len(parts) == 4 and parts[2] == "diagnostics" and "worker_cpu_s" in message.counters:
+            worker_cpu_s[parts[1]][parts[3]] = message.counters["worker_cpu_s"]
+
+    result = run_scenario(RunOptions(scenario=SCENARIO, stacks=stacks, duration_s=DURATION_S, observer=observe))
+    return result.sim_time_s / max(result.wall_time_s, 1e-9), worker_cpu_s
+
+
+def main() -> None:
+    console = Console()
+    summary = Table(title=f"{SCENARIO}: lockstep, one process per stack, {DURATION_S:.0f} s simulated")
+    for column in ("stacks", "sim_time_s / wall_time_s", "ratio to 1 stack", "stack CPU per simulated s"):
+        summary.add_column(column, justify="right")
+    baseline = None
+    breakdown = None
+    for stacks in STACK_COUNTS:
+        factor, cpu = run(stacks)
+        baseline = baseline or factor
+        stack_cpu_s = sum(sum(services.values()) for vehicle, services in cpu.items() if vehicle != "world")
+        summary.add_row(str(stacks), f"{factor:.2f}", f"{factor / baseline:.2f}", f"{stack_cpu_s / DURATION_S:.2f} s")
+        breakdown = cpu
+    console.print(summary)
+    if breakdown:
+        services = sorted({s for per_vehicle in breakdown.values() for s in per_vehicle})
+        table = Table(title=f"where the time goes, {STACK_COUNTS[-1]} stacks: worker CPU per simulated second (ms)")
+        table.add_column("vehicle")
+        for service in services:
+            table.add_column(service, justify="right")
+        for vehicle in sorted(breakdown):
+            table.add_row(vehicle, *(f"{1e3 * breakdown[vehicle][s] / DURATION_S:.0f}" if s in breakdown[vehicle]
+                                     else "" for s in services))
+        console.print(table)
+
+
+if __name__ == "__main__":
+    main()
