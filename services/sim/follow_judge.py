@@ -60,8 +60,10 @@ class FollowJudge:
             return False, f"{self.collisions} collision(s)"
         if self.min_gap_m <= self.standstill_m:
             return False, f"minimum gap {self.min_gap_m:.2f} m not above the standstill distance {self.standstill_m} m"
+        if not self._spacing_errors_m:
+            return False, f"too short to judge the following: spacing is judged after {self.settle_time_s:.0f} s"
         spacing = self.metrics()["spacing_error_mean_m"]
-        if not self._spacing_errors_m or spacing > self.max_mean_spacing_error_m:
+        if spacing > self.max_mean_spacing_error_m:
             return False, (f"not following: mean spacing error {spacing:.2f} m after {self.settle_time_s:.0f} s "
                            f"exceeds {self.max_mean_spacing_error_m} m")
         return True, ""

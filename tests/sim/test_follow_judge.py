@@ -29,3 +29,10 @@ def test_a_gap_closing_to_zero_is_one_collision():
     assert judge.collisions == 1
     assert judge.verdict() == (False, "1 collision(s)")
     assert judge.metrics()["max_abs_accel_mps2"] == 3.0
+
+
+def test_a_run_that_ends_before_the_settle_time_is_too_short_to_judge():
+    judge = FollowJudge(standstill_m=6.0, time_gap_s=1.5)
+    judge.observe(2.0, "ego", gap_m=30.0, speed_mps=15.0, leader_speed_mps=15.0, accel_mps2=0.0)
+    ok, reason = judge.verdict()
+    assert not ok and reason.startswith("too short to judge")
