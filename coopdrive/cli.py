@@ -77,6 +77,19 @@ def build_parser() -> argparse.ArgumentParser:
     score.add_argument("--json", action="store_true", help="print the metrics as JSON")
     score.set_defaults(handler=_score)
 
+    analyze = commands.add_parser("analyze", help="analyses of controllers and runs")
+    analyses = analyze.add_subparsers(dest="analysis", required=True)
+    string = analyses.add_parser("string", help="predicted string gain per following law, beside a measured run")
+    string.add_argument("--law", action="append", dest="laws", metavar="LAW",
+                        help=f"one of {', '.join(law.value for law in _following_laws())} (default: all)")
+    string.add_argument("--profile", default="car", help="vehicle profile: car or truck")
+    string.add_argument("--time-gap", type=float, help="time gap h in s (default: the profile's)")
+    string.add_argument("--comm-delay", type=float, default=0.1, help="V2V delay in s")
+    string.add_argument("--recording", type=Path, metavar="FILE.mcap", help="a recorded string run to measure")
+    string.add_argument("--out", type=Path, metavar="DIR", help="write the Bode plot here")
+    string.add_argument("--json", action="store_true", help="print the figures as JSON")
+    string.set_defaults(handler=_analyze_string)
+
     scenarios = commands.add_parser("scenarios", help="list the scenarios with a one-line description")
     scenarios.set_defaults(handler=_scenarios)
 
@@ -189,6 +202,31 @@ def _batch(args) -> int:
     summary = run_batch(BatchOptions(scenarios=scenarios, seeds=seeds, stacks=args.stacks, workers=args.workers,
                                      out_dir=args.out, duration_s=args.duration))
     return EXIT_OK if summary.all_passed else EXIT_FAILED
+
+
+def _following_laws():
+    from coopdrive.services.control.string_stability import FollowingLaw
+
+    return list(FollowingLaw)
+
+
+def _analyze_string(args) -> int:
+    from rich.console import Console
+
+    from coopdrive.analysis.string_command import StringAnalysisOptions, analyze_string
+    from coopdrive.judging.score import ScoreError
+    from coopdrive.services.control.string_stability import FollowingLaw
+
+    try:
+        laws = [FollowingLaw(name) for name in args.laws] if args.laws else list(FollowingLaw)
+        options = StringAnalysisOptions(laws, args.profile, args.time_gap, args.comm_delay, args.recording, args.out)
+        figures = analyze_string(options, Console(stderr=args.json))
+    except (ValueError, ScoreError, OSError) as error:
+        print(f"coopdrive: analyze string: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    if args.json:
+        print(json.dumps(figures, indent=2))
+    return EXIT_OK
 
 
 def _score(args) -> int:
