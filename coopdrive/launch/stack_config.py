@@ -6,10 +6,13 @@ what differs per vehicle: its ITS station id and MAC, its radio box's ports, its
 
 from __future__ import annotations
 
+from coopdrive.services.actuation.config import CAR_PEDAL_PROFILE, TRUCK_PEDAL_PROFILE
 from coopdrive.services.sim.profiles import PROFILES, ProfileName
 from coopdrive.services.sim.radio_box import RadioPorts
 from coopdrive.services.sim.scenario_config import ScenarioConfig
 
+# Time constants for a first-order lag to fall below ~2 % of where it started.
+BRAKE_RELEASE_TIME_CONSTANTS = 4.0
 STATION_TYPE = {ProfileName.PASSENGER_CAR: "passenger_car", ProfileName.TRUCK: "heavy_truck"}
 
 
@@ -34,4 +37,15 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
         v2x["link"] = {"radio_port": radio.box_port, "listen_port": radio.stack_port, "sync": "marks"}
     planner = {"station_id": vehicle.station_id, "scenario": f"SCENARIO_{config.mission.name}",
                "platoon_id": vehicle.platoon or 0}
-    return {"v2x": v2x, "planner": planner}
+    sensors = config.sensors_of(vehicle)
+    geolocation = {"geolocator": {"track_width_m": profile.track_width_m, "wheelbase_m": profile.wheelbase_m,
+                                  "antenna_x_m": sensors.gnss.antenna_x_m, "antenna_y_m": sensors.gnss.antenna_y_m,
+                                  "wheel_speed_std_mps": max(sensors.can_state.wheel_speed_sigma_mps, 1e-3)}}
+    truck = vehicle.profile is ProfileName.TRUCK
+    control = {"profile": "truck" if truck else "car"}
+    # The simulated brake pressure follows the actuator's lag: automation braking takes this long to fade
+    # below the override threshold, and must not read as the driver's foot on the brake.
+    release_s = BRAKE_RELEASE_TIME_CONSTANTS * profile.accel_time_constant_s + profile.accel_dead_time_s
+    actuation = {"actuator": {"pedal": (TRUCK_PEDAL_PROFILE if truck else CAR_PEDAL_PROFILE).model_dump(mode="json"),
+                              "override": {"brake_release_grace_s": release_s}}}
+    return {"v2x": v2x, "planner": planner, "geolocation": geolocation, "control": control, "actuation": actuation}

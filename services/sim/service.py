@@ -18,6 +18,8 @@ from coopdrive.runtime.master import ClockMaster, ClockSettings
 from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.services.sim.follow_judge import FollowJudge
 from coopdrive.services.sim.profiles import PROFILES, ProfileName
+from coopdrive.services.sim.scenario_config import load_scenario
+from coopdrive.services.sim.scenario_feed import ScenarioFeed
 from coopdrive.services.sim.vehicle_model import VehicleModel
 from coopdrive.services.sim.world_config import VehicleSpec, WorldConfig
 from coopdrive.services.sim.world_service import FollowWorld
@@ -61,6 +63,12 @@ class SimConfig(ServiceConfig):
     standstill_m: float = 6.0
     time_gap_s: float = 1.5
     world: WorldConfig = Field(default_factory=default_follow_world)
+    # A scenario file (scenarios/*.yaml or a user's own) instead of the built-in follow world.
+    scenario_file: str = ""
+    # Its vehicles that run a coopdrive stack; empty: every stack vehicle of the file.
+    stacks: list[str] = Field(default_factory=list)
+    # vehicle_id -> {"box_port", "stack_port"}: the UDP ports of that vehicle's simulated radio box.
+    radio_links: dict[str, dict[str, int]] = Field(default_factory=dict)
 
     def stack_overrides(self) -> dict[str, dict]:
         """What this world needs in every stack's service configs; the launcher merges its own over them.
@@ -72,6 +80,8 @@ class SimConfig(ServiceConfig):
         engage cooperative (longitudinal) control at once, at speed, without the V2X condition (a vehicle's
         default is to wait for its driver, below 10 km/h, with V2X).
         """
+        if self.scenario_file:
+            return scenario_stack_overrides(self.scenario_file)
         world = self.world
         stacks = [v for v in world.vehicles if not v.speed_profile]
         if not stacks:
@@ -102,12 +112,31 @@ class SimConfig(ServiceConfig):
         }
 
 
+def scenario_stack_overrides(scenario_file: str) -> dict[str, dict]:
+    """What a scenario file's world needs in every stack: its lane map for geolocation and scene, and
+    stacks that engage cooperative control at once, at speed, as a safety driver would at the start."""
+    scenario = load_scenario(scenario_file)
+    fastest_mps = max((v.speed_mps for v in scenario.vehicles), default=0.0)
+    return {
+        "geolocation": {"map_name": scenario.map},
+        "scene": {"map_name": scenario.map},
+        "actuation": {"engage_on_start": "cooperative", "require_v2x": False,
+                      "actuator": {"modes": {"max_engage_speed_mps": fastest_mps + FLYING_START_MARGIN_MPS}}},
+    }
+
+
 class SimService(Service, ClockMaster.Driven):
     name = "sim"
     Config = SimConfig
 
     def start(self) -> None:
         config: SimConfig = self.config
+        self.wall_start_s = time.monotonic()
+        self.feed = None
+        if config.scenario_file:
+            self.feed = ScenarioFeed(self, config.scenario_file, config.stacks, config.radio_links,
+                                     already_delayed_steps=config.feedback_delay_steps - 1)
+            return
         self.world = FollowWorld(config.world, already_delayed_steps=config.feedback_delay_steps - 1)
         self.rng = np.random.default_rng(config.seed)
         self.judge = FollowJudge(config.standstill_m, config.time_gap_s)
@@ -117,7 +146,6 @@ class SimService(Service, ClockMaster.Driven):
         # One codec per vehicle bus (rolling counters are per receiver); the model only maps pedals to a request.
         self.command_codecs = {vehicle_id: VehicleCanCodec() for vehicle_id in self.stack_vehicles}
         self.pedals = VehicleModel(PROFILES[config.pedal_profile], config.step_s)
-        self.wall_start_s = time.monotonic()
         self.finished = False
         for vehicle_id in self.stack_vehicles:
             self.ctx.subscribe("can/command", self.on_can_command, vehicle_id=vehicle_id)
@@ -127,6 +155,10 @@ class SimService(Service, ClockMaster.Driven):
         self.ctx.every(1.0 / world.gnss.rate_hz, self.publish_gnss)
         self.ctx.every(1.0 / world.radar.rate_hz, self.publish_radar)
         self.ctx.every(1.0 / world.ground_truth_rate_hz, self.publish_ground_truth)
+
+    def stop(self) -> None:
+        if getattr(self, "feed", None) is not None:
+            self.feed.close()
 
     # ----- ClockMaster.Driven ---------------------------------------------------------------
     def clock_settings(self) -> ClockSettings:

@@ -1,0 +1,112 @@
+"""MissionJudge: the verdict of a scenario-file run from its ground truth, and the judge's metrics.
+
+A run fails on any collision; beyond that each mission has its own goal, and a failure says which vehicles
+missed it so a user sees why (e.g. merge: who was still in the closed lane at the end).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+from coopdrive.services.sim import metrics as judging
+from coopdrive.services.sim.roadside_unit import RsuEventKind
+from coopdrive.services.sim.scenario_config import Mission, ScenarioConfig, VehicleRole
+from coopdrive.services.sim.truth_series import TruthSeries
+from coopdrive.v1 import sim_pb2
+
+# A vehicle counts as having crossed the competition zone once it was inside it and then this far out.
+ZONE_EXIT_MARGIN_M = 5.0
+
+
+class MissionJudge:
+    def __init__(self, config: ScenarioConfig, stack_ids: Sequence[str]):
+        self.config = config
+        self.stack_ids = list(stack_ids)
+        self.frames: list[tuple[float, list[sim_pb2.VehicleTruth]]] = []
+        self.collisions = 0
+        self._metrics: dict[str, float] | None = None
+
+    def observe(self, time_s: float, truth: sim_pb2.GroundTruth) -> None:
+        self.frames.append((time_s, list(truth.vehicles)))
+        self._metrics = None
+        # Onsets in the newest pair of frames, less the contacts already there in the older one.
+        newest = judging.collisions(TruthSeries.from_frames(self.frames[-2:]))
+        older = judging.collisions(TruthSeries.from_frames(self.frames[-2:-1])) if len(self.frames) >= 2 else 0
+        self.collisions += newest - older
+
+    def metrics(self) -> dict[str, float]:
+        if self._metrics is None:
+            judging_config = self.config.judging
+            series = TruthSeries.from_frames(self.frames) if self.frames else None
+            if series is None:
+                return {"collisions": 0.0}
+            platoon = [v for v in judging_config.platoon if v in series.vehicle_ids]
+            self._metrics = {key: value for key, value in judging.judge(
+                series, platoon=platoon, automated=self.stack_ids, safety_radius_m=judging_config.safety_radius_m,
+                standstill_m=judging_config.standstill_m, headway_s=judging_config.headway_s,
+                string_start_s=judging_config.string_start_s,
+                string_frequency_hz=judging_config.string_frequency_hz).items() if math.isfinite(value)}
+            self._metrics["collisions"] = float(self.collisions)
+        return self._metrics
+
+    def verdict(self) -> tuple[bool, str]:
+        if not self.frames:
+            return False, "the run ended before any ground truth"
+        if self.collisions:
+            return False, f"{self.collisions} collision(s)"
+        mission = self.config.mission
+        if mission is Mission.PLATOON:
+            gain = self.metrics().get("string_gain")
+            if gain is not None and gain >= 1.0:
+                return False, f"string unstable: string gain {gain:.3f} >= 1"
+        elif mission is Mission.MERGE:
+            return self._merge_verdict()
+        elif mission is Mission.INTERSECTION:
+            return self._intersection_verdict()
+        elif mission is Mission.EMERGENCY:
+            return self._emergency_verdict()
+        return True, ""
+
+    def _final(self) -> dict[str, sim_pb2.VehicleTruth]:
+        return {v.vehicle_id: v for v in self.frames[-1][1]}
+
+    def _merge_verdict(self) -> tuple[bool, str]:
+        closed = {event.closed_lane for unit in self.config.roadside_units for event in unit.events
+                  if event.kind is RsuEventKind.ROADWORKS}
+        final = self._final()
+        still = sorted(v for v in self.stack_ids if v in final and final[v].lane_index in closed)
+        if still:
+            return False, f"merge not completed: {', '.join(still)} still in the closed lane at the end"
+        return True, ""
+
+    def _intersection_verdict(self) -> tuple[bool, str]:
+        from coopdrive.roadmap import RoadMap
+
+        zones = RoadMap.load(self.config.map).zones
+        if not zones:
+            return False, f"map {self.config.map} has no competition zone to cross"
+        zone = next(iter(zones.values()))
+        entered: set[str] = set()
+        for _, vehicles in self.frames:
+            for v in vehicles:
+                if math.hypot(v.x_m - zone.x_m, v.y_m - zone.y_m) <= zone.radius_m:
+                    entered.add(v.vehicle_id)
+        final = self._final()
+        crossed = {v for v in entered if v in final
+                   and math.hypot(final[v].x_m - zone.x_m, final[v].y_m - zone.y_m) > zone.radius_m + ZONE_EXIT_MARGIN_M}
+        missing = sorted(set(self.stack_ids) - crossed)
+        if missing:
+            return False, f"intersection not crossed by {', '.join(missing)}"
+        return True, ""
+
+    def _emergency_verdict(self) -> tuple[bool, str]:
+        emergency = [v.vehicle_id for v in self.config.vehicles if v.role is VehicleRole.EMERGENCY]
+        final = self._final()
+        if not emergency or emergency[0] not in final:
+            return False, "no emergency vehicle in the run"
+        passer = final[emergency[0]]
+        behind = sorted(v for v in self.stack_ids if v in final and final[v].station_m > passer.station_m)
+        if behind:
+            return False, f"the emergency vehicle did not get past {', '.join(behind)}"
+        return True, ""

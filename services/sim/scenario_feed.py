@@ -1,0 +1,123 @@
+"""ScenarioFeed: the simulator service's side of a scenario-file run.
+
+It steps ScenarioSim every simulation step, publishes each stack vehicle's sensor outputs on that vehicle's
+topics, plays the radio boxes (RadioBox) between the stacks' v2x services, publishes ground truth, and at
+the end the RunResult with the judge's metrics. SimService wires it; the world logic stays in ScenarioSim.
+"""
+
+from __future__ import annotations
+
+import time
+
+import can
+
+from coopdrive.bus import Envelope
+from coopdrive.bus.keys import WORLD_ID
+from coopdrive.can.codec import VehicleCanCodec
+from coopdrive.can.frames import CanDecodeError
+from coopdrive.roadmap import RoadMap
+from coopdrive.runtime.service import Service
+from coopdrive.services.sim.mission_verdict import MissionJudge
+from coopdrive.services.sim.radio_box import RadioBox, RadioPorts
+from coopdrive.services.sim.scenario_config import load_scenario
+from coopdrive.services.sim.scenario_sim import ScenarioSim, StackCommand
+from coopdrive.v1 import sim_pb2
+
+# SensorOutputs field -> the stack topic it is published on.
+SENSOR_TOPICS = {"gnss": "gnss/fix", "can_state": "vehicle/state", "imu": "vehicle/imu", "radar": "radar/tracks",
+                 "lidar": "lidar/scan", "camera": "camera/frame", "sonar": "sonar/ranges"}
+GROUND_TRUTH_PERIOD_S = 0.1
+
+
+class ScenarioFeed:
+    def __init__(self, service: Service, scenario_file: str, stacks: list[str], radio_links: dict[str, dict],
+                 already_delayed_steps: int):
+        self.service = service
+        self.ctx = service.ctx
+        config = load_scenario(scenario_file)
+        self.road_map = RoadMap.load(config.map)
+        self.stacks = stacks or [v.vehicle_id for v in config.vehicles if v.role.value == "stack"]
+        self.sim = ScenarioSim(config, self.road_map, self.stacks, already_delayed_steps)
+        self.config = self.sim.config
+        self.codecs = {vehicle_id: VehicleCanCodec() for vehicle_id in self.stacks}
+        self.box = RadioBox({v: RadioPorts(**ports) for v, ports in radio_links.items()}, self.sim.objects.channel)
+        self.encoder = _intent_encoder(self.road_map, config)
+        self.judge = MissionJudge(self.config, self.stacks)
+        self.finished = False
+        for vehicle_id in self.stacks:
+            self.ctx.subscribe("can/command", self.on_can_command, vehicle_id=vehicle_id)
+            if vehicle_id in radio_links:
+                self.ctx.subscribe("v2x/tx", self.on_v2x_transmitted, vehicle_id=vehicle_id)
+        self.ctx.every(config.step_s, self.on_step)
+        self.ctx.every(GROUND_TRUTH_PERIOD_S, self.publish_ground_truth)
+
+    # ----- inputs -----------------------------------------------------------------------------
+    def on_can_command(self, envelope: Envelope) -> None:
+        frame = envelope.message
+        message = can.Message(arbitration_id=frame.arbitration_id, is_extended_id=frame.is_extended_id,
+                              data=frame.data, timestamp=frame.timestamp_s, is_error_frame=frame.is_error_frame,
+                              is_remote_frame=frame.is_remote_frame)
+        try:
+            command = self.codecs[envelope.vehicle_id].decode_command(message)
+        except CanDecodeError as error:
+            self.service.count("rejected_can_commands")
+            if self.service.counters["rejected_can_commands"] == 1:
+                self.ctx.log.warning("rejected a CAN command frame from %s: %s", envelope.vehicle_id, error)
+            return
+        model = self.sim.objects.models[envelope.vehicle_id]
+        accel = model.command_to_accel_mps2(command.throttle_ratio, command.brake_ratio,
+                                            command.deceleration_request_mps2) if command.longitudinal_active else None
+        steering = command.steering_angle_request_rad if command.lateral_active else None
+        self.sim.apply_command(envelope.vehicle_id, StackCommand(accel, steering))
+
+    def on_v2x_transmitted(self, envelope: Envelope) -> None:
+        self.box.on_transmitted(envelope.vehicle_id, envelope.message.payload)
+
+    # ----- time triggers ------------------------------------------------------------------------
+    def on_step(self, now_s: float) -> None:
+        if now_s > 0:
+            self.sim.step(now_s)
+        for vehicle_id, outputs in self.sim.sensor_outputs(now_s).items():
+            for field_name, topic in SENSOR_TOPICS.items():
+                for item in getattr(outputs, field_name):
+                    message = item.message if field_name == "gnss" else item
+                    self.ctx.publish_for(vehicle_id, topic, message)
+        if self.encoder is not None:
+            for intent in self.sim.intents(now_s):
+                self.box.broadcast(intent.sender_id, self.encoder.encode(intent))
+        for vehicle_id, written in self.box.step(now_s, self.sim.radio_positions()).items():
+            self.ctx.publish_for(vehicle_id, "radio/mark", sim_pb2.WireMark(written=written))
+        self.service.counters["radio_missing"] = self.box.stats.missing
+        self.service.counters["radio_mismatched"] = self.box.stats.mismatched
+        if now_s >= self.service.config.duration_s - 1e-9 and not self.finished:
+            self.finish(now_s)
+
+    def publish_ground_truth(self, now_s: float) -> None:
+        truth = self.sim.ground_truth()
+        self.judge.observe(now_s, truth)
+        truth.collisions = self.judge.collisions
+        self.ctx.publish_for(WORLD_ID, "ground_truth", truth)
+
+    def finish(self, now_s: float) -> None:
+        self.finished = True
+        success, reason = self.judge.verdict()
+        result = sim_pb2.RunResult(scenario=self.config.name, seed=self.service.config.seed, success=success,
+                                   failure_reason=reason, sim_time_s=now_s,
+                                   wall_time_s=time.monotonic() - self.service.wall_start_s)
+        for key, value in self.judge.metrics().items():
+            result.metrics[key] = value
+        result.metrics["participants_lost"] = self.service.counters.get("participants_lost", 0)
+        self.ctx.publish_for(WORLD_ID, "result", result)
+        self.ctx.request_stop("scenario finished")
+
+    def close(self) -> None:
+        self.box.close()
+
+
+def _intent_encoder(road_map: RoadMap, config):
+    """The scripted participants' V2X encoder, when this build has one."""
+    try:
+        from coopdrive.services.sim.intent_encoder import IntentEncoder
+    except ImportError:
+        return None
+    return IntentEncoder(road_map.to_geodetic, config.utc_epoch)

@@ -1,0 +1,133 @@
+"""ScenarioSim: the world of a scenario file, stepped by the simulator service (pure logic, no bus).
+
+Stack vehicles move only by their ACT_ commands (through VehicleModel); stack-role vehicles without a stack
+in this run drive their speed profile as scripted vehicles; scripted participants, roadside units, the radio
+channel's faults and the sensor suites come from scenario_builder. Ground truth is kept at the judging rate
+so the run's metrics are those `coopdrive score` computes from the recording.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Sequence
+
+from coopdrive.services.sim.lane_keeping_driver import LaneKeepingDriver
+from coopdrive.services.sim.participants import MessageIntent
+from coopdrive.services.sim.scenario_builder import RoadMapLike, ScenarioObjects, build_scenario
+from coopdrive.services.sim.scenario_config import ScenarioConfig, VehicleRole
+from coopdrive.services.sim.sensor_suite import SensorOutputs
+from coopdrive.services.sim.vehicle_model import VehicleModel
+from coopdrive.services.sim.vehicle_truth import vehicle_truth
+from coopdrive.services.sim.world_view import WorldView
+from coopdrive.v1 import sim_pb2
+
+
+@dataclass
+class StackCommand:
+    """What the latest ACT_ frames of a stack vehicle ask for."""
+
+    accel_request_mps2: float | None = None  # None: the driver holds the speed
+    steering_request_rad: float | None = None  # None: the driver keeps the lane
+
+
+class ScenarioSim:
+    def __init__(self, config: ScenarioConfig, road_map: RoadMapLike, stack_ids: Sequence[str],
+                 already_delayed_steps: int = 0):
+        unknown = set(stack_ids) - {v.vehicle_id for v in config.vehicles if v.role is VehicleRole.STACK}
+        if unknown:
+            raise ValueError(f"stacks: {', '.join(sorted(unknown))} are not stack vehicles of {config.name}")
+        # Stack vehicles that run no stack here stay out of the run: scripted, they would drive on blindly
+        # into the stacks ahead of them.
+        vehicles = [v for v in config.vehicles if v.role is not VehicleRole.STACK or v.vehicle_id in stack_ids]
+        kept = {v.vehicle_id for v in vehicles}
+        judging = config.judging.model_copy(update={"platoon": [v for v in config.judging.platoon if v in kept]})
+        faults = [f for f in config.faults if getattr(f, "vehicle_id", None) in (None, *kept)]
+        self.config = config.model_copy(update={"vehicles": vehicles, "judging": judging, "faults": faults})
+        self.objects: ScenarioObjects = build_scenario(self.config, road_map)
+        self.stack_ids = list(stack_ids)
+        # Lockstep already delays each command by this many steps: the actuator's own dead time is shortened.
+        delay_s = already_delayed_steps * config.step_s
+        for vehicle_id, model in self.objects.models.items():
+            profile = model.profile.model_copy(update={
+                "accel_dead_time_s": max(0.0, model.profile.accel_dead_time_s - delay_s),
+                "steer_dead_time_s": max(0.0, model.profile.steer_dead_time_s - delay_s)})
+            self.objects.models[vehicle_id] = VehicleModel(profile, config.step_s, model.state)
+        self.commands = {vehicle_id: StackCommand() for vehicle_id in self.stack_ids}
+        self.drivers = {vehicle_id: LaneKeepingDriver(self.objects.lanes[vehicle_id], model.profile.wheelbase_m)
+                        for vehicle_id, model in self.objects.models.items()}
+        self._config_of = {v.vehicle_id: v for v in vehicles}
+        self.time_s = 0.0
+
+    # ----- stepping ---------------------------------------------------------------------------
+    def apply_command(self, vehicle_id: str, command: StackCommand) -> None:
+        self.commands[vehicle_id] = command
+
+    def step(self, now_s: float) -> None:
+        """Moves the world from the previous step to now_s."""
+        for vehicle_id, model in self.objects.models.items():
+            command = self.commands[vehicle_id]
+            state = model.state
+            accel = command.accel_request_mps2
+            if accel is None:
+                accel = model.resistance_mps2(state.speed_mps)  # the driver holds the speed
+            steering = command.steering_request_rad
+            if steering is None:
+                steering = self.drivers[vehicle_id].steering_rad(state)
+            model.step(accel, steering)
+        for participant in self.objects.participants.values():
+            participant.step(now_s)
+        self.objects.faults.update(now_s, self.objects.sensor_suites, self.objects.channel)
+        self.time_s = now_s
+
+    # ----- what the world shows -----------------------------------------------------------------
+    def truths(self) -> list[sim_pb2.VehicleTruth]:
+        truths = []
+        for vehicle in self.config.vehicles:
+            vehicle_id = vehicle.vehicle_id
+            if vehicle_id in self.objects.models:
+                model = self.objects.models[vehicle_id]
+                truths.append(vehicle_truth(vehicle_id, vehicle.station_id, model.state, model.profile,
+                                            self.objects.lanes[vehicle_id], automated=True))
+            else:
+                truths.append(self.objects.participants[vehicle_id].truth())
+        return truths
+
+    def ground_truth(self, collisions: int = 0) -> sim_pb2.GroundTruth:
+        return sim_pb2.GroundTruth(vehicles=self.truths(), collisions=collisions)
+
+    def sensor_outputs(self, now_s: float) -> dict[str, SensorOutputs]:
+        truths = self.truths()
+        classes = {vid: p.object_class for vid, p in self.objects.participants.items()}
+        outputs = {}
+        for ego in truths:
+            suite = self.objects.sensor_suites.get(ego.vehicle_id)
+            if suite is None:
+                continue
+            others = [t for t in truths if t.vehicle_id != ego.vehicle_id]
+            model = self.objects.models[ego.vehicle_id]
+            outputs[ego.vehicle_id] = suite.poll(now_s, WorldView(ego, others, classes), model.brake_pressure_bar())
+        return outputs
+
+    def intents(self, now_s: float) -> list[MessageIntent]:
+        """What the scripted participants and roadside units broadcast now."""
+        intents = []
+        for participant in self.objects.participants.values():
+            intents.extend(participant.messages_due(now_s))
+        for unit in self.objects.roadside_units:
+            intents.extend(unit.messages_due(now_s))
+        return intents
+
+    def radio_positions(self) -> dict[str, tuple[float, float]]:
+        positions = {t.vehicle_id: (t.x_m, t.y_m) for t in self.truths()}
+        for unit in self.objects.roadside_units:
+            positions[unit.unit_id] = (unit.x_m, unit.y_m)
+        return positions
+
+    def finished_early(self) -> str | None:
+        """A reason to end the run before its duration (none yet: runs last their duration)."""
+        return None
+
+    @staticmethod
+    def stopped(truth: sim_pb2.VehicleTruth) -> bool:
+        return truth.speed_mps < 0.1 and math.isfinite(truth.speed_mps)
