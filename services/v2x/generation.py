@@ -88,7 +88,8 @@ class CamGenerator:
         self.ego = ego
 
     def generate(self, now_s: float, tai_ms: int) -> its_pb2.CamContent | None:
-        if self.ego is None:
+        # A CAM tells others where we are: with no position estimate yet there is nothing true to say.
+        if self.ego is None or self.ego.mode == ego_pb2.LOCALISATION_MODE_LOST:
             return None
         trigger = self._trigger(now_s)
         if trigger is None:

@@ -29,6 +29,10 @@ class PlausibilityReason(enum.Enum):
     POSITION_JUMP = "position_jump"
 
 
+# Reasons judged against the station's previous message, after which the next message is judged against
+# the rejected one.
+RELOCATING_REASONS = frozenset({PlausibilityReason.POSITION_JUMP, PlausibilityReason.IMPLAUSIBLE_ACCELERATION})
+
 @dataclass(frozen=True)
 class Observation:
     """What the checks need from one decoded message, SI units."""
@@ -62,25 +66,39 @@ def ground_distance_m(lat1_deg: float, lon1_deg: float, lat2_deg: float, lon2_de
 
 
 class PlausibilityChecker:
+    """Checks each message against the station's previous one; see RELOCATING_REASONS."""
     def __init__(self, limits: PlausibilityLimits, loss_timeout_s: float):
         self.limits = limits
         self.loss_timeout_ms = loss_timeout_s * MS_PER_S
         self._identities: dict[bytes, _Identity] = {}
         self._last: dict[tuple[int, ItsMessageId], Observation] = {}
+        # The latest message rejected for a RELOCATING_REASON, per station and type.
+        self._relocated: dict[tuple[int, ItsMessageId], Observation] = {}
 
     def check(self, observation: Observation, receive_tai_ms: int) -> PlausibilityReason | None:
         """None when plausible (and then remembered), else the first reason it is not."""
         reason = (self._identity_reason(observation, receive_tai_ms) or self._time_reason(observation, receive_tai_ms)
-                  or self._kinematics_reason(observation))
+                  or self._kinematics_reason(observation, self._last))
+        key = (observation.station_id, observation.message_type)
+        if reason in RELOCATING_REASONS and key in self._relocated \
+                and self._kinematics_reason(observation, self._relocated) is None:
+            reason = None
+        self._relocated.pop(key, None)
         if reason is None:
             if observation.source_mac:
                 self._identities[observation.source_mac] = _Identity(observation.station_id, receive_tai_ms)
-            self._last[(observation.station_id, observation.message_type)] = observation
+            self._last[key] = observation
+        elif reason in RELOCATING_REASONS:
+            # The next message may also be judged against this one: a station that really is elsewhere (or
+            # was wrong before) is followed again after one lost message instead of shut out for good.
+            self._relocated[key] = observation
         return reason
 
     def forget(self, station_id: int) -> None:
         for key in [key for key in self._last if key[0] == station_id]:
             del self._last[key]
+        for key in [key for key in self._relocated if key[0] == station_id]:
+            del self._relocated[key]
         for mac in [mac for mac, identity in self._identities.items() if identity.station_id == station_id]:
             del self._identities[mac]
 
@@ -113,13 +131,14 @@ class PlausibilityChecker:
             return PlausibilityReason.NOT_NEWER
         return None
 
-    def _kinematics_reason(self, o: Observation) -> PlausibilityReason | None:
+    def _kinematics_reason(self, o: Observation,
+                           previous_of: dict[tuple[int, ItsMessageId], Observation]) -> PlausibilityReason | None:
         lim = self.limits
         if o.speed_mps is not None and o.speed_mps > lim.max_speed_mps:
             return PlausibilityReason.IMPLAUSIBLE_SPEED
         if o.accel_mps2 is not None and abs(o.accel_mps2) > lim.max_accel_mps2:
             return PlausibilityReason.IMPLAUSIBLE_ACCELERATION
-        previous = self._last.get((o.station_id, o.message_type))
+        previous = previous_of.get((o.station_id, o.message_type))
         if previous is None or o.message_type != ItsMessageId.CAM:
             return None
         dt_s = (o.time_tai_ms - previous.time_tai_ms) / MS_PER_S

@@ -147,3 +147,9 @@ def test_the_iclcm_says_manual_until_control_sends_a_command():
     iclcm = IclcmGenerator(1001, VehicleDimensions())
     iclcm.on_behaviour(planner_pb2.BehaviourRequest())
     assert iclcm.generate(0.0, 0).controller_type == its_pb2.CONTROLLER_TYPE_MANUAL
+
+
+def test_no_cam_is_sent_while_the_localisation_is_lost():
+    sent = drive(generator(CamMode.GCDC), 1.0,
+                 ego_at=lambda t: ego_pb2.EgoState(speed_mps=10.0, mode=ego_pb2.LOCALISATION_MODE_LOST))
+    assert sent == []

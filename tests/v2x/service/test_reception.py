@@ -141,3 +141,12 @@ def test_a_station_silent_for_a_minute_leaves_the_status_even_if_it_only_sent_re
     assert set(rx.stations) == {REMOTE_STATION_ID, 4004}
     rx.status(61.0)
     assert rx.stations == {}
+
+
+def test_a_station_whose_first_position_was_wrong_is_followed_again_after_one_rejected_message():
+    rx = reception()
+    assert receive(rx, 0.0) is not None
+    for index in range(1, 6):
+        received = receive(rx, index * PERIOD_S, north_m=300.0 + index)
+        assert (received is None) == (index == 1)
+    assert dict(rx.status(0.3).rejected_by_reason) == {"position_jump": 1}
