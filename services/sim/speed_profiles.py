@@ -52,8 +52,16 @@ class SinusoidSpeed(_Strict):
     start_s: float = 0.0
     # Number of whole periods; 0 keeps oscillating.
     periods: int = Field(default=0, ge=0)
+    # A hard brake to standstill from this time on (the string scenario's end), at brake_decel_mps2.
+    brake_at_s: float | None = Field(default=None, ge=0)
+    brake_decel_mps2: float = Field(default=6.0, gt=0)
 
     def speed_at(self, time_s: float) -> float:
+        if self.brake_at_s is not None and time_s > self.brake_at_s:
+            return max(self._oscillating(self.brake_at_s) - self.brake_decel_mps2 * (time_s - self.brake_at_s), 0.0)
+        return self._oscillating(time_s)
+
+    def _oscillating(self, time_s: float) -> float:
         elapsed_s = time_s - self.start_s
         if elapsed_s < 0.0 or (self.periods and elapsed_s > self.periods / self.frequency_hz):
             return self.mean_speed_mps
