@@ -11,6 +11,7 @@ from coopdrive.services.sim.profiles import PROFILES, ProfileName
 from coopdrive.services.sim.radio_box import RadioPorts
 from coopdrive.services.sim.scenario_config import ScenarioConfig
 
+MIN_CRUISE_SPEED_MPS = 5.0
 # Time constants for a first-order lag to fall below ~2 % of where it started.
 BRAKE_RELEASE_TIME_CONSTANTS = 4.0
 STATION_TYPE = {ProfileName.PASSENGER_CAR: "passenger_car", ProfileName.TRUCK: "heavy_truck"}
@@ -35,8 +36,10 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
     }
     if radio is not None:
         v2x["link"] = {"radio_port": radio.box_port, "listen_port": radio.stack_port, "sync": "marks"}
+    # Without other instructions a stack keeps the speed the scenario starts it at.
     planner = {"station_id": vehicle.station_id, "scenario": f"SCENARIO_{config.mission.name}",
-               "platoon_id": vehicle.platoon or 0}
+               "platoon_id": vehicle.platoon or 0,
+               "logic": {"cruise_speed_mps": max(vehicle.speed_mps, MIN_CRUISE_SPEED_MPS)}}
     sensors = config.sensors_of(vehicle)
     geolocation = {"geolocator": {"track_width_m": profile.track_width_m, "wheelbase_m": profile.wheelbase_m,
                                   "antenna_x_m": sensors.gnss.antenna_x_m, "antenna_y_m": sensors.gnss.antenna_y_m,
