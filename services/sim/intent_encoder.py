@@ -26,6 +26,16 @@ DENM_VALIDITY_S = 10.0
 ITS_PROTOCOL_VERSION = 1
 
 
+# Field keys each intent kind may carry; anything else is refused so a new participant field is never dropped.
+KNOWN_FIELDS = {
+    IntentKind.CAM: {"x_m", "y_m", "heading_rad", "speed_mps", "accel_mps2", "yaw_rate_radps", "length_m",
+                     "width_m", "lane", "emergency", "light_bar", "siren"},
+    IntentKind.DENM: {"cause_code", "x_m", "y_m", "heading_rad", "speed_mps", "lane", "closed_lane", "length_m",
+                      "since_s"},
+    IntentKind.ICLCM: {"start_platoon", "end_of_scenario"},
+}
+
+
 def station_mac(station_id: int) -> bytes:
     return bytes([0x02, 0x00]) + station_id.to_bytes(4, "big")
 
@@ -42,6 +52,9 @@ class IntentEncoder:
 
     def encode(self, intent: MessageIntent) -> bytes | None:
         """The packet for this intent; None when there is nothing to send yet (a CAM inside its period)."""
+        unknown = sorted(set(intent.fields) - KNOWN_FIELDS[intent.kind])
+        if unknown:
+            raise ValueError(f"{intent.kind.name} intent from {intent.sender_id} has unmapped fields: {unknown}")
         return self._encoders[intent.kind](intent, self._clock.tai_ms(intent.time_s))
 
     # ----- per message ------------------------------------------------------------------------

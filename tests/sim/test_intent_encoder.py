@@ -67,3 +67,14 @@ def test_encoding_is_deterministic(road_map):
         return [encoder.encode(MessageIntent(IntentKind.CAM, "lead", 2001, t / 25, dict(CAR))) for t in range(5)]
 
     assert packets() == packets()
+
+
+def test_an_unknown_field_is_refused_by_name(encoder):
+    with pytest.raises(ValueError, match="hazard_lights"):
+        encoder.encode(MessageIntent(IntentKind.CAM, "lead", 2001, 1.0, dict(CAR, hazard_lights=True)))
+
+
+@pytest.mark.parametrize("gn_version", [0, 1])
+def test_both_gn_versions_decode(road_map, gn_version):
+    encoder = IntentEncoder(road_map.to_geodetic, EPOCH, gn_version=gn_version)
+    assert decode_packet(encoder.encode(MessageIntent(IntentKind.CAM, "lead", 2001, 1.0, dict(CAR)))).station_id == 2001
