@@ -78,3 +78,13 @@ def test_an_unknown_field_is_refused_by_name(encoder):
 def test_both_gn_versions_decode(road_map, gn_version):
     encoder = IntentEncoder(road_map.to_geodetic, EPOCH, gn_version=gn_version)
     assert decode_packet(encoder.encode(MessageIntent(IntentKind.CAM, "lead", 2001, 1.0, dict(CAR)))).station_id == 2001
+
+
+def test_the_road_works_denm_area_is_centred_on_the_event(encoder, road_map):
+    fields = {"cause_code": 3, "x_m": 1477.0, "y_m": 260.0, "closed_lane": 1, "length_m": 300.0, "since_s": 10.0}
+    decoded = decode_packet(encoder.encode(MessageIntent(IntentKind.DENM, "rsu", 3000, 12.0, fields)))
+    area = decoded.gn.extended.area
+    latitude_deg, longitude_deg, _ = road_map.to_geodetic(1477.0, 260.0)
+    assert area.latitude_tenth_microdeg * 1e-7 == pytest.approx(latitude_deg, abs=1e-6)
+    assert area.longitude_tenth_microdeg * 1e-7 == pytest.approx(longitude_deg, abs=1e-6)
+    assert area.distance_a_m > 0 and decoded.btp.destination_port != 0
