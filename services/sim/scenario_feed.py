@@ -17,6 +17,7 @@ from coopdrive.can.codec import VehicleCanCodec
 from coopdrive.can.frames import CanDecodeError
 from coopdrive.roadmap import RoadMap
 from coopdrive.runtime.service import Service
+from coopdrive.services.sim.intent_encoder import IntentEncoder
 from coopdrive.services.sim.mission_verdict import MissionJudge
 from coopdrive.services.sim.radio_box import RadioBox, RadioPorts
 from coopdrive.services.sim.scenario_config import load_scenario
@@ -41,7 +42,7 @@ class ScenarioFeed:
         self.config = self.sim.config
         self.codecs = {vehicle_id: VehicleCanCodec() for vehicle_id in self.stacks}
         self.box = RadioBox({v: RadioPorts(**ports) for v, ports in radio_links.items()}, self.sim.objects.channel)
-        self.encoder = _intent_encoder(self.road_map, config)
+        self.encoder = IntentEncoder(self.road_map.to_geodetic, config.utc_epoch)
         self.judge = MissionJudge(self.config, self.stacks)
         self.finished = False
         for vehicle_id in self.stacks:
@@ -82,9 +83,10 @@ class ScenarioFeed:
                 for item in getattr(outputs, field_name):
                     message = item.message if field_name == "gnss" else item
                     self.ctx.publish_for(vehicle_id, topic, message)
-        if self.encoder is not None:
-            for intent in self.sim.intents(now_s):
-                self.box.broadcast(intent.sender_id, self.encoder.encode(intent))
+        for intent in self.sim.intents(now_s):
+            packet = self.encoder.encode(intent)
+            if packet is not None:
+                self.box.broadcast(intent.sender_id, packet)
         for vehicle_id, written in self.box.step(now_s, self.sim.radio_positions()).items():
             self.ctx.publish_for(vehicle_id, "radio/mark", sim_pb2.WireMark(written=written))
         self.service.counters["radio_missing"] = self.box.stats.missing
@@ -112,12 +114,3 @@ class ScenarioFeed:
 
     def close(self) -> None:
         self.box.close()
-
-
-def _intent_encoder(road_map: RoadMap, config):
-    """The scripted participants' V2X encoder, when this build has one."""
-    try:
-        from coopdrive.services.sim.intent_encoder import IntentEncoder
-    except ImportError:
-        return None
-    return IntentEncoder(road_map.to_geodetic, config.utc_epoch)
