@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import enum
 from datetime import datetime
+from pathlib import Path
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from coopdrive.runtime.service import ServiceConfig
 from coopdrive.services.v2x.geonet import GN_VERSION_GCDC, SUPPORTED_GN_VERSIONS
+from coopdrive.services.v2x.security.profile import SecurityMode
 from coopdrive.v1 import its_pb2
 
 MAC_SIZE_BYTES = 6
@@ -75,6 +77,38 @@ class PlausibilityLimits(_Section):
     max_future_s: float = Field(0.2, ge=0.0)
 
 
+class SecurityConfig(_Section):
+    """TS 103 097 envelope of our packets: the mode, the PKI written by `coopdrive pki init`, our ticket."""
+
+    mode: SecurityMode = SecurityMode.OFF
+    # Directory of root.cert and aa.cert (trusted root, known authority) and vehicles/NAME/ticket-K.*.
+    pki_dir: Path | None = None
+    # The vehicle name under pki_dir/vehicles whose tickets this station signs with.
+    ticket: str | None = None
+    # More root certificates (files) to trust besides pki_dir/root.cert.
+    extra_trusted_roots: list[Path] = []
+
+    @model_validator(mode="after")
+    def _pki_holds_what_the_mode_needs(self) -> "SecurityConfig":
+        if self.pki_dir is None:
+            if self.mode is not SecurityMode.OFF:
+                raise ValueError(f"security.pki_dir is required in security.mode {self.mode.value}")
+            if self.ticket is not None:
+                raise ValueError("security.ticket needs a security.pki_dir")
+        else:
+            for name in ("root.cert", "aa.cert"):
+                if not (self.pki_dir / name).is_file():
+                    raise ValueError(f"security.pki_dir {self.pki_dir} holds no {name} (coopdrive pki init DIR)")
+        if self.mode.signs and self.ticket is None:
+            raise ValueError(f"security.ticket is required in security.mode {self.mode.value}")
+        if self.ticket is not None and not any((self.pki_dir / "vehicles" / self.ticket).glob("ticket-*.cert")):
+            raise ValueError(f"security.ticket {self.ticket!r}: {self.pki_dir}/vehicles holds no tickets for it")
+        for root in self.extra_trusted_roots:
+            if not root.is_file():
+                raise ValueError(f"security.extra_trusted_roots: no file {root}")
+        return self
+
+
 class V2xConfig(ServiceConfig):
     link: RadioLinkConfig = RadioLinkConfig()
     # Source MAC of our GN packets ("02:00:00:00:00:01"); also how our own looped-back packets are recognised.
@@ -104,6 +138,7 @@ class V2xConfig(ServiceConfig):
     # How often received packets are handed to the bus (publishing happens only in time triggers).
     receive_flush_period_s: float = Field(0.02, gt=0.0)
     plausibility: PlausibilityLimits = PlausibilityLimits()
+    security: SecurityConfig = SecurityConfig()
 
     @field_validator("gn_version")
     @classmethod

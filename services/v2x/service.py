@@ -11,19 +11,28 @@ from dataclasses import dataclass
 from coopdrive.bus import Envelope
 from coopdrive.runtime.service import Service
 from coopdrive.services.v2x.codec import ItsMessageId
-from coopdrive.services.v2x.config import GCDC_RATE_HZ, LinkSync, V2xConfig
+from coopdrive.services.v2x.config import GCDC_RATE_HZ, LinkSync, SecurityConfig, V2xConfig
 from coopdrive.services.v2x.denm_manager import ActionId
 from coopdrive.services.v2x.geonet import parse_gn
 from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.link import CaptureLog, UdpLink
+from coopdrive.services.v2x.packet import V2xPacketCodec
 from coopdrive.services.v2x.reasons import V2xDecodeError
 from coopdrive.services.v2x.reception import OwnIdentity, Reception
+from coopdrive.services.v2x.security.certificate import Certificate
+from coopdrive.services.v2x.security.layer import SecurityLayer
+from coopdrive.services.v2x.security.pki import load_test_pki
+from coopdrive.services.v2x.security.profile import SecurityMode
+from coopdrive.services.v2x.security.signer import SecuredPacketSigner
+from coopdrive.services.v2x.security.store import CertificateStore
+from coopdrive.services.v2x.security.verifier import SecurityVerifier
 from coopdrive.services.v2x.transmission import Transmitter
 from coopdrive.v1 import its_pb2, v2x_pb2
 
 # Source MAC in the pcap for a received packet whose GN header cannot be parsed (e.g. a secured one).
 UNKNOWN_MAC = bytes(6)
 TOPIC_OF_MESSAGE = {ItsMessageId.CAM: "v2x/cam", ItsMessageId.DENM: "v2x/denm", ItsMessageId.ICLCM: "v2x/iclcm"}
+US_PER_MS = 1000
 
 
 @dataclass
@@ -32,6 +41,20 @@ class _Received:
     packet: v2x_pb2.GnPacket
     message_type: ItsMessageId | None = None
     content: its_pb2.CamContent | its_pb2.DenmContent | its_pb2.IclcmContent | None = None
+
+
+def build_security_layer(config: SecurityConfig, station_id: int, mac: bytes,
+                         clock_tai_us) -> SecurityLayer | None:
+    """The layer of the configured mode, or None when the mode is off and no PKI is given (today's
+    behaviour: unsecured packets only). Our signer keeps the configured station id and MAC (no pseudonym
+    change here), since the generators stamp those into every packet."""
+    if config.mode is SecurityMode.OFF and config.pki_dir is None:
+        return None
+    pki = load_test_pki(config.pki_dir)
+    roots = [pki.root] + [Certificate.from_bytes(path.read_bytes()) for path in config.extra_trusted_roots]
+    verifier = SecurityVerifier(CertificateStore(trusted_roots=roots, authorities=[pki.authority]))
+    signer = SecuredPacketSigner(pki.tickets[config.ticket], station_id, mac) if config.ticket else None
+    return SecurityLayer(config.mode, verifier, signer, clock_tai_us)
 
 
 def gn_source_mac(data: bytes) -> bytes | None:
@@ -48,9 +71,13 @@ class V2xService(Service):
     def start(self) -> None:
         c: V2xConfig = self.config
         self.clock = ItsClock(c.clock_epoch_unix_s)
-        self.transmitter = Transmitter(c, self.clock)
+        # Freshness is judged on the ITS clock (sim time + epoch in simulation), as the senders sign with it.
+        self.security = build_security_layer(c.security, c.station_id, c.mac_bytes,
+                                             lambda: self.clock.tai_ms(self.ctx.now_s()) * US_PER_MS)
+        codec = V2xPacketCodec(security=self.security) if self.security is not None else None
+        self.transmitter = Transmitter(c, self.clock, security=self.security)
         self.reception = Reception(OwnIdentity(c.mac_bytes, c.station_id), self.clock, c.plausibility,
-                                   c.loss_timeout_s, c.expected_rate_hz, c.statistics_window_s)
+                                   c.loss_timeout_s, c.expected_rate_hz, c.statistics_window_s, codec)
         self.packets_sent = 0
         self._received: list[_Received] = []
         self._capture_file = open(c.pcap_path, "wb") if c.pcap_path else None
@@ -126,6 +153,7 @@ class V2xService(Service):
                                       source_mac=self.config.mac_bytes)
             self.ctx.publish("v2x/tx", packet, sample_time_s=now_s)
         self.counters["encode_errors"] = self.transmitter.encode_errors
+        self.counters["seal_errors"] = self.transmitter.seal_errors
         self.counters["send_errors"] = self.link.send_errors
 
     def flush_received(self, now_s: float) -> None:
@@ -141,4 +169,9 @@ class V2xService(Service):
         self.counters["own_packets_ignored"] = self.reception.own_packets_ignored
         self.counters["packets_received"] = self.reception.packets_received
         self.counters["rejected"] = sum(self.reception.rejected_by_reason.values())
+        for reason, count in self.reception.rejected_by_reason.items():
+            self.counters[f"rejected_{reason}"] = count
+        if self.security is not None:
+            for name, count in self.security.status.items():
+                self.counters[f"security_{name}"] = count
         self.ctx.publish("v2x/status", status, sample_time_s=now_s)

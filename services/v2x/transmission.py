@@ -14,6 +14,7 @@ from coopdrive.services.v2x.denm_manager import ActionId, DenmManager
 from coopdrive.services.v2x.generation import CamGenerator, IclcmGenerator
 from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.packet import DestinationArea, GnParams, SourcePosition, V2xPacketCodec, default_codec
+from coopdrive.services.v2x.security.layer import SecurityLayer
 from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2
 
 log = logging.getLogger(__name__)
@@ -30,6 +31,7 @@ RADIUS_OF_RELEVANCE_M = {
     its_pb2.RELEVANCE_DISTANCE_OVER_10KM: 65535.0,
 }
 DEFAULT_DENM_RADIUS_M = 1000.0
+US_PER_MS = 1000
 
 
 @dataclass(frozen=True)
@@ -40,15 +42,19 @@ class OutgoingPacket:
 
 
 class Transmitter:
-    def __init__(self, config: V2xConfig, clock: ItsClock, codec: V2xPacketCodec | None = None):
+    def __init__(self, config: V2xConfig, clock: ItsClock, codec: V2xPacketCodec | None = None,
+                 security: SecurityLayer | None = None):
         self.config = config
         self.clock = clock
         self.codec = codec or default_codec()
+        # Seals (signs, per its mode) every packet we send; None: packets go out unsecured.
+        self.security = security
         self.cam = CamGenerator(config.cam_mode, config.station_id, config.station_type,
                                 config.its_protocol_version, config.origin, config.vehicle)
         self.iclcm = IclcmGenerator(config.station_id, config.vehicle, config.iclcm_rate_hz)
         self.denm = DenmManager(config.station_id, config.station_type, config.its_protocol_version)
         self.encode_errors = 0
+        self.seal_errors = 0
         self._sequence_number = 0
 
     def on_ego_state(self, ego: ego_pb2.EgoState) -> None:
@@ -89,11 +95,22 @@ class Transmitter:
         encode = {ItsMessageId.CAM: self.codec.encode_cam, ItsMessageId.DENM: self.codec.encode_denm,
                   ItsMessageId.ICLCM: self.codec.encode_iclcm}[message_type]
         try:
-            outgoing.append(OutgoingPacket(message_type, content, encode(content, params)))
+            data = encode(content, params)
         except (ValueError, KeyError, TypeError) as error:
             # Content the codec cannot put on the wire must not stop the other messages.
             self.encode_errors += 1
             log.warning("cannot encode our %s: %s", message_type.name, error)
+            return
+        if self.security is not None:
+            try:
+                # Signed at the packet's own ITS time (the sim clock in simulation), not the system clock.
+                data = self.security.seal(data, params.time_tai_ms * US_PER_MS)
+            except (ValueError, KeyError, TypeError) as error:
+                # An unsigned packet would be dropped by every verifying station: better not sent at all.
+                self.seal_errors += 1
+                log.warning("cannot sign our %s: %s", message_type.name, error)
+                return
+        outgoing.append(OutgoingPacket(message_type, content, data))
 
     def _params(self, tai_ms: int, position: SourcePosition | None = None,
                 area: DestinationArea | None = None) -> GnParams:

@@ -1,0 +1,40 @@
+"""Security for a launched run: one test PKI for the stacks, and each stack's `security` v2x config section.
+
+    overrides = security_overrides(run_dir / "pki", ["car1", "car2"], SecurityMode.VERIFY_REQUIRED,
+                                   untrusted=["car2"])
+    v2x_config.update(overrides["car1"])    # {"security": {"mode": ..., "pki_dir": ..., "ticket": "car1"}}
+
+Trusted vehicles get tickets under pki_dir; untrusted ones get theirs from a second PKI under
+pki_dir/untrusted whose root only they trust, so the others drop their packets (unknown issuer) and treat
+them as vehicles without V2V.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+
+from coopdrive.services.v2x.security.pki import create_test_pki, create_untrusted_pki
+from coopdrive.services.v2x.security.profile import SecurityMode
+
+UNTRUSTED_SUBDIR = "untrusted"
+
+
+def security_overrides(pki_dir: Path, vehicle_ids: Sequence[str], mode: SecurityMode,
+                       untrusted: Sequence[str] = ()) -> dict[str, dict]:
+    """Create the PKI(s) in pki_dir and return per vehicle id the `{"security": {...}}` of its v2x config."""
+    pki_dir = Path(pki_dir)
+    unknown = sorted(set(untrusted) - set(vehicle_ids))
+    if unknown:
+        raise ValueError(f"untrusted vehicles {unknown} are not among the run's vehicles {list(vehicle_ids)}")
+    if UNTRUSTED_SUBDIR in vehicle_ids:
+        raise ValueError(f"vehicle id {UNTRUSTED_SUBDIR!r} is reserved for the untrusted PKI's directory")
+    trusted = [vehicle for vehicle in vehicle_ids if vehicle not in untrusted]
+    create_test_pki(pki_dir, trusted)
+    untrusted_dir = pki_dir / UNTRUSTED_SUBDIR
+    if untrusted:
+        create_untrusted_pki(untrusted_dir, list(untrusted))
+    return {vehicle: {"security": {"mode": mode.value,
+                                   "pki_dir": str(untrusted_dir if vehicle in untrusted else pki_dir),
+                                   "ticket": vehicle}}
+            for vehicle in vehicle_ids}
