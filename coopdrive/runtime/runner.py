@@ -224,6 +224,14 @@ class ServiceRunner:
     def _queue_clock(self, clock: sim_pb2.SimClock) -> None:
         if clock.step <= self._last_step:
             return
+        # Participants only ever leave a run: one missing from the newest clock is gone for the older pending
+        # steps too, or this service would wait forever for the step marker of a crashed one.
+        current = set(clock.participants)
+        for pending in self._pending_clocks:
+            if not current.issuperset(pending.participants):
+                kept = [participant for participant in pending.participants if participant in current]
+                del pending.participants[:]
+                pending.participants.extend(kept)
         if self._pending_clocks and self._pending_clocks[-1].step == clock.step:
             self._pending_clocks[-1] = clock  # re-sent with fewer participants after a crash
         else:
