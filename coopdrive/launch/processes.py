@@ -82,6 +82,9 @@ class ServiceProcesses:
             try:
                 process.wait(timeout=max(0.0, deadline - time.monotonic()))
             except subprocess.TimeoutExpired:
-                os.killpg(process.pid, signal.SIGKILL)
+                try:
+                    os.killpg(process.pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass  # it ended between the timeout and the kill
                 process.wait()
         shutil.rmtree(self._config_dir, ignore_errors=True)
