@@ -49,14 +49,16 @@ class StepBarrier:
     def done_step(self, participant: str) -> int:
         return self._done_step.get(participant, -1)
 
-    def missing(self, step: int, participants: list[str]) -> list[str]:
-        """Running dependencies whose step marker this service still needs before handling `step`."""
+    def missing(self, step: int, participants: list[str], markers_only: bool = False) -> list[str]:
+        """Running dependencies whose step marker (and the messages it counts, unless markers_only) this
+        service still needs before handling `step`."""
         waiting = []
         for participant in participants:
             if participant not in self.dependencies:
                 continue
             rank = PIPELINE_RANK[split_participant(participant)[1]]
             needed = step if rank < self._own_rank else step - 1
-            if self.done_step(participant) < needed or not self.holds(self._promised_sequences.get(participant, {})):
+            if self.done_step(participant) < needed or (
+                    not markers_only and not self.holds(self._promised_sequences.get(participant, {}))):
                 waiting.append(participant)
         return waiting

@@ -15,6 +15,8 @@ if TYPE_CHECKING:
 # Subscriptions of freshly started peers take a moment to reach the publishers.
 SETTLE_S = 0.3
 STALL_WARNING_S = 10.0
+# How long a step whose markers are all in may wait for the messages they count (as in runner.py).
+MESSAGE_WAIT_LIMIT_S = 5.0
 
 
 @dataclass
@@ -100,9 +102,18 @@ class ClockMaster:
             self._handle(self._runner.next_event(settle_until - time.monotonic()))
 
     def _wait_for_step_done(self, step: int) -> bool:
-        warned_at = time.monotonic()
+        warned_at = markers_in_at = time.monotonic()
         while not self._runner.stopping:
-            if not self._runner.barrier.missing(step + 1, self._participants):
+            barrier = self._runner.barrier
+            if not barrier.missing(step + 1, self._participants):
+                return True
+            if barrier.missing(step + 1, self._participants, markers_only=True):
+                markers_in_at = time.monotonic()
+            elif time.monotonic() - markers_in_at > MESSAGE_WAIT_LIMIT_S:
+                # Every marker is in but a message it counts never came: go on without it (see runner.py).
+                self._runner.service.count("lockstep_messages_given_up")
+                self._runner.log.warning("step %d: gave up waiting for messages counted by %s", step,
+                                         ", ".join(barrier.missing(step + 1, self._participants)))
                 return True
             self._handle(self._runner.next_event(0.5))
             if time.monotonic() - warned_at > STALL_WARNING_S:

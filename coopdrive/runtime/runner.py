@@ -39,6 +39,8 @@ from coopdrive.runtime.timers import TriggerSet
 from coopdrive.v1 import diagnostics_pb2, sim_pb2
 
 DIAGNOSTICS_PERIOD_S = 1.0
+# Lockstep: how long a step whose markers are all in may wait for the messages they count.
+MESSAGE_WAIT_LIMIT_S = 5.0
 
 
 class ClockMode(Enum):
@@ -78,6 +80,8 @@ class ServiceRunner:
         self._barrier = StepBarrier(service_cls.name)
         self._pending_clocks: deque[sim_pb2.SimClock] = deque()
         self._last_step = -1
+        # (step, since when) the next pending step has been blocked by the barrier.
+        self._blocked_since: tuple[int, float] | None = None
         self._step_s = 0.0
         # From the first simulator clock: lockstep or paced to wall time; None before it.
         self._lockstep: bool | None = None
@@ -244,13 +248,33 @@ class ServiceRunner:
             if not self._triggers.any_due(clock.time_s):
                 self._pending_clocks.popleft()  # idle step: our last marker already covers it
                 continue
-            if self._barrier.missing(clock.step, list(clock.participants)) or not self._barrier.holds(clock.sequences):
-                return
+            participants = list(clock.participants)
+            if self._barrier.missing(clock.step, participants) or not self._barrier.holds(clock.sequences):
+                if not self._gave_up_waiting_for_messages(clock.step, participants):
+                    return
+            self._blocked_since = None
             self._pending_clocks.popleft()
             self._clock.set(clock.time_s)
             self._track_participants(clock.participants)
             self.run_step(clock.step, clock.time_s)
             self.publish_step_done(clock.step)
+
+    def _gave_up_waiting_for_messages(self, step: int, participants: list[str]) -> bool:
+        """True when every step marker is in and only counted messages are missing, for MESSAGE_WAIT_LIMIT_S.
+
+        A message lost on the way would otherwise hold the whole run forever; going on costs that one
+        message (counted and logged), as it would on the vehicle.
+        """
+        now = time.monotonic()
+        if self._blocked_since is None or self._blocked_since[0] != step:
+            self._blocked_since = (step, now)
+            return False
+        if self._barrier.missing(step, participants, markers_only=True) or now - self._blocked_since[1] < MESSAGE_WAIT_LIMIT_S:
+            return False
+        self.service.count("lockstep_messages_given_up")
+        self.log.warning("step %d: gave up waiting for messages counted by %s", step,
+                         ", ".join(self._barrier.missing(step, participants)) or "the simulator's clock")
+        return True
 
     # ----- shared by followers and the master -----------------------------------------------
     def next_event(self, timeout_s: float):

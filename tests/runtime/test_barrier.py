@@ -57,3 +57,12 @@ def test_a_lost_participant_no_longer_holds_anyone_back():
     barrier = control_barrier()
     barrier.mark_done("ego/scene", 4)
     assert barrier.missing(4, ["ego/scene", "ego/control"]) == []
+
+
+def test_a_marker_whose_counted_message_never_came_still_blocks_but_not_when_asking_for_markers_only():
+    barrier = control_barrier()
+    barrier.mark_done("ego/geolocation", 4, sequences={"ego/ego/state": 7})
+    barrier.mark_done("ego/scene", 4)
+    barrier.mark_received("ego/ego/state", 6)
+    assert barrier.missing(4, PARTICIPANTS) == ["ego/geolocation"]
+    assert barrier.missing(4, PARTICIPANTS, markers_only=True) == []
