@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import enum
+
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from coopdrive.bus import Envelope
@@ -9,6 +11,9 @@ from coopdrive.roadmap import RoadMap
 from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.services.geolocation.config import GeolocatorConfig
 from coopdrive.services.geolocation.geolocator import Geolocator
+from coopdrive.services.geolocation.gnss_serial import GnssSerial
+from coopdrive.services.geolocation.nmea_decoder import NmeaDecoder, SentenceType
+from coopdrive.v1 import gnss_pb2
 
 
 class LocalOrigin(BaseModel):
@@ -21,6 +26,15 @@ class LocalOrigin(BaseModel):
     alt_m: float = 20.0
 
 
+class SerialSync(enum.Enum):
+    """How the GNSS port's bytes enter the service's step order."""
+
+    # Vehicle (wall clock): a reader thread hands chunks on as they arrive.
+    FREE = "free"
+    # Simulated clock: read up to each gnss/serial_mark from the simulator, so fixes land at the same step every run.
+    MARKS = "marks"
+
+
 class GeolocationConfig(ServiceConfig):
     geolocator: GeolocatorConfig = GeolocatorConfig()
     # Lane map (a shipped name such as "a270" or a GeoJSON path) for lane matching; its origin is the local frame.
@@ -30,6 +44,14 @@ class GeolocationConfig(ServiceConfig):
     origin: LocalOrigin = LocalOrigin()
     output_rate_hz: float = Field(50.0, gt=0.0)
     use_imu: bool = True
+    # GNSS receiver's NMEA serial port; None: the fixes come from the bus topic gnss/fix instead.
+    gnss_port: str | None = None
+    gnss_baudrate: int = Field(115200, gt=0)
+    serial_sync: SerialSync = SerialSync.FREE
+    gnss_open_timeout_s: float = Field(10.0, gt=0.0)  # the simulator may create the port after we start
+    serial_mark_timeout_s: float = Field(2.0, gt=0.0)
+    # A fix is emitted once all these sentences of an epoch arrived (else when the next epoch starts).
+    gnss_sentences: frozenset[SentenceType] = frozenset(SentenceType)
 
     @model_validator(mode="after")
     def _one_source_of_the_frame(self) -> GeolocationConfig:
@@ -52,14 +74,47 @@ class GeolocationService(Service):
             self.geolocator = Geolocator(logic_config, road_map=RoadMap.load(c.map_name))
         else:
             self.geolocator = Geolocator(logic_config, origin=(c.origin.lat_deg, c.origin.lon_deg, c.origin.alt_m))
-        self.ctx.subscribe("gnss/fix", self.on_gnss_fix)
+        self.serial: GnssSerial | None = None
+        if c.gnss_port is None:
+            self.ctx.subscribe("gnss/fix", self.on_gnss_fix)
+        else:
+            self._start_serial(c)
         self.ctx.subscribe("vehicle/state", self.on_can_state)
         if c.use_imu:
             self.ctx.subscribe("vehicle/imu", self.on_imu)
         self.ctx.every(1.0 / c.output_rate_hz, self.publish_estimate)
 
+    def _start_serial(self, c: GeolocationConfig) -> None:
+        self.decoder = NmeaDecoder(self.on_decoded_fix, expected_sentences=c.gnss_sentences,
+                                   vehicle_id=self.ctx.vehicle_id, sender=self.name)
+        self.serial = GnssSerial(c.gnss_port, c.gnss_baudrate, c.gnss_open_timeout_s)
+        if c.serial_sync is SerialSync.MARKS:
+            self.ctx.subscribe("gnss/serial_mark", self.on_serial_mark)
+        else:
+            # The reader thread only hands bytes over: decoding runs on the service's worker thread.
+            self.serial.start_thread(lambda chunk: self.ctx.call_soon(lambda: self.on_serial_bytes(chunk)))
+
+    def stop(self) -> None:
+        if self.serial is not None:
+            self.serial.close()
+
     def on_gnss_fix(self, envelope: Envelope) -> None:
         self.geolocator.on_gnss_fix(envelope.message)
+
+    def on_serial_mark(self, envelope: Envelope) -> None:
+        if not self.serial.read_until(envelope.message.written, self.config.serial_mark_timeout_s,
+                                      self.on_serial_bytes):
+            self.count("serial_mark_timeouts")
+
+    def on_serial_bytes(self, chunk: bytes) -> None:
+        self.decoder.feed(chunk, self.ctx.now_s())
+        for reason, count in self.decoder.bad.items():
+            self.counters[f"nmea_bad_{reason.value}"] = count
+
+    def on_decoded_fix(self, fix: gnss_pb2.GnssFix) -> None:
+        self.geolocator.on_gnss_fix(fix)
+        # What the receiver said, so recordings hold it next to the estimate.
+        self.ctx.publish("ego/gnss", fix, sample_time_s=fix.header.sample_time_s)
 
     def on_can_state(self, envelope: Envelope) -> None:
         self.geolocator.on_can_state(envelope.message)

@@ -1,5 +1,6 @@
 import datetime as dt
 import threading
+from types import SimpleNamespace
 
 import pymap3d
 import pytest
@@ -111,3 +112,53 @@ def test_opening_a_port_that_never_appears_fails_with_one_line_naming_it(tmp_pat
         GnssSerial(str(tmp_path / "missing"), open_timeout_s=0.2)
     message = str(error.value)
     assert str(tmp_path / "missing") in message and "\n" not in message
+
+
+class _FakeContext:
+    """The parts of ServiceContext the GNSS serial path uses, recording subscriptions and publishes."""
+
+    vehicle_id = "ego"
+
+    def __init__(self) -> None:
+        self.handlers: dict = {}
+        self.published: list = []
+
+    def now_s(self) -> float:
+        return 0.0
+
+    def subscribe(self, topic, handler, vehicle_id=None) -> None:
+        self.handlers[topic] = handler
+
+    def publish(self, topic, message, sample_time_s=None) -> None:
+        self.published.append((topic, message))
+
+    def every(self, period_s, handler) -> None:
+        pass
+
+    def call_soon(self, function) -> None:
+        function()
+
+
+def test_the_service_in_marks_mode_reads_to_each_mark_and_publishes_the_receivers_fixes(tmp_path):
+    from coopdrive.services.geolocation.service import GeolocationConfig, GeolocationService
+
+    outputs = _outputs(2)
+    with GnssPty(tmp_path / "gnss0") as pty:
+        ctx = _FakeContext()
+        config = GeolocationConfig(gnss_port=str(tmp_path / "gnss0"), serial_sync="marks",
+                                   origin={"lat_deg": ORIGIN[0], "lon_deg": ORIGIN[1], "alt_m": ORIGIN[2]})
+        service = GeolocationService(config, ctx)
+        service.start()
+        try:
+            assert "gnss/fix" not in ctx.handlers
+            for output in outputs:
+                mark = sim_pb2.WireMark(written=pty.write(output.data))
+                ctx.handlers["gnss/serial_mark"](SimpleNamespace(message=mark))
+            mark = sim_pb2.WireMark(written=pty.written + 10)  # never written: times out, counted
+            service.config = config.model_copy(update={"serial_mark_timeout_s": 0.2})
+            ctx.handlers["gnss/serial_mark"](SimpleNamespace(message=mark))
+        finally:
+            service.stop()
+    fixes = [message for topic, message in ctx.published if topic == "ego/gnss"]
+    assert [fix.latitude_deg for fix in fixes] == pytest.approx([o.message.latitude_deg for o in outputs], abs=1e-6)
+    assert service.counters["serial_mark_timeouts"] == 1
