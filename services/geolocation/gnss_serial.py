@@ -55,6 +55,13 @@ class GnssSerial:
                 on_chunk(chunk)
         return True
 
+    def skip_to(self, total_bytes: int) -> int:
+        """After a timed-out mark: count the missing bytes as lost (e.g. written before we opened the port,
+        which pyserial flushes on open) so later marks line up again. Returns how many were skipped."""
+        skipped = max(0, total_bytes - self.read_total)
+        self.read_total += skipped
+        return skipped
+
     def start_thread(self, on_chunk: Callable[[bytes], None]) -> None:
         """Free running: a daemon thread calls on_chunk(bytes) for every chunk (on the thread: hand it on)."""
         self._thread = threading.Thread(target=self._run, args=(on_chunk,), name=f"gnss-serial {self.port}",

@@ -105,6 +105,7 @@ class GeolocationService(Service):
         if not self.serial.read_until(envelope.message.written, self.config.serial_mark_timeout_s,
                                       self.on_serial_bytes):
             self.count("serial_mark_timeouts")
+            self.count("serial_lost_bytes", self.serial.skip_to(envelope.message.written))
 
     def on_serial_bytes(self, chunk: bytes) -> None:
         self.decoder.feed(chunk, self.ctx.now_s())

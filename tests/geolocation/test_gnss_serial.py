@@ -162,3 +162,20 @@ def test_the_service_in_marks_mode_reads_to_each_mark_and_publishes_the_receiver
     fixes = [message for topic, message in ctx.published if topic == "ego/gnss"]
     assert [fix.latitude_deg for fix in fixes] == pytest.approx([o.message.latitude_deg for o in outputs], abs=1e-6)
     assert service.counters["serial_mark_timeouts"] == 1
+    assert service.counters["serial_lost_bytes"] == 10
+
+
+def test_after_bytes_lost_before_the_open_a_timed_out_mark_realigns_the_next_ones(tmp_path):
+    fixes: list[gnss_pb2.GnssFix] = []
+    decoder = NmeaDecoder(fixes.append)
+    first, second = _outputs(2)
+    with GnssPty(tmp_path / "gnss0") as pty:
+        lost_mark = pty.write(first.data)  # before the reader opens: flushed by pyserial's open
+        port = GnssSerial(str(tmp_path / "gnss0"), open_timeout_s=1.0)
+        try:
+            assert not port.read_until(lost_mark, 0.2, lambda chunk: decoder.feed(chunk, 0.0))
+            assert port.skip_to(lost_mark) == len(first.data)
+            assert port.read_until(pty.write(second.data), MARK_TIMEOUT_S, lambda chunk: decoder.feed(chunk, 0.1))
+        finally:
+            port.close()
+    assert [fix.latitude_deg for fix in fixes] == pytest.approx([second.message.latitude_deg], abs=1e-6)
