@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import signal
+import tempfile
 import threading
 import time
 from dataclasses import dataclass, field
@@ -72,7 +73,12 @@ def build_specs(options: RunOptions) -> list[ServiceSpec]:
         sim.duration_s, sim.step_s = source.config.duration_s, source.config.step_s
         world_needs = sim.stack_overrides()
         services = VEHICLE_STACK + ("v2x",)
-        per_vehicle = {v: vehicle_overrides(source.config, v, radio[v]) for v in stacks}
+        # Each stack's GNSS receiver is a pty the simulator writes NMEA to, found through a link in a run folder.
+        gnss_dir = Path(tempfile.mkdtemp(prefix="coopdrive-gnss-"))
+        sim.gnss_ports = {v: str(gnss_dir / f"{v}-gnss0") for v in stacks}
+        per_vehicle = {v: merged(vehicle_overrides(source.config, v, radio[v]),
+                                 {"geolocation": {"gnss_port": sim.gnss_ports[v], "serial_sync": "marks"}})
+                       for v in stacks}
     else:
         stacks = [v.vehicle_id for v in sim.world.vehicles if not v.speed_profile]
         world_needs = merged(FOLLOW_STACK_CONFIG, sim.stack_overrides())

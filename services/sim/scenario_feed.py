@@ -17,6 +17,7 @@ from coopdrive.can.codec import VehicleCanCodec
 from coopdrive.can.frames import CanDecodeError
 from coopdrive.roadmap import RoadMap
 from coopdrive.runtime.service import Service
+from coopdrive.services.sim.gnss_pty import GnssPty
 from coopdrive.services.sim.intent_encoder import IntentEncoder
 from coopdrive.services.sim.mission_verdict import MissionJudge
 from coopdrive.services.sim.radio_box import RadioBox, RadioPorts
@@ -32,7 +33,7 @@ GROUND_TRUTH_PERIOD_S = 0.1
 
 class ScenarioFeed:
     def __init__(self, service: Service, scenario_file: str, stacks: list[str], radio_links: dict[str, dict],
-                 already_delayed_steps: int):
+                 already_delayed_steps: int, gnss_ports: dict[str, str] | None = None):
         self.service = service
         self.ctx = service.ctx
         config = load_scenario(scenario_file)
@@ -45,6 +46,8 @@ class ScenarioFeed:
         self.encoder = IntentEncoder(self.road_map.to_geodetic, config.utc_epoch)
         self.judge = MissionJudge(self.config, self.stacks)
         self.finished = False
+        # Vehicles whose GNSS receiver talks NMEA over a serial line; the others get gnss/fix on the bus.
+        self.gnss_lines = {vehicle_id: GnssPty(path) for vehicle_id, path in (gnss_ports or {}).items()}
         for vehicle_id in self.stacks:
             self.ctx.subscribe("can/command", self.on_can_command, vehicle_id=vehicle_id)
             if vehicle_id in radio_links:
@@ -79,10 +82,16 @@ class ScenarioFeed:
         if now_s > 0:
             self.sim.step(now_s)
         for vehicle_id, outputs in self.sim.sensor_outputs(now_s).items():
+            line = self.gnss_lines.get(vehicle_id)
             for field_name, topic in SENSOR_TOPICS.items():
                 for item in getattr(outputs, field_name):
-                    message = item.message if field_name == "gnss" else item
-                    self.ctx.publish_for(vehicle_id, topic, message)
+                    if field_name != "gnss":
+                        self.ctx.publish_for(vehicle_id, topic, item)
+                    elif line is None:
+                        self.ctx.publish_for(vehicle_id, topic, item.message)
+                    else:
+                        self.ctx.publish_for(vehicle_id, "gnss/serial_mark",
+                                             sim_pb2.WireMark(written=line.write(item.data)))
         for intent in self.sim.intents(now_s):
             packet = self.encoder.encode(intent)
             if packet is not None:
@@ -114,3 +123,5 @@ class ScenarioFeed:
 
     def close(self) -> None:
         self.box.close()
+        for line in self.gnss_lines.values():
+            line.close()

@@ -69,6 +69,8 @@ class SimConfig(ServiceConfig):
     stacks: list[str] = Field(default_factory=list)
     # vehicle_id -> {"box_port", "stack_port"}: the UDP ports of that vehicle's simulated radio box.
     radio_links: dict[str, dict[str, int]] = Field(default_factory=dict)
+    # vehicle_id -> path of the link to that vehicle's GNSS serial line (a pty carrying NMEA), instead of gnss/fix.
+    gnss_ports: dict[str, str] = Field(default_factory=dict)
 
     def stack_overrides(self) -> dict[str, dict]:
         """What this world needs in every stack's service configs; the launcher merges its own over them.
@@ -135,7 +137,8 @@ class SimService(Service, ClockMaster.Driven):
         self.feed = None
         if config.scenario_file:
             self.feed = ScenarioFeed(self, config.scenario_file, config.stacks, config.radio_links,
-                                     already_delayed_steps=config.feedback_delay_steps - 1)
+                                     already_delayed_steps=config.feedback_delay_steps - 1,
+                                     gnss_ports=config.gnss_ports)
             return
         self.world = FollowWorld(config.world, already_delayed_steps=config.feedback_delay_steps - 1)
         self.rng = np.random.default_rng(config.seed)

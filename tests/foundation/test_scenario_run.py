@@ -62,3 +62,16 @@ def test_a_malformed_scenario_file_is_one_line_naming_the_key_and_nothing_starts
 def test_asking_for_more_stacks_than_the_scenario_has_is_refused():
     result = coopdrive("run", str(EXAMPLE), "--stacks", "9", timeout=60)
     assert result.returncode == 2 and "--stacks 9" in result.stderr
+
+
+def test_each_stack_reads_its_gnss_as_nmea_from_its_own_serial_line(two_stacks):
+    _, recording = two_stacks
+    counts = {}
+    for item in read_messages(recording):
+        if item.topic.endswith(("gnss/serial_mark", "ego/gnss", "gnss/fix")):
+            counts[item.topic] = counts.get(item.topic, 0) + 1
+    for vehicle in ("ego", "f2"):
+        marks = counts.get(f"coopdrive/{vehicle}/gnss/serial_mark", 0)
+        assert marks > 50, "the simulator wrote no NMEA epochs"
+        assert counts.get(f"coopdrive/{vehicle}/ego/gnss", 0) == marks, "an epoch on the line was not decoded"
+        assert f"coopdrive/{vehicle}/gnss/fix" not in counts
