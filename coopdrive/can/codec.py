@@ -258,6 +258,12 @@ class VehicleCanCodec:
             raise CanDecodeError(DecodeFailure.UNEXPECTED_FRAME, str(frame))
         return frame, signals
 
+    def decode_command_frame(self, frame: vehicle_pb2.CanFrame) -> VehicleCommand:
+        """decode_command for an ACT_ frame as it travels on the bus (can/command)."""
+        return self.decode_command(can.Message(
+            arbitration_id=frame.arbitration_id, is_extended_id=frame.is_extended_id, data=frame.data,
+            timestamp=frame.timestamp_s, is_error_frame=frame.is_error_frame, is_remote_frame=frame.is_remote_frame))
+
     def decode_command(self, msg: can.Message) -> VehicleCommand:
         """Simulator side: the latest command values after applying this ACT_ frame."""
         frame, signals = self._decode_expecting(msg, frames.COMMAND_FRAMES)

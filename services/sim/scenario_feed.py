@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import time
 
-import can
 
 from coopdrive.bus import Envelope
 from coopdrive.bus.keys import WORLD_ID
@@ -57,12 +56,8 @@ class ScenarioFeed:
 
     # ----- inputs -----------------------------------------------------------------------------
     def on_can_command(self, envelope: Envelope) -> None:
-        frame = envelope.message
-        message = can.Message(arbitration_id=frame.arbitration_id, is_extended_id=frame.is_extended_id,
-                              data=frame.data, timestamp=frame.timestamp_s, is_error_frame=frame.is_error_frame,
-                              is_remote_frame=frame.is_remote_frame)
         try:
-            command = self.codecs[envelope.vehicle_id].decode_command(message)
+            command = self.codecs[envelope.vehicle_id].decode_command_frame(envelope.message)
         except CanDecodeError as error:
             self.service.count("rejected_can_commands")
             if self.service.counters["rejected_can_commands"] == 1:

@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 import time
 
-import can
 import numpy as np
 import pymap3d
 from pydantic import Field
@@ -176,12 +175,8 @@ class SimService(Service, ClockMaster.Driven):
     # ----- inputs ---------------------------------------------------------------------------
     def on_can_command(self, envelope: Envelope) -> None:
         """An ACT_ frame from a stack's actuation; the latest values of all three are applied every step."""
-        frame = envelope.message
-        message = can.Message(arbitration_id=frame.arbitration_id, is_extended_id=frame.is_extended_id,
-                              data=frame.data, timestamp=frame.timestamp_s, is_error_frame=frame.is_error_frame,
-                              is_remote_frame=frame.is_remote_frame)
         try:
-            command = self.command_codecs[envelope.vehicle_id].decode_command(message)
+            command = self.command_codecs[envelope.vehicle_id].decode_command_frame(envelope.message)
         except CanDecodeError as error:
             self.count("rejected_can_commands")
             if self.counters["rejected_can_commands"] == 1:
