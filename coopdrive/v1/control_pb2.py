@@ -25,7 +25,7 @@ _sym_db = _symbol_database.Default()
 from coopdrive.v1 import header_pb2 as coopdrive_dot_v1_dot_header__pb2
 
 
-DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x1a\x63oopdrive/v1/control.proto\x12\x0c\x63oopdrive.v1\x1a\x19\x63oopdrive/v1/header.proto\"\xfd\x03\n\x0e\x43ontrolCommand\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x1a\n\x12\x61\x63\x63\x65l_request_mps2\x18\x02 \x01(\x01\x12\"\n\x1asteering_angle_request_rad\x18\x03 \x01(\x01\x12\x1d\n\x15\x63urvature_request_1pm\x18\x04 \x01(\x01\x12\x39\n\x11longitudinal_mode\x18\x05 \x01(\x0e\x32\x1e.coopdrive.v1.LongitudinalMode\x12/\n\x0clateral_mode\x18\x06 \x01(\x0e\x32\x19.coopdrive.v1.LateralMode\x12\x17\n\x0f\x65mergency_brake\x18\x07 \x01(\x08\x12\x18\n\x10target_object_id\x18\x08 \x01(\r\x12\r\n\x05gap_m\x18\t \x01(\x01\x12\x15\n\rdesired_gap_m\x18\n \x01(\x01\x12\x12\n\ntime_gap_s\x18\x0b \x01(\x01\x12\x17\n\x0flateral_error_m\x18\x0c \x01(\x01\x12\x19\n\x11heading_error_rad\x18\r \x01(\x01\x12 \n\x18response_time_constant_s\x18\x0e \x01(\x01\x12\x1d\n\x15response_time_delay_s\x18\x0f \x01(\x01\x12\x18\n\x10\x63ruise_speed_mps\x18\x10 \x01(\x01*\xf0\x01\n\x10LongitudinalMode\x12!\n\x1dLONGITUDINAL_MODE_UNSPECIFIED\x10\x00\x12\x1c\n\x18LONGITUDINAL_MODE_CRUISE\x10\x01\x12\x19\n\x15LONGITUDINAL_MODE_ACC\x10\x02\x12\x1a\n\x16LONGITUDINAL_MODE_CACC\x10\x03\x12\x1b\n\x17LONGITUDINAL_MODE_DCACC\x10\x04\x12%\n!LONGITUDINAL_MODE_EMERGENCY_BRAKE\x10\x05\x12 \n\x1cLONGITUDINAL_MODE_STANDSTILL\x10\x06*~\n\x0bLateralMode\x12\x1c\n\x18LATERAL_MODE_UNSPECIFIED\x10\x00\x12\x14\n\x10LATERAL_MODE_OFF\x10\x01\x12\x1d\n\x19LATERAL_MODE_LANE_KEEPING\x10\x02\x12\x1c\n\x18LATERAL_MODE_LANE_CHANGE\x10\x03\x62\x06proto3')
+DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x1a\x63oopdrive/v1/control.proto\x12\x0c\x63oopdrive.v1\x1a\x19\x63oopdrive/v1/header.proto\"\xfd\x03\n\x0e\x43ontrolCommand\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x1a\n\x12\x61\x63\x63\x65l_request_mps2\x18\x02 \x01(\x01\x12\"\n\x1asteering_angle_request_rad\x18\x03 \x01(\x01\x12\x1d\n\x15\x63urvature_request_1pm\x18\x04 \x01(\x01\x12\x39\n\x11longitudinal_mode\x18\x05 \x01(\x0e\x32\x1e.coopdrive.v1.LongitudinalMode\x12/\n\x0clateral_mode\x18\x06 \x01(\x0e\x32\x19.coopdrive.v1.LateralMode\x12\x17\n\x0f\x65mergency_brake\x18\x07 \x01(\x08\x12\x18\n\x10target_object_id\x18\x08 \x01(\r\x12\r\n\x05gap_m\x18\t \x01(\x01\x12\x15\n\rdesired_gap_m\x18\n \x01(\x01\x12\x12\n\ntime_gap_s\x18\x0b \x01(\x01\x12\x17\n\x0flateral_error_m\x18\x0c \x01(\x01\x12\x19\n\x11heading_error_rad\x18\r \x01(\x01\x12 \n\x18response_time_constant_s\x18\x0e \x01(\x01\x12\x1d\n\x15response_time_delay_s\x18\x0f \x01(\x01\x12\x18\n\x10\x63ruise_speed_mps\x18\x10 \x01(\x01*\x91\x02\n\x10LongitudinalMode\x12!\n\x1dLONGITUDINAL_MODE_UNSPECIFIED\x10\x00\x12\x1c\n\x18LONGITUDINAL_MODE_CRUISE\x10\x01\x12\x19\n\x15LONGITUDINAL_MODE_ACC\x10\x02\x12\x1a\n\x16LONGITUDINAL_MODE_CACC\x10\x03\x12\x1b\n\x17LONGITUDINAL_MODE_DCACC\x10\x04\x12%\n!LONGITUDINAL_MODE_EMERGENCY_BRAKE\x10\x05\x12 \n\x1cLONGITUDINAL_MODE_STANDSTILL\x10\x06\x12\x1f\n\x1bLONGITUDINAL_MODE_STOP_LINE\x10\x07*~\n\x0bLateralMode\x12\x1c\n\x18LATERAL_MODE_UNSPECIFIED\x10\x00\x12\x14\n\x10LATERAL_MODE_OFF\x10\x01\x12\x1d\n\x19LATERAL_MODE_LANE_KEEPING\x10\x02\x12\x1c\n\x18LATERAL_MODE_LANE_CHANGE\x10\x03\x62\x06proto3')
 
 _globals = globals()
 _builder.BuildMessageAndEnumDescriptors(DESCRIPTOR, _globals)
@@ -33,9 +33,9 @@ _builder.BuildTopDescriptorsAndMessages(DESCRIPTOR, 'coopdrive.v1.control_pb2', 
 if not _descriptor._USE_C_DESCRIPTORS:
   DESCRIPTOR._loaded_options = None
   _globals['_LONGITUDINALMODE']._serialized_start=584
-  _globals['_LONGITUDINALMODE']._serialized_end=824
-  _globals['_LATERALMODE']._serialized_start=826
-  _globals['_LATERALMODE']._serialized_end=952
+  _globals['_LONGITUDINALMODE']._serialized_end=857
+  _globals['_LATERALMODE']._serialized_start=859
+  _globals['_LATERALMODE']._serialized_end=985
   _globals['_CONTROLCOMMAND']._serialized_start=72
   _globals['_CONTROLCOMMAND']._serialized_end=581
 # @@protoc_insertion_point(module_scope)

@@ -16,6 +16,7 @@ class LongitudinalMode(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     LONGITUDINAL_MODE_DCACC: _ClassVar[LongitudinalMode]
     LONGITUDINAL_MODE_EMERGENCY_BRAKE: _ClassVar[LongitudinalMode]
     LONGITUDINAL_MODE_STANDSTILL: _ClassVar[LongitudinalMode]
+    LONGITUDINAL_MODE_STOP_LINE: _ClassVar[LongitudinalMode]
 
 class LateralMode(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
@@ -30,6 +31,7 @@ LONGITUDINAL_MODE_CACC: LongitudinalMode
 LONGITUDINAL_MODE_DCACC: LongitudinalMode
 LONGITUDINAL_MODE_EMERGENCY_BRAKE: LongitudinalMode
 LONGITUDINAL_MODE_STANDSTILL: LongitudinalMode
+LONGITUDINAL_MODE_STOP_LINE: LongitudinalMode
 LATERAL_MODE_UNSPECIFIED: LateralMode
 LATERAL_MODE_OFF: LateralMode
 LATERAL_MODE_LANE_KEEPING: LateralMode

@@ -15,6 +15,10 @@ from coopdrive.v1 import header_pb2, planner_pb2, scene_pb2
 from .longitudinal.types import Spacing, Target
 
 V2V = header_pb2.SENSOR_SOURCE_V2V
+# Scene object ids count up from 1; the planner's stop line takes the one id they never reach.
+STOP_LINE_OBJECT_ID = 2 ** 32 - 1
+# Where a stop line target leaves the vehicle: this far before the line.
+STOP_LINE_MARGIN_M = 1.0
 
 
 def spacing_from_request(request: planner_pb2.BehaviourRequest) -> Spacing | None:
@@ -38,8 +42,9 @@ def _target(obj: scene_pb2.SceneObject, role: int, extra_gap_m: float, scene_age
     )
 
 
-def targets_from_scene(request: planner_pb2.BehaviourRequest, scene: scene_pb2.Scene, now_s: float) -> list[Target]:
-    """Targets ahead of the ego (gap > 0) that the scene knows; unknown ids are left out."""
+def targets_from_scene(request: planner_pb2.BehaviourRequest, scene: scene_pb2.Scene, now_s: float,
+                       ego_speed_mps: float = 0.0) -> list[Target]:
+    """Targets ahead of the ego (gap > 0) that the scene knows, unknown ids left out, and the stop line."""
     objects = {o.object_id: o for o in scene.objects if not o.ghost}
     age = now_s - scene.header.sample_time_s
     targets: dict[int, Target] = {}
@@ -51,4 +56,19 @@ def targets_from_scene(request: planner_pb2.BehaviourRequest, scene: scene_pb2.S
         obj = objects.get(scene.forward_mio_id)
         if obj is not None and obj.longitudinal_gap_m > 0:
             targets[obj.object_id] = _target(obj, planner_pb2.TARGET_ROLE_PREDECESSOR, 0.0, age)
+    stop_line = stop_line_target(request, ego_speed_mps, now_s)
+    if stop_line is not None:
+        targets[stop_line.object_id] = stop_line
     return list(targets.values())
+
+
+def stop_line_target(request: planner_pb2.BehaviourRequest, ego_speed_mps: float, now_s: float) -> Target | None:
+    """A hard stop line (give way, road works ahead) as a target whose gap is the distance to the point
+    STOP_LINE_MARGIN_M before the line. The planner measured the distance at its own, slower rate; the ego
+    has moved on since."""
+    if not request.has_stop_line:
+        return None
+    age_s = max(0.0, now_s - request.header.sample_time_s)
+    gap_m = request.stop_line_distance_m - ego_speed_mps * age_s
+    return Target(object_id=STOP_LINE_OBJECT_ID, gap_m=gap_m - STOP_LINE_MARGIN_M, speed_mps=0.0,
+                  role=planner_pb2.TARGET_ROLE_YIELD, stop_line=True)

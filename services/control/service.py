@@ -9,7 +9,7 @@ from __future__ import annotations
 from coopdrive.bus import Envelope
 from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.services.control.config import ControlConfig
-from coopdrive.services.control.inputs import spacing_from_request, targets_from_scene
+from coopdrive.services.control.inputs import spacing_from_request, stop_line_target, targets_from_scene
 from coopdrive.services.control.lateral import LateralController
 from coopdrive.services.control.longitudinal import LongitudinalController
 from coopdrive.v1 import control_pb2, ego_pb2
@@ -54,7 +54,11 @@ class ControlService(Service):
             # Without a position estimate its speed is not one either; actuation's watchdog stops the vehicle.
             self.count("skipped_ego_lost")
             return
-        targets = [] if self.scene is None else targets_from_scene(behaviour, self.scene, now_s)
+        if self.scene is None:
+            stop_line = stop_line_target(behaviour, ego.speed_mps, now_s)
+            targets = [] if stop_line is None else [stop_line]
+        else:
+            targets = targets_from_scene(behaviour, self.scene, now_s, ego.speed_mps)
         command = control_pb2.ControlCommand()
         try:
             self.longitudinal.step(now_s, ego.speed_mps, ego.accel_mps2, targets, behaviour.desired_speed_mps,

@@ -22,6 +22,7 @@ from .drivertive import DrivertiveSpeed
 from .emergency import EmergencyBrake
 from .ploeg import PloegCacc
 from .shaper import CommandShaper
+from .stop_line import StopLineApproach
 from .types import AccLaw, CaccLaw, FollowInput, LongitudinalCommand, LongitudinalMode, Spacing, SpeedLaw, Target
 
 DEFAULT_DT_S = 0.02
@@ -56,6 +57,7 @@ class LongitudinalController:
         self.cruise = CruisePi(profile) if speed_law is SpeedLaw.PI else DrivertiveSpeed(profile)
         self.shaper = CommandShaper(profile.limits)
         self.emergency = EmergencyBrake(profile.limits)
+        self.stop_line = StopLineApproach()
         self.rejected_inputs = 0
         self.last_rejection: str | None = None
         self._tracks: dict[int, _Track] = {}
@@ -160,18 +162,21 @@ class LongitudinalController:
                 self._reject(reason)
                 continue
             valid.append(t)
+            if t.stop_line:
+                u = self.stop_line.step(t.gap_m, ego_speed_mps)
+                outputs["stop_line"] = u
+                if u < best[0]:
+                    best = (u, MODE.LONGITUDINAL_MODE_STOP_LINE, None, None)
+                continue
             u, mode, f = self._follow(dt, time_s, t, ego_speed_mps, ego_accel_mps2, spacing)
             outputs[f"{LongitudinalMode.Name(mode)}:{t.object_id}"] = u
             if u < best[0]:
                 best = (u, mode, t, f)
-        seen = {t.object_id for t in valid}
+        seen = {t.object_id for t in valid if not t.stop_line}
         for object_id in [k for k in self._tracks if k not in seen]:
             del self._tracks[object_id]
 
-        decision = self.emergency.step(
-            ego_speed_mps,
-            [(t.object_id, t.gap_m, t.speed_mps, self._pred_accel_for_ttc(t)) for t in valid],
-        )
+        decision = self.emergency.step(ego_speed_mps, [self._emergency_view(t) for t in valid])
         u, mode, target, follow = best
         if decision.active:
             applied = self.shaper.step(dt, decision.accel_mps2, emergency=True)
@@ -206,6 +211,13 @@ class LongitudinalController:
             cmd.time_gap_s = h
             cmd.desired_gap_m = spacing.standstill_m + target.extra_gap_m + h * ego_speed_mps
         return cmd
+
+    def _emergency_view(self, t: Target) -> tuple[int, float, float, float]:
+        """(object_id, gap_m, speed_mps, accel_mps2) for the TTC path. A stop line's gap already ends at its
+        stopping point, so the vehicle margin is not taken off twice."""
+        if t.stop_line:
+            return t.object_id, t.gap_m + self.profile.limits.stop_margin_m, 0.0, 0.0
+        return t.object_id, t.gap_m, t.speed_mps, self._pred_accel_for_ttc(t)
 
     def _pred_accel_for_ttc(self, t: Target) -> float:
         if t.accel_mps2 is not None and t.v2v_age_s is not None and t.v2v_age_s <= self.profile.spacing.v2v_timeout_s:

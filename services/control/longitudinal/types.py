@@ -46,6 +46,8 @@ class Target:
     v2v_age_s: float | None = None
     role: int = TargetRole.TARGET_ROLE_PREDECESSOR
     extra_gap_m: float = 0.0
+    # A line to stop at (give way, road works), not a vehicle: gap_m is the distance to the stopping point.
+    stop_line: bool = False
 
     def invalid_reason(self) -> str | None:
         if not math.isfinite(self.gap_m):

@@ -1,0 +1,29 @@
+"""Stopping at a line: follow the speed that still allows a comfortable stop at the line.
+
+With d the distance left to the stopping point and b the planned deceleration,
+    v_allowed = sqrt(2 b d)                       (eq. S1, constant-deceleration braking curve)
+    a = -b + k (v_allowed - v)                    (eq. S2, feed-forward of the curve plus speed feedback)
+On the curve the feed-forward alone brakes at b; the feedback pulls a late or early car onto it, lets a car
+held short of the line creep up to it, and holds a car at the line on the brake (v_allowed = 0 there).
+"""
+
+from __future__ import annotations
+
+import math
+
+# Planned deceleration of the braking curve: well inside the comfort limit, so the lag has room.
+STOP_DECEL_MPS2 = 1.0
+SPEED_GAIN_PER_S = 1.5
+
+
+class StopLineApproach:
+    def __init__(self, decel_mps2: float = STOP_DECEL_MPS2, speed_gain_per_s: float = SPEED_GAIN_PER_S) -> None:
+        self.decel_mps2 = decel_mps2
+        self.speed_gain_per_s = speed_gain_per_s
+
+    def allowed_speed_mps(self, distance_m: float) -> float:
+        return math.sqrt(2.0 * self.decel_mps2 * max(distance_m, 0.0))  # (eq. S1)
+
+    def step(self, distance_m: float, ego_speed_mps: float) -> float:
+        """Acceleration request (m/s2) for a stopping point distance_m ahead."""
+        return -self.decel_mps2 + self.speed_gain_per_s * (self.allowed_speed_mps(distance_m) - ego_speed_mps)  # (eq. S2)
