@@ -51,6 +51,8 @@ class MergeConfig(BaseModel):
     # After an escape the protocol is tried again this long later while the road works last.
     retry_after_s: float = Field(5.0, gt=0)
     roadworks_cause_code: int = 3
+    # A vehicle still in the closed lane stops this far before the works' DENM event position.
+    stop_before_works_m: float = Field(10.0, ge=0)
 
 
 class IntersectionConfig(BaseModel):

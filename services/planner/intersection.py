@@ -20,6 +20,9 @@ from .speed_profile import QuinticArrival
 
 # The speed command looks this far along the arrival profile (about the longitudinal response time).
 PROFILE_LOOKAHEAD_S = 0.5
+# Slower than this a vehicle is standing (waiting at its own stop line), not coming: scene speeds of a
+# stopped car are noise around zero.
+MOVING_MPS = 0.5
 
 
 class CrossState(enum.Enum):
@@ -106,7 +109,7 @@ class IntersectionScenario:
         dx, dy = c.reference_x_m - px, c.reference_y_m - py
         distance = math.hypot(dx, dy)
         heading, speed = obj.heading_rad.value, obj.speed_mps.value
-        approaching = speed * (dx * math.cos(heading) + dy * math.sin(heading)) > 0
+        approaching = speed > MOVING_MPS and dx * math.cos(heading) + dy * math.sin(heading) > 0
         return distance < c.conflict_radius_m and (approaching or distance < c.safety_circle_m)
 
     def _update_conflicts(self) -> None:

@@ -98,9 +98,11 @@ class MergeScenario:
         """Role from the lane we are in; partner: ahead in lane A (gap maker) or behind in lane B (merger)."""
         self.role = MergeRole.MERGER if self.sit.ego_lane() == self.config.merge.lane_a_index else MergeRole.GAP_MAKER
         if self.role is MergeRole.GAP_MAKER:
-            self.partner_station_id = Situation.station_of(self.sit.ahead_in_lane(self._other_offset()))
+            candidate = Situation.station_of(self.sit.ahead_in_lane(self._other_offset()))
         else:
-            self.partner_station_id = Situation.station_of(self.sit.behind_in_lane(self._other_offset()))
+            candidate = Situation.station_of(self.sit.behind_in_lane(self._other_offset()))
+        # Only a station speaking the iCLCM can pair; anyone else is merged around on the scene alone.
+        self.partner_station_id = candidate if self.sit.iclcm(candidate) is not None else 0
 
     def is_gap_maker(self) -> bool:
         return self.role is MergeRole.GAP_MAKER
@@ -151,11 +153,33 @@ class MergeScenario:
 
     def _stom(self) -> bool:
         if self.partner_station_id == 0:
-            behind = self.sit.behind_in_lane(self._other_offset())
-            return behind is None or -behind.longitudinal_gap_m >= spacing_m(self.sit,
-                                                                             self.config.platoon.cacc_time_gap_s)
+            return self._scene_gap_open()
         msg = self.sit.iclcm(self.partner_station_id)
         return msg is not None and msg.merge_safe_to_merge
+
+    def _scene_gap_open(self) -> bool:
+        """Without a partner: the scene shows room in the target lane, ahead and behind. The vehicle behind
+        must be a spacing behind at its own speed, and further by what it closes in while we change lane."""
+        m, platoon = self.config.merge, self.config.platoon
+        ahead = self.sit.ahead_in_lane(self._other_offset())
+        if ahead is not None and ahead.longitudinal_gap_m < self.config.standstill_m:
+            return False
+        behind = self.sit.behind_in_lane(self._other_offset())
+        if behind is None:
+            return True
+        behind_speed_mps = behind.speed_mps.value
+        closing_mps = max(0.0, behind_speed_mps - self.sit.ego_speed_mps())
+        need_m = (self.config.standstill_m + platoon.cacc_time_gap_s * behind_speed_mps
+                  + closing_mps * m.lane_change_duration_s)
+        return -behind.longitudinal_gap_m >= need_m
+
+    def roadworks_ahead_m(self) -> float | None:
+        """Distance along our heading to the start of the road works closing our lane; None if none ahead."""
+        denm = self.sit.active_denm(self.config.merge.roadworks_cause_code)
+        if denm is None or self.sit.ego_lane() != self.config.merge.lane_a_index:
+            return None
+        along = self.sit.along_m(denm.event_position)
+        return along if along is not None and along > 0 else None
 
     def observe(self, sit: Situation, state: enum.Enum, time_in_state_s: float) -> list[enum.Enum]:
         self.sit, self.state, self.time_in_state_s = sit, state, time_in_state_s
@@ -204,6 +228,11 @@ class MergeScenario:
                 add_target(request, self._partner_object(), planner_pb2.TARGET_ROLE_VIRTUAL, m.merge_extra_gap_m)
             else:
                 add_target(request, sit.ahead_in_lane(self._other_offset()), planner_pb2.TARGET_ROLE_VIRTUAL)
+        works_m = self.roadworks_ahead_m()
+        if works_m is not None:
+            # Whatever the protocol does, nobody drives into the closed lane's works.
+            request.has_stop_line = True
+            request.stop_line_distance_m = works_m - m.stop_before_works_m
         self._fill_iclcm(state, request.iclcm)
         return request
 

@@ -120,11 +120,12 @@ class Situation:
     def cam_along_m(self, station_id: int) -> float | None:
         """The station's CAM position along the ego heading from the ego, metres (negative behind)."""
         got = self.inputs.cams.get(station_id)
+        return None if got is None else self.along_m(got.message.reference_position)
+
+    def along_m(self, pos: its_pb2.ReferencePosition) -> float | None:
+        """A V2X position along the ego heading from the ego, metres (negative behind); None if unknown."""
         ego = self.inputs.ego
-        if got is None or ego is None:
-            return None
-        pos = got.message.reference_position
-        if not (pos.HasField("latitude_deg") and pos.HasField("longitude_deg")):
+        if ego is None or not (pos.HasField("latitude_deg") and pos.HasField("longitude_deg")):
             return None
         north_m = (pos.latitude_deg - ego.latitude_deg) * METRES_PER_DEG_LAT
         east_m = (pos.longitude_deg - ego.longitude_deg) * METRES_PER_DEG_LAT * math.cos(

@@ -65,10 +65,15 @@ def rsu_end(at_s: float = 0.0) -> Received:
     return iclcm(RSU, at_s, has_low_frequency=True, end_of_scenario=True)
 
 
-def denm(cause: int, at_s: float = 0.0, origin: int = RSU, sequence: int = 1) -> Received:
+def denm(cause: int, at_s: float = 0.0, origin: int = RSU, sequence: int = 1,
+         metres_east: float | None = None) -> Received:
+    """A DENM; with metres_east its event lies that far east of the ego() position."""
     d = its_pb2.DenmContent(station_id=origin, originating_station_id=origin, sequence_number=sequence,
                             validity_duration_s=600.0)
     d.situation.event_type.cause_code = cause
+    if metres_east is not None:
+        d.event_position.latitude_deg = 50.0
+        d.event_position.longitude_deg = 5.0 + metres_east / (111_195.0 * 0.6427876)
     return Received(d, at_s)
 
 

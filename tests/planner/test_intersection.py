@@ -14,11 +14,12 @@ def cross_planner(**intersection):
     return planner(intersection={"organiser_station_ids": [ORGANISER], "arrival_time_s": 20.0, **intersection})
 
 
-def world(t, x_m, organiser_y_m=None, organiser_heard=False, extra=(), start=True, msgs=None):
+def world(t, x_m, organiser_y_m=None, organiser_heard=False, extra=(), start=True, msgs=None,
+          organiser_speed_mps=8.0):
     objects = list(extra)
     if organiser_y_m is not None:
-        objects.append(obj(9, ORGANISER, gap_m=-x_m, lane=0, x_m=0.0, y_m=organiser_y_m, speed_mps=8.0,
-                           heading_rad=NORTH))
+        objects.append(obj(9, ORGANISER, gap_m=-x_m, lane=0, x_m=0.0, y_m=organiser_y_m,
+                           speed_mps=organiser_speed_mps, heading_rad=NORTH))
     iclcms = {900: rsu_start(t)} if start else {}
     if organiser_heard or organiser_y_m is not None:
         iclcms[ORGANISER] = iclcm(ORGANISER, t)
@@ -127,3 +128,12 @@ def test_without_an_arrival_time_the_approach_holds_the_arrival_speed():
     request, state = p.step(0.1, world(0.1, -300.0))
     assert state.state == "APPROACH" and not request.has_arrival
     assert request.desired_speed_mps == pytest.approx(30 / 3.6)
+
+
+def test_an_organiser_standing_at_its_stop_line_outside_the_safety_circle_lets_the_vehicle_cross():
+    p = cross_planner()
+    p.step(0.0, world(0.0, -90.0, organiser_y_m=-30.0))
+    _, state = p.step(0.1, world(0.1, -90.0, organiser_y_m=-30.0))
+    assert state.state == "GIVE_WAY"
+    _, state = p.step(0.2, world(0.2, -80.0, organiser_y_m=-12.0, organiser_speed_mps=0.2))
+    assert state.state == "CROSSING"

@@ -168,3 +168,40 @@ def test_the_rsu_end_of_scenario_ends_the_merge_from_a_waiting_state():
     gap_maker_pairing(p)
     _, state = p.step(0.3, gap_maker(0.3, end=True))
     assert state.state == "DONE"
+
+
+def merger_among_traffic(t, behind_gap_m, behind_speed_mps, ego_lane=LANE_A, works_east_m=None):
+    """Head of lane A; in lane B only a car that sends CAMs but never an iCLCM (it ignores the protocol)."""
+    world = scene(obj(3, B_PARTNER, behind_gap_m, LANE_B, speed_mps=behind_speed_mps), ego_lane=ego_lane,
+                  neighbours={-1: (None, 3)})
+    return inputs(planner_pb2.SCENARIO_MERGE, platoon_id=1, ego=ego(ego_lane, speed_mps=11.0), scene=world,
+                  iclcms={900: rsu_start(t)}, denms={900: denm(ROADWORKS, metres_east=works_east_m)})
+
+
+def run_merger(p, steps, **kwargs):
+    for i in range(steps):
+        request, state = p.step(i * 0.1, merger_among_traffic(i * 0.1, **kwargs))
+    return request, state
+
+
+def test_a_lane_a_vehicle_does_not_pair_with_a_car_that_never_sent_an_iclcm_and_merges_on_the_scenes_gap():
+    request, state = run_merger(planner(), 5, behind_gap_m=-40.0, behind_speed_mps=11.0)
+    assert state.state == "MERGING" and request.iclcm.backward_id == 0
+    assert [t.to_state for t in state.recent_transitions][-3:] == ["WAIT_HEAD", "WAIT_STOM", "MERGING"]
+
+
+def test_a_fast_car_closing_in_from_behind_in_lane_b_keeps_the_merger_waiting():
+    _, state = run_merger(planner(), 20, behind_gap_m=-30.0, behind_speed_mps=17.0)
+    assert state.state == "WAIT_STOM"
+
+
+def test_a_vehicle_still_in_the_closed_lane_stops_before_the_road_works():
+    request, _ = run_merger(planner(), 3, behind_gap_m=-5.0, behind_speed_mps=17.0, works_east_m=200.0)
+    assert request.has_stop_line
+    assert request.stop_line_distance_m == pytest.approx(190.0, abs=1.0)
+
+
+def test_a_vehicle_in_the_open_lane_has_no_stop_line_for_the_works():
+    request, _ = run_merger(planner(), 3, behind_gap_m=-40.0, behind_speed_mps=11.0, works_east_m=200.0,
+                            ego_lane=LANE_B)
+    assert not request.has_stop_line
