@@ -10,7 +10,7 @@ acceleration is supported by SENSOR_SOURCE_V2V and not faded (confidence >= 0), 
 
 from __future__ import annotations
 
-from coopdrive.v1 import header_pb2, planner_pb2, scene_pb2
+from coopdrive.v1 import ego_pb2, header_pb2, planner_pb2, scene_pb2
 
 from .longitudinal.types import Spacing, Target
 
@@ -72,3 +72,17 @@ def stop_line_target(request: planner_pb2.BehaviourRequest, ego_speed_mps: float
     gap_m = request.stop_line_distance_m - ego_speed_mps * age_s
     return Target(object_id=STOP_LINE_OBJECT_ID, gap_m=gap_m - STOP_LINE_MARGIN_M, speed_mps=0.0,
                   role=planner_pb2.TARGET_ROLE_YIELD, stop_line=True)
+
+
+def offset_to_target_lane_m(lane: ego_pb2.LanePosition, request: planner_pb2.BehaviourRequest) -> float:
+    """The ego's lateral offset from the centre of the lane the planner wants (positive left).
+
+    Lanes count up to the left, so a target lane one to the right has its centre one lane width to the right:
+    the offset grows by that width, and the lateral controller sees the jump as the start of a lane change
+    (Heudiasyc's reference switch). When the ego crosses the line, the matched lane and its offset change
+    together and the offset to the target lane stays continuous.
+    """
+    if request.target_lane_index < 0:
+        return lane.lateral_offset_m
+    lanes_to_go = request.target_lane_index - lane.lane_index
+    return lane.lateral_offset_m - lanes_to_go * lane.lane_width_m

@@ -9,7 +9,8 @@ from __future__ import annotations
 from coopdrive.bus import Envelope
 from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.services.control.config import ControlConfig
-from coopdrive.services.control.inputs import spacing_from_request, stop_line_target, targets_from_scene
+from coopdrive.services.control.inputs import (offset_to_target_lane_m, spacing_from_request, stop_line_target,
+                                              targets_from_scene)
 from coopdrive.services.control.lateral import LateralController
 from coopdrive.services.control.longitudinal import LongitudinalController
 from coopdrive.v1 import control_pb2, ego_pb2
@@ -83,8 +84,10 @@ class ControlService(Service):
             command.lateral_mode = control_pb2.LATERAL_MODE_OFF
             return
         self.lateral_active = True
-        self.lateral.step(now_s, ego.speed_mps, lane.lateral_offset_m, lane.heading_error_rad,
-                          lane.curvature_1pm).fill(command)
+        behaviour = self.behaviour
+        self.lateral.step(now_s, ego.speed_mps, offset_to_target_lane_m(lane, behaviour), lane.heading_error_rad,
+                          lane.curvature_1pm, desired_offset_m=behaviour.lateral_offset_m,
+                          lane_change_duration_s=behaviour.lane_change_duration_s or None).fill(command)
 
     def _count_rejections(self) -> None:
         # The controllers count the targets and inputs they drop; mirror the running totals for diagnostics.

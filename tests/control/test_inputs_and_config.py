@@ -4,10 +4,10 @@ import pytest
 from pydantic import ValidationError
 
 from coopdrive.services.control.config import ControlConfig
-from coopdrive.services.control.inputs import spacing_from_request, targets_from_scene
+from coopdrive.services.control.inputs import offset_to_target_lane_m, spacing_from_request, targets_from_scene
 from coopdrive.services.control.longitudinal import CaccLaw
 from coopdrive.services.control.profiles import CAR, TRUCK, profile_by_name
-from coopdrive.v1 import header_pb2, planner_pb2, scene_pb2
+from coopdrive.v1 import ego_pb2, header_pb2, planner_pb2, scene_pb2
 
 
 def scene_object(object_id, gap_m, speed_mps, accel_mps2=None, v2v=True):
@@ -67,3 +67,24 @@ def test_profiles_forbid_unknown_fields_and_carry_units():
     with pytest.raises(ValidationError):
         CAR.model_validate({**CAR.model_dump(), "lag": 0.3})
     assert TRUCK.limits.max_accel_mps2 < CAR.limits.max_accel_mps2
+
+
+def lane_position(lane_index, offset_m, width_m=3.5):
+    return ego_pb2.LanePosition(matched=True, lane_index=lane_index, lateral_offset_m=offset_m, lane_width_m=width_m)
+
+
+def test_a_target_lane_to_the_right_puts_the_ego_one_lane_width_left_of_its_centre():
+    request = planner_pb2.BehaviourRequest(target_lane_index=0)
+    assert offset_to_target_lane_m(lane_position(1, 0.2), request) == pytest.approx(3.7)
+
+
+def test_the_offset_to_the_target_lane_stays_continuous_when_the_ego_crosses_the_line():
+    request = planner_pb2.BehaviourRequest(target_lane_index=0)
+    before = offset_to_target_lane_m(lane_position(1, -1.74), request)
+    after = offset_to_target_lane_m(lane_position(0, 1.76), request)
+    assert before == pytest.approx(after, abs=0.05)
+
+
+def test_without_a_target_lane_the_offset_is_to_the_lane_the_ego_is_in():
+    request = planner_pb2.BehaviourRequest(target_lane_index=-1)
+    assert offset_to_target_lane_m(lane_position(1, 0.3), request) == pytest.approx(0.3)
