@@ -39,7 +39,9 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
     # Without other instructions a stack keeps the speed the scenario starts it at.
     planner = {"station_id": vehicle.station_id, "scenario": f"SCENARIO_{config.mission.name}",
                "platoon_id": vehicle.platoon or 0,
-               "logic": {"cruise_speed_mps": max(vehicle.speed_mps, MIN_CRUISE_SPEED_MPS)}}
+               "logic": {"cruise_speed_mps": max(vehicle.speed_mps, MIN_CRUISE_SPEED_MPS),
+                         "intersection": {"organiser_station_ids": [v.station_id for v in config.vehicles
+                                                                    if v.organiser]}}}
     sensors = config.sensors_of(vehicle)
     geolocation = {"geolocator": {"track_width_m": profile.track_width_m, "wheelbase_m": profile.wheelbase_m,
                                   "antenna_x_m": sensors.gnss.antenna_x_m, "antenna_y_m": sensors.gnss.antenna_y_m,

@@ -30,7 +30,7 @@ ITS_PROTOCOL_VERSION = 1
 KNOWN_FIELDS = {
     IntentKind.CAM: {"x_m", "y_m", "heading_rad", "speed_mps", "accel_mps2", "yaw_rate_radps", "length_m",
                      "width_m", "lane", "emergency", "light_bar", "siren"},
-    IntentKind.DENM: {"cause_code", "x_m", "y_m", "heading_rad", "speed_mps", "lane", "closed_lane", "length_m",
+    IntentKind.DENM: {"cause_code", "x_m", "y_m", "heading_rad", "speed_mps", "lane", "closed_lane", "length_m", "validity_s",
                       "since_s"},
     IntentKind.ICLCM: {"start_platoon", "end_of_scenario"},
 }
@@ -87,7 +87,8 @@ class IntentEncoder:
         event = its_pb2.DenmContent(protocol_version=ITS_PROTOCOL_VERSION, station_id=intent.station_id,
                                     originating_station_id=intent.station_id, sequence_number=1,
                                     detection_time_tai_ms=self._clock.tai_ms(fields.get("since_s", intent.time_s)),
-                                    reference_time_tai_ms=tai_ms, validity_duration_s=DENM_VALIDITY_S,
+                                    reference_time_tai_ms=tai_ms,
+                                    validity_duration_s=fields.get("validity_s", DENM_VALIDITY_S),
                                     station_type=station_type,
                                     relevance_distance=its_pb2.RELEVANCE_DISTANCE_LESS_THAN_1000M)
         event.event_position.latitude_deg, event.event_position.longitude_deg = latitude_deg, longitude_deg

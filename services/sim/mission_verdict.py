@@ -17,6 +17,10 @@ from coopdrive.v1 import sim_pb2
 
 # A vehicle counts as having crossed the competition zone once it was inside it and then this far out.
 ZONE_EXIT_MARGIN_M = 5.0
+# GCDC: a merge completes in under 10 s per vehicle pair.
+MERGE_TIME_LIMIT_S = 10.0
+# A vehicle this far off its lane centre is changing lane.
+LANE_CENTRE_TOLERANCE_M = 0.3
 
 
 class MissionJudge:
@@ -48,6 +52,9 @@ class MissionJudge:
                 string_start_s=judging_config.string_start_s,
                 string_frequency_hz=judging_config.string_frequency_hz).items() if math.isfinite(value)}
             self._metrics["collisions"] = float(self.collisions)
+            merge_times = self.merge_times_s() if self.config.mission is Mission.MERGE else {}
+            if merge_times:
+                self._metrics["merge_time_max_s"] = max(merge_times.values())
         return self._metrics
 
     def verdict(self) -> tuple[bool, str]:
@@ -71,14 +78,41 @@ class MissionJudge:
     def _final(self) -> dict[str, sim_pb2.VehicleTruth]:
         return {v.vehicle_id: v for v in self.frames[-1][1]}
 
+    def _roadworks(self) -> list:
+        return [event for unit in self.config.roadside_units for event in unit.events
+                if event.kind is RsuEventKind.ROADWORKS]
+
     def _merge_verdict(self) -> tuple[bool, str]:
-        closed = {event.closed_lane for unit in self.config.roadside_units for event in unit.events
-                  if event.kind is RsuEventKind.ROADWORKS}
+        works = self._roadworks()
+        intruders = sorted({v.vehicle_id for _, vehicles in self.frames for v in vehicles
+                            if v.vehicle_id in self.stack_ids and any(_in_works(v, event) for event in works)})
+        if intruders:
+            return False, f"{', '.join(intruders)} drove into the road works"
+        closed = {event.closed_lane for event in works}
         final = self._final()
         still = sorted(v for v in self.stack_ids if v in final and final[v].lane_index in closed)
         if still:
             return False, f"merge not completed: {', '.join(still)} still in the closed lane at the end"
+        slow = {v: t for v, t in self.merge_times_s().items() if t > MERGE_TIME_LIMIT_S}
+        if slow:
+            return False, "merge too slow: " + ", ".join(f"{v} {t:.1f} s" for v, t in sorted(slow.items()))
         return True, ""
+
+    def merge_times_s(self) -> dict[str, float]:
+        """Per stack vehicle that left a closed lane: from leaving its centre to settling in the new lane."""
+        closed = {event.closed_lane for event in self._roadworks()}
+        started: dict[str, float] = {}
+        done: dict[str, float] = {}
+        for time_s, vehicles in self.frames:
+            for v in vehicles:
+                if v.vehicle_id not in self.stack_ids or v.vehicle_id in done:
+                    continue
+                off_centre = abs(v.lateral_offset_m) > LANE_CENTRE_TOLERANCE_M
+                if v.lane_index in closed and off_centre:
+                    started.setdefault(v.vehicle_id, time_s)
+                elif v.lane_index not in closed and not off_centre and v.vehicle_id in started:
+                    done[v.vehicle_id] = time_s - started[v.vehicle_id]
+        return done
 
     def _intersection_verdict(self) -> tuple[bool, str]:
         from coopdrive.roadmap import RoadMap
@@ -98,6 +132,9 @@ class MissionJudge:
         missing = sorted(set(self.stack_ids) - crossed)
         if missing:
             return False, f"intersection not crossed by {', '.join(missing)}"
+        violations = int(self.metrics().get("safety_circle_violations", 0))
+        if violations:
+            return False, f"{violations} safety circle violation(s)"
         return True, ""
 
     def _emergency_verdict(self) -> tuple[bool, str]:
@@ -110,3 +147,12 @@ class MissionJudge:
         if behind:
             return False, f"the emergency vehicle did not get past {', '.join(behind)}"
         return True, ""
+
+
+def _in_works(vehicle: sim_pb2.VehicleTruth, event) -> bool:
+    """In the closed lane between the works' start (the DENM event position) and its end, along the road."""
+    if vehicle.lane_index != event.closed_lane:
+        return False
+    along_m = ((vehicle.x_m - event.x_m) * math.cos(vehicle.heading_rad)
+               + (vehicle.y_m - event.y_m) * math.sin(vehicle.heading_rad))
+    return 0.0 <= along_m <= event.length_m

@@ -12,6 +12,8 @@ from coopdrive.services.sim.participants import IntentKind, MessageIntent, RateG
 DEFAULT_RSU_RATE_HZ = 25.0
 # DENM cause code of road works (ETSI EN 302 637-3).
 ROADWORKS_CAUSE = 3
+# The longest validity a DENM can state (ETSI EN 302 637-3 ValidityDuration).
+MAX_DENM_VALIDITY_S = 86400.0
 
 
 class RsuEventKind(enum.Enum):
@@ -60,7 +62,9 @@ class RoadsideUnit:
             if event.kind is RsuEventKind.ROADWORKS:
                 intents.append(MessageIntent(IntentKind.DENM, self.unit_id, self.station_id, now_s, {
                     "cause_code": ROADWORKS_CAUSE, "x_m": event.x_m, "y_m": event.y_m,
-                    "closed_lane": event.closed_lane, "length_m": event.length_m, "since_s": event.time_s}))
+                    "closed_lane": event.closed_lane, "length_m": event.length_m, "since_s": event.time_s,
+                    # Valid from detection for as long as the works last, so repetitions never expire.
+                    "validity_s": min(event.until_s - event.time_s, MAX_DENM_VALIDITY_S)}))
             elif event.kind is RsuEventKind.START_PLATOON:
                 iclcm["start_platoon"] = event.platoon
             else:

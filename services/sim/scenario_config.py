@@ -55,6 +55,8 @@ class VehicleConfig(_Strict):
     lane_changes: list[LaneChange] = []
     lateral_offset_m: float = 0.0
     ignores_protocol: bool = False
+    # The organiser's vehicle at the intersection: every stack is told its station id and gives way to it.
+    organiser: bool = False
     # GCDC platoon id (1 = A, 2 = B); None outside platoons.
     platoon: int | None = Field(default=None, ge=1)
     siren: SirenConfig | None = None

@@ -55,6 +55,14 @@ def test_a_road_works_denm_is_geo_broadcast_from_the_roadside_unit_with_its_caus
     assert denm.reference_time_tai_ms - denm.detection_time_tai_ms == 2000
 
 
+def test_a_denm_states_the_validity_its_sender_gives_else_ten_seconds(encoder):
+    fields = {"cause_code": 3, "x_m": 1477.0, "y_m": 260.0, "closed_lane": 1, "since_s": 10.0}
+    plain = decode_packet(encoder.encode(MessageIntent(IntentKind.DENM, "rsu", 3000, 12.0, fields))).content
+    lasting = decode_packet(encoder.encode(MessageIntent(IntentKind.DENM, "rsu", 3000, 12.0,
+                                                         {**fields, "validity_s": 3600.0}))).content
+    assert (plain.validity_duration_s, lasting.validity_duration_s) == (10, 3600)
+
+
 def test_a_start_platoon_iclcm_from_the_roadside_unit_carries_the_platoon(encoder):
     intent = MessageIntent(IntentKind.ICLCM, "rsu", 3000, 2.0, {"start_platoon": 1})
     iclcm = decode_packet(encoder.encode(intent)).content

@@ -28,10 +28,17 @@ def test_two_vehicles_that_touch_are_one_collision_however_long_they_stay_in_con
     assert judge.verdict() == (False, "2 collision(s)")
 
 
+ROADWORKS_AT_500_M = [{"unit_id": "rsu", "station_id": 9, "x_m": 0, "y_m": 0,
+                       "events": [{"kind": "roadworks", "time_s": 1, "closed_lane": 1, "x_m": 500, "y_m": 0,
+                                   "length_m": 300}]}]
+
+
+def merge_judge():
+    return MissionJudge(config("merge", roadside_units=ROADWORKS_AT_500_M), ["a", "b"])
+
+
 def test_a_merge_fails_naming_who_is_still_in_the_closed_lane():
-    roadworks = [{"unit_id": "rsu", "station_id": 9, "x_m": 0, "y_m": 0,
-                  "events": [{"kind": "roadworks", "time_s": 1, "closed_lane": 1}]}]
-    judge = MissionJudge(config("merge", roadside_units=roadworks), ["a", "b"])
+    judge = merge_judge()
     judge.observe(0.0, truth({"vehicle_id": "a", "x_m": 0, "lane_index": 1},
                              {"vehicle_id": "b", "x_m": 30, "lane_index": 0}))
     assert judge.verdict() == (False, "merge not completed: a still in the closed lane at the end")
@@ -47,3 +54,33 @@ def test_a_follow_run_without_contact_passes_and_reports_its_gap():
                                            {"vehicle_id": "b", "x_m": 20, "lane_index": 0}))
     assert judge.verdict() == (True, "")
     assert judge.metrics()["collisions"] == 0
+
+
+def test_a_merge_fails_naming_who_drove_into_the_road_works_even_after_leaving_them():
+    judge = merge_judge()
+    judge.observe(0.0, truth({"vehicle_id": "a", "x_m": 520, "lane_index": 1}, {"vehicle_id": "b", "x_m": 0}))
+    judge.observe(1.0, truth({"vehicle_id": "a", "x_m": 830, "lane_index": 0}, {"vehicle_id": "b", "x_m": 10}))
+    assert judge.verdict() == (False, "a drove into the road works")
+
+
+def lane_change(judge, start_s, duration_s):
+    """Vehicle a leaves lane 1's centre at start_s and is centred in lane 0 duration_s later."""
+    frames = [(start_s - 1.0, 1, 0.0), (start_s, 1, 0.5), (start_s + duration_s / 2, 0, 1.0),
+              (start_s + duration_s, 0, 0.1)]
+    for time_s, lane, offset_m in frames:
+        judge.observe(time_s, truth({"vehicle_id": "a", "x_m": 100 + time_s, "lane_index": lane,
+                                     "lateral_offset_m": offset_m},
+                                    {"vehicle_id": "b", "x_m": 900 + time_s, "lane_index": 0}))
+
+
+def test_the_merge_time_runs_from_leaving_the_lane_centre_to_settling_in_the_open_lane():
+    judge = merge_judge()
+    lane_change(judge, start_s=5.0, duration_s=6.0)
+    assert judge.metrics()["merge_time_max_s"] == 6.0
+    assert judge.verdict() == (True, "")
+
+
+def test_a_merge_slower_than_10_s_fails_naming_the_vehicle_and_its_time():
+    judge = merge_judge()
+    lane_change(judge, start_s=5.0, duration_s=12.0)
+    assert judge.verdict() == (False, "merge too slow: a 12.0 s")

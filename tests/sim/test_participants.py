@@ -61,3 +61,11 @@ def test_the_roadside_unit_starts_the_platoon_and_announces_road_works_from_thei
     kinds = sorted(i.kind.value for i in rsu.messages_due(2.5))
     assert kinds == ["denm", "iclcm"]
     assert [i.kind for i in rsu.messages_due(3.5)] == [IntentKind.DENM]
+
+
+def test_road_works_stay_valid_for_as_long_as_they_last_so_no_repetition_expires():
+    rsu = RoadsideUnit("rsu", 1000, 0.0, 0.0, [
+        RsuEvent(kind=RsuEventKind.ROADWORKS, time_s=2.0, x_m=500.0),
+        RsuEvent(kind=RsuEventKind.ROADWORKS, time_s=2.0, until_s=62.0, x_m=900.0)])
+    validities = [i.fields["validity_s"] for i in rsu.messages_due(3.0)]
+    assert validities == [86400.0, 60.0]
