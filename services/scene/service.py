@@ -11,6 +11,7 @@ from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.services.scene.config import SceneFusionConfig
 from coopdrive.services.scene.fusion import SceneFusion
 from coopdrive.services.scene.measurement import V2vObservation
+from coopdrive.services.scene.road_lanes import EgoRoadLanes
 
 SENSOR_TOPICS = {"radar/tracks": "on_radar", "lidar/scan": "on_lidar", "camera/frame": "on_camera",
                  "sonar/ranges": "on_sonar"}
@@ -39,8 +40,9 @@ class SceneService(Service):
         else:
             self.origin = (config.origin_lat_deg, config.origin_lon_deg, config.origin_alt_m)
         self.plane = LocalTangentPlane(*self.origin)
-        self.fusion = SceneFusion(config.fusion, lane_of=self._lane_of if self.road_map else None)
-        self.ctx.subscribe("ego/state", lambda envelope: self.fusion.on_ego(envelope.message))
+        self.road_lanes = EgoRoadLanes(self.road_map) if self.road_map is not None else None
+        self.fusion = SceneFusion(config.fusion, lane_of=self.road_lanes.lane_of if self.road_lanes else None)
+        self.ctx.subscribe("ego/state", self.on_ego)
         for topic, method in SENSOR_TOPICS.items():
             self.ctx.subscribe(topic, self._sensor_handler(method))
         self.ctx.subscribe("v2x/cam", self.on_cam)
@@ -50,9 +52,10 @@ class SceneService(Service):
         method = getattr(self.fusion, method_name)
         return lambda envelope: method(envelope.message)
 
-    def _lane_of(self, x_m: float, y_m: float) -> int | None:
-        match = self.road_map.match(x_m, y_m)
-        return None if match is None else match.lane_index
+    def on_ego(self, envelope: Envelope) -> None:
+        if self.road_lanes is not None:
+            self.road_lanes.on_ego(envelope.message)
+        self.fusion.on_ego(envelope.message)
 
     def on_cam(self, envelope: Envelope) -> None:
         cam = envelope.message

@@ -10,6 +10,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Sequence
 
+from coopdrive.services.sim.geometry import rear_overhang_m
 from coopdrive.services.sim.profiles import VehicleProfile
 from coopdrive.services.sim.road_geometry import LaneGeometry
 from coopdrive.services.sim.speed_profiles import ConstantSpeed, LaneChange, SpeedProfile, smoothstep
@@ -20,6 +21,14 @@ DEFAULT_CAM_RATE_HZ = 25.0  # GCDC sent CAM, DENM and iCLCM at 25 Hz
 _DERIVATIVE_STEP_S = 1e-3
 # DENM cause code of an approaching emergency vehicle (ETSI EN 302 637-3).
 EMERGENCY_VEHICLE_APPROACHING_CAUSE = 95
+# A scripted driver follows its script but is not blind: it keeps a spacing r + h v to whoever blocks its
+# path (a vehicle ahead whose footprint overlaps its own across the lane, plus a margin).
+KEEP_STANDSTILL_M = 4.0
+KEEP_TIME_GAP_S = 1.2
+KEEP_SPEED_GAIN_PER_S = 0.5
+KEEP_MAX_DECEL_MPS2 = 6.0
+KEEP_MAX_ACCEL_MPS2 = 2.0
+KEEP_LATERAL_MARGIN_M = 0.3
 
 
 class IntentKind(enum.Enum):
@@ -55,7 +64,8 @@ class RateGate:
 
 
 class ScriptedVehicle:
-    """Drives its speed profile exactly along a lane, moving smoothly across lanes at scheduled times.
+    """Drives its speed profile along a lane, moving smoothly across lanes at scheduled times, and slows down
+    behind whoever blocks its path rather than driving into them (then catches up with its profile).
 
     `lanes` are the lanes of its road indexed by lane_index. `ignores_protocol` marks the car that keeps
     its script and never answers the cooperative protocol (it still sends CAMs).
@@ -85,6 +95,9 @@ class ScriptedVehicle:
         self.lane_index = lane_index
         self.station_m = station_m
         self.time_s = start_s
+        self._speed_mps = self.speed_at(start_s)
+        self._accel_mps2 = self.accel_at(start_s)
+        self._on_profile = True
         self._active_change: LaneChange | None = None
         self._source_lane = lane_index
         self._last_heading: float | None = None
@@ -97,16 +110,57 @@ class ScriptedVehicle:
         return (self.speed_at(time_s + _DERIVATIVE_STEP_S) - self.speed_at(time_s - _DERIVATIVE_STEP_S)) / (
             2.0 * _DERIVATIVE_STEP_S)
 
-    def step(self, now_s: float) -> sim_pb2.VehicleTruth:
+    def step(self, now_s: float, others: Sequence[sim_pb2.VehicleTruth] = ()) -> sim_pb2.VehicleTruth:
         """Advance to now_s (trapezoidal station update) and return the new truth."""
         dt_s = now_s - self.time_s
         if dt_s < 0.0:
             raise ValueError(f"{self.vehicle_id}: time went back from {self.time_s} to {now_s}")
-        self.station_m += 0.5 * (self.speed_at(self.time_s) + self.speed_at(now_s)) * dt_s
+        old_speed_mps = self._speed_mps
+        self._speed_mps, self._accel_mps2 = self._next_speed(now_s, dt_s, self._leader(others))
+        self.station_m += 0.5 * (old_speed_mps + self._speed_mps) * dt_s
         self.time_s = now_s
         self._update_lane_change(now_s)
         self._truth = self._compute_truth(dt_s)
         return self._truth
+
+    def _next_speed(self, now_s: float, dt_s: float, leader: tuple[float, float] | None) -> tuple[float, float]:
+        """(speed, accel): the profile's while nothing blocks, else the spacing law, within accel limits."""
+        profile_mps = self.speed_at(now_s)
+        safe_mps = math.inf
+        if leader is not None:
+            gap_m, leader_speed_mps = leader
+            spacing_m = KEEP_STANDSTILL_M + KEEP_TIME_GAP_S * self._speed_mps
+            safe_mps = max(0.0, leader_speed_mps + KEEP_SPEED_GAIN_PER_S * (gap_m - spacing_m))
+        if self._on_profile and profile_mps <= safe_mps:
+            return profile_mps, self.accel_at(now_s)
+        wanted_mps = min(profile_mps, safe_mps)
+        if dt_s <= 0.0:
+            return self._speed_mps, self._accel_mps2
+        low = self._speed_mps - KEEP_MAX_DECEL_MPS2 * dt_s
+        high = self._speed_mps + KEEP_MAX_ACCEL_MPS2 * dt_s
+        speed_mps = max(0.0, min(max(wanted_mps, low), high))
+        self._on_profile = speed_mps >= profile_mps - 1e-9
+        return speed_mps, (speed_mps - self._speed_mps) / dt_s
+
+    def _leader(self, others: Sequence[sim_pb2.VehicleTruth]) -> tuple[float, float] | None:
+        """(bumper gap, speed) of the nearest vehicle ahead in the path, along the current lane."""
+        lane = self.lanes[self.lane_index]
+        own = self._truth
+        front_m = own.length_m - rear_overhang_m(own.length_m)
+        best: tuple[float, float] | None = None
+        for other in others:
+            if other.vehicle_id == self.vehicle_id:
+                continue
+            station_m, lateral_m, lane_heading, _ = lane.project(other.x_m, other.y_m)
+            if math.cos(other.heading_rad - lane_heading) <= 0.0:
+                continue
+            overlap_m = 0.5 * (own.width_m + other.width_m) + KEEP_LATERAL_MARGIN_M
+            if abs(lateral_m - own.lateral_offset_m) >= overlap_m:
+                continue
+            gap_m = station_m - rear_overhang_m(other.length_m) - (own.station_m + front_m)
+            if station_m > own.station_m and (best is None or gap_m < best[0]):
+                best = (gap_m, other.speed_mps)
+        return best
 
     def truth(self) -> sim_pb2.VehicleTruth:
         return self._truth
@@ -145,7 +199,7 @@ class ScriptedVehicle:
             source = self.lanes[self._source_lane]
             target = self.lanes[change.target_lane]
             lateral_span_m = target.project(*source.pose_at(self.station_m, 0.0)[:2])[1]
-            speed = max(self.speed_at(self.time_s), 1e-3)
+            speed = max(self._speed_mps, 1e-3)
             heading = lane_heading + math.atan2(-lateral_span_m * slope, speed)
         yaw_rate = 0.0
         if self._last_heading is not None and dt_s > 0.0:
@@ -155,7 +209,7 @@ class ScriptedVehicle:
         station_m, lateral_m, _, _ = current.project(x_m, y_m)
         return sim_pb2.VehicleTruth(
             vehicle_id=self.vehicle_id, station_id=self.station_id, x_m=x_m, y_m=y_m, heading_rad=heading,
-            speed_mps=self.speed_at(self.time_s), accel_mps2=self.accel_at(self.time_s), yaw_rate_radps=yaw_rate,
+            speed_mps=self._speed_mps, accel_mps2=self._accel_mps2, yaw_rate_radps=yaw_rate,
             length_m=self.profile.length_m, width_m=self.profile.width_m, lane_index=self.lane_index,
             station_m=station_m, lateral_offset_m=lateral_m, automated=False,
         )

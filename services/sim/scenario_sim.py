@@ -75,8 +75,9 @@ class ScenarioSim:
             if steering is None:
                 steering = self.drivers[vehicle_id].steering_rad(state)
             model.step(accel, steering)
+        before = self.truths()
         for participant in self.objects.participants.values():
-            participant.step(now_s)
+            participant.step(now_s, before)
         self.objects.faults.update(now_s, self.objects.sensor_suites, self.objects.channel)
         self.time_s = now_s
 

@@ -69,3 +69,34 @@ def test_road_works_stay_valid_for_as_long_as_they_last_so_no_repetition_expires
         RsuEvent(kind=RsuEventKind.ROADWORKS, time_s=2.0, until_s=62.0, x_m=900.0)])
     validities = [i.fields["validity_s"] for i in rsu.messages_due(3.0)]
     assert validities == [86400.0, 60.0]
+
+
+def test_a_scripted_car_slows_behind_a_slower_car_in_its_path_instead_of_driving_into_it():
+    lanes = straight_road(2)
+    fast = ScriptedVehicle("fast", 7, PASSENGER_CAR, lanes, lane_index=0, station_m=0.0,
+                           speed_profile=PiecewiseSpeed(points=[SpeedPoint(time_s=0.0, speed_mps=16.7)]))
+    slow = ScriptedVehicle("slow", 8, PASSENGER_CAR, lanes, lane_index=0, station_m=60.0,
+                           speed_profile=PiecewiseSpeed(points=[SpeedPoint(time_s=0.0, speed_mps=11.1)]))
+    beside = ScriptedVehicle("beside", 9, PASSENGER_CAR, lanes, lane_index=1, station_m=30.0,
+                             speed_profile=PiecewiseSpeed(points=[SpeedPoint(time_s=0.0, speed_mps=5.0)]))
+    gaps = []
+    for k in range(1, 1501):
+        others = [slow.truth(), beside.truth()]
+        truth = fast.step(k * 0.02, others)
+        slow.step(k * 0.02)
+        beside.step(k * 0.02)
+        gaps.append(slow.truth().x_m - truth.x_m)
+    assert min(gaps) > 4.5 + 4.0
+    assert truth.speed_mps == pytest.approx(11.1, abs=0.3)
+
+
+def test_a_scripted_car_with_nobody_in_its_path_keeps_its_profile_exactly():
+    lanes = straight_road(2)
+    car = ScriptedVehicle("x", 7, PASSENGER_CAR, lanes, lane_index=0, station_m=0.0,
+                          speed_profile=PiecewiseSpeed(points=[SpeedPoint(time_s=0.0, speed_mps=10.0),
+                                                               SpeedPoint(time_s=1.0, speed_mps=20.0)]))
+    beside = ScriptedVehicle("beside", 9, PASSENGER_CAR, lanes, lane_index=1, station_m=10.0)
+    for k in range(1, 101):
+        truth = car.step(k * 0.02, [beside.truth()])
+    assert truth.speed_mps == pytest.approx(20.0)
+    assert truth.x_m == pytest.approx(15.0 + 20.0, abs=0.01)
