@@ -120,7 +120,8 @@ class MissionJudge:
         zones = RoadMap.load(self.config.map).zones
         if not zones:
             return False, f"map {self.config.map} has no competition zone to cross"
-        zone = next(iter(zones.values()))
+        # The map's competition zone; a map may also mark its reference point as a zone of radius 0.
+        zone = max(zones.values(), key=lambda z: z.radius_m)
         entered: set[str] = set()
         for _, vehicles in self.frames:
             for v in vehicles:

@@ -84,3 +84,30 @@ def test_a_merge_slower_than_10_s_fails_naming_the_vehicle_and_its_time():
     judge = merge_judge()
     lane_change(judge, start_s=5.0, duration_s=12.0)
     assert judge.verdict() == (False, "merge too slow: a 12.0 s")
+
+
+def intersection_config():
+    return parse_scenario({
+        "name": "t", "map": "intersection", "duration_s": 10, "mission": "intersection",
+        "vehicles": [{"vehicle_id": "a", "station_id": 2, "road": "main_eastbound", "lane": 0, "station_m": 0,
+                      "speed_mps": 10},
+                     {"vehicle_id": "o", "station_id": 3, "role": "scripted", "road": "side_northbound", "lane": 0,
+                      "station_m": 0, "speed_mps": 0}]})
+
+
+def test_an_intersection_run_passes_once_the_stack_has_crossed_the_competition_zone():
+    judge = MissionJudge(intersection_config(), ["a"])
+    for time_s, x_m in enumerate([-150, -60, 0, 60, 120]):
+        judge.observe(float(time_s), truth({"vehicle_id": "a", "x_m": x_m, "y_m": -1.75},
+                                           {"vehicle_id": "o", "x_m": 1.75, "y_m": -40}))
+        if x_m < 120:
+            assert judge.verdict() == (False, "intersection not crossed by a")
+    assert judge.verdict() == (True, "")
+
+
+def test_an_intersection_run_fails_on_entering_a_safety_circle():
+    judge = MissionJudge(intersection_config(), ["a"])
+    for time_s, x_m in enumerate([-150, -60, 0, 60, 120]):
+        judge.observe(float(time_s), truth({"vehicle_id": "a", "x_m": x_m, "y_m": -1.75},
+                                           {"vehicle_id": "o", "x_m": 1.75, "y_m": -6}))
+    assert judge.verdict() == (False, "1 safety circle violation(s)")
