@@ -32,6 +32,11 @@ FIX_MODE_STD_M = {
     gnss_pb2.FIX_MODE_SINGLE: 5.0,  # ~5 m (PSRSP)
 }
 MAX_STEP_S = 0.02  # longer predictions are split so the linearisation stays good
+# Zero-velocity update: how still "still" is, and the scales that turn it into yaw rate and acceleration
+# uncertainties (a wheel-speed error over a car's half track, and over one odometry period).
+ZUPT_SPEED_STD_MPS = 0.01
+ZUPT_LEVER_M = 0.8
+ZUPT_TIME_S = 0.1
 
 
 class UpdateKind(enum.Enum):
@@ -179,6 +184,22 @@ class GeolocationEkf:
         H[0, ACCEL] = 1.0
         return self._gated_update(UpdateKind.ACCEL, np.array([accel_mps2]), H, self.kf.x[[ACCEL]],
                                   np.array([[std_mps2**2]]))
+
+    def zero_velocity_update(self, speed_std_mps: float = ZUPT_SPEED_STD_MPS) -> None:
+        """The wheels stand still: speed, yaw rate and acceleration are zero, whatever the model predicted.
+
+        An ungated pseudo-measurement (zero-velocity update). Without it a car braking to a stop keeps its
+        negative acceleration state, its speed estimate runs below zero between odometry samples, and the
+        gate then refuses the wheels' zeros as outliers: the estimate drives backwards on its own.
+        """
+        rows = [SPEED, YAW_RATE, ACCEL]
+        self.kf.x[rows] = 0.0
+        self.kf.P[rows, :] = 0.0
+        self.kf.P[:, rows] = 0.0
+        self.kf.P[SPEED, SPEED] = speed_std_mps**2
+        self.kf.P[YAW_RATE, YAW_RATE] = (speed_std_mps / ZUPT_LEVER_M) ** 2
+        self.kf.P[ACCEL, ACCEL] = (speed_std_mps / ZUPT_TIME_S) ** 2
+        self.accepted[UpdateKind.ODOMETRY] += 1
 
     def reset_position(self, east_m: float, north_m: float, std_m: float) -> None:
         """Jump to a position when the gate has refused the GNSS for too long (the filter was wrong)."""

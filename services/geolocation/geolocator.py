@@ -29,6 +29,8 @@ from coopdrive.v1 import ego_pb2, gnss_pb2, vehicle_pb2
 
 SENDER = "geolocation"
 STATIONARY_SPEED_MPS = 0.5
+# Rear wheels this slow are standing still (wheel-speed sensors read zero there, give or take their noise).
+STANDSTILL_SPEED_MPS = 0.05
 HEADING_FROM_TRACK_MIN_M = 2.0  # two fixes this far apart give a usable heading
 PENDING_FIX_MAX_AGE_S = 5.0
 INITIAL_YAW_RATE_STD_RADPS = 0.1
@@ -45,6 +47,7 @@ class InputEvent(enum.Enum):
     ODOMETRY_INVALID = "odometry_invalid"
     IMU_INVALID = "imu_invalid"
     TOO_OLD = "too_old"
+    STANDSTILL = "standstill"
 
 
 @dataclass(frozen=True)
@@ -220,6 +223,10 @@ class Geolocator:
         if not self.ekf.initialised:
             return
         self.ekf.predict_to(time_s)
+        if abs(sample.speed_mps) < STANDSTILL_SPEED_MPS:
+            self.counters[InputEvent.STANDSTILL] += 1
+            self.ekf.zero_velocity_update()
+            return
         if self._bicycle is not None:
             self._bicycle.steering_angle_rad = sample.steering_angle_rad
             self.ekf.update_speed(sample.speed_mps, sample.speed_std_mps)

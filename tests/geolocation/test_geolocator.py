@@ -2,7 +2,7 @@ import math
 
 import numpy as np
 import pytest
-from geolocation_drive import ORIGIN, drive, rmse_m, simulate
+from geolocation_drive import ODOMETRY_DT_S, ORIGIN, Truth, drive, rmse_m, simulate
 from scipy.stats import chi2
 
 from coopdrive.roadmap import RoadMap
@@ -219,3 +219,23 @@ def test_fixes_decoded_from_nmea_bytes_drive_the_geolocator():
     assert state.mode == ego_pb2.LOCALISATION_MODE_GNSS_PRECISE
     assert state.heading_rad == pytest.approx(math.pi / 2, abs=0.01)
     assert state.y_m == pytest.approx(20.0, abs=0.05)
+
+
+def brake_to_a_stop(duration_s: float, speed0_mps: float, decel_mps2: float) -> Truth:
+    t = np.arange(0.0, duration_s, ODOMETRY_DT_S)
+    speed = np.maximum(0.0, speed0_mps - decel_mps2 * t)
+    x = np.concatenate(([0.0], np.cumsum(0.5 * (speed[1:] + speed[:-1]) * ODOMETRY_DT_S)))
+    zeros = np.zeros_like(t)
+    return Truth(t, x, zeros, zeros, speed, zeros)
+
+
+def test_a_car_that_brakes_to_a_stop_and_waits_is_estimated_standing_where_it_stopped():
+    geolocator = new_geolocator()
+    truth = brake_to_a_stop(40.0, speed0_mps=8.0, decel_mps2=2.0)
+    run = simulate(geolocator, truth, seed=4, gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M, estimate_every=5)
+    standing = run.time_s > 5.0
+    speeds = np.array([s.speed_mps for s in run.states])[standing]
+    assert np.max(np.abs(speeds)) < 0.05
+    assert np.max(np.hypot(*run.error_xy_m[standing].T)) < 0.2
+    assert all(mode == ego_pb2.LOCALISATION_MODE_GNSS_PRECISE for mode, keep in zip(run.modes, standing) if keep)
+    assert geolocator.counters[InputEvent.STANDSTILL] > 0
