@@ -6,6 +6,7 @@ import argparse
 import json
 import logging
 import sys
+import tempfile
 from pathlib import Path
 
 from coopdrive.cli_v2x import add_commands as add_v2x_commands
@@ -61,6 +62,10 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--out", type=Path, metavar="DIR", help="batch runs: metrics.json per run and summary files")
     run.add_argument("--processes", choices=["service", "vehicle"],
                      help="one process per service or per vehicle (default: per vehicle when several stacks run)")
+    run.add_argument("--security", choices=[m.value for m in _security_modes()],
+                     help="V2X security of every stack (ETSI TS 103 097): each gets tickets from a test PKI")
+    run.add_argument("--untrusted", action="append", default=[], metavar="VEHICLE",
+                     help="with --security: this stack vehicle holds a ticket from a root nobody trusts")
     run.add_argument("--realtime", action="store_true", help="pace the simulation to wall time")
     run.add_argument("--record", type=Path, metavar="FILE.mcap")
     run.add_argument("--gateway", type=int, metavar="PORT", help="serve the gateway HTTP API on this port")
@@ -168,9 +173,14 @@ def _run(args) -> int:
         return _batch(args)
     options = RunOptions(scenario=args.scenario, seed=args.seed, realtime=args.realtime, record=args.record,
                          gateway_port=args.gateway, duration_s=args.duration, log_dir=args.logs, stacks=args.stacks,
-                         group_per_vehicle=None if args.processes is None else args.processes == "vehicle")
+                         group_per_vehicle=None if args.processes is None else args.processes == "vehicle",
+                         security=args.security, untrusted=tuple(args.untrusted))
+    if args.untrusted and args.security is None:
+        print("coopdrive: --untrusted needs --security", file=sys.stderr)
+        return EXIT_USAGE
     try:
-        build_specs(options)  # a bad scenario file stops here, before anything starts
+        with tempfile.TemporaryDirectory(prefix="coopdrive-check-") as check_dir:
+            build_specs(options, Path(check_dir))  # a bad scenario file stops here, before anything starts
     except ScenarioError as error:
         print(f"coopdrive: {error}", file=sys.stderr)
         return EXIT_USAGE
@@ -202,6 +212,12 @@ def _batch(args) -> int:
     summary = run_batch(BatchOptions(scenarios=scenarios, seeds=seeds, stacks=args.stacks, workers=args.workers,
                                      out_dir=args.out, duration_s=args.duration))
     return EXIT_OK if summary.all_passed else EXIT_FAILED
+
+
+def _security_modes():
+    from coopdrive.services.v2x.security.profile import SecurityMode
+
+    return list(SecurityMode)
 
 
 def _following_laws():

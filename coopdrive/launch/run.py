@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import shutil
 import signal
 import tempfile
 import threading
@@ -21,7 +22,11 @@ from coopdrive.launch.stack_config import vehicle_overrides
 from coopdrive.recording.writer import McapRecorder, config_metadata
 from coopdrive.runtime.registry import VEHICLE_STACK
 from coopdrive.services.sim.radio_box import RadioPorts
+from coopdrive.services.sim.scenario_config import ScenarioConfig, ScenarioError
 from coopdrive.services.sim.service import SimConfig
+from coopdrive.services.v2x.security.profile import SecurityMode
+from coopdrive.services.v2x.security.run_setup import security_overrides
+from coopdrive.services.v2x.timebase import tai_ms_from_utc
 from coopdrive.v1 import sim_pb2
 
 
@@ -38,10 +43,19 @@ class RunOptions:
     # Each vehicle's services in one process (`coopdrive group`); None: only when several stacks run.
     group_per_vehicle: bool | None = None
     log_dir: Path | None = None
+    # V2X security of every stack (a SecurityMode value; None: the v2x default, off), and the stack vehicles
+    # holding a ticket from a root nobody else trusts.
+    security: str | None = None
+    untrusted: tuple[str, ...] = ()
     # Extra config per service name, merged over the defaults (e.g. {"control": {...}}).
     service_overrides: dict[str, dict] = field(default_factory=dict)
     # Called as observer(key, message) for every message on the bus (benchmarks, live tools).
     observer: Callable[[str, Message], None] | None = None
+
+
+MS_PER_S = 1000
+# Certificates of a secured run are valid from a while before the scenario's clock starts.
+CERTIFICATE_BACKDATE_S = 3600
 
 
 class RunAborted(RuntimeError):
@@ -60,7 +74,9 @@ def merged(base: dict, override: dict) -> dict:
     return result
 
 
-def build_specs(options: RunOptions) -> list[ServiceSpec]:
+def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[ServiceSpec]:
+    """Every service's spec. run_dir holds the run's files (GNSS port links, the test PKI); by default a new
+    temporary folder the caller removes."""
     source = resolve_scenario(options.scenario)
     # --realtime paces the lockstep run to the wall clock: it is watchable and still deterministic.
     sim = SimConfig(scenario=source.name, seed=options.seed, lockstep=True, paced=options.realtime)
@@ -73,12 +89,18 @@ def build_specs(options: RunOptions) -> list[ServiceSpec]:
         sim.duration_s, sim.step_s = source.config.duration_s, source.config.step_s
         world_needs = sim.stack_overrides()
         services = VEHICLE_STACK + ("v2x",)
-        # Each stack's GNSS receiver is a pty the simulator writes NMEA to, found through a link in a run folder.
-        gnss_dir = Path(tempfile.mkdtemp(prefix="coopdrive-gnss-"))
-        sim.gnss_ports = {v: str(gnss_dir / f"{v}-gnss0") for v in stacks}
+        run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-")) if run_dir is None else run_dir
+        # Each stack's GNSS receiver is a pty the simulator writes NMEA to, found through a link in the run folder.
+        sim.gnss_ports = {v: str(run_dir / f"{v}-gnss0") for v in stacks}
         per_vehicle = {v: merged(vehicle_overrides(source.config, v, radio[v]),
                                  {"geolocation": {"gnss_port": sim.gnss_ports[v], "serial_sync": "marks"}})
                        for v in stacks}
+        if options.security is not None:
+            security = secured_run(source.config, stacks, options, run_dir / "pki")
+            per_vehicle = {v: merged(per_vehicle[v], {"v2x": security[v]}) for v in stacks}
+            sim.security_pki_dir = str(run_dir / "pki")
+    elif options.security is not None:
+        raise ScenarioError("--security needs a scenario file run: the built-in follow world has no v2x service")
     else:
         stacks = [v.vehicle_id for v in sim.world.vehicles if not v.speed_profile]
         world_needs = merged(FOLLOW_STACK_CONFIG, sim.stack_overrides())
@@ -94,13 +116,32 @@ def build_specs(options: RunOptions) -> list[ServiceSpec]:
     return [ServiceSpec("sim", WORLD_ID, sim_config)] + specs
 
 
+def secured_run(config: ScenarioConfig, stacks: list[str], options: RunOptions, pki_dir: Path) -> dict[str, dict]:
+    """A test PKI valid from the scenario's start for the stacks and the simulator's own senders; per stack
+    its v2x `security` section."""
+    try:
+        mode = SecurityMode(options.security)
+    except ValueError:
+        modes = ", ".join(m.value for m in SecurityMode)
+        raise ScenarioError(f"--security {options.security!r} is not one of {modes}") from None
+    strangers = sorted(set(options.untrusted) - set(stacks))
+    if strangers:
+        raise ScenarioError(f"--untrusted {', '.join(strangers)}: not a stack vehicle of this run ({', '.join(stacks)})")
+    sim_senders = [v.vehicle_id for v in config.vehicles if v.vehicle_id not in stacks]
+    sim_senders += [unit.unit_id for unit in config.roadside_units]
+    valid_from_tai_s = tai_ms_from_utc(config.utc_epoch) // MS_PER_S - CERTIFICATE_BACKDATE_S
+    overrides = security_overrides(pki_dir, list(stacks) + sim_senders, mode, options.untrusted, valid_from_tai_s)
+    return {vehicle: overrides[vehicle] for vehicle in stacks}
+
+
 def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     endpoint = loopback_endpoint(free_tcp_port())
     hub = Bus(BusConfig(listen=[endpoint]))
     finished = threading.Event()
     stop_reason: list[str] = []
     results: list[sim_pb2.RunResult] = []
-    specs = build_specs(options)
+    run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-"))
+    specs = build_specs(options, run_dir)
 
     def on_result(envelope) -> None:
         results.append(envelope.message)
@@ -136,6 +177,7 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
                 raise RunAborted(f"every service exited: {crashed}")
     finally:
         processes.stop_all()
+        shutil.rmtree(run_dir, ignore_errors=True)
         if recorder is not None:
             time.sleep(0.1)
             recorder.close()

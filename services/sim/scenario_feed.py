@@ -18,6 +18,7 @@ from coopdrive.roadmap import RoadMap
 from coopdrive.runtime.service import Service
 from coopdrive.services.sim.gnss_pty import GnssPty
 from coopdrive.services.sim.intent_encoder import IntentEncoder
+from coopdrive.services.sim.sender_signing import SenderSigning
 from coopdrive.services.sim.mission_verdict import MissionJudge
 from coopdrive.services.sim.radio_box import RadioBox, RadioPorts
 from coopdrive.services.sim.scenario_config import load_scenario
@@ -43,6 +44,8 @@ class ScenarioFeed:
         self.codecs = {vehicle_id: VehicleCanCodec() for vehicle_id in self.stacks}
         self.box = RadioBox({v: RadioPorts(**ports) for v, ports in radio_links.items()}, self.sim.objects.channel)
         self.encoder = IntentEncoder(self.road_map.to_geodetic, config.utc_epoch)
+        pki_dir = service.config.security_pki_dir
+        self.signing = SenderSigning(pki_dir, config.utc_epoch) if pki_dir else None
         self.judge = MissionJudge(self.config, self.stacks)
         self.finished = False
         # Vehicles whose GNSS receiver talks NMEA over a serial line; the others get gnss/fix on the bus.
@@ -90,6 +93,8 @@ class ScenarioFeed:
         for intent in self.sim.intents(now_s):
             packet = self.encoder.encode(intent)
             if packet is not None:
+                if self.signing is not None:
+                    packet = self.signing.seal(intent, packet)
                 self.box.broadcast(intent.sender_id, packet)
         for vehicle_id, written in self.box.step(now_s, self.sim.radio_positions()).items():
             self.ctx.publish_for(vehicle_id, "radio/mark", sim_pb2.WireMark(written=written))

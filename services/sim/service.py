@@ -70,6 +70,8 @@ class SimConfig(ServiceConfig):
     radio_links: dict[str, dict[str, int]] = Field(default_factory=dict)
     # vehicle_id -> path of the link to that vehicle's GNSS serial line (a pty carrying NMEA), instead of gnss/fix.
     gnss_ports: dict[str, str] = Field(default_factory=dict)
+    # Secured runs: the test PKI whose tickets the scripted vehicles and roadside units sign with ("": unsigned).
+    security_pki_dir: str = ""
 
     def stack_overrides(self) -> dict[str, dict]:
         """What this world needs in every stack's service configs; the launcher merges its own over them.

@@ -69,10 +69,14 @@ class TestPki:
 
 def create_test_pki(directory: str | Path, vehicles: Sequence[str] = (), curve: Curve = Curve.NIST_P256,
                     tickets_per_vehicle: int = DEFAULT_TICKETS_PER_VEHICLE,
-                    region: CircularArea | None = None) -> TestPki:
-    """Create and write a root, an authority and tickets_per_vehicle tickets per vehicle (region: tickets')."""
+                    region: CircularArea | None = None, valid_from_tai_s: int | None = None) -> TestPki:
+    """Create and write a root, an authority and tickets_per_vehicle tickets per vehicle (region: tickets').
+
+    Everything is valid from valid_from_tai_s (TAI seconds since 2004; default an hour ago): a simulated run
+    whose clock starts in 2016 needs certificates valid then.
+    """
     directory = Path(directory)
-    start_s = _now_tai_s() - BACKDATE_S
+    start_s = _now_tai_s() - BACKDATE_S if valid_from_tai_s is None else valid_from_tai_s
     root_key = generate_key(curve)
     root = issue_certificate(ROOT_NAME, root_key.public_key(), root_key, None, start_s=start_s,
                              duration_hours=ROOT_VALIDITY_HOURS, min_chain_length=ROOT_MIN_CHAIN_LENGTH)
@@ -120,9 +124,9 @@ def pki_init(directory: str | Path, vehicles: Sequence[str], curve: Curve = Curv
 
 
 def create_untrusted_pki(directory: str | Path, vehicles: Sequence[str] = ("rogue",),
-                         curve: Curve = Curve.NIST_P256) -> TestPki:
+                         curve: Curve = Curve.NIST_P256, valid_from_tai_s: int | None = None) -> TestPki:
     """Fault: a complete PKI under a root nobody trusts (tickets that chain to it must be refused)."""
-    return create_test_pki(directory, vehicles, curve)
+    return create_test_pki(directory, vehicles, curve, valid_from_tai_s=valid_from_tai_s)
 
 
 def issue_expired_ticket(pki: TestPki, vehicle: str) -> Ticket:

@@ -21,8 +21,11 @@ UNTRUSTED_SUBDIR = "untrusted"
 
 
 def security_overrides(pki_dir: Path, vehicle_ids: Sequence[str], mode: SecurityMode,
-                       untrusted: Sequence[str] = ()) -> dict[str, dict]:
-    """Create the PKI(s) in pki_dir and return per vehicle id the `{"security": {...}}` of its v2x config."""
+                       untrusted: Sequence[str] = (), valid_from_tai_s: int | None = None) -> dict[str, dict]:
+    """Create the PKI(s) in pki_dir and return per vehicle id the `{"security": {...}}` of its v2x config.
+
+    vehicle_ids may also name the simulator's own senders (scripted vehicles, roadside units): they get
+    tickets like any vehicle and sign with them (`load_test_pki(pki_dir).signer(name)`)."""
     pki_dir = Path(pki_dir)
     unknown = sorted(set(untrusted) - set(vehicle_ids))
     if unknown:
@@ -30,10 +33,10 @@ def security_overrides(pki_dir: Path, vehicle_ids: Sequence[str], mode: Security
     if UNTRUSTED_SUBDIR in vehicle_ids:
         raise ValueError(f"vehicle id {UNTRUSTED_SUBDIR!r} is reserved for the untrusted PKI's directory")
     trusted = [vehicle for vehicle in vehicle_ids if vehicle not in untrusted]
-    create_test_pki(pki_dir, trusted)
+    create_test_pki(pki_dir, trusted, valid_from_tai_s=valid_from_tai_s)
     untrusted_dir = pki_dir / UNTRUSTED_SUBDIR
     if untrusted:
-        create_untrusted_pki(untrusted_dir, list(untrusted))
+        create_untrusted_pki(untrusted_dir, list(untrusted), valid_from_tai_s=valid_from_tai_s)
     return {vehicle: {"security": {"mode": mode.value,
                                    "pki_dir": str(untrusted_dir if vehicle in untrusted else pki_dir),
                                    "ticket": vehicle}}

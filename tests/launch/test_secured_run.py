@@ -1,0 +1,48 @@
+"""`coopdrive run SCENARIO --security MODE [--untrusted VEHICLE]`: the specs a secured run starts with."""
+
+import pytest
+
+from coopdrive.launch.run import RunOptions, build_specs
+from coopdrive.services.sim.scenario_config import ScenarioError
+from coopdrive.services.v2x.security.pki import load_test_pki
+
+
+def specs_of(tmp_path, **options):
+    specs = build_specs(RunOptions(scenario="merge", stacks=2, **options), tmp_path)
+    return {(spec.vehicle_id, spec.service): spec.config for spec in specs}
+
+
+def test_every_stack_verifies_with_its_own_ticket_and_the_simulator_signs_its_senders(tmp_path):
+    specs = specs_of(tmp_path, security="verify_required")
+    for vehicle in ("a1", "a2"):
+        assert specs[(vehicle, "v2x")]["security"] == {"mode": "verify_required", "pki_dir": str(tmp_path / "pki"),
+                                                      "ticket": vehicle}
+    assert specs[("world", "sim")]["security_pki_dir"] == str(tmp_path / "pki")
+    tickets = load_test_pki(tmp_path / "pki").tickets
+    assert {"a1", "a2", "rsu", "traffic", "b1"} <= set(tickets)
+
+
+def test_an_untrusted_stack_gets_its_ticket_from_a_root_nobody_else_trusts(tmp_path):
+    specs = specs_of(tmp_path, security="verify_required", untrusted=("a2",))
+    assert specs[("a2", "v2x")]["security"]["pki_dir"] == str(tmp_path / "pki" / "untrusted")
+    assert load_test_pki(tmp_path / "pki" / "untrusted").root != load_test_pki(tmp_path / "pki").root
+
+
+def test_an_unsecured_run_has_no_pki(tmp_path):
+    specs = specs_of(tmp_path)
+    assert "security" not in specs[("a1", "v2x")] and not specs[("world", "sim")]["security_pki_dir"]
+    assert not (tmp_path / "pki").exists()
+
+
+@pytest.mark.parametrize("options, message", [
+    ({"security": "paranoid"}, "'paranoid' is not one of off, sign_only"),
+    ({"security": "verify_required", "untrusted": ("b3",)}, "--untrusted b3: not a stack vehicle"),
+], ids=["unknown mode", "untrusted vehicle without a stack"])
+def test_a_bad_security_option_is_refused_naming_it(tmp_path, options, message):
+    with pytest.raises(ScenarioError, match=message):
+        specs_of(tmp_path, **options)
+
+
+def test_the_built_in_follow_world_refuses_security_for_want_of_a_v2x_service(tmp_path):
+    with pytest.raises(ScenarioError, match="no v2x service"):
+        build_specs(RunOptions(scenario="follow", security="sign_only"), tmp_path)
