@@ -104,6 +104,21 @@ class MergeScenario:
         # Only a station speaking the iCLCM can pair; anyone else is merged around on the scene alone.
         self.partner_station_id = candidate if self.sit.iclcm(candidate) is not None else 0
 
+    def _answer_who_named_us(self) -> None:
+        """The protocol pairs a merger with the lane B vehicle that names it as forwardID, wherever the
+        scene puts it; of several, the nearest. Only while nobody names us does the scene's choice stand."""
+        me = self.sit.inputs.station_id
+        namers = [station for station in self.sit.inputs.iclcms
+                  if station != me and (msg := self.sit.iclcm(station)) is not None and msg.forward_id == me]
+        if not namers or self.partner_station_id in namers:
+            return
+
+        def distance_m(station: int) -> float:
+            obj = self.sit.object_of_station(station)
+            return abs(obj.longitudinal_gap_m) if obj is not None else float("inf")
+
+        self.partner_station_id = min(namers, key=lambda station: (distance_m(station), station))
+
     def is_gap_maker(self) -> bool:
         return self.role is MergeRole.GAP_MAKER
 
@@ -183,6 +198,8 @@ class MergeScenario:
 
     def observe(self, sit: Situation, state: enum.Enum, time_in_state_s: float) -> list[enum.Enum]:
         self.sit, self.state, self.time_in_state_s = sit, state, time_in_state_s
+        if state is MergeState.PAIRING and self.role is MergeRole.MERGER:
+            self._answer_who_named_us()
         E = MergeEvent
         events: list[enum.Enum] = []
         if sit.rsu_end():

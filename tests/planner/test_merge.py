@@ -205,3 +205,15 @@ def test_a_vehicle_in_the_open_lane_has_no_stop_line_for_the_works():
     request, _ = run_merger(planner(), 3, behind_gap_m=-40.0, behind_speed_mps=11.0, works_east_m=200.0,
                             ego_lane=LANE_B)
     assert not request.has_stop_line
+
+
+def test_a_merger_answers_the_lane_b_vehicle_that_names_it_rather_than_the_one_the_scene_puts_behind():
+    namer = 61
+    p = planner()
+    p.step(0.0, merger(0.0))
+    request, state = p.step(0.1, merger(0.1))
+    assert state.state == "PAIRING" and request.iclcm.backward_id == B_PARTNER
+    named = merger(0.2)
+    named.iclcms[namer] = iclcm(namer, 0.2, forward_id=ME)
+    request, state = p.step(0.2, named)
+    assert request.iclcm.backward_id == namer and request.iclcm.acknowledge
