@@ -82,6 +82,28 @@ class PartnerSilent(_Fault):
     vehicle_id: str
 
 
+class IclcmFlag(enum.Enum):
+    """The iCLCM fields that carry a step of the merge protocol (names as in its.proto's IclcmContent)."""
+
+    FORWARD_ID = "forward_id"
+    BACKWARD_ID = "backward_id"
+    ACKNOWLEDGE_FLAG = "acknowledge_flag"
+    MERGE_REQUEST = "merge_request"
+    MERGE_SAFE_TO_MERGE = "merge_safe_to_merge"
+    MERGE_FLAG = "merge_flag"
+    MERGE_FLAG_HEAD = "merge_flag_head"
+    MERGE_FLAG_TAIL = "merge_flag_tail"
+
+
+class IclcmDrop(_Fault):
+    """The radio loses the first `count` iCLCMs vehicle_id sends with `flag` set (a protocol step's message)."""
+
+    type: Literal["iclcm_drop"]
+    vehicle_id: str
+    flag: IclcmFlag
+    count: int = Field(default=1, ge=1)
+
+
 class ServiceCrash(_Fault):
     """The named stack service of the vehicle is killed at start_s and restarted at end_s (if given)."""
 
@@ -91,4 +113,4 @@ class ServiceCrash(_Fault):
 
 
 Fault = Annotated[Union[GnssOutage, FixDowngrade, V2vLoss, V2vCorruption, SensorDropout, CanErrorBurst,
-                        PartnerSilent, ServiceCrash], Field(discriminator="type")]
+                        PartnerSilent, IclcmDrop, ServiceCrash], Field(discriminator="type")]

@@ -8,13 +8,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Mapping, Sequence
 
-from coopdrive.services.sim.fault_config import (CanErrorBurst, Fault, FixDowngrade, GnssOutage, PartnerSilent,
-                                                 SensorDropout, SensorName, ServiceCrash, V2vCorruption, V2vLoss)
+from coopdrive.services.sim.fault_config import (CanErrorBurst, Fault, FixDowngrade, GnssOutage, IclcmDrop,
+                                                 PartnerSilent, SensorDropout, SensorName, ServiceCrash, V2vCorruption,
+                                                 V2vLoss)
 from coopdrive.services.sim.radio_channel import RadioChannel
 from coopdrive.services.sim.sensor_suite import SensorSuite
 
 # Faults that only the integrator can carry out (processes, radio transmitters, the CAN transport).
-INTEGRATOR_FAULTS = (PartnerSilent, ServiceCrash, CanErrorBurst)
+INTEGRATOR_FAULTS = (PartnerSilent, IclcmDrop, ServiceCrash, CanErrorBurst)
 
 
 @dataclass(frozen=True)

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import socket
 from dataclasses import dataclass, field
-from typing import Mapping
+from typing import Callable, Mapping
 
 from coopdrive.services.sim.radio_channel import RadioChannel, RadioNode
 
@@ -69,18 +69,19 @@ class RadioBox:
         """A scripted participant or roadside unit transmits (it has no stack, so no socket)."""
         self._pending.append((sender_id, packet))
 
-    def step(self, now_s: float, positions_m: Mapping[str, tuple[float, float]]) -> dict[str, int]:
+    def step(self, now_s: float, positions_m: Mapping[str, tuple[float, float]],
+             on_air: Callable[[str, bytes], bool] | None = None) -> dict[str, int]:
         """Puts this step's transmissions on the air and sends what arrives by now_s.
 
         Returns the stack vehicles that were sent something, with their running datagram count (radio/mark).
-        Senders without a known position are not on the air.
+        Senders without a known position are not on the air, nor transmissions on_air(sender, packet) refuses.
         """
         nodes = [RadioNode(node_id, x_m, y_m) for node_id, (x_m, y_m) in positions_m.items()]
         receivers = [node for node in nodes if node.node_id in self._sockets]
         by_id = {node.node_id: node for node in nodes}
         pending, self._pending = self._pending, []
         for sender_id, packet in pending:
-            if sender_id in by_id:
+            if sender_id in by_id and (on_air is None or on_air(sender_id, packet)):
                 self.channel.deliver(packet, by_id[sender_id], receivers, now_s)
         marks: dict[str, int] = {}
         for delivery in self.channel.due(now_s):

@@ -7,6 +7,7 @@ the end the RunResult with the judge's metrics. SimService wires it; the world l
 
 from __future__ import annotations
 
+import functools
 import time
 
 
@@ -18,6 +19,7 @@ from coopdrive.roadmap import RoadMap
 from coopdrive.runtime.service import Service
 from coopdrive.services.sim.gnss_pty import GnssPty
 from coopdrive.services.sim.intent_encoder import IntentEncoder
+from coopdrive.services.sim.radio_faults import RadioFaults
 from coopdrive.services.sim.sender_signing import SenderSigning
 from coopdrive.services.sim.mission_verdict import MissionJudge
 from coopdrive.services.sim.radio_box import RadioBox, RadioPorts
@@ -46,6 +48,7 @@ class ScenarioFeed:
         self.encoder = IntentEncoder(self.road_map.to_geodetic, config.utc_epoch)
         pki_dir = service.config.security_pki_dir
         self.signing = SenderSigning(pki_dir, config.utc_epoch) if pki_dir else None
+        self.radio_faults = RadioFaults(self.config.faults, self.signing.unsecured if self.signing else None)
         self.judge = MissionJudge(self.config, self.stacks)
         self.finished = False
         # Vehicles whose GNSS receiver talks NMEA over a serial line; the others get gnss/fix on the bus.
@@ -96,10 +99,13 @@ class ScenarioFeed:
                 if self.signing is not None:
                     packet = self.signing.seal(intent, packet)
                 self.box.broadcast(intent.sender_id, packet)
-        for vehicle_id, written in self.box.step(now_s, self.sim.radio_positions()).items():
+        on_air = functools.partial(self.radio_faults.keeps, now_s=now_s)
+        for vehicle_id, written in self.box.step(now_s, self.sim.radio_positions(), on_air).items():
             self.ctx.publish_for(vehicle_id, "radio/mark", sim_pb2.WireMark(written=written))
         self.service.counters["radio_missing"] = self.box.stats.missing
         self.service.counters["radio_mismatched"] = self.box.stats.mismatched
+        self.service.counters["radio_fault_silenced"] = self.radio_faults.silenced_count
+        self.service.counters["radio_fault_dropped_iclcm"] = self.radio_faults.dropped_count
         if now_s >= self.service.config.duration_s - 1e-9 and not self.finished:
             self.finish(now_s)
 

@@ -11,12 +11,15 @@ import datetime as dt
 from pathlib import Path
 
 from coopdrive.services.sim.intent_encoder import station_mac
+from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE, BasicNextHeader
 from coopdrive.services.sim.participants import MessageIntent
 from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.security.pki import load_test_pki
 from coopdrive.services.v2x.security.signer import SecuredPacketSigner
+from coopdrive.services.v2x.security.verifier import SecurityVerifier
 
 US_PER_MS = 1000
+NEXT_HEADER_MASK = 0x0F
 
 
 class SenderSigning:
@@ -24,6 +27,7 @@ class SenderSigning:
         self.pki = load_test_pki(pki_dir)
         self.clock = ItsClock(utc_epoch.timestamp())
         self._signers: dict[str, SecuredPacketSigner] = {}
+        self._reader = SecurityVerifier(self.pki.store())
 
     def seal(self, intent: MessageIntent, packet: bytes) -> bytes:
         """The secured packet of an unsecured one the sender's intent was encoded to."""
@@ -34,3 +38,9 @@ class SenderSigning:
             signer = self.pki.signer(intent.sender_id, intent.station_id, station_mac(intent.station_id))
             self._signers[intent.sender_id] = signer
         return signer.sign(packet, self.clock.tai_ms(intent.time_s) * US_PER_MS)
+
+    def unsecured(self, packet: bytes) -> bytes | None:
+        """The GN packet inside a secured one (what a radio fault looks into); unsecured ones as they are."""
+        if len(packet) < BASIC_HEADER_SIZE or packet[0] & NEXT_HEADER_MASK != BasicNextHeader.SECURED_PACKET:
+            return packet
+        return self._reader.unwrap(packet, count=False).unsecured_packet
