@@ -209,8 +209,11 @@ def _batch(args) -> int:
         print(f"coopdrive: --seeds: {error}", file=sys.stderr)
         return EXIT_USAGE
     scenarios = scenario_names() if args.scenario == "all" else [args.scenario]
+    if args.untrusted:
+        print("coopdrive: --untrusted is for single runs (name the vehicle of one scenario)", file=sys.stderr)
+        return EXIT_USAGE
     summary = run_batch(BatchOptions(scenarios=scenarios, seeds=seeds, stacks=args.stacks, workers=args.workers,
-                                     out_dir=args.out, duration_s=args.duration))
+                                     out_dir=args.out, duration_s=args.duration, security=args.security))
     return EXIT_OK if summary.all_passed else EXIT_FAILED
 
 

@@ -85,8 +85,9 @@ class SecurityConfig(_Section):
     pki_dir: Path | None = None
     # The vehicle name under pki_dir/vehicles whose tickets this station signs with.
     ticket: str | None = None
-    # More root certificates (files) to trust besides pki_dir/root.cert.
+    # More root certificates (files) to trust besides pki_dir/root.cert, and the authorities under them.
     extra_trusted_roots: list[Path] = []
+    extra_authorities: list[Path] = []
 
     @model_validator(mode="after")
     def _pki_holds_what_the_mode_needs(self) -> "SecurityConfig":

@@ -52,7 +52,8 @@ def build_security_layer(config: SecurityConfig, station_id: int, mac: bytes,
         return None
     pki = load_test_pki(config.pki_dir)
     roots = [pki.root] + [Certificate.from_bytes(path.read_bytes()) for path in config.extra_trusted_roots]
-    verifier = SecurityVerifier(CertificateStore(trusted_roots=roots, authorities=[pki.authority]))
+    authorities = [pki.authority] + [Certificate.from_bytes(path.read_bytes()) for path in config.extra_authorities]
+    verifier = SecurityVerifier(CertificateStore(trusted_roots=roots, authorities=authorities))
     signer = SecuredPacketSigner(pki.tickets[config.ticket], station_id, mac) if config.ticket else None
     return SecurityLayer(config.mode, verifier, signer, clock_tai_us)
 

@@ -5,8 +5,8 @@
     v2x_config.update(overrides["car1"])    # {"security": {"mode": ..., "pki_dir": ..., "ticket": "car1"}}
 
 Trusted vehicles get tickets under pki_dir; untrusted ones get theirs from a second PKI under
-pki_dir/untrusted whose root only they trust, so the others drop their packets (unknown issuer) and treat
-them as vehicles without V2V.
+pki_dir/untrusted whose root nobody else trusts, so the others drop their packets (unknown issuer) and treat
+them as vehicles without V2V. An untrusted vehicle trusts the run's root as well, so it still hears the others.
 """
 
 from __future__ import annotations
@@ -37,7 +37,11 @@ def security_overrides(pki_dir: Path, vehicle_ids: Sequence[str], mode: Security
     untrusted_dir = pki_dir / UNTRUSTED_SUBDIR
     if untrusted:
         create_untrusted_pki(untrusted_dir, list(untrusted), valid_from_tai_s=valid_from_tai_s)
-    return {vehicle: {"security": {"mode": mode.value,
-                                   "pki_dir": str(untrusted_dir if vehicle in untrusted else pki_dir),
-                                   "ticket": vehicle}}
-            for vehicle in vehicle_ids}
+    overrides = {vehicle: {"security": {"mode": mode.value, "pki_dir": str(pki_dir), "ticket": vehicle}}
+                 for vehicle in trusted}
+    for vehicle in untrusted:
+        # Nobody trusts its tickets, but it trusts the run's root like everyone: it still hears the others.
+        overrides[vehicle] = {"security": {"mode": mode.value, "pki_dir": str(untrusted_dir), "ticket": vehicle,
+                                           "extra_trusted_roots": [str(pki_dir / "root.cert")],
+                                           "extra_authorities": [str(pki_dir / "aa.cert")]}}
+    return overrides

@@ -91,6 +91,13 @@ def test_a_station_with_an_untrusted_ticket_is_dropped_with_its_reason_counted(s
     assert [s.station_id for s in b_ctx.messages("v2x/status")[-1].stations] == []
 
 
+def test_the_station_with_the_untrusted_ticket_still_hears_and_verifies_the_others(station, radio):  # noqa: F811
+    (rogue, rogue_ctx), (b, b_ctx) = station("rogue"), station("b")
+    deliver(rogue, rogue_ctx, radio, sent_cam(b, b_ctx, radio))
+    assert [cam.station_id for cam in rogue_ctx.messages("v2x/cam")] == [STATIONS["b"][0]]
+    assert rogue.counters["security_verified"] == 1
+
+
 def test_verify_required_refuses_an_unsigned_cam_with_its_reason_counted(station, radio):  # noqa: F811
     b, b_ctx = station("b")
     deliver(b, b_ctx, radio, cam_packet(remote_cam(START_S, clock=b.clock), START_S, clock=b.clock))
