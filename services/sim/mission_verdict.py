@@ -52,9 +52,13 @@ class MissionJudge:
                 string_start_s=judging_config.string_start_s,
                 string_frequency_hz=judging_config.string_frequency_hz).items() if math.isfinite(value)}
             self._metrics["collisions"] = float(self.collisions)
+            # The slowest vehicle's time: what the GCDC limits (a merge in under 10 s per pair).
             merge_times = self.merge_times_s() if self.config.mission is Mission.MERGE else {}
             if merge_times:
-                self._metrics["merge_time_max_s"] = max(merge_times.values())
+                self._metrics["merge_time_s"] = max(merge_times.values())
+            crossing_times = self.crossing_times_s() if self.config.mission is Mission.INTERSECTION else {}
+            if crossing_times:
+                self._metrics["crossing_time_s"] = max(crossing_times.values())
         return self._metrics
 
     def verdict(self) -> tuple[bool, str]:
@@ -115,28 +119,41 @@ class MissionJudge:
         return done
 
     def _intersection_verdict(self) -> tuple[bool, str]:
-        from coopdrive.roadmap import RoadMap
-
-        zones = RoadMap.load(self.config.map).zones
-        if not zones:
+        zone = self._competition_zone()
+        if zone is None:
             return False, f"map {self.config.map} has no competition zone to cross"
-        # The map's competition zone; a map may also mark its reference point as a zone of radius 0.
-        zone = max(zones.values(), key=lambda z: z.radius_m)
-        entered: set[str] = set()
-        for _, vehicles in self.frames:
-            for v in vehicles:
-                if math.hypot(v.x_m - zone.x_m, v.y_m - zone.y_m) <= zone.radius_m:
-                    entered.add(v.vehicle_id)
-        final = self._final()
-        crossed = {v for v in entered if v in final
-                   and math.hypot(final[v].x_m - zone.x_m, final[v].y_m - zone.y_m) > zone.radius_m + ZONE_EXIT_MARGIN_M}
-        missing = sorted(set(self.stack_ids) - crossed)
+        missing = sorted(set(self.stack_ids) - set(self.crossing_times_s()))
         if missing:
             return False, f"intersection not crossed by {', '.join(missing)}"
         violations = int(self.metrics().get("safety_circle_violations", 0))
         if violations:
             return False, f"{violations} safety circle violation(s)"
         return True, ""
+
+    def _competition_zone(self):
+        from coopdrive.roadmap import RoadMap
+
+        zones = RoadMap.load(self.config.map).zones
+        # The map's competition zone; a map may also mark its reference point as a zone of radius 0.
+        return max(zones.values(), key=lambda z: z.radius_m) if zones else None
+
+    def crossing_times_s(self) -> dict[str, float]:
+        """Per stack vehicle that crossed the competition zone: from entering it to being ZONE_EXIT_MARGIN_M out."""
+        zone = self._competition_zone()
+        if zone is None:
+            return {}
+        entered: dict[str, float] = {}
+        crossed: dict[str, float] = {}
+        for time_s, vehicles in self.frames:
+            for v in vehicles:
+                if v.vehicle_id not in self.stack_ids or v.vehicle_id in crossed:
+                    continue
+                distance_m = math.hypot(v.x_m - zone.x_m, v.y_m - zone.y_m)
+                if distance_m <= zone.radius_m:
+                    entered.setdefault(v.vehicle_id, time_s)
+                elif v.vehicle_id in entered and distance_m > zone.radius_m + ZONE_EXIT_MARGIN_M:
+                    crossed[v.vehicle_id] = time_s - entered[v.vehicle_id]
+        return crossed
 
     def _emergency_verdict(self) -> tuple[bool, str]:
         emergency = [v.vehicle_id for v in self.config.vehicles if v.role is VehicleRole.EMERGENCY]

@@ -76,7 +76,7 @@ def lane_change(judge, start_s, duration_s):
 def test_the_merge_time_runs_from_leaving_the_lane_centre_to_settling_in_the_open_lane():
     judge = merge_judge()
     lane_change(judge, start_s=5.0, duration_s=6.0)
-    assert judge.metrics()["merge_time_max_s"] == 6.0
+    assert judge.metrics()["merge_time_s"] == 6.0
     assert judge.verdict() == (True, "")
 
 
@@ -103,6 +103,7 @@ def test_an_intersection_run_passes_once_the_stack_has_crossed_the_competition_z
         if x_m < 120:
             assert judge.verdict() == (False, "intersection not crossed by a")
     assert judge.verdict() == (True, "")
+    assert judge.metrics()["crossing_time_s"] == 3.0
 
 
 def test_an_intersection_run_fails_on_entering_a_safety_circle():
