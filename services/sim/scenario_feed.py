@@ -38,7 +38,8 @@ class ScenarioFeed:
                  already_delayed_steps: int, gnss_ports: dict[str, str] | None = None):
         self.service = service
         self.ctx = service.ctx
-        config = load_scenario(scenario_file)
+        # The run's seed (`coopdrive run --seed`) draws the noise, losses and dropouts, not the file's default.
+        config = load_scenario(scenario_file).model_copy(update={"seed": service.config.seed})
         self.road_map = RoadMap.load(config.map)
         self.stacks = stacks or [v.vehicle_id for v in config.vehicles if v.role.value == "stack"]
         self.sim = ScenarioSim(config, self.road_map, self.stacks, already_delayed_steps)
