@@ -13,6 +13,8 @@ from coopdrive.v1 import sim_pb2
 
 KMH_PER_MPS = 3.6
 DEFAULT_SAFETY_RADIUS_M = 7.5
+# Paths cross when headings are more than 30 degrees from parallel (or antiparallel).
+CROSSING_SIN = math.sin(math.radians(30.0))
 # Time gaps are meaningless near standstill.
 MIN_SPEED_FOR_TIME_GAP_MPS = 0.5
 # Heudiasyc eq. (4) defaults: standstill distance r and time headway h.
@@ -49,6 +51,15 @@ def collisions(truth: TruthSeries) -> int:
 def safety_circle_violations(truth: TruthSeries, radius_m: float = DEFAULT_SAFETY_RADIUS_M) -> int:
     """Onsets of two vehicle centres closer than radius_m (the organisers' safety circle)."""
     return _onsets(truth, lambda a, b: float(np.hypot(*(_centre(a) - _centre(b)))) < radius_m)
+
+
+def crossing_circle_violations(truth: TruthSeries, radius_m: float = DEFAULT_SAFETY_RADIUS_M) -> int:
+    """Safety-circle onsets between vehicles whose paths cross (headings more than 30 degrees from parallel):
+    at an intersection, unlike two cars passing in their own lanes or following each other."""
+    def crossing_too_close(a: sim_pb2.VehicleTruth, b: sim_pb2.VehicleTruth) -> bool:
+        crossing = abs(math.sin(a.heading_rad - b.heading_rad)) > CROSSING_SIN
+        return crossing and float(np.hypot(*(_centre(a) - _centre(b)))) < radius_m
+    return _onsets(truth, crossing_too_close)
 
 
 def bumper_gap_m(leader: sim_pb2.VehicleTruth, follower: sim_pb2.VehicleTruth) -> float:
@@ -196,8 +207,10 @@ def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[s
     """The run's metrics; `platoon` lists vehicle ids leader first for the string gain;
     `position_estimates` maps a vehicle id to (time_s (N,), xy_m (N, 2)) of the stack's own estimate."""
     judged = list(automated) if automated is not None else sorted(truth.automated) or truth.vehicle_ids
-    metrics: dict[str, float] = {"collisions": float(collisions(truth)),
-                                 "safety_circle_violations": float(safety_circle_violations(truth, safety_radius_m))}
+    metrics: dict[str, float] = {
+        "collisions": float(collisions(truth)),
+        "safety_circle_violations": float(safety_circle_violations(truth, safety_radius_m)),
+        "crossing_circle_violations": float(crossing_circle_violations(truth, safety_radius_m))}
     metrics.update(gaps(truth))
     metrics.update(comfort(truth, judged))
     metrics.update(spacing_error(truth, judged, standstill_m, headway_s))

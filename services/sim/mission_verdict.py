@@ -125,9 +125,9 @@ class MissionJudge:
         missing = sorted(set(self.stack_ids) - set(self.crossing_times_s()))
         if missing:
             return False, f"intersection not crossed by {', '.join(missing)}"
-        violations = int(self.metrics().get("safety_circle_violations", 0))
+        violations = int(self.metrics().get("crossing_circle_violations", 0))
         if violations:
-            return False, f"{violations} safety circle violation(s)"
+            return False, f"{violations} safety circle violation(s) between crossing vehicles"
         return True, ""
 
     def _competition_zone(self):

@@ -106,9 +106,21 @@ def test_an_intersection_run_passes_once_the_stack_has_crossed_the_competition_z
     assert judge.metrics()["crossing_time_s"] == 3.0
 
 
-def test_an_intersection_run_fails_on_entering_a_safety_circle():
+NORTH = 1.5708
+
+
+def test_an_intersection_run_fails_on_entering_the_safety_circle_of_a_crossing_vehicle():
     judge = MissionJudge(intersection_config(), ["a"])
     for time_s, x_m in enumerate([-150, -60, 0, 60, 120]):
         judge.observe(float(time_s), truth({"vehicle_id": "a", "x_m": x_m, "y_m": -1.75},
-                                           {"vehicle_id": "o", "x_m": 1.75, "y_m": -6}))
-    assert judge.verdict() == (False, "1 safety circle violation(s)")
+                                           {"vehicle_id": "o", "x_m": 1.75, "y_m": -8, "heading_rad": NORTH}))
+    assert judge.verdict() == (False, "1 safety circle violation(s) between crossing vehicles")
+
+
+def test_passing_a_car_in_the_opposite_lane_is_no_safety_circle_violation():
+    judge = MissionJudge(intersection_config(), ["a"])
+    for time_s, x_m in enumerate([-150, -60, 0, 60, 120]):
+        judge.observe(float(time_s), truth({"vehicle_id": "a", "x_m": x_m, "y_m": -1.75},
+                                           {"vehicle_id": "o", "x_m": -x_m, "y_m": 1.75, "heading_rad": 3.1416}))
+    assert judge.metrics()["safety_circle_violations"] == 1
+    assert judge.verdict() == (True, "")
