@@ -23,6 +23,8 @@ PROFILE_LOOKAHEAD_S = 0.5
 # Slower than this a vehicle is standing (waiting at its own stop line), not coming: scene speeds of a
 # stopped car are noise around zero.
 MOVING_MPS = 0.5
+# Paths cross when headings are more than 30 degrees from parallel or antiparallel.
+CROSSING_SIN = math.sin(math.radians(30.0))
 
 
 class CrossState(enum.Enum):
@@ -129,10 +131,18 @@ class IntersectionScenario:
         return not any(self._object_conflicts(o) for o in self.sit.objects())
 
     def _within_safety_circle(self) -> list:
+        """Objects ahead inside the safety circle that stand or whose path crosses ours. A car passing in its
+        own lane the other way, or one driving ahead in ours (the forward MIO, followed anyway), is no reason
+        to stop."""
         ego, r = self.sit.inputs.ego, self.config.intersection.safety_circle_m
         if ego is None:
             return []
-        return [o for o in self.sit.objects() if o.longitudinal_gap_m > 0
+
+        def in_the_way(o) -> bool:
+            standing = o.speed_mps.value <= MOVING_MPS
+            return standing or abs(math.sin(o.heading_rad.value - ego.heading_rad)) > CROSSING_SIN
+
+        return [o for o in self.sit.objects() if o.longitudinal_gap_m > 0 and in_the_way(o)
                 and math.hypot(o.position.x_m - ego.x_m, o.position.y_m - ego.y_m) < r]
 
     def observe(self, sit: Situation, state: enum.Enum, time_in_state_s: float) -> list[enum.Enum]:

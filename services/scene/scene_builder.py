@@ -28,6 +28,8 @@ UNKNOWN_LANE = -1
 # Below this speed the velocity direction says nothing about heading.
 _MIN_SPEED_FOR_HEADING_MPS = 0.5
 _LANE_OFFSETS = (-1, 1)
+# Faster than this, an object moving against our heading is oncoming traffic.
+ONCOMING_MIN_SPEED_MPS = 1.0
 
 
 @dataclass(frozen=True)
@@ -79,8 +81,9 @@ class SceneBuilder:
             scene.objects.append(obj)
             if view.eligible:
                 candidates.append((obj, lane))
-        self._pick_mio(scene, candidates, ego_lane)
-        self._pick_neighbours(scene, candidates, ego_lane)
+        self._pick_mio(scene, candidates, ego_lane, ego.heading_rad)
+        same_way = [(obj, lane) for obj, lane in candidates if not _oncoming(obj, ego.heading_rad)]
+        self._pick_neighbours(scene, same_way, ego_lane)
         return scene
 
     def _object(self, time_s: float, ego: EgoPose, view: ObjectView) -> tuple[scene_pb2.SceneObject, int | None]:
@@ -156,12 +159,14 @@ class SceneBuilder:
             return lane - ego_lane
         return round(obj.lateral_offset_m / self._config.lidar.lane_margin_m)
 
-    def _pick_mio(self, scene: scene_pb2.Scene, candidates: list, ego_lane: int | None) -> None:
+    def _pick_mio(self, scene: scene_pb2.Scene, candidates: list, ego_lane: int | None, ego_heading_rad: float) -> None:
         ahead = [(obj.longitudinal_gap_m, obj.object_id, obj, lane) for obj, lane in candidates if obj.longitudinal_gap_m >= 0.0]
         mio = [item for item in ahead if self._in_corridor(item[2])]
         if mio:
             scene.has_mio, scene.mio_id = True, min(mio)[1]
-        forward = [item for item in ahead if self._lane_offset(item[2], item[3], ego_lane) == 0]
+        # A car coming the other way is never the one to follow, whichever lane band it seems to be in.
+        forward = [item for item in ahead if self._lane_offset(item[2], item[3], ego_lane) == 0
+                   and not _oncoming(item[2], ego_heading_rad)]
         if forward:
             scene.has_forward_mio, scene.forward_mio_id = True, min(forward)[1]
 
@@ -176,3 +181,9 @@ class SceneBuilder:
             if behind:
                 entry.has_behind, entry.behind_object_id = True, max(behind)[1]
             scene.neighbours.append(entry)
+
+
+def _oncoming(obj: scene_pb2.SceneObject, ego_heading_rad: float) -> bool:
+    """Moving against the ego's direction (a standing object has no direction to judge)."""
+    moving = obj.speed_mps.confidence >= 0 and obj.speed_mps.value > ONCOMING_MIN_SPEED_MPS
+    return moving and obj.heading_rad.confidence >= 0 and math.cos(obj.heading_rad.value - ego_heading_rad) < 0.0

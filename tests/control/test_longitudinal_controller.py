@@ -157,3 +157,22 @@ def test_a_cooperative_law_taking_over_starts_from_the_applied_command(law):
     cmd = ctrl.step(100 * DT, 20.0, applied, [ahead], 21.0, SPACING)
     # One 20 ms step of the law's own dynamics away from the applied command (the law alone would ask ~9 m/s2).
     assert cmd.law_outputs_mps2["LONGITUDINAL_MODE_CACC:5"] == pytest.approx(applied, abs=0.2)
+
+
+def test_cruise_taking_over_after_an_emergency_brake_recovers_the_speed_instead_of_braking_on():
+    """A car passing close in the other direction read as a target for half a second: the car brakes hard,
+    then cruise takes over and brings it back to its speed without stopping."""
+    from coopdrive.services.control.longitudinal import Target
+
+    controller = LongitudinalController(CAR)
+    speed_mps, accel_mps2, speeds = 11.9, 0.0, []
+    for step in range(int(20.0 / 0.02)):
+        now_s = step * 0.02
+        close_call = [Target(object_id=7, gap_m=2.0, speed_mps=0.0)] if 1.0 <= now_s < 1.5 else []
+        command = controller.step(now_s, speed_mps, accel_mps2, close_call, 13.9)
+        accel_mps2 += (command.accel_request_mps2 - accel_mps2) * 0.02 / CAR.engine_lag_s
+        speed_mps = max(0.0, speed_mps + accel_mps2 * 0.02)
+        speeds.append(speed_mps)
+    assert min(speeds[75:]) < 11.0  # it did brake for the close call
+    assert min(speeds) > 3.0
+    assert speeds[-1] == pytest.approx(13.9, abs=0.3)

@@ -137,3 +137,13 @@ def test_an_organiser_standing_at_its_stop_line_outside_the_safety_circle_lets_t
     assert state.state == "GIVE_WAY"
     _, state = p.step(0.2, world(0.2, -80.0, organiser_y_m=-12.0, organiser_speed_mps=0.2))
     assert state.state == "CROSSING"
+
+
+def test_a_car_passing_the_other_way_in_its_own_lane_is_no_reason_to_stop_while_crossing():
+    p = cross_planner()
+    p.step(0.0, world(0.0, -300.0))
+    p.step(0.1, world(0.1, -95.0))
+    oncoming = obj(6, 0, gap_m=3.0, x_m=-7.0, y_m=3.5, speed_mps=8.0, heading_rad=math.pi)
+    request, state = p.step(0.2, world(0.2, -10.0, extra=[oncoming]))
+    assert state.state == "CROSSING" and request.desired_speed_mps == pytest.approx(50 / 3.6)
+    assert not any(t.role == planner_pb2.TARGET_ROLE_YIELD for t in request.targets)

@@ -305,3 +305,18 @@ def test_an_offset_station_heard_before_our_sensors_see_its_car_ends_up_as_one_u
     assert obj.station_id.value == STATION
     assert not fusion.trust.trusted(STATION)
     assert obj.position.x_m == pytest.approx(lead_rear_x(3.0), abs=0.3)
+
+
+def test_a_car_coming_the_other_way_close_to_our_lane_is_never_the_forward_mio_nor_a_neighbour():
+    fusion = SceneFusion(lane_of=lambda x_m, y_m: None)  # on another road: lanes from lateral bands
+    road = Road(fusion)
+    for t in road.ticks(0.0, 1.0):
+        road.sense(t, [], lidar=False, radar=False)
+        fusion.on_v2v(V2vObservation(station_id=STATION, x_m=80.0 - 10.0 * t, y_m=1.0, speed_mps=10.0,
+                                     heading_rad=math.pi, accel_mps2=0.0, length_m=4.5, width_m=1.8,
+                                     sample_time_s=t))
+    scene = fusion.scene(1.0)
+    oncoming = by_station(scene, STATION)
+    assert oncoming.longitudinal_gap_m > 0
+    assert not (scene.has_forward_mio and scene.forward_mio_id == oncoming.object_id)
+    assert all(n.ahead_object_id != oncoming.object_id or not n.has_ahead for n in scene.neighbours)

@@ -50,9 +50,11 @@ class CruisePi:
         self.engaged = True
 
     def reset(self, command_mps2: float, ego_speed_mps: float) -> None:
-        """Bumpless: the model starts at the current speed with the net acceleration of the applied command."""
+        """Bumpless: the model starts at the current speed with the net acceleration of the applied command,
+        within the model's own limits: after emergency braking the model must not go on braking that hard."""
+        accel_cap, decel_cap = self._caps_mps2()
         self.speed_ref_mps = ego_speed_mps
-        self.accel_ref_mps2 = command_mps2 - self._resistance_mps2(ego_speed_mps)
+        self.accel_ref_mps2 = min(max(command_mps2 - self._resistance_mps2(ego_speed_mps), -decel_cap), accel_cap)
         self.integral_mps2 = 0.0
         self._jerk_ref_mps3 = 0.0
         self.last_output_mps2 = command_mps2
@@ -68,6 +70,9 @@ class CruisePi:
         self._jerk_ref_mps3 = delta / dt_s
         self.accel_ref_mps2 += delta
         self.speed_ref_mps += self.accel_ref_mps2 * dt_s
+        if self.speed_ref_mps < 0.0:
+            # The reference stops at standstill; it does not reverse.
+            self.speed_ref_mps, self.accel_ref_mps2 = 0.0, max(self.accel_ref_mps2, 0.0)
         error = self.speed_ref_mps - ego_speed_mps
         self.integral_mps2 += g.ki_1ps2 * error * dt_s
         self.last_output_mps2 = (
