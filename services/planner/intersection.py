@@ -13,7 +13,7 @@ import math
 from coopdrive.v1 import planner_pb2
 
 from .behaviour import add_target, keep_lane
-from .config import PlannerLogicConfig
+from .config import Intention, PlannerLogicConfig
 from .engine import MachineSpec, StateSpec, Transition, from_each
 from .situation import Situation
 from .speed_profile import QuinticArrival
@@ -107,6 +107,8 @@ class IntersectionScenario:
 
     def _object_conflicts(self, obj) -> bool:
         c = self.config.intersection
+        if c.intention is Intention.STRAIGHT and self._on_our_road(obj):
+            return False
         px, py = obj.position.x_m, obj.position.y_m
         dx, dy = c.reference_x_m - px, c.reference_y_m - py
         distance = math.hypot(dx, dy)
@@ -125,6 +127,13 @@ class IntersectionScenario:
             elif station in self.config.intersection.organiser_station_ids and not sit.silent(station):
                 self.conflicting.append(station)
                 self.v2v_only.append(station)
+
+    def _on_our_road(self, obj) -> bool:
+        """Moving parallel or antiparallel to us: ahead, behind or in the other lane of our road. Going
+        straight on, its path never crosses ours."""
+        ego = self.sit.inputs.ego
+        moving = obj.speed_mps.value > MOVING_MPS
+        return ego is not None and moving and abs(math.sin(obj.heading_rad.value - ego.heading_rad)) <= CROSSING_SIN
 
     def _scene_clear(self) -> bool:
         """No object of the scene conflicts, whatever V2V says."""

@@ -147,3 +147,13 @@ def test_a_car_passing_the_other_way_in_its_own_lane_is_no_reason_to_stop_while_
     request, state = p.step(0.2, world(0.2, -10.0, extra=[oncoming]))
     assert state.state == "CROSSING" and request.desired_speed_mps == pytest.approx(50 / 3.6)
     assert not any(t.role == planner_pb2.TARGET_ROLE_YIELD for t in request.targets)
+
+
+def test_a_competitor_further_into_the_zone_on_our_own_road_is_no_conflict_when_going_straight():
+    competitor = obj(6, COMPETITOR, gap_m=40.0, x_m=40.0, y_m=3.5, speed_mps=8.0, heading_rad=math.pi)
+    ahead_in_zone = {COMPETITOR: iclcm(COMPETITOR, 0.2, distance_travelled_cz_m=80.0)}
+    p = cross_planner()
+    p.step(0.0, world(0.0, -300.0))
+    p.step(0.1, world(0.1, -95.0))
+    _, state = p.step(0.2, world(0.2, -90.0, extra=[competitor], msgs=ahead_in_zone))
+    assert state.state == "CROSSING"
