@@ -73,11 +73,13 @@ Pair = tuple[sim_pb2.VehicleTruth, sim_pb2.VehicleTruth]
 
 
 def following_pairs(vehicles: Sequence[sim_pb2.VehicleTruth]) -> list[Pair]:
-    """(leader, follower) of consecutive vehicles in each lane."""
+    """(leader, follower) of consecutive vehicles in each lane. Every road numbers its lanes from 0, so a lane
+    is told apart by its direction too: cars on crossing or opposite roads never follow one another."""
     pairs = []
-    by_lane: dict[int, list[sim_pb2.VehicleTruth]] = {}
+    by_lane: dict[tuple[int, int, int], list[sim_pb2.VehicleTruth]] = {}
     for vehicle in vehicles:
-        by_lane.setdefault(vehicle.lane_index, []).append(vehicle)
+        direction = (round(math.cos(vehicle.heading_rad)), round(math.sin(vehicle.heading_rad)))
+        by_lane.setdefault((vehicle.lane_index, *direction), []).append(vehicle)
     for lane_vehicles in by_lane.values():
         ordered = sorted(lane_vehicles, key=lambda v: v.station_m, reverse=True)
         pairs.extend(zip(ordered, ordered[1:]))

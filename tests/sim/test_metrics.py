@@ -92,3 +92,12 @@ def test_the_judge_reports_the_localisation_rmse_of_the_given_estimates():
     estimates = {"f": (np.array([0.5, 1.5]), np.array([[5.0, 3.0], [15.0, -4.0]]))}
     result = metrics.judge(TruthSeries.from_frames(frames), position_estimates=estimates)
     assert result["position_rmse_m"] == pytest.approx(math.sqrt((9.0 + 16.0) / 2.0))
+
+
+def test_cars_in_lane_0_of_opposite_roads_do_not_follow_one_another():
+    east = _truth("east", 50.0)
+    west = sim_pb2.VehicleTruth(vehicle_id="west", x_m=-50.0, y_m=3.5, station_m=60.0, lane_index=0,
+                                heading_rad=math.pi, length_m=4.5, width_m=1.8)
+    behind_east = _truth("behind", 20.0)
+    assert [(a.vehicle_id, b.vehicle_id) for a, b in metrics.following_pairs([east, west, behind_east])] == [
+        ("east", "behind")]
