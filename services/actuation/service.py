@@ -13,6 +13,7 @@ import can
 from pydantic import Field
 
 from coopdrive.bus import Envelope
+from coopdrive.can.vehicle_port import VehicleCanPort, VehicleCanPortConfig
 from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.services.actuation.actuator import Actuator
 from coopdrive.services.actuation.config import ActuationConfig, ModeRequirements
@@ -43,6 +44,9 @@ class ActuationServiceConfig(ServiceConfig):
     # Whether the automated modes need a live v2x service with a healthy V2X status. A stack without a v2x
     # service (the follow run follows by radar alone) sets it false, else no automated mode could be entered.
     require_v2x: bool = True
+    # The vehicle's CAN bus (python-can): command frames go out on it and its feedback frames are the
+    # vehicle state. None: frames only on can/command and the state from vehicle/state (simulation).
+    can_port: VehicleCanPortConfig | None = None
 
     def actuator_config(self, vehicle_id: str) -> ActuationConfig:
         config = self.actuator.model_copy(update={"vehicle_id": vehicle_id})
@@ -91,6 +95,15 @@ class ActuationService(Service):
         self.ctx.watch_liveliness(self.on_liveliness)
         self.ctx.every(1.0 / c.rate_hz, self.actuate)
         self.ctx.every(1.0 / c.status_rate_hz, self.publish_status)
+        self.can_port = None
+        if c.can_port is not None:
+            # Frames arrive on python-can's receive thread; the actuator runs on the service's worker thread.
+            self.can_port = VehicleCanPort(c.can_port, lambda state: self.ctx.call_soon(
+                lambda: self._on_vehicle_can_state(state)))
+
+    def stop(self) -> None:
+        if self.can_port is not None:
+            self.can_port.close()
 
     # ----- inputs ---------------------------------------------------------------------------
     def on_control_command(self, envelope: Envelope) -> None:
@@ -98,7 +111,10 @@ class ActuationService(Service):
             self.count("rejected_commands")
 
     def on_vehicle_state(self, envelope: Envelope) -> None:
-        if self.actuator.on_vehicle_state(envelope.message, self.ctx.now_s()) is not None:
+        self._on_vehicle_can_state(envelope.message)
+
+    def _on_vehicle_can_state(self, state) -> None:
+        if self.actuator.on_vehicle_state(state, self.ctx.now_s()) is not None:
             self.count("driver_overrides")
 
     def on_ego_state(self, envelope: Envelope) -> None:
@@ -131,6 +147,9 @@ class ActuationService(Service):
         frames, self.status = self.actuator.step(now_s)
         for frame in frames:
             self.ctx.publish("can/command", can_frame(frame), sample_time_s=now_s)
+        if self.can_port is not None:
+            self.can_port.send(frames)
+            self.counters.update(self.can_port.counts())
         command = self.actuator.actuator_command(now_s)
         if command is not None:
             self.ctx.publish("actuation/command", command, sample_time_s=now_s)

@@ -1,0 +1,101 @@
+"""The vehicle's own CAN bus through python-can: command frames out, feedback frames in.
+
+On the vehicle the actuation service sends its ACT_ frames here (socketcan, a PCAN or Kvaser adapter, or any
+interface python-can supports) besides publishing them on can/command, and reads the car's VEH_ feedback
+frames back, decoded with the DBC. Error frames, send failures and malformed frames are counted, never
+raised; every frame in and out can go to a candump log that can-utils' canplayer replays.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections import Counter
+from pathlib import Path
+from typing import Callable
+
+import can
+from pydantic import BaseModel, ConfigDict, Field
+
+from coopdrive.can.candump import CandumpLogger
+from coopdrive.can.codec import VehicleCanCodec
+from coopdrive.can.frames import CanDecodeError
+from coopdrive.v1 import vehicle_pb2
+
+# How long the receive thread blocks on the bus before looking whether it should stop.
+RECEIVE_TIMEOUT_S = 0.1
+
+
+class VehicleCanPortConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    # A python-can interface name: socketcan on the vehicle, virtual or udp_multicast for tests and desks.
+    interface: str = Field(min_length=1)
+    channel: str = Field(min_length=1)
+    bitrate: int | None = Field(None, gt=0)
+    # Every frame in and out, in candump format ("" = no log).
+    candump_path: str = ""
+
+
+class VehicleCanPortError(RuntimeError):
+    """The configured CAN interface could not be opened."""
+
+
+class VehicleCanPort:
+    def __init__(self, config: VehicleCanPortConfig,
+                 on_vehicle_state: Callable[[vehicle_pb2.VehicleCanState], None]) -> None:
+        extra = {"bitrate": config.bitrate} if config.bitrate is not None else {}
+        try:
+            self.bus = can.Bus(interface=config.interface, channel=config.channel, **extra)
+        except (can.CanError, OSError, ValueError, ImportError, NotImplementedError) as error:
+            raise VehicleCanPortError(f"can_port: {config.interface} channel {config.channel!r} could not be "
+                                      f"opened: {error}") from error
+        self.codec = VehicleCanCodec(channel=config.channel)
+        self.on_vehicle_state = on_vehicle_state
+        self.counters: Counter[str] = Counter()
+        self._lock = threading.Lock()
+        self._log = CandumpLogger(config.candump_path, channel=config.channel) if config.candump_path else None
+        self._notifier = can.Notifier(self.bus, [self._on_message], timeout=RECEIVE_TIMEOUT_S)
+
+    def send(self, frames: list[can.Message]) -> None:
+        for frame in frames:
+            try:
+                self.bus.send(frame)
+            except can.CanError:
+                self._count("can_send_errors")
+                continue
+            self._count("can_frames_sent")
+            self._write_log(frame)
+
+    def _on_message(self, msg: can.Message) -> None:
+        self._write_log(msg)
+        if msg.is_error_frame:
+            self._count("can_error_frames")
+            return
+        try:
+            state = self.codec.decode_vehicle_state(msg)
+        except CanDecodeError as error:
+            self._count(f"can_rejected_{error.reason.name.lower()}")
+            return
+        self._count("can_frames_received")
+        if state is not None:
+            self.on_vehicle_state(state)
+
+    def counts(self) -> dict[str, int]:
+        """A snapshot of the counters (the receive thread keeps adding to them)."""
+        with self._lock:
+            return dict(self.counters)
+
+    def _count(self, name: str) -> None:
+        with self._lock:
+            self.counters[name] += 1
+
+    def _write_log(self, msg: can.Message) -> None:
+        if self._log is not None:
+            with self._lock:
+                self._log.write(msg)
+
+    def close(self) -> None:
+        self._notifier.stop()
+        self.bus.shutdown()
+        if self._log is not None:
+            self._log.stop()
