@@ -9,9 +9,11 @@ from __future__ import annotations
 from coopdrive.services.actuation.config import CAR_PEDAL_PROFILE, TRUCK_PEDAL_PROFILE
 from coopdrive.services.sim.profiles import PROFILES, ProfileName
 from coopdrive.services.sim.radio_box import RadioPorts
-from coopdrive.services.sim.scenario_config import ScenarioConfig
+from coopdrive.services.sim.scenario_builder import speed_profile_of
+from coopdrive.services.sim.scenario_config import ScenarioConfig, VehicleRole
 
 MIN_CRUISE_SPEED_MPS = 5.0
+PROFILE_SAMPLE_S = 0.1
 # Time constants for a first-order lag to fall below ~2 % of where it started.
 BRAKE_RELEASE_TIME_CONSTANTS = 4.0
 STATION_TYPE = {ProfileName.PASSENGER_CAR: "passenger_car", ProfileName.TRUCK: "heavy_truck"}
@@ -21,6 +23,14 @@ def station_mac(station_id: int) -> str:
     """A locally administered unicast MAC that carries the station id, so captures show who sent what."""
     octets = [0x02, 0x00] + list(station_id.to_bytes(4, "big"))
     return ":".join(f"{octet:02x}" for octet in octets)
+
+
+def fastest_traffic_mps(config: ScenarioConfig) -> float:
+    """The top speed any vehicle but an emergency vehicle reaches in the run (speed profiles sampled), so a
+    stack's own cruise speed never caps it below the leader it follows."""
+    steps = int(config.duration_s / PROFILE_SAMPLE_S) + 1
+    return max((speed_profile_of(v).speed_at(k * PROFILE_SAMPLE_S) for v in config.vehicles
+                if v.role is not VehicleRole.EMERGENCY for k in range(steps)), default=0.0)
 
 
 def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts | None) -> dict[str, dict]:
@@ -36,10 +46,11 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
     }
     if radio is not None:
         v2x["link"] = {"radio_port": radio.box_port, "listen_port": radio.stack_port, "sync": "marks"}
-    # Without other instructions a stack keeps the speed the scenario starts it at.
+    # A stack may drive as fast as the traffic it follows ever goes; never slower than it starts.
+    cruise_mps = max(vehicle.speed_mps, fastest_traffic_mps(config), MIN_CRUISE_SPEED_MPS)
     planner = {"station_id": vehicle.station_id, "scenario": f"SCENARIO_{config.mission.name}",
                "platoon_id": vehicle.platoon or 0,
-               "logic": {"cruise_speed_mps": max(vehicle.speed_mps, MIN_CRUISE_SPEED_MPS),
+               "logic": {"cruise_speed_mps": cruise_mps,
                          "intersection": {"organiser_station_ids": [v.station_id for v in config.vehicles
                                                                     if v.organiser]}}}
     sensors = config.sensors_of(vehicle)

@@ -46,3 +46,4 @@ def test_a_bad_security_option_is_refused_naming_it(tmp_path, options, message):
 def test_the_built_in_follow_world_refuses_security_for_want_of_a_v2x_service(tmp_path):
     with pytest.raises(ScenarioError, match="no v2x service"):
         build_specs(RunOptions(scenario="follow", security="sign_only"), tmp_path)
+
