@@ -14,6 +14,7 @@ from typing import Callable
 from coopdrive.services.sim.participants import IntentKind, MessageIntent
 from coopdrive.services.v2x.config import CamMode, VehicleDimensions, WgsOrigin
 from coopdrive.services.v2x.generation import CamGenerator
+from coopdrive.services.sim.geometry import rear_overhang_m
 from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.packet import DestinationArea, GnParams, SourcePosition, V2xPacketCodec
 from coopdrive.services.v2x.timebase import generation_delta_time_ms
@@ -65,8 +66,9 @@ class IntentEncoder:
         generator = self._cams.get(intent.station_id)
         if generator is None:
             generator = CamGenerator(CamMode.GCDC, intent.station_id, station_type, ITS_PROTOCOL_VERSION,
-                                     WgsOrigin(), VehicleDimensions(length_m=fields["length_m"],
-                                                                    width_m=fields["width_m"]))
+                                     WgsOrigin(), VehicleDimensions(
+                                         length_m=fields["length_m"], width_m=fields["width_m"],
+                                         rear_axle_location_m=fields["length_m"] - rear_overhang_m(fields["length_m"])))
             self._cams[intent.station_id] = generator
         latitude_deg, longitude_deg, _ = self._to_geodetic(fields["x_m"], fields["y_m"])
         generator.on_ego_state(ego_pb2.EgoState(

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.services.v2x.config import GCDC_RATE_HZ, CamMode, VehicleDimensions, WgsOrigin
+from coopdrive.services.v2x.plausibility import EARTH_RADIUS_M
 from coopdrive.services.v2x.timebase import generation_delta_time_ms
 from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2
 
@@ -142,12 +143,22 @@ class CamGenerator:
             return ego.latitude_deg, ego.longitude_deg, o.alt_m
         return self.plane.to_geodetic(ego.x_m, ego.y_m)
 
+    def reference_point_wgs84(self, ego: ego_pb2.EgoState) -> tuple[float, float, float]:
+        """(lat, lon, alt) of the CAM reference point, the centre of the vehicle's front (EN 302 637-2):
+        the EgoState is at the rear axle, rear_axle_location_m behind the front bumper."""
+        latitude_deg, longitude_deg, altitude_m = self.wgs84(ego)
+        ahead_m = self.vehicle.rear_axle_location_m
+        north_m, east_m = ahead_m * math.sin(ego.heading_rad), ahead_m * math.cos(ego.heading_rad)
+        latitude_deg += math.degrees(north_m / EARTH_RADIUS_M)
+        longitude_deg += math.degrees(east_m / (EARTH_RADIUS_M * math.cos(math.radians(latitude_deg))))
+        return latitude_deg, longitude_deg, altitude_m
+
     def _content(self, ego: ego_pb2.EgoState, tai_ms: int) -> its_pb2.CamContent:
         content = its_pb2.CamContent(protocol_version=self.protocol_version, station_id=self.station_id,
                                      generation_delta_time_ms=generation_delta_time_ms(tai_ms),
                                      station_type=self.station_type)
         position = content.reference_position
-        position.latitude_deg, position.longitude_deg, position.altitude_m = self.wgs84(ego)
+        position.latitude_deg, position.longitude_deg, position.altitude_m = self.reference_point_wgs84(ego)
         if ego.position_std_m > 0:
             position.semi_major_confidence_m = position.semi_minor_confidence_m = \
                 CONFIDENCE_95_PER_STD * ego.position_std_m

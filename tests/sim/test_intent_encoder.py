@@ -6,6 +6,7 @@ import math
 import pytest
 
 from coopdrive.roadmap import RoadMap
+from coopdrive.services.sim.geometry import rear_overhang_m
 from coopdrive.services.sim.intent_encoder import IntentEncoder
 from coopdrive.services.sim.participants import IntentKind, MessageIntent
 from coopdrive.services.v2x.packet import decode_packet
@@ -31,9 +32,11 @@ def test_a_scripted_cam_decodes_with_its_station_position_speed_and_heading(enco
     decoded = decode_packet(packet)
     cam = decoded.content
     assert decoded.station_id == 2001 and isinstance(cam, its_pb2.CamContent)
-    latitude_deg, longitude_deg, _ = road_map.to_geodetic(120.0, 15.0)
-    assert cam.reference_position.latitude_deg == pytest.approx(latitude_deg, abs=2e-7)
-    assert cam.reference_position.longitude_deg == pytest.approx(longitude_deg, abs=2e-7)
+    # The reference point is the centre of the front: the rear axle (x_m, y_m) plus the axle-to-front distance.
+    ahead_m = CAR["length_m"] - rear_overhang_m(CAR["length_m"])
+    latitude_deg, longitude_deg, _ = road_map.to_geodetic(120.0 + ahead_m * math.cos(0.3), 15.0 + ahead_m * math.sin(0.3))
+    assert cam.reference_position.latitude_deg == pytest.approx(latitude_deg, abs=3e-7)
+    assert cam.reference_position.longitude_deg == pytest.approx(longitude_deg, abs=3e-7)
     assert cam.high_frequency.speed_mps == pytest.approx(22.0, abs=0.01)
     # ENU yaw 0.3 rad from east is an ETSI heading of 90 - 17.19 deg from north; the codec converts back.
     assert math.remainder(cam.high_frequency.heading_rad - 0.3, math.tau) == pytest.approx(0.0, abs=0.002)

@@ -1,5 +1,6 @@
 import math
 
+import pymap3d
 import pytest
 
 from coopdrive.services.v2x.config import CamMode, VehicleDimensions, WgsOrigin
@@ -82,25 +83,32 @@ def test_the_low_frequency_container_is_sent_every_500_ms():
     assert with_low == pytest.approx([0.0, 0.52, 1.04])
 
 
-def test_the_cam_position_is_the_enu_position_converted_with_the_origin():
+def test_the_cam_position_is_the_centre_of_the_front_ahead_of_the_rear_axle_converted_with_the_origin():
     cam = generator(CamMode.GCDC)
     cam.on_ego_state(ego_pb2.EgoState(x_m=0.0, y_m=1000.0, heading_rad=0.1, speed_mps=10.0, accel_mps2=-0.5,
                                       yaw_rate_radps=0.05, position_std_m=0.1))
     content = cam.generate(0.0, CLOCK.tai_ms(0.0))
     position = content.reference_position
-    assert position.latitude_deg == pytest.approx(51.4758 + 1000.0 / 111_250, abs=2e-5)
-    assert position.longitude_deg == pytest.approx(5.6247, abs=1e-9)
+    ahead_m = VehicleDimensions().rear_axle_location_m
+    front_east_m, front_north_m = ahead_m * math.cos(0.1), 1000.0 + ahead_m * math.sin(0.1)
+    latitude_deg, longitude_deg, _ = pymap3d.enu2geodetic(front_east_m, front_north_m, 0.0, 51.4758, 5.6247, 20.0)
+    # 2e-7 deg is about 2 cm: the reference point is placed with a spherical Earth over 3.5 m.
+    assert position.latitude_deg == pytest.approx(latitude_deg, abs=2e-7)
+    assert position.longitude_deg == pytest.approx(longitude_deg, abs=3e-7)
     assert position.semi_major_confidence_m == pytest.approx(0.245, abs=1e-3)
     hf = content.high_frequency
     assert (hf.heading_rad, hf.speed_mps, hf.longitudinal_acceleration_mps2) == (0.1, 10.0, -0.5)
     assert hf.curvature_per_m == pytest.approx(0.005)
 
 
-def test_the_cam_position_is_the_ego_latitude_and_longitude_when_the_ego_state_has_them():
+def test_the_cam_position_starts_from_the_ego_latitude_and_longitude_when_the_ego_state_has_them():
     cam = generator(CamMode.GCDC)
-    cam.on_ego_state(ego_pb2.EgoState(x_m=500.0, latitude_deg=57.7, longitude_deg=11.97))
+    cam.on_ego_state(ego_pb2.EgoState(x_m=500.0, latitude_deg=57.7, longitude_deg=11.97, heading_rad=0.0))
     position = cam.generate(0.0, CLOCK.tai_ms(0.0)).reference_position
-    assert (position.latitude_deg, position.longitude_deg) == (57.7, 11.97)
+    _, front_longitude_deg, _ = pymap3d.enu2geodetic(VehicleDimensions().rear_axle_location_m, 0.0, 0.0,
+                                                     57.7, 11.97, 0.0)
+    assert position.latitude_deg == pytest.approx(57.7, abs=1e-9)
+    assert position.longitude_deg == pytest.approx(front_longitude_deg, abs=3e-7)
 
 
 def test_generation_delta_time_is_the_tai_time_of_sim_time_plus_the_epoch():
