@@ -61,5 +61,6 @@ def judging_parameters(name: str) -> JudgingParameters:
             return JudgingParameters(safety_radius_m=judging.safety_radius_m, standstill_m=judging.standstill_m,
                                      headway_s=judging.headway_s, string_start_s=judging.string_start_s,
                                      string_frequency_hz=judging.string_frequency_hz,
+                                     string_end_s=judging.string_end_s,
                                      platoon=tuple(judging.platoon))
     return JudgingParameters()

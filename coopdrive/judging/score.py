@@ -36,6 +36,7 @@ class JudgingParameters:
     headway_s: float = judge_metrics.DEFAULT_HEADWAY_S
     string_start_s: float = 0.0
     string_frequency_hz: float | None = None
+    string_end_s: float = math.inf
     # Leader first; empty: the vehicles of the leading lane ordered along it at the first sample.
     platoon: tuple[str, ...] = ()
 
@@ -148,7 +149,7 @@ def score_series(series: TruthSeries, parameters: JudgingParameters = JudgingPar
         series, platoon=platoon, reference_speed_mps=_predecessor_references(series, platoon),
         safety_radius_m=parameters.safety_radius_m, standstill_m=parameters.standstill_m,
         headway_s=parameters.headway_s, string_start_s=parameters.string_start_s,
-        string_frequency_hz=parameters.string_frequency_hz,
+        string_frequency_hz=parameters.string_frequency_hz, string_end_s=parameters.string_end_s,
         position_estimates=_position_estimates(series, messages))
     if messages.scenes:
         scored["id_switches"] = float(judge_metrics.identity_switches(associations(series, messages)))

@@ -204,7 +204,7 @@ def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[s
           reference_speed_mps: Mapping[str, SpeedReference] | None = None,
           safety_radius_m: float = DEFAULT_SAFETY_RADIUS_M, standstill_m: float = DEFAULT_STANDSTILL_M,
           headway_s: float = DEFAULT_HEADWAY_S, string_start_s: float = 0.0,
-          string_frequency_hz: float | None = None,
+          string_frequency_hz: float | None = None, string_end_s: float = math.inf,
           position_estimates: Mapping[str, tuple[np.ndarray, np.ndarray]] | None = None) -> dict[str, float]:
     """The run's metrics; `platoon` lists vehicle ids leader first for the string gain;
     `position_estimates` maps a vehicle id to (time_s (N,), xy_m (N, 2)) of the stack's own estimate."""
@@ -220,7 +220,7 @@ def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[s
     if reference_speed_mps:
         metrics.update(speed_error(truth, reference_speed_mps))
     if len(platoon) >= 2:
-        window = truth.time_s >= string_start_s
+        window = (truth.time_s >= string_start_s) & (truth.time_s < string_end_s)
         metrics["string_gain"] = string_gain([truth.get(vid, "speed_mps")[window] for vid in platoon],
                                              truth.time_s[window], string_frequency_hz)
     if position_estimates:

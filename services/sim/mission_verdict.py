@@ -50,7 +50,8 @@ class MissionJudge:
                 series, platoon=platoon, automated=self.stack_ids, safety_radius_m=judging_config.safety_radius_m,
                 standstill_m=judging_config.standstill_m, headway_s=judging_config.headway_s,
                 string_start_s=judging_config.string_start_s,
-                string_frequency_hz=judging_config.string_frequency_hz).items() if math.isfinite(value)}
+                string_frequency_hz=judging_config.string_frequency_hz,
+                string_end_s=judging_config.string_end_s).items() if math.isfinite(value)}
             self._metrics["collisions"] = float(self.collisions)
             # The slowest vehicle's time: what the GCDC limits (a merge in under 10 s per pair).
             merge_times = self.merge_times_s() if self.config.mission is Mission.MERGE else {}

@@ -81,6 +81,8 @@ class JudgingConfig(_Strict):
     headway_s: float = Field(default=1.5, ge=0)
     string_start_s: float = Field(default=0.0, ge=0)
     string_frequency_hz: float | None = Field(default=None, gt=0)
+    # The string gain is measured up to here (before a final brake that is no longer the excitation).
+    string_end_s: float = Field(default=math.inf, gt=0)
 
 
 class Mission(enum.Enum):

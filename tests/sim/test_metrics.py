@@ -101,3 +101,20 @@ def test_cars_in_lane_0_of_opposite_roads_do_not_follow_one_another():
     behind_east = _truth("behind", 20.0)
     assert [(a.vehicle_id, b.vehicle_id) for a, b in metrics.following_pairs([east, west, behind_east])] == [
         ("east", "behind")]
+
+
+def test_the_judge_measures_the_string_gain_only_inside_its_window():
+    """Followers damp the 0.2 Hz wave from 10 s to 40 s; after 40 s (a brake, a fault) the follower swings more."""
+    frames = []
+    for k in range(6000):
+        t = k * 0.01
+        wave = math.sin(2.0 * math.pi * 0.2 * (t - 10.0)) if t >= 10.0 else 0.0
+        follower_amplitude = 1.6 if t < 40.0 else 6.0
+        speeds = [20.0 + 2.0 * wave, 20.0 + follower_amplitude * wave]
+        frames.append((t, [_truth("lead", 100.0 + 20.0 * t, speeds[0]), _truth("f", 60.0 + 20.0 * t, speeds[1])]))
+    truth = TruthSeries.from_frames(frames)
+    windowed = metrics.judge(truth, platoon=["lead", "f"], string_start_s=10.0, string_end_s=40.0,
+                             string_frequency_hz=0.2)
+    to_the_end = metrics.judge(truth, platoon=["lead", "f"], string_start_s=10.0, string_frequency_hz=0.2)
+    assert windowed["string_gain"] == pytest.approx(0.8, abs=0.01)
+    assert to_the_end["string_gain"] > 1.0
