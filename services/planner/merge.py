@@ -119,6 +119,17 @@ class MergeScenario:
 
         self.partner_station_id = min(namers, key=lambda station: (distance_m(station), station))
 
+    def _let_go_of_a_partner_paired_elsewhere(self) -> None:
+        """A partner whose iCLCM pairs it with another station will never pair with us: without one, a merger
+        merges on the scene's gap and a gap maker has no gap to make, instead of waiting out the timeout
+        again and again."""
+        msg = self.sit.iclcm(self.partner_station_id) if self.partner_station_id else None
+        if msg is None:
+            return
+        theirs = msg.backward_id if self.role is MergeRole.GAP_MAKER else msg.forward_id
+        if theirs not in (0, self.sit.inputs.station_id):
+            self.partner_station_id = 0
+
     def is_gap_maker(self) -> bool:
         return self.role is MergeRole.GAP_MAKER
 
@@ -198,8 +209,10 @@ class MergeScenario:
 
     def observe(self, sit: Situation, state: enum.Enum, time_in_state_s: float) -> list[enum.Enum]:
         self.sit, self.state, self.time_in_state_s = sit, state, time_in_state_s
-        if state is MergeState.PAIRING and self.role is MergeRole.MERGER:
-            self._answer_who_named_us()
+        if state is MergeState.PAIRING:
+            if self.role is MergeRole.MERGER:
+                self._answer_who_named_us()
+            self._let_go_of_a_partner_paired_elsewhere()
         E = MergeEvent
         events: list[enum.Enum] = []
         if sit.rsu_end():

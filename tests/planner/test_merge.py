@@ -217,3 +217,14 @@ def test_a_merger_answers_the_lane_b_vehicle_that_names_it_rather_than_the_one_t
     named.iclcms[namer] = iclcm(namer, 0.2, forward_id=ME)
     request, state = p.step(0.2, named)
     assert request.iclcm.backward_id == namer and request.iclcm.acknowledge
+
+
+def test_a_merger_whose_partner_names_another_merger_lets_it_go_and_merges_on_the_scenes_gap():
+    p = planner()
+    p.step(0.0, merger(0.0))
+    request, state = p.step(0.1, merger(0.1))
+    assert state.state == "PAIRING" and request.iclcm.backward_id == B_PARTNER
+    elsewhere = {"forward_id": 4242}
+    _, state = p.step(0.2, merger(0.2, elsewhere))
+    request, state = p.step(0.3, merger(0.3, elsewhere))
+    assert state.state == "WAIT_HEAD" and request.iclcm.backward_id == 0
