@@ -7,13 +7,12 @@ the actuation command computed in that step.
 
 from __future__ import annotations
 
-import threading
-import time
 
 import numpy as np
 from rich.console import Console
 from rich.table import Table
 
+from bench.step_latency import StepLatency
 from coopdrive.launch.run import RunOptions, run_scenario
 
 DURATION_S = 60.0
@@ -22,22 +21,10 @@ STEP_S = 0.02
 
 
 def run(group_per_vehicle: bool):
-    clock_arrivals: dict[float, float] = {}
-    command_arrivals: dict[float, float] = {}
-    lock = threading.Lock()
-
-    def observe(key: str, message) -> None:
-        now = time.perf_counter()
-        with lock:
-            if key.endswith("world/clock"):
-                clock_arrivals[round(message.time_s, 6)] = now
-            elif key.endswith("ego/actuation/command"):
-                command_arrivals[round(message.header.sent_time_s, 6)] = now
-
-    result = run_scenario(RunOptions(duration_s=DURATION_S, observer=observe, group_per_vehicle=group_per_vehicle))
-    latencies_ms = np.array([1e3 * (command_arrivals[t] - clock_arrivals[t])
-                             for t in command_arrivals if t in clock_arrivals and command_arrivals[t] >= clock_arrivals[t]])
-    return result, latencies_ms
+    latency = StepLatency()
+    result = run_scenario(RunOptions(duration_s=DURATION_S, observer=latency.observe,
+                                     group_per_vehicle=group_per_vehicle))
+    return result, latency.latencies_ms()
 
 
 def main() -> None:

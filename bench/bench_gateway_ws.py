@@ -19,6 +19,7 @@ import websockets
 from rich.console import Console
 from rich.table import Table
 
+from bench.step_latency import StepLatency
 from coopdrive.launch.ports import free_tcp_port
 from coopdrive.launch.run import RunOptions, run_scenario
 
@@ -98,19 +99,9 @@ class Clients:
 
 def run(duration_s: float, clients: int):
     port = free_tcp_port()
-    clock_arrivals: dict[float, float] = {}
-    command_arrivals: dict[float, float] = {}
-    lock = threading.Lock()
+    latency = StepLatency()
     rss: list[int] = []
     done = threading.Event()
-
-    def observe(key: str, message) -> None:
-        now = time.perf_counter()
-        with lock:
-            if key.endswith("world/clock"):
-                clock_arrivals[round(message.time_s, 6)] = now
-            elif key.endswith("ego/actuation/command"):
-                command_arrivals[round(message.header.sent_time_s, 6)] = now
 
     def watch() -> None:
         deadline = time.monotonic() + GATEWAY_START_TIMEOUT_S
@@ -142,13 +133,12 @@ def run(duration_s: float, clients: int):
     watcher = threading.Thread(target=watch, daemon=True)
     watcher.start()
     try:
-        result = run_scenario(RunOptions(duration_s=duration_s, realtime=True, gateway_port=port, observer=observe))
+        result = run_scenario(RunOptions(duration_s=duration_s, realtime=True, gateway_port=port,
+                                         observer=latency.observe))
     finally:
         done.set()
         watcher.join(15.0)
-    latencies_ms = np.array([1e3 * (command_arrivals[t] - clock_arrivals[t])
-                             for t in command_arrivals if t in clock_arrivals and command_arrivals[t] >= clock_arrivals[t]])
-    return result, latencies_ms, rss, watch.connected, watch.frames
+    return result, latency.latencies_ms(), rss, watch.connected, watch.frames
 
 
 def main() -> None:
