@@ -6,6 +6,7 @@ missed it so a user sees why (e.g. merge: who was still in the closed lane at th
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Sequence
 
@@ -106,22 +107,30 @@ class MissionJudge:
     def merge_times_s(self) -> dict[str, float]:
         """Per stack vehicle that left a closed lane: from leaving its centre to settling in the new lane."""
         closed = {event.closed_lane for event in self._roadworks()}
+
+        def off_centre(v: sim_pb2.VehicleTruth) -> bool:
+            return abs(v.lateral_offset_m) > LANE_CENTRE_TOLERANCE_M
+
+        return self._span_times_s(begins=lambda v: v.lane_index in closed and off_centre(v),
+                                  ends=lambda v: v.lane_index not in closed and not off_centre(v))
+
+    def _span_times_s(self, begins, ends) -> dict[str, float]:
+        """Per stack vehicle: from the first frame where begins(v) holds to the first later one where ends(v)
+        does; vehicles that never got to the end are left out."""
         started: dict[str, float] = {}
-        done: dict[str, float] = {}
+        spans: dict[str, float] = {}
         for time_s, vehicles in self.frames:
             for v in vehicles:
-                if v.vehicle_id not in self.stack_ids or v.vehicle_id in done:
+                if v.vehicle_id not in self.stack_ids or v.vehicle_id in spans:
                     continue
-                off_centre = abs(v.lateral_offset_m) > LANE_CENTRE_TOLERANCE_M
-                if v.lane_index in closed and off_centre:
+                if begins(v):
                     started.setdefault(v.vehicle_id, time_s)
-                elif v.lane_index not in closed and not off_centre and v.vehicle_id in started:
-                    done[v.vehicle_id] = time_s - started[v.vehicle_id]
-        return done
+                elif v.vehicle_id in started and ends(v):
+                    spans[v.vehicle_id] = time_s - started[v.vehicle_id]
+        return spans
 
     def _intersection_verdict(self) -> tuple[bool, str]:
-        zone = self._competition_zone()
-        if zone is None:
+        if self._competition_zone is None:
             return False, f"map {self.config.map} has no competition zone to cross"
         missing = sorted(set(self.stack_ids) - set(self.crossing_times_s()))
         if missing:
@@ -131,6 +140,7 @@ class MissionJudge:
             return False, f"{violations} safety circle violation(s) between crossing vehicles"
         return True, ""
 
+    @functools.cached_property
     def _competition_zone(self):
         from coopdrive.roadmap import RoadMap
 
@@ -140,21 +150,15 @@ class MissionJudge:
 
     def crossing_times_s(self) -> dict[str, float]:
         """Per stack vehicle that crossed the competition zone: from entering it to being ZONE_EXIT_MARGIN_M out."""
-        zone = self._competition_zone()
+        zone = self._competition_zone
         if zone is None:
             return {}
-        entered: dict[str, float] = {}
-        crossed: dict[str, float] = {}
-        for time_s, vehicles in self.frames:
-            for v in vehicles:
-                if v.vehicle_id not in self.stack_ids or v.vehicle_id in crossed:
-                    continue
-                distance_m = math.hypot(v.x_m - zone.x_m, v.y_m - zone.y_m)
-                if distance_m <= zone.radius_m:
-                    entered.setdefault(v.vehicle_id, time_s)
-                elif v.vehicle_id in entered and distance_m > zone.radius_m + ZONE_EXIT_MARGIN_M:
-                    crossed[v.vehicle_id] = time_s - entered[v.vehicle_id]
-        return crossed
+
+        def distance_m(v: sim_pb2.VehicleTruth) -> float:
+            return math.hypot(v.x_m - zone.x_m, v.y_m - zone.y_m)
+
+        return self._span_times_s(begins=lambda v: distance_m(v) <= zone.radius_m,
+                                  ends=lambda v: distance_m(v) > zone.radius_m + ZONE_EXIT_MARGIN_M)
 
     def _emergency_verdict(self) -> tuple[bool, str]:
         emergency = [v.vehicle_id for v in self.config.vehicles if v.role is VehicleRole.EMERGENCY]
