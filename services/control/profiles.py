@@ -55,6 +55,8 @@ class CruiseGains(_Model):
     reference_accel_mps2: float = Field(1.5, gt=0)
     reference_decel_mps2: float = Field(1.5, gt=0)
     reference_jerk_mps3: float = Field(1.0, gt=0)
+    # While another law follows a target, the set speed is enforced by a governor this quick (eq. S4).
+    governor_time_constant_s: float = Field(1.0, gt=0)
     resistance_feedforward: bool = True
 
 
@@ -91,10 +93,13 @@ class LimitGains(_Model):
     max_jerk_mps3: float = Field(2.5, gt=0)
     emergency_decel_mps2: float = Field(6.0, gt=0)
     emergency_jerk_mps3: float = Field(30.0, gt=0)
-    # Emergency braking triggers below this time to collision, or when the comfort decel cannot stop in time.
+    # Emergency braking triggers below this time to collision, or when braking at the comfort decel would let the
+    # gap fall below the stop margin within the horizon; it releases with release_margin_m to spare.
     ttc_emergency_s: float = Field(1.5, gt=0)
     ttc_release_s: float = Field(3.0, gt=0)
+    brake_horizon_s: float = Field(2.5, gt=0)
     stop_margin_m: float = Field(2.0, ge=0)
+    release_margin_m: float = Field(1.0, ge=0)
 
 
 class LateralGains(_Model):

@@ -56,8 +56,11 @@ def run_platoon(
     v2v_lost_from_s: float | None = None,
     comm_delay_steps: int = 2,
     actuation_delay_steps: int = 2,
+    brake_at_s: float | None = None,
+    brake_decel_mps2: float = 5.0,
 ) -> PlatoonRun:
-    """Leader speed v0 + A sin(2 pi f t); seven followers, each with its own lag, following its predecessor."""
+    """Leader speed v0 + A sin(2 pi f t), or braking to standstill from brake_at_s; seven followers, each with its
+    own lag, following its predecessor."""
     n = len(FOLLOWER_LAGS_S)
     base = CAR if comfort_limits else wide_limits(CAR)
     ctrls = [LongitudinalController(base.model_copy(update={"engine_lag_s": lag}), cacc_law=law) for lag in FOLLOWER_LAGS_S]
@@ -88,12 +91,16 @@ def run_platoon(
             emergency += cmd.emergency_brake
             min_gaps[i] = min(min_gaps[i], gap)
             time_gaps[i] = cmd.time_gap_s
-        a[0] = amp * w * math.cos(w * (t + DT_S))
-        v[0] = speed_mps + amp * math.sin(w * (t + DT_S))
+        if brake_at_s is not None and t + DT_S >= brake_at_s:
+            a[0] = -brake_decel_mps2 if v[0] > 0 else 0.0
+            v[0] = max(v[0] - brake_decel_mps2 * DT_S, 0.0)
+        else:
+            a[0] = amp * w * math.cos(w * (t + DT_S))
+            v[0] = speed_mps + amp * math.sin(w * (t + DT_S))
         x[0] += v[0] * DT_S
         for i, lag in enumerate(FOLLOWER_LAGS_S):
             a[i + 1] += DT_S / lag * (commands[i][0] - a[i + 1])
-            v[i + 1] += a[i + 1] * DT_S
+            v[i + 1] = max(v[i + 1] + a[i + 1] * DT_S, 0.0)
             x[i + 1] += v[i + 1] * DT_S
         if k >= first:
             for j in range(n + 1):

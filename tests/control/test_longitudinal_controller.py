@@ -55,9 +55,21 @@ def test_v2v_older_than_400_ms_falls_back_to_acc_until_the_range_rate_history_al
 
 
 def test_a_target_without_any_v2v_is_followed_on_radar_at_the_raised_acc_time_gap():
-    cmd = LongitudinalController(CAR).step(0.0, 20.0, 0.0, [steady_target(v2v_age_s=None, accel_mps2=None)], 30.0, SPACING)
+    radar_only = steady_target(gap_m=60.0, v2v_age_s=None, accel_mps2=None)
+    cmd = LongitudinalController(CAR).step(0.0, 20.0, 0.0, [radar_only], 30.0, SPACING)
     assert cmd.mode == M.LONGITUDINAL_MODE_ACC
     assert cmd.time_gap_s == pytest.approx(CAR.spacing.acc_time_gap_s)
+
+
+def test_a_new_target_closer_than_the_time_gap_goal_starts_at_its_present_time_gap_and_opens_gently():
+    # 12 m at 20 m/s behind a radar-only cut-in: (12 - 6) / 20 = 0.3 s now, 1.5 s wanted.
+    ctrl = LongitudinalController(CAR)
+    cut_in = steady_target(gap_m=12.0, v2v_age_s=None, accel_mps2=None)
+    first = ctrl.step(0.0, 20.0, 0.0, [cut_in], 30.0, SPACING)
+    assert first.time_gap_s == pytest.approx(0.3)
+    assert first.desired_gap_m == pytest.approx(12.0)
+    later = run(ctrl, 50, [cut_in], start_s=DT)
+    assert later.time_gap_s == pytest.approx(0.3 + CAR.spacing.time_gap_rate_sps * 50 * DT)
 
 
 def test_the_fallback_time_gap_ramps_up_instead_of_stepping():
@@ -77,8 +89,24 @@ def test_the_closest_target_sets_the_command_because_the_minimum_wins():
     assert min(cmd.law_outputs_mps2.values()) == cmd.law_outputs_mps2["LONGITUDINAL_MODE_CACC:9"]
 
 
+def test_a_follow_law_wanting_more_than_the_comfort_limit_keeps_the_vehicle_instead_of_cruise():
+    # Predecessor pulling away at 3 m/s2, 8 m beyond the CACC gap, set speed 2.5 m/s above ours: the governor
+    # offers 2.5 m/s2 plus drag, the CACC far more; both apply as +2, so the follow law stays in command.
+    pulling_away = steady_target(gap_m=24.0, speed_mps=22.0, accel_mps2=3.0)
+    cmd = run(LongitudinalController(CAR), 100, [pulling_away], speed_mps=20.0, desired_mps=22.5)
+    assert cmd.mode == M.LONGITUDINAL_MODE_CACC and cmd.target_object_id == 1
+    assert cmd.accel_request_mps2 == pytest.approx(CAR.limits.max_accel_mps2)
+
+
+def test_near_the_set_speed_the_governor_caps_a_follow_law_that_wants_to_go_faster():
+    pulling_away = steady_target(gap_m=24.0, speed_mps=22.0, accel_mps2=3.0)
+    cmd = run(LongitudinalController(CAR), 100, [pulling_away], speed_mps=20.0, desired_mps=20.5)
+    assert cmd.mode == M.LONGITUDINAL_MODE_CRUISE
+    assert cmd.accel_request_mps2 < 1.0
+
+
 def test_a_yield_target_keeps_its_extra_gap_on_top_of_the_spacing_policy():
-    target = steady_target(role=planner_pb2.TARGET_ROLE_YIELD, extra_gap_m=4.0)
+    target = steady_target(gap_m=60.0, role=planner_pb2.TARGET_ROLE_YIELD, extra_gap_m=4.0)
     cmd = run(LongitudinalController(CAR), 2, [target])
     assert cmd.desired_gap_m == pytest.approx(6.0 + 4.0 + 0.5 * 20.0)
 
@@ -124,9 +152,10 @@ def test_a_non_finite_ego_speed_raises_an_error_naming_it():
 
 def test_the_planner_spacing_policy_message_is_accepted_and_a_zero_time_gap_means_the_profile_default():
     ctrl = LongitudinalController(CAR)
-    cmd = ctrl.step(0.0, 20.0, 0.0, [steady_target()], 30.0, planner_pb2.SpacingPolicy(standstill_m=5.0, time_gap_s=0.6))
+    far = steady_target(gap_m=60.0)
+    cmd = ctrl.step(0.0, 20.0, 0.0, [far], 30.0, planner_pb2.SpacingPolicy(standstill_m=5.0, time_gap_s=0.6))
     assert cmd.time_gap_s == pytest.approx(0.6)
-    cmd = LongitudinalController(CAR).step(0.0, 20.0, 0.0, [steady_target()], 30.0, planner_pb2.SpacingPolicy(standstill_m=5.0))
+    cmd = LongitudinalController(CAR).step(0.0, 20.0, 0.0, [far], 30.0, planner_pb2.SpacingPolicy(standstill_m=5.0))
     assert cmd.time_gap_s == pytest.approx(CAR.spacing.time_gap_s)
 
 

@@ -9,7 +9,6 @@ from coopdrive.services.control.longitudinal.cacc import LagCompensatedCacc
 from coopdrive.services.control.longitudinal.cruise import CruisePi
 from coopdrive.services.control.longitudinal.dcacc import RangeRateAccelEstimator
 from coopdrive.services.control.longitudinal.drivertive import DrivertiveSpeed, drivertive_follow_accel_mps2
-from coopdrive.services.control.longitudinal.emergency import EmergencyBrake
 from coopdrive.services.control.longitudinal.ploeg import PloegCacc
 from coopdrive.services.control.longitudinal.shaper import CommandShaper
 from coopdrive.services.control.longitudinal.types import FollowInput
@@ -114,10 +113,11 @@ def test_cruise_pi_back_calculates_its_integrator_towards_the_applied_command():
     assert pi.integral_mps2 - before == pytest.approx(DT * (0.1 - out) / 1.0)
 
 
-def test_a_disengaged_cruise_offers_the_governor_acceleration():
+def test_a_disengaged_cruise_offers_a_governor_that_binds_only_near_the_set_speed():
     pi = CruisePi(NO_FEEDFORWARD)
-    assert pi.step(DT, 10.0, 20.0) == pytest.approx(1.5)  # (20 - 10)/3 capped at 1.5
-    assert pi.step(DT, 19.4, 20.0) == pytest.approx(0.2)
+    assert pi.step(DT, 10.0, 20.0) == pytest.approx(CAR.limits.max_accel_mps2)  # (20 - 10) / 1 s, capped at 2
+    assert pi.step(DT, 19.4, 20.0) == pytest.approx(0.6)  # (eq. S4)
+    assert pi.step(DT, 30.0, 20.0) == pytest.approx(-CAR.limits.max_decel_mps2)
 
 
 def test_drivertive_gain_adapts_to_speed_when_accelerating_and_is_constant_when_braking():
@@ -131,22 +131,6 @@ def test_drivertive_follow_law_is_zero_at_the_desired_gap_and_deadbeat_off_it():
     assert at_gap == pytest.approx(0.0, abs=1e-9)
     one_metre_long = drivertive_follow_accel_mps2(31.0, 20.0, 20.0, 0.0, 10.0, 1.0, 0.05)
     assert one_metre_long == pytest.approx(1.0 / (0.05 * 1.025))
-
-
-def test_time_to_collision_and_required_deceleration_follow_constant_deceleration_kinematics():
-    eb = EmergencyBrake(CAR.limits)
-    assert eb.ttc_s(20.0, 20.0, 10.0) == pytest.approx(2.0)
-    assert eb.ttc_s(20.0, 10.0, 20.0) == math.inf
-    assert eb.required_accel_mps2(20.0, 20.0, 10.0, 0.0) == pytest.approx(-100.0 / 36.0)
-
-
-def test_emergency_braking_starts_beyond_comfort_and_releases_with_hysteresis():
-    eb = EmergencyBrake(CAR.limits)
-    first = eb.step(20.0, [(7, 20.0, 10.0, 0.0)])
-    assert first.active and first.object_id == 7
-    assert first.accel_mps2 == pytest.approx(-100.0 / 36.0)
-    assert eb.step(20.0, [(7, 12.5, 15.0, 0.0)]).active  # TTC 2.5 s, still below the 3 s release
-    assert not eb.step(20.0, [(7, 40.0, 15.0, 0.0)]).active  # TTC 8 s, 0.33 m/s2 needed
 
 
 def test_the_shaper_clips_to_comfort_and_limits_jerk_but_the_emergency_path_goes_further():

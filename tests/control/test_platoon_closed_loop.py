@@ -6,6 +6,7 @@ import pytest
 from control_sim import STANDSTILL_M, run_platoon
 
 from coopdrive.services.control.longitudinal import CaccLaw
+from coopdrive.services.control.profiles import CAR
 from coopdrive.v1 import control_pb2
 
 SPEED_MPS = 80 / 3.6
@@ -13,8 +14,8 @@ SPEED_MPS = 80 / 3.6
 
 @lru_cache(maxsize=None)
 def platoon(law: CaccLaw, time_gap_s: float, comfort: bool = False):
-    # +-10 km/h at 0.2 Hz needs 3.5 m/s2, so the linear check widens the limits; +-5 km/h fits the comfort ones.
-    return run_platoon(law, time_gap_s, amplitude_kmh=5.0 if comfort else 10.0, comfort_limits=comfort)
+    # +-10 km/h at 0.2 Hz needs 3.5 m/s2: the linear check widens the limits, the comfort run keeps +-2 m/s2.
+    return run_platoon(law, time_gap_s, comfort_limits=comfort)
 
 
 @pytest.mark.parametrize("time_gap_s", [0.5, 1.0])
@@ -32,11 +33,18 @@ def test_our_cacc_damps_no_worse_than_ploeg_at_the_same_time_gap(time_gap_s):
     assert ours.speed_amplitudes_mps[-1] < ploeg.speed_amplitudes_mps[-1]
 
 
-def test_our_cacc_stays_string_stable_within_the_comfort_limits_without_emergency_braking():
+def test_our_cacc_rides_out_a_leader_braking_beyond_comfort_without_emergency_braking():
     run = platoon(CaccLaw.OURS, 0.5, comfort=True)
     assert max(run.ratios) < 1.0
     assert run.emergency_steps == 0
     assert min(run.min_gaps_m) > STANDSTILL_M
+
+
+def test_a_leader_braking_hard_to_standstill_stops_every_follower_short_of_it_through_the_emergency_path():
+    run = run_platoon(CaccLaw.OURS, 0.5, comfort_limits=True, brake_at_s=25.0, duration_s=35.0)
+    assert run.emergency_steps > 0
+    assert all(control_pb2.LONGITUDINAL_MODE_EMERGENCY_BRAKE in modes for modes in run.modes)
+    assert min(run.min_gaps_m) >= CAR.limits.stop_margin_m
 
 
 def test_losing_v2v_falls_back_to_dcacc_with_a_larger_gap_and_no_collision():

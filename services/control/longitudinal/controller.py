@@ -29,6 +29,8 @@ DEFAULT_DT_S = 0.02
 # A gap in the call sequence longer than this restarts the controller from the measured state.
 MAX_DT_S = 0.5
 STANDSTILL_SPEED_MPS = 0.1
+# Below this speed a target's present time gap means nothing; a new track starts at the goal.
+NEW_TARGET_MIN_SPEED_MPS = 1.0
 
 MODE = LongitudinalMode
 
@@ -104,7 +106,10 @@ class LongitudinalController:
             mode = MODE.LONGITUDINAL_MODE_ACC
         goal = self._time_gap_goal_s(mode, spacing.time_gap_s)
         if is_new:
-            track.time_gap_s = goal
+            # A target found closer than the goal (a cut-in, or a platoon formed at the CACC gap while the
+            # planner still asks for more) starts at its present time gap and opens at the ramp rate: no jolt.
+            now_s = (t.gap_m - spacing.standstill_m - t.extra_gap_m) / v if v > NEW_TARGET_MIN_SPEED_MPS else goal
+            track.time_gap_s = min(goal, max(now_s, 0.0))
         else:
             ramp = sp.time_gap_rate_sps * dt_s
             track.time_gap_s = min(max(goal, track.time_gap_s - ramp), track.time_gap_s + ramp)
@@ -165,12 +170,12 @@ class LongitudinalController:
             if t.stop_line:
                 u = self.stop_line.step(t.gap_m, ego_speed_mps)
                 outputs["stop_line"] = u
-                if u < best[0]:
+                if self._wins(u, best):
                     best = (u, MODE.LONGITUDINAL_MODE_STOP_LINE, None, None)
                 continue
             u, mode, f = self._follow(dt, time_s, t, ego_speed_mps, ego_accel_mps2, spacing)
             outputs[f"{LongitudinalMode.Name(mode)}:{t.object_id}"] = u
-            if u < best[0]:
+            if self._wins(u, best):
                 best = (u, mode, t, f)
         seen = {t.object_id for t in valid if not t.stop_line}
         for object_id in [k for k in self._tracks if k not in seen]:
@@ -211,6 +216,14 @@ class LongitudinalController:
             cmd.time_gap_s = h
             cmd.desired_gap_m = spacing.standstill_m + target.extra_gap_m + h * ego_speed_mps
         return cmd
+
+    def _wins(self, u: float, best: tuple) -> bool:
+        """Min-select over what the shaper would apply: above the comfort acceleration every law commands the
+        same, so a follow law wanting more than the limit must not hand the vehicle to cruise, whose gentle
+        reference model would then cap its acceleration below its braking and let it fall behind."""
+        cap = self.profile.limits.max_accel_mps2
+        u, best_u = min(u, cap), min(best[0], cap)
+        return u < best_u or (u == best_u and best[1] == MODE.LONGITUDINAL_MODE_CRUISE)
 
     def _emergency_view(self, t: Target) -> tuple[int, float, float, float]:
         """(object_id, gap_m, speed_mps, accel_mps2) for the TTC path. A stop line's gap already ends at its

@@ -9,8 +9,10 @@ raw set-point, so a set-point step gives no overshoot (the PI zero would otherwi
 tau a_ref' inverts the driveline lag, so the vehicle follows the model and the PI only fixes model error.
 
 While another law commands (min-select), cruise is disengaged and offers the governor value
-clip((v_des - v) / T_ref) + F_res / m, which caps following at the reference acceleration without imposing
-the reference jerk on it. When it wins, `engage` starts the model at the measured speed with the applied
+    u_gov = clip((v_des - v) / T_gov, -a_max_decel, a_max_accel) + F_res / m                     (eq. S4)
+with the comfort limits and a short T_gov: a speed limiter that binds only near the set speed. Capping
+following at the reference model's gentler acceleration would let a follower brake harder than it may
+accelerate, so it would fall behind a predecessor whose speed oscillates. When it wins, `engage` starts the model at the measured speed with the applied
 command (bumpless); the shaper's jerk limit smooths the step into the governor value.
 """
 
@@ -42,6 +44,11 @@ class CruisePi:
         wanted = (desired_speed_mps - speed_from_mps) / self.gains.reference_time_constant_s
         return min(max(wanted, -decel_cap), accel_cap)
 
+    def _governor_mps2(self, ego_speed_mps: float, desired_speed_mps: float) -> float:
+        lim = self.profile.limits
+        wanted = (desired_speed_mps - ego_speed_mps) / self.gains.governor_time_constant_s
+        return min(max(wanted, -lim.max_decel_mps2), lim.max_accel_mps2) + self._resistance_mps2(ego_speed_mps)  # (eq. S4)
+
     def disengage(self) -> None:
         self.engaged = False
 
@@ -62,7 +69,7 @@ class CruisePi:
     def step(self, dt_s: float, ego_speed_mps: float, desired_speed_mps: float) -> float:
         g = self.gains
         if not self.engaged:
-            self.last_output_mps2 = self._wanted_mps2(ego_speed_mps, desired_speed_mps) + self._resistance_mps2(ego_speed_mps)
+            self.last_output_mps2 = self._governor_mps2(ego_speed_mps, desired_speed_mps)
             return self.last_output_mps2
         wanted = self._wanted_mps2(self.speed_ref_mps, desired_speed_mps)
         max_step = g.reference_jerk_mps3 * dt_s
