@@ -118,8 +118,13 @@ class PlatooningScenario:
         if state in (PlatoonState.FOLLOW_SAFE, PlatoonState.DEGRADED_ACC, PlatoonState.DONE):
             return keep_lane(sit, self.platoon_speed_mps(), p.acc_time_gap_s)
         gap_s = p.leave_time_gap_s if state is PlatoonState.LEAVING else p.cacc_time_gap_s
-        request = keep_lane(sit, self.platoon_speed_mps(), gap_s)
-        add_target(request, sit.object_of_station(self.partner_station_id), planner_pb2.TARGET_ROLE_PREDECESSOR)
+        partner = sit.object_of_station(self.partner_station_id)
+        # The head sets the platoon's speed; a member follows its partner through the head's speed changes, so
+        # only the vehicle's own top speed caps it (a cap at the platoon speed would clip every speed wave).
+        speed_mps = self.platoon_speed_mps() if partner is None else max(self.platoon_speed_mps(),
+                                                                        self.config.cruise_speed_mps)
+        request = keep_lane(sit, speed_mps, gap_s)
+        add_target(request, partner, planner_pb2.TARGET_ROLE_PREDECESSOR)
         request.iclcm.forward_id = self.partner_station_id
         request.iclcm.platoon_id = sit.inputs.platoon_id
         return request

@@ -1,3 +1,4 @@
+import pytest
 from planner_world import DT_S, ego, iclcm, inputs, obj, planner, rsu_end, rsu_start, scene, transitions
 
 from coopdrive.v1 import planner_pb2
@@ -29,10 +30,26 @@ def test_the_platoon_waits_for_the_rsu_then_joins_behind_the_partner_and_platoon
     request, state = step(p, 0.1)
     assert state.state == "JOINING"
     assert request.targets[0].station_id == PARTNER and request.spacing.time_gap_s == 0.5
-    assert request.desired_speed_mps == __import__("pytest").approx(60 / 3.6)
     _, state = step(p, 0.2, gap_m=CLOSE_GAP_M)
     assert state.state == "PLATOONING"
     assert ("JOINING", "PLATOONING") in transitions(state)
+
+
+def test_a_member_follows_its_partner_up_to_its_own_top_speed_not_only_the_platoon_speed():
+    p = planner()
+    step(p, 0.0, start=False)
+    request, _ = step(p, 0.1)
+    assert request.desired_speed_mps == pytest.approx(p.config.cruise_speed_mps)
+    assert request.desired_speed_mps > 60 / 3.6
+
+
+def test_a_platoon_head_with_no_one_ahead_drives_at_the_platoon_speed():
+    p = planner()
+    world = inputs(planner_pb2.SCENARIO_PLATOON, platoon_id=2, ego=ego(), iclcms={900: rsu_start(0.1)}, scene=scene())
+    p.step(0.0, world)
+    request, state = p.step(0.1, world)
+    assert state.state == "JOINING"
+    assert request.desired_speed_mps == pytest.approx(60 / 3.6)
 
 
 def test_a_silent_partner_degrades_the_platoon_to_acc_and_its_return_rejoins():
