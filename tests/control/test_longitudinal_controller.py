@@ -72,6 +72,14 @@ def test_a_new_target_closer_than_the_time_gap_goal_starts_at_its_present_time_g
     assert later.time_gap_s == pytest.approx(0.3 + CAR.spacing.time_gap_rate_sps * 50 * DT)
 
 
+@pytest.mark.parametrize("law", list(CaccLaw))
+def test_a_new_target_inside_the_standstill_distance_starts_at_the_smallest_time_gap_and_brakes(law):
+    ctrl = LongitudinalController(CAR, cacc_law=law)
+    cmd = ctrl.step(0.0, 5.0, 0.0, [steady_target(gap_m=4.0, speed_mps=5.0)], 30.0, SPACING)
+    assert cmd.time_gap_s == pytest.approx(0.2)
+    assert cmd.accel_request_mps2 < 0
+
+
 def test_the_fallback_time_gap_ramps_up_instead_of_stepping():
     ctrl = LongitudinalController(CAR)
     run(ctrl, 50, [steady_target()])

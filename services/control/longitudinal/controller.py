@@ -31,6 +31,9 @@ MAX_DT_S = 0.5
 STANDSTILL_SPEED_MPS = 0.1
 # Below this speed a target's present time gap means nothing; a new track starts at the goal.
 NEW_TARGET_MIN_SPEED_MPS = 1.0
+# A new track never starts below this time gap: the laws divide by it, and a target inside the standstill
+# distance has none at all.
+MIN_START_TIME_GAP_S = 0.2
 
 MODE = LongitudinalMode
 
@@ -109,7 +112,7 @@ class LongitudinalController:
             # A target found closer than the goal (a cut-in, or a platoon formed at the CACC gap while the
             # planner still asks for more) starts at its present time gap and opens at the ramp rate: no jolt.
             now_s = (t.gap_m - spacing.standstill_m - t.extra_gap_m) / v if v > NEW_TARGET_MIN_SPEED_MPS else goal
-            track.time_gap_s = min(goal, max(now_s, 0.0))
+            track.time_gap_s = min(goal, max(now_s, MIN_START_TIME_GAP_S))
         else:
             ramp = sp.time_gap_rate_sps * dt_s
             track.time_gap_s = min(max(goal, track.time_gap_s - ramp), track.time_gap_s + ramp)
