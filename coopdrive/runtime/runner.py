@@ -41,6 +41,8 @@ from coopdrive.v1 import diagnostics_pb2, sim_pb2
 DIAGNOSTICS_PERIOD_S = 1.0
 # Lockstep: how long a step whose markers are all in may wait for the messages they count.
 MESSAGE_WAIT_LIMIT_S = 5.0
+# A periodic handler that keeps failing logs its traceback on the first and then every this many failures.
+TRIGGER_FAILURE_LOG_EVERY = 500
 
 
 class ClockMode(Enum):
@@ -71,7 +73,8 @@ class ServiceRunner:
         self._bus_subscriptions: set[tuple[str, str]] = set()
         self._liveliness_handlers: list[Callable[[str, bool], None]] = []
         self._participant_tracker = ParticipantTracker()
-        self._triggers = TriggerSet()
+        self._triggers = TriggerSet(on_error=self._on_trigger_error)
+        self._trigger_failures: dict[str, int] = {}
         self._sequence = SequenceCounter(service_cls.name)
         self._stop = threading.Event()
         self._stop_reason = ""
@@ -310,6 +313,14 @@ class ServiceRunner:
         if next_due is None or self._step_s <= 0:
             return step + 1
         return max(step + 1, math.ceil(next_due / self._step_s - TIME_EPSILON_S * 1e3))
+
+    def _on_trigger_error(self, trigger, error: Exception) -> None:
+        """Counted every time; the traceback is logged the first time and then every so often, not at 50 Hz."""
+        self.service.count("handler_errors")
+        name = getattr(trigger.handler, "__qualname__", repr(trigger.handler))
+        failures = self._trigger_failures[name] = self._trigger_failures.get(name, 0) + 1
+        if failures == 1 or failures % TRIGGER_FAILURE_LOG_EVERY == 0:
+            self.log.error("periodic %s failed (%d times)", name, failures, exc_info=error)
 
     def dispatch(self, envelope: Envelope) -> None:
         for source, handler in self._handlers.get(envelope.topic, ()):

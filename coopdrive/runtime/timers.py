@@ -28,8 +28,11 @@ class TimeTrigger:
 
 
 class TriggerSet:
-    def __init__(self) -> None:
+    def __init__(self, on_error: Callable[[TimeTrigger, Exception], None] | None = None) -> None:
+        """on_error: called with the trigger and the exception when a handler raises, and the other triggers
+        still run; without it the exception propagates (a replay stops where the service failed)."""
         self._triggers: list[TimeTrigger] = []
+        self._on_error = on_error
 
     def add(self, period_s: float, handler: Callable[[float], None]) -> TimeTrigger:
         if not period_s > 0:
@@ -40,8 +43,15 @@ class TriggerSet:
 
     def run_due(self, now_s: float) -> None:
         for trigger in self._triggers:
-            if trigger.due(now_s):
+            if not trigger.due(now_s):
+                continue
+            if self._on_error is None:
                 trigger.fire(now_s)
+                continue
+            try:
+                trigger.fire(now_s)
+            except Exception as error:  # one failing period must not stop the service or its other triggers
+                self._on_error(trigger, error)
 
     def next_due_s(self) -> float | None:
         """When the next trigger is due; None when one has never fired (it is due at once)."""

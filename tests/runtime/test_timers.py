@@ -1,5 +1,7 @@
 """Time triggers fire at their period on whichever clock drives them."""
 
+import pytest
+
 from coopdrive.runtime.timers import TriggerSet
 
 
@@ -30,3 +32,25 @@ def test_the_next_due_time_is_known_once_every_trigger_has_fired():
     assert triggers.next_due_s() is None
     triggers.run_due(0.0)
     assert triggers.next_due_s() == 0.04
+
+
+def failing(now_s: float) -> None:
+    raise ZeroDivisionError(f"at {now_s}")
+
+
+def test_a_failing_handler_is_reported_and_the_other_triggers_and_later_periods_still_run():
+    fired, failures = [], []
+    triggers = TriggerSet(on_error=lambda trigger, error: failures.append((trigger.handler, str(error))))
+    triggers.add(0.02, failing)
+    triggers.add(0.02, fired.append)
+    for step in range(3):
+        triggers.run_due(step * 0.02)
+    assert fired == [0.0, 0.02, 0.04]
+    assert failures == [(failing, "at 0.0"), (failing, "at 0.02"), (failing, "at 0.04")]
+
+
+def test_without_an_error_handler_a_failing_handler_raises_so_a_replay_stops_where_it_failed():
+    triggers = TriggerSet()
+    triggers.add(0.02, failing)
+    with pytest.raises(ZeroDivisionError):
+        triggers.run_due(0.0)
