@@ -26,6 +26,9 @@ HEADING_TRIGGER_RAD = math.radians(4.0)
 POSITION_TRIGGER_M = 4.0
 SPEED_TRIGGER_MPS = 0.5
 LOW_FREQUENCY_PERIOD_S = 0.5
+MS_PER_S = 1000
+# An ego state older than this is stale, not late: the CAM keeps the generation time of now.
+MAX_POSITION_AGE_S = 1.0
 # 95 % confidence ellipse axis of a 2-D Gaussian from its standard deviation: sqrt(chi2(2, 0.95)).
 CONFIDENCE_95_PER_STD = math.sqrt(5.991)
 MIN_SPEED_FOR_CURVATURE_MPS = 0.5
@@ -98,11 +101,18 @@ class CamGenerator:
         self.last_trigger = trigger
         ego = self.ego
         self._last = _Sent(now_s, ego.x_m, ego.y_m, ego.heading_rad, ego.speed_mps)
-        content = self._content(ego, tai_ms)
+        content = self._content(ego, tai_ms - self._position_age_ms(ego, now_s))
         if self._last_low_frequency_s is None or now_s - self._last_low_frequency_s >= LOW_FREQUENCY_PERIOD_S - TIME_EPSILON_S:
             self._last_low_frequency_s = now_s
             content.low_frequency.SetInParent()
         return content
+
+    @staticmethod
+    def _position_age_ms(ego: ego_pb2.EgoState, now_s: float) -> int:
+        """generationDeltaTime is the time of the reference position (EN 302 637-2), so a CAM carrying a
+        position 40 ms old says so, and a receiver does not place a car at 80 km/h a metre behind itself."""
+        age_s = now_s - ego.header.sample_time_s
+        return round(age_s * MS_PER_S) if 0.0 < age_s <= MAX_POSITION_AGE_S else 0
 
     def _trigger(self, now_s: float) -> CamTrigger | None:
         last = self._last

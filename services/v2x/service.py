@@ -18,7 +18,7 @@ from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.link import CaptureLog, UdpLink
 from coopdrive.services.v2x.packet import V2xPacketCodec
 from coopdrive.services.v2x.reasons import V2xDecodeError
-from coopdrive.services.v2x.reception import OwnIdentity, Reception
+from coopdrive.services.v2x.reception import OwnIdentity, Reception, message_time_tai_ms
 from coopdrive.services.v2x.security.certificate import Certificate
 from coopdrive.services.v2x.security.layer import SecurityLayer
 from coopdrive.services.v2x.security.pki import load_test_pki
@@ -33,6 +33,7 @@ from coopdrive.v1 import its_pb2, v2x_pb2
 UNKNOWN_MAC = bytes(6)
 TOPIC_OF_MESSAGE = {ItsMessageId.CAM: "v2x/cam", ItsMessageId.DENM: "v2x/denm", ItsMessageId.ICLCM: "v2x/iclcm"}
 US_PER_MS = 1000
+MS_PER_S = 1000
 
 
 @dataclass
@@ -41,6 +42,8 @@ class _Received:
     packet: v2x_pb2.GnPacket
     message_type: ItsMessageId | None = None
     content: its_pb2.CamContent | its_pb2.DenmContent | its_pb2.IclcmContent | None = None
+    # When what the message describes was true: a CAM's or iCLCM's generation time, else the reception.
+    sample_s: float | None = None
 
 
 def build_security_layer(config: SecurityConfig, station_id: int, mac: bytes,
@@ -128,8 +131,18 @@ class V2xService(Service):
         decoded = self.reception.on_packet(data, now_s)
         if decoded is not None:
             received.message_type, received.content = decoded.message_type, decoded.content
+            received.sample_s = self._generated_s(decoded, now_s)
             self.count(f"received_{decoded.message_type.name.lower()}")
         self._received.append(received)
+
+    def _generated_s(self, decoded, receive_s: float) -> float:
+        """A CAM's or iCLCM's generation time on our clock (its position and speed were true then, not at
+        reception); a DENM's reference time is the event's, so it keeps the reception time."""
+        if decoded.message_type == ItsMessageId.DENM:
+            return receive_s
+        receive_tai_ms = self.clock.tai_ms(receive_s)
+        delay_s = (receive_tai_ms - message_time_tai_ms(decoded, receive_tai_ms)) / MS_PER_S
+        return receive_s - max(delay_s, 0.0)
 
     # DENM API for in-process callers (roadside unit logic, hazard detection).
     def trigger_denm(self, event: its_pb2.DenmContent, repetition_interval_s: float | None = None,
@@ -162,7 +175,7 @@ class V2xService(Service):
         for item in received:
             self.ctx.publish("v2x/rx", item.packet, sample_time_s=item.receive_s)
             if item.content is not None:
-                self.ctx.publish(TOPIC_OF_MESSAGE[item.message_type], item.content, sample_time_s=item.receive_s)
+                self.ctx.publish(TOPIC_OF_MESSAGE[item.message_type], item.content, sample_time_s=item.sample_s)
 
     def publish_status(self, now_s: float) -> None:
         status = self.reception.status(now_s)

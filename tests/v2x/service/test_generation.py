@@ -122,6 +122,24 @@ def test_generation_delta_time_is_the_tai_time_of_sim_time_plus_the_epoch():
     assert content.generation_delta_time_ms == generation_delta_time_ms(tai_ms_from_utc(epoch) + 12_500)
 
 
+def test_generation_delta_time_is_the_time_of_the_position_it_carries():
+    cam = generator(CamMode.GCDC)
+    ego = ego_pb2.EgoState()
+    ego.header.sample_time_s = 12.46  # the latest estimate is 40 ms old when the CAM goes out
+    cam.on_ego_state(ego)
+    content = cam.generate(12.5, CLOCK.tai_ms(12.5))
+    assert content.generation_delta_time_ms == generation_delta_time_ms(CLOCK.tai_ms(12.46))
+
+
+def test_a_stale_ego_state_does_not_push_the_generation_time_back():
+    cam = generator(CamMode.GCDC)
+    ego = ego_pb2.EgoState()
+    ego.header.sample_time_s = 2.0
+    cam.on_ego_state(ego)
+    content = cam.generate(12.5, CLOCK.tai_ms(12.5))
+    assert content.generation_delta_time_ms == generation_delta_time_ms(CLOCK.tai_ms(12.5))
+
+
 def test_no_cam_is_generated_before_the_first_ego_state():
     assert generator(CamMode.GCDC).generate(0.0, 0) is None
 

@@ -33,6 +33,7 @@ class FakeContext:
     def __init__(self, now_s: float):
         self.time_s = now_s
         self.published: list[tuple[str, object]] = []
+        self.sample_times: list[tuple[str, float | None]] = []
         self.handlers: dict[str, object] = {}
         self.triggers: list[tuple[float, object]] = []
         self.calls: queue.Queue = queue.Queue()
@@ -45,6 +46,7 @@ class FakeContext:
 
     def publish(self, topic, message, sample_time_s=None) -> None:
         self.published.append((topic, message))
+        self.sample_times.append((topic, sample_time_s))
 
     def every(self, period_s, handler) -> None:
         self.triggers.append((period_s, handler))
@@ -202,3 +204,13 @@ def test_a_denm_triggered_through_the_service_is_geo_broadcast_around_its_event(
     service.cancel_denm(action)
     service.transmit(START_S + 0.04)
     assert decode_packet(radio.recvfrom(4096)[0]).content.termination == its_pb2.DENM_TERMINATION_CANCELLATION
+
+
+def test_a_received_cam_is_published_at_its_generation_time_not_when_it_arrived(running, radio):
+    service, ctx, _ = running
+    generated_s = START_S - 0.06  # 60 ms in the air and the sender's queue: 1.2 m at 20 m/s
+    radio.sendto(cam_packet(remote_cam(generated_s), generated_s), service.link.local_address)
+    ctx.pump(1)
+    service.flush_received(START_S + 0.02)
+    assert [t for topic, t in ctx.sample_times if topic == "v2x/cam"] == [pytest.approx(generated_s, abs=1e-3)]
+    assert [t for topic, t in ctx.sample_times if topic == "v2x/rx"] == [START_S]
