@@ -66,6 +66,14 @@ def build_parser() -> argparse.ArgumentParser:
                      help="V2X security of every stack (ETSI TS 103 097): each gets tickets from a test PKI")
     run.add_argument("--untrusted", action="append", default=[], metavar="VEHICLE",
                      help="with --security: this stack vehicle holds a ticket from a root nobody trusts")
+    run.add_argument("--cacc-law", choices=[law.value for law in _cacc_laws()],
+                     help="the cooperative law of every stack (default: each stack's control config, ours)")
+    run.add_argument("--baseline", choices=[law.value for law in _cacc_laws()], metavar="LAW",
+                     help="run again with every stack on this CACC law (e.g. ploeg) and compare: "
+                          "ours must damp at least as well")
+    run.add_argument("--v2v-loss", type=float, metavar="P",
+                     help="lose every V2V packet with probability P (0-1), independently, on top of the scenario")
+    run.add_argument("--v2v-cut-at", type=float, metavar="SECONDS", help="cut every V2V link from this time on")
     run.add_argument("--realtime", action="store_true", help="pace the simulation to wall time")
     run.add_argument("--record", type=Path, metavar="FILE.mcap")
     run.add_argument("--gateway", type=int, metavar="PORT", help="serve the gateway HTTP API on this port")
@@ -164,9 +172,7 @@ def _group(args) -> int:
 
 
 def _run(args) -> int:
-    from coopdrive.launch.run import RunOptions, build_specs, run_scenario
-    from coopdrive.launch.summary import print_summary, summary_dict
-
+    from coopdrive.launch.run import RunOptions, build_specs
     from coopdrive.services.sim.scenario_config import ScenarioError
 
     if args.scenario == "all" or args.seeds:
@@ -174,30 +180,87 @@ def _run(args) -> int:
     options = RunOptions(scenario=args.scenario, seed=args.seed, realtime=args.realtime, record=args.record,
                          gateway_port=args.gateway, duration_s=args.duration, log_dir=args.logs, stacks=args.stacks,
                          group_per_vehicle=None if args.processes is None else args.processes == "vehicle",
-                         security=args.security, untrusted=tuple(args.untrusted))
+                         security=args.security, untrusted=tuple(args.untrusted), extra_faults=_v2v_faults(args))
     if args.untrusted and args.security is None:
         print("coopdrive: --untrusted needs --security", file=sys.stderr)
         return EXIT_USAGE
+    if args.cacc_law is not None:
+        from coopdrive.launch.baseline import with_cacc_law
+        from coopdrive.services.control.longitudinal import CaccLaw
+
+        options = with_cacc_law(options, CaccLaw(args.cacc_law))
     try:
         with tempfile.TemporaryDirectory(prefix="coopdrive-check-") as check_dir:
             build_specs(options, Path(check_dir))  # a bad scenario file stops here, before anything starts
     except ScenarioError as error:
         print(f"coopdrive: {error}", file=sys.stderr)
         return EXIT_USAGE
-    recorded_to = args.record
-    if args.report is not None:
-        from coopdrive.judging.commands import RECORDING_FILE, report_notice, run_with_report
+    result, recorded_to = _run_once(options, args.report, args.record)
+    if args.baseline is None:
+        if args.json:
+            from coopdrive.launch.summary import summary_dict
 
-        result = run_with_report(options, args.report)
-        report_notice(args.report)
-        recorded_to = recorded_to or args.report / RECORDING_FILE
-    else:
-        result = run_scenario(options)
+            print(json.dumps(summary_dict(result), indent=2))
+        else:
+            from coopdrive.launch.summary import print_summary
+
+            print_summary(result, recording=recorded_to)
+        return EXIT_OK if result.success else EXIT_FAILED
+    return _compare_with_baseline(args, options, result, recorded_to)
+
+
+def _v2v_faults(args) -> tuple[dict, ...]:
+    """--v2v-loss and --v2v-cut-at as scenario faults on every vehicle's radio."""
+    faults = []
+    if args.v2v_loss is not None and not 0.0 <= args.v2v_loss <= 1.0:
+        raise ConfigError(f"--v2v-loss {args.v2v_loss}: a probability from 0 to 1")
+    if args.v2v_cut_at is not None and args.v2v_cut_at < 0:
+        raise ConfigError(f"--v2v-cut-at {args.v2v_cut_at}: a time from the start of the run, 0 or later")
+    if args.v2v_loss is not None:
+        faults.append({"type": "v2v_loss", "start_s": 0.0, "loss_probability": args.v2v_loss})
+    if args.v2v_cut_at is not None:
+        faults.append({"type": "v2v_loss", "start_s": args.v2v_cut_at, "loss_probability": 1.0})
+    return tuple(faults)
+
+
+def _run_once(options, report: Path | None, record: Path | None):
+    """One run, with a report when asked; returns the result and where it was recorded."""
+    from coopdrive.launch.run import run_scenario
+
+    if report is None:
+        return run_scenario(options), record
+    from coopdrive.judging.commands import RECORDING_FILE, report_notice, run_with_report
+
+    result = run_with_report(options, report)
+    report_notice(report)
+    return result, record or report / RECORDING_FILE
+
+
+def _compare_with_baseline(args, options, result, recorded_to) -> int:
+    import dataclasses
+
+    from coopdrive.launch.baseline import BaselineComparison, with_cacc_law
+    from coopdrive.launch.summary import print_summary, summary_dict
+    from coopdrive.services.control.longitudinal import CaccLaw
+
+    law = CaccLaw(args.baseline)
+    baseline_options = dataclasses.replace(with_cacc_law(options, law), record=None, gateway_port=None)
+    baseline_report = None if args.report is None else args.report / "baseline"
+    baseline, baseline_recorded_to = _run_once(baseline_options, baseline_report, None)
+    comparison = BaselineComparison.of(law, result, baseline)
+    passed = result.success and comparison.ours_no_worse
     if args.json:
-        print(json.dumps(summary_dict(result), indent=2))
+        summary = summary_dict(result)
+        summary["baseline"] = {**comparison.as_dict(), "run": summary_dict(baseline)}
+        summary["success"] = passed
+        if not comparison.ours_no_worse:
+            summary["failure_reason"] = comparison.failure_reason()
+        print(json.dumps(summary, indent=2))
     else:
         print_summary(result, recording=recorded_to)
-    return EXIT_OK if result.success else EXIT_FAILED
+        print_summary(baseline, recording=baseline_recorded_to, label=f", every stack on the {law.value} CACC")
+        comparison.print()
+    return EXIT_OK if passed else EXIT_FAILED
 
 
 def _batch(args) -> int:
@@ -215,6 +278,12 @@ def _batch(args) -> int:
     summary = run_batch(BatchOptions(scenarios=scenarios, seeds=seeds, stacks=args.stacks, workers=args.workers,
                                      out_dir=args.out, duration_s=args.duration, security=args.security))
     return EXIT_OK if summary.all_passed else EXIT_FAILED
+
+
+def _cacc_laws():
+    from coopdrive.services.control.longitudinal import CaccLaw
+
+    return list(CaccLaw)
 
 
 def _security_modes():

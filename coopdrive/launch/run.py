@@ -47,6 +47,8 @@ class RunOptions:
     # holding a ticket from a root nobody else trusts.
     security: str | None = None
     untrusted: tuple[str, ...] = ()
+    # Faults added to the scenario file's own (fault_config models as dicts, e.g. every V2V link lossy).
+    extra_faults: tuple[dict, ...] = ()
     # Extra config per service name, merged over the defaults (e.g. {"control": {...}}).
     service_overrides: dict[str, dict] = field(default_factory=dict)
     # Called as observer(key, message) for every message on the bus (benchmarks, live tools).
@@ -78,6 +80,9 @@ def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[Servic
     """Every service's spec. run_dir holds the run's files (GNSS port links, the test PKI); by default a new
     temporary folder the caller removes."""
     source = resolve_scenario(options.scenario)
+    if options.extra_faults:
+        run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-")) if run_dir is None else run_dir
+        source = source.with_faults(options.extra_faults, run_dir)
     # --realtime paces the lockstep run to the wall clock: it is watchable and still deterministic.
     sim = SimConfig(scenario=source.name, seed=options.seed, lockstep=True, paced=options.realtime)
     per_vehicle: dict[str, dict[str, dict]] = {}

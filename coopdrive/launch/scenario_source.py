@@ -5,6 +5,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
+from typing import Sequence
+
+import yaml
 
 from coopdrive.judging.catalogue import BUILT_IN, SCENARIO_PACKAGE
 from coopdrive.services.sim.scenario_config import ScenarioConfig, ScenarioError, VehicleRole, load_scenario
@@ -27,6 +30,18 @@ class ScenarioSource:
                 raise ScenarioError(f"{self.file}: --stacks {stacks}: the scenario has {len(ids)} stack vehicles")
             ids = ids[:stacks]
         return ids
+
+    def with_faults(self, faults: Sequence[dict], folder: Path) -> ScenarioSource:
+        """The same scenario with faults added to its own, written to folder: the simulator loads a file."""
+        if not faults:
+            return self
+        if self.config is None:
+            raise ScenarioError(f"{self.name}: faults need a scenario file run; the built-in world has no radio")
+        data = yaml.safe_load(self.file.read_text(encoding="utf-8"))
+        data["faults"] = list(data.get("faults") or []) + list(faults)
+        path = Path(folder) / f"{self.name}.yaml"
+        path.write_text(yaml.safe_dump(data, sort_keys=False), encoding="utf-8")
+        return ScenarioSource(self.name, path.resolve(), load_scenario(path))
 
 
 def resolve_scenario(name_or_path: str) -> ScenarioSource:

@@ -27,9 +27,9 @@ def summary_dict(result: sim_pb2.RunResult) -> dict:
     return summary
 
 
-def print_summary(result: sim_pb2.RunResult, recording: Path | None = None) -> None:
+def print_summary(result: sim_pb2.RunResult, recording: Path | None = None, label: str = "") -> None:
     summary = summary_dict(result)
-    table = Table(title=f"coopdrive run {result.scenario} (seed {result.seed})")
+    table = Table(title=f"coopdrive run {result.scenario} (seed {result.seed}){label}")
     table.add_column("metric")
     table.add_column("value", justify="right")
     for key, value in summary.items():
