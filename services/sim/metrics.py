@@ -72,9 +72,16 @@ def bumper_gap_m(leader: sim_pb2.VehicleTruth, follower: sim_pb2.VehicleTruth) -
 Pair = tuple[sim_pb2.VehicleTruth, sim_pb2.VehicleTruth]
 
 
+def side_by_side(a: sim_pb2.VehicleTruth, b: sim_pb2.VehicleTruth) -> bool:
+    """Two vehicles matched to one lane whose widths do not overlap across it (a car moved aside for an
+    emergency vehicle passing in the corridor): neither can run into the other from behind."""
+    return abs(a.lateral_offset_m - b.lateral_offset_m) >= (a.width_m + b.width_m) / 2.0
+
+
 def following_pairs(vehicles: Sequence[sim_pb2.VehicleTruth]) -> list[Pair]:
-    """(leader, follower) of consecutive vehicles in each lane. Every road numbers its lanes from 0, so a lane
-    is told apart by its direction too: cars on crossing or opposite roads never follow one another."""
+    """(leader, follower): each vehicle and the nearest one ahead in its lane that it could run into. Every
+    road numbers its lanes from 0, so a lane is told apart by its direction too: cars on crossing or opposite
+    roads never follow one another."""
     pairs = []
     by_lane: dict[tuple[int, int, int], list[sim_pb2.VehicleTruth]] = {}
     for vehicle in vehicles:
@@ -82,7 +89,11 @@ def following_pairs(vehicles: Sequence[sim_pb2.VehicleTruth]) -> list[Pair]:
         by_lane.setdefault((vehicle.lane_index, *direction), []).append(vehicle)
     for lane_vehicles in by_lane.values():
         ordered = sorted(lane_vehicles, key=lambda v: v.station_m, reverse=True)
-        pairs.extend(zip(ordered, ordered[1:]))
+        for index, follower in enumerate(ordered[1:], start=1):
+            ahead = (v for v in reversed(ordered[:index]) if not side_by_side(v, follower))
+            leader = next(ahead, None)
+            if leader is not None:
+                pairs.append((leader, follower))
     return pairs
 
 

@@ -103,6 +103,16 @@ def test_cars_in_lane_0_of_opposite_roads_do_not_follow_one_another():
         ("east", "behind")]
 
 
+def test_a_vehicle_passing_beside_another_in_the_corridor_is_not_following_it():
+    # The ambulance is matched to lane 0 but drives 2 m left of the car that moved aside (widths 1.8 m).
+    moved_aside = _truth("car", 50.0, lateral=-1.0)
+    ambulance = _truth("ambulance", 48.0, lateral=1.0)
+    behind = _truth("behind", 30.0, lateral=-1.0)
+    pairs = [(a.vehicle_id, b.vehicle_id) for a, b in metrics.following_pairs([moved_aside, ambulance, behind])]
+    assert pairs == [("car", "behind")]
+    assert metrics.gaps(TruthSeries.from_frames([(0.0, [moved_aside, ambulance, behind])]))["min_gap_m"] == 15.5
+
+
 def test_the_judge_measures_the_string_gain_only_inside_its_window():
     """Followers damp the 0.2 Hz wave from 10 s to 40 s; after 40 s (a brake, a fault) the follower swings more."""
     frames = []
