@@ -98,6 +98,8 @@ class LimitGains(_Model):
     ttc_emergency_s: float = Field(1.5, gt=0)
     ttc_release_s: float = Field(3.0, gt=0)
     brake_horizon_s: float = Field(2.5, gt=0)
+    # A predecessor decelerating this hard is braking in earnest (the EEBL trigger of 4 m/s2): match it at once.
+    hard_braking_mps2: float = Field(4.0, gt=0)
     stop_margin_m: float = Field(2.0, ge=0)
     release_margin_m: float = Field(1.0, ge=0)
 

@@ -58,6 +58,7 @@ def run_platoon(
     actuation_delay_steps: int = 2,
     brake_at_s: float | None = None,
     brake_decel_mps2: float = 5.0,
+    driveline_jerk_mps3: float = math.inf,
 ) -> PlatoonRun:
     """Leader speed v0 + A sin(2 pi f t), or braking to standstill from brake_at_s; seven followers, each with its
     own lag, following its predecessor."""
@@ -99,7 +100,8 @@ def run_platoon(
             v[0] = speed_mps + amp * math.sin(w * (t + DT_S))
         x[0] += v[0] * DT_S
         for i, lag in enumerate(FOLLOWER_LAGS_S):
-            a[i + 1] += DT_S / lag * (commands[i][0] - a[i + 1])
+            change = DT_S / lag * (commands[i][0] - a[i + 1])
+            a[i + 1] += min(max(change, -driveline_jerk_mps3 * DT_S), driveline_jerk_mps3 * DT_S)
             v[i + 1] = max(v[i + 1] + a[i + 1] * DT_S, 0.0)
             x[i + 1] += v[i + 1] * DT_S
         if k >= first:

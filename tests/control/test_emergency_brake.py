@@ -1,4 +1,4 @@
-"""The emergency path (eq. E1-E3) against hand-computed kinematics: when it starts, how hard it brakes, when it lets go."""
+"""The emergency path (eq. E1-E4) against hand-computed kinematics: when it starts, how hard it brakes, when it lets go."""
 
 import math
 
@@ -77,3 +77,19 @@ def test_standing_close_behind_a_stopped_vehicle_is_not_an_emergency():
     eb = EmergencyBrake(CAR.limits)
     eb.active = True
     assert not eb.step(0.0, [(1, 2.2, 0.0, 0.0)]).active
+
+
+def test_a_predecessor_braking_as_hard_as_an_emergency_brake_is_matched_at_once():
+    # 17 m at 22 m/s, both at speed: the horizon alone would wait, a 4+ m/s2 predecessor is not waited for (E4).
+    decision = EmergencyBrake(CAR.limits).step(22.0, [(5, 17.0, 22.0, -5.0)])
+    assert decision.active and decision.object_id == 5
+    assert decision.accel_mps2 == pytest.approx(-5.0)
+
+
+def test_a_predecessor_braking_just_below_the_hard_braking_threshold_is_left_to_the_horizon():
+    assert not EmergencyBrake(CAR.limits).step(22.0, [(5, 17.0, 22.0, -3.9)]).active
+
+
+def test_a_stopped_predecessor_still_reporting_its_last_deceleration_is_not_hard_braking():
+    eb = EmergencyBrake(CAR.limits)
+    assert not eb.step(0.0, [(5, 3.5, 0.0, -5.0)]).active

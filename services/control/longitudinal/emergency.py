@@ -12,6 +12,9 @@ brake_horizon_s (eq. E3, the gap's minimum over the horizon under both decelerat
 target has TTC > ttc_release_s and comfort braking keeps release_margin_m more than the margin, or keeps the gap
 from shrinking at all (hysteresis).
 A short horizon keeps a predecessor's brief hard braking, such as a speed oscillation, with the comfort laws.
+A moving predecessor decelerating harder than hard_braking_mps2 (the EEBL trigger) starts it at once, braking
+at least as hard as the predecessor (eq. E4): a follower whose driveline needs a second to build up braking
+cannot wait for the horizon to see a stop coming.
 """
 
 from __future__ import annotations
@@ -112,9 +115,14 @@ class EmergencyBrake:
         for object_id, gap_m, pred_speed, pred_accel in targets:
             ttc = self.ttc_s(gap_m, ego_speed_mps, pred_speed)
             need = self.required_accel_mps2(gap_m, ego_speed_mps, pred_speed, pred_accel)
-            trigger = trigger or ttc < lim.ttc_emergency_s or not self.comfort_keeps_margin(
+            # A moving predecessor braking as hard as an emergency brake (EEBL) is matched at once (eq. E4):
+            # by the time the horizon sees it, a driveline that needs a second to build up braking is late.
+            hard = pred_speed > 0.0 and ego_speed_mps > 0.0 and pred_accel <= -lim.hard_braking_mps2
+            if hard:
+                need = min(need, pred_accel)
+            trigger = trigger or hard or ttc < lim.ttc_emergency_s or not self.comfort_keeps_margin(
                 gap_m, ego_speed_mps, pred_speed, pred_accel)
-            release_blocked = release_blocked or ttc < lim.ttc_release_s or not self.comfort_keeps_margin(
+            release_blocked = release_blocked or hard or ttc < lim.ttc_release_s or not self.comfort_keeps_margin(
                 gap_m, ego_speed_mps, pred_speed, pred_accel, lim.release_margin_m)
             if (need, ttc) < (worst_need, worst_ttc):
                 worst_need, worst_id, worst_ttc = need, object_id, ttc
