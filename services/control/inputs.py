@@ -31,6 +31,7 @@ def spacing_from_request(request: planner_pb2.BehaviourRequest) -> Spacing | Non
 def _target(obj: scene_pb2.SceneObject, role: int, extra_gap_m: float, scene_age_s: float) -> Target:
     accel = obj.accel_mps2
     has_v2v = accel.confidence >= 0 and V2V in accel.sources
+    intended = obj.intended_accel_mps2
     return Target(
         object_id=obj.object_id,
         gap_m=obj.longitudinal_gap_m,
@@ -39,6 +40,7 @@ def _target(obj: scene_pb2.SceneObject, role: int, extra_gap_m: float, scene_age
         v2v_age_s=max(scene_age_s, 0.0) if has_v2v else None,
         role=role,
         extra_gap_m=extra_gap_m,
+        intended_accel_mps2=intended.value if V2V in intended.sources else None,
     )
 
 

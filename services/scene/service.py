@@ -10,6 +10,7 @@ from coopdrive.roadmap import RoadMap
 from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.services.scene.config import SceneFusionConfig
 from coopdrive.services.scene.fusion import SceneFusion
+from coopdrive.services.scene.intended_accel import IntendedAccelerations
 from coopdrive.services.scene.measurement import V2vObservation
 from coopdrive.services.scene.road_lanes import EgoRoadLanes
 
@@ -25,6 +26,8 @@ class SceneConfig(ServiceConfig):
     origin_lat_deg: float = 51.4758
     origin_lon_deg: float = 5.6247
     origin_alt_m: float = 20.0
+    # A station's iCLCM acceleration request older than this is not put on its object.
+    intended_accel_max_age_s: float = Field(default=0.4, gt=0)
     fusion: SceneFusionConfig = Field(default_factory=SceneFusionConfig)
 
 
@@ -46,6 +49,9 @@ class SceneService(Service):
         for topic, method in SENSOR_TOPICS.items():
             self.ctx.subscribe(topic, self._sensor_handler(method))
         self.ctx.subscribe("v2x/cam", self.on_cam)
+        self.intended = IntendedAccelerations(config.intended_accel_max_age_s, config.fusion.trust.min_trusted)
+        self.ctx.subscribe("v2x/iclcm", lambda envelope: self.intended.on_iclcm(
+            envelope.message, envelope.message.header.sample_time_s))
         self.ctx.every(1.0 / config.output_rate_hz, self.publish_scene)
 
     def _sensor_handler(self, method_name: str):
@@ -76,6 +82,7 @@ class SceneService(Service):
 
     def publish_scene(self, now_s: float) -> None:
         scene = self.fusion.scene(now_s)
+        self.intended.annotate(scene, now_s)
         for name, value in self.fusion.counters().items():
             self.counters[name] = value
         self.ctx.publish("scene", scene, sample_time_s=now_s)

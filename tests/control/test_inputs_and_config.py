@@ -36,6 +36,17 @@ def test_an_acceleration_without_v2v_support_is_not_used_as_feedforward():
     assert t.accel_mps2 is None and t.v2v_age_s is None
 
 
+def test_the_acceleration_a_station_requests_reaches_the_target_only_when_the_scene_put_it_there():
+    requesting = scene_object(4, 20.0, 21.0, 0.3)
+    requesting.intended_accel_mps2.value = -5.0
+    requesting.intended_accel_mps2.sources.append(header_pb2.SENSOR_SOURCE_V2V)
+    silent = scene_object(5, 40.0, 21.0, 0.3)
+    scene = scene_pb2.Scene(objects=[requesting, silent])
+    request = planner_pb2.BehaviourRequest(targets=[planner_pb2.TargetVehicle(object_id=4),
+                                                    planner_pb2.TargetVehicle(object_id=5)])
+    assert [t.intended_accel_mps2 for t in targets_from_scene(request, scene, now_s=0.0)] == [-5.0, None]
+
+
 def test_the_forward_mio_is_always_a_target_and_vehicles_behind_are_not():
     scene = scene_pb2.Scene(objects=[scene_object(1, 15.0, 20.0), scene_object(2, -8.0, 20.0)], has_forward_mio=True, forward_mio_id=1)
     request = planner_pb2.BehaviourRequest(targets=[planner_pb2.TargetVehicle(object_id=2)])

@@ -139,6 +139,15 @@ def test_a_stopped_vehicle_close_ahead_triggers_emergency_braking_beyond_the_com
     assert cmd.accel_request_mps2 == pytest.approx(-CAR.limits.emergency_decel_mps2)
 
 
+def test_a_predecessor_requesting_hard_braking_starts_emergency_braking_before_its_brakes_bite():
+    # 17 m at 22 m/s behind a car still measured at 0 m/s2 whose controller now asks for -5 m/s2 (iCLCM).
+    requesting = steady_target(gap_m=17.0, speed_mps=22.0, accel_mps2=0.0, intended_accel_mps2=-5.0)
+    cmd = LongitudinalController(CAR).step(0.0, 22.0, 0.0, [requesting], 30.0, SPACING)
+    assert cmd.emergency_brake and cmd.mode == M.LONGITUDINAL_MODE_EMERGENCY_BRAKE
+    measured_only = steady_target(gap_m=17.0, speed_mps=22.0, accel_mps2=0.0)
+    assert not LongitudinalController(CAR).step(0.0, 22.0, 0.0, [measured_only], 30.0, SPACING).emergency_brake
+
+
 def test_the_selected_reference_laws_can_be_swapped_in_by_configuration():
     ctrl = LongitudinalController(CAR, cacc_law=CaccLaw.PLOEG, acc_law=AccLaw.RAJAMANI, speed_law=SpeedLaw.DRIVERTIVE)
     assert run(ctrl, 3, [steady_target()]).mode == M.LONGITUDINAL_MODE_CACC

@@ -233,7 +233,10 @@ class LongitudinalController:
         stopping point, so the vehicle margin is not taken off twice."""
         if t.stop_line:
             return t.object_id, t.gap_m + self.profile.limits.stop_margin_m, 0.0, 0.0
-        return t.object_id, t.gap_m, t.speed_mps, self._pred_accel_for_ttc(t)
+        measured = self._pred_accel_for_ttc(t)
+        # The request leads the measurement by the predecessor's driveline lag: whichever brakes harder counts.
+        pred_accel = measured if t.intended_accel_mps2 is None else min(measured, t.intended_accel_mps2)
+        return t.object_id, t.gap_m, t.speed_mps, pred_accel
 
     def _pred_accel_for_ttc(self, t: Target) -> float:
         if t.accel_mps2 is not None and t.v2v_age_s is not None and t.v2v_age_s <= self.profile.spacing.v2v_timeout_s:

@@ -37,6 +37,7 @@ class Target:
 
     accel_mps2 is the predecessor's acceleration received over V2V (CAM / iCLCM), None when absent.
     v2v_age_s is the age of that V2V data, None when the target has no V2V at all.
+    intended_accel_mps2 is the acceleration its controller requests (iCLCM), None when not fresh.
     """
 
     object_id: int
@@ -48,6 +49,7 @@ class Target:
     extra_gap_m: float = 0.0
     # A line to stop at (give way, road works), not a vehicle: gap_m is the distance to the stopping point.
     stop_line: bool = False
+    intended_accel_mps2: float | None = None
 
     def invalid_reason(self) -> str | None:
         if not math.isfinite(self.gap_m):
@@ -56,6 +58,8 @@ class Target:
             return f"target {self.object_id}: speed_mps is not finite"
         if self.accel_mps2 is not None and not math.isfinite(self.accel_mps2):
             return f"target {self.object_id}: accel_mps2 is not finite"
+        if self.intended_accel_mps2 is not None and not math.isfinite(self.intended_accel_mps2):
+            return f"target {self.object_id}: intended_accel_mps2 is not finite"
         if self.v2v_age_s is not None and not (self.v2v_age_s >= 0):
             return f"target {self.object_id}: v2v_age_s must be >= 0"
         return None
