@@ -27,6 +27,9 @@ class PlatoonConfig(BaseModel):
     acc_time_gap_s: float = Field(1.5, gt=0)
     leave_time_gap_s: float = Field(2.5, gt=0)
     join_gap_tolerance_m: float = Field(3.0, gt=0)
+    # A member may go this much faster than its own cruise speed to keep up with its partner: a follower
+    # capped at the leader's top speed falls behind on every crest of a speed wave and passes a slower wave on.
+    member_speed_headroom_mps: float = Field(3.0, ge=0)
     join_timeout_s: float = Field(30.0, gt=0)
     leave_timeout_s: float = Field(15.0, gt=0)
 

@@ -120,9 +120,9 @@ class PlatooningScenario:
         gap_s = p.leave_time_gap_s if state is PlatoonState.LEAVING else p.cacc_time_gap_s
         partner = sit.object_of_station(self.partner_station_id)
         # The head sets the platoon's speed; a member follows its partner through the head's speed changes, so
-        # only the vehicle's own top speed caps it (a cap at the platoon speed would clip every speed wave).
-        speed_mps = self.platoon_speed_mps() if partner is None else max(self.platoon_speed_mps(),
-                                                                        self.config.cruise_speed_mps)
+        # a cap at the platoon speed, or at its own cruise speed, would clip every crest of a speed wave.
+        speed_mps = self.platoon_speed_mps() if partner is None else max(
+            self.platoon_speed_mps(), self.config.cruise_speed_mps) + p.member_speed_headroom_mps
         request = keep_lane(sit, speed_mps, gap_s)
         add_target(request, partner, planner_pb2.TARGET_ROLE_PREDECESSOR)
         request.iclcm.forward_id = self.partner_station_id

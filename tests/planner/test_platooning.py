@@ -35,11 +35,12 @@ def test_the_platoon_waits_for_the_rsu_then_joins_behind_the_partner_and_platoon
     assert ("JOINING", "PLATOONING") in transitions(state)
 
 
-def test_a_member_follows_its_partner_up_to_its_own_top_speed_not_only_the_platoon_speed():
+def test_a_member_may_go_a_little_faster_than_its_cruise_speed_to_keep_up_with_its_partner():
     p = planner()
     step(p, 0.0, start=False)
     request, _ = step(p, 0.1)
-    assert request.desired_speed_mps == pytest.approx(p.config.cruise_speed_mps)
+    config = p.config
+    assert request.desired_speed_mps == pytest.approx(config.cruise_speed_mps + config.platoon.member_speed_headroom_mps)
     assert request.desired_speed_mps > 60 / 3.6
 
 
