@@ -153,10 +153,8 @@ CAR = VehicleProfile(
     wheelbase_m=2.7,
     drag_area_m2=0.7,
     rolling_coefficient=0.012,
-    # The driveline of the simulator's passenger car: a CACC that compensates a lag the car does not have
-    # passes the speed wave on (8-stack string run). On a vehicle, measure these from a step response.
-    engine_lag_s=0.5,
-    actuation_delay_s=0.1,
+    engine_lag_s=0.3,
+    actuation_delay_s=0.05,
     max_steering_angle_rad=0.5,
     max_steering_rate_radps=0.4,
 )

@@ -99,8 +99,8 @@ def test_resistance_feedforward_is_rolling_plus_aerodynamic_drag_over_mass():
 def test_cruise_pi_follows_its_reference_model_one_step_by_hand():
     pi = CruisePi(NO_FEEDFORWARD)
     pi.engage(0.0, 10.0)
-    # a_ref = 1 m/s3 * 0.02 s; v_ref = 10.0004; u = a_ref + tau*jerk + kp*e + ki*e*dt, tau = 0.5 s
-    expected = 0.02 + 0.5 * 1.0 + 0.8 * 0.0004 + 0.15 * 0.0004 * DT
+    # a_ref = 1 m/s3 * 0.02 s; v_ref = 10.0004; u = a_ref + tau*jerk + kp*e + ki*e*dt, tau = 0.3 s
+    expected = 0.02 + 0.3 * 1.0 + 0.8 * 0.0004 + 0.15 * 0.0004 * DT
     assert pi.step(DT, 10.0, 20.0) == pytest.approx(expected)
 
 
