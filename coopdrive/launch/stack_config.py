@@ -16,6 +16,8 @@ MIN_CRUISE_SPEED_MPS = 5.0
 PROFILE_SAMPLE_S = 0.1
 # Time constants for a first-order lag to fall below ~2 % of where it started.
 BRAKE_RELEASE_TIME_CONSTANTS = 4.0
+# ... and to come within 5 % of a step.
+STEERING_RESPONSE_TIME_CONSTANTS = 3.0
 STATION_TYPE = {ProfileName.PASSENGER_CAR: "passenger_car", ProfileName.TRUCK: "heavy_truck"}
 
 
@@ -62,6 +64,8 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
     # The simulated brake pressure follows the actuator's lag: automation braking takes this long to fade
     # below the override threshold, and must not read as the driver's foot on the brake.
     release_s = BRAKE_RELEASE_TIME_CONSTANTS * profile.accel_time_constant_s + profile.accel_dead_time_s
+    # Likewise the wheels reach a steering command this long after it, and until then lag it, not the driver.
+    steering_s = STEERING_RESPONSE_TIME_CONSTANTS * profile.steer_time_constant_s + profile.steer_dead_time_s
     actuation = {"actuator": {"pedal": (TRUCK_PEDAL_PROFILE if truck else CAR_PEDAL_PROFILE).model_dump(mode="json"),
-                              "override": {"brake_release_grace_s": release_s}}}
+                              "override": {"brake_release_grace_s": release_s, "steering_response_s": steering_s}}}
     return {"v2x": v2x, "planner": planner, "geolocation": geolocation, "control": control, "actuation": actuation}

@@ -59,6 +59,9 @@ class OverrideConfig(BaseModel):
     # DRIVERTIVE II.B.3.a: steering-wheel position error above 5 deg for at least 500 ms.
     steering_error_deg: float = Field(default=5.0, gt=0.0)
     steering_error_duration_s: float = Field(default=0.5, ge=0.0)
+    # The steering actuator reaches a command within this time: the measured angle is compared with every
+    # command of that window, so its lag while the automation steers briskly is not read as the driver.
+    steering_response_s: float = Field(default=0.35, ge=0.0)
     # DRIVERTIVE II.B.3.b: throttle above 10 % of full depression.
     throttle_pedal_ratio: float = Field(default=0.10, ge=0.0, le=1.0)
     # DRIVERTIVE II.B.3.c: any brake; a pedal ratio above this (sensor noise) ...

@@ -1,12 +1,15 @@
 """DriverOverrideDetector: the driver takes over through the wheel, the throttle or the brake.
 
 DRIVERTIVE Sect. II.B.3: a steering-wheel position error above 5 deg for 500 ms, a throttle above 10 %, or
-any brake (pedal pressed, or brake pressure while the automation is not braking). Heudiasyc Sect. 5.2: in
+any brake (pedal pressed, or brake pressure while the automation is not braking). The steering error is the
+distance from the measured angle to the commands of the last steering_response_s: an actuator still on its
+way to a command is following it, a driver holding the wheel away from all of them is not. Heudiasyc Sect. 5.2: in
 cooperative mode only the automated sub-system (here longitudinal) is watched. Once it fires the detector
 stays latched: automation re-engages only when the driver asks again (`rearm`).
 """
 
 import math
+from collections import deque
 from dataclasses import dataclass
 
 from coopdrive.services.actuation.config import OverrideConfig
@@ -29,6 +32,7 @@ class DriverOverrideDetector:
         self.latched: OverrideDetection | None = None
         self._steering_error_since_s: float | None = None
         self._last_braking_s: float | None = None
+        self._recent_commands: deque[tuple[float, float]] = deque()
 
     def steering_wheel_error_deg(self, measured_angle_rad: float, commanded_angle_rad: float) -> float:
         return abs(math.degrees(measured_angle_rad - commanded_angle_rad)) * self.steering_ratio
@@ -66,9 +70,18 @@ class DriverOverrideDetector:
             self._steering_error_since_s = None
         return detection
 
+    def _nearest_recent_command_rad(self, measured_rad: float, now_s: float, commanded_rad: float) -> float:
+        recent = self._recent_commands
+        recent.append((now_s, commanded_rad))
+        while len(recent) > 1 and recent[0][0] < now_s - self.config.steering_response_s:
+            recent.popleft()
+        low, high = min(angle for _, angle in recent), max(angle for _, angle in recent)
+        return min(max(measured_rad, low), high)
+
     def _steering(self, state: vehicle_pb2.VehicleCanState, now_s: float,
                   commanded_angle_rad: float) -> OverrideDetection | None:
-        error_deg = self.steering_wheel_error_deg(state.steering_angle_rad, commanded_angle_rad)
+        followed_rad = self._nearest_recent_command_rad(state.steering_angle_rad, now_s, commanded_angle_rad)
+        error_deg = self.steering_wheel_error_deg(state.steering_angle_rad, followed_rad)
         if error_deg <= self.config.steering_error_deg:
             self._steering_error_since_s = None
             return None
@@ -82,3 +95,4 @@ class DriverOverrideDetector:
         """The driver asked for automation again."""
         self.latched = None
         self._steering_error_since_s = None
+        self._recent_commands.clear()

@@ -135,3 +135,23 @@ def test_the_driver_can_override_an_emergency_stop_started_after_an_earlier_over
     assert actuator.mode == actuation_pb2.DRIVING_MODE_SAFE_STOP
     assert actuator.on_vehicle_state(vehicle_state(0.0, throttle=0.5), 0.03) is not None
     assert actuator.mode == actuation_pb2.DRIVING_MODE_MANUAL
+
+
+def test_an_actuator_lagging_a_brisk_steering_ramp_is_not_the_driver():
+    # The automation turns the wheels at 0.4 rad/s (6 deg/s at the steering wheel x 15); the actuator is 0.2 s
+    # behind, 80 deg at the wheel off the latest command, but never off the commands of the last 0.35 s.
+    d = detector()
+    for k in range(100):
+        now_s = k * 0.01
+        commanded = 0.4 * now_s
+        measured = max(0.0, 0.4 * (now_s - 0.2))
+        assert engaged(d, vehicle_state(steering_angle_rad=measured), now_s, commanded=commanded) is None
+
+
+def test_a_driver_holding_the_wheel_against_a_steering_ramp_is_caught():
+    d = detector()
+    detections = [engaged(d, vehicle_state(steering_angle_rad=0.0), k * 0.01, commanded=0.4 * k * 0.01)
+                  for k in range(120)]
+    caught = [k * 0.01 for k, detection in enumerate(detections) if detection is not None]
+    assert len(caught) == 1
+    assert caught[0] == pytest.approx(0.35 + 0.02 + 0.5, abs=0.03)  # off every recent command from ~0.37 s

@@ -1,5 +1,9 @@
 """What each stack vehicle of a scenario-file run is told about itself."""
 
+from pathlib import Path
+
+import pytest
+
 from coopdrive.launch.run import RunOptions, build_specs
 
 
@@ -8,3 +12,14 @@ def test_a_stack_may_cruise_as_fast_as_the_leader_it_follows_ever_goes(tmp_path)
              for s in build_specs(RunOptions(scenario="string", stacks=2), tmp_path)}
     # The string leader oscillates +-10 km/h around 80 km/h: its followers must not be capped at 80 km/h.
     assert specs[(next(v for v, service in specs if v != "world"), "planner")]["logic"]["cruise_speed_mps"] > 24.9
+
+
+def test_each_stack_allows_its_own_steering_and_brake_actuators_their_response_time_before_blaming_the_driver(
+        tmp_path):
+    example = Path(__file__).parents[2] / "services" / "sim" / "examples" / "string_stability.yaml"
+    specs = {(s.vehicle_id, s.service): s.config for s in build_specs(RunOptions(scenario=str(example)), tmp_path)}
+    car, truck = (specs[(vehicle, "actuation")]["actuator"]["override"] for vehicle in ("ego", "truck"))
+    # Steering: 3 time constants plus dead time (car 0.1 s and 0.05 s, truck 0.2 s and 0.1 s).
+    assert car["steering_response_s"] == pytest.approx(0.35)
+    assert truck["steering_response_s"] == pytest.approx(0.7)
+    assert truck["brake_release_grace_s"] > car["brake_release_grace_s"]
