@@ -9,6 +9,9 @@ from rich.table import Table
 
 from coopdrive.v1 import sim_pb2
 
+# Metrics that count events, printed as integers.
+COUNT_METRICS = ("collisions", "participants_lost", "automation_lost")
+
 
 def summary_dict(result: sim_pb2.RunResult) -> dict:
     summary = {
@@ -21,7 +24,7 @@ def summary_dict(result: sim_pb2.RunResult) -> dict:
         "realtime_factor": round(result.sim_time_s / result.wall_time_s, 2) if result.wall_time_s > 0 else 0.0,
     }
     for key, value in sorted(result.metrics.items()):
-        summary[key] = int(value) if key in ("collisions", "participants_lost") else round(value, 6)
+        summary[key] = int(value) if key in COUNT_METRICS else round(value, 6)
     summary.setdefault("collisions", 0)
     summary.setdefault("min_gap_m", -1.0)
     return summary

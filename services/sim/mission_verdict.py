@@ -31,6 +31,9 @@ class MissionJudge:
         self.frames: list[tuple[float, list[sim_pb2.VehicleTruth]]] = []
         self.collisions = 0
         self._metrics: dict[str, float] | None = None
+        # Stack vehicles whose actuation once drove them, and when each first gave the car back to its driver.
+        self._automated: set[str] = set()
+        self.automation_lost_s: dict[str, float] = {}
 
     def observe(self, time_s: float, truth: sim_pb2.GroundTruth) -> None:
         self.frames.append((time_s, list(truth.vehicles)))
@@ -39,6 +42,15 @@ class MissionJudge:
         newest = judging.collisions(TruthSeries.from_frames(self.frames[-2:]))
         older = judging.collisions(TruthSeries.from_frames(self.frames[-2:-1])) if len(self.frames) >= 2 else 0
         self.collisions += newest - older
+
+    def observe_automation(self, vehicle_id: str, longitudinal_active: bool, time_s: float) -> None:
+        """A stack's CAN command: an automated vehicle that falls back to its driver (an override read where
+        there is none, a safe stop into manual) has failed its mission even if nothing hit anything."""
+        if longitudinal_active:
+            self._automated.add(vehicle_id)
+        elif vehicle_id in self._automated:
+            self.automation_lost_s.setdefault(vehicle_id, time_s)
+            self._metrics = None
 
     def metrics(self) -> dict[str, float]:
         if self._metrics is None:
@@ -54,6 +66,7 @@ class MissionJudge:
                 string_frequency_hz=judging_config.string_frequency_hz,
                 string_end_s=judging_config.string_end_s).items() if math.isfinite(value)}
             self._metrics["collisions"] = float(self.collisions)
+            self._metrics["automation_lost"] = float(len(self.automation_lost_s))
             # The slowest vehicle's time: what the GCDC limits (a merge in under 10 s per pair).
             merge_times = self.merge_times_s() if self.config.mission is Mission.MERGE else {}
             if merge_times:
@@ -68,6 +81,9 @@ class MissionJudge:
             return False, "the run ended before any ground truth"
         if self.collisions:
             return False, f"{self.collisions} collision(s)"
+        if self.automation_lost_s:
+            lost = ", ".join(f"{v} at {t:.1f} s" for v, t in sorted(self.automation_lost_s.items(), key=lambda kv: kv[1]))
+            return False, f"automation lost: {lost}"
         mission = self.config.mission
         if mission is Mission.PLATOON:
             gain = self.metrics().get("string_gain")

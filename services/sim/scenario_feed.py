@@ -70,6 +70,7 @@ class ScenarioFeed:
             if self.service.counters["rejected_can_commands"] == 1:
                 self.ctx.log.warning("rejected a CAN command frame from %s: %s", envelope.vehicle_id, error)
             return
+        self.judge.observe_automation(envelope.vehicle_id, command.longitudinal_active, self.ctx.now_s())
         model = self.sim.objects.models[envelope.vehicle_id]
         accel = model.command_to_accel_mps2(command.throttle_ratio, command.brake_ratio,
                                             command.deceleration_request_mps2) if command.longitudinal_active else None

@@ -28,6 +28,19 @@ def test_two_vehicles_that_touch_are_one_collision_however_long_they_stay_in_con
     assert judge.verdict() == (False, "2 collision(s)")
 
 
+def test_a_stack_vehicle_handed_back_to_its_driver_fails_the_run_naming_it_and_when():
+    judge = MissionJudge(config("follow"), ["a", "b"])
+    judge.observe(0.0, truth({"vehicle_id": "a", "x_m": 0}, {"vehicle_id": "b", "x_m": 20}))
+    judge.observe_automation("b", False, 0.0)  # not engaged yet: the driver still has it, nothing lost
+    for time_s in (0.1, 0.2):
+        judge.observe_automation("a", True, time_s)
+        judge.observe_automation("b", True, time_s)
+    judge.observe_automation("b", False, 19.1)
+    judge.observe_automation("b", False, 19.2)
+    assert judge.verdict() == (False, "automation lost: b at 19.1 s")
+    assert judge.metrics()["automation_lost"] == 1.0
+
+
 ROADWORKS_AT_500_M = [{"unit_id": "rsu", "station_id": 9, "x_m": 0, "y_m": 0,
                        "events": [{"kind": "roadworks", "time_s": 1, "closed_lane": 1, "x_m": 500, "y_m": 0,
                                    "length_m": 300}]}]
