@@ -26,9 +26,9 @@ HEADING_TRIGGER_RAD = math.radians(4.0)
 POSITION_TRIGGER_M = 4.0
 SPEED_TRIGGER_MPS = 0.5
 LOW_FREQUENCY_PERIOD_S = 0.5
-MS_PER_S = 1000
-# An ego state older than this is stale, not late: the CAM keeps the generation time of now.
-MAX_POSITION_AGE_S = 1.0
+# An ego state older than this is stale, not late: its position is not carried forward (a stalled estimate
+# carried far would make the receivers see the car jump when fresh ones resume).
+MAX_POSITION_AGE_S = 0.2
 # 95 % confidence ellipse axis of a 2-D Gaussian from its standard deviation: sqrt(chi2(2, 0.95)).
 CONFIDENCE_95_PER_STD = math.sqrt(5.991)
 MIN_SPEED_FOR_CURVATURE_MPS = 0.5
@@ -101,18 +101,20 @@ class CamGenerator:
         self.last_trigger = trigger
         ego = self.ego
         self._last = _Sent(now_s, ego.x_m, ego.y_m, ego.heading_rad, ego.speed_mps)
-        content = self._content(ego, tai_ms - self._position_age_ms(ego, now_s))
+        content = self._content(ego, tai_ms, self._position_age_s(ego, now_s))
         if self._last_low_frequency_s is None or now_s - self._last_low_frequency_s >= LOW_FREQUENCY_PERIOD_S - TIME_EPSILON_S:
             self._last_low_frequency_s = now_s
             content.low_frequency.SetInParent()
         return content
 
     @staticmethod
-    def _position_age_ms(ego: ego_pb2.EgoState, now_s: float) -> int:
-        """generationDeltaTime is the time of the reference position (EN 302 637-2), so a CAM carrying a
-        position 40 ms old says so, and a receiver does not place a car at 80 km/h a metre behind itself."""
+    def _position_age_s(ego: ego_pb2.EgoState, now_s: float) -> float:
+        """How old the latest position estimate is when the CAM goes out. generationDeltaTime is the time of
+        the reference position (EN 302 637-2) and must grow from CAM to CAM, so the position is carried
+        forward to now rather than the time set back: a receiver then does not place a car at 80 km/h a metre
+        behind itself."""
         age_s = now_s - ego.header.sample_time_s
-        return round(age_s * MS_PER_S) if 0.0 < age_s <= MAX_POSITION_AGE_S else 0
+        return age_s if 0.0 < age_s <= MAX_POSITION_AGE_S else 0.0
 
     def _trigger(self, now_s: float) -> CamTrigger | None:
         last = self._last
@@ -153,22 +155,22 @@ class CamGenerator:
             return ego.latitude_deg, ego.longitude_deg, o.alt_m
         return self.plane.to_geodetic(ego.x_m, ego.y_m)
 
-    def reference_point_wgs84(self, ego: ego_pb2.EgoState) -> tuple[float, float, float]:
+    def reference_point_wgs84(self, ego: ego_pb2.EgoState, age_s: float = 0.0) -> tuple[float, float, float]:
         """(lat, lon, alt) of the CAM reference point, the centre of the vehicle's front (EN 302 637-2):
-        the EgoState is at the rear axle, rear_axle_location_m behind the front bumper."""
+        the EgoState is at the rear axle, rear_axle_location_m behind the front bumper, and age_s old."""
         latitude_deg, longitude_deg, altitude_m = self.wgs84(ego)
-        ahead_m = self.vehicle.rear_axle_location_m
+        ahead_m = self.vehicle.rear_axle_location_m + ego.speed_mps * age_s
         north_m, east_m = ahead_m * math.sin(ego.heading_rad), ahead_m * math.cos(ego.heading_rad)
         latitude_deg += math.degrees(north_m / EARTH_RADIUS_M)
         longitude_deg += math.degrees(east_m / (EARTH_RADIUS_M * math.cos(math.radians(latitude_deg))))
         return latitude_deg, longitude_deg, altitude_m
 
-    def _content(self, ego: ego_pb2.EgoState, tai_ms: int) -> its_pb2.CamContent:
+    def _content(self, ego: ego_pb2.EgoState, tai_ms: int, age_s: float = 0.0) -> its_pb2.CamContent:
         content = its_pb2.CamContent(protocol_version=self.protocol_version, station_id=self.station_id,
                                      generation_delta_time_ms=generation_delta_time_ms(tai_ms),
                                      station_type=self.station_type)
         position = content.reference_position
-        position.latitude_deg, position.longitude_deg, position.altitude_m = self.reference_point_wgs84(ego)
+        position.latitude_deg, position.longitude_deg, position.altitude_m = self.reference_point_wgs84(ego, age_s)
         if ego.position_std_m > 0:
             position.semi_major_confidence_m = position.semi_minor_confidence_m = \
                 CONFIDENCE_95_PER_STD * ego.position_std_m

@@ -122,22 +122,31 @@ def test_generation_delta_time_is_the_tai_time_of_sim_time_plus_the_epoch():
     assert content.generation_delta_time_ms == generation_delta_time_ms(tai_ms_from_utc(epoch) + 12_500)
 
 
-def test_generation_delta_time_is_the_time_of_the_position_it_carries():
+def cam_front_at(ego: ego_pb2.EgoState, now_s: float) -> tuple[float, float]:
     cam = generator(CamMode.GCDC)
-    ego = ego_pb2.EgoState()
-    ego.header.sample_time_s = 12.46  # the latest estimate is 40 ms old when the CAM goes out
     cam.on_ego_state(ego)
-    content = cam.generate(12.5, CLOCK.tai_ms(12.5))
-    assert content.generation_delta_time_ms == generation_delta_time_ms(CLOCK.tai_ms(12.46))
+    content = cam.generate(now_s, CLOCK.tai_ms(now_s))
+    assert content.generation_delta_time_ms == generation_delta_time_ms(CLOCK.tai_ms(now_s))
+    return content.reference_position.latitude_deg, content.reference_position.longitude_deg
 
 
-def test_a_stale_ego_state_does_not_push_the_generation_time_back():
-    cam = generator(CamMode.GCDC)
-    ego = ego_pb2.EgoState()
+def test_a_position_estimate_40_ms_old_is_carried_forward_to_the_generation_time():
+    # 20 m/s due east: 0.8 m further east than the same estimate sent at once.
+    ego = ego_pb2.EgoState(x_m=0.0, y_m=0.0, heading_rad=0.0, speed_mps=20.0)
+    ego.header.sample_time_s = 12.46
+    late_lat, late_lon = cam_front_at(ego, 12.5)
+    ego.header.sample_time_s = 12.5
+    fresh_lat, fresh_lon = cam_front_at(ego, 12.5)
+    east_m, north_m, _ = pymap3d.geodetic2enu(late_lat, late_lon, 20.0, fresh_lat, fresh_lon, 20.0)
+    assert east_m == pytest.approx(0.8, abs=0.01) and north_m == pytest.approx(0.0, abs=0.01)
+
+
+def test_a_stale_position_estimate_is_not_carried_forward():
+    ego = ego_pb2.EgoState(x_m=0.0, y_m=0.0, heading_rad=0.0, speed_mps=20.0)
     ego.header.sample_time_s = 2.0
-    cam.on_ego_state(ego)
-    content = cam.generate(12.5, CLOCK.tai_ms(12.5))
-    assert content.generation_delta_time_ms == generation_delta_time_ms(CLOCK.tai_ms(12.5))
+    stale = cam_front_at(ego, 12.5)
+    ego.header.sample_time_s = 12.5
+    assert stale == pytest.approx(cam_front_at(ego, 12.5))
 
 
 def test_no_cam_is_generated_before_the_first_ego_state():
