@@ -33,8 +33,6 @@ class ScenarioSource:
 
     def with_faults(self, faults: Sequence[dict], folder: Path) -> ScenarioSource:
         """The same scenario with faults added to its own, written to folder: the simulator loads a file."""
-        if not faults:
-            return self
         if self.config is None:
             raise ScenarioError(f"{self.name}: faults need a scenario file run; the built-in world has no radio")
         data = yaml.safe_load(self.file.read_text(encoding="utf-8"))

@@ -12,8 +12,9 @@ While another law commands (min-select), cruise is disengaged and offers the gov
     u_gov = clip((v_des - v) / T_gov, -a_max_decel, a_max_accel) + F_res / m                     (eq. S4)
 with the comfort limits and a short T_gov: a speed limiter that binds only near the set speed. Capping
 following at the reference model's gentler acceleration would let a follower brake harder than it may
-accelerate, so it would fall behind a predecessor whose speed oscillates. When it wins, `engage` starts the model at the measured speed with the applied
-command (bumpless); the shaper's jerk limit smooths the step into the governor value.
+accelerate, so it would fall behind a predecessor whose speed oscillates. When it wins, `engage` starts the
+model at the measured speed with the applied command (bumpless); the shaper's jerk limit smooths the step into
+the governor value.
 """
 
 from __future__ import annotations

@@ -99,13 +99,14 @@ class EmergencyBrake:
             return -math.inf
         return pred_accel - closing**2 / (2.0 * room)  # (eq. E2b)
 
-    def comfort_keeps_margin(self, gap_m: float, ego_speed_mps: float, pred_speed_mps: float, pred_accel_mps2: float,
-                             extra_m: float = 0.0) -> bool:
+    def comfort_spare_m(self, gap_m: float, ego_speed_mps: float, pred_speed_mps: float,
+                        pred_accel_mps2: float) -> float:
+        """How far the gap stays above the stop margin within the horizon while braking at the comfort limit
+        (eq. E3); infinite when the gap does not shrink, however short it is (standing behind a stopped car)."""
         lim = self.limits
         lowest = min_gap_within_m(gap_m, ego_speed_mps, -lim.max_decel_mps2, pred_speed_mps,
                                   min(pred_accel_mps2, 0.0), lim.brake_horizon_s)  # (eq. E3)
-        # A gap that does not shrink needs no braking, however short it is (standing behind a stopped vehicle).
-        return lowest >= min(gap_m, lim.stop_margin_m + extra_m)
+        return math.inf if lowest >= gap_m else lowest - lim.stop_margin_m
 
     def step(self, ego_speed_mps: float, targets: list[tuple[int, float, float, float]]) -> EmergencyDecision:
         """targets: (object_id, gap_m, pred_speed_mps, pred_accel_mps2 or 0)."""
@@ -120,10 +121,9 @@ class EmergencyBrake:
             hard = pred_speed > 0.0 and ego_speed_mps > 0.0 and pred_accel <= -lim.hard_braking_mps2
             if hard:
                 need = min(need, pred_accel)
-            trigger = trigger or hard or ttc < lim.ttc_emergency_s or not self.comfort_keeps_margin(
-                gap_m, ego_speed_mps, pred_speed, pred_accel)
-            release_blocked = release_blocked or hard or ttc < lim.ttc_release_s or not self.comfort_keeps_margin(
-                gap_m, ego_speed_mps, pred_speed, pred_accel, lim.release_margin_m)
+            spare_m = self.comfort_spare_m(gap_m, ego_speed_mps, pred_speed, pred_accel)
+            trigger = trigger or hard or ttc < lim.ttc_emergency_s or spare_m < 0.0
+            release_blocked = release_blocked or hard or ttc < lim.ttc_release_s or spare_m < lim.release_margin_m
             if (need, ttc) < (worst_need, worst_ttc):
                 worst_need, worst_id, worst_ttc = need, object_id, ttc
         self.active = trigger or (self.active and release_blocked)
