@@ -18,10 +18,12 @@ class _Model(BaseModel):
 
 
 class CaccGains(_Model):
-    """Our CACC: u = FF(a_p) + kp e + kd de/dt, e = gap - (r + h v)."""
+    """Our CACC: u = FF(a_p or the request u_p) + filtered (kp e + kd de/dt), e = gap - (r + h v)."""
 
     kp_1ps2: float = Field(0.2, gt=0)
     kd_1ps: float = Field(2.5, gt=0)
+    # The PD output's first-order filter (0 = none): kd would pass the speed noise in e' straight through.
+    feedback_time_constant_s: float = Field(0.2, ge=0)
     # Bumpless transfer: the offset between the previous command and this law decays with this constant.
     bump_time_constant_s: float = Field(1.0, gt=0)
 

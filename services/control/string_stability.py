@@ -9,7 +9,8 @@ and, in a homogeneous string, the spacing errors propagate with the same H (E_i 
 String stable iff max_w |H(jw)| <= 1.
     Ploeg:     Cp = (kp + kd s)/(1 + h s),  Cx = Cp (1 + h s),  F = 1/(1 + h s)
                (commanded variant: A_p replaced by the predecessor's delayed input U_p = X_p / G e^{-theta s})
-    ours:      Cp = kp + kd s,              Cx = Cp (1 + h s),  F = (1 + tau s)/(1 + h s)
+    ours:      Cp = (kp + kd s)/(1 + tau_fb s),  Cx = Cp (1 + h s),  F = (1 + tau s)/(1 + h s)   (eq. C1, C4)
+               (commanded variant: F = 1/(1 + h s) on the predecessor's delayed input U_p, eq. C3)
     dCACC:     ours with A_p = s V_p filtered by the least-squares slope FIR (eq. D1), no V2V delay
     Rajamani:  Cp = (lambda + s)/h,         Cx = (lambda (1 + h s) + s)/h,  F = 0
     our ACC:   Cp = ke + kv s,              Cx = ke (1 + h s) + kv s + ka h s^2,  F = 0
@@ -36,6 +37,8 @@ class FollowingLaw(enum.Enum):
     PLOEG_CACC = "ploeg_cacc"
     # Ploeg fed the predecessor's *commanded* acceleration (iCLCM targetLongitudinalAcceleration), as in his paper.
     PLOEG_CACC_COMMANDED = "ploeg_cacc_commanded"
+    # Ours fed the predecessor's commanded acceleration (eq. C3), what it runs on when the iCLCM is fresh.
+    OURS_CACC_COMMANDED = "ours_cacc_commanded"
     DCACC = "dcacc"
     OURS_ACC = "ours_acc"
     RAJAMANI_ACC = "rajamani_acc"
@@ -95,19 +98,24 @@ def speed_transfer(
     phi = profile.actuation_delay_s if actuation_delay_s is None else actuation_delay_s
     inv_plant = s**2 * (tau * s + 1) * np.exp(phi * s)
     v2v_accel = s**2 * np.exp(-comm_delay_s * s)
+    # The predecessor's input as received: U_p = X_p / G, sent comm_delay_s later.
+    v2v_command = inv_plant * np.exp(-comm_delay_s * s)
     ff = np.zeros_like(s)
     if law in (FollowingLaw.PLOEG_CACC, FollowingLaw.PLOEG_CACC_COMMANDED):
         g = profile.ploeg
         cp = (g.kp_1ps2 + g.kd_1ps * s) / (1 + h * s)
         cx = cp * (1 + h * s)
-        sent = v2v_accel if law is FollowingLaw.PLOEG_CACC else inv_plant * np.exp(-comm_delay_s * s)
+        sent = v2v_accel if law is FollowingLaw.PLOEG_CACC else v2v_command
         ff = sent / (1 + h * s)
-    elif law in (FollowingLaw.OURS_CACC, FollowingLaw.DCACC):
+    elif law in (FollowingLaw.OURS_CACC, FollowingLaw.OURS_CACC_COMMANDED, FollowingLaw.DCACC):
         g = profile.cacc
-        cp = g.kp_1ps2 + g.kd_1ps * s
+        cp = (g.kp_1ps2 + g.kd_1ps * s) / (1 + g.feedback_time_constant_s * s)
         cx = cp * (1 + h * s)
-        accel = v2v_accel if law is FollowingLaw.OURS_CACC else s * _slope_fir(s, profile.dcacc.estimator_window_s)
-        ff = accel * (1 + profile.engine_lag_s * s) / (1 + h * s)
+        if law is FollowingLaw.OURS_CACC_COMMANDED:
+            ff = v2v_command / (1 + h * s)
+        else:
+            accel = v2v_accel if law is FollowingLaw.OURS_CACC else s * _slope_fir(s, profile.dcacc.estimator_window_s)
+            ff = accel * (1 + profile.engine_lag_s * s) / (1 + h * s)
     elif law is FollowingLaw.RAJAMANI_ACC:
         lam = profile.rajamani.lambda_1ps
         cp = (lam + s) / h

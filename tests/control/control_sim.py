@@ -7,6 +7,7 @@ delayed by a few samples. No noise, so every run is repeatable.
 from __future__ import annotations
 
 import math
+import random
 from collections import deque
 from dataclasses import dataclass
 
@@ -59,9 +60,15 @@ def run_platoon(
     brake_at_s: float | None = None,
     brake_decel_mps2: float = 5.0,
     driveline_jerk_mps3: float = math.inf,
+    send_requests: bool = False,
+    speed_noise_mps: float = 0.0,
 ) -> PlatoonRun:
     """Leader speed v0 + A sin(2 pi f t), or braking to standstill from brake_at_s; seven followers, each with its
-    own lag, following its predecessor."""
+    own lag, following its predecessor. send_requests adds each vehicle's requested acceleration to its V2V
+    (iCLCM): the leader requests exactly what it does, a follower what its controller commanded.
+    speed_noise_mps is the standard deviation of white noise on the predecessor speed a follower measures
+    (seeded, so runs repeat)."""
+    noise = random.Random(1)
     n = len(FOLLOWER_LAGS_S)
     base = CAR if comfort_limits else wide_limits(CAR)
     ctrls = [LongitudinalController(base.model_copy(update={"engine_lag_s": lag}), cacc_law=law) for lag in FOLLOWER_LAGS_S]
@@ -73,6 +80,7 @@ def run_platoon(
     v, a = [speed_mps] * (n + 1), [0.0] * (n + 1)
     commands = [deque([0.0] * (actuation_delay_steps + 1), maxlen=actuation_delay_steps + 1) for _ in range(n)]
     sent_accel = [deque([0.0] * (comm_delay_steps + 1), maxlen=comm_delay_steps + 1) for _ in range(n + 1)]
+    sent_request = [deque([0.0] * (comm_delay_steps + 1), maxlen=comm_delay_steps + 1) for _ in range(n + 1)]
     steps, first = int(duration_s / DT_S), int((duration_s - measure_last_s) / DT_S)
     lo, hi = [math.inf] * (n + 1), [-math.inf] * (n + 1)
     min_gaps, modes, emergency, time_gaps = [math.inf] * n, [set() for _ in range(n)], 0, [0.0] * n
@@ -81,11 +89,14 @@ def run_platoon(
         lost = v2v_lost_from_s is not None and t >= v2v_lost_from_s
         for j in range(n + 1):
             sent_accel[j].append(a[j])
+            sent_request[j].append(a[0] if j == 0 else commands[j - 1][-1])
         for i in range(n):
             gap = x[i] - x[i + 1]
-            target = Target(object_id=i + 1, gap_m=gap, speed_mps=v[i],
+            measured_speed_mps = v[i] + (noise.gauss(0.0, speed_noise_mps) if speed_noise_mps > 0 else 0.0)
+            target = Target(object_id=i + 1, gap_m=gap, speed_mps=measured_speed_mps,
                             accel_mps2=None if lost else sent_accel[i][0],
-                            v2v_age_s=None if lost else comm_delay_steps * DT_S)
+                            v2v_age_s=None if lost else comm_delay_steps * DT_S,
+                            intended_accel_mps2=sent_request[i][0] if send_requests and not lost else None)
             cmd = ctrls[i].step(t, v[i + 1], a[i + 1], [target], CRUISE_FAST_MPS, Spacing(STANDSTILL_M, time_gap_s))
             commands[i].append(cmd.accel_request_mps2)
             modes[i].add(cmd.mode)

@@ -1,6 +1,7 @@
 """Each longitudinal law against outputs computed by hand from its equation."""
 
 import math
+from dataclasses import replace
 
 import pytest
 
@@ -43,6 +44,40 @@ def test_our_cacc_adds_the_lag_compensated_feedforward_to_the_spacing_pd():
     expected = 0.6 * 1.0 + 0.4 * z + 0.3 * 4.0 + 2.5 * 0.75
     assert law.step(DT, CLOSE) == pytest.approx(expected)
     assert expected == pytest.approx(3.6906842, abs=1e-6)
+
+
+def test_ploeg_takes_the_predecessors_request_over_its_measured_acceleration():
+    law = PloegCacc(PloegGains())
+    law.reset(0.3)
+    # u' = (1/0.5)(-0.3 + 0.2*4 + 0.7*0.75 + 2.0) = 6.05
+    assert law.step(DT, replace(CLOSE, pred_intended_accel_mps2=2.0)) == pytest.approx(0.3 + 0.02 * 6.05)
+
+
+def test_our_cacc_feeds_forward_the_predecessors_request_through_the_time_gap_filter_alone():
+    law = LagCompensatedCacc(CaccGains(kp_1ps2=0.3, kd_1ps=2.5), engine_lag_s=0.3)
+    law.reset(10.0, replace(CLOSE, pred_intended_accel_mps2=0.0))  # above the law: no bump offset
+    z_u = 2.0 * (1.0 - math.exp(-DT / 0.5))  # eq. C3, one exact step from 0 towards u_p = 2; a_p = 1 is unused
+    assert law.step(DT, replace(CLOSE, pred_intended_accel_mps2=2.0)) == pytest.approx(z_u + 0.3 * 4.0 + 2.5 * 0.75)
+
+
+def test_our_cacc_filters_its_spacing_pd_with_the_feedback_time_constant():
+    law = LagCompensatedCacc(CaccGains(kp_1ps2=0.3, kd_1ps=2.5, feedback_time_constant_s=0.2), engine_lag_s=0.3)
+    at_gap = replace(CLOSE, gap_m=16.0, pred_speed_mps=20.5)  # e = 0, e' = 0.5 - 0.25 = 0.25: PD 0.625
+    law.reset(10.0, at_gap)
+    law.step(DT, at_gap)
+    z = law.filtered_accel_mps2
+    z_next = z + (1.0 - math.exp(-DT / 0.5)) * (1.0 - z)
+    pd = 0.625 + (1.0 - math.exp(-DT / 0.2)) * (3.075 - 0.625)  # eq. C4: one exact step from 0.625 to 3.075
+    assert law.step(DT, CLOSE) == pytest.approx(0.6 * 1.0 + 0.4 * z_next + pd)
+
+
+def test_our_cacc_continues_from_the_measured_feedforward_when_a_request_first_arrives():
+    law = LagCompensatedCacc(CaccGains(), engine_lag_s=0.3)
+    steady = FollowInput(16.0, 20.0, 0.8, 20.4, 0.8, 6.0, 0.5)
+    law.reset(0.8, steady)
+    for _ in range(10):
+        law.step(DT, steady)
+    assert law.step(DT, replace(steady, pred_intended_accel_mps2=0.8)) == pytest.approx(0.8)
 
 
 def test_our_cacc_passes_a_steady_predecessor_acceleration_through_unchanged():

@@ -14,24 +14,40 @@ SPEED_MPS = 80 / 3.6
 
 
 @lru_cache(maxsize=None)
-def platoon(law: CaccLaw, time_gap_s: float, comfort: bool = False):
+def platoon(law: CaccLaw, time_gap_s: float, comfort: bool = False, requests: bool = False):
     # +-10 km/h at 0.2 Hz needs 3.5 m/s2: the linear check widens the limits, the comfort run keeps +-2 m/s2.
-    return run_platoon(law, time_gap_s, comfort_limits=comfort)
+    return run_platoon(law, time_gap_s, comfort_limits=comfort, send_requests=requests)
 
 
+FEEDFORWARD_SOURCES = pytest.mark.parametrize("requests", [False, True], ids=["measured accel", "iCLCM request"])
+
+
+@FEEDFORWARD_SOURCES
 @pytest.mark.parametrize("time_gap_s", [0.5, 1.0])
-def test_our_cacc_shrinks_the_speed_oscillation_at_every_pair(time_gap_s):
-    ratios = platoon(CaccLaw.OURS, time_gap_s).ratios
+def test_our_cacc_shrinks_the_speed_oscillation_at_every_pair(time_gap_s, requests):
+    ratios = platoon(CaccLaw.OURS, time_gap_s, requests=requests).ratios
     assert len(ratios) == 7
     assert max(ratios) < 1.0
 
 
+@FEEDFORWARD_SOURCES
 @pytest.mark.parametrize("time_gap_s", [0.5, 1.0])
-def test_our_cacc_damps_no_worse_than_ploeg_at_the_same_time_gap(time_gap_s):
-    ours, ploeg = platoon(CaccLaw.OURS, time_gap_s), platoon(CaccLaw.PLOEG, time_gap_s)
-    for pair, (o, p) in enumerate(zip(ours.ratios, ploeg.ratios)):
-        assert o <= p + 1e-3, f"pair {pair}: ours {o:.3f} > Ploeg {p:.3f}"
+def test_our_cacc_damps_no_worse_than_ploeg_at_the_same_time_gap(time_gap_s, requests):
+    # With the request Ploeg gets the predecessor input its paper assumes, and damps far better than on the
+    # measured acceleration; ours must still match it.
+    # The measure: the string gain is the worst pair's amplitude ratio.
+    ours, ploeg = platoon(CaccLaw.OURS, time_gap_s, requests=requests), platoon(CaccLaw.PLOEG, time_gap_s, requests=requests)
+    assert max(ours.ratios) <= max(ploeg.ratios)
     assert ours.speed_amplitudes_mps[-1] < ploeg.speed_amplitudes_mps[-1]
+
+
+def test_our_cacc_damps_no_worse_than_ploeg_when_the_predecessor_speed_is_noisy():
+    # Twice the simulated radar's range-rate noise. kd = 2.5 against Ploeg's 0.7 would pass it on to the command;
+    # the PD filter (eq. C4) stops that.
+    noisy = dict(comfort_limits=True, send_requests=True, speed_noise_mps=0.1, duration_s=60.0, measure_last_s=30.0)
+    ours, ploeg = run_platoon(CaccLaw.OURS, 0.5, **noisy), run_platoon(CaccLaw.PLOEG, 0.5, **noisy)
+    assert max(ours.ratios) < 1.0
+    assert max(ours.ratios) <= max(ploeg.ratios)
 
 
 def test_our_cacc_rides_out_a_leader_braking_beyond_comfort_without_emergency_braking():

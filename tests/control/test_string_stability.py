@@ -30,17 +30,23 @@ def test_our_cacc_damps_at_least_as_well_as_ploeg_at_the_same_time_gap(time_gap_
     assert ours.gain_at_hz(0.2) <= ploeg.gain_at_hz(0.2)
 
 
+@pytest.mark.parametrize("dead_time_s", [0.05, 0.1])
 @pytest.mark.parametrize("time_gap_s", TIME_GAPS_S)
 @pytest.mark.parametrize("lag_s", LAGS_S)
-def test_with_little_dead_time_ours_damps_no_worse_than_ploeg_even_when_ploeg_gets_the_predecessors_command(
-        time_gap_s, lag_s):
-    # At 0.05 s of actuation dead time. With the simulated car's 0.1 s the command Ploeg feeds forward wins at
-    # short gaps: the request leads the measured acceleration, which is why the emergency path uses it too.
-    quick = with_lag(lag_s).model_copy(update={"actuation_delay_s": 0.05})
-    ours = analyze(FollowingLaw.OURS_CACC, quick, time_gap_s)
-    ploeg = analyze(FollowingLaw.PLOEG_CACC_COMMANDED, quick, time_gap_s)
+def test_fed_the_predecessors_command_as_ploeg_is_ours_damps_no_worse(time_gap_s, lag_s, dead_time_s):
+    # The fair comparison when the iCLCM request is fresh: both laws feed forward the same delayed command.
+    profile = with_lag(lag_s).model_copy(update={"actuation_delay_s": dead_time_s})
+    ours = analyze(FollowingLaw.OURS_CACC_COMMANDED, profile, time_gap_s)
+    ploeg = analyze(FollowingLaw.PLOEG_CACC_COMMANDED, profile, time_gap_s)
     assert ours.max_speed_gain <= ploeg.max_speed_gain + 1e-9
     assert ours.gain_at_hz(0.2) <= ploeg.gain_at_hz(0.2)
+
+
+def test_without_delays_our_cacc_fed_the_command_is_the_ideal_transfer_for_any_lag():
+    omega = np.array([0.1, 1.0, 5.0])
+    profile = with_lag(0.5).model_copy(update={"actuation_delay_s": 0.0})
+    h = speed_transfer(FollowingLaw.OURS_CACC_COMMANDED, profile, 0.5, omega, comm_delay_s=0.0)
+    assert np.abs(h) == pytest.approx(1 / np.sqrt(1 + (0.5 * omega) ** 2))
 
 
 def test_without_delays_ploeg_fed_the_command_is_the_ideal_transfer_for_any_lag():

@@ -9,6 +9,17 @@ Derivation (constant time gap, driveline tau a' + a = u):
 Without delays the speed transfer is exactly 1 / (1 + h s) for any lag, as Ploeg's with the predecessor's
 *command*; Ploeg fed with the predecessor's *measured* acceleration keeps an uncompensated lag, and the large
 kd keeps ours string stable with 0.1-0.25 s of communication plus actuation delay (string_stability.py).
+
+When the predecessor's requested acceleration u_p (iCLCM) is fresh, it replaces a_p. With drivelines alike,
+a_p = G(s) u_p and a = G(s) u, so the same ideal a = a_p / (1 + h s) needs
+      u_ff = z_u,   h z_u' + z_u = u_p                                                    (eq. C3)
+which differentiates nothing (a measured a_p is noisy, and C1 amplifies it by tau/h), needs no lag estimate,
+and leads the measured acceleration by the predecessor's dead time and lag.
+
+The PD acts through a first-order filter,
+      tau_fb w' + w = kp e + kd e'                                                        (eq. C4)
+because e' is the difference of two measured speeds and kd passes its noise straight to the command, where
+every follower would feel it and hand it on; 0.2 s barely delays the 0.2 Hz platoon waves.
 """
 
 from __future__ import annotations
@@ -24,11 +35,15 @@ class LagCompensatedCacc:
         self.gains = gains
         self.engine_lag_s = engine_lag_s
         self.filtered_accel_mps2 = 0.0
+        self.filtered_intended_mps2 = 0.0
+        self.filtered_feedback_mps2: float | None = None
         self.bump_offset_mps2 = 0.0
 
-    def feedforward_mps2(self, pred_accel_mps2: float, time_gap_s: float) -> float:
-        ratio = self.engine_lag_s / time_gap_s
-        return ratio * pred_accel_mps2 + (1.0 - ratio) * self.filtered_accel_mps2  # (eq. C1)
+    def feedforward_mps2(self, f: FollowInput) -> float:
+        if f.pred_intended_accel_mps2 is not None:
+            return self.filtered_intended_mps2  # (eq. C3)
+        ratio = self.engine_lag_s / f.time_gap_s
+        return ratio * f.pred_accel_mps2 + (1.0 - ratio) * self.filtered_accel_mps2  # (eq. C1)
 
     def feedback_mps2(self, f: FollowInput) -> float:
         return self.gains.kp_1ps2 * f.spacing_error_m + self.gains.kd_1ps * f.spacing_error_rate_mps  # (eq. C2)
@@ -36,13 +51,29 @@ class LagCompensatedCacc:
     def reset(self, command_mps2: float, f: FollowInput) -> None:
         """Bumpless start from the applied command; an offset may only delay acceleration, never braking."""
         self.filtered_accel_mps2 = f.pred_accel_mps2
-        law = self.feedforward_mps2(f.pred_accel_mps2, f.time_gap_s) + self.feedback_mps2(f)
+        self.filtered_intended_mps2 = _intended_or_measured(f)
+        self.filtered_feedback_mps2 = self.feedback_mps2(f)
+        law = self.feedforward_mps2(f) + self.filtered_feedback_mps2
         self.bump_offset_mps2 = min(0.0, command_mps2 - law)
 
     def step(self, dt_s: float, f: FollowInput) -> float:
-        # Exact discretisation of h z' + z = a_p for a_p held over the step.
-        self.filtered_accel_mps2 += (1.0 - math.exp(-dt_s / f.time_gap_s)) * (
-            f.pred_accel_mps2 - self.filtered_accel_mps2
-        )
+        # Exact discretisation of h z' + z = a_p for a_p held over the step. The request's filter follows the
+        # measurement while no request arrives, so a request that appears continues from where C1 was.
+        blend = 1.0 - math.exp(-dt_s / f.time_gap_s)
+        self.filtered_accel_mps2 += blend * (f.pred_accel_mps2 - self.filtered_accel_mps2)
+        self.filtered_intended_mps2 += blend * (_intended_or_measured(f) - self.filtered_intended_mps2)
         self.bump_offset_mps2 *= math.exp(-dt_s / self.gains.bump_time_constant_s)
-        return self.feedforward_mps2(f.pred_accel_mps2, f.time_gap_s) + self.feedback_mps2(f) + self.bump_offset_mps2
+        return self.feedforward_mps2(f) + self._filter_feedback(dt_s, self.feedback_mps2(f)) + self.bump_offset_mps2
+
+    def _filter_feedback(self, dt_s: float, feedback_mps2: float) -> float:
+        tau_s = self.gains.feedback_time_constant_s
+        if self.filtered_feedback_mps2 is None or tau_s == 0.0:
+            self.filtered_feedback_mps2 = feedback_mps2
+        else:
+            blend = 1.0 - math.exp(-dt_s / tau_s)
+            self.filtered_feedback_mps2 += blend * (feedback_mps2 - self.filtered_feedback_mps2)  # (eq. C4)
+        return self.filtered_feedback_mps2
+
+
+def _intended_or_measured(f: FollowInput) -> float:
+    return f.pred_accel_mps2 if f.pred_intended_accel_mps2 is None else f.pred_intended_accel_mps2

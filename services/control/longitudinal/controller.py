@@ -124,6 +124,7 @@ class LongitudinalController:
             pred_accel_mps2=t.accel_mps2 if fresh else 0.0,
             standstill_m=spacing.standstill_m + t.extra_gap_m,
             time_gap_s=track.time_gap_s,
+            pred_intended_accel_mps2=t.intended_accel_mps2 if fresh else None,
         )
         law = {MODE.LONGITUDINAL_MODE_CACC: track.cacc, MODE.LONGITUDINAL_MODE_DCACC: track.dcacc}.get(mode, track.acc)
         if mode != track.mode:

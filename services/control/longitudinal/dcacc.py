@@ -9,6 +9,7 @@ which lags by about half the window; the caller raises the time gap to pay for t
 from __future__ import annotations
 
 from collections import deque
+from dataclasses import replace
 
 from ..profiles import CaccGains, DcaccGains
 from .cacc import LagCompensatedCacc
@@ -52,15 +53,7 @@ class Dcacc:
 
     def with_estimate(self, f: FollowInput) -> FollowInput:
         est = self.estimator.estimate_mps2()
-        return FollowInput(
-            gap_m=f.gap_m,
-            ego_speed_mps=f.ego_speed_mps,
-            ego_accel_mps2=f.ego_accel_mps2,
-            pred_speed_mps=f.pred_speed_mps,
-            pred_accel_mps2=0.0 if est is None else est,
-            standstill_m=f.standstill_m,
-            time_gap_s=f.time_gap_s,
-        )
+        return replace(f, pred_accel_mps2=0.0 if est is None else est, pred_intended_accel_mps2=None)
 
     def reset(self, command_mps2: float, f: FollowInput) -> None:
         self.law.reset(command_mps2, self.with_estimate(f))

@@ -2,7 +2,8 @@
 
     h du/dt = -u + kp e + kd de/dt + u_p,   e = gap - (r + h v),   de/dt = v_p - v - h a
 
-u_p is the predecessor's acceleration as received over V2V. Integrated with explicit Euler.
+u_p is the predecessor's requested acceleration (iCLCM) when fresh, as in Ploeg's paper, else its measured
+acceleration as received over V2V. Integrated with explicit Euler.
 """
 
 from __future__ import annotations
@@ -22,7 +23,8 @@ class PloegCacc:
 
     def step(self, dt_s: float, f: FollowInput) -> float:
         g = self.gains
+        u_p = f.pred_accel_mps2 if f.pred_intended_accel_mps2 is None else f.pred_intended_accel_mps2
         # (Ploeg CACC) du/dt = (1/h)[-u + kp e + kd de/dt + u_p]
-        du = (-self.u_mps2 + g.kp_1ps2 * f.spacing_error_m + g.kd_1ps * f.spacing_error_rate_mps + f.pred_accel_mps2)
+        du = (-self.u_mps2 + g.kp_1ps2 * f.spacing_error_m + g.kd_1ps * f.spacing_error_rate_mps + u_p)
         self.u_mps2 += dt_s * du / f.time_gap_s
         return self.u_mps2

@@ -84,6 +84,8 @@ class FollowInput:
     pred_accel_mps2: float
     standstill_m: float
     time_gap_s: float
+    # The acceleration the predecessor's controller requests (iCLCM), None when not fresh.
+    pred_intended_accel_mps2: float | None = None
 
     @property
     def desired_gap_m(self) -> float:
