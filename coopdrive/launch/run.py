@@ -15,7 +15,7 @@ from google.protobuf.message import Message
 
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.bus.keys import WORLD_ID
-from coopdrive.launch.ports import free_tcp_port, free_udp_port, loopback_endpoint
+from coopdrive.launch.ports import free_tcp_port, free_udp_ports, loopback_endpoint
 from coopdrive.launch.processes import ServiceProcesses, ServiceSpec
 from coopdrive.launch.scenario_source import resolve_scenario
 from coopdrive.launch.stack_config import vehicle_overrides
@@ -58,6 +58,9 @@ class RunOptions:
 MS_PER_S = 1000
 # Certificates of a secured run are valid from a while before the scenario's clock starts.
 CERTIFICATE_BACKDATE_S = 3600
+# After the simulator exits its result may still be queued behind the run's last messages; on a loaded host
+# (two 8-stack runs on two cores) one second was not always enough.
+RESULT_GRACE_S = 5.0
 
 
 class RunAborted(RuntimeError):
@@ -88,7 +91,8 @@ def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[Servic
     per_vehicle: dict[str, dict[str, dict]] = {}
     if source.config is not None:
         stacks = source.stack_vehicles(options.stacks)
-        radio = {vehicle_id: RadioPorts(free_udp_port(), free_udp_port()) for vehicle_id in stacks}
+        ports = iter(free_udp_ports(2 * len(stacks)))
+        radio = {vehicle_id: RadioPorts(next(ports), next(ports)) for vehicle_id in stacks}
         sim.scenario_file, sim.stacks = str(source.file), stacks
         sim.radio_links = {vehicle_id: vars(ports) for vehicle_id, ports in radio.items()}
         sim.duration_s, sim.step_s = source.config.duration_s, source.config.step_s
@@ -176,7 +180,7 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
             crashed = {name: code for name, code in processes.exited().items()
                        if code != 0 and not name.endswith("/gateway")}
             if "world/sim" in processes.exited():
-                finished.wait(1.0)  # the result may still be on its way
+                finished.wait(RESULT_GRACE_S)
                 break
             if crashed and len(crashed) == len(processes.processes):
                 raise RunAborted(f"every service exited: {crashed}")
