@@ -53,6 +53,9 @@ class ClockMaster:
         def on_participant_lost(self, participant: str) -> None:
             """Called when a participant's liveliness token disappears mid-run."""
 
+        def on_clock_failed(self, reason: str) -> None:
+            """Called when the run cannot start (a participant never came up), before the error propagates."""
+
     def __init__(self, runner: ServiceRunner):
         self._runner = runner
         self._settings: ClockSettings = runner.service.clock_settings()
@@ -68,7 +71,11 @@ class ClockMaster:
         return list(self._participants)
 
     def run(self) -> None:
-        self._wait_for_participants()
+        try:
+            self._wait_for_participants()
+        except ParticipantsMissing as error:
+            self._runner.service.on_clock_failed(str(error))
+            raise
         wall_start = time.monotonic()
         self._runner.service.on_clock_started(wall_start)
         while not self._runner.stopping:

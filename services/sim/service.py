@@ -175,6 +175,12 @@ class SimService(Service, ClockMaster.Driven):
     def on_clock_started(self, wall_start_monotonic_s: float) -> None:
         self.wall_start_s = wall_start_monotonic_s
 
+    def on_clock_failed(self, reason: str) -> None:
+        """The launcher waits for a result: it gets one that says why the run never started."""
+        config: SimConfig = self.config
+        self.ctx.publish_for(WORLD_ID, "result", sim_pb2.RunResult(
+            scenario=config.scenario, seed=config.seed, success=False, failure_reason=f"the run never started: {reason}"))
+
     # ----- inputs ---------------------------------------------------------------------------
     def on_can_command(self, envelope: Envelope) -> None:
         """An ACT_ frame from a stack's actuation; the latest values of all three are applied every step."""
