@@ -87,7 +87,7 @@ class MissionJudge:
         mission = self.config.mission
         if mission is Mission.PLATOON:
             gain = self.metrics().get("string_gain")
-            if gain is not None and gain >= 1.0:
+            if gain is not None and gain >= 1.0 and not self._v2v_cut_while_judging_string():
                 return False, f"string unstable: string gain {gain:.3f} >= 1"
         elif mission is Mission.MERGE:
             return self._merge_verdict()
@@ -96,6 +96,15 @@ class MissionJudge:
         elif mission is Mission.EMERGENCY:
             return self._emergency_verdict()
         return True, ""
+
+    def _v2v_cut_while_judging_string(self) -> bool:
+        """Every V2V packet of every vehicle lost during the judged oscillation. The platoon then runs on its
+        radar-only fallbacks at a raised gap, and what is asked of it is no collision (checked before); its
+        string gain is still reported, but the wave it damps to a few cm/s leaves ratios of noise."""
+        judging_config = self.config.judging
+        return any(fault.type == "v2v_loss" and fault.vehicle_id is None and fault.loss_probability >= 1.0
+                   and fault.start_s < judging_config.string_end_s and fault.end_s > judging_config.string_start_s
+                   for fault in self.config.faults)
 
     def _final(self) -> dict[str, sim_pb2.VehicleTruth]:
         return {v.vehicle_id: v for v in self.frames[-1][1]}

@@ -1,5 +1,7 @@
 """MissionJudge: a run fails on a collision, and on its mission's goal with the vehicles that missed it."""
 
+import math
+
 from coopdrive.services.sim.mission_verdict import MissionJudge
 from coopdrive.services.sim.scenario_config import parse_scenario
 from coopdrive.v1 import sim_pb2
@@ -137,3 +139,32 @@ def test_passing_a_car_in_the_opposite_lane_is_no_safety_circle_violation():
                                            {"vehicle_id": "o", "x_m": -x_m, "y_m": 1.75, "heading_rad": 3.1416}))
     assert judge.metrics()["safety_circle_violations"] == 1
     assert judge.verdict() == (True, "")
+
+
+def amplifying_platoon(faults):
+    """b leads a in one lane; a's 0.2 Hz speed wave is twice b's: a string gain of 2."""
+    judge = MissionJudge(config("platoon", faults=faults,
+                                judging={"platoon": ["b", "a"], "string_frequency_hz": 0.2, "string_end_s": 10}),
+                         ["a", "b"])
+    for k in range(101):
+        t = 0.1 * k
+        wave = math.sin(2 * math.pi * 0.2 * t)
+        judge.observe(t, sim_pb2.GroundTruth(vehicles=[
+            sim_pb2.VehicleTruth(vehicle_id="b", x_m=100 + 10 * t, speed_mps=10 + wave, length_m=4.5, width_m=1.8),
+            sim_pb2.VehicleTruth(vehicle_id="a", x_m=10 * t, speed_mps=10 + 2 * wave, length_m=4.5, width_m=1.8)]))
+    return judge
+
+
+def test_a_platoon_that_amplifies_the_wave_fails_as_string_unstable():
+    assert amplifying_platoon([]).verdict() == (False, "string unstable: string gain 2.000 >= 1")
+
+
+def test_with_every_v2v_link_cut_the_string_gain_is_reported_but_only_a_collision_fails_the_run():
+    judge = amplifying_platoon([{"type": "v2v_loss", "start_s": 2.0, "loss_probability": 1.0}])
+    assert judge.metrics()["string_gain"] > 1.9
+    assert judge.verdict() == (True, "")
+
+
+def test_partial_v2v_loss_leaves_the_string_gain_judged():
+    judge = amplifying_platoon([{"type": "v2v_loss", "start_s": 2.0, "loss_probability": 0.2}])
+    assert not judge.verdict()[0]
