@@ -51,7 +51,7 @@ class LagCompensatedCacc:
     def reset(self, command_mps2: float, f: FollowInput) -> None:
         """Bumpless start from the applied command; an offset may only delay acceleration, never braking."""
         self.filtered_accel_mps2 = f.pred_accel_mps2
-        self.filtered_intended_mps2 = _intended_or_measured(f)
+        self.filtered_intended_mps2 = f.pred_feedforward_accel_mps2
         self.filtered_feedback_mps2 = self.feedback_mps2(f)
         law = self.feedforward_mps2(f) + self.filtered_feedback_mps2
         self.bump_offset_mps2 = min(0.0, command_mps2 - law)
@@ -61,7 +61,7 @@ class LagCompensatedCacc:
         # measurement while no request arrives, so a request that appears continues from where C1 was.
         blend = 1.0 - math.exp(-dt_s / f.time_gap_s)
         self.filtered_accel_mps2 += blend * (f.pred_accel_mps2 - self.filtered_accel_mps2)
-        self.filtered_intended_mps2 += blend * (_intended_or_measured(f) - self.filtered_intended_mps2)
+        self.filtered_intended_mps2 += blend * (f.pred_feedforward_accel_mps2 - self.filtered_intended_mps2)
         self.bump_offset_mps2 *= math.exp(-dt_s / self.gains.bump_time_constant_s)
         return self.feedforward_mps2(f) + self._filter_feedback(dt_s, self.feedback_mps2(f)) + self.bump_offset_mps2
 
@@ -73,7 +73,3 @@ class LagCompensatedCacc:
             blend = 1.0 - math.exp(-dt_s / tau_s)
             self.filtered_feedback_mps2 += blend * (feedback_mps2 - self.filtered_feedback_mps2)  # (eq. C4)
         return self.filtered_feedback_mps2
-
-
-def _intended_or_measured(f: FollowInput) -> float:
-    return f.pred_accel_mps2 if f.pred_intended_accel_mps2 is None else f.pred_intended_accel_mps2

@@ -23,8 +23,8 @@ class PloegCacc:
 
     def step(self, dt_s: float, f: FollowInput) -> float:
         g = self.gains
-        u_p = f.pred_accel_mps2 if f.pred_intended_accel_mps2 is None else f.pred_intended_accel_mps2
         # (Ploeg CACC) du/dt = (1/h)[-u + kp e + kd de/dt + u_p]
-        du = (-self.u_mps2 + g.kp_1ps2 * f.spacing_error_m + g.kd_1ps * f.spacing_error_rate_mps + u_p)
+        du = (-self.u_mps2 + g.kp_1ps2 * f.spacing_error_m + g.kd_1ps * f.spacing_error_rate_mps
+              + f.pred_feedforward_accel_mps2)
         self.u_mps2 += dt_s * du / f.time_gap_s
         return self.u_mps2

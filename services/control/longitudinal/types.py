@@ -88,6 +88,11 @@ class FollowInput:
     pred_intended_accel_mps2: float | None = None
 
     @property
+    def pred_feedforward_accel_mps2(self) -> float:
+        """What the cooperative laws feed forward: the predecessor's request when fresh, else its measurement."""
+        return self.pred_accel_mps2 if self.pred_intended_accel_mps2 is None else self.pred_intended_accel_mps2
+
+    @property
     def desired_gap_m(self) -> float:
         return self.standstill_m + self.time_gap_s * self.ego_speed_mps  # Heudiasyc eq. 4
 
