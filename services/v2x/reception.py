@@ -41,6 +41,13 @@ def message_time_tai_ms(decoded: DecodedPacket, receive_tai_ms: int) -> int:
     return tai_ms_from_delta(decoded.content.generation_delta_time_ms, receive_tai_ms)
 
 
+def transit_delay_s(decoded: DecodedPacket, receive_tai_ms: int) -> float | None:
+    """From a CAM's or iCLCM's generation to its reception; None for a DENM, whose reference time is the event's."""
+    if decoded.message_type == ItsMessageId.DENM:
+        return None
+    return ItsClock.seconds_between(message_time_tai_ms(decoded, receive_tai_ms), receive_tai_ms)
+
+
 def observation_of(decoded: DecodedPacket, mac: bytes, time_tai_ms: int) -> Observation:
     content = decoded.content
     if decoded.message_type == ItsMessageId.CAM:
@@ -95,9 +102,8 @@ class Reception:
             self.rejected_by_reason[reason.value] += 1
             stats.on_rejected(receive_s)
             return None
-        periodic = decoded.message_type != ItsMessageId.DENM
-        delay_s = ItsClock.seconds_between(time_tai_ms, receive_tai_ms) if periodic else None
-        stats.on_message(decoded.message_type, receive_s, time_tai_ms if periodic else None, delay_s)
+        delay_s = transit_delay_s(decoded, receive_tai_ms)
+        stats.on_message(decoded.message_type, receive_s, None if delay_s is None else time_tai_ms, delay_s)
         return decoded
 
     def status(self, now_s: float) -> v2x_pb2.V2xStatus:

@@ -18,7 +18,7 @@ from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.link import CaptureLog, UdpLink
 from coopdrive.services.v2x.packet import V2xPacketCodec
 from coopdrive.services.v2x.reasons import V2xDecodeError
-from coopdrive.services.v2x.reception import OwnIdentity, Reception, message_time_tai_ms
+from coopdrive.services.v2x.reception import OwnIdentity, Reception, transit_delay_s
 from coopdrive.services.v2x.security.certificate import Certificate
 from coopdrive.services.v2x.security.layer import SecurityLayer
 from coopdrive.services.v2x.security.pki import load_test_pki
@@ -33,7 +33,6 @@ from coopdrive.v1 import its_pb2, v2x_pb2
 UNKNOWN_MAC = bytes(6)
 TOPIC_OF_MESSAGE = {ItsMessageId.CAM: "v2x/cam", ItsMessageId.DENM: "v2x/denm", ItsMessageId.ICLCM: "v2x/iclcm"}
 US_PER_MS = 1000
-MS_PER_S = 1000
 
 
 @dataclass
@@ -138,11 +137,8 @@ class V2xService(Service):
     def _generated_s(self, decoded, receive_s: float) -> float:
         """A CAM's or iCLCM's generation time on our clock (its position and speed were true then, not at
         reception); a DENM's reference time is the event's, so it keeps the reception time."""
-        if decoded.message_type == ItsMessageId.DENM:
-            return receive_s
-        receive_tai_ms = self.clock.tai_ms(receive_s)
-        delay_s = (receive_tai_ms - message_time_tai_ms(decoded, receive_tai_ms)) / MS_PER_S
-        return receive_s - max(delay_s, 0.0)
+        delay_s = transit_delay_s(decoded, self.clock.tai_ms(receive_s))
+        return receive_s if delay_s is None else receive_s - max(delay_s, 0.0)
 
     # DENM API for in-process callers (roadside unit logic, hazard detection).
     def trigger_denm(self, event: its_pb2.DenmContent, repetition_interval_s: float | None = None,
