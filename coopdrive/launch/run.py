@@ -58,8 +58,8 @@ class RunOptions:
 MS_PER_S = 1000
 # Certificates of a secured run are valid from a while before the scenario's clock starts.
 CERTIFICATE_BACKDATE_S = 3600
-# After the simulator exits its result may still be queued behind the run's last messages; on a loaded host
-# (two 8-stack runs on two cores) one second was not always enough.
+# After the simulator exits its result may still be queued behind the run's last messages, which on a loaded
+# host (an 8-stack run on two cores) can take more than a second to drain.
 RESULT_GRACE_S = 5.0
 
 

@@ -11,6 +11,7 @@ import math
 from typing import Sequence
 
 from coopdrive.services.sim import metrics as judging
+from coopdrive.services.sim.fault_config import V2vLoss
 from coopdrive.services.sim.roadside_unit import RsuEventKind
 from coopdrive.services.sim.scenario_config import Mission, ScenarioConfig, VehicleRole
 from coopdrive.services.sim.truth_series import TruthSeries
@@ -102,7 +103,7 @@ class MissionJudge:
         radar-only fallbacks at a raised gap, and what is asked of it is no collision (checked before); its
         string gain is still reported, but the wave it damps to a few cm/s leaves ratios of noise."""
         judging_config = self.config.judging
-        return any(fault.type == "v2v_loss" and fault.vehicle_id is None and fault.loss_probability >= 1.0
+        return any(isinstance(fault, V2vLoss) and fault.vehicle_id is None and fault.loss_probability >= 1.0
                    and fault.start_s < judging_config.string_end_s and fault.end_s > judging_config.string_start_s
                    for fault in self.config.faults)
 
