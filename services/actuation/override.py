@@ -70,17 +70,21 @@ class DriverOverrideDetector:
             self._steering_error_since_s = None
         return detection
 
-    def _nearest_recent_command_rad(self, measured_rad: float, now_s: float, commanded_rad: float) -> float:
+    def _remember_command(self, now_s: float, commanded_rad: float) -> None:
         recent = self._recent_commands
         recent.append((now_s, commanded_rad))
         while len(recent) > 1 and recent[0][0] < now_s - self.config.steering_response_s:
             recent.popleft()
-        low, high = min(angle for _, angle in recent), max(angle for _, angle in recent)
+
+    def _nearest_recent_command_rad(self, measured_rad: float) -> float:
+        low = min(angle for _, angle in self._recent_commands)
+        high = max(angle for _, angle in self._recent_commands)
         return min(max(measured_rad, low), high)
 
     def _steering(self, state: vehicle_pb2.VehicleCanState, now_s: float,
                   commanded_angle_rad: float) -> OverrideDetection | None:
-        followed_rad = self._nearest_recent_command_rad(state.steering_angle_rad, now_s, commanded_angle_rad)
+        self._remember_command(now_s, commanded_angle_rad)
+        followed_rad = self._nearest_recent_command_rad(state.steering_angle_rad)
         error_deg = self.steering_wheel_error_deg(state.steering_angle_rad, followed_rad)
         if error_deg <= self.config.steering_error_deg:
             self._steering_error_since_s = None
