@@ -52,6 +52,13 @@ class LidarConfig(BaseModel):
     bearing_std_rad: float = Field(default=0.005, gt=0.0)
     # A cluster narrower than this is a partly seen vehicle, whose centre is correspondingly uncertain.
     typical_width_m: float = Field(default=1.8, gt=0.0)
+    # Where the scanner sits, ahead of the rear axle (the scan's points are given from the rear axle);
+    # None: on the front bumper. Its field of view fans out from here.
+    mount_x_m: float | None = None
+    # A cluster reaching this close to the edge of the field of view is cut by it: the vehicle's rear
+    # may lie anywhere up to a typical length further back (a car sliding past on the flank).
+    fov_edge_margin_rad: float = Field(default=math.radians(1.5), ge=0.0)
+    typical_length_m: float = Field(default=4.5, gt=0.0)
 
 
 class RadarConfig(BaseModel):

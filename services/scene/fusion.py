@@ -38,7 +38,7 @@ class SceneFusion:
         self.rejects = RejectCounter()
         self.tracker = Tracker(self.config)
         self.trust = V2vTrust(self.config.trust)
-        self._lidar = LidarClusterer(self.config.lidar)
+        self._lidar = LidarClusterer(self.config.lidar, self.config.ego_length_m - self.config.ego_rear_overhang_m)
         self._radar = RadarFrontEnd(self.config.radar, self.rejects)
         self._camera = CameraFrontEnd(self.config.camera, self.rejects)
         self._sonar = SonarFrontEnd(self.config.sonar, self.rejects)

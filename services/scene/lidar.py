@@ -108,8 +108,9 @@ def split_consecutive(points_m: np.ndarray, max_gap_m: float) -> list[np.ndarray
 class LidarClusterer:
     """Scan -> clusters -> ENU measurements."""
 
-    def __init__(self, config: LidarConfig) -> None:
+    def __init__(self, config: LidarConfig, front_bumper_x_m: float = 0.0) -> None:
         self._config = config
+        self._mount_x_m = config.mount_x_m if config.mount_x_m is not None else front_bumper_x_m
 
     def clusters(self, scan: sensors_pb2.LidarScan) -> list[LidarCluster]:
         cfg = self._config
@@ -136,6 +137,11 @@ class LidarClusterer:
             missing_m = max(0.0, cfg.typical_width_m - cluster.width_m)
             face_std_m = max(_FACE_CENTRE_STD_FRACTION * cluster.width_m, 0.5 * missing_m)
             cov += face_std_m**2 * _across_beam(bearing)
+            cut_by_fov = self._cut_by_field_of_view(cluster)
+            if cut_by_fov:
+                # Only the lateral position is known: the first visible point slides with us as the flank
+                # passes, so where the vehicle's rear is says nothing about how it moves.
+                cov[0, 0] += cfg.typical_length_m**2
             out.append(
                 Measurement(
                     source=header_pb2.SENSOR_SOURCE_LIDAR,
@@ -145,9 +151,14 @@ class LidarClusterer:
                     origin_m=pose.position_m,
                     width_m=cluster.width_m,
                     extras={"points": len(cluster.points_m)},
+                    ambiguous=cut_by_fov,
                 )
             )
         return out
+
+    def _cut_by_field_of_view(self, cluster: LidarCluster) -> bool:
+        bearings = np.arctan2(cluster.points_m[:, 1], cluster.points_m[:, 0] - self._mount_x_m)
+        return float(np.abs(bearings).max()) >= self._config.half_fov_rad - self._config.fov_edge_margin_rad
 
     def _near_road(self, cluster: LidarCluster) -> bool:
         return cluster.x_max_m > 0.0 and abs(cluster.rear_centre_m[1]) <= self._config.max_lateral_m

@@ -57,6 +57,9 @@ class Measurement:
     station_id: int | None = None
     # Camera detections carry their own detector score; 1 for the rest.
     quality: float = 1.0
+    # A reading that refines a known object's filter but neither announces a new object nor vouches for
+    # one (a flank cut by the edge of the LiDAR's field of view).
+    ambiguous: bool = False
     extras: dict = field(default_factory=dict)
 
 

@@ -48,7 +48,9 @@ class ObjectProperties:
         if meas.source in _SPEED_SOURCES:
             self.speed.support(meas.source, t, q)
         elif meas.source in _DERIVED_SPEED_SOURCES:
+            # The filter's velocity out of a series of positions gives the direction as well as the speed.
             self.speed.support(meas.source, t, q * self._derived_quality)
+            self.heading.support(meas.source, t, q * self._derived_quality)
         if meas.source == header_pb2.SENSOR_SOURCE_V2V:
             self.heading.support(meas.source, t, q)
             self.accel.support(meas.source, t, q)

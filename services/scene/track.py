@@ -177,6 +177,8 @@ class Track:
         return True
 
     def _note_hit(self, meas: Measurement) -> None:
+        if meas.ambiguous:
+            return  # refines the filter, but neither confirms the track nor fixes where it is
         self.hits += 1
         self.last_hit_s = max(self.last_hit_s, meas.time_s)
         if meas.source in RANGING_SOURCES and (self.ranging_fix is None or meas.time_s >= self.ranging_fix.time_s):

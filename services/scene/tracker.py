@@ -31,6 +31,8 @@ class TrackerCounters:
     too_late: int = 0
     replayed: int = 0
     v2v_not_fused: int = 0
+    # Readings matching no track that were too ambiguous to start one (see Measurement.ambiguous).
+    ambiguous_unmatched: int = 0
     by_reason: dict[str, int] = field(default_factory=dict)
 
 
@@ -68,7 +70,10 @@ class Tracker:
         for i, j in pairs:
             self._fuse(tracks[j], measurements[i], match_quality(d2[i, j], gate))
         for i in unmatched:
-            self._start(measurements[i])
+            if not measurements[i].ambiguous:
+                self._start(measurements[i])
+            else:
+                self.counters.ambiguous_unmatched += 1
 
     def _costs(self, measurements: list[Measurement], tracks: list[Track]) -> tuple[np.ndarray, np.ndarray]:
         """Squared Mahalanobis distances and innovation log-determinants, measurements x tracks."""
@@ -181,7 +186,8 @@ class Tracker:
             self.counters.too_late += 1
             return
         self.counters.replayed += track.replays - replays_before
-        track.props.support(meas, quality, v2v_weight)
+        if not meas.ambiguous:
+            track.props.support(meas, quality, v2v_weight)
         self._maybe_confirm(track)
 
     def _start(self, meas: Measurement, v2v_weight: float = 1.0) -> Track:

@@ -104,3 +104,21 @@ def test_the_lower_layers_that_see_the_ground_are_not_used_for_objects_by_defaul
     scan = scan_of_points({0: ground_arc, 2: row(20.0, -0.9, 10)})
     (cluster,) = LidarClusterer(LidarConfig()).clusters(scan)
     assert cluster.layers == (2,)
+
+
+def test_a_flank_cut_by_the_edge_of_the_field_of_view_only_places_the_vehicle_sideways():
+    pose = EgoPose(time_s=1.0, x_m=0.0, y_m=0.0, heading_rad=0.0, speed_mps=10.0,
+                   yaw_rate_radps=0.0, accel_mps2=0.0, position_cov_m2=np.zeros((2, 2)))
+    config = LidarConfig(half_fov_rad=math.radians(50.0))
+    clusterer = LidarClusterer(config, front_bumper_x_m=3.6)
+    # A car passing on the left, 2.5 m out: the beam along the 50 degree edge meets its flank 2.1 m ahead
+    # of the scanner, and the flank is seen from there forwards.
+    edge_x_m = 3.6 + 2.5 / math.tan(math.radians(50.0))
+    (cut,) = clusterer.measurements(scan_of_points({2: [(edge_x_m + 0.3 * i, 2.5) for i in range(12)]}), pose)
+    assert cut.ambiguous
+    assert math.sqrt(cut.cov_m2[0, 0]) >= config.typical_length_m
+    assert math.sqrt(cut.cov_m2[1, 1]) < 1.0
+    # The same car further ahead, whole inside the field of view, is an ordinary reading.
+    (whole,) = clusterer.measurements(scan_of_points({2: [(edge_x_m + 4.0 + 0.3 * i, 2.5) for i in range(12)]}), pose)
+    assert not whole.ambiguous
+    assert math.sqrt(whole.cov_m2[0, 0]) < 1.0
