@@ -12,13 +12,11 @@ from pathlib import Path
 
 import numpy as np
 
+from coopdrive.judging.counts import COUNT_METRICS
 from coopdrive.judging.run_messages import RunMessages
 from coopdrive.services.sim import metrics as judge_metrics
 from coopdrive.services.sim.truth_series import TruthSeries
 
-# Counts are integers in the output; everything else is a float with its unit in the key.
-COUNT_KEYS = ("collisions", "safety_circle_violations", "id_switches", "truth_samples", "v2x_packets_sent",
-              "v2x_packets_received", "v2x_packets_rejected")
 # A scene object is taken for the true vehicle whose rear bumper centre is this close.
 ASSOCIATION_GATE_M = 3.0
 
@@ -132,7 +130,7 @@ def _clean(metrics: dict[str, float]) -> dict[str, float | int | None]:
     for key, value in sorted(metrics.items()):
         if value is None or not math.isfinite(value):
             cleaned[key] = None
-        elif key in COUNT_KEYS:
+        elif key in COUNT_METRICS:
             cleaned[key] = int(value)
         else:
             cleaned[key] = float(value)

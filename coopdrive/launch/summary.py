@@ -7,10 +7,8 @@ from pathlib import Path
 from rich.console import Console
 from rich.table import Table
 
+from coopdrive.judging.counts import COUNT_METRICS
 from coopdrive.v1 import sim_pb2
-
-# Metrics that count events, printed as integers.
-COUNT_METRICS = ("collisions", "participants_lost", "automation_lost")
 
 
 def summary_dict(result: sim_pb2.RunResult) -> dict:
