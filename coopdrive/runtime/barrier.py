@@ -10,6 +10,8 @@ along a wait, so the waits cannot form a cycle.
 
 from __future__ import annotations
 
+from collections.abc import Collection
+
 from coopdrive.runtime.pipeline import PIPELINE_RANK, split_participant
 
 
@@ -19,14 +21,19 @@ class StepBarrier:
         self._done_step: dict[str, int] = {}
         self._promised_sequences: dict[str, dict[str, int]] = {}
         self._received_sequences: dict[str, int] = {}
-        self.dependencies: set[str] = set()
+        # Dependency -> how many steps behind ours it may be: 0 upstream, 1 downstream (feedback).
+        self._lag_steps: dict[str, int] = {}
         # "<vehicle>/<topic>" this service subscribes to; only their sequences are awaited.
         self.subscribed: set[str] = set()
 
     def depend_on(self, participant: str) -> None:
         _, service = split_participant(participant)
         if service in PIPELINE_RANK and PIPELINE_RANK[service] != self._own_rank:
-            self.dependencies.add(participant)
+            self._lag_steps[participant] = 0 if PIPELINE_RANK[service] < self._own_rank else 1
+
+    @property
+    def dependencies(self) -> set[str]:
+        return set(self._lag_steps)
 
     def mark_done(self, participant: str, step: int, next_step: int = 0,
                   sequences: dict[str, int] | None = None) -> None:
@@ -49,16 +56,14 @@ class StepBarrier:
     def done_step(self, participant: str) -> int:
         return self._done_step.get(participant, -1)
 
-    def missing(self, step: int, participants: list[str], markers_only: bool = False) -> list[str]:
+    def missing(self, step: int, participants: Collection[str], markers_only: bool = False) -> list[str]:
         """Running dependencies whose step marker (and the messages it counts, unless markers_only) this
-        service still needs before handling `step`."""
+        service still needs before handling `step`, sorted. Called on every event: pass a set."""
         waiting = []
-        for participant in participants:
-            if participant not in self.dependencies:
+        for participant, lag_steps in self._lag_steps.items():
+            if participant not in participants:
                 continue
-            rank = PIPELINE_RANK[split_participant(participant)[1]]
-            needed = step if rank < self._own_rank else step - 1
-            if self.done_step(participant) < needed or (
+            if self._done_step.get(participant, -1) < step - lag_steps or (
                     not markers_only and not self.holds(self._promised_sequences.get(participant, {}))):
                 waiting.append(participant)
-        return waiting
+        return sorted(waiting)

@@ -112,20 +112,21 @@ class ClockMaster:
         warned_at = markers_in_at = time.monotonic()
         while not self._runner.stopping:
             barrier = self._runner.barrier
-            if not barrier.missing(step + 1, self._participants):
+            running = set(self._participants)
+            if not barrier.missing(step + 1, running):
                 return True
-            if barrier.missing(step + 1, self._participants, markers_only=True):
+            if barrier.missing(step + 1, running, markers_only=True):
                 markers_in_at = time.monotonic()
             elif time.monotonic() - markers_in_at > MESSAGE_WAIT_LIMIT_S:
                 # Every marker is in but a message it counts never came: go on without it (see runner.py).
                 self._runner.service.count("lockstep_messages_given_up")
                 self._runner.log.warning("step %d: gave up waiting for messages counted by %s", step,
-                                         ", ".join(barrier.missing(step + 1, self._participants)))
+                                         ", ".join(barrier.missing(step + 1, running)))
                 return True
             self._handle(self._runner.next_event(0.5))
             if time.monotonic() - warned_at > STALL_WARNING_S:
                 warned_at = time.monotonic()
-                waiting = self._runner.barrier.missing(step + 1, self._participants)
+                waiting = barrier.missing(step + 1, running)
                 self._runner.log.warning("step %d still waits for %s", step, ", ".join(waiting))
         return False
 

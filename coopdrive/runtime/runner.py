@@ -251,7 +251,7 @@ class ServiceRunner:
             if not self._triggers.any_due(clock.time_s):
                 self._pending_clocks.popleft()  # idle step: our last marker already covers it
                 continue
-            participants = list(clock.participants)
+            participants = set(clock.participants)
             if self._barrier.missing(clock.step, participants) or not self._barrier.holds(clock.sequences):
                 if not self._gave_up_waiting_for_messages(clock.step, participants):
                     return
@@ -262,7 +262,7 @@ class ServiceRunner:
             self.run_step(clock.step, clock.time_s)
             self.publish_step_done(clock.step)
 
-    def _gave_up_waiting_for_messages(self, step: int, participants: list[str]) -> bool:
+    def _gave_up_waiting_for_messages(self, step: int, participants: set[str]) -> bool:
         """True when every step marker is in and only counted messages are missing, for MESSAGE_WAIT_LIMIT_S.
 
         A message lost on the way would otherwise hold the whole run forever; going on costs that one

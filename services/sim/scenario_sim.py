@@ -58,6 +58,8 @@ class ScenarioSim:
                         for vehicle_id, model in self.objects.models.items()}
         self._config_of = {v.vehicle_id: v for v in vehicles}
         self.time_s = 0.0
+        # Sensors, radio and judge all look at the world between two steps: match lanes once per step.
+        self._truths: list[sim_pb2.VehicleTruth] | None = None
 
     # ----- stepping ---------------------------------------------------------------------------
     def apply_command(self, vehicle_id: str, command: StackCommand) -> None:
@@ -75,14 +77,22 @@ class ScenarioSim:
             if steering is None:
                 steering = self.drivers[vehicle_id].steering_rad(state)
             model.step(accel, steering)
+        self._truths = None
         before = self.truths()
         for participant in self.objects.participants.values():
             participant.step(now_s, before)
+        self._truths = None
         self.objects.faults.update(now_s, self.objects.sensor_suites, self.objects.channel)
         self.time_s = now_s
 
     # ----- what the world shows -----------------------------------------------------------------
     def truths(self) -> list[sim_pb2.VehicleTruth]:
+        """Every vehicle as it stands now (shared messages: read, do not modify)."""
+        if self._truths is None:
+            self._truths = self._current_truths()
+        return list(self._truths)
+
+    def _current_truths(self) -> list[sim_pb2.VehicleTruth]:
         truths = []
         for vehicle in self.config.vehicles:
             vehicle_id = vehicle.vehicle_id

@@ -20,6 +20,9 @@ class RangeRateAccelEstimator:
     def __init__(self, gains: DcaccGains) -> None:
         self.gains = gains
         self._samples: deque[tuple[float, float]] = deque()
+        # Asked for several times per control step (readiness, command, diagnostics): fit once per sample.
+        self._estimate_mps2: float | None = None
+        self._estimate_stale = False
 
     def observe(self, time_s: float, ego_speed_mps: float, range_rate_mps: float) -> None:
         if self._samples and time_s <= self._samples[-1][0]:
@@ -27,9 +30,16 @@ class RangeRateAccelEstimator:
         self._samples.append((time_s, ego_speed_mps + range_rate_mps))
         while self._samples and time_s - self._samples[0][0] > self.gains.estimator_window_s:
             self._samples.popleft()
+        self._estimate_stale = True
 
     def estimate_mps2(self) -> float | None:
         """Predecessor acceleration, or None until the window holds enough samples."""
+        if self._estimate_stale:
+            self._estimate_mps2 = self._fit()
+            self._estimate_stale = False
+        return self._estimate_mps2
+
+    def _fit(self) -> float | None:
         n = len(self._samples)
         if n < self.gains.estimator_min_samples:
             return None
