@@ -14,6 +14,7 @@ import numpy as np
 
 from coopdrive.judging.counts import COUNT_METRICS
 from coopdrive.judging.run_messages import RunMessages
+from coopdrive.judging.tracking import tracking_metrics
 from coopdrive.services.sim import metrics as judge_metrics
 from coopdrive.services.sim.truth_series import TruthSeries
 
@@ -65,39 +66,6 @@ def _predecessor_references(series: TruthSeries, platoon: list[str]) -> dict[str
     return references
 
 
-def _rear_centres(series: TruthSeries, vehicle_id: str, time_s: float) -> tuple[float, float]:
-    """The true rear bumper centre at a time (the scene's object reference point), interpolated."""
-    def at(name: str) -> float:
-        values = series.get(vehicle_id, name)
-        valid = np.isfinite(values)
-        return float(np.interp(time_s, series.time_s[valid], values[valid])) if valid.any() else math.nan
-
-    x, y, heading, length = at("x_m"), at("y_m"), at("heading_rad"), at("length_m")
-    back = judge_metrics.geometry.rear_overhang_m(length)
-    return x - back * math.cos(heading), y - back * math.sin(heading)
-
-
-def associations(series: TruthSeries, messages: RunMessages, gate_m: float = ASSOCIATION_GATE_M) -> list[dict]:
-    """Per scene message, true vehicle id -> the object id the stack gave it (nearest within the gate)."""
-    frames = []
-    start, end = series.time_s[0], series.time_s[-1]
-    for observer, scenes in sorted(messages.scenes.items()):
-        others = [vid for vid in series.vehicle_ids if vid != observer]
-        for scene in sorted(scenes, key=lambda s: s.header.sample_time_s):
-            time_s = scene.header.sample_time_s
-            if not start <= time_s <= end:
-                continue
-            truths = {vid: _rear_centres(series, vid, time_s) for vid in others}
-            best: dict[str, tuple[float, int]] = {}
-            for obj in scene.objects:
-                for vid, (x, y) in truths.items():
-                    distance = math.hypot(obj.position.x_m - x, obj.position.y_m - y)
-                    if distance < gate_m and distance < best.get(vid, (math.inf, 0))[0]:
-                        best[vid] = (distance, obj.object_id)
-            frames.append({f"{observer}:{vid}": object_id for vid, (_, object_id) in best.items()})
-    return frames
-
-
 def _position_estimates(series: TruthSeries, messages: RunMessages) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     estimates = {}
     for vehicle_id, states in messages.ego_states.items():
@@ -140,7 +108,7 @@ def _clean(metrics: dict[str, float]) -> dict[str, float | int | None]:
 def score_series(series: TruthSeries, parameters: JudgingParameters = JudgingParameters(),
                  messages: RunMessages | None = None) -> dict:
     """The judge's metrics of a truth series; the stacks' ego states and scenes in `messages` add
-    position_rmse_m and id_switches."""
+    position_rmse_m, and their scenes the tracking figures of coopdrive.judging.tracking."""
     messages = messages if messages is not None else RunMessages()
     platoon = list(parameters.platoon) or default_platoon(series)
     scored = judge_metrics.judge(
@@ -150,7 +118,7 @@ def score_series(series: TruthSeries, parameters: JudgingParameters = JudgingPar
         string_frequency_hz=parameters.string_frequency_hz, string_end_s=parameters.string_end_s,
         position_estimates=_position_estimates(series, messages))
     if messages.scenes:
-        scored["id_switches"] = float(judge_metrics.identity_switches(associations(series, messages)))
+        scored.update(tracking_metrics(series, messages, ASSOCIATION_GATE_M))
     scored.update(v2x_metrics(messages))
     scored["truth_samples"] = float(series.time_s.size)
     scored["truth_duration_s"] = float(series.time_s[-1] - series.time_s[0])

@@ -1,0 +1,121 @@
+"""How well each stack's scene tracked the vehicles around it, judged against the simulator's truth.
+
+For every scene a stack published, each true vehicle within TRACKING_RANGE_M of the observer is matched to
+the nearest scene object within the association gate of its rear bumper centre (the scene's reference point).
+An object no true vehicle's footprint comes within the gate of is a false object; how long the longest one
+lasted is what the scene issue bounds (0.5 s).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from coopdrive.judging.run_messages import RunMessages
+from coopdrive.services.sim import geometry
+from coopdrive.services.sim import metrics as judge_metrics
+from coopdrive.services.sim.truth_series import TruthSeries
+
+TRACKING_RANGE_M = 80.0
+SECONDS_PER_10_MIN = 600.0
+
+
+@dataclass(frozen=True)
+class _Pose:
+    """One vehicle's truth at the scene times of one observer, (M,) arrays, NaN while absent."""
+
+    x_m: np.ndarray
+    y_m: np.ndarray
+    heading_rad: np.ndarray
+    length_m: np.ndarray
+    width_m: np.ndarray
+
+    @classmethod
+    def at(cls, series: TruthSeries, vehicle_id: str, times_s: np.ndarray) -> _Pose:
+        present = np.isfinite(series.get(vehicle_id, "x_m"))
+        if not present.any():
+            nan = np.full(times_s.size, np.nan)
+            return cls(nan, nan, nan, nan, nan)
+        known_s = series.time_s[present]
+        inside = (times_s >= known_s[0]) & (times_s <= known_s[-1])
+
+        def interpolated(name: str) -> np.ndarray:
+            return np.where(inside, np.interp(times_s, known_s, series.get(vehicle_id, name)[present]), np.nan)
+
+        # Heading is taken from the nearest sample: interpolating across +-pi would turn the car around.
+        nearest = np.clip(np.searchsorted(known_s, times_s), 0, known_s.size - 1)
+        heading = np.where(inside, series.get(vehicle_id, "heading_rad")[present][nearest], np.nan)
+        return cls(interpolated("x_m"), interpolated("y_m"), heading, interpolated("length_m"),
+                   interpolated("width_m"))
+
+    def rear_centre(self, k: int) -> tuple[float, float]:
+        back_m = geometry.rear_overhang_m(self.length_m[k])
+        return (self.x_m[k] - back_m * math.cos(self.heading_rad[k]),
+                self.y_m[k] - back_m * math.sin(self.heading_rad[k]))
+
+    def distance_to_body_m(self, k: int, x_m: float, y_m: float) -> float:
+        """Distance from a point to the vehicle's footprint (0 inside it)."""
+        cos_h, sin_h = math.cos(self.heading_rad[k]), math.sin(self.heading_rad[k])
+        dx, dy = x_m - self.x_m[k], y_m - self.y_m[k]
+        along, across = dx * cos_h + dy * sin_h, -dx * sin_h + dy * cos_h
+        back_m = geometry.rear_overhang_m(self.length_m[k])
+        outside_along = max(-back_m - along, 0.0, along - (self.length_m[k] - back_m))
+        outside_across = max(abs(across) - 0.5 * self.width_m[k], 0.0)
+        return math.hypot(outside_along, outside_across)
+
+
+def tracking_metrics(series: TruthSeries, messages: RunMessages, gate_m: float,
+                     range_m: float = TRACKING_RANGE_M) -> dict[str, float]:
+    """id_switches (and per tracked vehicle per 10 min), object_position_error_p95_m, object_coverage_ratio
+    (vehicles within range that had an object) and false_object_max_s; empty without scenes."""
+    errors_m: list[float] = []
+    expected = matched = 0
+    longest_false_s = 0.0
+    # Per scene, "<observer>:<true vehicle>" -> the object id the observer gave it.
+    frames: list[dict[str, int]] = []
+    start_s, end_s = float(series.time_s[0]), float(series.time_s[-1])
+    for observer, scenes in sorted(messages.scenes.items()):
+        if observer not in series.values:
+            continue
+        scenes = sorted((s for s in scenes if start_s <= s.header.sample_time_s <= end_s),
+                        key=lambda s: s.header.sample_time_s)
+        times_s = np.array([s.header.sample_time_s for s in scenes])
+        own = _Pose.at(series, observer, times_s)
+        others = {vid: _Pose.at(series, vid, times_s) for vid in series.vehicle_ids if vid != observer}
+        false_since: dict[int, float] = {}
+        for k, scene in enumerate(scenes):
+            time_s = float(times_s[k])
+            frame = {}
+            present = {vid: pose for vid, pose in others.items() if math.isfinite(pose.x_m[k])}
+            for vid, pose in present.items():
+                rear_x, rear_y = pose.rear_centre(k)
+                if math.hypot(rear_x - own.x_m[k], rear_y - own.y_m[k]) > range_m:
+                    continue
+                expected += 1
+                nearest = min(((math.hypot(o.position.x_m - rear_x, o.position.y_m - rear_y), o.object_id)
+                               for o in scene.objects), default=None)
+                if nearest is None or nearest[0] >= gate_m:
+                    continue
+                matched += 1
+                errors_m.append(nearest[0])
+                frame[f"{observer}:{vid}"] = nearest[1]
+            frames.append(frame)
+            false_now = {o.object_id for o in scene.objects
+                         if all(pose.distance_to_body_m(k, o.position.x_m, o.position.y_m) >= gate_m
+                                for pose in present.values())}
+            false_since = {oid: false_since.get(oid, time_s) for oid in false_now}
+            longest_false_s = max([longest_false_s] + [time_s - since for since in false_since.values()])
+    if expected == 0:
+        return {}
+    switches = judge_metrics.identity_switches(frames)
+    tracked_pairs = {pair for frame in frames for pair in frame}
+    duration_s = max(end_s - start_s, 1e-9)
+    return {
+        "id_switches": float(switches),
+        "id_switches_per_vehicle_per_10min": switches / max(len(tracked_pairs), 1) / (duration_s / SECONDS_PER_10_MIN),
+        "object_position_error_p95_m": float(np.percentile(errors_m, 95)) if errors_m else math.nan,
+        "object_coverage_ratio": matched / expected,
+        "false_object_max_s": longest_false_s,
+    }
