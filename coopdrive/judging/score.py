@@ -17,6 +17,7 @@ from coopdrive.judging.run_messages import RunMessages
 from coopdrive.judging.tracking import tracking_metrics
 from coopdrive.services.sim import metrics as judge_metrics
 from coopdrive.services.sim.truth_series import TruthSeries
+from coopdrive.v1 import ego_pb2
 
 # A scene object is taken for the true vehicle whose rear bumper centre is this close.
 ASSOCIATION_GATE_M = 3.0
@@ -69,6 +70,8 @@ def _predecessor_references(series: TruthSeries, platoon: list[str]) -> dict[str
 def _position_estimates(series: TruthSeries, messages: RunMessages) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     estimates = {}
     for vehicle_id, states in messages.ego_states.items():
+        # An estimate that says it is lost (before the first fix) claims no position to be judged on.
+        states = [s for s in states if s.mode != ego_pb2.LOCALISATION_MODE_LOST]
         if vehicle_id not in series.values or not states:
             continue
         times = np.array([s.header.sample_time_s for s in states])
@@ -110,7 +113,8 @@ def score_series(series: TruthSeries, parameters: JudgingParameters = JudgingPar
     """The judge's metrics of a truth series; the stacks' ego states and scenes in `messages` add
     position_rmse_m, and their scenes the tracking figures of coopdrive.judging.tracking."""
     messages = messages if messages is not None else RunMessages()
-    platoon = list(parameters.platoon) or default_platoon(series)
+    # A run of fewer stacks than the scenario has leaves the platoon's tail out of the world.
+    platoon = [v for v in parameters.platoon if v in series.values] or default_platoon(series)
     scored = judge_metrics.judge(
         series, platoon=platoon, reference_speed_mps=_predecessor_references(series, platoon),
         safety_radius_m=parameters.safety_radius_m, standstill_m=parameters.standstill_m,

@@ -58,7 +58,8 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
     sensors = config.sensors_of(vehicle)
     geolocation = {"geolocator": {"track_width_m": profile.track_width_m, "wheelbase_m": profile.wheelbase_m,
                                   "antenna_x_m": sensors.gnss.antenna_x_m, "antenna_y_m": sensors.gnss.antenna_y_m,
-                                  "wheel_speed_std_mps": max(sensors.can_state.wheel_speed_sigma_mps, 1e-3)}}
+                                  "wheel_speed_std_mps": max(sensors.can_state.wheel_speed_sigma_mps, 1e-3)},
+                   "gnss_receiver_latency_s": sensors.gnss.timing.latency_s}
     truck = vehicle.profile is ProfileName.TRUCK
     control = {"profile": "truck" if truck else "car"}
     # The simulated brake pressure follows the actuator's lag: automation braking takes this long to fade

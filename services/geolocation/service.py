@@ -52,6 +52,9 @@ class GeolocationConfig(ServiceConfig):
     serial_mark_timeout_s: float = Field(2.0, gt=0.0)
     # A fix is emitted once all these sentences of an epoch arrived (else when the next epoch starts).
     gnss_sentences: frozenset[SentenceType] = frozenset(SentenceType)
+    # How long after its epoch the receiver puts a fix on the wire (its datasheet's output latency). A fix is
+    # fused at its arrival minus this: left at 0, the estimate trails the car by speed times the latency.
+    gnss_receiver_latency_s: float = Field(0.0, ge=0.0)
 
     @model_validator(mode="after")
     def _one_source_of_the_frame(self) -> GeolocationConfig:
@@ -86,6 +89,7 @@ class GeolocationService(Service):
 
     def _start_serial(self, c: GeolocationConfig) -> None:
         self.decoder = NmeaDecoder(self.on_decoded_fix, expected_sentences=c.gnss_sentences,
+                                   receiver_latency_s=c.gnss_receiver_latency_s,
                                    vehicle_id=self.ctx.vehicle_id, sender=self.name)
         self.serial = GnssSerial(c.gnss_port, c.gnss_baudrate, c.gnss_open_timeout_s)
         if c.serial_sync is SerialSync.MARKS:

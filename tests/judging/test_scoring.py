@@ -134,3 +134,27 @@ def test_v2x_figures_come_from_each_vehicles_last_status_when_there_is_one():
         (22, 20, 4)
     assert metrics["v2x_reception_ratio_min"] == pytest.approx(0.8)
     assert metrics["v2x_update_delay_p95_max_s"] == pytest.approx(0.3)
+
+
+def test_an_ego_state_that_says_it_is_lost_is_left_out_of_the_position_rmse():
+    from coopdrive.v1 import ego_pb2
+
+    messages = RunMessages()
+    for k in range(3):
+        messages.add("coopdrive/world/ground_truth", truth_at(k * 0.1, [dict(vehicle_id="a", x_m=100.0, y_m=0.0)]))
+        state = ego_pb2.EgoState(x_m=100.2, y_m=0.0, mode=ego_pb2.LOCALISATION_MODE_GNSS_PRECISE)
+        if k == 0:
+            state = ego_pb2.EgoState(mode=ego_pb2.LOCALISATION_MODE_LOST)  # before the first fix: at 0, 0
+        state.header.sample_time_s = k * 0.1
+        messages.add("coopdrive/a/ego/state", state)
+    assert score_messages(messages)["position_rmse_m"] == pytest.approx(0.2)
+
+
+def test_a_platoon_named_beyond_the_vehicles_of_the_run_is_judged_on_those_present():
+    frames = sinusoid_chain_frames([1.0, 0.5], frequency_hz=0.2)
+    messages = RunMessages()
+    for t, vehicles in frames:
+        messages.add("coopdrive/world/ground_truth", truth_at(t, vehicles))
+    present = [v["vehicle_id"] for v in frames[0][1]]
+    metrics = score_messages(messages, JudgingParameters(platoon=(*present, "v9"), string_frequency_hz=0.2))
+    assert metrics["string_gain"] == pytest.approx(0.5, abs=0.05)
