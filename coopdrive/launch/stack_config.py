@@ -52,7 +52,7 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
     cruise_mps = max(vehicle.speed_mps, fastest_traffic_mps(config), MIN_CRUISE_SPEED_MPS)
     planner = {"station_id": vehicle.station_id, "scenario": f"SCENARIO_{config.mission.name}",
                "platoon_id": vehicle.platoon or 0,
-               "logic": {"cruise_speed_mps": cruise_mps,
+               "logic": {"cruise_speed_mps": cruise_mps, "merge": {"ego_length_m": profile.length_m},
                          "intersection": {"organiser_station_ids": [v.station_id for v in config.vehicles
                                                                     if v.organiser]}}}
     sensors = config.sensors_of(vehicle)

@@ -56,6 +56,11 @@ class MergeConfig(BaseModel):
     roadworks_cause_code: int = 3
     # A vehicle still in the closed lane stops this far before the works' DENM event position.
     stop_before_works_m: float = Field(10.0, ge=0)
+    # Our own length: a car in the target lane whose front is less than side_margin_m behind our rear bumper
+    # is alongside us, whatever STOM says, and a merger falls in behind it first, drop_back_mps slower than it.
+    ego_length_m: float = Field(4.5, gt=0)
+    side_margin_m: float = Field(1.0, ge=0)
+    drop_back_mps: float = Field(2.0, gt=0)
 
 
 class IntersectionConfig(BaseModel):

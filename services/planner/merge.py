@@ -24,6 +24,8 @@ from .situation import Situation
 
 # A partner counted as ahead (or behind) must be at least this far on that side: a car's length.
 SIDE_TOLERANCE_M = 5.0
+# The length of a car the scene gives no length for.
+DEFAULT_VEHICLE_LENGTH_M = 4.5
 
 
 class MergeRole(enum.Enum):
@@ -178,10 +180,24 @@ class MergeScenario:
         return mio is None or Situation.lane_of(mio) not in (None, self.config.merge.lane_a_index)
 
     def _stom(self) -> bool:
+        if self._alongside() is not None:
+            return False  # STOM vouches for the gap behind us, not for a car beside us
         if self.partner_station_id == 0:
             return self._scene_gap_open()
         msg = self.sit.iclcm(self.partner_station_id)
         return msg is not None and msg.merge_safe_to_merge
+
+    def _alongside(self):
+        """The target-lane car beside us, if any. The scene lists it behind us (its rear bumper is behind our
+        front one), but a lane change now would end in its flank."""
+        behind = self.sit.behind_in_lane(self._other_offset())
+        if behind is None:
+            return None
+        m = self.config.merge
+        length_m = behind.length_m.value if behind.length_m.confidence >= 0 and behind.length_m.value > 0 \
+            else DEFAULT_VEHICLE_LENGTH_M
+        front_ahead_of_our_rear_m = behind.longitudinal_gap_m + length_m + m.ego_length_m
+        return behind if front_ahead_of_our_rear_m > -m.side_margin_m else None
 
     def _scene_gap_open(self) -> bool:
         """Without a partner: the scene shows room in the target lane, ahead and behind. The vehicle behind
@@ -258,6 +274,10 @@ class MergeScenario:
                 add_target(request, self._partner_object(), planner_pb2.TARGET_ROLE_VIRTUAL, m.merge_extra_gap_m)
             else:
                 add_target(request, sit.ahead_in_lane(self._other_offset()), planner_pb2.TARGET_ROLE_VIRTUAL)
+                alongside = self._alongside()
+                if alongside is not None:
+                    request.desired_speed_mps = min(request.desired_speed_mps,
+                                                    max(0.0, alongside.speed_mps.value - m.drop_back_mps))
         works_m = self.roadworks_ahead_m()
         if works_m is not None:
             # Whatever the protocol does, nobody drives into the closed lane's works.

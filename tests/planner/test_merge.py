@@ -228,3 +228,33 @@ def test_a_merger_whose_partner_names_another_merger_lets_it_go_and_merges_on_th
     _, state = p.step(0.2, merger(0.2, elsewhere))
     request, state = p.step(0.3, merger(0.3, elsewhere))
     assert state.state == "WAIT_HEAD" and request.iclcm.backward_id == 0
+
+
+B_ALONGSIDE = 61
+
+
+def merger_beside_a_lane_b_car(t, alongside_gap_m):
+    """Head of lane A, paired and given STOM by its partner 30 m back; another lane B car (b1 of merge seed 3)
+    drives beside us: its rear bumper alongside_gap_m from our front bumper."""
+    msgs = {900: rsu_start(t), B_PARTNER: iclcm(B_PARTNER, t, forward_id=ME, merge_safe_to_merge=True)}
+    alongside = obj(6, B_ALONGSIDE, alongside_gap_m, LANE_B, speed_mps=11.5)
+    alongside.length_m.value, alongside.length_m.confidence = 4.5, 0.7
+    objects = [alongside, obj(3, B_PARTNER, -30.0, LANE_B, speed_mps=11.5)]
+    neighbours = {-1: (6, 3) if alongside_gap_m >= 0 else (None, 6)}
+    world = scene(*objects, ego_lane=LANE_A, neighbours=neighbours)
+    return inputs(planner_pb2.SCENARIO_MERGE, platoon_id=1, ego=ego(LANE_A, speed_mps=11.5), scene=world,
+                  iclcms=msgs, denms={900: denm(ROADWORKS)})
+
+
+def test_a_merger_given_stom_waits_while_a_lane_b_car_drives_beside_it_and_drops_back_behind_it():
+    p = planner()
+    for i in range(4):
+        request, state = p.step(i * 0.1, merger_beside_a_lane_b_car(i * 0.1, alongside_gap_m=-2.5))
+    assert state.state == "WAIT_STOM"
+    assert request.desired_speed_mps == pytest.approx(11.5 - 2.0)
+    # Its front half a metre behind our rear bumper: still too close to turn in ahead of it.
+    request, state = p.step(0.4, merger_beside_a_lane_b_car(0.4, alongside_gap_m=-9.5))
+    assert state.state == "WAIT_STOM"
+    # Once it is ahead of us, STOM from the partner behind holds again.
+    request, state = p.step(0.5, merger_beside_a_lane_b_car(0.5, alongside_gap_m=3.0))
+    assert state.state == "MERGING"
