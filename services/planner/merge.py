@@ -180,8 +180,8 @@ class MergeScenario:
         return mio is None or Situation.lane_of(mio) not in (None, self.config.merge.lane_a_index)
 
     def _stom(self) -> bool:
-        if self._alongside() is not None:
-            return False  # STOM vouches for the gap behind us, not for a car beside us
+        if not self._room_beside_and_ahead():
+            return False  # STOM vouches for the gap behind us, not for the cars beside and ahead of it
         if self.partner_station_id == 0:
             return self._scene_gap_open()
         msg = self.sit.iclcm(self.partner_station_id)
@@ -199,13 +199,17 @@ class MergeScenario:
         front_ahead_of_our_rear_m = behind.longitudinal_gap_m + length_m + m.ego_length_m
         return behind if front_ahead_of_our_rear_m > -m.side_margin_m else None
 
-    def _scene_gap_open(self) -> bool:
-        """Without a partner: the scene shows room in the target lane, ahead and behind. The vehicle behind
-        must be a spacing behind at its own speed, and further by what it closes in while we change lane."""
-        m, platoon = self.config.merge, self.config.platoon
+    def _room_beside_and_ahead(self) -> bool:
+        """Nobody alongside in the target lane, and whoever is ahead there at least the standstill distance
+        ahead (the lane change's predecessor opens it to a full spacing)."""
         ahead = self.sit.ahead_in_lane(self._other_offset())
-        if ahead is not None and ahead.longitudinal_gap_m < self.config.standstill_m:
-            return False
+        too_close = ahead is not None and ahead.longitudinal_gap_m < self.config.standstill_m
+        return not too_close and self._alongside() is None
+
+    def _scene_gap_open(self) -> bool:
+        """Without a partner: the scene shows room in the target lane behind. The vehicle behind must be a
+        spacing behind at its own speed, and further by what it closes in while we change lane."""
+        m, platoon = self.config.merge, self.config.platoon
         behind = self.sit.behind_in_lane(self._other_offset())
         if behind is None:
             return True

@@ -255,6 +255,9 @@ def test_a_merger_given_stom_waits_while_a_lane_b_car_drives_beside_it_and_drops
     # Its front half a metre behind our rear bumper: still too close to turn in ahead of it.
     request, state = p.step(0.4, merger_beside_a_lane_b_car(0.4, alongside_gap_m=-9.5))
     assert state.state == "WAIT_STOM"
-    # Once it is ahead of us, STOM from the partner behind holds again.
+    # Ahead of us but by less than the standstill distance (6 m): not yet.
     request, state = p.step(0.5, merger_beside_a_lane_b_car(0.5, alongside_gap_m=3.0))
+    assert state.state == "WAIT_STOM"
+    # Far enough ahead: STOM from the partner behind holds again.
+    request, state = p.step(0.6, merger_beside_a_lane_b_car(0.6, alongside_gap_m=7.0))
     assert state.state == "MERGING"
