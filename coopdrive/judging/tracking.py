@@ -87,6 +87,8 @@ def tracking_metrics(series: TruthSeries, messages: RunMessages, gate_m: float,
         false_since: dict[int, float] = {}
         for k, scene in enumerate(scenes):
             time_s = float(times_s[k])
+            # An object whose position has faded (confidence -1) claims no place to be judged on.
+            placed = [o for o in scene.objects if o.position.confidence >= 0]
             frame = {}
             present = {vid: pose for vid, pose in others.items() if math.isfinite(pose.x_m[k])}
             for vid, pose in present.items():
@@ -95,14 +97,14 @@ def tracking_metrics(series: TruthSeries, messages: RunMessages, gate_m: float,
                     continue
                 expected += 1
                 nearest = min(((math.hypot(o.position.x_m - rear_x, o.position.y_m - rear_y), o.object_id)
-                               for o in scene.objects), default=None)
+                               for o in placed), default=None)
                 if nearest is None or nearest[0] >= gate_m:
                     continue
                 matched += 1
                 errors_m.append(nearest[0])
                 frame[f"{observer}:{vid}"] = nearest[1]
             frames.append(frame)
-            false_now = {o.object_id for o in scene.objects
+            false_now = {o.object_id for o in placed
                          if all(pose.distance_to_body_m(k, o.position.x_m, o.position.y_m) >= gate_m
                                 for pose in present.values())}
             false_since = {oid: false_since.get(oid, time_s) for oid in false_now}

@@ -23,7 +23,8 @@ def far_x(t):
 
 
 def run(objects_at):
-    """objects_at(t) -> [(object_id, x_m, y_m)] seen by the observer, which drives at x = 12 t."""
+    """objects_at(t) -> [(object_id, x_m, y_m)] seen by the observer, which drives at x = 12 t (x_m None: the
+    object's position has faded)."""
     messages = RunMessages()
     for k in range(round(DURATION_S / 0.1) + 1):
         t = k * 0.1
@@ -37,7 +38,10 @@ def run(objects_at):
         scene.header.sample_time_s = t
         for object_id, x_m, y_m in objects_at(t):
             obj = scene.objects.add(object_id=object_id)
-            obj.position.x_m, obj.position.y_m = x_m, y_m
+            if x_m is None:
+                obj.position.confidence = -1.0  # faded: the scene leaves the position out
+            else:
+                obj.position.x_m, obj.position.y_m = x_m, y_m
         messages.add("coopdrive/observer/scene", scene)
     return tracking_metrics(TruthSeries.from_ground_truth(messages.sorted_truth()), messages, ASSOCIATION_GATE_M)
 
@@ -88,3 +92,11 @@ def test_without_scenes_there_is_nothing_to_report():
     messages = RunMessages()
     messages.add("coopdrive/world/ground_truth", truth_at(0.0, [dict(vehicle_id="a", x_m=0.0, y_m=0.0)]))
     assert tracking_metrics(TruthSeries.from_ground_truth(messages.sorted_truth()), messages, 3.0) == {}
+
+
+def test_an_object_whose_position_faded_is_neither_a_track_nor_a_false_object():
+    placed = run(lambda t: [(7, leader_rear_x(t), 0.0), (8, 0.0, 20.0)])
+    assert placed["false_object_max_s"] == pytest.approx(DURATION_S)  # 20 m off the road: false all along
+    faded = run(lambda t: [(7, leader_rear_x(t), 0.0), (8, None, None)])
+    assert faded["false_object_max_s"] == 0.0
+    assert faded["object_coverage_ratio"] == 1.0
