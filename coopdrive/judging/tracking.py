@@ -55,15 +55,13 @@ class _Pose:
         return (self.x_m[k] - back_m * math.cos(self.heading_rad[k]),
                 self.y_m[k] - back_m * math.sin(self.heading_rad[k]))
 
-    def distance_to_body_m(self, k: int, x_m: float, y_m: float) -> float:
-        """Distance from a point to the vehicle's footprint (0 inside it)."""
-        cos_h, sin_h = math.cos(self.heading_rad[k]), math.sin(self.heading_rad[k])
-        dx, dy = x_m - self.x_m[k], y_m - self.y_m[k]
-        along, across = dx * cos_h + dy * sin_h, -dx * sin_h + dy * cos_h
+    def distances_to_body_m(self, k: int, points_xy_m: np.ndarray) -> np.ndarray:
+        """Distance from each ENU point (N x 2) to the vehicle's footprint (0 inside it)."""
+        local = geometry.to_ego_frame(points_xy_m, self.x_m[k], self.y_m[k], self.heading_rad[k])
         back_m = geometry.rear_overhang_m(self.length_m[k])
-        outside_along = max(-back_m - along, 0.0, along - (self.length_m[k] - back_m))
-        outside_across = max(abs(across) - 0.5 * self.width_m[k], 0.0)
-        return math.hypot(outside_along, outside_across)
+        outside_along = np.maximum(np.maximum(-back_m - local[:, 0], local[:, 0] - (self.length_m[k] - back_m)), 0.0)
+        outside_across = np.maximum(np.abs(local[:, 1]) - 0.5 * self.width_m[k], 0.0)
+        return np.hypot(outside_along, outside_across)
 
 
 def tracking_metrics(series: TruthSeries, messages: RunMessages, gate_m: float,
@@ -104,9 +102,13 @@ def tracking_metrics(series: TruthSeries, messages: RunMessages, gate_m: float,
                 errors_m.append(nearest[0])
                 frame[f"{observer}:{vid}"] = nearest[1]
             frames.append(frame)
-            false_now = {o.object_id for o in placed
-                         if all(pose.distance_to_body_m(k, o.position.x_m, o.position.y_m) >= gate_m
-                                for pose in present.values())}
+            false_now = set()
+            if placed:
+                placed_xy_m = np.array([[o.position.x_m, o.position.y_m] for o in placed])
+                nearest_body_m = np.full(len(placed), np.inf)
+                for pose in present.values():
+                    nearest_body_m = np.minimum(nearest_body_m, pose.distances_to_body_m(k, placed_xy_m))
+                false_now = {o.object_id for o, distance_m in zip(placed, nearest_body_m) if distance_m >= gate_m}
             false_since = {oid: false_since.get(oid, time_s) for oid in false_now}
             longest_false_s = max([longest_false_s] + [time_s - since for since in false_since.values()])
     if expected == 0:
