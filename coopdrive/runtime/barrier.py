@@ -63,7 +63,7 @@ class StepBarrier:
         for participant, lag_steps in self._lag_steps.items():
             if participant not in participants:
                 continue
-            if self._done_step.get(participant, -1) < step - lag_steps or (
+            if self.done_step(participant) < step - lag_steps or (
                     not markers_only and not self.holds(self._promised_sequences.get(participant, {}))):
                 waiting.append(participant)
         return sorted(waiting)

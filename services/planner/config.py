@@ -34,6 +34,10 @@ class PlatoonConfig(BaseModel):
     leave_timeout_s: float = Field(15.0, gt=0)
 
 
+# A passenger car's length: ours unless configured, and that of a car the scene gives no length for.
+TYPICAL_CAR_LENGTH_M = 4.5
+
+
 class MergeConfig(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
@@ -58,7 +62,7 @@ class MergeConfig(BaseModel):
     stop_before_works_m: float = Field(10.0, ge=0)
     # Our own length: a car in the target lane whose front is less than side_margin_m behind our rear bumper
     # is alongside us, whatever STOM says, and a merger falls in behind it first, drop_back_mps slower than it.
-    ego_length_m: float = Field(4.5, gt=0)
+    ego_length_m: float = Field(TYPICAL_CAR_LENGTH_M, gt=0)
     side_margin_m: float = Field(1.0, ge=0)
     drop_back_mps: float = Field(2.0, gt=0)
 

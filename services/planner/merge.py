@@ -17,15 +17,13 @@ import enum
 from coopdrive.v1 import planner_pb2
 
 from .behaviour import add_target, keep_lane, spacing_m
-from .config import PlannerLogicConfig
+from .config import TYPICAL_CAR_LENGTH_M, PlannerLogicConfig
 from .engine import MachineSpec, StateSpec, Transition, from_each
 from .platooning import PLATOON_A, PLATOON_B
 from .situation import Situation
 
 # A partner counted as ahead (or behind) must be at least this far on that side: a car's length.
 SIDE_TOLERANCE_M = 5.0
-# The length of a car the scene gives no length for.
-DEFAULT_VEHICLE_LENGTH_M = 4.5
 
 
 class MergeRole(enum.Enum):
@@ -195,7 +193,7 @@ class MergeScenario:
             return None
         m = self.config.merge
         length_m = behind.length_m.value if behind.length_m.confidence >= 0 and behind.length_m.value > 0 \
-            else DEFAULT_VEHICLE_LENGTH_M
+            else TYPICAL_CAR_LENGTH_M
         front_ahead_of_our_rear_m = behind.longitudinal_gap_m + length_m + m.ego_length_m
         return behind if front_ahead_of_our_rear_m > -m.side_margin_m else None
 
