@@ -20,6 +20,7 @@ import signal
 import threading
 import time
 from collections import defaultdict, deque
+from dataclasses import dataclass
 from enum import Enum, auto
 from typing import Callable
 
@@ -59,6 +60,18 @@ class _Event(Enum):
     CALL = auto()
 
 
+@dataclass(slots=True)
+class _ReleasedStep:
+    """What a follower needs of a lockstep SimClock, read out of the protobuf once."""
+
+    step: int
+    time_s: float
+    step_s: float
+    participants: frozenset[str]
+    # "<vehicle>/<topic>" this service subscribes to -> the simulator's last sequence before the clock.
+    sequences: dict[str, int]
+
+
 class ServiceRunner:
     def __init__(self, service_cls: type[Service], config: ServiceConfig, vehicle_id: str,
                  bus_config: BusConfig | None, clock_mode: ClockMode = ClockMode.WALL, bus: Bus | None = None):
@@ -81,7 +94,7 @@ class ServiceRunner:
         self._started_monotonic = time.monotonic()
         self._dispatcher = StepDispatcher(service_cls.name, vehicle_id)
         self._barrier = StepBarrier(service_cls.name)
-        self._pending_clocks: deque[sim_pb2.SimClock] = deque()
+        self._pending_clocks: deque[_ReleasedStep] = deque()
         self._last_step = -1
         # (step, since when) the next pending step has been blocked by the barrier.
         self._blocked_since: tuple[int, float] | None = None
@@ -183,8 +196,10 @@ class ServiceRunner:
             else:
                 timeout = 0.1
             event = self.next_event(timeout)
-            if event is not None:
+            while event is not None:
                 self._handle_follower_event(*event)
+                # Everything already queued first: the barrier is asked once per burst, not per message.
+                event = self._next_queued_event()
             if self._clock_mode is ClockMode.WALL:
                 self._triggers.run_due(self._clock.now_s())
             else:
@@ -231,36 +246,34 @@ class ServiceRunner:
     def _queue_clock(self, clock: sim_pb2.SimClock) -> None:
         if clock.step <= self._last_step:
             return
+        subscribed = self._barrier.subscribed
+        released = _ReleasedStep(clock.step, clock.time_s, clock.step_s, frozenset(clock.participants),
+                                 {key: value for key, value in clock.sequences.items() if key in subscribed})
         # Participants only ever leave a run: one missing from the newest clock is gone for the older pending
         # steps too, or this service would wait forever for the step marker of a crashed one.
-        current = set(clock.participants)
         for pending in self._pending_clocks:
-            if not current.issuperset(pending.participants):
-                kept = [participant for participant in pending.participants if participant in current]
-                del pending.participants[:]
-                pending.participants.extend(kept)
-        if self._pending_clocks and self._pending_clocks[-1].step == clock.step:
-            self._pending_clocks[-1] = clock  # re-sent with fewer participants after a crash
+            pending.participants &= released.participants
+        if self._pending_clocks and self._pending_clocks[-1].step == released.step:
+            self._pending_clocks[-1] = released  # re-sent with fewer participants after a crash
         else:
-            self._pending_clocks.append(clock)
+            self._pending_clocks.append(released)
 
     def _run_ready_steps(self) -> None:
         while self._pending_clocks:
-            clock = self._pending_clocks[0]
-            self._step_s = clock.step_s
-            if not self._triggers.any_due(clock.time_s):
+            released = self._pending_clocks[0]
+            self._step_s = released.step_s
+            if not self._triggers.any_due(released.time_s):
                 self._pending_clocks.popleft()  # idle step: our last marker already covers it
                 continue
-            participants = set(clock.participants)
-            if self._barrier.missing(clock.step, participants) or not self._barrier.holds(clock.sequences):
-                if not self._gave_up_waiting_for_messages(clock.step, participants):
+            if self._barrier.missing(released.step, released.participants) or not self._barrier.holds(released.sequences):
+                if not self._gave_up_waiting_for_messages(released.step, released.participants):
                     return
             self._blocked_since = None
             self._pending_clocks.popleft()
-            self._clock.set(clock.time_s)
-            self._track_participants(clock.participants)
-            self.run_step(clock.step, clock.time_s)
-            self.publish_step_done(clock.step)
+            self._clock.set(released.time_s)
+            self._track_participants(released.participants)
+            self.run_step(released.step, released.time_s)
+            self.publish_step_done(released.step)
 
     def _gave_up_waiting_for_messages(self, step: int, participants: set[str]) -> bool:
         """True when every step marker is in and only counted messages are missing, for MESSAGE_WAIT_LIMIT_S.
@@ -283,6 +296,12 @@ class ServiceRunner:
     def next_event(self, timeout_s: float):
         try:
             return self._events.get(timeout=max(timeout_s, 0.0))
+        except queue.Empty:
+            return None
+
+    def _next_queued_event(self):
+        try:
+            return self._events.get_nowait()
         except queue.Empty:
             return None
 
