@@ -17,11 +17,13 @@ class KeyLayout:
     def all_topics(self, vehicle_id: str = "*") -> str:
         return f"{self.root}/{vehicle_id}/**"
 
-    def step_done(self, vehicle_id: str, service: str) -> str:
-        return f"{self.root}/{vehicle_id}/_step/{service}"
+    def step_done(self, vehicle_id: str, topic: str) -> str:
+        """Where a lockstep service says it finished a step in which it sent nothing on `topic`.
 
-    def all_step_done(self, vehicle_id: str = "*") -> str:
-        return f"{self.root}/{vehicle_id}/_step/*"
+        "@step" is a verbatim chunk: wildcards such as all_topics() never match it, so recorders and
+        observers do not receive the markers.
+        """
+        return f"{self.root}/{vehicle_id}/@step/{topic}"
 
     def liveliness(self, vehicle_id: str, service: str) -> str:
         return f"{self.root}/{vehicle_id}/_alive/{service}"

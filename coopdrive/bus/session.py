@@ -11,7 +11,7 @@ import json
 import logging
 import threading
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import Callable, NamedTuple
 
 import zenoh
 from google.protobuf.message import DecodeError, Message
@@ -42,13 +42,14 @@ class BusConfig:
         return config
 
 
-@dataclass(frozen=True)
-class Envelope:
+class Envelope(NamedTuple):
     """A received message with where it came from."""
 
     vehicle_id: str
     topic: str
     message: Message
+    # Zenoh attachment sent with the message: a lockstep publisher's step marker (see runtime/runner.py).
+    attachment: bytes | None = None
 
 
 class Bus:
@@ -81,12 +82,12 @@ class Bus:
     def peer_count(self) -> int:
         return len(list(self._session.info.peers_zid())) + len(list(self._session.info.routers_zid()))
 
-    def put(self, key: str, message: Message, *, reliable_block: bool = True) -> None:
+    def put(self, key: str, message: Message, *, reliable_block: bool = True, attachment: bytes | None = None) -> None:
         publisher = self._publishers.get(key)
         if publisher is None:
             with self._lock:
                 publisher = self._publishers.get(key) or self._declare_publisher(key, message, reliable_block)
-        publisher.put(message.SerializeToString())
+        publisher.put(message.SerializeToString(), attachment=attachment)
 
     def publish(self, vehicle_id: str, topic: str | Topic, message: Message) -> None:
         name = topic.name if isinstance(topic, Topic) else topic
@@ -105,7 +106,9 @@ class Bus:
         key = self.layout.topic(vehicle_id, topic)
 
         def on_sample(sample: zenoh.Sample) -> None:
-            envelope = self._decode(str(sample.key_expr), spec.message_type, sample.payload.to_bytes())
+            attachment = sample.attachment
+            envelope = self._decode(str(sample.key_expr), spec.message_type, sample.payload.to_bytes(),
+                                    None if attachment is None else attachment.to_bytes())
             if envelope is not None:
                 callback(envelope)
 
@@ -125,7 +128,7 @@ class Bus:
 
         return self._declare(self._session.declare_subscriber(key_expr, _direct(on_sample)))
 
-    def _decode(self, key: str, cls: type[Message], payload: bytes) -> Envelope | None:
+    def _decode(self, key: str, cls: type[Message], payload: bytes, attachment: bytes | None = None) -> Envelope | None:
         message = cls()
         try:
             message.ParseFromString(payload)
@@ -137,7 +140,7 @@ class Bus:
             vehicle_id, topic = self.layout.split(key)
         except ValueError:
             vehicle_id, topic = "", key
-        return Envelope(vehicle_id, topic, message)
+        return Envelope(vehicle_id, topic, message, attachment)
 
     def declare_token(self, key: str):
         return self._declare(self._session.liveliness().declare_token(key))

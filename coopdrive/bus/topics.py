@@ -29,6 +29,9 @@ class Topic:
     name: str
     message_type: type[Message]
     publisher: str
+    # Lockstep services wait for a stepped topic's messages of a step; the others (diagnostics) are
+    # only observed, so nobody waits for them and their publishers send no step markers for them.
+    stepped: bool = True
 
     @property
     def type_name(self) -> str:
@@ -70,9 +73,14 @@ _ALL = [
     Topic("gateway/planner_force", planner_pb2.PlannerForce, "gateway"),
 ]
 for _service in ("sim", "geolocation", "v2x", "scene", "planner", "control", "actuation", "gateway"):
-    _ALL.append(Topic(f"diagnostics/{_service}", diagnostics_pb2.Diagnostics, _service))
+    _ALL.append(Topic(f"diagnostics/{_service}", diagnostics_pb2.Diagnostics, _service, stepped=False))
 
 TOPICS: dict[str, Topic] = {topic.name: topic for topic in _ALL}
+
+
+def stepped_topics_of(service: str) -> list[str]:
+    """The stepped topics `service` publishes, sorted."""
+    return sorted(topic.name for topic in _ALL if topic.publisher == service and topic.stepped)
 
 
 def topic_named(name: str) -> Topic:

@@ -35,6 +35,9 @@ class StepBarrier:
     def dependencies(self) -> set[str]:
         return set(self._lag_steps)
 
+    def depends_on(self, participant: str) -> bool:
+        return participant in self._lag_steps
+
     def mark_done(self, participant: str, step: int, next_step: int = 0,
                   sequences: dict[str, int] | None = None) -> None:
         """Step `step` is finished, and nothing will come before `next_step` (0: the next step)."""

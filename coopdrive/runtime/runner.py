@@ -6,8 +6,9 @@ so a service's code never runs on two threads at once.
 Lockstep: the simulator (the clock master) publishes SimClock(step k) after its sensor data
 and waits for StepDone(k) from every participant. A follower handles step k once every
 upstream service of its vehicle has reported step k and every downstream one step k-1
-(see pipeline.py); messages a publisher sends before its StepDone travel the same link, so
-they have arrived by then.
+(see pipeline.py). The StepDone rides as the attachment of the step's last message on each
+stepped topic (its own @step key for a topic the step left quiet); it counts the messages it
+covers, so a follower also waits for any still on their way.
 """
 
 from __future__ import annotations
@@ -24,17 +25,17 @@ from dataclasses import dataclass
 from enum import Enum, auto
 from typing import Callable
 
-from google.protobuf.message import Message
+from google.protobuf.message import DecodeError, Message
 
 from coopdrive.bus import Bus, BusConfig, Envelope
-from coopdrive.bus.topics import topic_named
+from coopdrive.bus.topics import stepped_topics_of, topic_named
 from coopdrive.bus.keys import WORLD_ID
 from coopdrive.runtime.barrier import StepBarrier
 from coopdrive.runtime.clock import SimulationClock, WallClock
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
 from coopdrive.runtime.master import ClockMaster
 from coopdrive.runtime.participants import ParticipantTracker
-from coopdrive.runtime.pipeline import participant_name, split_participant
+from coopdrive.runtime.pipeline import participant_name
 from coopdrive.runtime.service import SequenceCounter, Service, ServiceConfig
 from coopdrive.runtime.timers import TriggerSet
 from coopdrive.v1 import diagnostics_pb2, sim_pb2
@@ -95,6 +96,9 @@ class ServiceRunner:
         self._dispatcher = StepDispatcher(service_cls.name, vehicle_id)
         self._barrier = StepBarrier(service_cls.name)
         self._pending_clocks: deque[_ReleasedStep] = deque()
+        # Lockstep: what a step publishes, held back until its marker can go with it (publish_step_done).
+        self._step_outbox: list[tuple[str, str, Message]] | None = None
+        self._stepped_topics = frozenset(stepped_topics_of(service_cls.name))
         self._last_step = -1
         # (step, since when) the next pending step has been blocked by the barrier.
         self._blocked_since: tuple[int, float] | None = None
@@ -111,13 +115,15 @@ class ServiceRunner:
 
     def subscribe(self, topic: str, handler: Callable[[Envelope], None], vehicle_id: str | None = None) -> None:
         source = vehicle_id or self.vehicle_id
-        publisher = topic_named(topic).publisher
-        if source != "*":
-            self._barrier.depend_on(participant_name(source, publisher))
+        spec = topic_named(topic)
+        stepped = source != "*" and spec.stepped
+        if stepped:
+            self._barrier.depend_on(participant_name(source, spec.publisher))
         if (source, topic) not in self._bus_subscriptions:
             self._bus_subscriptions.add((source, topic))
-            self._barrier.subscribed.add(f"{source}/{topic}")
-            self.bus.subscribe(source, topic, lambda envelope: self._events.put((_Event.DATA, envelope)))
+            if stepped:
+                self._barrier.subscribed.add(f"{source}/{topic}")
+            self.bus.subscribe(source, topic, self._on_data)
         self._handlers[topic].append((source, handler))
 
     def publish(self, topic: str, message: Message, sample_time_s: float | None = None) -> None:
@@ -126,7 +132,10 @@ class ServiceRunner:
     def publish_for(self, vehicle_id: str, topic: str, message: Message, sample_time_s: float | None = None) -> None:
         """Publishes under another vehicle's namespace (the simulator feeds every vehicle)."""
         self._sequence.stamp(message, vehicle_id, topic, self._clock.now_s(), sample_time_s)
-        self.bus.publish(vehicle_id, topic, message)
+        if self._step_outbox is not None:
+            self._step_outbox.append((vehicle_id, topic, message))  # sent with the step's marker
+        else:
+            self.bus.publish(vehicle_id, topic, message)
 
     def every(self, period_s: float, handler: Callable[[float], None]) -> None:
         self._triggers.add(period_s, handler)
@@ -167,9 +176,12 @@ class ServiceRunner:
         layout = self.bus.layout
         if self._clock_mode is ClockMode.SIM and self._master is None:
             self.bus.subscribe(WORLD_ID, "clock", lambda env: self._events.put((_Event.CLOCK, env.message)))
-        for participant in sorted(self._barrier.dependencies):
-            vehicle_id, service = split_participant(participant)
-            self.bus.subscribe_key(layout.step_done(vehicle_id, service), self._on_step_marker)
+        for source, topic in sorted(self._bus_subscriptions):
+            spec = topic_named(topic)
+            participant = participant_name(source, spec.publisher)
+            if spec.stepped and self._barrier.depends_on(participant):
+                self.bus.subscribe_key(layout.step_done(source, topic),
+                                       lambda _key, marker, participant=participant: self._on_step_marker(participant, marker))
         if self._master is not None or (self._liveliness_handlers and self._clock_mode is ClockMode.WALL):
             # In simulation, followers learn liveliness from the clock (see participants.py).
             self.bus.watch_liveliness(layout.all_liveliness(), self._on_liveliness)
@@ -177,11 +189,24 @@ class ServiceRunner:
         # Last: the token tells the others that every subscription above is in place.
         self.bus.declare_token(layout.liveliness(self.vehicle_id, self._service_name))
 
-    def _on_step_marker(self, key: str, message: Message) -> None:
-        vehicle_id, topic = self.bus.layout.split(key)
-        service = topic.rsplit("/", 1)[-1]
-        self._events.put((_Event.DONE, (participant_name(vehicle_id, service), message.step, message.next_step,
-                                        dict(message.sequences))))
+    def _on_data(self, envelope: Envelope) -> None:
+        self._events.put((_Event.DATA, envelope))
+        if envelope.attachment is None:
+            return
+        participant = participant_name(envelope.vehicle_id, topic_named(envelope.topic).publisher)
+        if not self._barrier.depends_on(participant):
+            return
+        marker = sim_pb2.StepDone()
+        try:
+            marker.ParseFromString(envelope.attachment)
+        except DecodeError as error:
+            self.service.count("bad_step_markers")
+            self.log.warning("dropped a malformed step marker on %s/%s: %s", envelope.vehicle_id, envelope.topic, error)
+            return
+        self._on_step_marker(participant, marker)
+
+    def _on_step_marker(self, participant: str, marker: sim_pb2.StepDone) -> None:
+        self._events.put((_Event.DONE, (participant, marker.step, marker.next_step, dict(marker.sequences))))
 
     def _on_liveliness(self, key: str, alive: bool) -> None:
         parts = key.split("/")
@@ -246,9 +271,10 @@ class ServiceRunner:
     def _queue_clock(self, clock: sim_pb2.SimClock) -> None:
         if clock.step <= self._last_step:
             return
-        subscribed = self._barrier.subscribed
+        # Few of the simulator's topics are ours: look those up rather than walk the whole protobuf map.
+        counted = clock.sequences
         released = _ReleasedStep(clock.step, clock.time_s, clock.step_s, frozenset(clock.participants),
-                                 {key: value for key, value in clock.sequences.items() if key in subscribed})
+                                 {key: counted[key] for key in self._barrier.subscribed if key in counted})
         # Participants only ever leave a run: one missing from the newest clock is gone for the older pending
         # steps too, or this service would wait forever for the step marker of a crashed one.
         for pending in self._pending_clocks:
@@ -272,8 +298,13 @@ class ServiceRunner:
             self._pending_clocks.popleft()
             self._clock.set(released.time_s)
             self._track_participants(released.participants)
-            self.run_step(released.step, released.time_s)
-            self.publish_step_done(released.step)
+            self.run_lockstep_step(released.step, released.time_s)
+
+    def run_lockstep_step(self, step: int, time_s: float) -> None:
+        """Handles a released step, then sends what it published together with its step marker."""
+        self._step_outbox = []
+        self.run_step(step, time_s)
+        self.publish_step_done(step)
 
     def _gave_up_waiting_for_messages(self, step: int, participants: set[str]) -> bool:
         """True when every step marker is in and only counted messages are missing, for MESSAGE_WAIT_LIMIT_S.
@@ -313,12 +344,28 @@ class ServiceRunner:
         self._last_step = step
 
     def publish_step_done(self, step: int) -> None:
+        """Sends the step's messages and tells every subscriber of each stepped topic that the step is done.
+
+        The marker rides as the attachment of the step's last message on each topic, so a step costs no
+        extra message on the topics it used; a topic left quiet gets the marker on its own @step key.
+        """
         marker = sim_pb2.StepDone(step=step, service=self._service_name, next_step=self._next_active_step(step),
                                   sequences=self._sequence.last)
         marker.header.sent_time_s = self._clock.now_s()
         marker.header.vehicle_id = self.vehicle_id
         marker.header.sender = self._service_name
-        self.bus.put(self.bus.layout.step_done(self.vehicle_id, self._service_name), marker)
+        attachment = marker.SerializeToString()
+        outbox, self._step_outbox = self._step_outbox or [], None
+        last_of_topic = {(vehicle_id, topic): index for index, (vehicle_id, topic, _) in enumerate(outbox)}
+        layout = self.bus.layout
+        for index, (vehicle_id, topic, message) in enumerate(outbox):
+            carries_marker = (vehicle_id == self.vehicle_id and topic in self._stepped_topics
+                              and last_of_topic[(vehicle_id, topic)] == index)
+            self.bus.put(layout.topic(vehicle_id, topic), message, attachment=attachment if carries_marker else None)
+        sent = {topic for vehicle_id, topic, _ in outbox if vehicle_id == self.vehicle_id}
+        for topic in self._stepped_topics:
+            if topic not in sent:
+                self.bus.put(layout.step_done(self.vehicle_id, topic), marker)
 
     def note_received(self, envelope: Envelope) -> None:
         self._barrier.mark_received(f"{envelope.vehicle_id}/{envelope.topic}", envelope.message.header.sequence)
