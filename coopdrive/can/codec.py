@@ -199,7 +199,7 @@ class VehicleCanCodec:
 
     # ---- receiving -----------------------------------------------------------------------------------------
 
-    def decode(self, msg: can.Message) -> tuple[VehicleFrame, dict[str, float]]:
+    def decode(self, msg: can.Message | vehicle_pb2.CanFrame) -> tuple[VehicleFrame, dict[str, float]]:
         """Checks and decodes one frame; raises CanDecodeError (and counts it) when it cannot be trusted."""
         try:
             return self._decode(msg)
@@ -207,7 +207,7 @@ class VehicleCanCodec:
             self.rejected[error.reason] += 1
             raise
 
-    def _decode(self, msg: can.Message) -> tuple[VehicleFrame, dict[str, float]]:
+    def _decode(self, msg: can.Message | vehicle_pb2.CanFrame) -> tuple[VehicleFrame, dict[str, float]]:
         if msg.is_error_frame or msg.is_remote_frame:
             raise CanDecodeError(DecodeFailure.NOT_A_DATA_FRAME, hex(msg.arbitration_id))
         frame = None if msg.is_extended_id else frames.frame_by_id(msg.arbitration_id)
@@ -251,7 +251,7 @@ class VehicleCanCodec:
             if signal.maximum is not None and value > signal.maximum + slack:
                 raise CanDecodeError(DecodeFailure.OUT_OF_RANGE, f"{frame}.{signal.name} = {value}")
 
-    def _decode_expecting(self, msg: can.Message, family: tuple[VehicleFrame, ...]):
+    def _decode_expecting(self, msg: can.Message | vehicle_pb2.CanFrame, family: tuple[VehicleFrame, ...]):
         frame, signals = self.decode(msg)
         if frame not in family:
             self.rejected[DecodeFailure.UNEXPECTED_FRAME] += 1
@@ -259,12 +259,14 @@ class VehicleCanCodec:
         return frame, signals
 
     def decode_command_frame(self, frame: vehicle_pb2.CanFrame) -> VehicleCommand:
-        """decode_command for an ACT_ frame as it travels on the bus (can/command)."""
-        return self.decode_command(can.Message(
-            arbitration_id=frame.arbitration_id, is_extended_id=frame.is_extended_id, data=frame.data,
-            timestamp=frame.timestamp_s, is_error_frame=frame.is_error_frame, is_remote_frame=frame.is_remote_frame))
+        """decode_command for an ACT_ frame as it travels on the bus (can/command).
 
-    def decode_command(self, msg: can.Message) -> VehicleCommand:
+        The protobuf frame has every field decoding reads, under python-can's names, so it is decoded as it
+        is: the simulator does this three times per vehicle and step.
+        """
+        return self.decode_command(frame)
+
+    def decode_command(self, msg: can.Message | vehicle_pb2.CanFrame) -> VehicleCommand:
         """Simulator side: the latest command values after applying this ACT_ frame."""
         frame, signals = self._decode_expecting(msg, frames.COMMAND_FRAMES)
         self._command = _apply_command_frame(self._command, frame, signals)

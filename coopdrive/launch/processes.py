@@ -15,6 +15,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 TERMINATE_GRACE_S = 1.5
+# Zenoh's runtimes default to several threads each. A run puts a process per service on a few cores, where
+# each service's traffic is a handful of messages per step: one thread per runtime hands them on with fewer
+# wake-ups (follow: about 8 % less CPU). A ZENOH_RUNTIME set by the user wins.
+SIMULATION_ZENOH_RUNTIME = ("(rx: (worker_threads: 1), tx: (worker_threads: 1), net: (worker_threads: 1), "
+                            "acc: (worker_threads: 1), app: (worker_threads: 1))")
 
 
 @dataclass
@@ -59,9 +64,10 @@ class ServiceProcesses:
         if self._log_dir is not None:
             self._log_dir.mkdir(parents=True, exist_ok=True)
             output = open(self._log_dir / f"{name.replace('/', '-')}.log", "wb")
+        environment = {"ZENOH_RUNTIME": SIMULATION_ZENOH_RUNTIME, **os.environ}
         self.processes[name] = subprocess.Popen(
             command, stdin=subprocess.DEVNULL, stdout=output, stderr=subprocess.STDOUT if output else None,
-            start_new_session=True)
+            start_new_session=True, env=environment)
         for spec in specs:
             self.process_of[spec.participant] = name
 

@@ -83,11 +83,12 @@ class EgoPose:
             if not math.isfinite(getattr(ego, name)):
                 raise ValueError(f"ego state {name} is {getattr(ego, name)}")
         cov = np.zeros((2, 2))
-        if len(ego.covariance) >= 36:
-            full = np.asarray(ego.covariance, dtype=float).reshape(6, 6)
-            cov = full[:2, :2].copy()
-            if not np.all(np.isfinite(cov)):
-                cov = np.zeros((2, 2))
+        covariance = ego.covariance
+        if len(covariance) >= 36:
+            # The 6x6 row-major covariance: only its east/north block is needed, four of 36 numbers.
+            block = [covariance[0], covariance[1], covariance[6], covariance[7]]
+            if all(math.isfinite(value) for value in block):
+                cov = np.array(block).reshape(2, 2)
         elif ego.position_std_m > 0.0:
             cov = np.eye(2) * ego.position_std_m**2
         return cls(
