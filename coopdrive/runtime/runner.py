@@ -13,6 +13,7 @@ covers, so a follower also waits for any still on their way.
 
 from __future__ import annotations
 
+import functools
 import logging
 import math
 import os
@@ -180,8 +181,8 @@ class ServiceRunner:
             spec = topic_named(topic)
             participant = participant_name(source, spec.publisher)
             if spec.stepped and self._barrier.depends_on(participant):
-                self.bus.subscribe_key(layout.step_done(source, topic),
-                                       lambda _key, marker, participant=participant: self._on_step_marker(participant, marker))
+                on_marker = functools.partial(self._on_quiet_topic, participant)
+                self.bus.subscribe_key(layout.step_done(source, topic), on_marker)
         if self._master is not None or (self._liveliness_handlers and self._clock_mode is ClockMode.WALL):
             # In simulation, followers learn liveliness from the clock (see participants.py).
             self.bus.watch_liveliness(layout.all_liveliness(), self._on_liveliness)
@@ -205,6 +206,9 @@ class ServiceRunner:
             return
         self._on_step_marker(participant, marker)
 
+    def _on_quiet_topic(self, participant: str, _key: str, marker: sim_pb2.StepDone) -> None:
+        self._on_step_marker(participant, marker)
+
     def _on_step_marker(self, participant: str, marker: sim_pb2.StepDone) -> None:
         self._events.put((_Event.DONE, (participant, marker.step, marker.next_step, dict(marker.sequences))))
 
@@ -221,10 +225,12 @@ class ServiceRunner:
             else:
                 timeout = 0.1
             event = self.next_event(timeout)
-            while event is not None:
+            if event is not None:
                 self._handle_follower_event(*event)
-                # Everything already queued first: the barrier is asked once per burst, not per message.
-                event = self._next_queued_event()
+                # What was queued behind it first: the barrier is asked once per burst, not per message, and a
+                # flood arriving meanwhile still leaves the triggers their turn.
+                for _ in range(self._events.qsize()):
+                    self._handle_follower_event(*self._events.get_nowait())
             if self._clock_mode is ClockMode.WALL:
                 self._triggers.run_due(self._clock.now_s())
             else:
@@ -291,8 +297,9 @@ class ServiceRunner:
             if not self._triggers.any_due(released.time_s):
                 self._pending_clocks.popleft()  # idle step: our last marker already covers it
                 continue
-            if self._barrier.missing(released.step, released.participants) or not self._barrier.holds(released.sequences):
-                if not self._gave_up_waiting_for_messages(released.step, released.participants):
+            step, participants = released.step, released.participants
+            if self._barrier.missing(step, participants) or not self._barrier.holds(released.sequences):
+                if not self._gave_up_waiting_for_messages(step, participants):
                     return
             self._blocked_since = None
             self._pending_clocks.popleft()
@@ -316,7 +323,8 @@ class ServiceRunner:
         if self._blocked_since is None or self._blocked_since[0] != step:
             self._blocked_since = (step, now)
             return False
-        if self._barrier.missing(step, participants, markers_only=True) or now - self._blocked_since[1] < MESSAGE_WAIT_LIMIT_S:
+        still_waiting_for_markers = self._barrier.missing(step, participants, markers_only=True)
+        if still_waiting_for_markers or now - self._blocked_since[1] < MESSAGE_WAIT_LIMIT_S:
             return False
         self.service.count("lockstep_messages_given_up")
         self.log.warning("step %d: gave up waiting for messages counted by %s", step,
@@ -327,12 +335,6 @@ class ServiceRunner:
     def next_event(self, timeout_s: float):
         try:
             return self._events.get(timeout=max(timeout_s, 0.0))
-        except queue.Empty:
-            return None
-
-    def _next_queued_event(self):
-        try:
-            return self._events.get_nowait()
         except queue.Empty:
             return None
 
