@@ -89,9 +89,9 @@ class Bus:
                 publisher = self._publishers.get(key) or self._declare_publisher(key, message, reliable_block)
         publisher.put(message.SerializeToString(), attachment=attachment)
 
-    def publish(self, vehicle_id: str, topic: str | Topic, message: Message) -> None:
+    def publish(self, vehicle_id: str, topic: str | Topic, message: Message, attachment: bytes | None = None) -> None:
         name = topic.name if isinstance(topic, Topic) else topic
-        self.put(self.layout.topic(vehicle_id, name), message)
+        self.put(self.layout.topic(vehicle_id, name), message, attachment=attachment)
 
     def _declare_publisher(self, key: str, message: Message, reliable_block: bool) -> zenoh.Publisher:
         encoding = zenoh.Encoding.APPLICATION_PROTOBUF.with_schema(message.DESCRIPTOR.full_name)

@@ -31,10 +31,6 @@ class StepBarrier:
         if service in PIPELINE_RANK and PIPELINE_RANK[service] != self._own_rank:
             self._lag_steps[participant] = 0 if PIPELINE_RANK[service] < self._own_rank else 1
 
-    @property
-    def dependencies(self) -> set[str]:
-        return set(self._lag_steps)
-
     def depends_on(self, participant: str) -> bool:
         return participant in self._lag_steps
 

@@ -16,15 +16,12 @@ SIMULATOR = f"{WORLD_ID}/sim"
 class ParticipantTracker:
     def __init__(self) -> None:
         self._alive: set[str] = set()
-        self._last_list: frozenset[str] | None = None
 
     def update(self, participants) -> list[tuple[str, bool]]:
         """The liveliness changes since the last clock, sorted, as (participant, alive)."""
-        listed = frozenset(participants)
-        if listed == self._last_list:
+        now_alive = {SIMULATOR, *participants}
+        if now_alive == self._alive:
             return []  # every step but the first and a crash's
-        self._last_list = listed
-        now_alive = {SIMULATOR, *listed}
         changes = [(p, True) for p in sorted(now_alive - self._alive)]
         changes += [(p, False) for p in sorted(self._alive - now_alive)]
         self._alive = now_alive

@@ -178,9 +178,8 @@ class ServiceRunner:
         if self._clock_mode is ClockMode.SIM and self._master is None:
             self.bus.subscribe(WORLD_ID, "clock", lambda env: self._events.put((_Event.CLOCK, env.message)))
         for source, topic in sorted(self._bus_subscriptions):
-            spec = topic_named(topic)
-            participant = participant_name(source, spec.publisher)
-            if spec.stepped and self._barrier.depends_on(participant):
+            participant = self._awaited_publisher(source, topic)
+            if participant is not None:
                 on_marker = functools.partial(self._on_quiet_topic, participant)
                 self.bus.subscribe_key(layout.step_done(source, topic), on_marker)
         if self._master is not None or (self._liveliness_handlers and self._clock_mode is ClockMode.WALL):
@@ -190,12 +189,18 @@ class ServiceRunner:
         # Last: the token tells the others that every subscription above is in place.
         self.bus.declare_token(layout.liveliness(self.vehicle_id, self._service_name))
 
+    def _awaited_publisher(self, vehicle_id: str, topic: str) -> str | None:
+        """The participant whose step markers this service waits for on `topic` of `vehicle_id`, if any."""
+        spec = topic_named(topic)
+        participant = participant_name(vehicle_id, spec.publisher)
+        return participant if spec.stepped and self._barrier.depends_on(participant) else None
+
     def _on_data(self, envelope: Envelope) -> None:
         self._events.put((_Event.DATA, envelope))
         if envelope.attachment is None:
             return
-        participant = participant_name(envelope.vehicle_id, topic_named(envelope.topic).publisher)
-        if not self._barrier.depends_on(participant):
+        participant = self._awaited_publisher(envelope.vehicle_id, envelope.topic)
+        if participant is None:
             return
         marker = sim_pb2.StepDone()
         try:
@@ -359,15 +364,14 @@ class ServiceRunner:
         attachment = marker.SerializeToString()
         outbox, self._step_outbox = self._step_outbox or [], None
         last_of_topic = {(vehicle_id, topic): index for index, (vehicle_id, topic, _) in enumerate(outbox)}
-        layout = self.bus.layout
         for index, (vehicle_id, topic, message) in enumerate(outbox):
             carries_marker = (vehicle_id == self.vehicle_id and topic in self._stepped_topics
                               and last_of_topic[(vehicle_id, topic)] == index)
-            self.bus.put(layout.topic(vehicle_id, topic), message, attachment=attachment if carries_marker else None)
+            self.bus.publish(vehicle_id, topic, message, attachment=attachment if carries_marker else None)
         sent = {topic for vehicle_id, topic, _ in outbox if vehicle_id == self.vehicle_id}
         for topic in self._stepped_topics:
             if topic not in sent:
-                self.bus.put(layout.step_done(self.vehicle_id, topic), marker)
+                self.bus.put(self.bus.layout.step_done(self.vehicle_id, topic), marker)
 
     def note_received(self, envelope: Envelope) -> None:
         self._barrier.mark_received(f"{envelope.vehicle_id}/{envelope.topic}", envelope.message.header.sequence)
