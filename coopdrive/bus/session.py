@@ -83,11 +83,23 @@ class Bus:
         return len(list(self._session.info.peers_zid())) + len(list(self._session.info.routers_zid()))
 
     def put(self, key: str, message: Message, *, reliable_block: bool = True, attachment: bytes | None = None) -> None:
+        self._publisher(key, message, reliable_block).put(message.SerializeToString(), attachment=attachment)
+
+    def put_if_subscribed(self, key: str, message: Message) -> bool:
+        """Puts only when some subscriber matches `key` (Zenoh's matching status, kept up to date by Zenoh):
+        for messages such as step markers that are worth nothing unheard. True when it was sent."""
+        publisher = self._publisher(key, message, reliable_block=True)
+        if not publisher.matching_status.matching:
+            return False
+        publisher.put(message.SerializeToString())
+        return True
+
+    def _publisher(self, key: str, message: Message, reliable_block: bool) -> zenoh.Publisher:
         publisher = self._publishers.get(key)
         if publisher is None:
             with self._lock:
                 publisher = self._publishers.get(key) or self._declare_publisher(key, message, reliable_block)
-        publisher.put(message.SerializeToString(), attachment=attachment)
+        return publisher
 
     def publish(self, vehicle_id: str, topic: str | Topic, message: Message, attachment: bytes | None = None) -> None:
         name = topic.name if isinstance(topic, Topic) else topic

@@ -58,19 +58,22 @@ class ClockMaster:
 
     def __init__(self, runner: ServiceRunner):
         self._runner = runner
-        self._settings: ClockSettings = runner.service.clock_settings()
-        self._participants = list(self._settings.participants)
+        self._settings = ClockSettings()
+        self._participants: list[str] = []
         self._alive: set[str] = set()
         self._step = 0
         self.wall_time_s = 0.0
-        lag = max(1, self._settings.feedback_delay_steps)
-        runner.dispatcher.feedback_lag_s = (lag - 1) * self._settings.step_s
 
     @property
     def participants(self) -> list[str]:
         return list(self._participants)
 
     def run(self) -> None:
+        # Read once the service has started: how many steps it can pipeline may depend on the world it loaded.
+        self._settings = self._runner.service.clock_settings()
+        self._participants = list(self._settings.participants)
+        lag = max(1, self._settings.feedback_delay_steps)
+        self._runner.dispatcher.feedback_lag_s = (lag - 1) * self._settings.step_s
         try:
             self._wait_for_participants()
         except ParticipantsMissing as error:

@@ -371,7 +371,7 @@ class ServiceRunner:
         sent = {topic for vehicle_id, topic, _ in outbox if vehicle_id == self.vehicle_id}
         for topic in self._stepped_topics:
             if topic not in sent:
-                self.bus.put(self.bus.layout.step_done(self.vehicle_id, topic), marker)
+                self.bus.put_if_subscribed(self.bus.layout.step_done(self.vehicle_id, topic), marker)
 
     def note_received(self, envelope: Envelope) -> None:
         self._barrier.mark_received(f"{envelope.vehicle_id}/{envelope.topic}", envelope.message.header.sequence)

@@ -46,8 +46,12 @@ class ScenarioSim:
         self.config = config.model_copy(update={"vehicles": vehicles, "judging": judging, "faults": faults})
         self.objects: ScenarioObjects = build_scenario(self.config, road_map)
         self.stack_ids = list(stack_ids)
-        # Lockstep already delays each command by this many steps: the actuator's own dead time is shortened.
-        delay_s = already_delayed_steps * config.step_s
+        # Lockstep already delays each command by up to this many steps: the actuator's own dead time is
+        # shortened, by as many whole steps as every stack vehicle's dead times hold (pipelined_steps).
+        self.pipelined_steps = max(0, min([already_delayed_steps] + [
+            math.floor(min(model.profile.accel_dead_time_s, model.profile.steer_dead_time_s) / config.step_s + 1e-9)
+            for model in self.objects.models.values()]))
+        delay_s = self.pipelined_steps * config.step_s
         for vehicle_id, model in self.objects.models.items():
             profile = model.profile.model_copy(update={
                 "accel_dead_time_s": max(0.0, model.profile.accel_dead_time_s - delay_s),

@@ -53,9 +53,10 @@ class SimConfig(ServiceConfig):
     realtime_factor: float = 1.0
     participants: list[str] = Field(default_factory=list)
     startup_timeout_s: float = 60.0
-    # Lockstep: a command computed in step k moves the vehicle from step k + feedback_delay_steps.
-    # 2 keeps two steps in flight; the vehicle model takes the extra step off its dead time.
-    feedback_delay_steps: int = 2
+    # Lockstep: a command computed in step k moves the vehicle from step k + feedback_delay_steps, which keeps
+    # that many steps in flight. The vehicle models take the extra steps off their actuators' dead times, so the
+    # physics is the same as with 1; fewer are used when a stack vehicle's dead time is shorter than that.
+    feedback_delay_steps: int = Field(default=3, ge=1)
     # Full-throttle and full-brake accelerations the stack vehicles' ACT_ pedal ratios are scaled by.
     pedal_profile: ProfileName = ProfileName.PASSENGER_CAR
     # Spacing policy d = r + h v the run is judged against.
@@ -142,7 +143,7 @@ class SimService(Service, ClockMaster.Driven):
                                      already_delayed_steps=config.feedback_delay_steps - 1,
                                      gnss_ports=config.gnss_ports)
             return
-        self.world = FollowWorld(config.world, already_delayed_steps=config.feedback_delay_steps - 1)
+        self.world = FollowWorld(config.world, config.step_s, already_delayed_steps=config.feedback_delay_steps - 1)
         self.rng = np.random.default_rng(config.seed)
         self.judge = FollowJudge(config.standstill_m, config.time_gap_s)
         self.stack_vehicles = [s.vehicle_id for s in config.world.vehicles if not s.speed_profile]
@@ -170,7 +171,10 @@ class SimService(Service, ClockMaster.Driven):
         c: SimConfig = self.config
         return ClockSettings(step_s=c.step_s, lockstep=c.lockstep, paced=c.paced, realtime_factor=c.realtime_factor,
                              participants=list(c.participants), startup_timeout_s=c.startup_timeout_s,
-                             feedback_delay_steps=c.feedback_delay_steps if c.lockstep else 1)
+                             feedback_delay_steps=1 + self._pipelined_steps() if c.lockstep else 1)
+
+    def _pipelined_steps(self) -> int:
+        return self.feed.sim.pipelined_steps if self.feed is not None else self.world.pipelined_steps
 
     def on_clock_started(self, wall_start_monotonic_s: float) -> None:
         self.wall_start_s = wall_start_monotonic_s

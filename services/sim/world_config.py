@@ -23,7 +23,8 @@ class VehicleSpec(_Strict):
     wheelbase_m: float = 2.7
     track_width_m: float = 1.55
     accel_lag_s: float = 0.3
-    dead_time_s: float = 0.05
+    # The passenger-car profile's accel_dead_time_s (profiles.py).
+    dead_time_s: float = 0.1
     max_accel_mps2: float = 3.0
     max_decel_mps2: float = 8.0
     max_steering_rad: float = 0.5

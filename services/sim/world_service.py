@@ -71,13 +71,21 @@ class SpeedProfile:
 
 
 class FollowWorld:
-    def __init__(self, config: WorldConfig, already_delayed_steps: int = 0):
+    def __init__(self, config: WorldConfig, step_s: float, already_delayed_steps: int = 0):
+        """`already_delayed_steps`: at most this many steps of lockstep delay are taken off the stack vehicles'
+        dead times; fewer when a dead time is shorter (see pipelined_steps)."""
         self.config = config
         self.bodies: dict[str, VehicleBody] = {}
         self.profiles: dict[str, SpeedProfile] = {}
+        stack_specs = [spec for spec in config.vehicles if not spec.speed_profile]
+        # One step of the dead time always stays in the model (VehicleBody keeps at least one step).
+        absorbable = min((round(spec.dead_time_s / step_s) - 1 for spec in stack_specs), default=already_delayed_steps)
+        self.pipelined_steps = max(0, min(already_delayed_steps, absorbable))
         for spec in config.vehicles:
+            # Scripted vehicles follow their profile directly: lockstep never delays their requests.
+            delayed = 0 if spec.speed_profile else self.pipelined_steps
             self.bodies[spec.vehicle_id] = VehicleBody(spec, spec.station_m, spec.lateral_m, 0.0, spec.speed_mps,
-                                                       already_delayed_steps=already_delayed_steps)
+                                                       already_delayed_steps=delayed)
             if spec.speed_profile:
                 self.profiles[spec.vehicle_id] = SpeedProfile(spec.speed_profile)
 

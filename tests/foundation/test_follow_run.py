@@ -9,6 +9,7 @@ from collections import Counter
 
 import pytest
 
+from coopdrive.launch.run import RunOptions, run_scenario
 from coopdrive.recording.reader import read_messages
 from coopdrive.recording.replay import replay_service
 
@@ -44,6 +45,17 @@ def test_the_same_seed_gives_identical_metrics_even_with_the_stack_in_one_proces
     second = run_follow("--processes", "vehicle")
     timing = {"wall_time_s", "realtime_factor"}
     assert {k: v for k, v in first.items() if k not in timing} == {k: v for k, v in second.items() if k not in timing}
+
+
+def test_more_lockstep_steps_in_flight_leave_the_run_unchanged():
+    def metrics_with(steps_in_flight: int) -> dict[str, float]:
+        result = run_scenario(RunOptions(scenario="follow", seed=1, duration_s=10.0, service_overrides={
+            "sim": {"feedback_delay_steps": steps_in_flight}}))
+        return dict(result.metrics)
+
+    two = metrics_with(2)
+    assert two["min_gap_m"] > STANDSTILL_M
+    assert metrics_with(3) == two
 
 
 def test_the_recording_holds_every_service_with_its_schema(recorded_run):

@@ -128,3 +128,20 @@ def test_a_follower_takes_a_marker_riding_on_data_as_its_upstream_finishing_the_
     finally:
         sender.bus.close()
         receiver.bus.close()
+
+
+def test_a_quiet_topic_marker_is_sent_only_while_some_service_waits_for_it(endpoint):
+    sender, waiter = Bus(BusConfig(listen=[endpoint])), Bus(BusConfig(connect=[endpoint]))
+    key = KeyLayout().step_done("ego", "actuation/status")
+    markers: queue.Queue = queue.Queue()
+    try:
+        assert not sender.put_if_subscribed(key, sim_pb2.StepDone(step=1)), "sent with nobody listening"
+        waiter.subscribe_key(key, lambda _key, marker: markers.put(marker))
+        end = time.monotonic() + DEADLINE_S
+        while not sender.put_if_subscribed(key, sim_pb2.StepDone(step=2)):
+            assert time.monotonic() < end, "the waiting subscriber never matched"
+            time.sleep(0.05)
+        assert received(markers).step == 2
+    finally:
+        waiter.close()
+        sender.close()

@@ -77,3 +77,10 @@ def test_the_lockstep_delay_is_taken_off_the_actuator_dead_time(a270):
     delayed = ScenarioSim(scenario(), a270, ["a"], already_delayed_steps=1)
     assert delayed.objects.models["a"].profile.accel_dead_time_s == pytest.approx(
         plain.objects.models["a"].profile.accel_dead_time_s - STEP_S)
+
+
+def test_no_more_lockstep_steps_are_taken_off_than_the_shortest_dead_time_holds(a270):
+    # The passenger car's steering dead time, 0.05 s, holds two whole 0.02 s steps.
+    sim = ScenarioSim(scenario(), a270, ["a"], already_delayed_steps=5)
+    assert sim.pipelined_steps == 2
+    assert sim.objects.models["a"].profile.steer_dead_time_s == pytest.approx(0.05 - 2 * STEP_S)
