@@ -15,6 +15,7 @@ from cantools.database.can import Message
 from coopdrive.can import frames
 from coopdrive.can.frames import CanDecodeError, DecodeFailure, VehicleFrame
 from coopdrive.can.radar import RadarFrameAssembler, encode_radar_frames
+from coopdrive.can.send_schedule import CyclicSendSchedule
 from coopdrive.v1 import actuation_pb2, sensors_pb2, vehicle_pb2
 
 # A decoded value may sit half a resolution step beyond the DBC range through float rounding.
@@ -176,10 +177,12 @@ class VehicleCanCodec:
         return can.Message(arbitration_id=definition.frame_id, data=bytes(data), is_extended_id=False,
                            timestamp=timestamp_s, channel=self.channel, is_rx=False)
 
-    def encode_vehicle_command(self, command: VehicleCommand, timestamp_s: float = 0.0) -> list[can.Message]:
-        """The three ACT_ frames for one actuation cycle."""
-        return [self.encode_command(frame, signals, timestamp_s)
-                for frame, signals in _command_signals(command).items()]
+    def encode_vehicle_command(self, command: VehicleCommand, timestamp_s: float = 0.0,
+                               schedule: CyclicSendSchedule | None = None) -> list[can.Message]:
+        """The ACT_ frames of one actuation cycle: all three, or those `schedule` says are due."""
+        signals = _command_signals(command)
+        due = schedule.due(signals, timestamp_s) if schedule is not None else list(signals)
+        return [self.encode_command(frame, signals[frame], timestamp_s) for frame in due]
 
     def encode_vehicle_state(self, state: vehicle_pb2.VehicleCanState, driver_steering_torque_nm: float = 0.0,
                              timestamp_s: float = 0.0) -> list[can.Message]:

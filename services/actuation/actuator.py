@@ -11,6 +11,7 @@ import can
 
 from coopdrive.can.codec import VehicleCanCodec, VehicleCommand
 from coopdrive.can.frames import CanDecodeError
+from coopdrive.can.send_schedule import CyclicSendSchedule
 from coopdrive.services.actuation import modes as m
 from coopdrive.services.actuation.config import ActuationConfig
 from coopdrive.services.actuation.modes import DrivingModeManager, ModeDecision
@@ -27,6 +28,8 @@ class Actuator:
     def __init__(self, config: ActuationConfig | None = None, codec: VehicleCanCodec | None = None):
         self.config = config or ActuationConfig()
         self.codec = codec or VehicleCanCodec()
+        # Each ACT_ frame at its DBC cycle time, and at once when it changes: the body frame mostly at 10 Hz.
+        self._send_schedule = CyclicSendSchedule()
         self.pedals = PedalMap(self.config.pedal)
         self.steering = SteeringMap(self.config.steering)
         self.overrides = DriverOverrideDetector(self.config.override, self.config.steering.steering_ratio)
@@ -155,7 +158,7 @@ class Actuator:
             self._ramp = self.watchdog.ramp(self._accel_mps2, emergency=False)
         command = self._command(dt_s)
         self.last_command = command
-        frames = self.codec.encode_vehicle_command(command, timestamp_s=now_s)
+        frames = self.codec.encode_vehicle_command(command, timestamp_s=now_s, schedule=self._send_schedule)
         self.frames_sent += len(frames)
         return frames, self._status(command, now_s)
 
