@@ -41,6 +41,8 @@ def build_parser() -> argparse.ArgumentParser:
     service.add_argument("--listen", action="append", default=[], help="Zenoh endpoint to listen on")
     service.add_argument("--zenoh-config", type=Path, help="Zenoh JSON5 config (TLS, access control)")
     service.add_argument("--clock", choices=["wall", "sim"], default="wall")
+    service.add_argument("--clock-step", type=float, metavar="SECONDS",
+                         help="with --clock sim: the simulator's step, so only the clocks this service runs on come")
     service.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="override a config key")
     service.add_argument("-v", "--verbose", action="store_true")
     service.set_defaults(handler=_service)
@@ -50,6 +52,7 @@ def build_parser() -> argparse.ArgumentParser:
     group.add_argument("--connect", action="append", default=[], help="Zenoh endpoint to connect to")
     group.add_argument("--listen", action="append", default=[], help="Zenoh endpoint to listen on")
     group.add_argument("--clock", choices=["wall", "sim"], default="wall")
+    group.add_argument("--clock-step", type=float, metavar="SECONDS", help="as for `coopdrive service`")
     group.add_argument("-v", "--verbose", action="store_true")
     group.set_defaults(handler=_group)
 
@@ -144,7 +147,7 @@ def _service(args) -> int:
     config = load_config(cls.Config, args.config, args.set)
     bus = BusConfig(connect=args.connect, listen=args.listen or ["tcp/127.0.0.1:0"],
                     zenoh_config_file=str(args.zenoh_config) if args.zenoh_config else None)
-    runner = ServiceRunner(cls, config, args.vehicle, bus, ClockMode(args.clock))
+    runner = ServiceRunner(cls, config, args.vehicle, bus, ClockMode(args.clock), clock_step_s=args.clock_step)
     runner.run()
     return EXIT_OK
 
@@ -166,7 +169,7 @@ def _group(args) -> int:
     except (OSError, ValueError, KeyError, TypeError) as error:
         raise ConfigError(f"{args.spec}: {error.args[0] if error.args else error}") from None
     bus = BusConfig(connect=args.connect, listen=args.listen or ["tcp/127.0.0.1:0"])
-    group = ServiceGroup(members, bus, ClockMode(args.clock))
+    group = ServiceGroup(members, bus, ClockMode(args.clock), clock_step_s=args.clock_step)
     group.run()
     return EXIT_FAILED if group.failed else EXIT_OK
 

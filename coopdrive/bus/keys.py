@@ -1,10 +1,15 @@
 """Key expressions: every message lives under coopdrive/<vehicle>/<topic>."""
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 ROOT = "coopdrive"
 # The simulated world (clock, ground truth, run results) publishes under this vehicle id.
 WORLD_ID = "world"
+# A lockstep clock's key carries its step's remainders by these, so a follower whose triggers run only on
+# every 2nd, 5th or 10th step subscribes to just those clocks (see clock_steps).
+CLOCK_MODULI = (2, 5)
+EVERY_STEP = "*"
 
 
 @dataclass(frozen=True)
@@ -24,6 +29,26 @@ class KeyLayout:
         observers do not receive the markers.
         """
         return f"{self.root}/{vehicle_id}/@step/{topic}"
+
+    def clock_step(self, step: int) -> str:
+        """Where the simulator sends the lockstep clock of `step` to the services it steps ("@clock" is verbatim,
+        like "@step": recorders take the world/clock topic instead)."""
+        return f"{self.root}/{WORLD_ID}/@clock/" + "/".join(str(step % modulus) for modulus in CLOCK_MODULI)
+
+    def clock_to_all(self) -> str:
+        """Clocks every stepped service needs: each one of a run paced to the wall clock, and a step re-sent
+        because a participant left."""
+        return f"{self.root}/{WORLD_ID}/@clock/all"
+
+    def clock_steps(self, periods_in_steps: Iterable[int | None]) -> list[str]:
+        """Key expressions matching the clock_step() keys of every step on which a trigger with one of these
+        periods (whole steps, counted from step 0; None: not a whole number) is due."""
+        patterns = {tuple("0" if period and period % modulus == 0 else EVERY_STEP for modulus in CLOCK_MODULI)
+                    for period in periods_in_steps}
+        # A pattern inside a wider one would only deliver its clocks twice.
+        kept = [p for p in patterns if not any(q != p and all(b in (a, EVERY_STEP) for a, b in zip(p, q))
+                                                 for q in patterns)]
+        return sorted(f"{self.root}/{WORLD_ID}/@clock/" + "/".join(pattern) for pattern in kept)
 
     def liveliness(self, vehicle_id: str, service: str) -> str:
         return f"{self.root}/{vehicle_id}/_alive/{service}"

@@ -34,9 +34,12 @@ class ServiceSpec:
 
 
 class ServiceProcesses:
-    def __init__(self, connect_endpoint: str, clock: str = "sim", log_dir: Path | None = None):
+    def __init__(self, connect_endpoint: str, clock: str = "sim", log_dir: Path | None = None,
+                 clock_step_s: float | None = None):
+        """`clock_step_s`: the simulator's step, told to every service (`--clock-step`)."""
         self._connect = connect_endpoint
         self._clock = clock
+        self._clock_step = [] if clock_step_s is None else ["--clock-step", repr(clock_step_s)]
         self._config_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-"))
         self._log_dir = log_dir
         # Process name ("<vehicle>/<service>" or "<vehicle>/group") -> process.
@@ -59,7 +62,7 @@ class ServiceProcesses:
 
     def _spawn(self, name: str, specs: list[ServiceSpec], arguments: list[str]) -> None:
         command = [sys.executable, "-m", "coopdrive.cli", *arguments, "--connect", self._connect,
-                   "--clock", self._clock]
+                   "--clock", self._clock, *self._clock_step]
         output = None
         if self._log_dir is not None:
             self._log_dir.mkdir(parents=True, exist_ok=True)

@@ -169,7 +169,8 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     if options.observer is not None:
         hub.subscribe_key("coopdrive/**", options.observer)
     hub.subscribe(WORLD_ID, "result", on_result)
-    processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir)
+    simulator = next(spec for spec in specs if spec.service == "sim")
+    processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir, clock_step_s=simulator.config["step_s"])
     started = time.monotonic()
     try:
         start_processes(processes, specs, options)

@@ -32,11 +32,13 @@ class GroupMember:
 
 
 class ServiceGroup:
-    def __init__(self, members: list[GroupMember], bus_config: BusConfig, clock_mode: ClockMode = ClockMode.WALL):
+    def __init__(self, members: list[GroupMember], bus_config: BusConfig, clock_mode: ClockMode = ClockMode.WALL,
+                 clock_step_s: float | None = None):
         if not members:
             raise ValueError("a service group needs at least one service")
         self._bus = Bus(bus_config)
-        self.runners = [ServiceRunner(m.service_cls, m.config, m.vehicle_id, None, clock_mode, bus=self._bus.sharing())
+        self.runners = [ServiceRunner(m.service_cls, m.config, m.vehicle_id, None, clock_mode, bus=self._bus.sharing(),
+                                      clock_step_s=clock_step_s)
                         for m in members]
         self._members = members
         self.failed: dict[str, str] = {}

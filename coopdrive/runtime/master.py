@@ -6,7 +6,6 @@ import time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from coopdrive.bus.keys import WORLD_ID
 from coopdrive.v1 import sim_pb2
 
 if TYPE_CHECKING:
@@ -94,11 +93,15 @@ class ClockMaster:
             self._publish_clock()
             self._step += 1
 
-    def _publish_clock(self) -> None:
+    def _publish_clock(self, to_all: bool = False) -> None:
+        """To the followers whose triggers can run in this step (KeyLayout.clock_step); `to_all` (and every
+        clock of a run not in lockstep) to each of them."""
         clock = sim_pb2.SimClock(step=self._step, time_s=self._runner.now_s(), step_s=self._settings.step_s,
                                  lockstep=self._settings.lockstep, participants=self._participants,
                                  sequences=self._runner.published_sequences)
-        self._runner.publish_for(WORLD_ID, "clock", clock)
+        layout = self._runner.bus.layout
+        to_all = to_all or not self._settings.lockstep
+        self._runner.publish_clock(clock, layout.clock_to_all() if to_all else layout.clock_step(self._step))
 
     def _wait_for_participants(self) -> None:
         deadline = time.monotonic() + self._settings.startup_timeout_s
@@ -172,5 +175,5 @@ class ClockMaster:
         if self._step > 0 and self._settings.lockstep:
             # Followers blocked on the lost service's marker re-read the participant list.
             self._step -= 1
-            self._publish_clock()
+            self._publish_clock(to_all=True)
             self._step += 1

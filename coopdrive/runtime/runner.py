@@ -33,6 +33,7 @@ from coopdrive.bus.topics import stepped_topics_of, topic_named
 from coopdrive.bus.keys import WORLD_ID
 from coopdrive.runtime.barrier import StepBarrier
 from coopdrive.runtime.clock import SimulationClock, WallClock
+from coopdrive.runtime.clock_subscription import ClockSubscription
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
 from coopdrive.runtime.master import ClockMaster
 from coopdrive.runtime.participants import ParticipantTracker
@@ -76,8 +77,10 @@ class _ReleasedStep:
 
 class ServiceRunner:
     def __init__(self, service_cls: type[Service], config: ServiceConfig, vehicle_id: str,
-                 bus_config: BusConfig | None, clock_mode: ClockMode = ClockMode.WALL, bus: Bus | None = None):
-        """`bus`: an existing (shared) Bus to run on instead of opening one from `bus_config`."""
+                 bus_config: BusConfig | None, clock_mode: ClockMode = ClockMode.WALL, bus: Bus | None = None,
+                 clock_step_s: float | None = None):
+        """`bus`: an existing (shared) Bus to run on instead of opening one from `bus_config`.
+        `clock_step_s`: the simulator's step, when known before the run (see ClockSubscription)."""
         self.vehicle_id = vehicle_id
         self.log = logging.getLogger(f"coopdrive.{service_cls.name}")
         self._service_name = service_cls.name
@@ -107,6 +110,8 @@ class ServiceRunner:
         # From the first simulator clock: lockstep or paced to wall time; None before it.
         self._lockstep: bool | None = None
         self.bus = bus if bus is not None else Bus(bus_config)
+        self._clock_subscription = ClockSubscription(
+            self.bus, lambda clock: self._events.put((_Event.CLOCK, clock)), clock_step_s)
         self.service = service_cls(config, self)
         self._master = ClockMaster(self) if isinstance(self.service, ClockMaster.Driven) else None
 
@@ -140,6 +145,7 @@ class ServiceRunner:
 
     def every(self, period_s: float, handler: Callable[[float], None]) -> None:
         self._triggers.add(period_s, handler)
+        self._clock_subscription.trigger_added()
 
     def watch_liveliness(self, handler: Callable[[str, bool], None]) -> None:
         self._liveliness_handlers.append(handler)
@@ -176,7 +182,7 @@ class ServiceRunner:
     def _declare_runtime_entities(self) -> None:
         layout = self.bus.layout
         if self._clock_mode is ClockMode.SIM and self._master is None:
-            self.bus.subscribe(WORLD_ID, "clock", lambda env: self._events.put((_Event.CLOCK, env.message)))
+            self._clock_subscription.declare(self._triggers.periods_s())
         for source, topic in sorted(self._bus_subscriptions):
             participant = self._awaited_publisher(source, topic)
             if participant is not None:
@@ -250,6 +256,7 @@ class ServiceRunner:
             else:
                 self.dispatch(payload)
         elif kind is _Event.CLOCK:
+            self._clock_subscription.check_step(payload.step_s)
             self._lockstep = payload.lockstep
             if payload.lockstep:
                 self._queue_clock(payload)
@@ -372,6 +379,13 @@ class ServiceRunner:
         for topic in self._stepped_topics:
             if topic not in sent:
                 self.bus.put_if_subscribed(self.bus.layout.step_done(self.vehicle_id, topic), marker)
+
+    def publish_clock(self, clock: sim_pb2.SimClock, followers_key: str) -> None:
+        """The clock master's clock: numbered as world/clock and sent to the followers on `followers_key`
+        (KeyLayout.clock_step or clock_to_all), and on world/clock itself for whoever records or shows it."""
+        self._sequence.stamp(clock, WORLD_ID, "clock", self._clock.now_s(), None)
+        self.bus.put(followers_key, clock)
+        self.bus.put_if_subscribed(self.bus.layout.topic(WORLD_ID, "clock"), clock)
 
     def note_received(self, envelope: Envelope) -> None:
         self._barrier.mark_received(f"{envelope.vehicle_id}/{envelope.topic}", envelope.message.header.sequence)

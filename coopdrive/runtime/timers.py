@@ -41,6 +41,9 @@ class TriggerSet:
         self._triggers.append(trigger)
         return trigger
 
+    def periods_s(self) -> list[float]:
+        return [trigger.period_s for trigger in self._triggers]
+
     def run_due(self, now_s: float) -> None:
         for trigger in self._triggers:
             if not trigger.due(now_s):
