@@ -58,20 +58,22 @@ def ray_polygon_ranges(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,
                        polygons: Sequence[np.ndarray]) -> np.ndarray:
     """Distance along each ray (rows) to the first crossing of each polygon's outline (columns); inf on a miss."""
     azimuths = np.atleast_1d(np.asarray(azimuths_rad, dtype=float))
-    ranges = np.full((azimuths.size, len(polygons)), np.inf)
-    dirs = np.column_stack((np.cos(azimuths), np.sin(azimuths)))
-    origin = np.asarray(origin_xy, dtype=float)
-    for index, corners in enumerate(polygons):
-        edges = np.roll(corners, -1, axis=0) - corners
-        # Solve origin + t d = start + u e for every ray and edge.
-        denom = dirs[:, None, 0] * edges[None, :, 1] - dirs[:, None, 1] * edges[None, :, 0]
-        rel = corners - origin
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = (rel[None, :, 0] * edges[None, :, 1] - rel[None, :, 1] * edges[None, :, 0]) / denom
-            u = (rel[None, :, 0] * dirs[:, None, 1] - rel[None, :, 1] * dirs[:, None, 0]) / denom
-        valid = (np.abs(denom) > 1e-12) & (t > 0.0) & (u >= 0.0) & (u <= 1.0)
-        ranges[:, index] = np.where(valid, t, np.inf).min(axis=1)
-    return ranges
+    if not len(polygons):
+        return np.full((azimuths.size, 0), np.inf)
+    if len({len(corners) for corners in polygons}) > 1:
+        return np.column_stack([ray_polygon_ranges(origin_xy, azimuths, [corners]) for corners in polygons])
+    corners = np.asarray(polygons, dtype=float)  # polygon, corner, xy
+    edges = np.roll(corners, -1, axis=1) - corners
+    rel = corners - np.asarray(origin_xy, dtype=float)
+    edge_x, edge_y, rel_x, rel_y = edges[..., 0], edges[..., 1], rel[..., 0], rel[..., 1]
+    # Every ray (axis 0) against every edge (axes 1, 2): solve origin + t d = start + u e.
+    dir_x, dir_y = np.cos(azimuths)[:, None, None], np.sin(azimuths)[:, None, None]
+    denom = dir_x * edge_y - dir_y * edge_x
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (rel_x * edge_y - rel_y * edge_x) / denom
+        u = (rel_x * dir_y - rel_y * dir_x) / denom
+    t[~((np.abs(denom) > 1e-12) & (t > 0.0) & (u >= 0.0) & (u <= 1.0))] = np.inf
+    return t.min(axis=2)
 
 
 def cast_rays(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,

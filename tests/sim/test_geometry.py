@@ -1,0 +1,37 @@
+"""Ray casting of the simulated LiDAR, camera and sonars against vehicle footprints, checked by hand."""
+
+import math
+
+import numpy as np
+import pytest
+
+from coopdrive.services.sim.geometry import cast_rays, ray_polygon_ranges
+
+
+def square(centre_x_m: float, centre_y_m: float, half_side_m: float = 0.5) -> np.ndarray:
+    x, y, h = centre_x_m, centre_y_m, half_side_m
+    return np.array([[x - h, y - h], [x + h, y - h], [x + h, y + h], [x - h, y + h]])
+
+
+def test_a_ray_meets_the_near_face_of_a_square_and_misses_behind_it():
+    ranges = ray_polygon_ranges((0.0, 0.0), np.array([0.0, math.pi]), [square(5.0, 0.0)])
+    assert ranges[0, 0] == pytest.approx(4.5)
+    assert ranges[1, 0] == math.inf
+
+
+def test_each_polygon_gets_its_own_column_whatever_its_number_of_corners():
+    triangle = np.array([[2.0, -1.0], [2.0, 1.0], [3.0, 0.0]])
+    ranges = ray_polygon_ranges((0.0, 0.0), np.array([0.0, math.pi / 2]), [triangle, square(0.0, 10.0)])
+    assert ranges.shape == (2, 2)
+    assert ranges[0].tolist() == pytest.approx([2.0, math.inf])
+    assert ranges[1].tolist() == pytest.approx([math.inf, 9.5])
+
+
+def test_the_nearer_of_two_vehicles_in_line_hides_the_farther_one():
+    ranges, hit = cast_rays((0.0, 0.0), np.array([0.0]), [square(20.0, 0.0), square(8.0, 0.0)], max_range_m=50.0)
+    assert (ranges[0], hit[0]) == (pytest.approx(7.5), 1)
+
+
+def test_a_hit_beyond_the_sensor_range_is_no_hit():
+    ranges, hit = cast_rays((0.0, 0.0), np.array([0.0]), [square(20.0, 0.0)], max_range_m=10.0)
+    assert (ranges[0], hit[0]) == (math.inf, -1)
