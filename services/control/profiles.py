@@ -26,6 +26,9 @@ class CaccGains(_Model):
     feedback_time_constant_s: float = Field(0.2, ge=0)
     # Bumpless transfer: the offset between the previous command and this law decays with this constant.
     bump_time_constant_s: float = Field(1.0, gt=0)
+    # How far the request feed-forward leads to make up for the request's age on arrival (eq. C5; 0 = none):
+    # in the simulated platoons a predecessor's iCLCM request reaches our control about 0.1 s after it was made.
+    request_lead_s: float = Field(0.1, ge=0)
 
 
 class PloegGains(_Model):

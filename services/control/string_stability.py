@@ -10,7 +10,7 @@ String stable iff max_w |H(jw)| <= 1.
     Ploeg:     Cp = (kp + kd s)/(1 + h s),  Cx = Cp (1 + h s),  F = 1/(1 + h s)
                (commanded variant: A_p replaced by the predecessor's delayed input U_p = X_p / G e^{-theta s})
     ours:      Cp = (kp + kd s)/(1 + tau_fb s),  Cx = Cp (1 + h s),  F = (1 + tau s)/(1 + h s)   (eq. C1, C4)
-               (commanded variant: F = 1/(1 + h s) on the predecessor's delayed input U_p, eq. C3)
+               (commanded variant: F = (1 + lead s)/(1 + h s) on the predecessor's delayed input U_p, eq. C3, C5)
     dCACC:     ours with A_p = s V_p filtered by the least-squares slope FIR (eq. D1), no V2V delay
     Rajamani:  Cp = (lambda + s)/h,         Cx = (lambda (1 + h s) + s)/h,  F = 0
     our ACC:   Cp = ke + kv s,              Cx = ke (1 + h s) + kv s + ka h s^2,  F = 0
@@ -112,7 +112,7 @@ def speed_transfer(
         cp = (g.kp_1ps2 + g.kd_1ps * s) / (1 + g.feedback_time_constant_s * s)
         cx = cp * (1 + h * s)
         if law is FollowingLaw.OURS_CACC_COMMANDED:
-            ff = v2v_command / (1 + h * s)
+            ff = v2v_command * (1 + g.request_lead_s * s) / (1 + h * s)
         else:
             accel = v2v_accel if law is FollowingLaw.OURS_CACC else s * _slope_fir(s, profile.dcacc.estimator_window_s)
             ff = accel * (1 + profile.engine_lag_s * s) / (1 + h * s)

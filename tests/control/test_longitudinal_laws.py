@@ -54,10 +54,18 @@ def test_ploeg_takes_the_predecessors_request_over_its_measured_acceleration():
 
 
 def test_our_cacc_feeds_forward_the_predecessors_request_through_the_time_gap_filter_alone():
-    law = LagCompensatedCacc(CaccGains(kp_1ps2=0.3, kd_1ps=2.5), engine_lag_s=0.3)
+    law = LagCompensatedCacc(CaccGains(kp_1ps2=0.3, kd_1ps=2.5, request_lead_s=0.0), engine_lag_s=0.3)
     law.reset(10.0, replace(CLOSE, pred_intended_accel_mps2=0.0))  # above the law: no bump offset
     z_u = 2.0 * (1.0 - math.exp(-DT / 0.5))  # eq. C3, one exact step from 0 towards u_p = 2; a_p = 1 is unused
     assert law.step(DT, replace(CLOSE, pred_intended_accel_mps2=2.0)) == pytest.approx(z_u + 0.3 * 4.0 + 2.5 * 0.75)
+
+
+def test_our_cacc_leads_the_request_feedforward_by_the_request_lead():
+    law = LagCompensatedCacc(CaccGains(kp_1ps2=0.3, kd_1ps=2.5, request_lead_s=0.1), engine_lag_s=0.3)
+    law.reset(10.0, replace(CLOSE, pred_intended_accel_mps2=0.0))
+    z_u = 2.0 * (1.0 - math.exp(-DT / 0.5))  # eq. C3 as above
+    lead = z_u + 0.1 / 0.5 * (2.0 - z_u)  # eq. C5: z_u + (theta / h) (u_p - z_u)
+    assert law.step(DT, replace(CLOSE, pred_intended_accel_mps2=2.0)) == pytest.approx(lead + 0.3 * 4.0 + 2.5 * 0.75)
 
 
 def test_our_cacc_filters_its_spacing_pd_with_the_feedback_time_constant():

@@ -42,11 +42,26 @@ def test_fed_the_predecessors_command_as_ploeg_is_ours_damps_no_worse(time_gap_s
     assert ours.gain_at_hz(0.2) <= ploeg.gain_at_hz(0.2)
 
 
+def without_request_lead(profile):
+    return profile.model_copy(update={"cacc": profile.cacc.model_copy(update={"request_lead_s": 0.0})})
+
+
 def test_without_delays_our_cacc_fed_the_command_is_the_ideal_transfer_for_any_lag():
     omega = np.array([0.1, 1.0, 5.0])
-    profile = with_lag(0.5).model_copy(update={"actuation_delay_s": 0.0})
+    profile = without_request_lead(with_lag(0.5).model_copy(update={"actuation_delay_s": 0.0}))
     h = speed_transfer(FollowingLaw.OURS_CACC_COMMANDED, profile, 0.5, omega, comm_delay_s=0.0)
     assert np.abs(h) == pytest.approx(1 / np.sqrt(1 + (0.5 * omega) ** 2))
+
+
+def test_a_request_lead_as_long_as_the_communication_delay_nearly_restores_the_ideal_transfer():
+    wave = np.array([2 * np.pi * 0.2])  # the string scenario's 0.2 Hz
+    profile = with_lag(0.5).model_copy(update={"actuation_delay_s": 0.0})
+    ideal = 1 / np.sqrt(1 + (0.5 * wave) ** 2)
+    led = np.abs(speed_transfer(FollowingLaw.OURS_CACC_COMMANDED, profile, 0.5, wave, comm_delay_s=0.1))
+    late = np.abs(speed_transfer(FollowingLaw.OURS_CACC_COMMANDED, without_request_lead(profile), 0.5, wave,
+                                 comm_delay_s=0.1))
+    assert profile.cacc.request_lead_s == pytest.approx(0.1)
+    assert abs(led - ideal)[0] < 0.25 * abs(late - ideal)[0]
 
 
 def test_without_delays_ploeg_fed_the_command_is_the_ideal_transfer_for_any_lag():

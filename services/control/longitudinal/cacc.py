@@ -16,6 +16,10 @@ a_p = G(s) u_p and a = G(s) u, so the same ideal a = a_p / (1 + h s) needs
 which differentiates nothing (a measured a_p is noisy, and C1 amplifies it by tau/h), needs no lag estimate,
 and leads the measured acceleration by the predecessor's dead time and lag.
 
+The request arrives late by its age theta (V2V, the sender's and our own pipeline); a first-order lead
+makes up for most of it at platoon-wave frequencies, e^(theta s) ~ 1 + theta s:
+      u_ff = (1 + theta s) z_u = z_u + (theta / h) (u_p - z_u)                               (eq. C5)
+
 The PD acts through a first-order filter,
       tau_fb w' + w = kp e + kd e'                                                        (eq. C4)
 because e' is the difference of two measured speeds and kd passes its noise straight to the command, where
@@ -41,7 +45,9 @@ class LagCompensatedCacc:
 
     def feedforward_mps2(self, f: FollowInput) -> float:
         if f.pred_intended_accel_mps2 is not None:
-            return self.filtered_intended_mps2  # (eq. C3)
+            lead = self.gains.request_lead_s / f.time_gap_s
+            z_u = self.filtered_intended_mps2  # (eq. C3)
+            return z_u + lead * (f.pred_intended_accel_mps2 - z_u)  # (eq. C5)
         ratio = self.engine_lag_s / f.time_gap_s
         return ratio * f.pred_accel_mps2 + (1.0 - ratio) * self.filtered_accel_mps2  # (eq. C1)
 
