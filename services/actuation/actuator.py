@@ -1,8 +1,8 @@
 """Actuator: control commands, vehicle state and supervision in; CAN command frames and status out.
 
 Combines the pedal and steering maps, the driver override detector, the driving mode manager and the
-watchdog. Every `step` emits the three ACT_ frames, also in manual mode (inactive), so the vehicle side
-always sees a live, counted stream.
+watchdog. Every `step` emits the ACT_ frames due at their DBC cycle times (and any that changed), also in
+manual mode (inactive), so the vehicle side always sees a live, counted stream.
 """
 
 import math

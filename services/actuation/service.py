@@ -1,8 +1,9 @@
 """Actuation service: the only door to the vehicle. Feeds the Actuator and sends its ACT_ frames every cycle.
 
 Data handlers feed the Actuator (commands, vehicle state, ego state, V2X health, mode requests, liveliness); the
-50 Hz cycle steps it and publishes the three ACT_ frames on can/command, the ActuatorCommand on actuation/command
-and any driver override; the status goes out at 10 Hz.
+50 Hz cycle steps it and publishes the ACT_ frames that are due (each at its DBC cycle time, or at once when it
+changes) on can/command, the ActuatorCommand on actuation/command and any driver override; the status goes out
+at 10 Hz.
 """
 
 from __future__ import annotations
