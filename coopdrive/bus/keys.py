@@ -33,12 +33,12 @@ class KeyLayout:
     def clock_step(self, step: int) -> str:
         """Where the simulator sends the lockstep clock of `step` to the services it steps ("@clock" is verbatim,
         like "@step": recorders take the world/clock topic instead)."""
-        return f"{self.root}/{WORLD_ID}/@clock/" + "/".join(str(step % modulus) for modulus in CLOCK_MODULI)
+        return self._clock_key(*(str(step % modulus) for modulus in CLOCK_MODULI))
 
     def clock_to_all(self) -> str:
         """Clocks every stepped service needs: each one of a run paced to the wall clock, and a step re-sent
         because a participant left."""
-        return f"{self.root}/{WORLD_ID}/@clock/all"
+        return self._clock_key("all")
 
     def clock_steps(self, periods_in_steps: Iterable[int | None]) -> list[str]:
         """Key expressions matching the clock_step() keys of every step on which a trigger with one of these
@@ -48,7 +48,10 @@ class KeyLayout:
         # A pattern inside a wider one would only deliver its clocks twice.
         kept = [p for p in patterns if not any(q != p and all(b in (a, EVERY_STEP) for a, b in zip(p, q))
                                                  for q in patterns)]
-        return sorted(f"{self.root}/{WORLD_ID}/@clock/" + "/".join(pattern) for pattern in kept)
+        return sorted(self._clock_key(*pattern) for pattern in kept)
+
+    def _clock_key(self, *chunks: str) -> str:
+        return "/".join((self.root, WORLD_ID, "@clock", *chunks))
 
     def liveliness(self, vehicle_id: str, service: str) -> str:
         return f"{self.root}/{vehicle_id}/_alive/{service}"

@@ -32,10 +32,6 @@ class ClockSubscription:
         self._step_s = step_s
         self._keys: set[str] = set()
 
-    @property
-    def keys(self) -> set[str]:
-        return set(self._keys)
-
     def declare(self, trigger_periods_s: Iterable[float]) -> None:
         layout = self._bus.layout
         periods = [self._whole_steps(period_s) for period_s in trigger_periods_s]
