@@ -45,11 +45,10 @@ _ALL = [
     Topic("gnss/fix", gnss_pb2.GnssFix, "sim"),
     Topic("gnss/serial_mark", sim_pb2.WireMark, "sim"),
     Topic("radio/mark", sim_pb2.WireMark, "sim"),
-    Topic("vehicle/state", vehicle_pb2.VehicleCanState, "sim"),
     Topic("vehicle/imu", vehicle_pb2.ImuSample, "sim"),
-    Topic("can/vehicle", vehicle_pb2.CanFrame, "sim"),
+    # The vehicle's CAN bus (VEH_ feedback, the radar's RDR_ object lists) as the simulator would put it on the wire.
+    Topic("can/vehicle", vehicle_pb2.CanFrames, "sim"),
     Topic("can/command", vehicle_pb2.CanFrame, "actuation"),
-    Topic("radar/tracks", sensors_pb2.RadarTracks, "sim"),
     Topic("lidar/scan", sensors_pb2.LidarScan, "sim"),
     Topic("camera/frame", sensors_pb2.CameraFrame, "sim"),
     Topic("sonar/ranges", sensors_pb2.SonarRanges, "sim"),

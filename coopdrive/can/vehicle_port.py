@@ -1,9 +1,10 @@
-"""The vehicle's own CAN bus through python-can: command frames out, feedback frames in.
+"""The vehicle's own CAN bus through python-can: frames out, frames in.
 
-On the vehicle the actuation service sends its ACT_ frames here (socketcan, a PCAN or Kvaser adapter, or any
-interface python-can supports) besides publishing them on can/command, and reads the car's VEH_ feedback
-frames back, decoded with the DBC. Error frames, send failures and malformed frames are counted, never
-raised; every frame in and out can go to a candump log that can-utils' canplayer replays.
+On the vehicle a service opens the bus here (socketcan, a PCAN or Kvaser adapter, or any interface python-can
+supports): actuation sends its ACT_ frames and reads the car's VEH_ feedback, geolocation reads the odometry,
+scene the radar's object lists. Received frames go to a callback (a VehicleBusReader decodes them), stamped
+with the service's clock on arrival: an interface's own timestamps run on another time base. Send failures
+are counted, never raised; every frame in and out can go to a candump log that can-utils' canplayer replays.
 """
 
 from __future__ import annotations
@@ -17,9 +18,6 @@ import can
 from pydantic import BaseModel, ConfigDict, Field
 
 from coopdrive.can.candump import CandumpLogger
-from coopdrive.can.codec import VehicleCanCodec
-from coopdrive.can.frames import CanDecodeError
-from coopdrive.v1 import vehicle_pb2
 
 # How long the receive thread blocks on the bus before looking whether it should stop.
 RECEIVE_TIMEOUT_S = 0.1
@@ -41,16 +39,17 @@ class VehicleCanPortError(RuntimeError):
 
 
 class VehicleCanPort:
-    def __init__(self, config: VehicleCanPortConfig,
-                 on_vehicle_state: Callable[[vehicle_pb2.VehicleCanState], None]) -> None:
+    def __init__(self, config: VehicleCanPortConfig, on_frame: Callable[[can.Message], None],
+                 clock: Callable[[], float] | None = None) -> None:
+        """on_frame runs on python-can's receive thread; clock (the service's now_s) restamps each frame."""
         extra = {"bitrate": config.bitrate} if config.bitrate is not None else {}
         try:
             self.bus = can.Bus(interface=config.interface, channel=config.channel, **extra)
         except (can.CanError, OSError, ValueError, ImportError, NotImplementedError) as error:
             raise VehicleCanPortError(f"can_port: {config.interface} channel {config.channel!r} could not be "
                                       f"opened: {error}") from error
-        self.codec = VehicleCanCodec(channel=config.channel)
-        self.on_vehicle_state = on_vehicle_state
+        self.on_frame = on_frame
+        self.clock = clock
         self.counters: Counter[str] = Counter()
         self._lock = threading.Lock()
         self._log = CandumpLogger(config.candump_path, channel=config.channel) if config.candump_path else None
@@ -68,20 +67,12 @@ class VehicleCanPort:
 
     def _on_message(self, msg: can.Message) -> None:
         self._write_log(msg)
-        if msg.is_error_frame:
-            self._count("can_error_frames")
-            return
-        try:
-            state = self.codec.decode_vehicle_state(msg)
-        except CanDecodeError as error:
-            self._count(f"can_rejected_{error.reason.name.lower()}")
-            return
-        self._count("can_frames_received")
-        if state is not None:
-            self.on_vehicle_state(state)
+        if self.clock is not None:
+            msg.timestamp = self.clock()
+        self.on_frame(msg)
 
     def counts(self) -> dict[str, int]:
-        """A snapshot of the counters (the receive thread keeps adding to them)."""
+        """A snapshot of the send counters."""
         with self._lock:
             return dict(self.counters)
 

@@ -59,7 +59,9 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
     geolocation = {"geolocator": {"track_width_m": profile.track_width_m, "wheelbase_m": profile.wheelbase_m,
                                   "antenna_x_m": sensors.gnss.antenna_x_m, "antenna_y_m": sensors.gnss.antenna_y_m,
                                   "wheel_speed_std_mps": max(sensors.can_state.wheel_speed_sigma_mps, 1e-3)},
-                   "gnss_receiver_latency_s": sensors.gnss.timing.latency_s}
+                   "gnss_receiver_latency_s": sensors.gnss.timing.latency_s,
+                   "can_latency_s": sensors.can_state.timing.latency_s}
+    scene = {"radar_latency_s": sensors.radar.timing.latency_s}
     truck = vehicle.profile is ProfileName.TRUCK
     control = {"profile": "truck" if truck else "car"}
     # The simulated brake pressure follows the actuator's lag: automation braking takes this long to fade
@@ -69,4 +71,5 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
     steering_s = STEERING_RESPONSE_TIME_CONSTANTS * profile.steer_time_constant_s + profile.steer_dead_time_s
     actuation = {"actuator": {"pedal": (TRUCK_PEDAL_PROFILE if truck else CAR_PEDAL_PROFILE).model_dump(mode="json"),
                               "override": {"brake_release_grace_s": release_s, "steering_response_s": steering_s}}}
-    return {"v2x": v2x, "planner": planner, "geolocation": geolocation, "control": control, "actuation": actuation}
+    return {"v2x": v2x, "planner": planner, "geolocation": geolocation, "scene": scene, "control": control,
+            "actuation": actuation}

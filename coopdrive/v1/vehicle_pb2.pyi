@@ -1,8 +1,9 @@
 from coopdrive.v1 import header_pb2 as _header_pb2
+from google.protobuf.internal import containers as _containers
 from google.protobuf.internal import enum_type_wrapper as _enum_type_wrapper
 from google.protobuf import descriptor as _descriptor
 from google.protobuf import message as _message
-from collections.abc import Mapping as _Mapping
+from collections.abc import Iterable as _Iterable, Mapping as _Mapping
 from typing import ClassVar as _ClassVar, Optional as _Optional, Union as _Union
 
 DESCRIPTOR: _descriptor.FileDescriptor
@@ -77,3 +78,11 @@ class CanFrame(_message.Message):
     is_error_frame: bool
     is_remote_frame: bool
     def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., channel: _Optional[str] = ..., arbitration_id: _Optional[int] = ..., is_extended_id: _Optional[bool] = ..., data: _Optional[bytes] = ..., timestamp_s: _Optional[float] = ..., is_error_frame: _Optional[bool] = ..., is_remote_frame: _Optional[bool] = ...) -> None: ...
+
+class CanFrames(_message.Message):
+    __slots__ = ("header", "frames")
+    HEADER_FIELD_NUMBER: _ClassVar[int]
+    FRAMES_FIELD_NUMBER: _ClassVar[int]
+    header: _header_pb2.Header
+    frames: _containers.RepeatedCompositeFieldContainer[CanFrame]
+    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., frames: _Optional[_Iterable[_Union[CanFrame, _Mapping]]] = ...) -> None: ...

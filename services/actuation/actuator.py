@@ -10,7 +10,6 @@ import math
 import can
 
 from coopdrive.can.codec import VehicleCanCodec, VehicleCommand
-from coopdrive.can.frames import CanDecodeError
 from coopdrive.can.send_schedule import CyclicSendSchedule
 from coopdrive.services.actuation import modes as m
 from coopdrive.services.actuation.config import ActuationConfig
@@ -95,17 +94,6 @@ class Actuator:
             self._fill_header(event.header, now_s)
             self._override_events.append(event)
         return detection
-
-    def on_can_frame(self, msg: can.Message, now_s: float) -> vehicle_pb2.VehicleCanState | None:
-        """A frame from the vehicle bus: feedback is decoded and fed; bad frames are counted, never raised."""
-        try:
-            state = self.codec.decode_vehicle_state(msg)
-        except CanDecodeError:
-            self.frames_rejected += 1
-            return None
-        if state is not None:
-            self.on_vehicle_state(state, now_s)
-        return state
 
     def on_ego_state(self, ego: ego_pb2.EgoState, now_s: float) -> None:
         self.modes.set_localisation_mode(ego.mode, now_s)

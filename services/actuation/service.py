@@ -10,11 +10,13 @@ from __future__ import annotations
 
 import enum
 
-import can
 from pydantic import Field
 
 from coopdrive.bus import Envelope
-from coopdrive.can.vehicle_port import VehicleCanPort, VehicleCanPortConfig
+from coopdrive.can.bus_input import VehicleBusInput
+from coopdrive.can.bus_reader import VehicleBusReader
+from coopdrive.can.vehicle_port import VehicleCanPortConfig
+from coopdrive.can.wire import to_protobuf
 from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.services.actuation.actuator import Actuator
 from coopdrive.services.actuation.config import ActuationConfig, ModeRequirements
@@ -46,7 +48,7 @@ class ActuationServiceConfig(ServiceConfig):
     # service (the follow run follows by radar alone) sets it false, else no automated mode could be entered.
     require_v2x: bool = True
     # The vehicle's CAN bus (python-can): command frames go out on it and its feedback frames are the
-    # vehicle state. None: frames only on can/command and the state from vehicle/state (simulation).
+    # vehicle state. None: frames only on can/command, the feedback from can/vehicle (simulation).
     can_port: VehicleCanPortConfig | None = None
 
     def actuator_config(self, vehicle_id: str) -> ActuationConfig:
@@ -69,13 +71,6 @@ def v2x_healthy(status: v2x_pb2.V2xStatus) -> bool:
     return any(station.state == v2x_pb2.LINK_STATE_ACTIVE for station in status.stations)
 
 
-def can_frame(message: can.Message) -> vehicle_pb2.CanFrame:
-    return vehicle_pb2.CanFrame(channel=message.channel or "", arbitration_id=message.arbitration_id,
-                                is_extended_id=message.is_extended_id, data=bytes(message.data),
-                                timestamp_s=message.timestamp, is_error_frame=message.is_error_frame,
-                                is_remote_frame=message.is_remote_frame)
-
-
 class ActuationService(Service):
     name = "actuation"
     Config = ActuationServiceConfig
@@ -87,7 +82,6 @@ class ActuationService(Service):
         self.last_refusal = ""
         self.status: actuation_pb2.ActuationStatus | None = None
         self.ctx.subscribe("control/command", self.on_control_command)
-        self.ctx.subscribe("vehicle/state", self.on_vehicle_state)
         self.ctx.subscribe("ego/state", self.on_ego_state)
         if c.require_v2x:
             self.ctx.subscribe("v2x/status", self.on_v2x_status)
@@ -96,25 +90,18 @@ class ActuationService(Service):
         self.ctx.watch_liveliness(self.on_liveliness)
         self.ctx.every(1.0 / c.rate_hz, self.actuate)
         self.ctx.every(1.0 / c.status_rate_hz, self.publish_status)
-        self.can_port = None
-        if c.can_port is not None:
-            # Frames arrive on python-can's receive thread; the actuator runs on the service's worker thread.
-            self.can_port = VehicleCanPort(c.can_port, lambda state: self.ctx.call_soon(
-                lambda: self._on_vehicle_can_state(state)))
+        self.vehicle_bus = VehicleBusInput(self.ctx, VehicleBusReader(on_vehicle_state=self.on_vehicle_state),
+                                           c.can_port)
 
     def stop(self) -> None:
-        if self.can_port is not None:
-            self.can_port.close()
+        self.vehicle_bus.close()
 
     # ----- inputs ---------------------------------------------------------------------------
     def on_control_command(self, envelope: Envelope) -> None:
         if not self.actuator.on_control_command(envelope.message, self.ctx.now_s()):
             self.count("rejected_commands")
 
-    def on_vehicle_state(self, envelope: Envelope) -> None:
-        self._on_vehicle_can_state(envelope.message)
-
-    def _on_vehicle_can_state(self, state) -> None:
+    def on_vehicle_state(self, state: vehicle_pb2.VehicleCanState) -> None:
         if self.actuator.on_vehicle_state(state, self.ctx.now_s()) is not None:
             self.count("driver_overrides")
 
@@ -147,10 +134,9 @@ class ActuationService(Service):
             self._engage(now_s)
         frames, self.status = self.actuator.step(now_s)
         for frame in frames:
-            self.ctx.publish("can/command", can_frame(frame), sample_time_s=now_s)
-        if self.can_port is not None:
-            self.can_port.send(frames)
-            self.counters.update(self.can_port.counts())
+            self.ctx.publish("can/command", to_protobuf(frame), sample_time_s=now_s)
+        self.vehicle_bus.send(frames)
+        self.counters.update(self.vehicle_bus.counts())
         command = self.actuator.actuator_command(now_s)
         if command is not None:
             self.ctx.publish("actuation/command", command, sample_time_s=now_s)

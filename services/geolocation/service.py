@@ -7,6 +7,9 @@ import enum
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from coopdrive.bus import Envelope
+from coopdrive.can.bus_input import VehicleBusInput
+from coopdrive.can.bus_reader import VehicleBusReader
+from coopdrive.can.vehicle_port import VehicleCanPortConfig
 from coopdrive.roadmap import RoadMap
 from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.services.geolocation.config import GeolocatorConfig
@@ -55,6 +58,11 @@ class GeolocationConfig(ServiceConfig):
     # How long after its epoch the receiver puts a fix on the wire (its datasheet's output latency). A fix is
     # fused at its arrival minus this: left at 0, the estimate trails the car by speed times the latency.
     gnss_receiver_latency_s: float = Field(0.0, ge=0.0)
+    # The vehicle's CAN bus (python-can) with the VEH_ odometry frames; None: the frames come from the
+    # can/vehicle topic (simulation, replay).
+    can_port: VehicleCanPortConfig | None = None
+    # How long after measuring them the car puts wheel speeds and yaw rate on the bus.
+    can_latency_s: float = Field(0.005, ge=0.0)
 
     @model_validator(mode="after")
     def _one_source_of_the_frame(self) -> GeolocationConfig:
@@ -82,7 +90,9 @@ class GeolocationService(Service):
             self.ctx.subscribe("gnss/fix", self.on_gnss_fix)
         else:
             self._start_serial(c)
-        self.ctx.subscribe("vehicle/state", self.on_can_state)
+        reader = VehicleBusReader(on_vehicle_state=self.geolocator.on_can_state,
+                                  vehicle_state_latency_s=c.can_latency_s)
+        self.vehicle_bus = VehicleBusInput(self.ctx, reader, c.can_port)
         if c.use_imu:
             self.ctx.subscribe("vehicle/imu", self.on_imu)
         self.ctx.every(1.0 / c.output_rate_hz, self.publish_estimate)
@@ -99,6 +109,7 @@ class GeolocationService(Service):
             self.serial.start_thread(lambda chunk: self.ctx.call_soon(lambda: self.on_serial_bytes(chunk)))
 
     def stop(self) -> None:
+        self.vehicle_bus.close()
         if self.serial is not None:
             self.serial.close()
 
@@ -121,9 +132,6 @@ class GeolocationService(Service):
         # What the receiver said, so recordings hold it next to the estimate.
         self.ctx.publish("ego/gnss", fix, sample_time_s=fix.header.sample_time_s)
 
-    def on_can_state(self, envelope: Envelope) -> None:
-        self.geolocator.on_can_state(envelope.message)
-
     def on_imu(self, envelope: Envelope) -> None:
         self.geolocator.on_imu(envelope.message)
 
@@ -131,3 +139,4 @@ class GeolocationService(Service):
         self.ctx.publish("ego/state", self.geolocator.estimate(now_s), sample_time_s=now_s)
         # stats() are running totals, so they replace the counters rather than add to them.
         self.counters.update(self.geolocator.stats())
+        self.counters.update(self.vehicle_bus.counts())

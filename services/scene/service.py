@@ -5,6 +5,9 @@ from __future__ import annotations
 from pydantic import Field
 
 from coopdrive.bus import Envelope
+from coopdrive.can.bus_input import VehicleBusInput
+from coopdrive.can.bus_reader import VehicleBusReader
+from coopdrive.can.vehicle_port import VehicleCanPortConfig
 from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.roadmap import RoadMap
 from coopdrive.runtime.service import Service, ServiceConfig
@@ -14,8 +17,7 @@ from coopdrive.services.scene.intended_accel import IntendedAccelerations
 from coopdrive.services.scene.measurement import V2vObservation
 from coopdrive.services.scene.road_lanes import EgoRoadLanes
 
-SENSOR_TOPICS = {"radar/tracks": "on_radar", "lidar/scan": "on_lidar", "camera/frame": "on_camera",
-                 "sonar/ranges": "on_sonar"}
+SENSOR_TOPICS = {"lidar/scan": "on_lidar", "camera/frame": "on_camera", "sonar/ranges": "on_sonar"}
 
 
 class SceneConfig(ServiceConfig):
@@ -29,6 +31,10 @@ class SceneConfig(ServiceConfig):
     # A station's iCLCM acceleration request older than this is not put on its object.
     intended_accel_max_age_s: float = Field(default=0.4, gt=0)
     fusion: SceneFusionConfig = Field(default_factory=SceneFusionConfig)
+    # The CAN bus the radar's object lists arrive on (python-can); None: the can/vehicle topic (simulation).
+    can_port: VehicleCanPortConfig | None = None
+    # How long after measuring an object list the radar sends it (its cycle's processing time).
+    radar_latency_s: float = Field(default=0.05, ge=0)
 
 
 class SceneService(Service):
@@ -48,11 +54,16 @@ class SceneService(Service):
         self.ctx.subscribe("ego/state", self.on_ego)
         for topic, method in SENSOR_TOPICS.items():
             self.ctx.subscribe(topic, self._sensor_handler(method))
+        self.vehicle_bus = VehicleBusInput(self.ctx, VehicleBusReader(
+            on_radar_tracks=self.fusion.on_radar, radar_latency_s=config.radar_latency_s), config.can_port)
         self.ctx.subscribe("v2x/cam", self.on_cam)
         self.intended = IntendedAccelerations(config.intended_accel_max_age_s, config.fusion.trust.min_trusted)
         self.ctx.subscribe("v2x/iclcm", lambda envelope: self.intended.on_iclcm(
             envelope.message, envelope.message.header.sample_time_s))
         self.ctx.every(1.0 / config.output_rate_hz, self.publish_scene)
+
+    def stop(self) -> None:
+        self.vehicle_bus.close()
 
     def _sensor_handler(self, method_name: str):
         method = getattr(self.fusion, method_name)
@@ -83,6 +94,6 @@ class SceneService(Service):
     def publish_scene(self, now_s: float) -> None:
         scene = self.fusion.scene(now_s)
         self.intended.annotate(scene, now_s)
-        for name, value in self.fusion.counters().items():
-            self.counters[name] = value
+        self.counters.update(self.fusion.counters())
+        self.counters.update(self.vehicle_bus.counts())
         self.ctx.publish("scene", scene, sample_time_s=now_s)

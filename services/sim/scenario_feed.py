@@ -17,6 +17,7 @@ from coopdrive.can.codec import VehicleCanCodec
 from coopdrive.can.frames import CanDecodeError
 from coopdrive.roadmap import RoadMap
 from coopdrive.runtime.service import Service
+from coopdrive.services.sim.fault_config import CanErrorBurst
 from coopdrive.services.sim.gnss_pty import GnssPty
 from coopdrive.services.sim.intent_encoder import IntentEncoder
 from coopdrive.services.sim.radio_faults import RadioFaults
@@ -25,11 +26,12 @@ from coopdrive.services.sim.mission_verdict import MissionJudge
 from coopdrive.services.sim.radio_box import RadioBox, RadioPorts
 from coopdrive.services.sim.scenario_config import load_scenario
 from coopdrive.services.sim.scenario_sim import ScenarioSim, StackCommand
+from coopdrive.services.sim.vehicle_bus_writer import VehicleBusWriter
 from coopdrive.v1 import sim_pb2
 
-# SensorOutputs field -> the stack topic it is published on.
-SENSOR_TOPICS = {"gnss": "gnss/fix", "can_state": "vehicle/state", "imu": "vehicle/imu", "radar": "radar/tracks",
-                 "lidar": "lidar/scan", "camera": "camera/frame", "sonar": "sonar/ranges"}
+# SensorOutputs field -> the stack topic it is published on; can_state and radar go on the CAN bus (can/vehicle).
+SENSOR_TOPICS = {"gnss": "gnss/fix", "imu": "vehicle/imu", "lidar": "lidar/scan", "camera": "camera/frame",
+                 "sonar": "sonar/ranges"}
 GROUND_TRUTH_PERIOD_S = 0.1
 
 
@@ -45,6 +47,7 @@ class ScenarioFeed:
         self.sim = ScenarioSim(config, self.road_map, self.stacks, already_delayed_steps)
         self.config = self.sim.config
         self.codecs = {vehicle_id: VehicleCanCodec() for vehicle_id in self.stacks}
+        self.vehicle_buses = {vehicle_id: VehicleBusWriter() for vehicle_id in self.stacks}
         self.box = RadioBox({v: RadioPorts(**ports) for v, ports in radio_links.items()}, self.sim.objects.channel)
         self.encoder = IntentEncoder(self.road_map.to_geodetic, config.utc_epoch)
         pki_dir = service.config.security_pki_dir
@@ -95,6 +98,10 @@ class ScenarioFeed:
                     else:
                         self.ctx.publish_for(vehicle_id, "gnss/serial_mark",
                                              sim_pb2.WireMark(written=line.write(item.data)))
+            frames = self.vehicle_buses[vehicle_id].frames(now_s, self.config.step_s, outputs.can_state, outputs.radar,
+                                                           self._error_frames_per_s(vehicle_id, now_s))
+            if frames is not None:
+                self.ctx.publish_for(vehicle_id, "can/vehicle", frames)
         for intent in self.sim.intents(now_s):
             packet = self.encoder.encode(intent)
             if packet is not None:
@@ -110,6 +117,10 @@ class ScenarioFeed:
         self.service.counters["radio_fault_dropped_iclcm"] = self.radio_faults.dropped_count
         if now_s >= self.service.config.duration_s - 1e-9 and not self.finished:
             self.finish(now_s)
+
+    def _error_frames_per_s(self, vehicle_id: str, now_s: float) -> float:
+        return sum(fault.error_frames_per_s for fault in self.sim.objects.faults.active(now_s)
+                   if isinstance(fault, CanErrorBurst) and fault.vehicle_id == vehicle_id)
 
     def publish_ground_truth(self, now_s: float) -> None:
         truth = self.sim.ground_truth()

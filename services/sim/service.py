@@ -19,6 +19,7 @@ from coopdrive.services.sim.follow_judge import FollowJudge
 from coopdrive.services.sim.profiles import PROFILES, ProfileName
 from coopdrive.services.sim.scenario_config import load_scenario
 from coopdrive.services.sim.scenario_feed import ScenarioFeed
+from coopdrive.services.sim.vehicle_bus_writer import VehicleBusWriter
 from coopdrive.services.sim.vehicle_model import VehicleModel
 from coopdrive.services.sim.world_config import VehicleSpec, WorldConfig
 from coopdrive.services.sim.world_service import FollowWorld
@@ -79,7 +80,8 @@ class SimConfig(ServiceConfig):
 
         Geolocation: the follow world lies off every lane map, so the world's origin and no lane matching; the
         simulated GNSS antenna sits at the vehicle reference point; the odometry needs the simulated track width
-        and wheel-speed noise. Control: radar-only following at the judged time gap, braking as hard as the
+        and wheel-speed noise. Geolocation and scene: the world's CAN state and radar are on the bus in the step
+        they were measured, so there is no sender latency to take off. Control: radar-only following at the judged time gap, braking as hard as the
         leader does without an emergency. Actuation: the stacks have no v2x service and start moving, so they
         engage cooperative (longitudinal) control at once, at speed, without the V2X condition (a vehicle's
         default is to wait for its driver, below 10 km/h, with V2X).
@@ -99,7 +101,9 @@ class SimConfig(ServiceConfig):
                 "geolocator": {"antenna_x_m": 0.0, "antenna_y_m": 0.0, "track_width_m": stacks[0].track_width_m,
                                "wheelbase_m": stacks[0].wheelbase_m,
                                "wheel_speed_std_mps": world.can.wheel_speed_sigma_mps},
+                "can_latency_s": 0.0,
             },
+            "scene": {"radar_latency_s": 0.0},
             "control": {"profile_overrides": {
                 # Nothing to fall back from: without V2X the planner's time gap already is the ACC gap.
                 "spacing": {"fallback_time_gap_raise_s": 0.0},
@@ -151,6 +155,7 @@ class SimService(Service, ClockMaster.Driven):
         self.steering_requests: dict[str, float] = {}
         # One codec per vehicle bus (rolling counters are per receiver); the model only maps pedals to a request.
         self.command_codecs = {vehicle_id: VehicleCanCodec() for vehicle_id in self.stack_vehicles}
+        self.vehicle_buses = {vehicle_id: VehicleBusWriter() for vehicle_id in self.stack_vehicles}
         self.pedals = VehicleModel(PROFILES[config.pedal_profile], config.step_s)
         self.finished = False
         for vehicle_id in self.stack_vehicles:
@@ -231,7 +236,8 @@ class SimService(Service, ClockMaster.Driven):
                 wheel_speed_rear_right_mps=wheel(body.yaw_rate_radps * half_track),
                 yaw_rate_radps=body.yaw_rate_radps + self.rng.normal(0, noise.yaw_rate_sigma_radps),
                 steering_angle_rad=body.steering_angle_rad, gear=vehicle_pb2.GEAR_DRIVE)
-            self.ctx.publish_for(vehicle_id, "vehicle/state", state)
+            state.header.sent_time_s = now_s
+            self._put_on_bus(vehicle_id, now_s, can_states=[state])
 
     def publish_gnss(self, now_s: float) -> None:
         world = self.config.world
@@ -267,7 +273,13 @@ class SimService(Service, ClockMaster.Driven):
                                   range_rate_mps=other.speed_mps - me.speed_mps
                                   + self.rng.normal(0, radar.range_rate_sigma_mps),
                                   width_m=other.spec.width_m)
-            self.ctx.publish_for(vehicle_id, "radar/tracks", tracks)
+            tracks.header.sent_time_s = now_s
+            self._put_on_bus(vehicle_id, now_s, radar_tracks=[tracks])
+
+    def _put_on_bus(self, vehicle_id: str, now_s: float, **samples) -> None:
+        frames = self.vehicle_buses[vehicle_id].frames(now_s, self.config.step_s, **samples)
+        if frames is not None:
+            self.ctx.publish_for(vehicle_id, "can/vehicle", frames)
 
     def publish_ground_truth(self, now_s: float) -> None:
         truth = sim_pb2.GroundTruth(collisions=self.judge.collisions)

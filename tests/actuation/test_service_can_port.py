@@ -46,8 +46,9 @@ class BusFreeContext:
     def call_soon(self, function) -> None:
         self.calls.put(function)
 
-    def pump(self) -> None:
-        self.calls.get(timeout=WAIT_S)()
+    def pump(self, calls: int) -> None:
+        for _ in range(calls):
+            self.calls.get(timeout=WAIT_S)()
 
 
 @pytest.fixture
@@ -81,10 +82,11 @@ def test_the_cars_feedback_frames_reach_the_actuator_as_its_vehicle_state(servic
     service, ctx, car_end = service_on_bus
     service.actuate(0.02)
     assert "vehicle state received" in unmet_for_cooperative(service)
-    for frame in VehicleCanCodec().encode_vehicle_state(vehicle_pb2.VehicleCanState(
-            wheel_speed_rear_left_mps=5.0, wheel_speed_rear_right_mps=5.0)):
+    feedback = VehicleCanCodec().encode_vehicle_state(vehicle_pb2.VehicleCanState(
+        wheel_speed_rear_left_mps=5.0, wheel_speed_rear_right_mps=5.0))
+    for frame in feedback:
         car_end.send(frame)
-    ctx.pump()
+    ctx.pump(len(feedback))
     ctx.time_s = 0.04
     service.actuate(0.04)
     assert "vehicle state received" not in unmet_for_cooperative(service)
@@ -116,9 +118,10 @@ class CarOnTheBus:
             self.ctx.time_s = now_s = start_s + k * CYCLE_S
             self.keep_the_rest_of_the_stack_healthy(now_s)
             self.service.actuator.on_control_command(control_command(0.5), now_s)
-            for frame in self.codec.encode_vehicle_state(vehicle_state(CREEP_MPS, **driver)):
+            feedback = self.codec.encode_vehicle_state(vehicle_state(CREEP_MPS, **driver))
+            for frame in feedback:
                 self.car_end.send(frame)
-            self.ctx.pump()
+            self.ctx.pump(len(feedback))
             self.service.actuate(now_s)
 
     def keep_the_rest_of_the_stack_healthy(self, now_s: float) -> None:

@@ -3,6 +3,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from coopdrive.can import frames
+from coopdrive.can.bus_reader import VehicleBusReader
 from coopdrive.can.codec import VehicleCanCodec
 from coopdrive.can.frames import CanDecodeError, VehicleFrame
 from coopdrive.services.actuation.actuator import Actuator
@@ -49,8 +50,16 @@ def test_random_payloads_with_a_valid_checksum_only_ever_raise_can_decode_error(
 
 @FUZZ
 @given(st.lists(frames_strategy, min_size=1, max_size=20))
-def test_the_actuator_counts_random_vehicle_frames_without_raising(messages):
+def test_a_bus_reader_feeding_the_actuator_counts_random_frames_without_raising(messages):
     actuator = Actuator()
+    now_s = 0.0
+    reader = VehicleBusReader(on_vehicle_state=lambda state: actuator.on_vehicle_state(state, now_s),
+                              on_radar_tracks=lambda tracks: None)
     for i, msg in enumerate(messages):
-        actuator.on_can_frame(msg, i * 0.01)
-        actuator.step(i * 0.01)
+        now_s = i * 0.01
+        reader.feed(msg)
+        actuator.step(now_s)
+    handled = sum(reader.counters.values())
+    known_data_frames = [m for m in messages if not m.is_error_frame]
+    assert handled == len(messages) - sum(1 for m in known_data_frames if not m.is_extended_id
+                                          and frames.frame_by_id(m.arbitration_id) in frames.COMMAND_FRAMES)

@@ -31,6 +31,26 @@ def test_every_compose_service_runs_a_real_coopdrive_service():
         assert (ROOT / "deploy" / "config" / Path(config).name).exists(), f"{name}: {config} is not in deploy/config"
 
 
+def test_every_deployed_config_is_valid_for_its_service():
+    for name, spec in compose_services().items():
+        if name == "zenohd":
+            continue
+        command = spec["command"]
+        config = yaml.safe_load((ROOT / "deploy" / "config" / Path(command[command.index("--config") + 1]).name)
+                                .read_text()) or {}
+        service_class(name).Config.model_validate(config)
+
+
+def test_on_the_vehicle_geolocation_scene_and_actuation_read_the_car_s_can_buses_and_geolocation_its_gnss():
+    def deployed(name: str) -> dict:
+        return yaml.safe_load((ROOT / "deploy" / "config" / f"{name}.yaml").read_text())
+
+    for name in ("geolocation", "scene", "actuation"):
+        assert deployed(name)["can_port"]["interface"] == "socketcan", name
+    gnss_port = deployed("geolocation")["gnss_port"]
+    assert any(device.endswith(f":{gnss_port}") for device in compose_services()["geolocation"]["devices"])
+
+
 @pytest.mark.skipif(shutil.which("docker-compose") is None, reason="Debian's docker-compose is installed by .ci/run")
 def test_docker_compose_accepts_the_file():
     result = subprocess.run(["docker-compose", "-f", str(ROOT / "docker-compose.yml"), "config", "-q"],

@@ -64,7 +64,7 @@ def gateway():
 def test_it_subscribes_to_the_world_clock_and_to_the_vehicle_s_topics_but_not_its_own(gateway):
     ctx, _ = gateway
     assert ("world", "clock") in ctx.subscriptions
-    assert ("ego", "vehicle/state") in ctx.subscriptions
+    assert ("ego", "can/vehicle") in ctx.subscriptions
     assert ("ego", "ego/state") in ctx.subscriptions
     assert not any(topic.startswith("gateway/") for _, topic in ctx.subscriptions)
 

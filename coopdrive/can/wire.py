@@ -1,0 +1,19 @@
+"""python-can messages <-> coopdrive.v1 CanFrame, the form a CAN frame takes on the Zenoh bus."""
+
+import can
+
+from coopdrive.v1 import vehicle_pb2
+
+
+def to_protobuf(message: can.Message) -> vehicle_pb2.CanFrame:
+    return vehicle_pb2.CanFrame(channel=message.channel or "", arbitration_id=message.arbitration_id,
+                                is_extended_id=message.is_extended_id, data=bytes(message.data),
+                                timestamp_s=message.timestamp, is_error_frame=message.is_error_frame,
+                                is_remote_frame=message.is_remote_frame)
+
+
+def to_python_can(frame: vehicle_pb2.CanFrame) -> can.Message:
+    # check=False: a malformed frame must reach the decoder, which counts it, rather than raise here.
+    return can.Message(timestamp=frame.timestamp_s, arbitration_id=frame.arbitration_id,
+                       is_extended_id=frame.is_extended_id, data=frame.data, channel=frame.channel or None,
+                       is_error_frame=frame.is_error_frame, is_remote_frame=frame.is_remote_frame, check=False)
