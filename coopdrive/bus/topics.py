@@ -45,8 +45,8 @@ _ALL = [
     Topic("gnss/fix", gnss_pb2.GnssFix, "sim"),
     Topic("gnss/serial_mark", sim_pb2.WireMark, "sim"),
     Topic("radio/mark", sim_pb2.WireMark, "sim"),
-    Topic("vehicle/imu", vehicle_pb2.ImuSample, "sim"),
-    # The vehicle's CAN bus (VEH_ feedback, the radar's RDR_ object lists) as the simulator would put it on the wire.
+    # The vehicle's CAN bus (VEH_ feedback and inertial frames, the radar's RDR_ object lists) as the simulator
+    # would put it on the wire.
     Topic("can/vehicle", vehicle_pb2.CanFrames, "sim"),
     Topic("can/command", vehicle_pb2.CanFrame, "actuation"),
     Topic("lidar/scan", sensors_pb2.LidarScan, "sim"),

@@ -1,8 +1,11 @@
-"""Vehicle CAN: the DBC, its codec and candump logging (pure logic, no transport).
+"""Vehicle CAN: the DBC, its codec, reading the bus and candump logging.
 
-- `vehicle.dbc`: ACT_ command frames (automation -> vehicle), VEH_ feedback frames (vehicle -> automation),
-  RDR_ radar object list. Frames are named by `frames.VehicleFrame`; ids come from the DBC.
-- `codec.VehicleCanCodec`: commands, VehicleCanState and RadarTracks <-> can.Message, with rolling counters
-  and checksums; bad frames raise `frames.CanDecodeError` with a `DecodeFailure` reason.
+- `vehicle.dbc`: ACT_ command frames (automation -> vehicle), VEH_ feedback and inertial frames (vehicle ->
+  automation), RDR_ radar object list. Frames are named by `frames.VehicleFrame`; ids come from the DBC.
+- `codec.VehicleCanCodec`: commands, VehicleCanState, ImuSample and RadarTracks <-> can.Message, with rolling
+  counters and checksums; bad frames raise `frames.CanDecodeError` with a `DecodeFailure` reason.
+- `bus_reader.VehicleBusReader`: the frames one service asked for, decoded and handed on; the rest counted.
+- `vehicle_port.VehicleCanPort`: a python-can interface (SocketCAN on the vehicle); `bus_input.VehicleBusInput`
+  picks it or the can/vehicle topic; `wire`: can.Message <-> coopdrive.v1 CanFrame.
 - `candump.CandumpLogger` / `candump.read_candump`: candump .log files through python-can.
 """

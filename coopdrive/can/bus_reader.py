@@ -1,7 +1,7 @@
 """VehicleBusReader: what one service reads from the vehicle's CAN bus, decoded with the DBC.
 
-The VEH_ feedback frames become a VehicleCanState once per cycle and the radar's RDR_ object list becomes
-RadarTracks, each handed to the callback the service gave for it. Frames of a family the service did not ask
+The VEH_ feedback frames become a VehicleCanState once per cycle, each VEH_Inertial frame an ImuSample and the
+radar's RDR_ object list RadarTracks, each handed to the callback the service gave for it. Frames of a family the service did not ask
 for are skipped by id without decoding; error frames and frames that cannot be trusted are counted under
 their reason (`can_error_frames`, `can_rejected_<reason>`), never raised.
 
@@ -24,16 +24,20 @@ from coopdrive.v1 import sensors_pb2, vehicle_pb2
 
 VehicleStateHandler = Callable[[vehicle_pb2.VehicleCanState], None]
 RadarTracksHandler = Callable[[sensors_pb2.RadarTracks], None]
+ImuSampleHandler = Callable[[vehicle_pb2.ImuSample], None]
 
 
 class VehicleBusReader:
     def __init__(self, on_vehicle_state: VehicleStateHandler | None = None,
-                 on_radar_tracks: RadarTracksHandler | None = None, vehicle_state_latency_s: float = 0.0,
-                 radar_latency_s: float = 0.0) -> None:
+                 on_radar_tracks: RadarTracksHandler | None = None, on_imu_sample: ImuSampleHandler | None = None,
+                 vehicle_state_latency_s: float = 0.0, radar_latency_s: float = 0.0,
+                 imu_latency_s: float = 0.0) -> None:
         self.on_vehicle_state = on_vehicle_state
         self.on_radar_tracks = on_radar_tracks
+        self.on_imu_sample = on_imu_sample
         self.vehicle_state_latency_s = vehicle_state_latency_s
         self.radar_latency_s = radar_latency_s
+        self.imu_latency_s = imu_latency_s
         self.counters: Counter[str] = Counter()
         self._codec = VehicleCanCodec()
         self._handlers: dict[int, Callable[[can.Message], None]] = {}
@@ -41,6 +45,8 @@ class VehicleBusReader:
             self._handle(frames.FEEDBACK_FRAMES, self._on_feedback_frame)
         if on_radar_tracks is not None:
             self._handle(frames.RADAR_FRAMES, self._on_radar_frame)
+        if on_imu_sample is not None:
+            self._handle(frames.INERTIAL_FRAMES, self._on_inertial_frame)
 
     def _handle(self, family: tuple[VehicleFrame, ...], handler: Callable[[can.Message], None]) -> None:
         for frame in family:
@@ -74,6 +80,11 @@ class VehicleBusReader:
         if state is not None:
             state.header.sample_time_s -= self.vehicle_state_latency_s
             self.on_vehicle_state(state)
+
+    def _on_inertial_frame(self, message: can.Message) -> None:
+        sample = self._codec.decode_imu_sample(message)
+        sample.header.sample_time_s -= self.imu_latency_s
+        self.on_imu_sample(sample)
 
     def _on_radar_frame(self, message: can.Message) -> None:
         tracks = self._codec.decode_radar(message)

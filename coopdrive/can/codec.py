@@ -154,8 +154,10 @@ class VehicleCanCodec:
 
     # ---- sending -------------------------------------------------------------------------------------------
 
-    def encode_command(self, frame: VehicleFrame, signals: Mapping[str, float], timestamp_s: float = 0.0) -> can.Message:
-        """Encodes one frame, filling Counter and Checksum when it has them; out-of-range values raise ValueError."""
+    def encode_command(self, frame: VehicleFrame, signals: Mapping[str, float], timestamp_s: float = 0.0,
+                       checked: bool = True) -> can.Message:
+        """Encodes one frame, filling Counter and Checksum when it has them; out-of-range values raise ValueError
+        (checked=False: the caller clamped them to the DBC ranges already)."""
         definition = frames.message(frame)
         values = dict(signals)
         integrity = frames.has_integrity_signals(frame)
@@ -167,7 +169,7 @@ class VehicleCanCodec:
             if isinstance(value, float) and not math.isfinite(value):
                 raise ValueError(f"{frame}.{name} is not finite: {value}")
         try:
-            data = bytearray(definition.encode(values, strict=True))
+            data = bytearray(definition.encode(values, strict=checked))
         except Exception as error:  # cantools raises several types for range and missing-signal errors
             raise ValueError(f"{frame}: {error}") from error
         if integrity:
@@ -189,7 +191,15 @@ class VehicleCanCodec:
         """Simulator side: the VEH_ frames of one cycle, closing frame last; values saturate at the DBC ranges."""
         signals = _feedback_signals(state, driver_steering_torque_nm)
         return [self.encode_command(frame, clamp_to_signal_ranges(frames.message(frame), signals[frame]),
-                                    timestamp_s) for frame in frames.FEEDBACK_FRAMES]
+                                    timestamp_s, checked=False) for frame in frames.FEEDBACK_FRAMES]
+
+    def encode_imu_sample(self, sample: vehicle_pb2.ImuSample, timestamp_s: float = 0.0) -> can.Message:
+        """Simulator side: one VEH_Inertial frame; values saturate at the DBC ranges."""
+        frame = VehicleFrame.INERTIAL
+        signals = {"AccelLongitudinal": sample.accel_longitudinal_mps2, "AccelLateral": sample.accel_lateral_mps2,
+                   "YawRate": sample.yaw_rate_radps}
+        return self.encode_command(frame, clamp_to_signal_ranges(frames.message(frame), signals), timestamp_s,
+                                   checked=False)
 
     def encode_radar_tracks(self, tracks: sensors_pb2.RadarTracks, timestamp_s: float = 0.0) -> list[can.Message]:
         """Simulator side: header then one RDR_Object per track (nearest MAX_RADAR_OBJECTS only)."""
@@ -197,7 +207,7 @@ class VehicleCanCodec:
         messages = []
         for frame, signals in encode_radar_frames(tracks, self._radar_measurement_counter):
             signals = clamp_to_signal_ranges(frames.message(frame), signals)
-            messages.append(self.encode_command(frame, signals, timestamp_s))
+            messages.append(self.encode_command(frame, signals, timestamp_s, checked=False))
         return messages
 
     # ---- receiving -----------------------------------------------------------------------------------------
@@ -291,6 +301,14 @@ class VehicleCanCodec:
         state.CopyFrom(self._state)
         state.header.sample_time_s = msg.timestamp
         return state
+
+    def decode_imu_sample(self, msg: can.Message) -> vehicle_pb2.ImuSample:
+        """header.sample_time_s is the frame's timestamp; the header's other fields are the caller's."""
+        _, s = self._decode_expecting(msg, frames.INERTIAL_FRAMES)
+        sample = vehicle_pb2.ImuSample(accel_longitudinal_mps2=s["AccelLongitudinal"],
+                                       accel_lateral_mps2=s["AccelLateral"], yaw_rate_radps=s["YawRate"])
+        sample.header.sample_time_s = msg.timestamp
+        return sample
 
     def decode_radar(self, msg: can.Message) -> sensors_pb2.RadarTracks | None:
         """RadarTracks once a header and all its object frames have arrived, else None."""

@@ -28,6 +28,7 @@ class VehicleFrame(enum.StrEnum):
     WHEEL_SPEEDS = "VEH_WheelSpeeds"
     DYNAMICS = "VEH_Dynamics"
     PEDALS = "VEH_Pedals"
+    INERTIAL = "VEH_Inertial"
     RADAR_STATUS = "RDR_ObjectListStatus"
     RADAR_OBJECT = "RDR_Object"
 
@@ -35,6 +36,7 @@ class VehicleFrame(enum.StrEnum):
 COMMAND_FRAMES = (VehicleFrame.LONGITUDINAL_COMMAND, VehicleFrame.STEERING_COMMAND, VehicleFrame.BODY_COMMAND)
 FEEDBACK_FRAMES = (VehicleFrame.DYNAMICS, VehicleFrame.PEDALS, VehicleFrame.WHEEL_SPEEDS)
 RADAR_FRAMES = (VehicleFrame.RADAR_STATUS, VehicleFrame.RADAR_OBJECT)
+INERTIAL_FRAMES = (VehicleFrame.INERTIAL,)
 # The simulator sends the feedback frames in FEEDBACK_FRAMES order; the last one closes a cycle.
 FEEDBACK_CYCLE_CLOSING_FRAME = FEEDBACK_FRAMES[-1]
 
@@ -64,6 +66,7 @@ def load_database() -> Database:
     return cantools.database.load_string(text, database_format="dbc")
 
 
+@cache
 def message(frame: VehicleFrame) -> Message:
     return load_database().get_message_by_name(frame.value)
 

@@ -60,7 +60,8 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
                                   "antenna_x_m": sensors.gnss.antenna_x_m, "antenna_y_m": sensors.gnss.antenna_y_m,
                                   "wheel_speed_std_mps": max(sensors.can_state.wheel_speed_sigma_mps, 1e-3)},
                    "gnss_receiver_latency_s": sensors.gnss.timing.latency_s,
-                   "can_latency_s": sensors.can_state.timing.latency_s}
+                   "can_latency_s": sensors.can_state.timing.latency_s,
+                   "imu_latency_s": sensors.imu.timing.latency_s}
     scene = {"radar_latency_s": sensors.radar.timing.latency_s}
     truck = vehicle.profile is ProfileName.TRUCK
     control = {"profile": "truck" if truck else "car"}

@@ -61,8 +61,9 @@ class GeolocationConfig(ServiceConfig):
     # The vehicle's CAN bus (python-can) with the VEH_ odometry frames; None: the frames come from the
     # can/vehicle topic (simulation, replay).
     can_port: VehicleCanPortConfig | None = None
-    # How long after measuring them the car puts wheel speeds and yaw rate on the bus.
+    # How long after measuring them the car puts wheel speeds and yaw rate on the bus, and the IMU its samples.
     can_latency_s: float = Field(0.005, ge=0.0)
+    imu_latency_s: float = Field(0.005, ge=0.0)
 
     @model_validator(mode="after")
     def _one_source_of_the_frame(self) -> GeolocationConfig:
@@ -91,10 +92,9 @@ class GeolocationService(Service):
         else:
             self._start_serial(c)
         reader = VehicleBusReader(on_vehicle_state=self.geolocator.on_can_state,
-                                  vehicle_state_latency_s=c.can_latency_s)
+                                  on_imu_sample=self.geolocator.on_imu if c.use_imu else None,
+                                  vehicle_state_latency_s=c.can_latency_s, imu_latency_s=c.imu_latency_s)
         self.vehicle_bus = VehicleBusInput(self.ctx, reader, c.can_port)
-        if c.use_imu:
-            self.ctx.subscribe("vehicle/imu", self.on_imu)
         self.ctx.every(1.0 / c.output_rate_hz, self.publish_estimate)
 
     def _start_serial(self, c: GeolocationConfig) -> None:
@@ -131,9 +131,6 @@ class GeolocationService(Service):
         self.geolocator.on_gnss_fix(fix)
         # What the receiver said, so recordings hold it next to the estimate.
         self.ctx.publish("ego/gnss", fix, sample_time_s=fix.header.sample_time_s)
-
-    def on_imu(self, envelope: Envelope) -> None:
-        self.geolocator.on_imu(envelope.message)
 
     def publish_estimate(self, now_s: float) -> None:
         self.ctx.publish("ego/state", self.geolocator.estimate(now_s), sample_time_s=now_s)

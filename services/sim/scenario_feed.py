@@ -29,9 +29,9 @@ from coopdrive.services.sim.scenario_sim import ScenarioSim, StackCommand
 from coopdrive.services.sim.vehicle_bus_writer import VehicleBusWriter
 from coopdrive.v1 import sim_pb2
 
-# SensorOutputs field -> the stack topic it is published on; can_state and radar go on the CAN bus (can/vehicle).
-SENSOR_TOPICS = {"gnss": "gnss/fix", "imu": "vehicle/imu", "lidar": "lidar/scan", "camera": "camera/frame",
-                 "sonar": "sonar/ranges"}
+# SensorOutputs field -> the stack topic it is published on; can_state, imu and radar go on the CAN bus
+# (can/vehicle).
+SENSOR_TOPICS = {"gnss": "gnss/fix", "lidar": "lidar/scan", "camera": "camera/frame", "sonar": "sonar/ranges"}
 GROUND_TRUTH_PERIOD_S = 0.1
 
 
@@ -99,7 +99,7 @@ class ScenarioFeed:
                         self.ctx.publish_for(vehicle_id, "gnss/serial_mark",
                                              sim_pb2.WireMark(written=line.write(item.data)))
             frames = self.vehicle_buses[vehicle_id].frames(now_s, self.config.step_s, outputs.can_state, outputs.radar,
-                                                           self._error_frames_per_s(vehicle_id, now_s))
+                                                           outputs.imu, self._error_frames_per_s(vehicle_id, now_s))
             if frames is not None:
                 self.ctx.publish_for(vehicle_id, "can/vehicle", frames)
         for intent in self.sim.intents(now_s):

@@ -1,7 +1,7 @@
 """VehicleBusWriter: one simulated car's CAN bus, as the frames its ECUs and its radar would put on the wire.
 
-Each step's VehicleCanState samples become the VEH_ feedback frames and each RadarTracks list the radar's RDR_
-header and object frames, encoded with the DBC and their rolling counters and checksums; during a CAN error
+Each step's VehicleCanState samples become the VEH_ feedback frames, each ImuSample a VEH_Inertial frame and
+each RadarTracks list the radar's RDR_ header and object frames, encoded with the DBC and their rolling counters and checksums; during a CAN error
 burst, error frames crowd the bus at the burst's rate. A frame's timestamp is when it reaches the bus, the
 sample's delivery time: a receiver subtracts the sender's latency, as it would on the vehicle.
 """
@@ -26,7 +26,7 @@ class VehicleBusWriter:
 
     def frames(self, now_s: float, step_s: float, can_states: Sequence[vehicle_pb2.VehicleCanState] = (),
                radar_tracks: Sequence[sensors_pb2.RadarTracks] = (),
-               error_frames_per_s: float = 0.0) -> vehicle_pb2.CanFrames | None:
+               imu_samples: Sequence[vehicle_pb2.ImuSample] = (), error_frames_per_s: float = 0.0) -> vehicle_pb2.CanFrames | None:
         """The frames of one step in bus order; None when the bus stayed silent."""
         timed: list[tuple[float, vehicle_pb2.CanFrame]] = []
         for state in can_states:
@@ -35,6 +35,9 @@ class VehicleBusWriter:
         for tracks in radar_tracks:
             on_bus_s = tracks.header.sent_time_s
             timed += [(on_bus_s, to_protobuf(m)) for m in self._codec.encode_radar_tracks(tracks, on_bus_s)]
+        for sample in imu_samples:
+            on_bus_s = sample.header.sent_time_s
+            timed.append((on_bus_s, to_protobuf(self._codec.encode_imu_sample(sample, on_bus_s))))
         timed += [(now_s, frame) for frame in self._error_frames(now_s, step_s, error_frames_per_s)]
         if not timed:
             return None

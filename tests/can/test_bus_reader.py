@@ -95,3 +95,15 @@ def test_frames_out_of_a_can_vehicle_batch_decode_as_the_same_frames_from_python
     VehicleBusReader(on_vehicle_state=from_protobuf.append).feed_all(batch)
     assert from_protobuf == from_python_can and len(from_protobuf) == 1
     assert math.isclose(from_protobuf[0].header.sample_time_s, ON_BUS_S)
+
+
+def test_an_inertial_frame_becomes_an_imu_sample_measured_the_latency_before_the_bus():
+    samples = []
+    reader = VehicleBusReader(on_imu_sample=samples.append, imu_latency_s=0.005)
+    sent = vehicle_pb2.ImuSample(accel_longitudinal_mps2=-1.234, accel_lateral_mps2=0.5, yaw_rate_radps=-0.02)
+    reader.feed(VehicleCanCodec().encode_imu_sample(sent, timestamp_s=ON_BUS_S))
+    [sample] = samples
+    assert sample.accel_longitudinal_mps2 == pytest.approx(-1.234, abs=1e-3)
+    assert sample.accel_lateral_mps2 == pytest.approx(0.5, abs=1e-3)
+    assert sample.yaw_rate_radps == pytest.approx(-0.02, abs=1e-4)
+    assert sample.header.sample_time_s == pytest.approx(ON_BUS_S - 0.005)

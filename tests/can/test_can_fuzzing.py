@@ -54,7 +54,7 @@ def test_a_bus_reader_feeding_the_actuator_counts_random_frames_without_raising(
     actuator = Actuator()
     now_s = 0.0
     reader = VehicleBusReader(on_vehicle_state=lambda state: actuator.on_vehicle_state(state, now_s),
-                              on_radar_tracks=lambda tracks: None)
+                              on_radar_tracks=lambda tracks: None, on_imu_sample=lambda sample: None)
     for i, msg in enumerate(messages):
         now_s = i * 0.01
         reader.feed(msg)

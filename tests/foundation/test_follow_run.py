@@ -6,9 +6,12 @@ import subprocess
 import sys
 import time
 from collections import Counter
+from pathlib import Path
 
+import cantools
 import pytest
 
+from coopdrive.can.frames import DBC_FILE
 from coopdrive.launch.run import RunOptions, run_scenario
 from coopdrive.recording.reader import read_messages
 from coopdrive.recording.replay import replay_service
@@ -63,6 +66,31 @@ def test_the_recording_holds_every_service_with_its_schema(recorded_run):
     senders = Counter(message.message.header.sender for message in read_messages(recording))
     for service in ("sim", "geolocation", "scene", "planner", "control", "actuation"):
         assert senders[service] > 0, f"nothing from {service} in the recording"
+
+
+def test_the_ego_s_can_bus_in_the_recording_decodes_with_the_dbc_to_the_true_speed_and_radar_range(recorded_run):
+    _, recording = recorded_run
+    dbc = cantools.database.load_file(str(Path(__file__).parents[2] / "coopdrive" / "can" / DBC_FILE))
+    truth_by_time, decoded = {}, []
+    for recorded in read_messages(recording):
+        if recorded.topic.endswith("world/ground_truth"):
+            vehicles = {v.vehicle_id: v for v in recorded.message.vehicles}
+            truth_by_time[round(recorded.message.header.sample_time_s, 2)] = vehicles
+        elif recorded.topic.endswith("ego/can/vehicle"):
+            for frame in recorded.message.frames:
+                decoded.append((frame.timestamp_s, dbc.get_message_by_frame_id(frame.arbitration_id).name,
+                                dbc.decode_message(frame.arbitration_id, frame.data)))
+    speeds = [(t, s["WheelSpeedRearLeft"]) for t, name, s in decoded if name == "VEH_WheelSpeeds"]
+    objects = [(t, s["DistLong"]) for t, name, s in decoded if name == "RDR_Object"]
+    assert len(speeds) > 100 and len(objects) > 100
+    for time_s, speed_mps in speeds:
+        if round(time_s, 2) in truth_by_time:
+            assert speed_mps == pytest.approx(truth_by_time[round(time_s, 2)]["ego"].speed_mps, abs=0.2)
+    for time_s, dist_m in objects:
+        if round(time_s, 2) in truth_by_time:
+            ego, leader = truth_by_time[round(time_s, 2)]["ego"], truth_by_time[round(time_s, 2)]["leader"]
+            # The radar sees the leader's rear, somewhere between its rear axle and a car length behind it.
+            assert leader.x_m - ego.x_m - leader.length_m - 0.5 < dist_m < leader.x_m - ego.x_m + 0.5
 
 
 @pytest.mark.parametrize("service", ["geolocation", "scene", "planner", "control", "actuation"])

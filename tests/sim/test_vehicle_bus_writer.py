@@ -24,14 +24,18 @@ def radar(range_m: float, on_bus_s: float) -> sensors_pb2.RadarTracks:
     return tracks
 
 
-def test_a_step_s_feedback_and_object_list_are_dbc_frames_in_bus_order_stamped_when_they_reach_the_bus():
-    batch = VehicleBusWriter().frames(1.0, STEP_S, [can_state(20.0, 0.995)], [radar(30.0, 0.99)])
+def test_a_step_s_feedback_imu_and_object_list_are_dbc_frames_in_bus_order_stamped_when_they_reach_the_bus():
+    imu = vehicle_pb2.ImuSample(accel_longitudinal_mps2=0.7)
+    imu.header.sent_time_s = 1.0
+    batch = VehicleBusWriter().frames(1.0, STEP_S, [can_state(20.0, 0.995)], [radar(30.0, 0.99)], [imu])
     assert [f.timestamp_s for f in batch.frames] == sorted(f.timestamp_s for f in batch.frames)
     names = [frames.frame_by_id(f.arbitration_id) for f in batch.frames]
-    assert names == [*frames.RADAR_FRAMES, *frames.FEEDBACK_FRAMES]
+    assert names == [*frames.RADAR_FRAMES, *frames.FEEDBACK_FRAMES, *frames.INERTIAL_FRAMES]
+    assert VehicleCanCodec().decode_imu_sample(to_python_can(batch.frames[-1])).accel_longitudinal_mps2 == \
+        pytest.approx(0.7, abs=1e-3)
     decoder = VehicleCanCodec()
     decoded = [decoder.decode_radar(to_python_can(f)) for f in batch.frames[:2]]
-    [state] = [s for s in (decoder.decode_vehicle_state(to_python_can(f)) for f in batch.frames[2:]) if s]
+    [state] = [s for s in (decoder.decode_vehicle_state(to_python_can(f)) for f in batch.frames[2:5]) if s]
     assert decoded[-1].tracks[0].range_m == pytest.approx(30.0, abs=0.15)
     assert state.wheel_speed_rear_left_mps == pytest.approx(20.0, abs=0.01)
     assert state.header.sample_time_s == 0.995
