@@ -80,6 +80,8 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--realtime", action="store_true", help="pace the simulation to wall time")
     run.add_argument("--record", type=Path, metavar="FILE.mcap")
     run.add_argument("--gateway", type=int, metavar="PORT", help="serve the gateway HTTP API on this port")
+    run.add_argument("--listen", action="append", default=[], metavar="ENDPOINT",
+                     help="the run's bus also listens here (e.g. tcp/127.0.0.1:7447) for other tools to join")
     run.add_argument("--duration", type=float, help="simulated seconds (default: the scenario's)")
     run.add_argument("--logs", type=Path, help="folder for each service's log")
     run.add_argument("--json", action="store_true", help="print the summary as JSON")
@@ -181,7 +183,8 @@ def _run(args) -> int:
     if args.scenario == "all" or args.seeds:
         return _batch(args)
     options = RunOptions(scenario=args.scenario, seed=args.seed, realtime=args.realtime, record=args.record,
-                         gateway_port=args.gateway, duration_s=args.duration, log_dir=args.logs, stacks=args.stacks,
+                         gateway_port=args.gateway, listen=tuple(args.listen), duration_s=args.duration,
+                         log_dir=args.logs, stacks=args.stacks,
                          group_per_vehicle=None if args.processes is None else args.processes == "vehicle",
                          security=args.security, untrusted=tuple(args.untrusted), extra_faults=_v2v_faults(args))
     if args.untrusted and args.security is None:
@@ -247,7 +250,7 @@ def _compare_with_baseline(args, options, result, recorded_to) -> int:
     from coopdrive.services.control.longitudinal import CaccLaw
 
     law = CaccLaw(args.baseline)
-    baseline_options = dataclasses.replace(with_cacc_law(options, law), record=None, gateway_port=None)
+    baseline_options = dataclasses.replace(with_cacc_law(options, law), record=None, gateway_port=None, listen=())
     baseline_report = None if args.report is None else args.report / "baseline"
     baseline, baseline_recorded_to = _run_once(baseline_options, baseline_report, None)
     comparison = BaselineComparison.of(law, result, baseline)

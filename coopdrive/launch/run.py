@@ -37,6 +37,9 @@ class RunOptions:
     realtime: bool = False
     record: Path | None = None
     gateway_port: int | None = None
+    # Zenoh endpoints the run's hub listens on besides its own, so other tools (coopdrive record, python-can's
+    # coopdrive interface, a zenohd router) can join the run's bus.
+    listen: tuple[str, ...] = ()
     duration_s: float | None = None
     # Scenario files: how many of the file's stack vehicles run a stack (None: all of them); the others are scripted.
     stacks: int | None = None
@@ -145,7 +148,7 @@ def secured_run(config: ScenarioConfig, stacks: list[str], options: RunOptions, 
 
 def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     endpoint = loopback_endpoint(free_tcp_port())
-    hub = Bus(BusConfig(listen=[endpoint]))
+    hub = Bus(BusConfig(listen=[endpoint, *options.listen]))
     finished = threading.Event()
     stop_reason: list[str] = []
     results: list[sim_pb2.RunResult] = []
