@@ -164,6 +164,10 @@ class TrackingConfig(BaseModel):
     new_data_bias: float = Field(default=3.0, gt=0.0)
     # Support given to speed and heading by sensors that only see positions (the filter derives them).
     derived_quality: float = Field(default=0.5, ge=0.0, le=1.0)
+    # Two cars' rear bumper centres are never closer than a car is wide: confirmed tracks closer than this,
+    # moving alike, are one vehicle whose readings split between them, and become one track.
+    duplicate_distance_m: float = Field(default=1.5, gt=0.0)
+    duplicate_speed_difference_mps: float = Field(default=1.5, gt=0.0)
 
 
 class SceneFusionConfig(BaseModel):

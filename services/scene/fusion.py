@@ -171,3 +171,4 @@ class SceneFusion:
     def _process(self, measurements: list[Measurement], time_s: float) -> None:
         self.tracker.process(measurements)
         self.tracker.expire(time_s)
+        self.tracker.merge_duplicates(time_s)

@@ -13,6 +13,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from coopdrive.v1 import header_pb2
 
@@ -33,6 +34,8 @@ class TrackerCounters:
     v2v_not_fused: int = 0
     # Readings matching no track that were too ambiguous to start one (see Measurement.ambiguous).
     ambiguous_unmatched: int = 0
+    # Confirmed tracks found to be one vehicle and made one (see Tracker.merge_duplicates).
+    duplicates_merged: int = 0
     by_reason: dict[str, int] = field(default_factory=dict)
 
 
@@ -94,9 +97,9 @@ class Tracker:
         station = meas.station_id
         linked = self._station_links.get(station)
         if linked is not None and linked in self.tracks:
-            if self.tracks[linked].ranging_fix is None:
-                # Our sensors now see a car near where this V2V-only object is: that is the same
-                # vehicle, so the V2V-only duplicate goes and the station moves to the seen track.
+            if not self._seen_lately(self.tracks[linked], meas.time_s):
+                # Our sensors now see a car near where this object only V2V keeps up is: that is the
+                # same vehicle, so the V2V-only duplicate goes and the station moves to the seen track.
                 seen = self._nearest_free_ranging(meas)
                 if seen is not None:
                     self._remove(linked)
@@ -124,11 +127,16 @@ class Tracker:
                 return self._link(seen, meas)
         return None
 
+    def _seen_lately(self, track: Track, time_s: float) -> bool:
+        """Whether our LiDAR or radar fixed the track within max_sensor_age_s of time_s."""
+        fix = track.ranging_fix
+        return fix is not None and time_s - fix.time_s <= self._config.trust.max_sensor_age_s
+
     def _nearest_free_ranging(self, meas: Measurement) -> Track | None:
-        """The unlinked LiDAR/radar track nearest the claim, if within link_gate_m."""
+        """The unlinked LiDAR/radar track seen lately that is nearest the claim, if within link_gate_m."""
         best, best_gap = None, self._config.trust.link_gate_m
         for track in self.tracks.values():
-            if track.station_id is None and track.ranging_fix is not None:
+            if track.station_id is None and self._seen_lately(track, meas.time_s):
                 gap = float(np.linalg.norm(Track.position_of(track.predicted(meas.time_s)[0]) - meas.position_m))
                 if gap <= best_gap:
                     best, best_gap = track, gap
@@ -219,6 +227,33 @@ class Tracker:
                 dead = track.props.position.faded(time_s)
             if dead:
                 self._remove(track_id)
+
+    def merge_duplicates(self, time_s: float) -> None:
+        """Confirmed tracks closer than two vehicles can be and moving alike are one vehicle whose readings
+        split between them (a radar sees a car's near corner, a LiDAR its rear face): the older track, whose
+        id others already know, stays; the younger goes, and its station link moves to the older one. Two
+        tracks of different stations are never merged."""
+        cfg = self._config.tracking
+        tracks = sorted(self.confirmed(), key=lambda t: t.track_id)
+        if len(tracks) < 2:
+            return
+        positions_m, _ = predict_positions(tracks, time_s, cfg.jerk_psd_m2ps5)
+        # kd-tree pairs: the cost grows as n log n with the number of objects, not n^2.
+        for older_index, younger_index in sorted(cKDTree(positions_m).query_pairs(cfg.duplicate_distance_m)):
+            older, younger = tracks[older_index], tracks[younger_index]
+            if older.track_id not in self.tracks or younger.track_id not in self.tracks:
+                continue
+            if None not in (older.station_id, younger.station_id) and older.station_id != younger.station_id:
+                continue
+            speed_difference_mps = np.linalg.norm(Track.velocity_of(older.mean) - Track.velocity_of(younger.mean))
+            if speed_difference_mps > cfg.duplicate_speed_difference_mps:
+                continue
+            station = younger.station_id
+            self._remove(younger.track_id)
+            self.counters.duplicates_merged += 1
+            if station is not None and older.station_id is None:
+                older.station_id = station
+                self._station_links[station] = older.track_id
 
     def _remove(self, track_id: int) -> None:
         track = self.tracks.pop(track_id)

@@ -34,3 +34,48 @@ def test_ambiguous_readings_refine_a_tentative_track_but_do_not_confirm_it():
     tracker.process([reading(0.3, 10.0)])
     tracker.process([reading(0.35, 10.0)])
     assert [t.track_id for t in tracker.confirmed()] == [track.track_id]
+
+
+def at(time_s, x_m, y_m):
+    return Measurement(source=LIDAR, time_s=time_s, position_m=np.array([x_m, y_m]), cov_m2=np.eye(2) * 0.01,
+                       origin_m=np.zeros(2))
+
+
+def two_confirmed_tracks(first_xy_m, second_xy_m) -> Tracker:
+    """Two tracks fed in the same frames, so that each keeps its own readings until they are confirmed."""
+    tracker = Tracker(SceneFusionConfig())
+    for k in range(4):
+        tracker.process([at(0.05 * k, *first_xy_m), at(0.05 * k, *second_xy_m)])
+    assert len(tracker.confirmed()) == 2
+    return tracker
+
+
+def test_two_tracks_closer_than_two_cars_can_be_become_one_that_keeps_the_older_id():
+    tracker = two_confirmed_tracks((10.0, 2.0), (10.6, 2.5))
+    older = min(tracker.tracks)
+    tracker.merge_duplicates(0.15)
+    assert list(tracker.tracks) == [older]
+    assert tracker.counters.duplicates_merged == 1
+
+
+def test_the_younger_duplicate_s_station_link_moves_to_the_older_track():
+    tracker = two_confirmed_tracks((10.0, 2.0), (10.6, 2.5))
+    older, younger = sorted(tracker.tracks)
+    tracker.tracks[younger].station_id = 3003
+    tracker._station_links[3003] = younger
+    tracker.merge_duplicates(0.15)
+    assert tracker.track_of_station(3003).track_id == older
+
+
+def test_cars_side_by_side_in_adjacent_lanes_stay_two_objects():
+    tracker = two_confirmed_tracks((10.0, 2.0), (10.0, 5.5))
+    tracker.merge_duplicates(0.15)
+    assert len(tracker.tracks) == 2
+
+
+def test_close_tracks_of_two_different_stations_are_never_merged():
+    tracker = two_confirmed_tracks((10.0, 2.0), (10.6, 2.5))
+    for station, track_id in zip((3001, 3002), sorted(tracker.tracks)):
+        tracker.tracks[track_id].station_id = station
+    tracker.merge_duplicates(0.15)
+    assert len(tracker.tracks) == 2
