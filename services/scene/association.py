@@ -12,10 +12,58 @@ import math
 
 import numpy as np
 from scipy.optimize import linear_sum_assignment
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
 
 # Cost of a pair outside the gate; large but finite so the solver always has a feasible matrix.
 _FORBIDDEN = 1e9
 _MIN_RANGE_M = 1e-3
+# Below this many measurement-track pairs one dense cost matrix is cheaper than finding groups.
+DENSE_PAIRS_MAX = 2500
+# The groups' Euclidean radius is the gate's for the widest covariance, times this: the gate is taken in range
+# and bearing (the bearing residual weighted up), which a plane distance only approximates at short range.
+_GROUP_RADIUS_MARGIN = 1.5
+
+
+def _largest_eigenvalues(cov: np.ndarray) -> np.ndarray:
+    """Largest eigenvalue of each symmetric 2x2 matrix of cov (K, 2, 2)."""
+    half_trace = 0.5 * (cov[:, 0, 0] + cov[:, 1, 1])
+    half_difference = 0.5 * (cov[:, 0, 0] - cov[:, 1, 1])
+    off = 0.5 * (cov[:, 0, 1] + cov[:, 1, 0])
+    return half_trace + np.sqrt(half_difference**2 + off**2)
+
+
+def gate_groups(meas_xy: np.ndarray, meas_cov: np.ndarray, track_xy: np.ndarray, track_cov: np.ndarray,
+                gate: float, dense_pairs_max: int = DENSE_PAIRS_MAX) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Measurements and tracks split into groups that no gated pair crosses: (measurement indices, track
+    indices) per group, a measurement near no track alone in its own; few pairs make one group. Assigning each
+    group on its own gives the joint assignment's pairs, and the cost grows as n log n with the objects instead
+    of n^2: a kd-tree
+    finds the pairs within a conservative plane distance of each track (its gate with the widest
+    measurement covariance), and the groups are the connected components of those pairs."""
+    n, m = len(meas_xy), len(track_xy)
+    if m == 0:
+        return [(np.array([i]), np.zeros(0, dtype=int)) for i in range(n)]
+    if n * m <= dense_pairs_max:
+        return [(np.arange(n), np.arange(m))]
+    widest_meas = float(_largest_eigenvalues(meas_cov).max()) if n else 0.0
+    radii_m = _GROUP_RADIUS_MARGIN * np.sqrt(gate * (_largest_eigenvalues(track_cov) + widest_meas))
+    near = cKDTree(meas_xy).query_ball_point(track_xy, radii_m)
+    tracks_of_pairs = np.repeat(np.arange(m), [len(found) for found in near])
+    meas_of_pairs = np.fromiter((i for found in near for i in found), dtype=int, count=tracks_of_pairs.size)
+    # Nodes 0..n-1 are measurements, n..n+m-1 tracks.
+    graph = coo_matrix((np.ones(meas_of_pairs.size), (meas_of_pairs, n + tracks_of_pairs)), shape=(n + m, n + m))
+    count, labels = connected_components(graph, directed=False)
+    order = np.argsort(labels, kind="stable")
+    bounds = np.searchsorted(labels[order], np.arange(count + 1))
+    groups = []
+    for start, end in zip(bounds[:-1], bounds[1:]):
+        members = order[start:end]
+        measurements = members[members < n]
+        if measurements.size:
+            groups.append((measurements, members[members >= n] - n))
+    return groups
 
 
 def polar_cost_matrix(
@@ -32,28 +80,43 @@ def polar_cost_matrix(
     n, m = len(meas_xy), len(track_xy)
     if n == 0 or m == 0:
         return (np.zeros((n, m)), np.zeros((n, m))) if with_log_det else np.zeros((n, m))
-    rel_t = track_xy[None, :, :] - origins_xy[:, None, :]  # (N, M, 2)
-    rel_m = meas_xy - origins_xy  # (N, 2)
-    r_t = np.maximum(np.linalg.norm(rel_t, axis=2), _MIN_RANGE_M)
-    r_m = np.linalg.norm(rel_m, axis=1)
+    d2, log_det = _polar_costs(meas_xy[:, None, :], meas_cov[:, None], origins_xy[:, None, :], track_xy[None, :, :],
+                               track_cov[None, :], angle_emphasis)
+    return (d2, log_det) if with_log_det else d2
+
+
+def polar_cost_pairs(meas_xy: np.ndarray, meas_cov: np.ndarray, origins_xy: np.ndarray, track_xy: np.ndarray,
+                     track_cov: np.ndarray, angle_emphasis: float) -> tuple[np.ndarray, np.ndarray]:
+    """polar_cost_matrix's d^2 and log-determinant for K given pairs (row k: measurement k with track k)."""
+    if len(meas_xy) == 0:
+        return np.zeros(0), np.zeros(0)
+    return _polar_costs(meas_xy, meas_cov, origins_xy, track_xy, track_cov, angle_emphasis)
+
+
+def _polar_costs(meas_xy, meas_cov, origins_xy, track_xy, track_cov, angle_emphasis):
+    """d^2 and ln|S| of measurements against tracks, for any shapes that broadcast ((..., 2), (..., 2, 2))."""
+    rel_t = track_xy - origins_xy
+    rel_m = meas_xy - origins_xy
+    r_t = np.maximum(np.linalg.norm(rel_t, axis=-1), _MIN_RANGE_M)
+    r_m = np.linalg.norm(rel_m, axis=-1)
     th_t = np.arctan2(rel_t[..., 1], rel_t[..., 0])
-    th_m = np.arctan2(rel_m[:, 1], rel_m[:, 0])
-    d_range = r_m[:, None] - r_t
-    d_bearing = (th_m[:, None] - th_t + math.pi) % (2.0 * math.pi) - math.pi
+    th_m = np.arctan2(rel_m[..., 1], rel_m[..., 0])
+    d_range = r_m - r_t
+    d_bearing = (th_m - th_t + math.pi) % (2.0 * math.pi) - math.pi
     d_bearing = d_bearing * math.sqrt(angle_emphasis)
     # S = J (P + R) J^T with J the Jacobian of (range, bearing) w.r.t. (x, y) at the predicted track,
     # written out per element: numpy's batched matmul is slow on millions of 2x2 blocks.
     ja, jb = rel_t[..., 0] / r_t, rel_t[..., 1] / r_t
     jc, jd = -jb / r_t, ja / r_t
-    t00 = track_cov[None, :, 0, 0] + meas_cov[:, None, 0, 0]
-    t01 = 0.5 * (track_cov[None, :, 0, 1] + track_cov[None, :, 1, 0] + meas_cov[:, None, 0, 1] + meas_cov[:, None, 1, 0])
-    t11 = track_cov[None, :, 1, 1] + meas_cov[:, None, 1, 1]
+    t00 = track_cov[..., 0, 0] + meas_cov[..., 0, 0]
+    t01 = 0.5 * (track_cov[..., 0, 1] + track_cov[..., 1, 0] + meas_cov[..., 0, 1] + meas_cov[..., 1, 0])
+    t11 = track_cov[..., 1, 1] + meas_cov[..., 1, 1]
     a = ja * ja * t00 + 2.0 * ja * jb * t01 + jb * jb * t11
     b = ja * jc * t00 + (ja * jd + jb * jc) * t01 + jb * jd * t11
     d = jc * jc * t00 + 2.0 * jc * jd * t01 + jd * jd * t11
     det = np.maximum(a * d - b * b, 1e-12)
     d2 = (d * d_range**2 - 2.0 * b * d_range * d_bearing + a * d_bearing**2) / det
-    return (d2, np.log(det)) if with_log_det else d2
+    return d2, np.log(det)
 
 
 def polar_cost_loop(meas_xy, meas_cov, origins_xy, track_xy, track_cov, angle_emphasis, with_log_det=False):

@@ -17,7 +17,7 @@ from scipy.spatial import cKDTree
 
 from coopdrive.v1 import header_pb2
 
-from .association import assign, likelihood_cost, match_quality, polar_cost_matrix
+from .association import assign, gate_groups, likelihood_cost, match_quality, polar_cost_matrix, polar_cost_pairs
 from .config import SceneFusionConfig
 from .measurement import Measurement
 from .properties import ObjectProperties
@@ -48,9 +48,13 @@ class V2vLink:
 
 
 class Tracker:
-    def __init__(self, config: SceneFusionConfig, cost_fn: Callable = polar_cost_matrix) -> None:
+    def __init__(self, config: SceneFusionConfig, cost_fn: Callable = polar_cost_matrix,
+                 pair_cost_fn: Callable | None = polar_cost_pairs) -> None:
+        """cost_fn: costs of measurements x tracks; pair_cost_fn: the same costs for aligned pairs (None: cost_fn
+        one pair at a time). They must agree: the bench swaps in a brute-force cost_fn with pair_cost_fn None."""
         self._config = config
         self._cost_fn = cost_fn
+        self._pair_cost_fn = pair_cost_fn
         self.tracks: dict[int, Track] = {}
         self._next_id = 1
         self._station_links: dict[int, int] = {}
@@ -63,20 +67,58 @@ class Tracker:
     # -- sensor frames ---------------------------------------------------------------------
 
     def process(self, measurements: list[Measurement]) -> None:
-        """One frame of one sensor: associate jointly, update, start tentative tracks for the rest."""
+        """One frame of one sensor: associate jointly, update, start tentative tracks for the rest.
+
+        The joint assignment runs per group of measurements and tracks that gate with each other only."""
         if not measurements:
             return
         tracks = list(self.tracks.values())
-        gate = self._config.tracking.gate_chi2
-        d2, log_det = self._costs(measurements, tracks)
-        pairs, unmatched = assign(likelihood_cost(d2, log_det), gate, gate_cost=d2)
-        for i, j in pairs:
-            self._fuse(tracks[j], measurements[i], match_quality(d2[i, j], gate))
-        for i in unmatched:
+        cfg = self._config.tracking
+        time_s = measurements[0].time_s
+        meas_xy = np.array([m.position_m for m in measurements])
+        meas_cov = np.array([m.cov_m2 for m in measurements])
+        origins = np.array([m.origin_m for m in measurements])
+        if tracks:
+            track_xy, track_cov = predict_positions(tracks, time_s, cfg.jerk_psd_m2ps5)
+        else:
+            track_xy, track_cov = np.zeros((0, 2)), np.zeros((0, 2, 2))
+        fused, unmatched, single_meas, single_tracks = [], [], [], []
+        for group_meas, group_tracks in gate_groups(meas_xy, meas_cov, track_xy, track_cov, cfg.gate_chi2):
+            if group_tracks.size == 0:
+                unmatched.extend(int(i) for i in group_meas)
+                continue
+            if group_meas.size == 1 and group_tracks.size == 1:
+                # Most groups are one car seen once: their costs are taken together below.
+                single_meas.append(int(group_meas[0]))
+                single_tracks.append(int(group_tracks[0]))
+                continue
+            d2, log_det = self._cost_fn(meas_xy[group_meas], meas_cov[group_meas], origins[group_meas],
+                                        track_xy[group_tracks], track_cov[group_tracks], cfg.angle_emphasis,
+                                        with_log_det=True)
+            pairs, left = assign(likelihood_cost(d2, log_det), cfg.gate_chi2, gate_cost=d2)
+            fused += [(int(group_meas[i]), int(group_tracks[j]), d2[i, j]) for i, j in pairs]
+            unmatched.extend(int(group_meas[i]) for i in left)
+        if single_meas:
+            i, j = np.array(single_meas), np.array(single_tracks)
+            d2, _ = self._pair_costs(meas_xy[i], meas_cov[i], origins[i], track_xy[j], track_cov[j])
+            fused += [(int(i[k]), int(j[k]), d2[k]) for k in np.flatnonzero(d2 <= cfg.gate_chi2)]
+            unmatched.extend(int(i[k]) for k in np.flatnonzero(d2 > cfg.gate_chi2))
+        # In measurement order, as one joint assignment would fuse and start them.
+        for i, j, cost in sorted(fused):
+            self._fuse(tracks[j], measurements[i], match_quality(cost, cfg.gate_chi2))
+        for i in sorted(unmatched):
             if not measurements[i].ambiguous:
                 self._start(measurements[i])
             else:
                 self.counters.ambiguous_unmatched += 1
+
+    def _pair_costs(self, meas_xy, meas_cov, origins, track_xy, track_cov) -> tuple[np.ndarray, np.ndarray]:
+        emphasis = self._config.tracking.angle_emphasis
+        if self._pair_cost_fn is not None:
+            return self._pair_cost_fn(meas_xy, meas_cov, origins, track_xy, track_cov, emphasis)
+        costs = [self._cost_fn(meas_xy[k:k + 1], meas_cov[k:k + 1], origins[k:k + 1], track_xy[k:k + 1],
+                               track_cov[k:k + 1], emphasis, with_log_det=True) for k in range(len(meas_xy))]
+        return np.array([d2[0, 0] for d2, _ in costs]), np.array([log_det[0, 0] for _, log_det in costs])
 
     def _costs(self, measurements: list[Measurement], tracks: list[Track]) -> tuple[np.ndarray, np.ndarray]:
         """Squared Mahalanobis distances and innovation log-determinants, measurements x tracks."""

@@ -7,10 +7,12 @@ from hypothesis import strategies as st
 
 from coopdrive.services.scene.association import (
     assign,
+    gate_groups,
     likelihood_cost,
     match_quality,
     polar_cost_loop,
     polar_cost_matrix,
+    polar_cost_pairs,
 )
 
 ORIGIN = np.zeros(2)
@@ -95,3 +97,66 @@ def test_a_vague_new_track_does_not_outbid_a_sharp_established_track_for_a_measu
     assert d2[0, 1] < d2[0, 0]  # by distance alone the vague track looks closer
     pairs, _ = assign(likelihood_cost(d2, log_det), 9.21, gate_cost=d2)
     assert pairs == [(0, 0)]
+
+
+GATE = 9.21
+
+
+def joint_pairs(meas_xy, meas_cov, track_xy, track_cov):
+    origins = np.zeros_like(meas_xy)
+    d2, log_det = polar_cost_matrix(meas_xy, meas_cov, origins, track_xy, track_cov, 1.2, with_log_det=True)
+    return set(assign(likelihood_cost(d2, log_det), GATE, gate_cost=d2)[0])
+
+
+def grouped_pairs(meas_xy, meas_cov, track_xy, track_cov):
+    pairs = set()
+    for group_meas, group_tracks in gate_groups(meas_xy, meas_cov, track_xy, track_cov, GATE, dense_pairs_max=0):
+        if group_tracks.size:
+            found = joint_pairs(meas_xy[group_meas], meas_cov[group_meas], track_xy[group_tracks],
+                                track_cov[group_tracks])
+            pairs |= {(int(group_meas[i]), int(group_tracks[j])) for i, j in found}
+    return pairs
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 40), st.integers(0, 40))
+def test_assigning_gate_groups_one_by_one_gives_the_pairs_of_one_joint_assignment(seed, tracks, clutter):
+    rng = np.random.default_rng(seed)
+    # Cars in traffic (some close together), most seen again with noise, plus clutter readings.
+    track_xy = rng.uniform([-60.0, -10.0], [60.0, 10.0], (tracks, 2))
+    track_cov = np.einsum("k,ij->kij", rng.uniform(0.01, 4.0, tracks), np.eye(2))
+    seen = track_xy[rng.random(tracks) < 0.8]
+    meas_xy = np.vstack([seen + rng.normal(0.0, 0.5, seen.shape), rng.uniform([-60.0, -10.0], [60.0, 10.0],
+                                                                               (clutter, 2))])
+    if len(meas_xy) == 0:
+        return
+    meas_cov = np.einsum("k,ij->kij", rng.uniform(0.01, 1.0, len(meas_xy)), np.eye(2))
+    assert grouped_pairs(meas_xy, meas_cov, track_xy, track_cov) == joint_pairs(meas_xy, meas_cov, track_xy,
+                                                                                track_cov)
+
+
+def test_far_apart_objects_fall_into_groups_of_their_own():
+    track_xy = np.array([[10.0, 0.0], [50.0, 0.0], [90.0, 3.5]])
+    meas_xy = track_xy + 0.1
+    cov = np.repeat(np.eye(2)[None] * 0.04, 3, axis=0)
+    groups = gate_groups(meas_xy, cov, track_xy, cov, GATE, dense_pairs_max=0)
+    assert sorted((g[0].tolist(), g[1].tolist()) for g in groups) == [([0], [0]), ([1], [1]), ([2], [2])]
+
+
+def test_a_few_objects_make_one_group_since_one_small_matrix_is_cheaper():
+    xy = np.array([[10.0, 0.0], [50.0, 0.0]])
+    cov = np.repeat(np.eye(2)[None] * 0.04, 2, axis=0)
+    [(measurements, tracks)] = gate_groups(xy, cov, xy, cov, GATE)
+    assert measurements.tolist() == [0, 1] and tracks.tolist() == [0, 1]
+
+
+def test_the_costs_of_given_pairs_are_the_matching_entries_of_the_cost_matrix():
+    rng = np.random.default_rng(7)
+    meas_xy, track_xy = rng.uniform(-30.0, 30.0, (12, 2)), rng.uniform(-30.0, 30.0, (12, 2))
+    meas_cov = np.einsum("k,ij->kij", rng.uniform(0.01, 1.0, 12), np.eye(2))
+    track_cov = np.einsum("k,ij->kij", rng.uniform(0.01, 1.0, 12), np.eye(2))
+    origins = rng.uniform(-2.0, 2.0, (12, 2))
+    d2, log_det = polar_cost_matrix(meas_xy, meas_cov, origins, track_xy, track_cov, 1.2, with_log_det=True)
+    pair_d2, pair_log_det = polar_cost_pairs(meas_xy, meas_cov, origins, track_xy, track_cov, 1.2)
+    # polar_cost_matrix measures each track from the measurement's origin: the diagonal pairs are the same.
+    assert pair_d2 == pytest.approx(np.diag(d2)) and pair_log_det == pytest.approx(np.diag(log_det))

@@ -79,3 +79,12 @@ def test_close_tracks_of_two_different_stations_are_never_merged():
         tracker.tracks[track_id].station_id = station
     tracker.merge_duplicates(0.15)
     assert len(tracker.tracks) == 2
+
+
+def test_with_sixty_cars_in_view_each_keeps_one_track_as_the_gating_splits_into_groups():
+    rng = np.random.default_rng(3)
+    cars_xy = np.array([[12.0 * (k // 3), 3.5 * (k % 3)] for k in range(60)])
+    tracker = Tracker(SceneFusionConfig())
+    for frame in range(8):
+        tracker.process([at(0.05 * frame, *(xy + rng.normal(0.0, 0.05, 2))) for xy in cars_xy])
+    assert len(tracker.confirmed()) == 60 and tracker.counters.created == 60
