@@ -132,6 +132,12 @@ def build_parser() -> argparse.ArgumentParser:
     replay.add_argument("--vehicle")
     replay.add_argument("--out", type=Path, required=True)
     replay.set_defaults(handler=_replay)
+
+    candump = commands.add_parser("candump", help="a vehicle's CAN frames from a recording, as a candump .log")
+    candump.add_argument("file", type=Path)
+    candump.add_argument("--vehicle", default="ego")
+    candump.add_argument("--out", type=Path, required=True, metavar="FILE.log")
+    candump.set_defaults(handler=_candump)
     return parser
 
 
@@ -370,6 +376,18 @@ def _replay(args) -> int:
         print("differs from the recording: " + "; ".join(problems))
         return EXIT_FAILED
     print("identical to the recorded outputs")
+    return EXIT_OK
+
+
+def _candump(args) -> int:
+    from coopdrive.recording.candump_export import CandumpExportError, export_candump
+
+    try:
+        count = export_candump(args.file, args.vehicle, args.out)
+    except (CandumpExportError, ValueError) as error:
+        print(f"coopdrive: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    print(f"{count} frames of {args.vehicle} to {args.out}")
     return EXIT_OK
 
 

@@ -9,17 +9,12 @@ import can
 
 from coopdrive.can.candump import CandumpLogger
 from coopdrive.can.codec import VehicleCanCodec
+from coopdrive.can.wire import to_python_can
 from coopdrive.launch.run import RunOptions, run_scenario
 
 RUN_DURATION_S = 4.0
 # Replay as fast as possible: the timing of the replay is not what is checked here.
 REPLAY_TIME_SCALING = 0.0
-
-
-def can_message(frame) -> can.Message:
-    return can.Message(timestamp=frame.timestamp_s, arbitration_id=frame.arbitration_id,
-                       is_extended_id=frame.is_extended_id, data=bytes(frame.data), channel=frame.channel or None,
-                       is_remote_frame=frame.is_remote_frame, is_error_frame=frame.is_error_frame)
 
 
 def record_run(path) -> list[can.Message]:
@@ -29,7 +24,7 @@ def record_run(path) -> list[can.Message]:
     def observe(key: str, message) -> None:
         if key.endswith("ego/can/command"):
             with lock:
-                recorded.append(can_message(message))
+                recorded.append(to_python_can(message))
 
     result = run_scenario(RunOptions(duration_s=RUN_DURATION_S, observer=observe))
     assert result.metrics["collisions"] == 0

@@ -8,6 +8,7 @@ import time
 from collections import Counter
 from pathlib import Path
 
+import can
 import cantools
 import pytest
 
@@ -91,6 +92,28 @@ def test_the_ego_s_can_bus_in_the_recording_decodes_with_the_dbc_to_the_true_spe
             ego, leader = truth_by_time[round(time_s, 2)]["ego"], truth_by_time[round(time_s, 2)]["leader"]
             # The radar sees the leader's rear, somewhere between its rear axle and a car length behind it.
             assert leader.x_m - ego.x_m - leader.length_m - 0.5 < dist_m < leader.x_m - ego.x_m + 0.5
+
+
+def test_coopdrive_candump_writes_the_ego_s_bus_as_a_candump_log_that_python_can_reads_back(recorded_run, tmp_path):
+    _, recording = recorded_run
+    log = tmp_path / "ego-can.log"
+    result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "candump", str(recording), "--vehicle", "ego",
+                             "--out", str(log)], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    frames = list(can.LogReader(str(log)))
+    assert result.stdout.startswith(f"{len(frames)} frames of ego")
+    dbc = cantools.database.load_file(str(Path(__file__).parents[2] / "coopdrive" / "can" / DBC_FILE))
+    names = Counter(dbc.get_message_by_frame_id(frame.arbitration_id).name for frame in frames)
+    assert {"ACT_LongitudinalCommand", "VEH_WheelSpeeds", "RDR_ObjectListStatus"} <= set(names)
+    assert [f.timestamp for f in frames] == sorted(f.timestamp for f in frames)
+
+
+def test_coopdrive_candump_of_a_vehicle_without_frames_names_the_vehicles_that_have_them(recorded_run, tmp_path):
+    _, recording = recorded_run
+    result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "candump", str(recording), "--vehicle", "nobody",
+                             "--out", str(tmp_path / "x.log")], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 2
+    assert "no CAN frames of vehicle 'nobody' (vehicles with frames: ego)" in result.stderr
 
 
 @pytest.mark.parametrize("service", ["geolocation", "scene", "planner", "control", "actuation"])
