@@ -33,7 +33,8 @@ def export_candump(recording: str | Path, vehicle_id: str, out: str | Path) -> i
             frames += list(message.frames) if isinstance(message, vehicle_pb2.CanFrames) else [message]
     if not frames:
         found = ", ".join(sorted(vehicles_with_frames)) or "none"
-        raise CandumpExportError(f"{recording}: no CAN frames of vehicle {vehicle_id!r} (vehicles with frames: {found})")
+        raise CandumpExportError(
+            f"{recording}: no CAN frames of vehicle {vehicle_id!r} (vehicles with frames: {found})")
     with CandumpLogger(out, channel=CHANNEL) as logger:
         # Stable: frames of the same instant keep the order they were put on the bus in.
         for frame in sorted(frames, key=lambda f: f.timestamp_s):

@@ -28,8 +28,8 @@ faults:
 """ + "".join(
     f"  - {{type: sensor_dropout, vehicle_id: ego, sensor: {sensor}, start_s: {DROPOUT_S[0]}, end_s: {DROPOUT_S[1]}}}\n"
     f"  - {{type: sensor_dropout, vehicle_id: ego, sensor: {sensor}, start_s: {ALL_STOP_S}}}\n"
-    for sensor in ("radar", "lidar", "camera")) + f"""  - {{type: v2v_loss, vehicle_id: ego, loss_probability: 1.0, start_s: {ALL_STOP_S}}}
-"""
+    for sensor in ("radar", "lidar", "camera")) + (
+    f"  - {{type: v2v_loss, vehicle_id: ego, loss_probability: 1.0, start_s: {ALL_STOP_S}}}\n")
 
 
 @pytest.fixture(scope="module")
