@@ -136,9 +136,11 @@ class SceneFusion:
             ghost = self.trust.is_ghost(station) and not seen_by_us
             if self.tracker.v2v_only(track, time_s):
                 eligible = station is not None and self.trust.trusted(station)
-            elif self.tracker.sonar_only(track, time_s):
+            elif self.tracker.sonar_only(track, time_s) or self.tracker.camera_only(track, time_s):
                 # Chalmers 4.3.1: sonars only tell that something is at our side, not where; such an
-                # object is reported (and narrows free space) but is no MIO or lane neighbour.
+                # object is reported (and narrows free space) but is no MIO or lane neighbour. A camera
+                # alone gives a bearing but a poor range: its object, often a car our radar already holds
+                # a few metres off, must not take the MIO from that car and brake us for a phantom.
                 eligible = False
             else:
                 eligible = not ghost

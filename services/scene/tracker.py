@@ -322,3 +322,7 @@ class Tracker:
     @staticmethod
     def sonar_only(track: Track, time_s: float) -> bool:
         return track.props.position.sources(time_s) == [header_pb2.SENSOR_SOURCE_SONAR]
+
+    @staticmethod
+    def camera_only(track: Track, time_s: float) -> bool:
+        return track.props.position.sources(time_s) == [header_pb2.SENSOR_SOURCE_CAMERA]

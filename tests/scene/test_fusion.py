@@ -6,7 +6,7 @@ from coopdrive.services.scene.config import SceneFusionConfig
 from coopdrive.services.scene.fusion import SceneFusion
 from coopdrive.services.scene.measurement import V2vObservation
 from coopdrive.services.scene.track import Track
-from coopdrive.v1 import header_pb2
+from coopdrive.v1 import header_pb2, sensors_pb2
 
 from .helpers import Road, ego_state, lidar_scan, radar_tracks, v2v
 
@@ -320,3 +320,21 @@ def test_a_car_coming_the_other_way_close_to_our_lane_is_never_the_forward_mio_n
     assert oncoming.longitudinal_gap_m > 0
     assert not (scene.has_forward_mio and scene.forward_mio_id == oncoming.object_id)
     assert all(n.ahead_object_id != oncoming.object_id or not n.has_ahead for n in scene.neighbours)
+
+
+def test_a_camera_only_object_short_of_the_car_our_radar_holds_is_reported_but_never_takes_the_mio():
+    fusion = SceneFusion()
+    road = Road(fusion)
+    for t in road.ticks(0.0, 1.0):
+        road.sense(t, [(road.ego_x(t) + 30.0, 0.0, 10.0)])
+        # A monocular camera puts the same car, or a phantom, 8 m short of it.
+        frame = sensors_pb2.CameraFrame()
+        frame.header.sample_time_s = t
+        frame.detections.add(detection_id=1, x_m=22.0, y_m=0.0, width_m=1.8, confidence=0.9)
+        fusion.on_camera(frame, road.ego(t))
+    scene = fusion.scene(1.0)
+    by_gap = sorted(scene.objects, key=lambda o: o.longitudinal_gap_m)
+    camera_only, seen = by_gap[0], by_gap[-1]
+    assert list(camera_only.position.sources) == [header_pb2.SENSOR_SOURCE_CAMERA]
+    assert scene.has_mio and scene.mio_id == seen.object_id
+    assert not scene.has_forward_mio or scene.forward_mio_id == seen.object_id
