@@ -12,8 +12,7 @@ import can
 from coopdrive.bus import Envelope
 from coopdrive.can.bus_reader import VehicleBusReader
 from coopdrive.can.vehicle_port import VehicleCanPort, VehicleCanPortConfig
-
-TOPIC = "can/vehicle"
+from coopdrive.can.wire import VEHICLE_BUS_TOPIC
 
 
 class VehicleBusInput:
@@ -23,7 +22,7 @@ class VehicleBusInput:
         self.reader = reader
         self.port: VehicleCanPort | None = None
         if port_config is None:
-            ctx.subscribe(TOPIC, self.on_frames)
+            ctx.subscribe(VEHICLE_BUS_TOPIC, self.on_frames)
         else:
             # Frames arrive on python-can's receive thread; the reader runs on the service's worker thread.
             self.port = VehicleCanPort(port_config, lambda msg: ctx.call_soon(lambda: reader.feed(msg)),

@@ -1,9 +1,9 @@
 """VehicleBusReader: what one service reads from the vehicle's CAN bus, decoded with the DBC.
 
 The VEH_ feedback frames become a VehicleCanState once per cycle, each VEH_Inertial frame an ImuSample and the
-radar's RDR_ object list RadarTracks, each handed to the callback the service gave for it. Frames of a family the service did not ask
-for are skipped by id without decoding; error frames and frames that cannot be trusted are counted under
-their reason (`can_error_frames`, `can_rejected_<reason>`), never raised.
+radar's RDR_ object list RadarTracks, each handed to the callback the service gave for it. Frames of a family
+the service did not ask for are skipped by id without decoding; error frames and frames that cannot be trusted
+are counted under their reason (`can_error_frames`, `can_rejected_<reason>`), never raised.
 
 A frame's timestamp is when it was on the bus; a decoded message's sample time is that minus the sender's
 known latency (the radar reports an object list some 50 ms after it measured it).
@@ -76,18 +76,17 @@ class VehicleBusReader:
             self.feed(frame)
 
     def _on_feedback_frame(self, message: can.Message) -> None:
-        state = self._codec.decode_vehicle_state(message)
-        if state is not None:
-            state.header.sample_time_s -= self.vehicle_state_latency_s
-            self.on_vehicle_state(state)
+        self._hand_on(self._codec.decode_vehicle_state(message), self.vehicle_state_latency_s, self.on_vehicle_state)
 
     def _on_inertial_frame(self, message: can.Message) -> None:
-        sample = self._codec.decode_imu_sample(message)
-        sample.header.sample_time_s -= self.imu_latency_s
-        self.on_imu_sample(sample)
+        self._hand_on(self._codec.decode_imu_sample(message), self.imu_latency_s, self.on_imu_sample)
 
     def _on_radar_frame(self, message: can.Message) -> None:
-        tracks = self._codec.decode_radar(message)
-        if tracks is not None:
-            tracks.header.sample_time_s -= self.radar_latency_s
-            self.on_radar_tracks(tracks)
+        self._hand_on(self._codec.decode_radar(message), self.radar_latency_s, self.on_radar_tracks)
+
+    @staticmethod
+    def _hand_on(decoded, latency_s: float, handler: Callable) -> None:
+        """A completed message, dated back to when its sender measured it, to the service's callback."""
+        if decoded is not None:
+            decoded.header.sample_time_s -= latency_s
+            handler(decoded)

@@ -4,6 +4,11 @@ import can
 
 from coopdrive.v1 import vehicle_pb2
 
+# The bus topics CAN frames travel on: a car's own bus as the simulator puts it on the wire (CanFrames
+# batches), and actuation's ACT_ frames (one CanFrame each).
+VEHICLE_BUS_TOPIC = "can/vehicle"
+COMMAND_TOPIC = "can/command"
+
 
 def to_protobuf(message: can.Message) -> vehicle_pb2.CanFrame:
     return vehicle_pb2.CanFrame(channel=message.channel or "", arbitration_id=message.arbitration_id,

@@ -20,11 +20,8 @@ import can
 import zenoh
 
 from coopdrive.bus import Bus, BusConfig, Envelope
-from coopdrive.can.wire import to_protobuf, to_python_can
+from coopdrive.can.wire import COMMAND_TOPIC, VEHICLE_BUS_TOPIC, to_protobuf, to_python_can
 from coopdrive.v1 import vehicle_pb2
-
-VEHICLE_BUS_TOPIC = "can/vehicle"
-COMMAND_TOPIC = "can/command"
 
 
 class CoopdriveBus(can.BusABC):

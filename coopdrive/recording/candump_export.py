@@ -7,11 +7,11 @@ from pathlib import Path
 
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.can.candump import CandumpLogger
-from coopdrive.can.wire import to_python_can
+from coopdrive.can.wire import COMMAND_TOPIC, VEHICLE_BUS_TOPIC, to_python_can
 from coopdrive.recording.reader import read_messages
 from coopdrive.v1 import vehicle_pb2
 
-BUS_TOPICS = ("can/vehicle", "can/command")
+BUS_TOPICS = (VEHICLE_BUS_TOPIC, COMMAND_TOPIC)
 CHANNEL = "can0"
 
 

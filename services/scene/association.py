@@ -39,9 +39,8 @@ def gate_groups(meas_xy: np.ndarray, meas_cov: np.ndarray, track_xy: np.ndarray,
     """Measurements and tracks split into groups that no gated pair crosses: (measurement indices, track
     indices) per group, a measurement near no track alone in its own; few pairs make one group. Assigning each
     group on its own gives the joint assignment's pairs, and the cost grows as n log n with the objects instead
-    of n^2: a kd-tree
-    finds the pairs within a conservative plane distance of each track (its gate with the widest
-    measurement covariance), and the groups are the connected components of those pairs."""
+    of n^2: a kd-tree finds the pairs within a conservative plane distance of each track (its gate with the
+    widest measurement covariance), and the groups are the connected components of those pairs."""
     n, m = len(meas_xy), len(track_xy)
     if m == 0:
         return [(np.array([i]), np.zeros(0, dtype=int)) for i in range(n)]

@@ -67,21 +67,38 @@ class Tracker:
     # -- sensor frames ---------------------------------------------------------------------
 
     def process(self, measurements: list[Measurement]) -> None:
-        """One frame of one sensor: associate jointly, update, start tentative tracks for the rest.
-
-        The joint assignment runs per group of measurements and tracks that gate with each other only."""
+        """One frame of one sensor: associate jointly, update, start tentative tracks for the rest."""
         if not measurements:
             return
         tracks = list(self.tracks.values())
-        cfg = self._config.tracking
-        time_s = measurements[0].time_s
+        gate = self._config.tracking.gate_chi2
+        fused, unmatched = self._associate(*self._geometry(measurements, tracks))
+        # In measurement order, as one joint assignment would fuse and start them.
+        for i, j, cost in sorted(fused):
+            self._fuse(tracks[j], measurements[i], match_quality(cost, gate))
+        for i in sorted(unmatched):
+            if not measurements[i].ambiguous:
+                self._start(measurements[i])
+            else:
+                self.counters.ambiguous_unmatched += 1
+
+    def _geometry(self, measurements: list[Measurement], tracks: list[Track]) -> tuple[np.ndarray, ...]:
+        """Measurement positions, covariances and sensor origins, and the tracks' predicted positions and
+        covariances at the measurements' time."""
         meas_xy = np.array([m.position_m for m in measurements])
         meas_cov = np.array([m.cov_m2 for m in measurements])
         origins = np.array([m.origin_m for m in measurements])
         if tracks:
-            track_xy, track_cov = predict_positions(tracks, time_s, cfg.jerk_psd_m2ps5)
+            track_xy, track_cov = predict_positions(tracks, measurements[0].time_s,
+                                                    self._config.tracking.jerk_psd_m2ps5)
         else:
             track_xy, track_cov = np.zeros((0, 2)), np.zeros((0, 2, 2))
+        return meas_xy, meas_cov, origins, track_xy, track_cov
+
+    def _associate(self, meas_xy, meas_cov, origins, track_xy, track_cov) -> tuple[list, list[int]]:
+        """(measurement, track, d^2) pairs and unmatched measurements of the joint assignment, solved per group
+        of measurements and tracks that gate with each other only."""
+        cfg = self._config.tracking
         fused, unmatched, single_meas, single_tracks = [], [], [], []
         for group_meas, group_tracks in gate_groups(meas_xy, meas_cov, track_xy, track_cov, cfg.gate_chi2):
             if group_tracks.size == 0:
@@ -103,14 +120,7 @@ class Tracker:
             d2, _ = self._pair_costs(meas_xy[i], meas_cov[i], origins[i], track_xy[j], track_cov[j])
             fused += [(int(i[k]), int(j[k]), d2[k]) for k in np.flatnonzero(d2 <= cfg.gate_chi2)]
             unmatched.extend(int(i[k]) for k in np.flatnonzero(d2 > cfg.gate_chi2))
-        # In measurement order, as one joint assignment would fuse and start them.
-        for i, j, cost in sorted(fused):
-            self._fuse(tracks[j], measurements[i], match_quality(cost, cfg.gate_chi2))
-        for i in sorted(unmatched):
-            if not measurements[i].ambiguous:
-                self._start(measurements[i])
-            else:
-                self.counters.ambiguous_unmatched += 1
+        return fused, unmatched
 
     def _pair_costs(self, meas_xy, meas_cov, origins, track_xy, track_cov) -> tuple[np.ndarray, np.ndarray]:
         emphasis = self._config.tracking.angle_emphasis
@@ -124,12 +134,7 @@ class Tracker:
         """Squared Mahalanobis distances and innovation log-determinants, measurements x tracks."""
         if not tracks:
             return np.zeros((len(measurements), 0)), np.zeros((len(measurements), 0))
-        time_s = measurements[0].time_s
-        track_xy, track_cov = predict_positions(tracks, time_s, self._config.tracking.jerk_psd_m2ps5)
-        meas_xy = np.array([m.position_m for m in measurements])
-        meas_cov = np.array([m.cov_m2 for m in measurements])
-        origins = np.array([m.origin_m for m in measurements])
-        return self._cost_fn(meas_xy, meas_cov, origins, track_xy, track_cov, self._config.tracking.angle_emphasis,
+        return self._cost_fn(*self._geometry(measurements, tracks), self._config.tracking.angle_emphasis,
                              with_log_det=True)
 
     # -- V2V -------------------------------------------------------------------------------
