@@ -5,7 +5,6 @@ watchdog. Every `step` emits the ACT_ frames due at their DBC cycle times (and a
 manual mode (inactive), so the vehicle side always sees a live, counted stream.
 """
 
-import math
 
 import can
 
