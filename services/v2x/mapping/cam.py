@@ -5,10 +5,11 @@ from __future__ import annotations
 from coopdrive.services.v2x import units
 from coopdrive.services.v2x.codec import PROTOCOL_VERSION_GCDC, ItsMessageId
 from coopdrive.services.v2x.mapping.common import (
-    EnumTable, bits_to_flags, flags_to_bits, heading_to_asn, optional, path_point_from_asn, path_point_to_asn,
-    reference_position_from_asn, reference_position_to_asn, set_optional, speed_to_asn, wire_protocol_version)
+    EnumTable, bits_to_flags, checked_code, flags_to_bits, generation_delta_time, heading_to_asn, optional,
+    path_point_from_asn, path_point_to_asn, reference_position_from_asn, reference_position_to_asn, set_optional, speed_to_asn, wire_protocol_version)
 from coopdrive.v1 import its_pb2
 
+MAX_STATION_TYPE = 255
 DRIVE_DIRECTION = EnumTable([
     ("forward", its_pb2.DRIVE_DIRECTION_FORWARD), ("backward", its_pb2.DRIVE_DIRECTION_BACKWARD),
     ("unavailable", its_pb2.DRIVE_DIRECTION_UNAVAILABLE)])
@@ -35,22 +36,40 @@ ACCELERATION_CONTROL = (
     "acc_engaged", "cruise_control_engaged", "speed_limiter_engaged")
 
 
+class _AccelerationKeys:
+    """The wire and protobuf names of one acceleration axis, spelled once rather than per message."""
+
+    def __init__(self, axis: str):
+        self.container = f"{axis}Acceleration"
+        self.value, self.confidence = f"{axis}AccelerationValue", f"{axis}AccelerationConfidence"
+        self.value_field, self.confidence_field = f"{axis}_acceleration_mps2", f"{axis}_acceleration_confidence_mps2"
+
+
+LONGITUDINAL = _AccelerationKeys("longitudinal")
+OPTIONAL_ACCELERATIONS = (_AccelerationKeys("lateral"), _AccelerationKeys("vertical"))
+
+
 def _curvature_field(protocol_version: int) -> units.LinearField:
     if protocol_version == PROTOCOL_VERSION_GCDC:
         return units.CURVATURE_V1_PER_30000M
     return units.CURVATURE_V2_PER_10000M
 
 
-def _acceleration(prefix: str, value_mps2: float | None, confidence_mps2: float | None) -> dict:
-    return {f"{prefix}Value": units.ACCELERATION_DECIMPS2.to_wire(value_mps2),
-            f"{prefix}Confidence": units.ACCELERATION_CONFIDENCE_DECIMPS2.to_wire(confidence_mps2)}
+def _acceleration_to_asn(hf: its_pb2.CamBasicVehicleHighFrequency, keys: _AccelerationKeys) -> dict:
+    return {keys.value: units.ACCELERATION_DECIMPS2.to_wire(optional(hf, keys.value_field)),
+            keys.confidence: units.ACCELERATION_CONFIDENCE_DECIMPS2.to_wire(optional(hf, keys.confidence_field))}
+
+
+def _acceleration_from_asn(value: dict, hf: its_pb2.CamBasicVehicleHighFrequency, keys: _AccelerationKeys) -> None:
+    set_optional(hf, keys.value_field, units.ACCELERATION_DECIMPS2.to_si(value[keys.value]))
+    set_optional(hf, keys.confidence_field, units.ACCELERATION_CONFIDENCE_DECIMPS2.to_si(value[keys.confidence]))
 
 
 def cam_to_asn(content: its_pb2.CamContent) -> dict:
     protocol_version = wire_protocol_version(content.protocol_version)
     parameters = {
         "basicContainer": {
-            "stationType": int(content.station_type),
+            "stationType": checked_code("stationType", content.station_type, 0, MAX_STATION_TYPE),
             "referencePosition": reference_position_to_asn(content.reference_position),
         },
         "highFrequencyContainer": ("rsuContainerHighFrequency", {}),
@@ -68,7 +87,8 @@ def cam_to_asn(content: its_pb2.CamContent) -> dict:
     return {
         "header": {"protocolVersion": protocol_version, "messageID": int(ItsMessageId.CAM),
                    "stationID": content.station_id},
-        "cam": {"generationDeltaTime": content.generation_delta_time_ms, "camParameters": parameters},
+        "cam": {"generationDeltaTime": generation_delta_time(content.generation_delta_time_ms),
+                "camParameters": parameters},
     }
 
 
@@ -81,9 +101,7 @@ def _high_frequency_to_asn(hf: its_pb2.CamBasicVehicleHighFrequency, protocol_ve
             "vehicleLengthValue": units.VEHICLE_LENGTH_DM.to_wire(optional(hf, "vehicle_length_m")),
             "vehicleLengthConfidenceIndication": VEHICLE_LENGTH_CONFIDENCE.to_asn(hf.vehicle_length_confidence)},
         "vehicleWidth": units.VEHICLE_WIDTH_DM.to_wire(optional(hf, "vehicle_width_m")),
-        "longitudinalAcceleration": _acceleration(
-            "longitudinalAcceleration", optional(hf, "longitudinal_acceleration_mps2"),
-            optional(hf, "longitudinal_acceleration_confidence_mps2")),
+        LONGITUDINAL.container: _acceleration_to_asn(hf, LONGITUDINAL),
         "curvature": {
             "curvatureValue": _curvature_field(protocol_version).to_wire(optional(hf, "curvature_per_m")),
             "curvatureConfidence": units.CURVATURE_CONFIDENCE.to_wire(optional(hf, "curvature_confidence_per_m"))},
@@ -102,11 +120,9 @@ def _high_frequency_to_asn(hf: its_pb2.CamBasicVehicleHighFrequency, protocol_ve
                 optional(hf, "steering_wheel_angle_rad")),
             "steeringWheelAngleConfidence": units.STEERING_WHEEL_ANGLE_CONFIDENCE_1_5DEG.to_wire(
                 optional(hf, "steering_wheel_angle_confidence_rad"))}
-    for name in ("lateral", "vertical"):
-        if hf.HasField(f"{name}_acceleration_mps2") or hf.HasField(f"{name}_acceleration_confidence_mps2"):
-            value[f"{name}Acceleration"] = _acceleration(
-                f"{name}Acceleration", optional(hf, f"{name}_acceleration_mps2"),
-                optional(hf, f"{name}_acceleration_confidence_mps2"))
+    for keys in OPTIONAL_ACCELERATIONS:
+        if hf.HasField(keys.value_field) or hf.HasField(keys.confidence_field):
+            value[keys.container] = _acceleration_to_asn(hf, keys)
     if hf.HasField("performance_class"):
         value["performanceClass"] = min(hf.performance_class, 7)
     if hf.HasField("cen_dsrc_tolling_zone"):
@@ -151,13 +167,10 @@ def _high_frequency_from_asn(value: dict, hf: its_pb2.CamBasicVehicleHighFrequen
     set_optional(hf, "vehicle_length_m", units.VEHICLE_LENGTH_DM.to_si(length["vehicleLengthValue"]))
     hf.vehicle_length_confidence = VEHICLE_LENGTH_CONFIDENCE.to_proto(length["vehicleLengthConfidenceIndication"])
     set_optional(hf, "vehicle_width_m", units.VEHICLE_WIDTH_DM.to_si(value["vehicleWidth"]))
-    for name in ("longitudinal", "lateral", "vertical"):
-        acceleration = value.get(f"{name}Acceleration")
-        if acceleration is not None:
-            set_optional(hf, f"{name}_acceleration_mps2",
-                         units.ACCELERATION_DECIMPS2.to_si(acceleration[f"{name}AccelerationValue"]))
-            set_optional(hf, f"{name}_acceleration_confidence_mps2",
-                         units.ACCELERATION_CONFIDENCE_DECIMPS2.to_si(acceleration[f"{name}AccelerationConfidence"]))
+    _acceleration_from_asn(value[LONGITUDINAL.container], hf, LONGITUDINAL)
+    for keys in OPTIONAL_ACCELERATIONS:
+        if keys.container in value:
+            _acceleration_from_asn(value[keys.container], hf, keys)
     curvature = value["curvature"]
     set_optional(hf, "curvature_per_m", _curvature_field(protocol_version).to_si(curvature["curvatureValue"]))
     set_optional(hf, "curvature_confidence_per_m", units.CURVATURE_CONFIDENCE.to_si(curvature["curvatureConfidence"]))

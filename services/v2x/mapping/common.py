@@ -8,12 +8,26 @@ from google.protobuf.message import Message
 
 from coopdrive.services.v2x import units
 from coopdrive.services.v2x.codec import PROTOCOL_VERSION_GCDC
+from coopdrive.services.v2x.reasons import V2xEncodeError
+from coopdrive.services.v2x.timebase import GENERATION_DELTA_TIME_MODULUS
 from coopdrive.v1 import its_pb2
 
 
 def wire_protocol_version(content_version: int) -> int:
     """A content message's protocol_version left at 0 (unset) means the GCDC default."""
     return content_version or PROTOCOL_VERSION_GCDC
+
+
+def checked_code(wire_name: str, value: int, low: int, high: int) -> int:
+    """An identifier or code that no clamp could make right: outside low..high it is refused."""
+    if not low <= value <= high:
+        raise V2xEncodeError(f"{wire_name} {value} is outside {low}..{high}")
+    return value
+
+
+def generation_delta_time(content_ms: int) -> int:
+    """generationDeltaTime is TimestampIts mod 65536; content may carry the full TAI milliseconds."""
+    return content_ms % GENERATION_DELTA_TIME_MODULUS
 
 
 class EnumTable:
@@ -30,7 +44,7 @@ class EnumTable:
         try:
             return self._to_asn[number]
         except KeyError:
-            raise ValueError(f"no wire value for enum number {number}") from None
+            raise V2xEncodeError(f"no wire value for enum number {number}") from None
 
     def to_proto(self, name: str | None) -> int:
         if name is None and self._unknown_extension is not None:
@@ -78,9 +92,8 @@ def optional(message: Message, field: str) -> float | None:
 
 
 def set_optional(message: Message, field: str, value: float | None) -> None:
-    if value is None:
-        message.ClearField(field)
-    else:
+    """Set field unless value is None ('unavailable'); messages being decoded start with every field absent."""
+    if value is not None:
         setattr(message, field, value)
 
 

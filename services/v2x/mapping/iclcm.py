@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from coopdrive.services.v2x import units
 from coopdrive.services.v2x.codec import PROTOCOL_VERSION_GCDC, ItsMessageId
-from coopdrive.services.v2x.mapping.common import optional, set_optional
+from coopdrive.services.v2x.mapping.common import checked_code, generation_delta_time, optional, set_optional
 from coopdrive.v1 import its_pb2
 
 END_OF_SCENARIO = 1
@@ -12,6 +12,7 @@ MAX_PLATOON_ID = 255
 MAX_COUNTER_INTERSECTION = 3
 MIN_INTENTION, MAX_INTENTION = 1, 3
 MAX_CONTROLLER_TYPE = 3
+MAX_START_PLATOON = 1
 MERGE_FLAGS = (
     ("mergeRequest", "merge_request"), ("mergeSafeToMerge", "merge_safe_to_merge"), ("mergeFlag", "merge_flag"),
     ("mergeFlagTail", "merge_flag_tail"), ("mergeFlagHead", "merge_flag_head"))
@@ -21,7 +22,7 @@ def iclcm_to_asn(content: its_pb2.IclcmContent) -> dict:
     parameters = {
         "vehicleContainerHighFrequency": {
             "vehicleRearAxleLocation": units.ICLCM_REAR_AXLE_LOCATION_CM.to_wire(content.rear_axle_location_m),
-            "controllerType": min(int(content.controller_type), MAX_CONTROLLER_TYPE),
+            "controllerType": checked_code("controllerType", content.controller_type, 0, MAX_CONTROLLER_TYPE),
             "vehicleResponseTime": {
                 "vehicleResponseTimeConstant": units.ICLCM_RESPONSE_TIME_10MS.to_wire(
                     optional(content, "response_time_constant_s")),
@@ -54,14 +55,15 @@ def iclcm_to_asn(content: its_pb2.IclcmContent) -> dict:
         if content.HasField("participants_ready"):
             low["participantsReady"] = int(content.participants_ready)
         if content.HasField("start_platoon"):
-            low["startPlatoon"] = int(content.start_platoon)
+            low["startPlatoon"] = checked_code("startPlatoon", content.start_platoon, 0, MAX_START_PLATOON)
         if content.end_of_scenario:
             low["endOfScenario"] = END_OF_SCENARIO
         parameters["lowFrequencyContainer"] = low
     return {
         "header": {"protocolVersion": PROTOCOL_VERSION_GCDC, "messageID": int(ItsMessageId.ICLCM),
                    "stationID": content.station_id},
-        "iclm": {"generationDeltaTime": content.generation_delta_time_ms, "iclmParameters": parameters},
+        "iclm": {"generationDeltaTime": generation_delta_time(content.generation_delta_time_ms),
+                 "iclmParameters": parameters},
     }
 
 
