@@ -24,7 +24,7 @@ class BtpParseError(V2xDecodeError):
     """A BTP header that could not be parsed."""
 
 
-@dataclass
+@dataclass(slots=True)
 class BtpBHeader:
     destination_port: int
     destination_port_info: int = 0

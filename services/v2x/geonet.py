@@ -22,6 +22,8 @@ _BASIC = struct.Struct(">BBBB")
 _COMMON = struct.Struct(">BBBBHBB")
 _LONG_POSITION_VECTOR = struct.Struct(">QIiiHH")
 _SHB_TAIL = struct.Struct(">I")
+_SHB = struct.Struct(">QIiiHHI")  # long position vector and SHB tail in one unpack
+_ADDRESS_FLAGS_SIZE = 2  # M, ST and reserved bits ahead of the 6-octet MID
 _GBC_HEAD = struct.Struct(">HH")
 _GBC_AREA = struct.Struct(">iiHHHH")
 BASIC_HEADER_SIZE = _BASIC.size
@@ -73,6 +75,12 @@ class GeoAreaShape(enum.IntEnum):
 
 TSB_SUBTYPE_SINGLE_HOP = 0
 
+# Lookups by wire number: calling an IntEnum class costs as much as parsing a whole header.
+_BASIC_NEXT_BY_NUMBER = {int(member): member for member in
+                         (BasicNextHeader.COMMON_HEADER, BasicNextHeader.SECURED_PACKET)}
+_COMMON_NEXT_BY_NUMBER = {int(member): member for member in CommonNextHeader}
+_SHAPE_BY_SUBTYPE = {int(member): member for member in GeoAreaShape}
+
 
 def encode_lifetime(lifetime_s: float) -> tuple[int, int]:
     """(multiplier, base index) of the finest base that can hold lifetime_s."""
@@ -83,7 +91,7 @@ def encode_lifetime(lifetime_s: float) -> tuple[int, int]:
     return _LIFETIME_MAX_MULTIPLIER, len(_LIFETIME_BASES_S) - 1
 
 
-@dataclass
+@dataclass(slots=True)
 class BasicHeader:
     version: int = GN_VERSION_CURRENT
     next_header: BasicNextHeader = BasicNextHeader.COMMON_HEADER
@@ -96,7 +104,7 @@ class BasicHeader:
         return self.lifetime_multiplier * _LIFETIME_BASES_S[self.lifetime_base]
 
 
-@dataclass
+@dataclass(slots=True)
 class CommonHeader:
     next_header: CommonNextHeader = CommonNextHeader.BTP_B
     header_type: HeaderType = HeaderType.TOPOLOGICALLY_SCOPED_BROADCAST
@@ -108,7 +116,7 @@ class CommonHeader:
     max_hop_limit: int = 1
 
 
-@dataclass
+@dataclass(slots=True)
 class GnAddress:
     manual: bool = False
     station_type: int = 5
@@ -116,7 +124,7 @@ class GnAddress:
     mid: bytes = bytes(MID_SIZE_BYTES)
 
 
-@dataclass
+@dataclass(slots=True)
 class LongPositionVector:
     address: GnAddress = field(default_factory=GnAddress)
     # TAI milliseconds mod 2^32.
@@ -138,24 +146,28 @@ class LongPositionVector:
 
     @classmethod
     def unpack_from(cls, data: bytes, offset: int) -> LongPositionVector:
-        address, timestamp, latitude, longitude, speed, heading = _LONG_POSITION_VECTOR.unpack_from(data, offset)
+        return cls.from_fields(data, offset, *_LONG_POSITION_VECTOR.unpack_from(data, offset))
+
+    @classmethod
+    def from_fields(cls, data: bytes, offset: int, address: int, timestamp: int, latitude: int, longitude: int,
+                    speed: int, heading: int) -> LongPositionVector:
+        """From the unpacked fields of the vector at data[offset:]; the MID is sliced rather than re-encoded."""
         speed_cmps = speed & 0x7FFF
         if speed_cmps >= 1 << (_SPEED_BITS - 1):
             speed_cmps -= 1 << _SPEED_BITS
-        return cls(
-            GnAddress(bool(address >> 63), (address >> 58) & 0x1F, (address >> 48) & 0x3FF,
-                      (address & 0xFFFFFFFFFFFF).to_bytes(MID_SIZE_BYTES, "big")),
-            timestamp, latitude, longitude, bool(speed & _PAI_FLAG), speed_cmps, heading)
+        mid = bytes(data[offset + _ADDRESS_FLAGS_SIZE:offset + _ADDRESS_FLAGS_SIZE + MID_SIZE_BYTES])
+        return cls(GnAddress(address >= 1 << 63, (address >> 58) & 0x1F, (address >> 48) & 0x3FF, mid),
+                   timestamp, latitude, longitude, bool(speed & _PAI_FLAG), speed_cmps, heading)
 
 
-@dataclass
+@dataclass(slots=True)
 class ShbHeader:
     source_position: LongPositionVector = field(default_factory=LongPositionVector)
     # DCC / media-dependent octets (reserved in GN version 0).
     media_dependent: int = 0
 
 
-@dataclass
+@dataclass(slots=True)
 class GeoArea:
     shape: GeoAreaShape = GeoAreaShape.CIRCLE
     latitude_tenth_microdeg: int = 0
@@ -166,14 +178,14 @@ class GeoArea:
     angle_deg: int = 0
 
 
-@dataclass
+@dataclass(slots=True)
 class GbcHeader:
     sequence_number: int = 0
     source_position: LongPositionVector = field(default_factory=LongPositionVector)
     area: GeoArea = field(default_factory=GeoArea)
 
 
-@dataclass
+@dataclass(slots=True)
 class GnPacket:
     basic: BasicHeader
     common: CommonHeader
@@ -213,9 +225,10 @@ def parse_basic_header(data: bytes, accepted_versions: tuple[int, ...] = SUPPORT
     version, basic_next = version_next >> 4, version_next & 0x0F
     if version not in accepted_versions:
         raise GnParseError(RejectReason.UNSUPPORTED_GN_VERSION, f"version {version}")
-    if basic_next not in (BasicNextHeader.COMMON_HEADER, BasicNextHeader.SECURED_PACKET):
+    next_header = _BASIC_NEXT_BY_NUMBER.get(basic_next)
+    if next_header is None:
         raise GnParseError(RejectReason.UNKNOWN_BASIC_NEXT_HEADER, f"next header {basic_next}")
-    return BasicHeader(version, BasicNextHeader(basic_next), lifetime >> 2, lifetime & 0x03, hop_limit)
+    return BasicHeader(version, next_header, lifetime >> 2, lifetime & 0x03, hop_limit)
 
 
 def with_basic_next_header(packet: bytes, next_header: BasicNextHeader, rest: bytes) -> bytes:
@@ -236,16 +249,13 @@ def parse_gn(data: bytes, accepted_versions: tuple[int, ...] = SUPPORTED_GN_VERS
     header_type, subtype = type_subtype >> 4, type_subtype & 0x0F
     offset = BASIC_HEADER_SIZE + COMMON_HEADER_SIZE
     if header_type == HeaderType.TOPOLOGICALLY_SCOPED_BROADCAST and subtype == TSB_SUBTYPE_SINGLE_HOP:
-        extended_size = SHB_HEADER_SIZE
-    elif header_type == HeaderType.GEOBROADCAST and subtype in tuple(GeoAreaShape):
-        extended_size = GBC_HEADER_SIZE
+        extended_size, header_type = SHB_HEADER_SIZE, HeaderType.TOPOLOGICALLY_SCOPED_BROADCAST
+    elif header_type == HeaderType.GEOBROADCAST and subtype in _SHAPE_BY_SUBTYPE:
+        extended_size, header_type = GBC_HEADER_SIZE, HeaderType.GEOBROADCAST
     else:
         raise GnParseError(RejectReason.UNSUPPORTED_HEADER_TYPE, f"type {header_type} subtype {subtype}")
-    try:
-        common_next = CommonNextHeader(next_reserved >> 4)
-    except ValueError:
-        common_next = CommonNextHeader.ANY
-    common = CommonHeader(common_next, HeaderType(header_type), subtype, traffic_class,
+    common_next = _COMMON_NEXT_BY_NUMBER.get(next_reserved >> 4, CommonNextHeader.ANY)
+    common = CommonHeader(common_next, header_type, subtype, traffic_class,
                           bool(flags & _MOBILE_FLAG), payload_length, max_hop)
     if len(data) < offset + extended_size:
         raise GnParseError(RejectReason.TRUNCATED_EXTENDED_HEADER, f"{len(data)} bytes")
@@ -255,11 +265,11 @@ def parse_gn(data: bytes, accepted_versions: tuple[int, ...] = SUPPORTED_GN_VERS
         latitude, longitude, a_m, b_m, angle_deg, _ = _GBC_AREA.unpack_from(
             data, offset + _GBC_HEAD.size + _LONG_POSITION_VECTOR.size)
         extended = GbcHeader(sequence_number, position,
-                             GeoArea(GeoAreaShape(subtype), latitude, longitude, a_m, b_m, angle_deg))
+                             GeoArea(_SHAPE_BY_SUBTYPE[subtype], latitude, longitude, a_m, b_m, angle_deg))
     else:
-        position = LongPositionVector.unpack_from(data, offset)
-        (media_dependent,) = _SHB_TAIL.unpack_from(data, offset + _LONG_POSITION_VECTOR.size)
-        extended = ShbHeader(position, media_dependent)
+        address, timestamp, latitude, longitude, speed, heading, media_dependent = _SHB.unpack_from(data, offset)
+        extended = ShbHeader(LongPositionVector.from_fields(
+            data, offset, address, timestamp, latitude, longitude, speed, heading), media_dependent)
     offset += extended_size
     if len(data) - offset < payload_length:
         raise GnParseError(RejectReason.PAYLOAD_LENGTH_MISMATCH,

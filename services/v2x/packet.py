@@ -80,11 +80,13 @@ class SecurityLayer(Protocol):
         """(the packet without its security envelope, what the layer found) or raise V2xDecodeError."""
 
 
-@dataclass
-class DecodedPacket:
+@dataclass(slots=True)
+class DecodedFrame:
+    """A packet decoded down to the asn1tools dict of its ITS PDU (wire units)."""
+
     message_type: ItsMessageId
     its_header: ItsHeader
-    content: Content
+    value: dict
     gn: GnPacket = field(repr=False)
     btp: BtpBHeader = field(repr=False)
     # What the security layer reported (security.verifier.OpenedPacket); None without a security layer.
@@ -93,6 +95,13 @@ class DecodedPacket:
     @property
     def station_id(self) -> int:
         return self.its_header.station_id
+
+
+@dataclass(slots=True)
+class DecodedPacket(DecodedFrame):
+    """A decoded frame and its content in SI units."""
+
+    content: Content = field(kw_only=True)
 
 
 class V2xPacketCodec:
@@ -112,17 +121,29 @@ class V2xPacketCodec:
             params = _with_position(params, SourcePosition(
                 position.latitude_deg, position.longitude_deg, hf.speed_mps,
                 hf.heading_rad if hf.HasField("heading_rad") else None))
-        return self._wrap(ItsMessageId.CAM, self.its_codec.encode(ItsMessageId.CAM, cam_to_asn(content)), params)
+        # The CAM and iCLCM mappings clamp every field into range (tests/v2x/test_mapping_ranges.py).
+        uper = self.its_codec.encode(ItsMessageId.CAM, cam_to_asn(content), check_ranges=False)
+        return self._wrap(ItsMessageId.CAM, uper, params)
 
     def encode_denm(self, content: its_pb2.DenmContent, gn_params: GnParams) -> bytes:
         return self._wrap(ItsMessageId.DENM, self.its_codec.encode(ItsMessageId.DENM, denm_to_asn(content)),
                           gn_params)
 
     def encode_iclcm(self, content: its_pb2.IclcmContent, gn_params: GnParams) -> bytes:
-        return self._wrap(ItsMessageId.ICLCM, self.its_codec.encode(ItsMessageId.ICLCM, iclcm_to_asn(content)),
-                          gn_params)
+        uper = self.its_codec.encode(ItsMessageId.ICLCM, iclcm_to_asn(content), check_ranges=False)
+        return self._wrap(ItsMessageId.ICLCM, uper, gn_params)
 
     def decode_packet(self, data: bytes) -> DecodedPacket:
+        frame = self.decode_frame(data)
+        try:
+            content = _FROM_ASN[frame.message_type](frame.value)
+        except (ValueError, KeyError, TypeError) as error:
+            raise V2xDecodeError(RejectReason.UNMAPPABLE_CONTENT, str(error)) from None
+        return DecodedPacket(frame.message_type, frame.its_header, frame.value, frame.gn, frame.btp, frame.security,
+                             content=content)
+
+    def decode_frame(self, data: bytes) -> DecodedFrame:
+        """GeoNetworking, BTP and UPER decoded; the message still in asn1tools' wire units."""
         security = None
         if self.security is not None:
             data, security = self.security.open(data)
@@ -133,16 +154,12 @@ class V2xPacketCodec:
         message_type = MESSAGE_OF_PORT.get(btp.destination_port)
         if message_type is None:
             raise V2xDecodeError(RejectReason.UNKNOWN_BTP_PORT, str(btp.destination_port))
-        announced = peek_its_header(uper)
-        if announced.message_id != message_type:
+        its_header = peek_its_header(uper)
+        if its_header.message_id != message_type:
             raise V2xDecodeError(RejectReason.MESSAGE_ID_PORT_MISMATCH,
-                                 f"messageID {announced.message_id} on port {btp.destination_port}")
-        its_header, value = self.its_codec.decode(uper)
-        try:
-            content = _FROM_ASN[message_type](value)
-        except (ValueError, KeyError, TypeError) as error:
-            raise V2xDecodeError(RejectReason.UNMAPPABLE_CONTENT, str(error)) from None
-        return DecodedPacket(message_type, its_header, content, gn, btp, security)
+                                 f"messageID {its_header.message_id} on port {btp.destination_port}")
+        value = self.its_codec.decode_with_header(its_header, uper)
+        return DecodedFrame(message_type, its_header, value, gn, btp, security)
 
     def _wrap(self, message_type: ItsMessageId, uper: bytes, params: GnParams) -> bytes:
         if params.source_position is None:
