@@ -23,6 +23,13 @@ class StepLatency:
             elif key.endswith("ego/actuation/command"):
                 self._command_arrivals[round(message.header.sent_time_s, 6)] = now
 
+    def samples(self) -> np.ndarray:
+        """Per step whose clock and command both arrived: [clock arrival (perf_counter s), latency (ms)]."""
+        with self._lock:
+            clock, command = dict(self._clock_arrivals), dict(self._command_arrivals)
+        rows = [(clock[t], 1e3 * (command[t] - clock[t])) for t in command if t in clock and command[t] >= clock[t]]
+        return np.array(rows).reshape(-1, 2)
+
     def latencies_ms(self) -> np.ndarray:
         """Per step whose clock and command both arrived, the command's delay after the clock (ms)."""
         with self._lock:

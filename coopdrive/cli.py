@@ -144,6 +144,7 @@ def build_parser() -> argparse.ArgumentParser:
 def _service(args) -> int:
     from coopdrive.bus import BusConfig
     from coopdrive.runtime.config import load_config
+    from coopdrive.runtime.priority import lower_cpu_priority
     from coopdrive.runtime.registry import service_class
     from coopdrive.runtime.runner import ClockMode, ServiceRunner
 
@@ -153,6 +154,8 @@ def _service(args) -> int:
         print(f"coopdrive: {error.args[0]}", file=sys.stderr)
         return EXIT_USAGE
     config = load_config(cls.Config, args.config, args.set)
+    if config.cpu_nice:
+        lower_cpu_priority(config.cpu_nice)  # before the bus opens its threads, which inherit it
     bus = BusConfig(connect=args.connect, listen=args.listen or ["tcp/127.0.0.1:0"],
                     zenoh_config_file=str(args.zenoh_config) if args.zenoh_config else None)
     runner = ServiceRunner(cls, config, args.vehicle, bus, ClockMode(args.clock), clock_step_s=args.clock_step)

@@ -12,7 +12,7 @@ import logging
 from typing import Callable, ClassVar, Protocol
 
 from google.protobuf.message import Message
-from pydantic import BaseModel, ConfigDict
+from pydantic import BaseModel, ConfigDict, Field
 
 from coopdrive.bus import Envelope
 
@@ -63,6 +63,10 @@ class ServiceConfig(BaseModel):
     """Base of every service's config: unknown keys are errors, not silently ignored."""
 
     model_config = ConfigDict(extra="forbid")
+
+    # Added to the process's nice value when the service runs as its own process: a service that serves
+    # people rather than the control loop (the gateway) yields the CPU to it on a busy machine.
+    cpu_nice: int = Field(0, ge=0, le=19)
 
 
 class Service:

@@ -70,6 +70,8 @@ class GatewayConfig(ServiceConfig):
     rate_window_s: float = Field(5.0, gt=0)
     # How long stop() waits for the HTTP server thread before abandoning it (it is a daemon).
     shutdown_timeout_s: float = Field(1.5, gt=0)
+    # The HMI's clients must never delay a control cycle: on a shared machine the gateway takes CPU last.
+    cpu_nice: int = Field(10, ge=0, le=19)
     # Frames per second of the live state on /ws.
     live_rate_hz: float = Field(15.0, ge=1.0, le=25.0)
     # Frames waiting per WebSocket client; beyond this the oldest is dropped (a slow client loses frames).

@@ -30,8 +30,11 @@ class HttpServerThread:
             https = {"ssl_certfile": str(tls.certfile), "ssl_keyfile": str(tls.keyfile)}
             if tls.client_ca is not None:
                 https.update(ssl_ca_certs=str(tls.client_ca), ssl_cert_reqs=ssl.CERT_REQUIRED)
+        # No per-message deflate on /ws: each client has its own compression context, so one live frame would
+        # be compressed once per client, the gateway's largest cost with many clients, to save a few kB on a LAN.
         self._config = uvicorn.Config(app, host=host, port=port, log_config=None, access_log=False, lifespan="off",
-                                      ws="websockets-sansio", timeout_graceful_shutdown=GRACEFUL_SHUTDOWN_S, **https)
+                                      ws="websockets-sansio", ws_per_message_deflate=False,
+                                      timeout_graceful_shutdown=GRACEFUL_SHUTDOWN_S, **https)
         self._server = uvicorn.Server(self._config)
         self._thread: threading.Thread | None = None
         self._socket: socket.socket | None = None

@@ -1,8 +1,10 @@
 """Typed messages crossing real processes over Zenoh, service presence, and clean shutdown."""
 
+import os
 import queue
 import signal
 import time
+from pathlib import Path
 
 import zenoh
 
@@ -85,5 +87,28 @@ def test_sigterm_stops_a_service_promptly_and_cleanly(endpoint, spawn):
         process.send_signal(signal.SIGTERM)
         assert process.wait(timeout=10) == 0
         assert time.monotonic() - stopped_at < 30.0  # a hang, not a slow machine (3 s is the measured target)
+    finally:
+        hub.close()
+
+
+def nice_values_of_threads(pid: int) -> list[int]:
+    values = []
+    for task in Path(f"/proc/{pid}/task").iterdir():
+        fields = (task / "stat").read_text().rsplit(")", 1)[1].split()
+        values.append(int(fields[16]))  # field 19 of stat; fields[0] here is field 3
+    return values
+
+
+def test_a_service_configured_with_cpu_nice_runs_every_thread_at_that_lower_priority(endpoint, spawn):
+    hub = Bus(BusConfig(listen=[endpoint]))
+    layout = KeyLayout()
+    process = spawn("service", "planner", "--vehicle", "ego", "--connect", endpoint, "--set", "cpu_nice=5")
+    try:
+        end = time.monotonic() + DEADLINE_S
+        while layout.liveliness("ego", "planner") not in hub.alive_tokens(layout.all_liveliness()):
+            assert time.monotonic() < end, "no liveliness token from the planner"
+            time.sleep(0.2)
+        threads = nice_values_of_threads(process.pid)
+        assert len(threads) > 1 and set(threads) == {os.nice(0) + 5}
     finally:
         hub.close()
