@@ -1,4 +1,5 @@
 """Metrics that count events: integers wherever a run's metrics are printed or written."""
 
 COUNT_METRICS = ("collisions", "safety_circle_violations", "id_switches", "truth_samples", "participants_lost",
-                 "automation_lost", "v2x_packets_sent", "v2x_packets_received", "v2x_packets_rejected")
+                 "automation_lost", "v2x_packets_sent", "v2x_packets_received", "v2x_packets_rejected",
+                 "gnss_jumps")

@@ -1,4 +1,4 @@
-"""RunMessages: what the judge scores from a run (ground truth, the stacks' ego states and scenes), by topic."""
+"""RunMessages: what the judge scores from a run (ground truth, the stacks' ego states, fixes and scenes), by topic."""
 
 from __future__ import annotations
 
@@ -9,10 +9,12 @@ from pathlib import Path
 from google.protobuf.message import Message
 
 from coopdrive.recording.reader import read_messages
-from coopdrive.v1 import ego_pb2, scene_pb2, sim_pb2, v2x_pb2
+from coopdrive.v1 import ego_pb2, gnss_pb2, scene_pb2, sim_pb2, v2x_pb2
 
 TRUTH_SUFFIX = "/ground_truth"
 EGO_STATE_SUFFIX = "/ego/state"
+# The receiver's fixes: as the follow world publishes them, and as geolocation decoded them from a serial port.
+GNSS_FIX_SUFFIXES = ("/gnss/fix", "/ego/gnss")
 SCENE_SUFFIX = "/scene"
 V2X_STATUS_SUFFIX = "/v2x/status"
 
@@ -29,6 +31,7 @@ class RunMessages:
 
     truth: list[sim_pb2.GroundTruth] = field(default_factory=list)
     ego_states: dict[str, list[ego_pb2.EgoState]] = field(default_factory=dict)
+    gnss_fixes: dict[str, list[gnss_pb2.GnssFix]] = field(default_factory=dict)
     scenes: dict[str, list[scene_pb2.Scene]] = field(default_factory=dict)
     # The latest v2x/status of each vehicle (its counters are cumulative).
     v2x_status: dict[str, v2x_pb2.V2xStatus] = field(default_factory=dict)
@@ -42,6 +45,8 @@ class RunMessages:
                 self.truth.append(message)
             elif isinstance(message, ego_pb2.EgoState) and topic.endswith(EGO_STATE_SUFFIX):
                 self.ego_states.setdefault(vehicle_of(topic), []).append(message)
+            elif isinstance(message, gnss_pb2.GnssFix) and topic.endswith(GNSS_FIX_SUFFIXES):
+                self.gnss_fixes.setdefault(vehicle_of(topic), []).append(message)
             elif isinstance(message, scene_pb2.Scene) and topic.endswith(SCENE_SUFFIX):
                 self.scenes.setdefault(vehicle_of(topic), []).append(message)
             elif isinstance(message, v2x_pb2.V2xStatus) and topic.endswith(V2X_STATUS_SUFFIX):

@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from coopdrive.judging.counts import COUNT_METRICS
+from coopdrive.judging.localisation import localisation_metrics
 from coopdrive.judging.run_messages import RunMessages
 from coopdrive.judging.tracking import tracking_metrics
 from coopdrive.services.sim import metrics as judge_metrics
@@ -121,6 +122,8 @@ def score_series(series: TruthSeries, parameters: JudgingParameters = JudgingPar
         headway_s=parameters.headway_s, string_start_s=parameters.string_start_s,
         string_frequency_hz=parameters.string_frequency_hz, string_end_s=parameters.string_end_s,
         position_estimates=_position_estimates(series, messages))
+    if messages.ego_states:
+        scored.update(localisation_metrics(series, messages))
     if messages.scenes:
         scored.update(tracking_metrics(series, messages, ASSOCIATION_GATE_M))
     scored.update(v2x_metrics(messages))

@@ -42,6 +42,15 @@ class GnssOutage(_Fault):
     vehicle_id: str
 
 
+class GnssJump(_Fault):
+    """Multipath: the receiver's fixes are off by this offset, still in their configured fix mode."""
+
+    type: Literal["gnss_jump"]
+    vehicle_id: str
+    east_m: float = 5.0
+    north_m: float = 0.0
+
+
 class FixDowngrade(_Fault):
     type: Literal["fix_downgrade"]
     vehicle_id: str
@@ -112,5 +121,5 @@ class ServiceCrash(_Fault):
     service: str = Field(min_length=1)
 
 
-Fault = Annotated[Union[GnssOutage, FixDowngrade, V2vLoss, V2vCorruption, SensorDropout, CanErrorBurst,
+Fault = Annotated[Union[GnssOutage, GnssJump, FixDowngrade, V2vLoss, V2vCorruption, SensorDropout, CanErrorBurst,
                         PartnerSilent, IclcmDrop, ServiceCrash], Field(discriminator="type")]

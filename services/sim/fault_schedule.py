@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Mapping, Sequence
 
-from coopdrive.services.sim.fault_config import (CanErrorBurst, Fault, FixDowngrade, GnssOutage, IclcmDrop,
+from coopdrive.services.sim.fault_config import (CanErrorBurst, Fault, FixDowngrade, GnssJump, GnssOutage, IclcmDrop,
                                                  PartnerSilent, SensorDropout, SensorName, ServiceCrash, V2vCorruption,
                                                  V2vLoss)
 from coopdrive.services.sim.radio_channel import RadioChannel
@@ -52,6 +52,8 @@ class FaultSchedule:
     def _apply_to_suite(vehicle_id: str, suite: SensorSuite, active: Sequence[Fault]) -> None:
         mine = [f for f in active if getattr(f, "vehicle_id", None) == vehicle_id]
         suite.gnss.set_outage(any(isinstance(f, GnssOutage) for f in mine))
+        jumps = [f for f in mine if isinstance(f, GnssJump)]
+        suite.gnss.set_offset(sum(f.east_m for f in jumps), sum(f.north_m for f in jumps))
         downgrades = sorted((f for f in mine if isinstance(f, FixDowngrade)), key=lambda f: f.start_s)
         suite.gnss.set_fix_mode(downgrades[-1].fix_mode if downgrades else suite.gnss.config.fix_mode)
         for name in SensorName:

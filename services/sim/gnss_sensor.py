@@ -76,6 +76,7 @@ class GnssSensor:
         self.writer = NmeaWriter(config.talker_id, GgaQuality(config.sbas_gga_quality))
         self.fix_mode = config.fix_mode.proto
         self.outage = False
+        self.offset_east_m, self.offset_north_m = 0.0, 0.0
         self._error_enu_m = np.zeros(3)
         self._last_sample_s: float | None = None
         self.vehicle_id = vehicle_id
@@ -92,6 +93,10 @@ class GnssSensor:
     def set_outage(self, active: bool) -> None:
         """Fault hook (gnss_outage): the receiver keeps talking but reports no fix."""
         self.outage = active
+
+    def set_offset(self, east_m: float, north_m: float) -> None:
+        """Fault hook (gnss_jump): the fixes are off by this much (multipath) until set back to zero."""
+        self.offset_east_m, self.offset_north_m = east_m, north_m
 
     @property
     def effective_fix_mode(self) -> int:
@@ -127,7 +132,9 @@ class GnssSensor:
         cos_h, sin_h = math.cos(ego.heading_rad), math.sin(ego.heading_rad)
         true_x = ego.x_m + cfg.antenna_x_m * cos_h - cfg.antenna_y_m * sin_h
         true_y = ego.y_m + cfg.antenna_x_m * sin_h + cfg.antenna_y_m * cos_h
-        x_m, y_m, z_m = true_x + error[0], true_y + error[1], cfg.antenna_height_m + error[2]
+        x_m = true_x + error[0] + self.offset_east_m
+        y_m = true_y + error[1] + self.offset_north_m
+        z_m = cfg.antenna_height_m + error[2]
         lat_deg, lon_deg, alt_m = self.to_geodetic(x_m, y_m, z_m)
         speed = max(ego.speed_mps + cfg.speed_sigma_mps * self.rng.standard_normal(), 0.0)
         course_deg = (90.0 - math.degrees(ego.heading_rad) + cfg.course_sigma_deg * self.rng.standard_normal()) % 360.0

@@ -13,6 +13,7 @@ from coopdrive.v1 import sim_pb2
 
 KMH_PER_MPS = 3.6
 DEFAULT_SAFETY_RADIUS_M = 7.5
+MIN_STRING_AMPLITUDE_MPS = 0.05
 # Paths cross when headings are more than 30 degrees from parallel (or antiparallel).
 CROSSING_SIN = math.sin(math.radians(30.0))
 # Time gaps are meaningless near standstill.
@@ -182,7 +183,8 @@ def string_gain(speeds_mps: Sequence[np.ndarray], time_s: np.ndarray | None = No
                 frequency_hz: float | None = None) -> float:
     """Max over consecutive vehicles (leader first) of the ratio of follower to predecessor speed amplitude."""
     amplitudes = [speed_amplitude(s, time_s, frequency_hz) for s in speeds_mps]
-    ratios = [b / a for a, b in zip(amplitudes, amplitudes[1:]) if a > 0.0]
+    # A vehicle whose speed hardly varies excites nothing: the ratio to it would be noise over noise.
+    ratios = [b / a for a, b in zip(amplitudes, amplitudes[1:]) if a > MIN_STRING_AMPLITUDE_MPS]
     return max(ratios) if ratios else math.nan
 
 

@@ -95,6 +95,13 @@ class Mission(enum.Enum):
     EMERGENCY = "emergency"
 
 
+class EngageMode(enum.Enum):
+    """The driving mode every stack engages at the start, as its safety driver would."""
+
+    AUTONOMOUS = "autonomous"    # longitudinal and lateral
+    COOPERATIVE = "cooperative"  # longitudinal; the simulator's lane-keeping driver steers
+
+
 class ScenarioConfig(_Strict):
     name: str = Field(min_length=1)
     description: str = ""
@@ -109,6 +116,7 @@ class ScenarioConfig(_Strict):
     sensors: SensorSuiteConfig = SensorSuiteConfig()
     channel: RadioChannelConfig = RadioChannelConfig()
     faults: list[Fault] = []
+    engage: EngageMode = EngageMode.AUTONOMOUS
     judging: JudgingConfig = JudgingConfig()
 
     @model_validator(mode="after")

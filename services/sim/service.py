@@ -122,14 +122,14 @@ class SimConfig(ServiceConfig):
 
 def scenario_stack_overrides(scenario_file: str) -> dict[str, dict]:
     """What a scenario file's world needs in every stack: its lane map for geolocation and scene, and
-    stacks that engage autonomous control (longitudinal and lateral) at once, at speed, as a safety driver
-    would at the start."""
+    stacks that engage the scenario's mode (autonomous unless it says cooperative) at once, at speed, as a
+    safety driver would at the start."""
     scenario = load_scenario(scenario_file)
     fastest_mps = max((v.speed_mps for v in scenario.vehicles), default=0.0)
     return {
         "geolocation": {"map_name": scenario.map},
         "scene": {"map_name": scenario.map},
-        "actuation": {"engage_on_start": "autonomous", "require_v2x": False,
+        "actuation": {"engage_on_start": scenario.engage.value, "require_v2x": False,
                       "actuator": {"modes": {"max_engage_speed_mps": fastest_mps + FLYING_START_MARGIN_MPS}}},
     }
 

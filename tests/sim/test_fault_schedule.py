@@ -3,7 +3,7 @@ import datetime as dt
 import numpy as np
 
 from coopdrive.services.sim.channel_config import RadioChannelConfig
-from coopdrive.services.sim.fault_config import (CanErrorBurst, FixDowngrade, GnssOutage, PartnerSilent,
+from coopdrive.services.sim.fault_config import (CanErrorBurst, FixDowngrade, GnssJump, GnssOutage, PartnerSilent,
                                                  SensorDropout, SensorName, V2vCorruption, V2vLoss)
 from coopdrive.services.sim.fault_schedule import FaultSchedule
 from coopdrive.services.sim.profiles import PASSENGER_CAR
@@ -71,3 +71,21 @@ def test_the_same_seed_gives_the_same_sensor_outputs():
         out_b = b.poll(k * 0.05, WorldView(ego, [lead]), 0.0)
         assert out_a.radar == out_b.radar and out_a.lidar == out_b.lidar
         assert [g.data for g in out_a.gnss] == [g.data for g in out_b.gnss]
+
+
+def test_a_gnss_jump_moves_the_reported_antenna_position_by_its_offset_while_it_lasts():
+    suite = _suite()
+    schedule = FaultSchedule([GnssJump(type="gnss_jump", vehicle_id="ego", east_m=5.0, north_m=-2.0,
+                                       start_s=1, end_s=2)])
+    ego = sim_pb2.VehicleTruth(vehicle_id="ego", speed_mps=0.0, length_m=4.5, width_m=1.8)
+    reported = {}
+    for t in np.arange(0.0, 3.0, 0.05):
+        schedule.update(t, {"ego": suite})
+        for output in suite.poll(t, WorldView(ego, []), 0.0).gnss:
+            reported[round(output.sample_time_s, 2)] = (output.measured_x_m, output.measured_y_m)
+    during = [xy for t, xy in reported.items() if 1.2 <= t < 1.9]
+    outside = [xy for t, xy in reported.items() if t < 0.9 or t >= 2.2]
+    assert during and outside
+    assert all(abs(x - 5.0) < 0.1 and abs(y + 2.0) < 0.1 for x, y in during)
+    assert all(abs(x) < 0.1 and abs(y) < 0.1 for x, y in outside)
+    assert suite.gnss.effective_fix_mode == gnss_pb2.FIX_MODE_RTK_FIXED

@@ -30,6 +30,13 @@ def test_string_gain_with_the_excitation_frequency_is_exact_despite_phase_lags()
     assert metrics.string_gain(speeds, t, frequency_hz=0.2) == pytest.approx(0.8, abs=1e-9)
 
 
+def test_a_leader_at_a_steady_speed_excites_nothing_and_gives_no_string_gain():
+    t = np.arange(0.0, 50.0, 0.01)
+    rng = np.random.default_rng(1)
+    speeds = [22.2 + 1e-4 * rng.standard_normal(t.size), 22.2 + 0.01 * np.sin(2.0 * np.pi * 0.2 * t)]
+    assert math.isnan(metrics.string_gain(speeds, t, frequency_hz=0.2))
+
+
 def test_string_gain_ignores_a_linear_speed_trend_and_reports_the_worst_pair():
     t = np.arange(0.0, 50.0, 0.01)
     wave = np.sin(2.0 * np.pi * 0.2 * t)
