@@ -1,0 +1,41 @@
+"""Issue 9 in the simulator: the packaged `platoon40` scenario, three stacks platooning behind a car at a steady
+40 km/h into the A270 curve, measured against Heudiasyc's GCDC 2016 results in its report."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+DURATION_S = 30
+# Heudiasyc, steady platooning at 40 km/h: mean errors and the largest lateral error.
+HEUDIASYC_SPEED_ERROR_KMH = 0.71
+HEUDIASYC_SPACING_ERROR_M = 1.07
+HEUDIASYC_LATERAL_ERROR_M = 0.29
+HEUDIASYC_LATERAL_ERROR_MAX_M = 0.6
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory) -> dict:
+    folder = tmp_path_factory.mktemp("platoon40")
+    result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "platoon40", "--duration",
+                             str(DURATION_S), "--report", str(folder)], capture_output=True, text=True, timeout=900)
+    assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
+    return json.loads((folder / "metrics.json").read_text())
+
+
+def test_the_followers_keep_the_predecessor_s_speed_better_than_heudiasyc(report):
+    assert abs(report["speed_error_kmh"]) < HEUDIASYC_SPEED_ERROR_KMH
+
+
+def test_the_followers_keep_the_cacc_spacing_better_than_heudiasyc(report):
+    assert abs(report["spacing_error_m"]) < HEUDIASYC_SPACING_ERROR_M
+
+
+def test_the_followers_keep_to_the_lane_centre_through_the_curve_better_than_heudiasyc(report):
+    assert abs(report["lateral_error_m"]) < HEUDIASYC_LATERAL_ERROR_M
+    assert report["lateral_error_max_m"] < HEUDIASYC_LATERAL_ERROR_MAX_M
+
+
+def test_the_run_passes_with_every_stack_automated_throughout(report):
+    assert report["success"] and report["collisions"] == 0 and report["live_judge"]["automation_lost"] == 0
