@@ -1,11 +1,9 @@
 """Issue 9 in the simulator: the packaged `platoon40` scenario, three stacks platooning behind a car at a steady
 40 km/h into the A270 curve, measured against Heudiasyc's GCDC 2016 results in its report."""
 
-import json
-import subprocess
-import sys
-
 import pytest
+
+from tests.scenario_report import run_scenario_report
 
 DURATION_S = 30
 # Heudiasyc, steady platooning at 40 km/h: mean errors and the largest lateral error.
@@ -17,11 +15,7 @@ HEUDIASYC_LATERAL_ERROR_MAX_M = 0.6
 
 @pytest.fixture(scope="module")
 def report(tmp_path_factory) -> dict:
-    folder = tmp_path_factory.mktemp("platoon40")
-    result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "platoon40", "--duration",
-                             str(DURATION_S), "--report", str(folder)], capture_output=True, text=True, timeout=900)
-    assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
-    return json.loads((folder / "metrics.json").read_text())
+    return run_scenario_report(tmp_path_factory.mktemp("platoon40"), "platoon40", DURATION_S)
 
 
 def test_the_followers_keep_the_predecessor_s_speed_better_than_heudiasyc(report):

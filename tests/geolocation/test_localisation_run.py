@@ -2,11 +2,9 @@
 with a 10 s GNSS outage on it and a 5 m multipath jump; `coopdrive run ... --report` judges its ego states
 against the truth."""
 
-import json
-import subprocess
-import sys
-
 import pytest
+
+from tests.scenario_report import run_scenario_report
 
 # The jump is at 45 s; the run needs a second after it.
 DURATION_S = 47
@@ -14,11 +12,7 @@ DURATION_S = 47
 
 @pytest.fixture(scope="module")
 def report(tmp_path_factory) -> dict:
-    folder = tmp_path_factory.mktemp("localisation")
-    result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "localisation", "--duration",
-                             str(DURATION_S), "--report", str(folder)], capture_output=True, text=True, timeout=600)
-    assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
-    return json.loads((folder / "metrics.json").read_text())
+    return run_scenario_report(tmp_path_factory.mktemp("localisation"), "localisation", DURATION_S)
 
 
 def test_with_rtk_fixes_the_estimate_is_within_1_5_times_the_gnss_noise_and_better_than_the_raw_fixes(report):
