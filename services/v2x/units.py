@@ -145,7 +145,8 @@ def heading_enu_rad_to_etsi_tenth_deg(heading_rad: float | None) -> int:
     """ENU yaw (east, counter-clockwise) -> ETSI HeadingValue (north, clockwise, 0.1 deg, 0..3599)."""
     if heading_rad is None or not math.isfinite(heading_rad):
         return HEADING_UNAVAILABLE_TENTH_DEG
-    north_clockwise_deg = (90.0 - math.degrees(heading_rad)) % 360.0
+    # Wrapped in radians first: degrees() of a huge angle overflows to infinity.
+    north_clockwise_deg = (90.0 - math.degrees(math.remainder(heading_rad, math.tau))) % 360.0
     return round(north_clockwise_deg * 10) % _TENTH_DEG_PER_TURN
 
 

@@ -10,6 +10,7 @@ from coopdrive.services.v2x.mapping.common import (
 from coopdrive.v1 import its_pb2
 
 MAX_STATION_TYPE = 255
+MAX_TOLLING_ZONE_ID = 134_217_727
 DRIVE_DIRECTION = EnumTable([
     ("forward", its_pb2.DRIVE_DIRECTION_FORWARD), ("backward", its_pb2.DRIVE_DIRECTION_BACKWARD),
     ("unavailable", its_pb2.DRIVE_DIRECTION_UNAVAILABLE)])
@@ -131,7 +132,8 @@ def _high_frequency_to_asn(hf: its_pb2.CamBasicVehicleHighFrequency, protocol_ve
             "protectedZoneLatitude": units.LATITUDE_TENTH_MICRODEG.to_wire(zone.latitude_deg),
             "protectedZoneLongitude": units.LONGITUDE_TENTH_MICRODEG.to_wire(zone.longitude_deg)}
         if zone.HasField("zone_id"):
-            value["cenDsrcTollingZone"]["cenDsrcTollingZoneID"] = zone.zone_id
+            value["cenDsrcTollingZone"]["cenDsrcTollingZoneID"] = checked_code(
+                "cenDsrcTollingZoneID", zone.zone_id, 0, MAX_TOLLING_ZONE_ID)
     return value
 
 
