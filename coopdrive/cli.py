@@ -77,6 +77,9 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--v2v-loss", type=float, metavar="P",
                      help="lose every V2V packet with probability P (0-1), independently, on top of the scenario")
     run.add_argument("--v2v-cut-at", type=float, metavar="SECONDS", help="cut every V2V link from this time on")
+    run.add_argument("--fault", action="append", default=[], metavar="YAML",
+                     help="add a fault to the scenario's, as in its faults list, e.g. "
+                          "'{type: iclcm_drop, vehicle_id: a2, flag: merge_request, start_s: 0}'")
     run.add_argument("--realtime", action="store_true", help="pace the simulation to wall time")
     run.add_argument("--record", type=Path, metavar="FILE.mcap")
     run.add_argument("--gateway", type=int, metavar="PORT", help="serve the gateway HTTP API on this port")
@@ -195,7 +198,7 @@ def _run(args) -> int:
                          gateway_port=args.gateway, listen=tuple(args.listen), duration_s=args.duration,
                          log_dir=args.logs, stacks=args.stacks,
                          group_per_vehicle=None if args.processes is None else args.processes == "vehicle",
-                         security=args.security, untrusted=tuple(args.untrusted), extra_faults=_v2v_faults(args))
+                         security=args.security, untrusted=tuple(args.untrusted), extra_faults=_extra_faults(args))
     if args.untrusted and args.security is None:
         print("coopdrive: --untrusted needs --security", file=sys.stderr)
         return EXIT_USAGE
@@ -224,8 +227,11 @@ def _run(args) -> int:
     return _compare_with_baseline(args, options, result, recorded_to)
 
 
-def _v2v_faults(args) -> tuple[dict, ...]:
-    """--v2v-loss and --v2v-cut-at as scenario faults on every vehicle's radio."""
+def _extra_faults(args) -> tuple[dict, ...]:
+    """--v2v-loss and --v2v-cut-at as scenario faults on every vehicle's radio, and each --fault as written;
+    the scenario's validation names whatever in them is wrong."""
+    import yaml
+
     faults = []
     if args.v2v_loss is not None and not 0.0 <= args.v2v_loss <= 1.0:
         raise ConfigError(f"--v2v-loss {args.v2v_loss}: a probability from 0 to 1")
@@ -235,6 +241,14 @@ def _v2v_faults(args) -> tuple[dict, ...]:
         faults.append({"type": "v2v_loss", "start_s": 0.0, "loss_probability": args.v2v_loss})
     if args.v2v_cut_at is not None:
         faults.append({"type": "v2v_loss", "start_s": args.v2v_cut_at, "loss_probability": 1.0})
+    for text in args.fault:
+        try:
+            fault = yaml.safe_load(text)
+        except yaml.YAMLError as error:
+            raise ConfigError(f"--fault {text!r}: not YAML ({error.problem})") from None
+        if not isinstance(fault, dict):
+            raise ConfigError(f"--fault {text!r}: a mapping such as '{{type: gnss_outage, vehicle_id: ego, start_s: 5}}'")
+        faults.append(fault)
     return tuple(faults)
 
 

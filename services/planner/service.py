@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 from pydantic import Field
 
 from coopdrive.bus import Envelope
@@ -43,6 +45,7 @@ class PlannerService(Service):
         self.inputs = PlannerInputs(station_id=config.station_id, scenario=config.scenario_value(),
                                     platoon_id=config.platoon_id, partner_station_id=config.partner_station_id)
         self.pending_force: list[planner_pb2.PlannerForce] = []
+        self.logged_until_s = -math.inf
         self.ctx.subscribe("ego/state", lambda envelope: setattr(self.inputs, "ego", envelope.message))
         self.ctx.subscribe("scene", lambda envelope: setattr(self.inputs, "scene", envelope.message))
         for topic, field_name in V2X_TOPICS.items():
@@ -66,6 +69,16 @@ class PlannerService(Service):
             return
         self.ctx.publish("planner/behaviour", request)
         self.ctx.publish("planner/state", state)
+        self._log_new_transitions(state)
+
+    def _log_new_transitions(self, state: planner_pb2.PlannerState) -> None:
+        """Each transition once in the service log, with why it fired (a guard, a timeout, an escape)."""
+        for transition in state.recent_transitions:
+            if transition.time_s > self.logged_until_s:
+                self.ctx.log.info("%s: %s -> %s at %.2f s on %s: %s", state.machine, transition.from_state,
+                                  transition.to_state, transition.time_s, transition.event, transition.reason)
+        if state.recent_transitions:
+            self.logged_until_s = max(self.logged_until_s, state.recent_transitions[-1].time_s)
 
     def _apply_forced_states(self, now_s: float) -> None:
         for force in self.pending_force:

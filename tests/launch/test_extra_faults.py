@@ -1,4 +1,5 @@
-"""`coopdrive run SCENARIO --v2v-loss P --v2v-cut-at S`: faults a user adds to a scenario without editing it."""
+"""`coopdrive run SCENARIO --v2v-loss P --v2v-cut-at S --fault YAML`: faults a user adds to a scenario without
+editing it."""
 
 import subprocess
 import sys
@@ -46,3 +47,24 @@ def test_an_out_of_range_fault_flag_is_refused_naming_it(flag, value, message):
                                capture_output=True, text=True, timeout=60)
     assert completed.returncode == 2
     assert message in completed.stderr
+
+
+@pytest.mark.parametrize("fault, message", [
+    ("{type: iclcm_drop, vehicle_id: a2, flag: nope, start_s: 0}", "faults.0.flag: Input should be 'forward_id'"),
+    ("[1", "--fault '[1': not YAML"),
+    ("gnss_outage", "--fault 'gnss_outage': a mapping"),
+])
+def test_a_bad_fault_is_refused_in_one_line_naming_what_is_wrong_and_nothing_starts(fault, message):
+    completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "merge", "--fault", fault],
+                               capture_output=True, text=True, timeout=60)
+    assert completed.returncode == 2
+    assert message in completed.stderr and len(completed.stderr.strip().splitlines()) == 1
+
+
+def test_a_fault_from_the_command_line_reaches_the_scenario_the_simulator_loads(tmp_path):
+    from coopdrive.cli import _extra_faults, build_parser
+
+    args = build_parser().parse_args(["run", str(EXAMPLE), "--fault",
+                                      "{type: gnss_jump, vehicle_id: ego, start_s: 3, end_s: 3.5, east_m: 5}"])
+    scenario = load_scenario(sim_config(tmp_path, extra_faults=_extra_faults(args))["scenario_file"])
+    assert [(f.start_s, f.end_s, f.east_m) for f in scenario.faults if f.type == "gnss_jump"] == [(3.0, 3.5, 5.0)]

@@ -1,0 +1,44 @@
+"""The planner service around the state machines: what reaches the bus and the service log."""
+
+import logging
+
+from coopdrive.services.planner.service import PlannerService
+from coopdrive.v1 import planner_pb2
+
+
+class FakeContext:
+    vehicle_id = "ego"
+    log = logging.getLogger("test.planner")
+
+    def __init__(self):
+        self.published = []
+
+    def now_s(self) -> float:
+        return 0.0
+
+    def subscribe(self, topic, handler, vehicle_id=None):
+        pass
+
+    def publish(self, topic, message, sample_time_s=None):
+        self.published.append((topic, message))
+
+    def every(self, period_s, handler):
+        pass
+
+
+def test_each_transition_is_logged_once_with_its_reason(caplog):
+    ctx = FakeContext()
+    service = PlannerService(PlannerService.Config(), ctx)
+    service.start()
+    with caplog.at_level(logging.INFO, logger="test.planner"):
+        service.plan(0.1)
+        service.pending_force.append(planner_pb2.PlannerForce(state="SLOW_SAFE", requested_by="alice",
+                                                              reason="drill"))
+        service.plan(0.2)
+        service.plan(0.3)
+    lines = [record.getMessage() for record in caplog.records]
+    # Started; forced; and, the emergency vehicle being unheard, straight back to normal in the same step.
+    assert len(lines) == len(set(lines)) == 3
+    assert "machine started" in lines[0]
+    assert "NORMAL -> SLOW_SAFE" in lines[1] and "forced by alice: drill" in lines[1]
+    assert "SLOW_SAFE -> NORMAL" in lines[2] and "no longer heard" in lines[2]
