@@ -65,6 +65,8 @@ class ServiceProcesses:
                    "--clock", self._clock, *self._clock_step]
         output = None
         if self._log_dir is not None:
+            # A user who asks for the logs gets what the services tell at INFO, such as the planner's transitions.
+            command.append("--verbose")
             self._log_dir.mkdir(parents=True, exist_ok=True)
             output = open(self._log_dir / f"{name.replace('/', '-')}.log", "wb")
         environment = {"ZENOH_RUNTIME": SIMULATION_ZENOH_RUNTIME, **os.environ}
