@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from coopdrive.launch.ports import free_udp_port
+from coopdrive.launch.ports import free_udp_ports
 from coopdrive.services.sim.channel_config import RadioChannelConfig
 from coopdrive.services.sim.radio_box import RadioBox, RadioPorts
 from coopdrive.services.sim.radio_channel import RadioChannel
@@ -14,7 +14,9 @@ STEP_S = 0.02
 
 @pytest.fixture
 def two_vehicles():
-    ports = {vehicle: RadioPorts(free_udp_port(), free_udp_port()) for vehicle in ("a", "b")}
+    # Drawn together: ports drawn one by one may repeat.
+    numbers = iter(free_udp_ports(4))
+    ports = {vehicle: RadioPorts(next(numbers), next(numbers)) for vehicle in ("a", "b")}
     links = {vehicle: UdpLink(("127.0.0.1", p.stack_port), ("127.0.0.1", p.box_port), lambda _: None)
              for vehicle, p in ports.items()}
     boxes = []

@@ -6,6 +6,7 @@ import socket
 import time
 
 from coopdrive.bus import Bus, BusConfig
+from coopdrive.launch.ports import free_udp_port
 from coopdrive.services.v2x.cli_commands import decode_capture
 from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.packet import decode_packet
@@ -18,12 +19,6 @@ STOP_TIMEOUT_S = 20.0
 WALL_CLOCK = ItsClock(0.0)
 OWN_STATION_ID = 1001
 PERIOD_S = 0.04
-
-
-def free_udp_port() -> int:
-    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as probe:
-        probe.bind(("127.0.0.1", 0))
-        return probe.getsockname()[1]
 
 
 def test_the_v2x_process_exchanges_packets_with_the_radio_box_and_reports_the_remote_station(endpoint, spawn,
