@@ -92,7 +92,8 @@ class PartnerSilent(_Fault):
 
 
 class IclcmFlag(enum.Enum):
-    """The iCLCM fields that carry a step of the merge protocol (names as in its.proto's IclcmContent)."""
+    """The iCLCM fields that carry a step of the merge or intersection protocol (names as in its.proto's
+    IclcmContent)."""
 
     FORWARD_ID = "forward_id"
     BACKWARD_ID = "backward_id"
@@ -102,6 +103,8 @@ class IclcmFlag(enum.Enum):
     MERGE_FLAG = "merge_flag"
     MERGE_FLAG_HEAD = "merge_flag_head"
     MERGE_FLAG_TAIL = "merge_flag_tail"
+    # Intersection: the count of vehicles that crossed, raised by each vehicle leaving the box.
+    COUNTER_INTERSECTION = "counter_intersection"
 
 
 class IclcmDrop(_Fault):

@@ -37,6 +37,14 @@ def test_only_the_first_iclcm_with_the_protocol_flag_set_is_lost():
     assert faults.dropped_count == 1
 
 
+def test_the_first_iclcm_announcing_a_crossing_at_the_intersection_is_lost():
+    faults = RadioFaults([IclcmDrop(type="iclcm_drop", vehicle_id="east1", flag=IclcmFlag.COUNTER_INTERSECTION,
+                                    start_s=0.0)])
+    before, crossed = iclcm(counter_intersection=0), iclcm(counter_intersection=1)
+    assert faults.keeps("east1", before, 1.0)
+    assert [faults.keeps("east1", crossed, t) for t in (2.0, 2.04)] == [False, True]
+
+
 def test_an_id_field_counts_as_set_when_it_names_a_station_and_other_messages_pass():
     faults = RadioFaults([IclcmDrop(type="iclcm_drop", vehicle_id="b1", flag=IclcmFlag.FORWARD_ID, start_s=0.0,
                                     count=2)])
