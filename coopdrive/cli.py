@@ -247,7 +247,8 @@ def _extra_faults(args) -> tuple[dict, ...]:
         except yaml.YAMLError as error:
             raise ConfigError(f"--fault {text!r}: not YAML ({error.problem})") from None
         if not isinstance(fault, dict):
-            raise ConfigError(f"--fault {text!r}: a mapping such as '{{type: gnss_outage, vehicle_id: ego, start_s: 5}}'")
+            raise ConfigError(
+                f"--fault {text!r}: a mapping such as '{{type: gnss_outage, vehicle_id: ego, start_s: 5}}'")
         faults.append(fault)
     return tuple(faults)
 

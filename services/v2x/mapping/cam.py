@@ -5,8 +5,10 @@ from __future__ import annotations
 from coopdrive.services.v2x import units
 from coopdrive.services.v2x.codec import PROTOCOL_VERSION_GCDC, ItsMessageId
 from coopdrive.services.v2x.mapping.common import (
-    EnumTable, bits_to_flags, checked_code, flags_to_bits, generation_delta_time, heading_to_asn, optional,
-    path_point_from_asn, path_point_to_asn, reference_position_from_asn, reference_position_to_asn, set_optional, speed_to_asn, wire_protocol_version)
+    EnumTable, bits_to_flags, checked_code, flags_to_bits, heading_to_asn, optional,
+    path_point_from_asn, path_point_to_asn, reference_position_from_asn, reference_position_to_asn, set_optional,
+    speed_to_asn, wire_protocol_version)
+from coopdrive.services.v2x.timebase import generation_delta_time_ms
 from coopdrive.v1 import its_pb2
 
 MAX_STATION_TYPE = 255
@@ -88,7 +90,7 @@ def cam_to_asn(content: its_pb2.CamContent) -> dict:
     return {
         "header": {"protocolVersion": protocol_version, "messageID": int(ItsMessageId.CAM),
                    "stationID": content.station_id},
-        "cam": {"generationDeltaTime": generation_delta_time(content.generation_delta_time_ms),
+        "cam": {"generationDeltaTime": generation_delta_time_ms(content.generation_delta_time_ms),
                 "camParameters": parameters},
     }
 

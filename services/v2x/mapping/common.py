@@ -9,7 +9,6 @@ from google.protobuf.message import Message
 from coopdrive.services.v2x import units
 from coopdrive.services.v2x.codec import PROTOCOL_VERSION_GCDC
 from coopdrive.services.v2x.reasons import V2xEncodeError
-from coopdrive.services.v2x.timebase import GENERATION_DELTA_TIME_MODULUS
 from coopdrive.v1 import its_pb2
 
 
@@ -23,11 +22,6 @@ def checked_code(wire_name: str, value: int, low: int, high: int) -> int:
     if not low <= value <= high:
         raise V2xEncodeError(f"{wire_name} {value} is outside {low}..{high}")
     return value
-
-
-def generation_delta_time(content_ms: int) -> int:
-    """generationDeltaTime is TimestampIts mod 65536; content may carry the full TAI milliseconds."""
-    return content_ms % GENERATION_DELTA_TIME_MODULUS
 
 
 class EnumTable:

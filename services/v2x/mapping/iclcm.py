@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from coopdrive.services.v2x import units
 from coopdrive.services.v2x.codec import PROTOCOL_VERSION_GCDC, ItsMessageId
-from coopdrive.services.v2x.mapping.common import checked_code, generation_delta_time, optional, set_optional
+from coopdrive.services.v2x.mapping.common import checked_code, optional, set_optional
+from coopdrive.services.v2x.timebase import generation_delta_time_ms
 from coopdrive.v1 import its_pb2
 
 END_OF_SCENARIO = 1
@@ -62,7 +63,7 @@ def iclcm_to_asn(content: its_pb2.IclcmContent) -> dict:
     return {
         "header": {"protocolVersion": PROTOCOL_VERSION_GCDC, "messageID": int(ItsMessageId.ICLCM),
                    "stationID": content.station_id},
-        "iclm": {"generationDeltaTime": generation_delta_time(content.generation_delta_time_ms),
+        "iclm": {"generationDeltaTime": generation_delta_time_ms(content.generation_delta_time_ms),
                  "iclmParameters": parameters},
     }
 
