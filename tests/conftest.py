@@ -32,3 +32,11 @@ def spawn():
         if process.poll() is None:
             os.killpg(process.pid, signal.SIGKILL)
             process.wait()
+
+
+@pytest.fixture
+def shared_data():
+    """The folder of real recordings (NMEA, CAN, V2X captures): see tests/shared_data.py."""
+    from tests.shared_data import shared_data_dir
+
+    return shared_data_dir()
