@@ -54,6 +54,8 @@ _ALL = [
     Topic("sonar/ranges", sensors_pb2.SonarRanges, "sim"),
     Topic("ego/state", ego_pb2.EgoState, "geolocation"),
     Topic("ego/gnss", gnss_pb2.GnssFix, "geolocation"),
+    # What the receiver's port delivered, stamped on arrival: geolocation's estimator reads this stream.
+    Topic("gnss/nmea", gnss_pb2.NmeaChunk, "geolocation"),
     Topic("v2x/rx", v2x_pb2.GnPacket, "v2x"),
     Topic("v2x/tx", v2x_pb2.GnPacket, "v2x"),
     Topic("v2x/status", v2x_pb2.V2xStatus, "v2x"),

@@ -47,6 +47,7 @@ class ReplayContext:
     liveliness_handlers: list = field(default_factory=list)
     _sequence: SequenceCounter | None = None
     layout: KeyLayout = field(default_factory=KeyLayout)
+    opens_hardware: bool = False
 
     def now_s(self) -> float:
         return self.clock.now_s()

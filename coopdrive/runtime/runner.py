@@ -76,6 +76,8 @@ class _ReleasedStep:
 
 
 class ServiceRunner:
+    opens_hardware = True
+
     def __init__(self, service_cls: type[Service], config: ServiceConfig, vehicle_id: str,
                  bus_config: BusConfig | None, clock_mode: ClockMode = ClockMode.WALL, bus: Bus | None = None,
                  clock_step_s: float | None = None):

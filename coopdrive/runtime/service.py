@@ -20,6 +20,9 @@ from coopdrive.bus import Envelope
 class ServiceContext(Protocol):
     vehicle_id: str
     log: logging.Logger
+    # False under replay: a service's hardware inputs (serial ports, CAN interfaces, the radio box) then come
+    # from the topics its driver side published when the drive was recorded (gnss/nmea, can/vehicle, v2x/rx).
+    opens_hardware: bool
 
     def now_s(self) -> float: ...
 

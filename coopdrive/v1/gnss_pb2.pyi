@@ -51,3 +51,13 @@ class GnssFix(_message.Message):
     satellites: int
     hdop: float
     def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., latitude_deg: _Optional[float] = ..., longitude_deg: _Optional[float] = ..., altitude_m: _Optional[float] = ..., fix_mode: _Optional[_Union[FixMode, str]] = ..., std_east_m: _Optional[float] = ..., std_north_m: _Optional[float] = ..., std_up_m: _Optional[float] = ..., speed_mps: _Optional[float] = ..., course_deg: _Optional[float] = ..., satellites: _Optional[int] = ..., hdop: _Optional[float] = ...) -> None: ...
+
+class NmeaChunk(_message.Message):
+    __slots__ = ("header", "data", "port")
+    HEADER_FIELD_NUMBER: _ClassVar[int]
+    DATA_FIELD_NUMBER: _ClassVar[int]
+    PORT_FIELD_NUMBER: _ClassVar[int]
+    header: _header_pb2.Header
+    data: bytes
+    port: str
+    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., data: _Optional[bytes] = ..., port: _Optional[str] = ...) -> None: ...
