@@ -9,7 +9,8 @@ Figures, pooled over the stack vehicles:
 - outage_position_error_max_m: the largest error while the receiver reported no fix.
 - gnss_jump_position_error_max_m: the largest error while fixes were off by far more than their noise (multipath)
   and for a second after.
-- lane_index_accuracy: share of lane-matched estimates on the true lane, outside lane changes.
+- lane_index_accuracy: share of all estimates matched to the true lane (unmatched ones count as wrong), outside
+  lane changes.
 
 The simulator's antenna sits at the vehicle reference point, where the truth and the estimate are, so the fixes
 are compared with the truth there. Fixes are placed in the local frame through the nearest ego state's own
@@ -142,9 +143,10 @@ def _vehicle(series: TruthSeries, vehicle_id: str, states: list[ego_pb2.EgoState
     nearest = np.clip(np.searchsorted(series.time_s, time_s), 0, series.time_s.size - 1)
     true_lane = lanes[nearest]
     matched = np.array([s.lane.matched for s in states])
-    judged = matched & (true_lane >= 0)
+    judged = true_lane >= 0
     estimated_lane = np.array([s.lane.lane_index for s in states])
-    pool.add("lane_correct", (estimated_lane[judged] == true_lane[judged]).astype(float))
+    # An estimate matched to no lane is a wrong answer, not a sample to leave out.
+    pool.add("lane_correct", (matched[judged] & (estimated_lane[judged] == true_lane[judged])).astype(float))
 
 
 def localisation_metrics(series: TruthSeries, messages: RunMessages) -> dict[str, float]:

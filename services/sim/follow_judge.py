@@ -5,6 +5,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
+from coopdrive.services.sim.metrics import KMH_PER_MPS, error_stats
+
 MIN_SPEED_FOR_TIME_GAP_MPS = 1.0
 
 
@@ -43,17 +47,17 @@ class FollowJudge:
             self._speed_errors_mps.append(speed_mps - leader_speed_mps)
 
     def metrics(self) -> dict[str, float]:
-        spacing = [abs(e) for e in self._spacing_errors_m] or [0.0]
-        speed = [abs(e) for e in self._speed_errors_mps] or [0.0]
-        return {
+        """The spacing and speed errors as `coopdrive score` defines them (metrics.error_stats), after the
+        settle time."""
+        figures = {
             "collisions": float(self.collisions),
             "min_gap_m": self.min_gap_m if math.isfinite(self.min_gap_m) else -1.0,
             "min_time_gap_s": self.min_time_gap_s if math.isfinite(self.min_time_gap_s) else -1.0,
-            "spacing_error_mean_m": sum(spacing) / len(spacing),
-            "spacing_error_max_m": max(spacing),
-            "speed_error_mean_kmh": 3.6 * sum(speed) / len(speed),
             "max_abs_accel_mps2": self._max_abs_accel_mps2,
         }
+        figures.update(error_stats(np.array(self._spacing_errors_m), "spacing_error", "m"))
+        figures.update(error_stats(np.array(self._speed_errors_mps) * KMH_PER_MPS, "speed_error", "kmh"))
+        return figures
 
     def verdict(self) -> tuple[bool, str]:
         if self.collisions:
@@ -62,7 +66,7 @@ class FollowJudge:
             return False, f"minimum gap {self.min_gap_m:.2f} m not above the standstill distance {self.standstill_m} m"
         if not self._spacing_errors_m:
             return False, f"too short to judge the following: spacing is judged after {self.settle_time_s:.0f} s"
-        spacing = self.metrics()["spacing_error_mean_m"]
+        spacing = self.metrics()["spacing_error_m"]
         if spacing > self.max_mean_spacing_error_m:
             return False, (f"not following: mean spacing error {spacing:.2f} m after {self.settle_time_s:.0f} s "
                            f"exceeds {self.max_mean_spacing_error_m} m")

@@ -109,12 +109,18 @@ def gaps(truth: TruthSeries) -> dict[str, float]:
     return {"min_gap_m": min_gap, "min_time_gap_s": min_time_gap}
 
 
-def _error_stats(errors: np.ndarray, key: str, unit: str) -> dict[str, float]:
+def error_stats(errors: np.ndarray, key: str, unit: str) -> dict[str, float]:
+    """An error series as the literature reports it: `{key}_{unit}` is the mean absolute error, beside the RMS,
+    the 95th percentile and the largest absolute error; the signed mean is kept as `{key}_bias_{unit}` (with the
+    standard deviation about it), since a signed mean alone lets errors of both signs cancel."""
+    errors = np.asarray(errors, dtype=float)
     errors = errors[np.isfinite(errors)]
     if not errors.size:
         return {}
-    return {f"{key}_{unit}": float(errors.mean()), f"{key}_sd_{unit}": float(errors.std()),
-            f"{key}_max_{unit}": float(np.abs(errors).max())}
+    magnitude = np.abs(errors)
+    return {f"{key}_{unit}": float(magnitude.mean()), f"{key}_rms_{unit}": float(np.sqrt(np.mean(errors ** 2))),
+            f"{key}_p95_{unit}": float(np.percentile(magnitude, 95)), f"{key}_max_{unit}": float(magnitude.max()),
+            f"{key}_bias_{unit}": float(errors.mean()), f"{key}_sd_{unit}": float(errors.std())}
 
 
 def comfort(truth: TruthSeries, vehicle_ids: Sequence[str]) -> dict[str, float]:
@@ -136,7 +142,7 @@ SpeedReference = Callable[[np.ndarray], np.ndarray]
 def speed_error(truth: TruthSeries, reference_mps: Mapping[str, SpeedReference]) -> dict[str, float]:
     """Actual minus reference speed in km/h, over the vehicles given a reference (a function of time)."""
     errors = [truth.get(vid, "speed_mps") - ref(truth.time_s) for vid, ref in reference_mps.items()]
-    return _error_stats(np.concatenate(errors) * KMH_PER_MPS, "speed_error", "kmh") if errors else {}
+    return error_stats(np.concatenate(errors) * KMH_PER_MPS, "speed_error", "kmh") if errors else {}
 
 
 def spacing_error(truth: TruthSeries, vehicle_ids: Sequence[str], standstill_m: float = DEFAULT_STANDSTILL_M,
@@ -146,12 +152,12 @@ def spacing_error(truth: TruthSeries, vehicle_ids: Sequence[str], standstill_m: 
     errors = [bumper_gap_m(leader, follower) - (standstill_m + headway_s * follower.speed_mps)
               for _, vehicles in truth.frames for leader, follower in following_pairs(vehicles)
               if follower.vehicle_id in wanted]
-    return _error_stats(np.array(errors), "spacing_error", "m")
+    return error_stats(np.array(errors), "spacing_error", "m")
 
 
 def lateral_error(truth: TruthSeries, vehicle_ids: Sequence[str]) -> dict[str, float]:
     errors = [truth.get(vid, "lateral_offset_m") for vid in vehicle_ids]
-    return _error_stats(np.concatenate(errors), "lateral_error", "m") if errors else {}
+    return error_stats(np.concatenate(errors), "lateral_error", "m") if errors else {}
 
 
 def speed_amplitude(speed_mps: np.ndarray, time_s: np.ndarray | None = None,

@@ -68,10 +68,10 @@ class MissionJudge:
                 string_end_s=judging_config.string_end_s).items() if math.isfinite(value)}
             self._metrics["collisions"] = float(self.collisions)
             self._metrics["automation_lost"] = float(len(self.automation_lost_s))
-            # The slowest vehicle's time: what the GCDC limits (a merge in under 10 s per pair).
-            merge_times = self.merge_times_s() if self.config.mission is Mission.MERGE else {}
-            if merge_times:
-                self._metrics["merge_time_s"] = max(merge_times.values())
+            if self.config.mission is Mission.MERGE:
+                self._metrics.update(self._merge_metrics())
+            if self.config.mission is Mission.EMERGENCY and math.isfinite(self.corridor_close_time_s()):
+                self._metrics["corridor_close_time_s"] = self.corridor_close_time_s()
             crossing_times = self.crossing_times_s() if self.config.mission is Mission.INTERSECTION else {}
             if crossing_times:
                 self._metrics["crossing_time_s"] = max(crossing_times.values())
@@ -88,7 +88,8 @@ class MissionJudge:
         mission = self.config.mission
         if mission is Mission.PLATOON:
             gain = self.metrics().get("string_gain")
-            if gain is not None and gain >= 1.0 and not self._v2v_cut_while_judging_string():
+            excited = self.config.judging.string_frequency_hz is not None
+            if excited and gain is not None and gain >= 1.0 and not self._v2v_cut_while_judging_string():
                 return False, f"string unstable: string gain {gain:.3f} >= 1"
         elif mission is Mission.MERGE:
             return self._merge_verdict()
@@ -125,26 +126,39 @@ class MissionJudge:
         still = sorted(v for v in self.stack_ids if v in final and final[v].lane_index in closed)
         if still:
             return False, f"merge not completed: {', '.join(still)} still in the closed lane at the end"
-        slow = {v: t for v, t in self.merge_times_s().items() if t > MERGE_TIME_LIMIT_S}
+        slow = {v: end - start for v, (start, end) in self.lane_changes_s().items() if end - start > MERGE_TIME_LIMIT_S}
         if slow:
-            return False, "merge too slow: " + ", ".join(f"{v} {t:.1f} s" for v, t in sorted(slow.items()))
+            return False, "lane change too slow: " + ", ".join(f"{v} {t:.1f} s" for v, t in sorted(slow.items()))
         return True, ""
 
-    def merge_times_s(self) -> dict[str, float]:
-        """Per stack vehicle that left a closed lane: from leaving its centre to settling in the new lane."""
+    def _merge_metrics(self) -> dict[str, float]:
+        """merge_time_s: from the road-works notice (the roadside unit's first DENM) to the last merger settled
+        in the open lane, the whole manoeuvre as the organisers timed it; lane_change_time_s: the slowest lane
+        change alone (leaving the closed lane's centre to settling in the new one), what GCDC limits to 10 s."""
+        changes = self.lane_changes_s()
+        if not changes:
+            return {}
+        figures = {"lane_change_time_s": max(end - start for start, end in changes.values())}
+        notices_s = [event.time_s for event in self._roadworks()]
+        if notices_s:
+            figures["merge_time_s"] = max(end for _, end in changes.values()) - min(notices_s)
+        return figures
+
+    def lane_changes_s(self) -> dict[str, tuple[float, float]]:
+        """Per stack vehicle that left a closed lane: (left its centre, settled in the new lane) times."""
         closed = {event.closed_lane for event in self._roadworks()}
 
         def off_centre(v: sim_pb2.VehicleTruth) -> bool:
             return abs(v.lateral_offset_m) > LANE_CENTRE_TOLERANCE_M
 
-        return self._span_times_s(begins=lambda v: v.lane_index in closed and off_centre(v),
-                                  ends=lambda v: v.lane_index not in closed and not off_centre(v))
+        return self._spans_s(begins=lambda v: v.lane_index in closed and off_centre(v),
+                             ends=lambda v: v.lane_index not in closed and not off_centre(v))
 
-    def _span_times_s(self, begins, ends) -> dict[str, float]:
-        """Per stack vehicle: from the first frame where begins(v) holds to the first later one where ends(v)
-        does; vehicles that never got to the end are left out."""
+    def _spans_s(self, begins, ends) -> dict[str, tuple[float, float]]:
+        """Per stack vehicle: (start, end) from the first frame where begins(v) holds to the first later one
+        where ends(v) does; vehicles that never got to the end are left out."""
         started: dict[str, float] = {}
-        spans: dict[str, float] = {}
+        spans: dict[str, tuple[float, float]] = {}
         for time_s, vehicles in self.frames:
             for v in vehicles:
                 if v.vehicle_id not in self.stack_ids or v.vehicle_id in spans:
@@ -152,7 +166,7 @@ class MissionJudge:
                 if begins(v):
                     started.setdefault(v.vehicle_id, time_s)
                 elif v.vehicle_id in started and ends(v):
-                    spans[v.vehicle_id] = time_s - started[v.vehicle_id]
+                    spans[v.vehicle_id] = (started[v.vehicle_id], time_s)
         return spans
 
     def _intersection_verdict(self) -> tuple[bool, str]:
@@ -183,19 +197,42 @@ class MissionJudge:
         def distance_m(v: sim_pb2.VehicleTruth) -> float:
             return math.hypot(v.x_m - zone.x_m, v.y_m - zone.y_m)
 
-        return self._span_times_s(begins=lambda v: distance_m(v) <= zone.radius_m,
-                                  ends=lambda v: distance_m(v) > zone.radius_m + ZONE_EXIT_MARGIN_M)
+        spans = self._spans_s(begins=lambda v: distance_m(v) <= zone.radius_m,
+                              ends=lambda v: distance_m(v) > zone.radius_m + ZONE_EXIT_MARGIN_M)
+        return {vehicle_id: end - start for vehicle_id, (start, end) in spans.items()}
 
     def _emergency_verdict(self) -> tuple[bool, str]:
-        emergency = [v.vehicle_id for v in self.config.vehicles if v.role is VehicleRole.EMERGENCY]
+        emergency = self._emergency_id()
         final = self._final()
-        if not emergency or emergency[0] not in final:
+        if emergency is None or emergency not in final:
             return False, "no emergency vehicle in the run"
-        passer = final[emergency[0]]
+        passer = final[emergency]
         behind = sorted(v for v in self.stack_ids if v in final and final[v].station_m > passer.station_m)
         if behind:
             return False, f"the emergency vehicle did not get past {', '.join(behind)}"
+        aside = sorted(v for v in self.stack_ids if v in final
+                       and abs(final[v].lateral_offset_m) > LANE_CENTRE_TOLERANCE_M)
+        if aside:
+            return False, f"corridor not closed: {', '.join(aside)} still off the lane centre at the end"
         return True, ""
+
+    def _emergency_id(self) -> str | None:
+        return next((v.vehicle_id for v in self.config.vehicles if v.role is VehicleRole.EMERGENCY), None)
+
+    def corridor_close_time_s(self) -> float:
+        """From the emergency vehicle passing the last stack vehicle to every stack vehicle back within
+        LANE_CENTRE_TOLERANCE_M of its lane centre; NaN while that has not happened."""
+        emergency, passed_s = self._emergency_id(), None
+        for time_s, vehicles in self.frames:
+            by_id = {v.vehicle_id: v for v in vehicles}
+            stacks = [by_id[v] for v in self.stack_ids if v in by_id]
+            if emergency not in by_id or not stacks:
+                continue
+            if passed_s is None and all(v.station_m < by_id[emergency].station_m for v in stacks):
+                passed_s = time_s
+            if passed_s is not None and all(abs(v.lateral_offset_m) <= LANE_CENTRE_TOLERANCE_M for v in stacks):
+                return time_s - passed_s
+        return math.nan
 
 
 def _in_works(vehicle: sim_pb2.VehicleTruth, event) -> bool:

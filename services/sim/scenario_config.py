@@ -80,6 +80,8 @@ class JudgingConfig(_Strict):
     standstill_m: float = Field(default=6.0, ge=0)
     headway_s: float = Field(default=1.5, ge=0)
     string_start_s: float = Field(default=0.0, ge=0)
+    # The leader's excitation. Only a run that declares one is judged on its string gain: behind a steady leader
+    # the gain is reported, but it is a ratio of noise amplitudes.
     string_frequency_hz: float | None = Field(default=None, gt=0)
     # The string gain is measured up to here (before a final brake that is no longer the excitation).
     string_end_s: float = Field(default=math.inf, gt=0)

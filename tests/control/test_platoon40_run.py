@@ -6,7 +6,10 @@ import pytest
 from tests.scenario_report import run_scenario_report
 
 DURATION_S = 30
-# Heudiasyc, steady platooning at 40 km/h: mean errors and the largest lateral error.
+# Heudiasyc, steady platooning at 40 km/h: average errors and the largest lateral error. Their errors kept one
+# sign throughout (speed 0.71 +- 0.03 km/h, spacing 1.07 +- 0.04 m, lateral within [0.05, 0.60] m), so their
+# averages are also their mean absolute errors, which is what our report's speed_error_kmh, spacing_error_m
+# and lateral_error_m are.
 HEUDIASYC_SPEED_ERROR_KMH = 0.71
 HEUDIASYC_SPACING_ERROR_M = 1.07
 HEUDIASYC_LATERAL_ERROR_M = 0.29
@@ -19,15 +22,15 @@ def report(tmp_path_factory) -> dict:
 
 
 def test_the_followers_keep_the_predecessor_s_speed_better_than_heudiasyc(report):
-    assert abs(report["speed_error_kmh"]) < HEUDIASYC_SPEED_ERROR_KMH
+    assert report["speed_error_kmh"] < HEUDIASYC_SPEED_ERROR_KMH
 
 
 def test_the_followers_keep_the_cacc_spacing_better_than_heudiasyc(report):
-    assert abs(report["spacing_error_m"]) < HEUDIASYC_SPACING_ERROR_M
+    assert report["spacing_error_m"] < HEUDIASYC_SPACING_ERROR_M
 
 
 def test_the_followers_keep_to_the_lane_centre_through_the_curve_better_than_heudiasyc(report):
-    assert abs(report["lateral_error_m"]) < HEUDIASYC_LATERAL_ERROR_M
+    assert report["lateral_error_m"] < HEUDIASYC_LATERAL_ERROR_M
     assert report["lateral_error_max_m"] < HEUDIASYC_LATERAL_ERROR_MAX_M
 
 

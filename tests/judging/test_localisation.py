@@ -26,13 +26,14 @@ def truth(duration_s=6.0) -> TruthSeries:
 
 
 def ego_state(t, east_error_m, variance_m2=0.01, lane=0, mode=ego_pb2.LOCALISATION_MODE_GNSS_PRECISE):
+    """lane None: matched to no lane."""
     state = ego_pb2.EgoState(x_m=SPEED_MPS * t + east_error_m, y_m=0.0, mode=mode,
                              last_fix_mode=gnss_pb2.FIX_MODE_RTK_FIXED)
     state.header.sample_time_s = t
     covariance = np.eye(6) * variance_m2
     state.covariance.extend(covariance.ravel())
     state.latitude_deg, state.longitude_deg, _ = pymap3d.enu2geodetic(state.x_m, state.y_m, 0.0, *ORIGIN)
-    state.lane.matched, state.lane.lane_index = True, lane
+    state.lane.matched, state.lane.lane_index = lane is not None, lane or 0
     return state
 
 
@@ -86,4 +87,9 @@ def test_fixes_far_beyond_their_noise_are_a_jump_and_the_estimate_error_after_th
 
 def test_the_lane_index_accuracy_counts_matched_samples_on_the_true_lane():
     figures = run(state_error=lambda t: 0.01, lane=lambda t: 1 if 5.0 <= t < 5.6 else 0)
+    assert figures["lane_index_accuracy"] == pytest.approx(1.0 - 0.6 / 6.0, abs=0.01)
+
+
+def test_an_estimate_matched_to_no_lane_counts_as_a_wrong_lane():
+    figures = run(state_error=lambda t: 0.01, lane=lambda t: None if 5.0 <= t < 5.6 else 0)
     assert figures["lane_index_accuracy"] == pytest.approx(1.0 - 0.6 / 6.0, abs=0.01)

@@ -21,14 +21,19 @@ def test_the_gap_is_bumper_to_bumper_and_its_minimum_is_at_the_last_sample(two_c
 
 
 def test_spacing_error_is_the_gap_minus_six_metres_plus_one_and_a_half_seconds_of_speed(two_car_metrics):
-    # 25 - 2 t - (6 + 1.5 * 12) = 1 - 2 t over t = 0, 0.1, ..., 1
-    assert two_car_metrics["spacing_error_m"] == pytest.approx(0.0, abs=1e-9)
+    # 25 - 2 t - (6 + 1.5 * 12) = 1 - 2 t over t = 0, 0.1, ..., 1: 1.0, 0.8, ..., -1.0
+    errors = [1.0 - 0.2 * k for k in range(11)]
+    assert two_car_metrics["spacing_error_m"] == pytest.approx(sum(abs(e) for e in errors) / 11)
+    assert two_car_metrics["spacing_error_rms_m"] == pytest.approx(math.sqrt(sum(e * e for e in errors) / 11))
+    assert two_car_metrics["spacing_error_bias_m"] == pytest.approx(0.0, abs=1e-9)
     assert two_car_metrics["spacing_error_max_m"] == pytest.approx(1.0)
+    assert two_car_metrics["spacing_error_p95_m"] == pytest.approx(1.0)
     assert two_car_metrics["spacing_error_sd_m"] == pytest.approx(2 * math.sqrt(0.1))
 
 
 def test_speed_error_is_the_followers_speed_minus_its_predecessors_in_kmh(two_car_metrics):
     assert two_car_metrics["speed_error_kmh"] == pytest.approx(7.2)
+    assert two_car_metrics["speed_error_bias_kmh"] == pytest.approx(7.2)
     assert two_car_metrics["speed_error_max_kmh"] == pytest.approx(7.2)
     assert two_car_metrics["speed_error_sd_kmh"] == pytest.approx(0.0, abs=1e-9)
 

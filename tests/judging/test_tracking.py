@@ -100,3 +100,11 @@ def test_an_object_whose_position_faded_is_neither_a_track_nor_a_false_object():
     faded = run(lambda t: [(7, leader_rear_x(t), 0.0), (8, None, None)])
     assert faded["false_object_max_s"] == 0.0
     assert faded["object_coverage_ratio"] == 1.0
+
+
+def test_errors_beyond_the_gate_stay_in_the_percentile_and_are_counted():
+    # 5 m behind the rear bumper (beyond the 3 m gate) for the first quarter second, 0.2 m after.
+    metrics = run(lambda t: [(7, leader_rear_x(t) - (5.0 if t < 0.24 else 0.2), 0.0)])
+    assert metrics["object_position_errors_beyond_gate"] == 5  # scenes at 0, 0.05, ..., 0.2 s
+    assert metrics["object_position_error_p95_m"] == pytest.approx(5.0)
+    assert metrics["object_coverage_ratio"] == pytest.approx(36 / 41)

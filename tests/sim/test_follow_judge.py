@@ -13,7 +13,7 @@ def judge_steady(gap_for_speed, speed_mps=20.0, duration_s=30.0):
 def test_following_at_the_desired_spacing_passes_with_zero_error():
     judge = judge_steady(lambda v: 6.0 + 1.5 * v)
     assert judge.verdict() == (True, "")
-    assert judge.metrics()["spacing_error_mean_m"] == 0.0
+    assert judge.metrics()["spacing_error_m"] == 0.0
     assert judge.metrics()["min_time_gap_s"] == 1.8
 
 
@@ -36,3 +36,13 @@ def test_a_run_that_ends_before_the_settle_time_is_too_short_to_judge():
     judge.observe(2.0, "ego", gap_m=30.0, speed_mps=15.0, leader_speed_mps=15.0, accel_mps2=0.0)
     ok, reason = judge.verdict()
     assert not ok and reason.startswith("too short to judge")
+
+
+def test_spacing_and_speed_errors_are_mean_absolute_with_rms_p95_and_the_signed_bias():
+    judge = FollowJudge(standstill_m=6.0, time_gap_s=1.5, settle_time_s=0.0)
+    for tick, spacing_error_m in enumerate([1.0, -1.0, 1.0, -1.0]):
+        judge.observe(tick, "ego", 6.0 + 1.5 * 10.0 + spacing_error_m, 10.0, 10.0 - spacing_error_m, 0.0)
+    figures = judge.metrics()
+    assert figures["spacing_error_m"] == 1.0 and figures["spacing_error_rms_m"] == 1.0
+    assert figures["spacing_error_bias_m"] == 0.0 and figures["spacing_error_p95_m"] == 1.0
+    assert figures["speed_error_kmh"] == 3.6 and figures["speed_error_bias_kmh"] == 0.0

@@ -88,17 +88,23 @@ def lane_change(judge, start_s, duration_s):
                                     {"vehicle_id": "b", "x_m": 900 + time_s, "lane_index": 0}))
 
 
-def test_the_merge_time_runs_from_leaving_the_lane_centre_to_settling_in_the_open_lane():
+def test_the_lane_change_time_runs_from_leaving_the_lane_centre_to_settling_in_the_open_lane():
     judge = merge_judge()
     lane_change(judge, start_s=5.0, duration_s=6.0)
-    assert judge.metrics()["merge_time_s"] == 6.0
+    assert judge.metrics()["lane_change_time_s"] == 6.0
     assert judge.verdict() == (True, "")
 
 
-def test_a_merge_slower_than_10_s_fails_naming_the_vehicle_and_its_time():
+def test_the_merge_time_runs_from_the_road_works_notice_to_the_last_merger_settled():
+    judge = merge_judge()
+    lane_change(judge, start_s=5.0, duration_s=6.0)
+    assert judge.metrics()["merge_time_s"] == 11.0 - 1.0  # the roadside unit announces the works at 1 s
+
+
+def test_a_lane_change_slower_than_10_s_fails_naming_the_vehicle_and_its_time():
     judge = merge_judge()
     lane_change(judge, start_s=5.0, duration_s=12.0)
-    assert judge.verdict() == (False, "merge too slow: a 12.0 s")
+    assert judge.verdict() == (False, "lane change too slow: a 12.0 s")
 
 
 def intersection_config():
@@ -141,11 +147,13 @@ def test_passing_a_car_in_the_opposite_lane_is_no_safety_circle_violation():
     assert judge.verdict() == (True, "")
 
 
-def amplifying_platoon(faults):
-    """b leads a in one lane; a's 0.2 Hz speed wave is twice b's: a string gain of 2."""
-    judge = MissionJudge(config("platoon", faults=faults,
-                                judging={"platoon": ["b", "a"], "string_frequency_hz": 0.2, "string_end_s": 10}),
-                         ["a", "b"])
+def amplifying_platoon(faults, excitation_hz=0.2):
+    """b leads a in one lane; a's 0.2 Hz speed wave is twice b's: a string gain of 2. excitation_hz: the
+    excitation the scenario declares (None: a steady leader, as in platoon40)."""
+    judging = {"platoon": ["b", "a"], "string_end_s": 10}
+    if excitation_hz is not None:
+        judging["string_frequency_hz"] = excitation_hz
+    judge = MissionJudge(config("platoon", faults=faults, judging=judging), ["a", "b"])
     for k in range(101):
         t = 0.1 * k
         wave = math.sin(2 * math.pi * 0.2 * t)
@@ -165,6 +173,41 @@ def test_with_every_v2v_link_cut_the_string_gain_is_reported_but_only_a_collisio
     assert judge.verdict() == (True, "")
 
 
+def test_behind_a_leader_with_no_declared_excitation_the_string_gain_is_reported_but_not_judged():
+    judge = amplifying_platoon([], excitation_hz=None)
+    assert judge.metrics()["string_gain"] > 1.9
+    assert judge.verdict() == (True, "")
+
+
 def test_partial_v2v_loss_leaves_the_string_gain_judged():
     judge = amplifying_platoon([{"type": "v2v_loss", "start_s": 2.0, "loss_probability": 0.2}])
     assert not judge.verdict()[0]
+
+
+def emergency_judge():
+    vehicles = [{"vehicle_id": "a", "station_id": 2, "lane": 1, "station_m": 100, "speed_mps": 10},
+                {"vehicle_id": "e", "station_id": 9, "role": "emergency", "lane": 1, "station_m": 0,
+                 "speed_mps": 20, "lateral_offset_m": -1.75, "siren": {"on_s": 0}}]
+    return MissionJudge(config("emergency", vehicles=vehicles), ["a"])
+
+
+def corridor(judge, frames):
+    """frames: (time_s, a's station and lateral offset, the emergency vehicle's station)."""
+    for time_s, a_station_m, a_offset_m, e_station_m in frames:
+        judge.observe(time_s, truth({"vehicle_id": "a", "station_m": a_station_m, "lane_index": 1,
+                                     "lateral_offset_m": a_offset_m, "x_m": a_station_m},
+                                    {"vehicle_id": "e", "station_m": e_station_m, "lane_index": 1,
+                                     "lateral_offset_m": -1.75, "x_m": e_station_m, "y_m": 3.0}))
+
+
+def test_an_emergency_run_whose_corridor_stays_open_fails_naming_who_is_still_aside():
+    judge = emergency_judge()
+    corridor(judge, [(0.0, 100, 0.0, 0), (5.0, 150, 0.8, 140), (10.0, 200, 0.8, 240)])
+    assert judge.verdict() == (False, "corridor not closed: a still off the lane centre at the end")
+
+
+def test_the_corridor_closes_once_the_vehicles_are_back_on_their_lane_centres_and_its_time_is_reported():
+    judge = emergency_judge()
+    corridor(judge, [(0.0, 100, 0.0, 0), (5.0, 150, 0.8, 140), (10.0, 200, 0.8, 240), (13.0, 230, 0.1, 300)])
+    assert judge.verdict() == (True, "")
+    assert judge.metrics()["corridor_close_time_s"] == 3.0
