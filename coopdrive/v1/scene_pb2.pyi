@@ -49,7 +49,7 @@ class IntegerProperty(_message.Message):
     def __init__(self, value: _Optional[int] = ..., confidence: _Optional[float] = ..., sources: _Optional[_Iterable[_Union[_header_pb2.SensorSource, str]]] = ..., valid_until_s: _Optional[float] = ...) -> None: ...
 
 class SceneObject(_message.Message):
-    __slots__ = ("object_id", "object_class", "position", "speed_mps", "accel_mps2", "heading_rad", "length_m", "width_m", "lane_index", "station_id", "longitudinal_gap_m", "lateral_offset_m", "relative_speed_mps", "v2v_trust", "ghost", "first_seen_s", "intended_accel_mps2")
+    __slots__ = ("object_id", "object_class", "position", "speed_mps", "accel_mps2", "heading_rad", "length_m", "width_m", "lane_index", "station_id", "longitudinal_gap_m", "lateral_offset_m", "relative_speed_mps", "v2v_trust", "ghost", "first_seen_s", "intended_accel_mps2", "v2v_time_s")
     OBJECT_ID_FIELD_NUMBER: _ClassVar[int]
     OBJECT_CLASS_FIELD_NUMBER: _ClassVar[int]
     POSITION_FIELD_NUMBER: _ClassVar[int]
@@ -67,6 +67,7 @@ class SceneObject(_message.Message):
     GHOST_FIELD_NUMBER: _ClassVar[int]
     FIRST_SEEN_S_FIELD_NUMBER: _ClassVar[int]
     INTENDED_ACCEL_MPS2_FIELD_NUMBER: _ClassVar[int]
+    V2V_TIME_S_FIELD_NUMBER: _ClassVar[int]
     object_id: int
     object_class: _sensors_pb2.ObjectClass
     position: PositionProperty
@@ -84,7 +85,8 @@ class SceneObject(_message.Message):
     ghost: bool
     first_seen_s: float
     intended_accel_mps2: ScalarProperty
-    def __init__(self, object_id: _Optional[int] = ..., object_class: _Optional[_Union[_sensors_pb2.ObjectClass, str]] = ..., position: _Optional[_Union[PositionProperty, _Mapping]] = ..., speed_mps: _Optional[_Union[ScalarProperty, _Mapping]] = ..., accel_mps2: _Optional[_Union[ScalarProperty, _Mapping]] = ..., heading_rad: _Optional[_Union[ScalarProperty, _Mapping]] = ..., length_m: _Optional[_Union[ScalarProperty, _Mapping]] = ..., width_m: _Optional[_Union[ScalarProperty, _Mapping]] = ..., lane_index: _Optional[_Union[IntegerProperty, _Mapping]] = ..., station_id: _Optional[_Union[IntegerProperty, _Mapping]] = ..., longitudinal_gap_m: _Optional[float] = ..., lateral_offset_m: _Optional[float] = ..., relative_speed_mps: _Optional[float] = ..., v2v_trust: _Optional[float] = ..., ghost: _Optional[bool] = ..., first_seen_s: _Optional[float] = ..., intended_accel_mps2: _Optional[_Union[ScalarProperty, _Mapping]] = ...) -> None: ...
+    v2v_time_s: float
+    def __init__(self, object_id: _Optional[int] = ..., object_class: _Optional[_Union[_sensors_pb2.ObjectClass, str]] = ..., position: _Optional[_Union[PositionProperty, _Mapping]] = ..., speed_mps: _Optional[_Union[ScalarProperty, _Mapping]] = ..., accel_mps2: _Optional[_Union[ScalarProperty, _Mapping]] = ..., heading_rad: _Optional[_Union[ScalarProperty, _Mapping]] = ..., length_m: _Optional[_Union[ScalarProperty, _Mapping]] = ..., width_m: _Optional[_Union[ScalarProperty, _Mapping]] = ..., lane_index: _Optional[_Union[IntegerProperty, _Mapping]] = ..., station_id: _Optional[_Union[IntegerProperty, _Mapping]] = ..., longitudinal_gap_m: _Optional[float] = ..., lateral_offset_m: _Optional[float] = ..., relative_speed_mps: _Optional[float] = ..., v2v_trust: _Optional[float] = ..., ghost: _Optional[bool] = ..., first_seen_s: _Optional[float] = ..., intended_accel_mps2: _Optional[_Union[ScalarProperty, _Mapping]] = ..., v2v_time_s: _Optional[float] = ...) -> None: ...
 
 class LaneNeighbours(_message.Message):
     __slots__ = ("lane_offset", "ahead_object_id", "has_ahead", "behind_object_id", "has_behind")

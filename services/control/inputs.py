@@ -4,8 +4,9 @@ The planner's BehaviourRequest names the targets; the Scene gives their gap and 
 always added as a predecessor even when the planner did not list it, so the emergency path and min-select
 never ignore the vehicle directly ahead.
 
-V2V freshness: the Scene has no per-property V2V timestamp, so a target's V2V age is the scene's age when its
-acceleration is supported by SENSOR_SOURCE_V2V and not faded (confidence >= 0), else there is no V2V.
+V2V freshness: a target's V2V age is the time since its latest CAM was measured (SceneObject.v2v_time_s), when
+its acceleration is supported by SENSOR_SOURCE_V2V and not faded (confidence >= 0), else there is no V2V. The
+scene keeps a V2V-supported property for its fade time (about a second), far beyond GCDC's 400 ms.
 """
 
 from __future__ import annotations
@@ -28,16 +29,16 @@ def spacing_from_request(request: planner_pb2.BehaviourRequest) -> Spacing | Non
     return Spacing(request.spacing.standstill_m, request.spacing.time_gap_s)
 
 
-def _target(obj: scene_pb2.SceneObject, role: int, extra_gap_m: float, scene_age_s: float) -> Target:
+def _target(obj: scene_pb2.SceneObject, role: int, extra_gap_m: float, now_s: float) -> Target:
     accel = obj.accel_mps2
-    has_v2v = accel.confidence >= 0 and V2V in accel.sources
+    has_v2v = accel.confidence >= 0 and V2V in accel.sources and obj.v2v_time_s > 0
     intended = obj.intended_accel_mps2
     return Target(
         object_id=obj.object_id,
         gap_m=obj.longitudinal_gap_m,
         speed_mps=obj.speed_mps.value,
         accel_mps2=accel.value if has_v2v else None,
-        v2v_age_s=max(scene_age_s, 0.0) if has_v2v else None,
+        v2v_age_s=max(now_s - obj.v2v_time_s, 0.0) if has_v2v else None,
         role=role,
         extra_gap_m=extra_gap_m,
         intended_accel_mps2=intended.value if V2V in intended.sources else None,
@@ -48,16 +49,15 @@ def targets_from_scene(request: planner_pb2.BehaviourRequest, scene: scene_pb2.S
                        ego_speed_mps: float = 0.0) -> list[Target]:
     """Targets ahead of the ego (gap > 0) that the scene knows, unknown ids left out, and the stop line."""
     objects = {o.object_id: o for o in scene.objects if not o.ghost}
-    age = now_s - scene.header.sample_time_s
     targets: dict[int, Target] = {}
     for tv in request.targets:
         obj = objects.get(tv.object_id)
         if obj is not None and obj.longitudinal_gap_m > 0:
-            targets[obj.object_id] = _target(obj, tv.role, tv.extra_gap_m, age)
+            targets[obj.object_id] = _target(obj, tv.role, tv.extra_gap_m, now_s)
     if scene.has_forward_mio and scene.forward_mio_id not in targets:
         obj = objects.get(scene.forward_mio_id)
         if obj is not None and obj.longitudinal_gap_m > 0:
-            targets[obj.object_id] = _target(obj, planner_pb2.TARGET_ROLE_PREDECESSOR, 0.0, age)
+            targets[obj.object_id] = _target(obj, planner_pb2.TARGET_ROLE_PREDECESSOR, 0.0, now_s)
     stop_line = stop_line_target(request, ego_speed_mps, now_s)
     if stop_line is not None:
         targets[stop_line.object_id] = stop_line

@@ -36,6 +36,8 @@ class ObjectProperties:
         self.station_id = make()
         # The partner's own reported acceleration, kept as sent (brief: the object carries it).
         self.reported_accel_mps2: float | None = None
+        # When the latest V2V reading was measured (0: never).
+        self.v2v_time_s = 0.0
         self.object_class_value = sensors_pb2.OBJECT_CLASS_UNSPECIFIED
 
     def support(self, meas: Measurement, quality: float, v2v_weight: float = 1.0) -> None:
@@ -55,6 +57,7 @@ class ObjectProperties:
             self.heading.support(meas.source, t, q)
             self.accel.support(meas.source, t, q)
             self.reported_accel_mps2 = meas.accel_mps2
+            self.v2v_time_s = max(self.v2v_time_s, t)
             if meas.station_id is not None:
                 self.station_id.update(meas.source, t, float(meas.station_id), q)
         elif meas.source == header_pb2.SENSOR_SOURCE_RADAR:

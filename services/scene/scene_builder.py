@@ -137,6 +137,7 @@ class SceneBuilder:
         obj.lateral_offset_m = across
         obj.relative_speed_mps = float(velocity @ forward) - ego.speed_mps
         obj.v2v_trust = view.v2v_trust
+        obj.v2v_time_s = props.v2v_time_s
         obj.ghost = view.ghost
         return obj, lane
 

@@ -10,8 +10,10 @@ from coopdrive.services.control.profiles import CAR, TRUCK, profile_by_name
 from coopdrive.v1 import ego_pb2, header_pb2, planner_pb2, scene_pb2
 
 
-def scene_object(object_id, gap_m, speed_mps, accel_mps2=None, v2v=True):
+def scene_object(object_id, gap_m, speed_mps, accel_mps2=None, v2v=True, v2v_time_s=10.0):
     obj = scene_pb2.SceneObject(object_id=object_id, longitudinal_gap_m=gap_m)
+    if v2v and accel_mps2 is not None:
+        obj.v2v_time_s = v2v_time_s
     obj.speed_mps.value = speed_mps
     if accel_mps2 is not None:
         obj.accel_mps2.value = accel_mps2
@@ -20,13 +22,22 @@ def scene_object(object_id, gap_m, speed_mps, accel_mps2=None, v2v=True):
     return obj
 
 
-def test_planner_targets_take_gap_and_motion_from_the_scene_and_v2v_age_from_the_scene_age():
-    scene = scene_pb2.Scene(objects=[scene_object(4, 20.0, 21.0, 0.3)])
-    scene.header.sample_time_s = 10.0
+def test_planner_targets_take_gap_and_motion_from_the_scene_and_v2v_age_from_the_latest_cam():
+    scene = scene_pb2.Scene(objects=[scene_object(4, 20.0, 21.0, 0.3, v2v_time_s=10.0)])
+    scene.header.sample_time_s = 10.04
     request = planner_pb2.BehaviourRequest(targets=[planner_pb2.TargetVehicle(object_id=4, role=planner_pb2.TARGET_ROLE_VIRTUAL, extra_gap_m=2.0)])
     (t,) = targets_from_scene(request, scene, now_s=10.05)
     assert (t.object_id, t.gap_m, t.speed_mps, t.accel_mps2, t.role, t.extra_gap_m) == (4, 20.0, 21.0, 0.3, planner_pb2.TARGET_ROLE_VIRTUAL, 2.0)
     assert t.v2v_age_s == pytest.approx(0.05)
+
+
+def test_the_v2v_age_is_the_time_since_the_latest_cam_however_fresh_the_scene_is():
+    # The scene still carries a V2V-supported acceleration (it fades over a second), but the CAM is 0.6 s old.
+    scene = scene_pb2.Scene(objects=[scene_object(4, 20.0, 21.0, 0.3, v2v_time_s=9.4)])
+    scene.header.sample_time_s = 10.0
+    (t,) = targets_from_scene(planner_pb2.BehaviourRequest(targets=[planner_pb2.TargetVehicle(object_id=4)]),
+                              scene, now_s=10.0)
+    assert t.v2v_age_s == pytest.approx(0.6)
 
 
 def test_an_acceleration_without_v2v_support_is_not_used_as_feedforward():
