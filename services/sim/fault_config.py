@@ -108,12 +108,21 @@ class IclcmFlag(enum.Enum):
 
 
 class IclcmDrop(_Fault):
-    """The radio loses the first `count` iCLCMs vehicle_id sends with `flag` set (a protocol step's message)."""
+    """The radio loses the first `count` iCLCMs vehicle_id sends with `flag` set (a protocol step's message);
+    with `duration_s`, every such iCLCM for that long from the first one, so that the 25 Hz repetition cannot
+    make the step good 40 ms later (a step lost past the partner timeout)."""
 
     type: Literal["iclcm_drop"]
     vehicle_id: str
     flag: IclcmFlag
-    count: int = Field(default=1, ge=1)
+    count: int | None = Field(default=None, ge=1)
+    duration_s: float | None = Field(default=None, gt=0)
+
+    @model_validator(mode="after")
+    def _count_or_duration(self) -> IclcmDrop:
+        if self.count is not None and self.duration_s is not None:
+            raise ValueError("give count or duration_s, not both")
+        return self
 
 
 class ServiceCrash(_Fault):

@@ -2,7 +2,7 @@
 
 PartnerSilent keeps everything a vehicle sends off the air while it lasts. IclcmDrop loses the first `count`
 iCLCMs a vehicle sends with a given protocol field set (one run per protocol step shows that no single lost
-message deadlocks the manoeuvre). Secured packets are looked into through `unwrap` (the run's PKI).
+message deadlocks the manoeuvre), or every one for `duration_s` from the first (the step really lost). Secured packets are looked into through `unwrap` (the run's PKI).
 """
 
 from __future__ import annotations
@@ -21,7 +21,9 @@ class RadioFaults:
     def __init__(self, faults: Sequence[Fault], unwrap: Unwrap | None = None) -> None:
         self.silences = [f for f in faults if isinstance(f, PartnerSilent)]
         self.drops = [f for f in faults if isinstance(f, IclcmDrop)]
-        self._left = {id(f): f.count for f in self.drops}
+        self._left = {id(f): f.count or 1 for f in self.drops if f.duration_s is None}
+        # Per duration fault: when its window of losses ends, once the first flagged iCLCM opened it.
+        self._window_end_s: dict[int, float] = {}
         self.unwrap = unwrap
         self.silenced_count = 0
         self.dropped_count = 0
@@ -31,7 +33,7 @@ class RadioFaults:
         if any(f.vehicle_id == sender_id and f.active(now_s) for f in self.silences):
             self.silenced_count += 1
             return False
-        drops = [f for f in self.drops if f.vehicle_id == sender_id and f.active(now_s) and self._left[id(f)] > 0]
+        drops = [f for f in self.drops if f.vehicle_id == sender_id and f.active(now_s) and self._armed(f, now_s)]
         if not drops:
             return True
         content = self._iclcm(packet)
@@ -39,10 +41,21 @@ class RadioFaults:
             return True
         for fault in drops:
             if getattr(content, fault.flag.value):
-                self._left[id(fault)] -= 1
+                self._spend(fault, now_s)
                 self.dropped_count += 1
                 return False
         return True
+
+    def _armed(self, fault: IclcmDrop, now_s: float) -> bool:
+        if fault.duration_s is None:
+            return self._left[id(fault)] > 0
+        return now_s < self._window_end_s.get(id(fault), now_s + fault.duration_s)
+
+    def _spend(self, fault: IclcmDrop, now_s: float) -> None:
+        if fault.duration_s is None:
+            self._left[id(fault)] -= 1
+        else:
+            self._window_end_s.setdefault(id(fault), now_s + fault.duration_s)
 
     def _iclcm(self, packet: bytes):
         if self.unwrap is not None:

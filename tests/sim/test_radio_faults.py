@@ -56,3 +56,17 @@ def test_an_id_field_counts_as_set_when_it_names_a_station_and_other_messages_pa
 def test_a_drop_fault_names_a_protocol_field():
     with pytest.raises(ValueError, match="flag"):
         IclcmDrop(type="iclcm_drop", vehicle_id="b1", flag="merge_please", start_s=0.0)
+
+
+def test_with_a_duration_every_iclcm_with_the_flag_is_lost_for_that_long_from_the_first():
+    faults = RadioFaults([IclcmDrop(type="iclcm_drop", vehicle_id="b1", flag=IclcmFlag.MERGE_REQUEST, start_s=0.0,
+                                    duration_s=0.5)])
+    request, plain = iclcm(merge_request=True), iclcm(forward_id=3003)
+    assert faults.keeps("b1", plain, 1.0)
+    assert [faults.keeps("b1", request, t) for t in (2.0, 2.04, 2.48, 2.5, 2.6)] == [False, False, False, True, True]
+    assert faults.dropped_count == 3
+
+
+def test_a_drop_fault_takes_a_count_or_a_duration_not_both():
+    with pytest.raises(ValueError, match="not both"):
+        IclcmDrop(type="iclcm_drop", vehicle_id="b1", flag="merge_request", start_s=0.0, count=2, duration_s=1.0)
