@@ -125,6 +125,27 @@ class IclcmDrop(_Fault):
         return self
 
 
+class GhostVehicle(_Fault):
+    """CAMs from a station that does not exist: they claim a car `gap_m` ahead of vehicle_id's front bumper in
+    its lane (offset `lateral_m` to the left), driving at its speed. A spoofer, or a replayed CAM stream."""
+
+    type: Literal["ghost_vehicle"]
+    vehicle_id: str
+    station_id: int = Field(default=999_001, ge=0, lt=2 ** 32)
+    gap_m: float = 20.0
+    lateral_m: float = 0.0
+    rate_hz: float = Field(default=10.0, gt=0)
+
+
+class PositionOffset(_Fault):
+    """A scripted vehicle's CAMs place it east_m/north_m off where it is (a biased receiver or a liar)."""
+
+    type: Literal["position_offset"]
+    vehicle_id: str
+    east_m: float = 5.0
+    north_m: float = 0.0
+
+
 class ServiceCrash(_Fault):
     """The named stack service of the vehicle is killed at start_s and restarted at end_s (if given)."""
 
@@ -134,4 +155,5 @@ class ServiceCrash(_Fault):
 
 
 Fault = Annotated[Union[GnssOutage, GnssJump, FixDowngrade, V2vLoss, V2vCorruption, SensorDropout, CanErrorBurst,
-                        PartnerSilent, IclcmDrop, ServiceCrash], Field(discriminator="type")]
+                        PartnerSilent, IclcmDrop, GhostVehicle, PositionOffset, ServiceCrash],
+                 Field(discriminator="type")]

@@ -105,7 +105,8 @@ class ScenarioFeed:
         for intent in self.sim.intents(now_s):
             packet = self.encoder.encode(intent)
             if packet is not None:
-                if self.signing is not None:
+                # A ghost (a station that does not exist) holds no ticket of the run's PKI: it sends unsigned.
+                if self.signing is not None and self.signing.holds_ticket(intent.sender_id):
                     packet = self.signing.seal(intent, packet)
                 self.box.broadcast(intent.sender_id, packet)
         on_air = functools.partial(self.radio_faults.keeps, now_s=now_s)

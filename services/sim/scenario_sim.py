@@ -17,6 +17,7 @@ from coopdrive.services.sim.participants import MessageIntent
 from coopdrive.services.sim.scenario_builder import RoadMapLike, ScenarioObjects, build_scenario
 from coopdrive.services.sim.scenario_config import ScenarioConfig, VehicleRole
 from coopdrive.services.sim.sensor_suite import SensorOutputs
+from coopdrive.services.sim.station_faults import StationFaults
 from coopdrive.services.sim.vehicle_model import VehicleModel
 from coopdrive.services.sim.vehicle_truth import vehicle_truth
 from coopdrive.services.sim.world_view import WorldView
@@ -61,6 +62,7 @@ class ScenarioSim:
         self.drivers = {vehicle_id: LaneKeepingDriver(self.objects.lanes[vehicle_id], model.profile.wheelbase_m)
                         for vehicle_id, model in self.objects.models.items()}
         self._config_of = {v.vehicle_id: v for v in vehicles}
+        self.station_faults = StationFaults(self.config.faults)
         self.time_s = 0.0
         # Sensors, radio and judge all look at the world between two steps: match lanes once per step.
         self._truths: list[sim_pb2.VehicleTruth] | None = None
@@ -131,12 +133,13 @@ class ScenarioSim:
             intents.extend(participant.messages_due(now_s))
         for unit in self.objects.roadside_units:
             intents.extend(unit.messages_due(now_s))
-        return intents
+        return self.station_faults.apply(intents, now_s, self.truths())
 
     def radio_positions(self) -> dict[str, tuple[float, float]]:
         positions = {t.vehicle_id: (t.x_m, t.y_m) for t in self.truths()}
         for unit in self.objects.roadside_units:
             positions[unit.unit_id] = (unit.x_m, unit.y_m)
+        positions.update(self.station_faults.positions(self.time_s, self.truths()))
         return positions
 
     def finished_early(self) -> str | None:

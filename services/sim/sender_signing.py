@@ -29,6 +29,9 @@ class SenderSigning:
         self._signers: dict[str, SecuredPacketSigner] = {}
         self._reader = SecurityVerifier(self.pki.store())
 
+    def holds_ticket(self, sender_id: str) -> bool:
+        return sender_id in self.pki.tickets
+
     def seal(self, intent: MessageIntent, packet: bytes) -> bytes:
         """The secured packet of an unsecured one the sender's intent was encoded to."""
         signer = self._signers.get(intent.sender_id)

@@ -66,7 +66,8 @@ def test_min_time_gap_spacing_and_lateral_errors_follow_their_definitions():
     gap = 30.0 - 0.9 - 3.6
     result = metrics.judge(truth, automated=["f"], standstill_m=6.0, headway_s=1.0)
     assert result["min_time_gap_s"] == pytest.approx(gap / 20.0)
-    assert result["spacing_error_m"] == pytest.approx(gap - 26.0)
+    assert result["spacing_error_m"] == pytest.approx(abs(gap - 26.0))  # mean absolute
+    assert result["spacing_error_bias_m"] == pytest.approx(gap - 26.0)  # signed mean
     assert result["spacing_error_sd_m"] == pytest.approx(0.0, abs=1e-9)
     assert result["lateral_error_m"] == pytest.approx(0.05)
     assert result["lateral_error_sd_m"] == pytest.approx(0.05)
