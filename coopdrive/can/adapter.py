@@ -14,11 +14,12 @@ import math
 from functools import cache
 from importlib import resources
 from pathlib import Path
+from typing import Annotated
 
 import cantools
 import yaml
 from cantools.database.can import Database, Message
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from coopdrive.v1 import vehicle_pb2
 
@@ -228,3 +229,13 @@ def _one_line(error: Exception) -> str:
         where = ".".join(str(part) for part in first["loc"])
         return f"{where}: {first['msg']}" if where else first["msg"]
     return " ".join(str(error).split())
+
+
+def _usable_adapter(path: str | None) -> str | None:
+    if path is not None:
+        load_adapter(path)  # VehicleCanAdapterError is a ValueError: the config is refused with its one line
+    return path
+
+
+# The services' `vehicle_can` key: the car's adapter file (None: the simulator's car), checked when loaded.
+VehicleCanPath = Annotated[str | None, AfterValidator(_usable_adapter)]

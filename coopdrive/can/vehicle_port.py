@@ -31,6 +31,12 @@ class VehicleCanPortConfig(BaseModel):
     bitrate: int | None = Field(None, gt=0)
     # Every frame in and out, in candump format ("" = no log).
     candump_path: str = ""
+    # Put every frame read on the can/vehicle topic, stamped on arrival, so recordings hold the car's bus and
+    # the other services read it there. None: the service's default (actuation, which owns the car's bus, does;
+    # geolocation and scene with a port of their own do not). One publisher per vehicle.
+    publish_frames: bool | None = None
+    # How often the frames read since the last batch go out (one CanFrames batch each).
+    publish_period_s: float = Field(0.01, gt=0.0)
 
 
 class VehicleCanPortError(RuntimeError):
