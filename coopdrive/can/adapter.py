@@ -115,6 +115,8 @@ class OdometryOptions(BaseModel):
     yaw_rate_from_wheels: bool = True
     # Estimate the wheel-radius scale against GNSS speed (the simulator's car knows its wheel radius exactly).
     estimate_wheel_scale: bool = False
+    # One wheel's speed noise (one sigma); None: geolocation's geolocator.wheel_speed_std_mps.
+    wheel_speed_std_mps: float | None = Field(None, gt=0.0)
 
 
 # The quantities a VehicleCanState carries (vehicle.proto), by adapter name.
@@ -139,8 +141,14 @@ class VehicleCanAdapter(BaseModel):
     gear: GearSource | None = None
     integrity: Integrity = Integrity()
     odometry: OdometryOptions = OdometryOptions()
-    # The VehicleCanState goes out when this message arrives (default: the wheel speeds').
+    # The VehicleCanState goes out when this message arrives (default: the wheel speeds'), once it and these
+    # messages have been seen; a quantity of a message not seen yet reads 0 (a blinker frame may come once in
+    # seconds: the odometry need not wait for it).
     state_message: str = ""
+    state_requires: tuple[str, ...] = ()
+    # Refuse a frame whose used signals fall outside their DBC range. Off for DBCs whose ranges are not physical
+    # (opendbc often writes the raw range, e.g. [0|65535] for a yaw rate with an offset of -125 deg/s).
+    check_ranges: bool = True
     # The bus also carries coopdrive's radar object list (RDR_ frames of vehicle.dbc) for scene.
     radar_object_list: bool = False
     # Where this adapter came from (set by load_adapter).
@@ -210,7 +218,8 @@ def _check_names(adapter: VehicleCanAdapter, database: Database, name: str) -> N
     wanted = [(q.message, s) for q in adapter.quantities.values() for s in q.signals]
     if adapter.gear is not None:
         wanted.append((adapter.gear.message, adapter.gear.signal))
-    for message_name, signal_name in wanted + [(adapter.closing_message, None)]:
+    others = [(adapter.closing_message, None)] + [(m, None) for m in adapter.state_requires]
+    for message_name, signal_name in wanted + others:
         message = _message(database, message_name, name)
         if signal_name is not None and signal_name not in {s.name for s in message.signals}:
             raise VehicleCanAdapterError(f"vehicle_can {name}: message {message_name} has no signal {signal_name}")

@@ -2,7 +2,7 @@
 
 A frame of an id the adapter uses is checked (length, checksum and rolling counter where the adapter and DBC
 say so, DBC range of the signals used) and decoded; its quantities update the latest values. The VehicleCanState
-goes out when the adapter's closing message arrives and every message it needs has been seen; an ImuSample each
+goes out when the adapter's closing message arrives and the messages it requires have been seen; an ImuSample each
 time the yaw rate's message arrives (accelerations the car does not report are NaN).
 """
 
@@ -65,10 +65,11 @@ class AdapterDecoder:
         for name in names:
             quantity = adapter.quantities[name]
             wanted.setdefault(quantity.message, set()).update(quantity.signals)
-        self._required = set(wanted) if state else set()
+        self._required = {adapter.closing_message, *adapter.state_requires} if state else set()
         if state and adapter.gear is not None:
             wanted.setdefault(adapter.gear.message, set()).add(adapter.gear.signal)
-            self._required.add(adapter.gear.message)
+        for name in self._required:
+            wanted.setdefault(name, set())
         self._by_id = {self._key(database.get_message_by_name(m)): self._used(database, m, s)
                        for m, s in wanted.items()}
         self._quantities_of = {m: [n for n in names if adapter.quantities[n].message == m] for m in wanted}
@@ -111,7 +112,8 @@ class AdapterDecoder:
             raise CanDecodeError(DecodeFailure.OUT_OF_RANGE, f"{definition.name}: {error}") from error
         if used.counter_signal is not None:
             self._check_counter(definition, used.counter_signal, int(signals[used.counter_signal]))
-        self._check_ranges(definition, used.signals, signals)
+        if self.adapter.check_ranges:
+            self._check_ranges(definition, used.signals, signals)
         return self._apply(definition.name, signals, message.timestamp)
 
     def _check_checksum(self, definition: Message, data: bytes, index: int) -> None:

@@ -40,6 +40,8 @@ class Odometry:
         if track_width_m <= 0.0:
             raise ValueError(f"track_width_m must be positive, got {track_width_m}")
         self.track_width_m = track_width_m
+        if options.wheel_speed_std_mps is not None:
+            wheel_speed_std_mps = options.wheel_speed_std_mps
         self.wheel_speed_std_mps = wheel_speed_std_mps
         self.options = options
         wheels = 4 if options.speed_wheels == "all" else 2
