@@ -1,8 +1,8 @@
 """The vehicle's own CAN bus through python-can: frames out, frames in.
 
 On the vehicle a service opens the bus here (socketcan, a PCAN or Kvaser adapter, or any interface python-can
-supports): actuation sends its ACT_ frames and reads the car's VEH_ feedback, geolocation reads the odometry,
-scene the radar's object lists. Received frames go to a callback (a VehicleBusReader decodes them), stamped
+supports): actuation, the owner of the car's bus, sends its ACT_ frames, reads the car's feedback and publishes
+every frame on can/vehicle (see bus_input.py); scene reads the radar's object lists on the radar's bus. Received frames go to a callback (a VehicleBusReader decodes them), stamped
 with the service's clock on arrival: an interface's own timestamps run on another time base. Send failures
 are counted, never raised; every frame in and out can go to a candump log that can-utils' canplayer replays.
 """
