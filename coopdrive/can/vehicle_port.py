@@ -2,9 +2,10 @@
 
 On the vehicle a service opens the bus here (socketcan, a PCAN or Kvaser adapter, or any interface python-can
 supports): actuation, the owner of the car's bus, sends its ACT_ frames, reads the car's feedback and publishes
-every frame on can/vehicle (see bus_input.py); scene reads the radar's object lists on the radar's bus. Received frames go to a callback (a VehicleBusReader decodes them), stamped
-with the service's clock on arrival: an interface's own timestamps run on another time base. Send failures
-are counted, never raised; every frame in and out can go to a candump log that can-utils' canplayer replays.
+every frame on can/vehicle (see bus_input.py); scene reads the radar's object lists on the radar's bus.
+Received frames go to a callback (a VehicleBusReader decodes them), stamped with the service's clock on arrival:
+an interface's own timestamps run on another time base. Send failures are counted, never raised; every frame in
+and out can go to a candump log that can-utils' canplayer replays.
 """
 
 from __future__ import annotations

@@ -17,8 +17,8 @@ ABSENT_PORT = VehicleCanPortConfig(interface="socketcan", channel="coopdrive-abs
 
 
 def feedback_batch(on_bus_s: float) -> vehicle_pb2.CanFrames:
-    frames = VehicleCanCodec().encode_vehicle_state(
-        vehicle_pb2.VehicleCanState(wheel_speed_rear_left_mps=7.0, wheel_speed_rear_right_mps=7.0), timestamp_s=on_bus_s)
+    state = vehicle_pb2.VehicleCanState(wheel_speed_rear_left_mps=7.0, wheel_speed_rear_right_mps=7.0)
+    frames = VehicleCanCodec().encode_vehicle_state(state, timestamp_s=on_bus_s)
     return vehicle_pb2.CanFrames(frames=[to_protobuf(frame) for frame in frames])
 
 
