@@ -309,11 +309,11 @@ class Geolocator:
         return state
 
     def _without_position(self, state: ego_pb2.EgoState) -> ego_pb2.EgoState:
-        """No fix yet: no position (LOST, infinite position std, no covariance), but the car's own latest
-        speed and yaw rate, which dead reckoning needs no fix for."""
+        """No fix yet: no position (LOST, no covariance: x, y and heading mean nothing), but the car's own
+        latest speed and yaw rate, which need no fix. (position_std_m stays 0, not infinite: consumers that
+        ignore the mode would turn an infinite one into NaN covariances.)"""
         state.mode = ego_pb2.LOCALISATION_MODE_LOST
         if self._book.last_speed_mps is not None or self._book.last_yaw_rate_radps is not None:
-            state.position_std_m = math.inf
             state.speed_mps = self._book.last_speed_mps or 0.0
             state.yaw_rate_radps = self._book.last_yaw_rate_radps or 0.0
         return state

