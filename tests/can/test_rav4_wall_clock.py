@@ -10,22 +10,12 @@ import time
 
 import pytest
 
-from coopdrive.bus import Bus, BusConfig
 from coopdrive.can.candump import CandumpLogger
-from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
 from tests.can.rav4_drive import RAV4_ADAPTER, ground_truth, rav4_frames
 
 VEHICLE = "rav4"
 LOG_S = 2.0
 WAIT_S = 30.0
-
-
-@pytest.fixture
-def hub():
-    endpoint = loopback_endpoint(free_tcp_port())
-    bus = Bus(BusConfig(listen=[endpoint]))
-    yield bus, endpoint
-    bus.close()
 
 
 @pytest.fixture
