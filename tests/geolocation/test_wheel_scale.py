@@ -3,8 +3,11 @@ ground; what the odometry then reports is the wheels' speed times that scale."""
 
 import numpy as np
 import pytest
+from geolocation_drive import ORIGIN, can_state, drive, gnss_fix
 
 from coopdrive.can.adapter import OdometryOptions
+from coopdrive.services.geolocation.config import GeolocatorConfig
+from coopdrive.services.geolocation.geolocator import Geolocator
 from coopdrive.services.geolocation.odometry import Odometry
 from coopdrive.services.geolocation.wheel_scale import GNSS_SPEED_STD_MPS, WheelScaleEstimator
 from coopdrive.v1 import vehicle_pb2
@@ -15,7 +18,7 @@ WHEEL_PERIOD_S = 0.01
 FIX_PERIOD_S = 0.1
 
 
-def drive(estimator: WheelScaleEstimator, duration_s: float, rng: np.random.Generator, outlier_at_s=None) -> None:
+def accelerate(estimator: WheelScaleEstimator, duration_s: float, rng: np.random.Generator, outlier_at_s=None) -> None:
     """Accelerating from 5 to 25 m/s; wheels at 100 Hz, GNSS at 10 Hz with its speed noise."""
     for k in range(round(duration_s / WHEEL_PERIOD_S)):
         time_s = k * WHEEL_PERIOD_S
@@ -30,7 +33,7 @@ def drive(estimator: WheelScaleEstimator, duration_s: float, rng: np.random.Gene
 
 def test_a_minute_of_gnss_speed_finds_the_wheel_scale_within_a_thousandth():
     estimator = WheelScaleEstimator()
-    drive(estimator, 60.0, np.random.default_rng(7))
+    accelerate(estimator, 60.0, np.random.default_rng(7))
     assert estimator.scale == pytest.approx(TRUE_SCALE, abs=1e-3)
     assert estimator.std < 1e-3
     assert estimator.counts["wheel_scale_updates"] > 500
@@ -38,7 +41,7 @@ def test_a_minute_of_gnss_speed_finds_the_wheel_scale_within_a_thousandth():
 
 def test_a_fix_far_off_the_wheels_is_gated_out_and_does_not_pull_the_scale():
     estimator = WheelScaleEstimator()
-    drive(estimator, 60.0, np.random.default_rng(7), outlier_at_s=30.0)
+    accelerate(estimator, 60.0, np.random.default_rng(7), outlier_at_s=30.0)
     assert estimator.counts["wheel_scale_gated"] == 1
     assert estimator.scale == pytest.approx(TRUE_SCALE, abs=1e-3)
 
@@ -67,3 +70,22 @@ def test_the_odometry_reports_the_four_wheels_times_the_learnt_scale():
     assert sample.speed_mps == pytest.approx(20.0, abs=0.03)
     assert sample.yaw_rate_radps is None
     assert odometry.stats()["wheel_scale_updates"] > 250
+
+
+def test_geolocation_learns_the_scale_from_the_fixes_it_receives_and_reports_the_true_speed():
+    geolocator = Geolocator(GeolocatorConfig(antenna_x_m=1.0), origin=ORIGIN)
+    geolocator.configure_odometry(OdometryOptions(estimate_wheel_scale=True))
+    truth = drive(40.0, 20.0, None, 500.0)
+    rng = np.random.default_rng(5)
+    for i in range(len(truth.time_s)):
+        state = can_state(truth, i, rng, 0.01)
+        state.wheel_speed_rear_left_mps /= TRUE_SCALE
+        state.wheel_speed_rear_right_mps /= TRUE_SCALE
+        geolocator.on_can_state(state)
+        if i % 10 == 0:
+            fix, _, _ = gnss_fix(truth, i, rng, 0.05, 1.0)
+            fix.speed_mps += rng.normal(0.0, GNSS_SPEED_STD_MPS)
+            geolocator.on_gnss_fix(fix)
+    assert geolocator.odometry.scale == pytest.approx(TRUE_SCALE, abs=2e-3)
+    assert geolocator.estimate(truth.time_s[-1]).speed_mps == pytest.approx(20.0, abs=0.05)
+    assert geolocator.stats()["wheel_scale_updates"] > 300
