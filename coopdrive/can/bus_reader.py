@@ -26,6 +26,9 @@ from coopdrive.can.frames import CanDecodeError
 from coopdrive.can.wire import to_python_can
 from coopdrive.v1 import sensors_pb2, vehicle_pb2
 
+# Distinct ignored ids remembered for can_ids_ignored: every standard id fits; junk extended ids stop growing it.
+MAX_IGNORED_IDS_TRACKED = 4096
+
 VehicleStateHandler = Callable[[vehicle_pb2.VehicleCanState], None]
 RadarTracksHandler = Callable[[sensors_pb2.RadarTracks], None]
 ImuSampleHandler = Callable[[vehicle_pb2.ImuSample], None]
@@ -77,7 +80,7 @@ class VehicleBusReader:
         """Another ECU's frame: not ours to decode, and no fault."""
         self.counters["can_frames_ignored"] += 1
         key = (message.arbitration_id, bool(message.is_extended_id))
-        if key not in self._ignored_ids:
+        if key not in self._ignored_ids and len(self._ignored_ids) < MAX_IGNORED_IDS_TRACKED:
             self._ignored_ids.add(key)
             self.counters["can_ids_ignored"] = len(self._ignored_ids)
 
