@@ -20,8 +20,10 @@ from coopdrive.can.vehicle_port import VehicleCanPort, VehicleCanPortConfig
 from coopdrive.can.wire import VEHICLE_BUS_TOPIC, to_protobuf
 from coopdrive.v1 import vehicle_pb2
 
-# A frame stamped further than this from the service's clock was stamped on another time base (a log's).
-FOREIGN_TIME_BASE_S = 1.0
+# A frame stamped further than this from the service's clock was stamped on another time base (a log's): far
+# beyond a batch's span or any transport delay (a replayed batch keeps its frames' times), far below the gap
+# between a logger's clock and the wall clock.
+FOREIGN_TIME_BASE_S = 10.0
 
 
 class VehicleBusInput:
