@@ -149,7 +149,8 @@ class VehicleCanAdapter(BaseModel):
     # Refuse a frame whose used signals fall outside their DBC range. Off for DBCs whose ranges are not physical
     # (opendbc often writes the raw range, e.g. [0|65535] for a yaw rate with an offset of -125 deg/s).
     check_ranges: bool = True
-    # The bus also carries coopdrive's radar object list (RDR_ frames of vehicle.dbc) for scene.
+    # The car has a radar sending coopdrive's object list (RDR_ frames of vehicle.dbc), which scene decodes from
+    # the frames it reads (can/vehicle, or the radar's own bus when scene's can_port names one).
     radar_object_list: bool = False
     # Where this adapter came from (set by load_adapter).
     source: str = ""
