@@ -11,6 +11,7 @@ from coopdrive.can.bus_reader import VehicleBusReader
 from coopdrive.can.codec import VehicleCanCodec, VehicleCommand
 from coopdrive.can.wire import to_protobuf
 from coopdrive.v1 import sensors_pb2, vehicle_pb2
+from tests.can.rav4_drive import RAV4_ADAPTER
 
 ON_BUS_S = 10.0
 
@@ -109,3 +110,13 @@ def test_an_inertial_frame_becomes_an_imu_sample_measured_the_latency_before_the
     assert sample.accel_lateral_mps2 == pytest.approx(0.5, abs=1e-3)
     assert sample.yaw_rate_radps == pytest.approx(-0.02, abs=1e-4)
     assert sample.header.sample_time_s == pytest.approx(ON_BUS_S - 0.005)
+
+
+def test_on_a_car_without_a_coopdrive_radar_the_rdr_frames_are_another_ecu_s_and_ignored():
+    lists = []
+    reader = VehicleBusReader(on_radar_tracks=lists.append, vehicle_can=RAV4_ADAPTER)
+    sent = object_list(VehicleCanCodec())
+    for frame in sent:
+        reader.feed(frame)
+    assert lists == []
+    assert dict(reader.counters) == {"can_frames_ignored": len(sent), "can_ids_ignored": 2}
