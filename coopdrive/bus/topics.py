@@ -46,7 +46,8 @@ _ALL = [
     Topic("gnss/serial_mark", sim_pb2.WireMark, "sim"),
     Topic("radio/mark", sim_pb2.WireMark, "sim"),
     # The vehicle's CAN bus (VEH_ feedback and inertial frames, the radar's RDR_ object lists) as the simulator
-    # would put it on the wire.
+    # would put it on the wire. On a vehicle there is no simulator: actuation, the owner of the car's bus,
+    # publishes every frame it reads here, stamped on arrival (coopdrive/can/bus_input.py).
     Topic("can/vehicle", vehicle_pb2.CanFrames, "sim"),
     Topic("can/command", vehicle_pb2.CanFrame, "actuation"),
     Topic("lidar/scan", sensors_pb2.LidarScan, "sim"),

@@ -1,10 +1,11 @@
 """The vehicle's own CAN bus through python-can: frames out, frames in.
 
 On the vehicle a service opens the bus here (socketcan, a PCAN or Kvaser adapter, or any interface python-can
-supports): actuation sends its ACT_ frames and reads the car's VEH_ feedback, geolocation reads the odometry,
-scene the radar's object lists. Received frames go to a callback (a VehicleBusReader decodes them), stamped
-with the service's clock on arrival: an interface's own timestamps run on another time base. Send failures
-are counted, never raised; every frame in and out can go to a candump log that can-utils' canplayer replays.
+supports): actuation, the owner of the car's bus, sends its ACT_ frames, reads the car's feedback and publishes
+every frame on can/vehicle (see bus_input.py); scene reads the radar's object lists on the radar's bus.
+Received frames go to a callback (a VehicleBusReader decodes them), stamped with the service's clock on arrival:
+an interface's own timestamps run on another time base. Send failures are counted, never raised; every frame in
+and out can go to a candump log that can-utils' canplayer replays.
 """
 
 from __future__ import annotations
@@ -31,6 +32,12 @@ class VehicleCanPortConfig(BaseModel):
     bitrate: int | None = Field(None, gt=0)
     # Every frame in and out, in candump format ("" = no log).
     candump_path: str = ""
+    # Put every frame read on the can/vehicle topic, stamped on arrival, so recordings hold the car's bus and
+    # the other services read it there. None: the service's default (actuation, which owns the car's bus, does;
+    # geolocation and scene with a port of their own do not). One publisher per vehicle.
+    publish_frames: bool | None = None
+    # How often the frames read since the last batch go out (one CanFrames batch each).
+    publish_period_s: float = Field(0.01, gt=0.0)
 
 
 class VehicleCanPortError(RuntimeError):

@@ -25,21 +25,21 @@ _sym_db = _symbol_database.Default()
 from coopdrive.v1 import header_pb2 as coopdrive_dot_v1_dot_header__pb2
 
 
-DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x1a\x63oopdrive/v1/vehicle.proto\x12\x0c\x63oopdrive.v1\x1a\x19\x63oopdrive/v1/header.proto\"\xf2\x02\n\x0fVehicleCanState\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\"\n\x1awheel_speed_front_left_mps\x18\x02 \x01(\x01\x12#\n\x1bwheel_speed_front_right_mps\x18\x03 \x01(\x01\x12!\n\x19wheel_speed_rear_left_mps\x18\x04 \x01(\x01\x12\"\n\x1awheel_speed_rear_right_mps\x18\x05 \x01(\x01\x12\x16\n\x0eyaw_rate_radps\x18\x06 \x01(\x01\x12\x1a\n\x12steering_angle_rad\x18\x07 \x01(\x01\x12\x1c\n\x14throttle_pedal_ratio\x18\x08 \x01(\x01\x12\x19\n\x11\x62rake_pedal_ratio\x18\t \x01(\x01\x12\x1a\n\x12\x62rake_pressure_bar\x18\n \x01(\x01\x12 \n\x04gear\x18\x0b \x01(\x0e\x32\x12.coopdrive.v1.Gear\"\x86\x01\n\tImuSample\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x1f\n\x17\x61\x63\x63\x65l_longitudinal_mps2\x18\x02 \x01(\x01\x12\x1a\n\x12\x61\x63\x63\x65l_lateral_mps2\x18\x03 \x01(\x01\x12\x16\n\x0eyaw_rate_radps\x18\x04 \x01(\x01\"\xc5\x01\n\x08\x43\x61nFrame\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x0f\n\x07\x63hannel\x18\x02 \x01(\t\x12\x16\n\x0e\x61rbitration_id\x18\x03 \x01(\r\x12\x16\n\x0eis_extended_id\x18\x04 \x01(\x08\x12\x0c\n\x04\x64\x61ta\x18\x05 \x01(\x0c\x12\x13\n\x0btimestamp_s\x18\x06 \x01(\x01\x12\x16\n\x0eis_error_frame\x18\x07 \x01(\x08\x12\x17\n\x0fis_remote_frame\x18\x08 \x01(\x08\"Y\n\tCanFrames\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12&\n\x06\x66rames\x18\x02 \x03(\x0b\x32\x16.coopdrive.v1.CanFrame*_\n\x04Gear\x12\x14\n\x10GEAR_UNSPECIFIED\x10\x00\x12\r\n\tGEAR_PARK\x10\x01\x12\x10\n\x0cGEAR_REVERSE\x10\x02\x12\x10\n\x0cGEAR_NEUTRAL\x10\x03\x12\x0e\n\nGEAR_DRIVE\x10\x04\x62\x06proto3')
+DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x1a\x63oopdrive/v1/vehicle.proto\x12\x0c\x63oopdrive.v1\x1a\x19\x63oopdrive/v1/header.proto\"\xe4\x03\n\x0fVehicleCanState\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\"\n\x1awheel_speed_front_left_mps\x18\x02 \x01(\x01\x12#\n\x1bwheel_speed_front_right_mps\x18\x03 \x01(\x01\x12!\n\x19wheel_speed_rear_left_mps\x18\x04 \x01(\x01\x12\"\n\x1awheel_speed_rear_right_mps\x18\x05 \x01(\x01\x12\x16\n\x0eyaw_rate_radps\x18\x06 \x01(\x01\x12\x1a\n\x12steering_angle_rad\x18\x07 \x01(\x01\x12\x1c\n\x14throttle_pedal_ratio\x18\x08 \x01(\x01\x12\x19\n\x11\x62rake_pedal_ratio\x18\t \x01(\x01\x12\x1a\n\x12\x62rake_pressure_bar\x18\n \x01(\x01\x12 \n\x04gear\x18\x0b \x01(\x0e\x32\x12.coopdrive.v1.Gear\x12\x19\n\x11vehicle_speed_mps\x18\x0c \x01(\x01\x12 \n\x18steering_wheel_angle_rad\x18\r \x01(\x01\x12\x18\n\x10turn_signal_left\x18\x0e \x01(\x08\x12\x19\n\x11turn_signal_right\x18\x0f \x01(\x08\"\x86\x01\n\tImuSample\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x1f\n\x17\x61\x63\x63\x65l_longitudinal_mps2\x18\x02 \x01(\x01\x12\x1a\n\x12\x61\x63\x63\x65l_lateral_mps2\x18\x03 \x01(\x01\x12\x16\n\x0eyaw_rate_radps\x18\x04 \x01(\x01\"\xc5\x01\n\x08\x43\x61nFrame\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x0f\n\x07\x63hannel\x18\x02 \x01(\t\x12\x16\n\x0e\x61rbitration_id\x18\x03 \x01(\r\x12\x16\n\x0eis_extended_id\x18\x04 \x01(\x08\x12\x0c\n\x04\x64\x61ta\x18\x05 \x01(\x0c\x12\x13\n\x0btimestamp_s\x18\x06 \x01(\x01\x12\x16\n\x0eis_error_frame\x18\x07 \x01(\x08\x12\x17\n\x0fis_remote_frame\x18\x08 \x01(\x08\"Y\n\tCanFrames\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12&\n\x06\x66rames\x18\x02 \x03(\x0b\x32\x16.coopdrive.v1.CanFrame*_\n\x04Gear\x12\x14\n\x10GEAR_UNSPECIFIED\x10\x00\x12\r\n\tGEAR_PARK\x10\x01\x12\x10\n\x0cGEAR_REVERSE\x10\x02\x12\x10\n\x0cGEAR_NEUTRAL\x10\x03\x12\x0e\n\nGEAR_DRIVE\x10\x04\x62\x06proto3')
 
 _globals = globals()
 _builder.BuildMessageAndEnumDescriptors(DESCRIPTOR, _globals)
 _builder.BuildTopDescriptorsAndMessages(DESCRIPTOR, 'coopdrive.v1.vehicle_pb2', _globals)
 if not _descriptor._USE_C_DESCRIPTORS:
   DESCRIPTOR._loaded_options = None
-  _globals['_GEAR']._serialized_start=872
-  _globals['_GEAR']._serialized_end=967
+  _globals['_GEAR']._serialized_start=986
+  _globals['_GEAR']._serialized_end=1081
   _globals['_VEHICLECANSTATE']._serialized_start=72
-  _globals['_VEHICLECANSTATE']._serialized_end=442
-  _globals['_IMUSAMPLE']._serialized_start=445
-  _globals['_IMUSAMPLE']._serialized_end=579
-  _globals['_CANFRAME']._serialized_start=582
-  _globals['_CANFRAME']._serialized_end=779
-  _globals['_CANFRAMES']._serialized_start=781
-  _globals['_CANFRAMES']._serialized_end=870
+  _globals['_VEHICLECANSTATE']._serialized_end=556
+  _globals['_IMUSAMPLE']._serialized_start=559
+  _globals['_IMUSAMPLE']._serialized_end=693
+  _globals['_CANFRAME']._serialized_start=696
+  _globals['_CANFRAME']._serialized_end=893
+  _globals['_CANFRAMES']._serialized_start=895
+  _globals['_CANFRAMES']._serialized_end=984
 # @@protoc_insertion_point(module_scope)

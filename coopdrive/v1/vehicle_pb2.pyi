@@ -22,7 +22,7 @@ GEAR_NEUTRAL: Gear
 GEAR_DRIVE: Gear
 
 class VehicleCanState(_message.Message):
-    __slots__ = ("header", "wheel_speed_front_left_mps", "wheel_speed_front_right_mps", "wheel_speed_rear_left_mps", "wheel_speed_rear_right_mps", "yaw_rate_radps", "steering_angle_rad", "throttle_pedal_ratio", "brake_pedal_ratio", "brake_pressure_bar", "gear")
+    __slots__ = ("header", "wheel_speed_front_left_mps", "wheel_speed_front_right_mps", "wheel_speed_rear_left_mps", "wheel_speed_rear_right_mps", "yaw_rate_radps", "steering_angle_rad", "throttle_pedal_ratio", "brake_pedal_ratio", "brake_pressure_bar", "gear", "vehicle_speed_mps", "steering_wheel_angle_rad", "turn_signal_left", "turn_signal_right")
     HEADER_FIELD_NUMBER: _ClassVar[int]
     WHEEL_SPEED_FRONT_LEFT_MPS_FIELD_NUMBER: _ClassVar[int]
     WHEEL_SPEED_FRONT_RIGHT_MPS_FIELD_NUMBER: _ClassVar[int]
@@ -34,6 +34,10 @@ class VehicleCanState(_message.Message):
     BRAKE_PEDAL_RATIO_FIELD_NUMBER: _ClassVar[int]
     BRAKE_PRESSURE_BAR_FIELD_NUMBER: _ClassVar[int]
     GEAR_FIELD_NUMBER: _ClassVar[int]
+    VEHICLE_SPEED_MPS_FIELD_NUMBER: _ClassVar[int]
+    STEERING_WHEEL_ANGLE_RAD_FIELD_NUMBER: _ClassVar[int]
+    TURN_SIGNAL_LEFT_FIELD_NUMBER: _ClassVar[int]
+    TURN_SIGNAL_RIGHT_FIELD_NUMBER: _ClassVar[int]
     header: _header_pb2.Header
     wheel_speed_front_left_mps: float
     wheel_speed_front_right_mps: float
@@ -45,7 +49,11 @@ class VehicleCanState(_message.Message):
     brake_pedal_ratio: float
     brake_pressure_bar: float
     gear: Gear
-    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., wheel_speed_front_left_mps: _Optional[float] = ..., wheel_speed_front_right_mps: _Optional[float] = ..., wheel_speed_rear_left_mps: _Optional[float] = ..., wheel_speed_rear_right_mps: _Optional[float] = ..., yaw_rate_radps: _Optional[float] = ..., steering_angle_rad: _Optional[float] = ..., throttle_pedal_ratio: _Optional[float] = ..., brake_pedal_ratio: _Optional[float] = ..., brake_pressure_bar: _Optional[float] = ..., gear: _Optional[_Union[Gear, str]] = ...) -> None: ...
+    vehicle_speed_mps: float
+    steering_wheel_angle_rad: float
+    turn_signal_left: bool
+    turn_signal_right: bool
+    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., wheel_speed_front_left_mps: _Optional[float] = ..., wheel_speed_front_right_mps: _Optional[float] = ..., wheel_speed_rear_left_mps: _Optional[float] = ..., wheel_speed_rear_right_mps: _Optional[float] = ..., yaw_rate_radps: _Optional[float] = ..., steering_angle_rad: _Optional[float] = ..., throttle_pedal_ratio: _Optional[float] = ..., brake_pedal_ratio: _Optional[float] = ..., brake_pressure_bar: _Optional[float] = ..., gear: _Optional[_Union[Gear, str]] = ..., vehicle_speed_mps: _Optional[float] = ..., steering_wheel_angle_rad: _Optional[float] = ..., turn_signal_left: _Optional[bool] = ..., turn_signal_right: _Optional[bool] = ...) -> None: ...
 
 class ImuSample(_message.Message):
     __slots__ = ("header", "accel_longitudinal_mps2", "accel_lateral_mps2", "yaw_rate_radps")

@@ -13,6 +13,7 @@ import enum
 from pydantic import Field
 
 from coopdrive.bus import Envelope
+from coopdrive.can.adapter import VehicleCanPath
 from coopdrive.can.bus_input import VehicleBusInput
 from coopdrive.can.bus_reader import VehicleBusReader
 from coopdrive.can.vehicle_port import VehicleCanPortConfig
@@ -48,8 +49,11 @@ class ActuationServiceConfig(ServiceConfig):
     # service (the follow run follows by radar alone) sets it false, else no automated mode could be entered.
     require_v2x: bool = True
     # The vehicle's CAN bus (python-can): command frames go out on it and its feedback frames are the
-    # vehicle state. None: frames only on can/command, the feedback from can/vehicle (simulation).
+    # vehicle state; actuation owns the car's bus and puts every frame it reads on can/vehicle. None: frames
+    # only on can/command, the feedback from can/vehicle (simulation).
     can_port: VehicleCanPortConfig | None = None
+    # The car's vehicle CAN adapter (coopdrive/can/adapter.py); None: the simulator's car.
+    vehicle_can: VehicleCanPath = None
 
     def actuator_config(self, vehicle_id: str) -> ActuationConfig:
         config = self.actuator.model_copy(update={"vehicle_id": vehicle_id})
@@ -90,8 +94,8 @@ class ActuationService(Service):
         self.ctx.watch_liveliness(self.on_liveliness)
         self.ctx.every(1.0 / c.rate_hz, self.actuate)
         self.ctx.every(1.0 / c.status_rate_hz, self.publish_status)
-        self.vehicle_bus = VehicleBusInput(self.ctx, VehicleBusReader(on_vehicle_state=self.on_vehicle_state),
-                                           c.can_port)
+        reader = VehicleBusReader(on_vehicle_state=self.on_vehicle_state, vehicle_can=c.vehicle_can)
+        self.vehicle_bus = VehicleBusInput(self.ctx, reader, c.can_port, owns_bus=True)
 
     def stop(self) -> None:
         self.vehicle_bus.close()

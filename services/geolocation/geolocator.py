@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from coopdrive.can.adapter import OdometryOptions
 from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.roadmap import RoadMap
 from coopdrive.services.geolocation.config import GeolocatorConfig
@@ -75,6 +76,8 @@ class _Bookkeeping:
     pending_fix: tuple[float, _Fix] | None = None
     last_speed_mps: float | None = None
     steering_angle_rad: float = 0.0
+    # The car's latest yaw rate (its sensor's, else its wheels'): reported while there is no fix.
+    last_yaw_rate_radps: float | None = None
 
 
 class Geolocator:
@@ -103,6 +106,10 @@ class Geolocator:
         self._buffer = ReplayBuffer(self._apply, self._snapshot, self._restore, config.history_s)
         self._sequence = 0
 
+    def configure_odometry(self, options: OdometryOptions) -> None:
+        """How this car's wheels are read (its vehicle CAN adapter's odometry options)."""
+        self.odometry = Odometry(self.config.track_width_m, self.config.wheel_speed_std_mps, options)
+
     # --- inputs --------------------------------------------------------------------------------
     def on_gnss_fix(self, fix: gnss_pb2.GnssFix) -> Insertion | None:
         """A fix, fused at fix.header.sample_time_s. Returns how it was inserted, None if not usable."""
@@ -114,6 +121,7 @@ class Geolocator:
                 and all(map(math.isfinite, (fix.latitude_deg, fix.longitude_deg, fix.altitude_m)))):
             self.counters[InputEvent.FIX_INVALID] += 1
             return None
+        self.odometry.on_gnss_speed(fix.header.sample_time_s, fix.speed_mps)
         east_m, north_m, _ = self.plane.to_enu(fix.latitude_deg, fix.longitude_deg, fix.altitude_m)
         event = _Fix(east_m, north_m, stds[0], stds[1], fix.fix_mode, fix.speed_mps, fix.course_deg)
         return self._add(fix.header.sample_time_s, event)
@@ -127,7 +135,8 @@ class Geolocator:
         return self._add(sample.time_s, sample)
 
     def on_imu(self, msg: vehicle_pb2.ImuSample) -> Insertion | None:
-        if not (math.isfinite(msg.yaw_rate_radps) and math.isfinite(msg.accel_longitudinal_mps2)):
+        # A car that reports no longitudinal acceleration sends NaN there: its yaw rate is still good.
+        if not math.isfinite(msg.yaw_rate_radps) or math.isinf(msg.accel_longitudinal_mps2):
             self.counters[InputEvent.IMU_INVALID] += 1
             return None
         return self._add(msg.header.sample_time_s, _Imu(msg.yaw_rate_radps, msg.accel_longitudinal_mps2))
@@ -220,6 +229,8 @@ class Geolocator:
 
     def _apply_odometry(self, time_s: float, sample: OdometrySample) -> None:
         self._book = _replace(self._book, last_speed_mps=sample.speed_mps, steering_angle_rad=sample.steering_angle_rad)
+        if sample.yaw_rate_radps is not None:
+            self._book = _replace(self._book, last_yaw_rate_radps=sample.yaw_rate_radps)
         if not self.ekf.initialised:
             return
         self.ekf.predict_to(time_s)
@@ -227,20 +238,22 @@ class Geolocator:
             self.counters[InputEvent.STANDSTILL] += 1
             self.ekf.zero_velocity_update()
             return
-        if self._bicycle is not None:
-            self._bicycle.steering_angle_rad = sample.steering_angle_rad
+        if self._bicycle is not None or sample.yaw_rate_radps is None:
+            if self._bicycle is not None:
+                self._bicycle.steering_angle_rad = sample.steering_angle_rad
             self.ekf.update_speed(sample.speed_mps, sample.speed_std_mps)
         else:
             self.ekf.update_odometry(sample.speed_mps, sample.yaw_rate_radps, sample.speed_std_mps,
                                      sample.yaw_rate_std_radps)
 
     def _apply_imu(self, time_s: float, imu: _Imu) -> None:
+        self._book = _replace(self._book, last_yaw_rate_radps=imu.yaw_rate_radps)
         if not self.ekf.initialised:
             return
         self.ekf.predict_to(time_s)
         if self._bicycle is None:
             self.ekf.update_yaw_rate(imu.yaw_rate_radps, self.config.imu_yaw_rate_std_radps)
-        if self.config.use_imu_accel:
+        if self.config.use_imu_accel and math.isfinite(imu.accel_mps2):
             self.ekf.update_accel(imu.accel_mps2, self.config.imu_accel_std_mps2)
 
     # --- output --------------------------------------------------------------------------------
@@ -255,6 +268,7 @@ class Geolocator:
         counts.update({f"gated_{kind.value}": n for kind, n in self.ekf.rejected.items()})
         counts.update({f"insertion_{kind.value}": n for kind, n in self._buffer.counts.items()})
         counts["replayed_events"] = self._buffer.replayed_events
+        counts.update(self.odometry.stats())
         return counts
 
     def estimate(self, time_s: float) -> ego_pb2.EgoState:
@@ -267,8 +281,7 @@ class Geolocator:
         state.header.sequence = self._sequence
         state.last_fix_mode = self._book.last_fix_mode
         if not self.ekf.initialised:
-            state.mode = ego_pb2.LOCALISATION_MODE_LOST
-            return state
+            return self._without_position(state)
         if self._bicycle is not None:
             self._bicycle.steering_angle_rad = self._book.steering_angle_rad
         x, P = self.ekf.predicted(time_s)
@@ -293,6 +306,16 @@ class Geolocator:
                 lane.heading_error_rad = match.heading_error_rad
                 lane.lane_width_m = match.lane.width_m
                 lane.curvature_1pm = match.curvature_1pm
+        return state
+
+    def _without_position(self, state: ego_pb2.EgoState) -> ego_pb2.EgoState:
+        """No fix yet: no position (LOST, no covariance: x, y and heading mean nothing), but the car's own
+        latest speed and yaw rate, which need no fix. (position_std_m stays 0, not infinite: consumers that
+        ignore the mode would turn an infinite one into NaN covariances.)"""
+        state.mode = ego_pb2.LOCALISATION_MODE_LOST
+        if self._book.last_speed_mps is not None or self._book.last_yaw_rate_radps is not None:
+            state.speed_mps = self._book.last_speed_mps or 0.0
+            state.yaw_rate_radps = self._book.last_yaw_rate_radps or 0.0
         return state
 
 

@@ -7,6 +7,7 @@ import enum
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from coopdrive.bus import Envelope
+from coopdrive.can.adapter import VehicleCanPath, load_adapter
 from coopdrive.can.bus_input import VehicleBusInput
 from coopdrive.can.bus_reader import VehicleBusReader
 from coopdrive.can.vehicle_port import VehicleCanPortConfig
@@ -61,6 +62,9 @@ class GeolocationConfig(ServiceConfig):
     # The vehicle's CAN bus (python-can) with the VEH_ odometry frames; None: the frames come from the
     # can/vehicle topic (simulation, replay).
     can_port: VehicleCanPortConfig | None = None
+    # The car's vehicle CAN adapter (coopdrive/can/adapter.py): where its bus carries wheel speeds, yaw rate,
+    # steering; None: the simulator's car.
+    vehicle_can: VehicleCanPath = None
     # How long after measuring them the car puts wheel speeds and yaw rate on the bus, and the IMU its samples.
     can_latency_s: float = Field(0.005, ge=0.0)
     imu_latency_s: float = Field(0.005, ge=0.0)
@@ -93,7 +97,9 @@ class GeolocationService(Service):
             self._start_serial(c)
         reader = VehicleBusReader(on_vehicle_state=self.geolocator.on_can_state,
                                   on_imu_sample=self.geolocator.on_imu if c.use_imu else None,
-                                  vehicle_state_latency_s=c.can_latency_s, imu_latency_s=c.imu_latency_s)
+                                  vehicle_state_latency_s=c.can_latency_s, imu_latency_s=c.imu_latency_s,
+                                  vehicle_can=c.vehicle_can)
+        self.geolocator.configure_odometry(load_adapter(c.vehicle_can)[0].odometry)
         self.vehicle_bus = VehicleBusInput(self.ctx, reader, c.can_port)
         self.ctx.every(1.0 / c.output_rate_hz, self.publish_estimate)
 

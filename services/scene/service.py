@@ -5,6 +5,7 @@ from __future__ import annotations
 from pydantic import Field
 
 from coopdrive.bus import Envelope
+from coopdrive.can.adapter import VehicleCanPath
 from coopdrive.can.bus_input import VehicleBusInput
 from coopdrive.can.bus_reader import VehicleBusReader
 from coopdrive.can.vehicle_port import VehicleCanPortConfig
@@ -35,6 +36,8 @@ class SceneConfig(ServiceConfig):
     can_port: VehicleCanPortConfig | None = None
     # How long after measuring an object list the radar sends it (its cycle's processing time).
     radar_latency_s: float = Field(default=0.05, ge=0)
+    # The car's vehicle CAN adapter (coopdrive/can/adapter.py); None: the simulator's car.
+    vehicle_can: VehicleCanPath = None
 
 
 class SceneService(Service):
@@ -55,7 +58,8 @@ class SceneService(Service):
         for topic, method in SENSOR_TOPICS.items():
             self.ctx.subscribe(topic, self._sensor_handler(method))
         self.vehicle_bus = VehicleBusInput(self.ctx, VehicleBusReader(
-            on_radar_tracks=self.fusion.on_radar, radar_latency_s=config.radar_latency_s), config.can_port)
+            on_radar_tracks=self.fusion.on_radar, radar_latency_s=config.radar_latency_s,
+            vehicle_can=config.vehicle_can), config.can_port)
         self.ctx.subscribe("v2x/cam", self.on_cam)
         self.intended = IntendedAccelerations(config.intended_accel_max_age_s, config.fusion.trust.min_trusted)
         self.ctx.subscribe("v2x/iclcm", lambda envelope: self.intended.on_iclcm(

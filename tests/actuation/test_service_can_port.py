@@ -22,11 +22,13 @@ class BusFreeContext:
 
     vehicle_id = "ego"
     log = logging.getLogger("test.actuation")
+    opens_hardware = True
 
     def __init__(self) -> None:
         self.time_s = 0.0
         self.published: list[tuple[str, object]] = []
         self.calls: queue.Queue = queue.Queue()
+        self.timers: list = []
 
     def now_s(self) -> float:
         return self.time_s
@@ -38,7 +40,11 @@ class BusFreeContext:
         self.published.append((topic, message))
 
     def every(self, period_s, handler) -> None:
-        pass
+        self.timers.append(handler)
+
+    def run_timers(self) -> None:
+        for handler in self.timers:
+            handler(self.time_s)
 
     def watch_liveliness(self, handler) -> None:
         pass
@@ -91,6 +97,22 @@ def test_the_cars_feedback_frames_reach_the_actuator_as_its_vehicle_state(servic
     service.actuate(0.04)
     assert "vehicle state received" not in unmet_for_cooperative(service)
 
+
+def test_actuation_owns_the_car_s_bus_every_frame_it_reads_goes_on_can_vehicle_stamped_on_arrival(service_on_bus):
+    service, ctx, car_end = service_on_bus
+    # The car's frames carry its interface's clock; the service's clock is another.
+    feedback = VehicleCanCodec().encode_vehicle_state(vehicle_pb2.VehicleCanState(), timestamp_s=46408.0)
+    ctx.time_s = 1234.5
+    for frame in feedback:
+        car_end.send(frame)
+    ctx.pump(len(feedback))
+    ctx.run_timers()
+    batches = [m for topic, m in ctx.published if topic == "can/vehicle"]
+    frames = [frame for batch in batches for frame in batch.frames]
+    assert [f.arbitration_id for f in frames] == [f.arbitration_id for f in feedback]
+    assert [f.data for f in frames] == [bytes(f.data) for f in feedback]
+    assert {f.timestamp_s for f in frames} == {1234.5}
+    assert service.vehicle_bus.counts()["can_frames_published"] == len(frames)
 
 
 CYCLE_S = 0.01

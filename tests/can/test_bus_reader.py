@@ -11,6 +11,7 @@ from coopdrive.can.bus_reader import VehicleBusReader
 from coopdrive.can.codec import VehicleCanCodec, VehicleCommand
 from coopdrive.can.wire import to_protobuf
 from coopdrive.v1 import sensors_pb2, vehicle_pb2
+from tests.can.rav4_drive import RAV4_ADAPTER
 
 ON_BUS_S = 10.0
 
@@ -35,7 +36,7 @@ def test_the_feedback_frames_of_one_cycle_become_one_vehicle_state_measured_the_
         reader.feed(frame)
     [state] = states
     assert state.wheel_speed_rear_left_mps == pytest.approx(12.0, abs=0.01)
-    assert state.yaw_rate_radps == pytest.approx(0.05, abs=1e-4)
+    assert state.brake_pressure_bar == pytest.approx(2.0, abs=0.05)
     assert state.header.sample_time_s == pytest.approx(ON_BUS_S - 0.005)
     assert reader.counters["can_frames_received"] == len(frames.FEEDBACK_FRAMES)
 
@@ -54,14 +55,16 @@ def test_a_radar_object_list_becomes_radar_tracks_at_the_wire_s_resolution():
     assert tracks.header.sample_time_s == pytest.approx(ON_BUS_S - 0.05)
 
 
-def test_frames_of_a_family_nobody_asked_for_are_skipped_without_counting_them_as_faults():
+def test_frames_of_a_family_nobody_asked_for_are_counted_as_ignored_not_as_faults():
     states = []
     reader = VehicleBusReader(on_vehicle_state=states.append)
     codec = VehicleCanCodec()
     for frame in object_list(codec) + codec.encode_vehicle_command(VehicleCommand()) + feedback(codec):
         reader.feed(frame)
     assert len(states) == 1
-    assert dict(reader.counters) == {"can_frames_received": len(frames.FEEDBACK_FRAMES)}
+    ignored = len(object_list(codec)) + len(frames.COMMAND_FRAMES)
+    assert dict(reader.counters) == {"can_frames_received": len(frames.FEEDBACK_FRAMES),
+                                     "can_frames_ignored": ignored, "can_ids_ignored": 5}
 
 
 def test_unknown_malformed_and_error_frames_are_counted_by_reason_and_the_next_cycle_still_decodes():
@@ -78,7 +81,7 @@ def test_unknown_malformed_and_error_frames_are_counted_by_reason_and_the_next_c
         reader.feed(frame)
     for frame in feedback(codec, speed_mps=13.0, on_bus_s=ON_BUS_S + 0.01):
         reader.feed(frame)
-    assert reader.counters["can_rejected_unknown_id"] == 1
+    assert reader.counters["can_frames_ignored"] == 1 and reader.counters["can_ids_ignored"] == 1
     assert reader.counters["can_error_frames"] == 1
     assert reader.counters["can_rejected_wrong_length"] == 1
     assert reader.counters["can_rejected_bad_checksum"] == 1
@@ -107,3 +110,13 @@ def test_an_inertial_frame_becomes_an_imu_sample_measured_the_latency_before_the
     assert sample.accel_lateral_mps2 == pytest.approx(0.5, abs=1e-3)
     assert sample.yaw_rate_radps == pytest.approx(-0.02, abs=1e-4)
     assert sample.header.sample_time_s == pytest.approx(ON_BUS_S - 0.005)
+
+
+def test_on_a_car_without_a_coopdrive_radar_the_rdr_frames_are_another_ecu_s_and_ignored():
+    lists = []
+    reader = VehicleBusReader(on_radar_tracks=lists.append, vehicle_can=RAV4_ADAPTER)
+    sent = object_list(VehicleCanCodec())
+    for frame in sent:
+        reader.feed(frame)
+    assert lists == []
+    assert dict(reader.counters) == {"can_frames_ignored": len(sent), "can_ids_ignored": 2}

@@ -9,7 +9,6 @@ import time
 import can
 import pytest
 
-from coopdrive.bus import Bus, BusConfig
 from coopdrive.can import frames
 from coopdrive.can.bus_reader import VehicleBusReader
 from coopdrive.can.candump import CandumpLogger
@@ -24,14 +23,6 @@ CYCLES = 200
 
 def speed_mps(cycle: int) -> float:
     return 10.0 + 0.05 * cycle
-
-
-@pytest.fixture
-def hub():
-    endpoint = loopback_endpoint(free_tcp_port())
-    bus = Bus(BusConfig(listen=[endpoint]))
-    yield bus, endpoint
-    bus.close()
 
 
 def feedback_batch(speed_mps: float) -> vehicle_pb2.CanFrames:

@@ -1,0 +1,82 @@
+"""WheelScaleEstimator: the ratio of true speed to wheel-speed-sensor speed, estimated against GNSS speed.
+
+A wheel-speed sensor counts wheel revolutions; the speed it reports assumes a nominal rolling radius, which
+tyre wear, pressure and temperature change by a percent or two. The scale s (true = s x reported) is modelled as
+a slowly varying random walk and estimated by a scalar Kalman filter: each GNSS fix moving fast enough gives a
+measurement v_gnss = s * v_wheels + noise, with v_wheels the reported speed at the fix's time. Measurements far
+from the prediction (wheel slip, a GNSS outlier) are gated out and counted, so one bad fix cannot pull the scale.
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+from collections import Counter, deque
+
+# Below this speed a percent of scale is lost in the GNSS speed noise.
+MIN_SPEED_MPS = 3.0
+# How far a fix may be from the nearest wheel-speed sample (wheel speeds arrive at 50-100 Hz).
+MAX_PAIRING_GAP_S = 0.05
+WHEEL_HISTORY = 200
+# Scale drift: tyres warm up and lose pressure over minutes (one sigma per square-root second).
+SCALE_DRIFT_PER_SQRT_S = 1e-4
+INITIAL_SCALE_STD = 0.02
+# GNSS Doppler speed noise (one sigma); a few cm/s for an automotive receiver, more for a phone-grade one.
+GNSS_SPEED_STD_MPS = 0.1
+# Innovation gate in sigmas.
+GATE_SIGMAS = 4.0
+# A scale outside these bounds is a fault, not a tyre.
+SCALE_BOUNDS = (0.8, 1.2)
+
+
+class WheelScaleEstimator:
+    def __init__(self, gnss_speed_std_mps: float = GNSS_SPEED_STD_MPS) -> None:
+        self.scale = 1.0
+        self.variance = INITIAL_SCALE_STD**2
+        self.gnss_speed_std_mps = gnss_speed_std_mps
+        self.counts: Counter[str] = Counter()
+        self._time_s: float | None = None
+        self._wheel_times_s: deque[float] = deque(maxlen=WHEEL_HISTORY)
+        self._wheel_speeds_mps: deque[float] = deque(maxlen=WHEEL_HISTORY)
+
+    @property
+    def std(self) -> float:
+        return math.sqrt(self.variance)
+
+    def on_wheel_speed(self, time_s: float, reported_speed_mps: float) -> None:
+        """The wheels' speed as reported (before scaling); samples must come in time order."""
+        if self._wheel_times_s and time_s < self._wheel_times_s[-1]:
+            return
+        self._wheel_times_s.append(time_s)
+        self._wheel_speeds_mps.append(reported_speed_mps)
+
+    def on_gnss_speed(self, time_s: float, gnss_speed_mps: float) -> bool:
+        """Updates the scale with a fix's speed over ground; False when the fix could not be used."""
+        reported = self._reported_at(time_s)
+        if reported is None or abs(reported) < MIN_SPEED_MPS or gnss_speed_mps < MIN_SPEED_MPS:
+            self.counts["wheel_scale_unused"] += 1
+            return False
+        if self._time_s is not None and time_s > self._time_s:
+            self.variance += SCALE_DRIFT_PER_SQRT_S**2 * (time_s - self._time_s)
+        self._time_s = time_s if self._time_s is None else max(self._time_s, time_s)
+        v = abs(reported)
+        innovation = gnss_speed_mps - self.scale * v
+        innovation_variance = v * v * self.variance + self.gnss_speed_std_mps**2
+        if innovation * innovation > GATE_SIGMAS**2 * innovation_variance:
+            self.counts["wheel_scale_gated"] += 1
+            return False
+        gain = v * self.variance / innovation_variance
+        self.scale = min(max(self.scale + gain * innovation, SCALE_BOUNDS[0]), SCALE_BOUNDS[1])
+        self.variance *= 1.0 - gain * v
+        self.counts["wheel_scale_updates"] += 1
+        return True
+
+    def _reported_at(self, time_s: float) -> float | None:
+        times = self._wheel_times_s
+        if not times:
+            return None
+        i = bisect.bisect_left(times, time_s)
+        nearest = min((j for j in (i - 1, i) if 0 <= j < len(times)), key=lambda j: abs(times[j] - time_s))
+        if abs(times[nearest] - time_s) > MAX_PAIRING_GAP_S:
+            return None
+        return self._wheel_speeds_mps[nearest]
