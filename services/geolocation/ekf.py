@@ -44,6 +44,8 @@ class UpdateKind(enum.Enum):
     ODOMETRY = "odometry"
     YAW_RATE = "yaw_rate"
     ACCEL = "accel"
+    GNSS_SPEED = "gnss_speed"
+    GNSS_HEADING = "gnss_heading"
 
 
 @dataclass(frozen=True)
@@ -167,11 +169,18 @@ class GeolocationEkf:
         R = np.diag([speed_std_mps**2, yaw_rate_std_radps**2])
         return self._gated_update(UpdateKind.ODOMETRY, np.array([speed_mps, yaw_rate_radps]), H, hx, R)
 
-    def update_speed(self, speed_mps: float, speed_std_mps: float) -> bool:
+    def update_speed(self, speed_mps: float, speed_std_mps: float, kind: UpdateKind = UpdateKind.ODOMETRY) -> bool:
         H = np.zeros((1, STATE_DIM))
         H[0, SPEED] = 1.0
-        return self._gated_update(UpdateKind.ODOMETRY, np.array([speed_mps]), H, self.kf.x[[SPEED]],
+        return self._gated_update(kind, np.array([speed_mps]), H, self.kf.x[[SPEED]],
                                   np.array([[speed_std_mps**2]]))
+
+    def update_heading(self, heading_rad: float, std_rad: float) -> bool:
+        """A measured heading (dual-antenna receiver, or course over ground when moving), ENU radians."""
+        H = np.zeros((1, STATE_DIM))
+        H[0, HEADING] = 1.0
+        return self._gated_update(UpdateKind.GNSS_HEADING, np.array([heading_rad]), H, self.kf.x[[HEADING]],
+                                  np.array([[std_rad**2]]), angle_rows=(0,))
 
     def update_yaw_rate(self, yaw_rate_radps: float, std_radps: float) -> bool:
         H = np.zeros((1, STATE_DIM))
