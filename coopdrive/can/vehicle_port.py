@@ -17,6 +17,7 @@ import can
 from pydantic import BaseModel, ConfigDict, Field
 
 from coopdrive.can.candump import CandumpLogger
+from coopdrive.runtime.service import HardwareUnavailable
 
 # How long the receive thread blocks on the bus before looking whether it should stop.
 RECEIVE_TIMEOUT_S = 0.1
@@ -33,7 +34,7 @@ class VehicleCanPortConfig(BaseModel):
     candump_path: str = ""
 
 
-class VehicleCanPortError(RuntimeError):
+class VehicleCanPortError(HardwareUnavailable):
     """The configured CAN interface could not be opened."""
 
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import enum
 import math
 from collections import Counter
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -36,6 +36,7 @@ PENDING_FIX_MAX_AGE_S = 5.0
 INITIAL_YAW_RATE_STD_RADPS = 0.1
 INITIAL_ACCEL_STD_MPS2 = 1.0
 UNKNOWN_HEADING_STD_RAD = math.pi
+FIX_INTERVALS_FRESH = 1.5  # a fix is fresh until this many receiver intervals after it
 
 
 class InputEvent(enum.Enum):
@@ -96,6 +97,9 @@ class Geolocator:
         self.plane = LocalTangentPlane(*self.origin) if self.origin is not None else None
         # Distance of the first fix refused as too far from the origin (for the service's one log line).
         self.far_fix_distance_m: float | None = None
+        # The receiver's fix interval (shortest seen): a 1 Hz receiver's fix is fresh for more than 0.5 s.
+        self._fix_interval_s: float | None = None
+        self._last_fix_input_s: float | None = None
         noise = ProcessNoise(config.jerk_std_mps3, config.yaw_accel_std_radps2, config.position_process_std_mps,
                              config.steering_std_rad)
         if config.motion_model is MotionModelKind.KINEMATIC_BICYCLE:
@@ -127,6 +131,7 @@ class Geolocator:
         if self.plane is None:
             self.origin = (fix.latitude_deg, fix.longitude_deg, fix.altitude_m)
             self.plane = LocalTangentPlane(*self.origin)
+        self._learn_fix_interval(fix.header.sample_time_s)
         east_m, north_m, _ = self.plane.to_enu(fix.latitude_deg, fix.longitude_deg, fix.altitude_m)
         if math.hypot(east_m, north_m) > self.config.max_origin_distance_m:
             self.counters[InputEvent.FIX_FAR_FROM_ORIGIN] += 1
@@ -139,6 +144,14 @@ class Geolocator:
         event = _Fix(east_m, north_m, stds[0], stds[1], fix.fix_mode, fix.speed_mps, fix.course_deg,
                      velocity_valid, heading_rad)
         return self._add(fix.header.sample_time_s, event)
+
+    def _learn_fix_interval(self, time_s: float) -> None:
+        if self._last_fix_input_s is not None and time_s > self._last_fix_input_s:
+            step_s = time_s - self._last_fix_input_s
+            self._fix_interval_s = step_s if self._fix_interval_s is None else min(self._fix_interval_s, step_s)
+            timeout_s = max(self.config.gnss_timeout_s, FIX_INTERVALS_FRESH * self._fix_interval_s)
+            self.thresholds = replace(self.thresholds, gnss_timeout_s=timeout_s)
+        self._last_fix_input_s = time_s
 
     def on_can_state(self, msg: vehicle_pb2.VehicleCanState) -> Insertion | None:
         try:
@@ -217,9 +230,10 @@ class Geolocator:
         odometry_s = book.last_odometry_time_s
         if not fix.velocity_valid or (odometry_s is not None and time_s - odometry_s <= config.odometry_timeout_s):
             return
-        self.ekf.update_speed(fix.speed_mps, config.gnss_speed_std_mps, UpdateKind.GNSS_SPEED)
+        self.ekf.update_speed(fix.speed_mps, config.gnss_speed_std_mps, UpdateKind.GNSS_SPEED, soft=True)
         if fix.heading_rad is None and fix.speed_mps >= config.min_course_speed_mps:
-            self.ekf.update_heading(_enu_heading_rad(fix.course_deg), math.radians(config.gnss_course_std_deg))
+            self.ekf.update_heading(_enu_heading_rad(fix.course_deg), math.radians(config.gnss_course_std_deg),
+                                    soft=True)
 
     def _initial_heading(self, time_s: float, fix: _Fix) -> tuple[float, float, float | None] | None:
         """(heading, its std, speed along the track or None) when this fix tells the heading, else None."""
@@ -228,7 +242,7 @@ class Geolocator:
             return fix.heading_rad, math.radians(config.gnss_heading_std_deg), None
         if fix.velocity_valid and fix.speed_mps >= config.min_course_speed_mps:
             return _enu_heading_rad(fix.course_deg), config.initial_heading_std_rad, None
-        if book.pending_fix is not None:
+        if book.pending_fix is not None and not fix.velocity_valid:  # a receiver's own slow speed beats a track
             previous_time_s, previous = book.pending_fix
             de, dn = fix.east_m - previous.east_m, fix.north_m - previous.north_m
             # A track shorter than the fixes' own noise says nothing about the heading.

@@ -64,6 +64,7 @@ class _Epoch:
     utc: datetime.time
     fix: gnss_pb2.GnssFix
     day_s: float  # seconds since midnight UTC
+    opened_s: float  # arrival of its first sentence
     types: set[SentenceType] = field(default_factory=set)
 
 
@@ -118,6 +119,13 @@ class NmeaDecoder:
     def flush(self) -> None:
         """Emit a pending epoch that lacks some expected sentence (e.g. at the end of a log)."""
         self._emit()
+
+    def flush_stale(self, now_s: float, wait_s: float) -> None:
+        """Emit an epoch with a position whose first sentence came wait_s ago or more: its other sentences are
+        not coming (the receiver's first epoch, before its layout is known, or one that lacks a sentence)."""
+        epoch = self._epoch
+        if epoch is not None and epoch.types & POSITION_SENTENCES and now_s - epoch.opened_s >= wait_s:
+            self._emit()
 
     def _raw_line(self, line: bytes, time_s: float) -> None:
         if not line:
@@ -261,7 +269,7 @@ class NmeaDecoder:
         fix = gnss_pb2.GnssFix()
         fix.header.sample_time_s = time_s - self.receiver_latency_s
         day_s = utc.hour * 3600.0 + utc.minute * 60.0 + utc.second + utc.microsecond * 1e-6
-        self._epoch = _Epoch(utc, fix, day_s)
+        self._epoch = _Epoch(utc, fix, day_s, time_s)
         held, self._held = self._held, {}
         for sentence_type, msg in held.items():
             self._add(sentence_type, msg)
