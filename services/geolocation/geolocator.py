@@ -13,6 +13,7 @@ from collections import Counter
 from dataclasses import dataclass, replace
 
 import numpy as np
+from pymap3d.vincenty import vdist
 
 from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.roadmap import RoadMap
@@ -36,6 +37,7 @@ PENDING_FIX_MAX_AGE_S = 5.0
 INITIAL_YAW_RATE_STD_RADPS = 0.1
 INITIAL_ACCEL_STD_MPS2 = 1.0
 UNKNOWN_HEADING_STD_RAD = math.pi
+NO_LEVER_ARM = LeverArm()
 FIX_INTERVALS_FRESH = 1.5  # a fix is fresh until this many receiver intervals after it
 
 
@@ -135,8 +137,9 @@ class Geolocator:
         east_m, north_m, _ = self.plane.to_enu(fix.latitude_deg, fix.longitude_deg, fix.altitude_m)
         if math.hypot(east_m, north_m) > self.config.max_origin_distance_m:
             self.counters[InputEvent.FIX_FAR_FROM_ORIGIN] += 1
-            if self.far_fix_distance_m is None:
-                self.far_fix_distance_m = math.hypot(east_m, north_m)
+            if self.far_fix_distance_m is None:  # along the ellipsoid: the plane's distance shrinks far out
+                self.far_fix_distance_m = float(vdist(self.origin[0], self.origin[1], fix.latitude_deg,
+                                                      fix.longitude_deg)[0])
             return None
         # Producers older than velocity_valid (the simulator's gnss/fix) leave it false but fill the speed.
         velocity_valid = fix.velocity_valid or fix.speed_mps > 0.0
@@ -203,7 +206,10 @@ class Geolocator:
             return
         self.ekf.predict_to(time_s)
         book = self._book
-        if self.ekf.update_gnss_position(fix.east_m, fix.north_m, fix.std_east_m, fix.std_north_m, self.lever_arm):
+        # Without a heading the state is the antenna itself (see _initialise): a lever arm would let position
+        # noise pass for a heading.
+        lever_arm = self.lever_arm if book.heading_known else NO_LEVER_ARM
+        if self.ekf.update_gnss_position(fix.east_m, fix.north_m, fix.std_east_m, fix.std_north_m, lever_arm):
             self.counters[InputEvent.FIX_FUSED] += 1
             self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, first_gated_time_s=None)
         else:
