@@ -31,6 +31,13 @@ class NmeaLog:
     timed_lines: int = 0  # lines whose UTC time stamped the ones after them
     dated: bool = False  # False: no RMC/ZDA date in the log, times are on 1970-01-01
 
+    def append(self, time_s: float, line: bytes) -> None:
+        """A line joins the last chunk when it has the same stamp."""
+        if self.chunks and self.chunks[-1][0] == time_s:
+            self.chunks[-1] = (time_s, self.chunks[-1][1] + line)
+        else:
+            self.chunks.append((time_s, line))
+
 
 def _time_and_date(line: bytes) -> tuple[float | None, datetime.date | None]:
     """Seconds since midnight and date of a checksummed GGA/RMC/GNS/ZDA line, else (None, None)."""
@@ -62,9 +69,14 @@ def _midnight_s(date: datetime.date) -> float:
     return datetime.datetime.combine(date, datetime.time(), tzinfo=datetime.timezone.utc).timestamp()
 
 
-def read_nmea_log(path: str | Path) -> NmeaLog:
-    """The log's lines grouped into chunks of equal stamps (one chunk per receiver epoch, roughly)."""
+def read_nmea_log(path: str | Path, rate_hz: float | None = None, start_s: float = 0.0) -> NmeaLog:
+    """The log's lines grouped into chunks of equal stamps (one chunk per receiver epoch, roughly).
+
+    rate_hz: for a log whose times are missing or wrong, the receiver's stated rate instead: each GGA or GNS
+    starts the next epoch, 1 / rate_hz after the one before, the first at start_s."""
     lines = Path(path).read_bytes().splitlines(keepends=True)
+    if rate_hz is not None:
+        return _at_rate(lines, rate_hz, start_s)
     log = NmeaLog()
     stamped: list[tuple[float | None, datetime.date | None, bytes]] = []
     for line in lines:
@@ -87,8 +99,21 @@ def read_nmea_log(path: str | Path) -> NmeaLog:
             if time_s < now_s - DAY_S / 2.0:
                 time_s += DAY_S  # past midnight before the next date came
             now_s = max(now_s, time_s)
-        if log.chunks and log.chunks[-1][0] == now_s:
-            log.chunks[-1] = (now_s, log.chunks[-1][1] + line)
-        else:
-            log.chunks.append((now_s, line))
+        log.append(now_s, line)
+    return log
+
+
+def _at_rate(lines: list[bytes], rate_hz: float, start_s: float) -> NmeaLog:
+    if not rate_hz > 0.0:
+        raise ValueError(f"rate_hz must be positive, got {rate_hz}")
+    log, epochs = NmeaLog(), -1
+    for line in lines:
+        if line.startswith(b"#"):
+            log.comment_lines += 1
+            continue
+        if line[3:6] in (b"GGA", b"GNS") and line.startswith(b"$"):
+            epochs += 1
+            log.timed_lines += 1
+        time_s = start_s + max(epochs, 0) / rate_hz
+        log.append(time_s, line)
     return log

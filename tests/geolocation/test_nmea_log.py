@@ -48,3 +48,10 @@ def test_a_log_without_any_date_is_timed_on_1970_01_01(tmp_path):
     path.write_text(with_checksum("GPGGA,101530.00,5128.2900,N,00536.0600,E,1,14,0.7,20.5,M,47.0,M,,") + "\n")
     log = read_nmea_log(path)
     assert not log.dated and log.chunks[0][0] == 10 * 3600 + 15 * 60 + 30
+
+
+def test_at_a_stated_rate_each_gga_starts_the_next_epoch():
+    log = read_nmea_log(shared_file("gnss/gpsd_ublox-neo-m9n-nmea.log"), rate_hz=2.0, start_s=100.0)
+    times_s = [time_s for time_s, _ in log.chunks]
+    assert times_s[0] == 100.0 and times_s[-1] == 100.0 + 60 / 2.0  # 61 GGA, 0.5 s apart
+    assert all(b > a for a, b in zip(times_s, times_s[1:]))
