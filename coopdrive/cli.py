@@ -11,6 +11,7 @@ from pathlib import Path
 
 from coopdrive.cli_v2x import add_commands as add_v2x_commands
 from coopdrive.runtime.config import ConfigError
+from coopdrive.runtime.service import HardwareUnavailable
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 
@@ -25,6 +26,9 @@ def main(argv: list[str] | None = None) -> int:
     except ConfigError as error:
         print(f"coopdrive: {error}", file=sys.stderr)
         return EXIT_USAGE
+    except HardwareUnavailable as error:
+        print(f"coopdrive: {error}", file=sys.stderr)
+        return EXIT_FAILED
     except KeyboardInterrupt:
         return EXIT_FAILED
 

@@ -18,6 +18,7 @@ import can
 from pydantic import BaseModel, ConfigDict, Field
 
 from coopdrive.can.candump import CandumpLogger
+from coopdrive.runtime.service import HardwareUnavailable
 
 # How long the receive thread blocks on the bus before looking whether it should stop.
 RECEIVE_TIMEOUT_S = 0.1
@@ -40,7 +41,7 @@ class VehicleCanPortConfig(BaseModel):
     publish_period_s: float = Field(0.01, gt=0.0)
 
 
-class VehicleCanPortError(RuntimeError):
+class VehicleCanPortError(HardwareUnavailable):
     """The configured CAN interface could not be opened."""
 
 

@@ -17,6 +17,11 @@ from pydantic import BaseModel, ConfigDict, Field
 from coopdrive.bus import Envelope
 
 
+class HardwareUnavailable(RuntimeError):
+    """A device a service's config names (serial port, CAN interface) cannot be opened: its message is one line
+    naming the device and why, which is all `coopdrive service` prints."""
+
+
 class ServiceContext(Protocol):
     vehicle_id: str
     log: logging.Logger

@@ -25,17 +25,17 @@ _sym_db = _symbol_database.Default()
 from coopdrive.v1 import header_pb2 as coopdrive_dot_v1_dot_header__pb2
 
 
-DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x17\x63oopdrive/v1/gnss.proto\x12\x0c\x63oopdrive.v1\x1a\x19\x63oopdrive/v1/header.proto\"\x9d\x02\n\x07GnssFix\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x14\n\x0clatitude_deg\x18\x02 \x01(\x01\x12\x15\n\rlongitude_deg\x18\x03 \x01(\x01\x12\x12\n\naltitude_m\x18\x04 \x01(\x01\x12\'\n\x08\x66ix_mode\x18\x05 \x01(\x0e\x32\x15.coopdrive.v1.FixMode\x12\x12\n\nstd_east_m\x18\x06 \x01(\x01\x12\x13\n\x0bstd_north_m\x18\x07 \x01(\x01\x12\x10\n\x08std_up_m\x18\x08 \x01(\x01\x12\x11\n\tspeed_mps\x18\t \x01(\x01\x12\x12\n\ncourse_deg\x18\n \x01(\x01\x12\x12\n\nsatellites\x18\x0b \x01(\r\x12\x0c\n\x04hdop\x18\x0c \x01(\x01\"M\n\tNmeaChunk\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x0c\n\x04\x64\x61ta\x18\x02 \x01(\x0c\x12\x0c\n\x04port\x18\x03 \x01(\t*\xa3\x01\n\x07\x46ixMode\x12\x18\n\x14\x46IX_MODE_UNSPECIFIED\x10\x00\x12\x13\n\x0f\x46IX_MODE_NO_FIX\x10\x01\x12\x13\n\x0f\x46IX_MODE_SINGLE\x10\x02\x12\x11\n\rFIX_MODE_SBAS\x10\x03\x12\x11\n\rFIX_MODE_DGPS\x10\x04\x12\x16\n\x12\x46IX_MODE_RTK_FLOAT\x10\x05\x12\x16\n\x12\x46IX_MODE_RTK_FIXED\x10\x06\x62\x06proto3')
+DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x17\x63oopdrive/v1/gnss.proto\x12\x0c\x63oopdrive.v1\x1a\x19\x63oopdrive/v1/header.proto\"\xf5\x02\n\x07GnssFix\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x14\n\x0clatitude_deg\x18\x02 \x01(\x01\x12\x15\n\rlongitude_deg\x18\x03 \x01(\x01\x12\x12\n\naltitude_m\x18\x04 \x01(\x01\x12\'\n\x08\x66ix_mode\x18\x05 \x01(\x0e\x32\x15.coopdrive.v1.FixMode\x12\x12\n\nstd_east_m\x18\x06 \x01(\x01\x12\x13\n\x0bstd_north_m\x18\x07 \x01(\x01\x12\x10\n\x08std_up_m\x18\x08 \x01(\x01\x12\x11\n\tspeed_mps\x18\t \x01(\x01\x12\x12\n\ncourse_deg\x18\n \x01(\x01\x12\x12\n\nsatellites\x18\x0b \x01(\r\x12\x0c\n\x04hdop\x18\x0c \x01(\x01\x12\x12\n\nutc_time_s\x18\r \x01(\x01\x12\x16\n\x0evelocity_valid\x18\x0e \x01(\x08\x12\x15\n\rheading_valid\x18\x0f \x01(\x08\x12\x13\n\x0bheading_deg\x18\x10 \x01(\x01\"M\n\tNmeaChunk\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x0c\n\x04\x64\x61ta\x18\x02 \x01(\x0c\x12\x0c\n\x04port\x18\x03 \x01(\t*\xa3\x01\n\x07\x46ixMode\x12\x18\n\x14\x46IX_MODE_UNSPECIFIED\x10\x00\x12\x13\n\x0f\x46IX_MODE_NO_FIX\x10\x01\x12\x13\n\x0f\x46IX_MODE_SINGLE\x10\x02\x12\x11\n\rFIX_MODE_SBAS\x10\x03\x12\x11\n\rFIX_MODE_DGPS\x10\x04\x12\x16\n\x12\x46IX_MODE_RTK_FLOAT\x10\x05\x12\x16\n\x12\x46IX_MODE_RTK_FIXED\x10\x06\x62\x06proto3')
 
 _globals = globals()
 _builder.BuildMessageAndEnumDescriptors(DESCRIPTOR, _globals)
 _builder.BuildTopDescriptorsAndMessages(DESCRIPTOR, 'coopdrive.v1.gnss_pb2', _globals)
 if not _descriptor._USE_C_DESCRIPTORS:
   DESCRIPTOR._loaded_options = None
-  _globals['_FIXMODE']._serialized_start=436
-  _globals['_FIXMODE']._serialized_end=599
+  _globals['_FIXMODE']._serialized_start=524
+  _globals['_FIXMODE']._serialized_end=687
   _globals['_GNSSFIX']._serialized_start=69
-  _globals['_GNSSFIX']._serialized_end=354
-  _globals['_NMEACHUNK']._serialized_start=356
-  _globals['_NMEACHUNK']._serialized_end=433
+  _globals['_GNSSFIX']._serialized_end=442
+  _globals['_NMEACHUNK']._serialized_start=444
+  _globals['_NMEACHUNK']._serialized_end=521
 # @@protoc_insertion_point(module_scope)

@@ -25,7 +25,7 @@ FIX_MODE_RTK_FLOAT: FixMode
 FIX_MODE_RTK_FIXED: FixMode
 
 class GnssFix(_message.Message):
-    __slots__ = ("header", "latitude_deg", "longitude_deg", "altitude_m", "fix_mode", "std_east_m", "std_north_m", "std_up_m", "speed_mps", "course_deg", "satellites", "hdop")
+    __slots__ = ("header", "latitude_deg", "longitude_deg", "altitude_m", "fix_mode", "std_east_m", "std_north_m", "std_up_m", "speed_mps", "course_deg", "satellites", "hdop", "utc_time_s", "velocity_valid", "heading_valid", "heading_deg")
     HEADER_FIELD_NUMBER: _ClassVar[int]
     LATITUDE_DEG_FIELD_NUMBER: _ClassVar[int]
     LONGITUDE_DEG_FIELD_NUMBER: _ClassVar[int]
@@ -38,6 +38,10 @@ class GnssFix(_message.Message):
     COURSE_DEG_FIELD_NUMBER: _ClassVar[int]
     SATELLITES_FIELD_NUMBER: _ClassVar[int]
     HDOP_FIELD_NUMBER: _ClassVar[int]
+    UTC_TIME_S_FIELD_NUMBER: _ClassVar[int]
+    VELOCITY_VALID_FIELD_NUMBER: _ClassVar[int]
+    HEADING_VALID_FIELD_NUMBER: _ClassVar[int]
+    HEADING_DEG_FIELD_NUMBER: _ClassVar[int]
     header: _header_pb2.Header
     latitude_deg: float
     longitude_deg: float
@@ -50,7 +54,11 @@ class GnssFix(_message.Message):
     course_deg: float
     satellites: int
     hdop: float
-    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., latitude_deg: _Optional[float] = ..., longitude_deg: _Optional[float] = ..., altitude_m: _Optional[float] = ..., fix_mode: _Optional[_Union[FixMode, str]] = ..., std_east_m: _Optional[float] = ..., std_north_m: _Optional[float] = ..., std_up_m: _Optional[float] = ..., speed_mps: _Optional[float] = ..., course_deg: _Optional[float] = ..., satellites: _Optional[int] = ..., hdop: _Optional[float] = ...) -> None: ...
+    utc_time_s: float
+    velocity_valid: bool
+    heading_valid: bool
+    heading_deg: float
+    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., latitude_deg: _Optional[float] = ..., longitude_deg: _Optional[float] = ..., altitude_m: _Optional[float] = ..., fix_mode: _Optional[_Union[FixMode, str]] = ..., std_east_m: _Optional[float] = ..., std_north_m: _Optional[float] = ..., std_up_m: _Optional[float] = ..., speed_mps: _Optional[float] = ..., course_deg: _Optional[float] = ..., satellites: _Optional[int] = ..., hdop: _Optional[float] = ..., utc_time_s: _Optional[float] = ..., velocity_valid: _Optional[bool] = ..., heading_valid: _Optional[bool] = ..., heading_deg: _Optional[float] = ...) -> None: ...
 
 class NmeaChunk(_message.Message):
     __slots__ = ("header", "data", "port")

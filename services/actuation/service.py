@@ -98,7 +98,8 @@ class ActuationService(Service):
         self.vehicle_bus = VehicleBusInput(self.ctx, reader, c.can_port, owns_bus=True)
 
     def stop(self) -> None:
-        self.vehicle_bus.close()
+        if getattr(self, "vehicle_bus", None) is not None:  # not there when start failed to open the interface
+            self.vehicle_bus.close()
 
     # ----- inputs ---------------------------------------------------------------------------
     def on_control_command(self, envelope: Envelope) -> None:

@@ -42,3 +42,11 @@ class GeolocatorConfig(BaseModel):
     initial_heading_std_rad: float = Field(0.2, gt=0.0)
     initial_speed_std_mps: float = Field(1.0, gt=0.0)
     min_course_speed_mps: float = Field(2.0, ge=0.0)  # course over ground below this speed is noise
+    # A receiver alone (no odometry for odometry_timeout_s): its speed (RMC/VTG) and, once moving faster than
+    # min_course_speed_mps, its course over ground are fused. A dual-antenna heading (HDT/THS) always is.
+    odometry_timeout_s: float = Field(1.0, gt=0.0)
+    gnss_speed_std_mps: float = Field(0.1, gt=0.0)
+    gnss_course_std_deg: float = Field(3.0, gt=0.0)
+    gnss_heading_std_deg: float = Field(0.5, gt=0.0)
+    # Fixes farther than this from the local frame's origin are refused (a wrong origin, not a drive).
+    max_origin_distance_m: float = Field(100_000.0, gt=0.0)

@@ -44,6 +44,8 @@ class UpdateKind(enum.Enum):
     ODOMETRY = "odometry"
     YAW_RATE = "yaw_rate"
     ACCEL = "accel"
+    GNSS_SPEED = "gnss_speed"
+    GNSS_HEADING = "gnss_heading"
 
 
 @dataclass(frozen=True)
@@ -133,7 +135,10 @@ class GeolocationEkf:
         return self._gate_cache[dim_z]
 
     def _gated_update(self, kind: UpdateKind, z: np.ndarray, H: np.ndarray, hx: np.ndarray, R: np.ndarray,
-                      angle_rows: tuple[int, ...] = ()) -> bool:
+                      angle_rows: tuple[int, ...] = (), soft: bool = False) -> bool:
+        """soft: a measurement beyond the gate is not refused but fused with its noise inflated until it sits
+        on the gate (for a receiver alone, whose speed and course are all there is: refusing one leaves the
+        filter believing its own extrapolation, and the next one is further off still)."""
         y = z - hx
         for row in angle_rows:
             y[row] = _wrap(y[row])
@@ -141,7 +146,9 @@ class GeolocationEkf:
         self.last_nis = float(y @ np.linalg.solve(S, y))
         if self.last_nis > self.gate(len(z)):
             self.rejected[kind] += 1
-            return False
+            if not soft:
+                return False
+            R = R * (self.last_nis / self.gate(len(z)))
         self.kf.update(z, HJacobian=lambda _x: H, Hx=lambda _x: z - y, R=R)
         self.kf.x[HEADING] = _wrap(self.kf.x[HEADING])
         self.accepted[kind] += 1
@@ -167,11 +174,19 @@ class GeolocationEkf:
         R = np.diag([speed_std_mps**2, yaw_rate_std_radps**2])
         return self._gated_update(UpdateKind.ODOMETRY, np.array([speed_mps, yaw_rate_radps]), H, hx, R)
 
-    def update_speed(self, speed_mps: float, speed_std_mps: float) -> bool:
+    def update_speed(self, speed_mps: float, speed_std_mps: float, kind: UpdateKind = UpdateKind.ODOMETRY,
+                     soft: bool = False) -> bool:
         H = np.zeros((1, STATE_DIM))
         H[0, SPEED] = 1.0
-        return self._gated_update(UpdateKind.ODOMETRY, np.array([speed_mps]), H, self.kf.x[[SPEED]],
-                                  np.array([[speed_std_mps**2]]))
+        return self._gated_update(kind, np.array([speed_mps]), H, self.kf.x[[SPEED]],
+                                  np.array([[speed_std_mps**2]]), soft=soft)
+
+    def update_heading(self, heading_rad: float, std_rad: float, soft: bool = False) -> bool:
+        """A measured heading (dual-antenna receiver, or course over ground when moving), ENU radians."""
+        H = np.zeros((1, STATE_DIM))
+        H[0, HEADING] = 1.0
+        return self._gated_update(UpdateKind.GNSS_HEADING, np.array([heading_rad]), H, self.kf.x[[HEADING]],
+                                  np.array([[std_rad**2]]), angle_rows=(0,), soft=soft)
 
     def update_yaw_rate(self, yaw_rate_radps: float, std_radps: float) -> bool:
         H = np.zeros((1, STATE_DIM))

@@ -44,12 +44,18 @@ class ModeThresholds:
 
 
 def localisation_mode(initialised: bool, position_std_m: float, since_last_fix_s: float | None,
-                      last_fix_mode: int, thresholds: ModeThresholds) -> int:
-    """LocalisationMode from the fix mode of the last fused fix, its age and the position covariance."""
-    if not initialised or position_std_m > thresholds.lost_std_m:
+                      last_fix_mode: int, thresholds: ModeThresholds, heading_known: bool = True) -> int:
+    """LocalisationMode from the fix mode of the last fused fix, its age and the position covariance.
+
+    While fixes are being fused the position is known as well as the receiver says (a single-point fix's
+    5 m is coarse, not lost); only without them does a growing uncertainty end in LOST. Without a heading
+    (a receiver standing still, no dual antenna) the ego is never good enough for lane-level control."""
+    if not initialised:
         return ego_pb2.LOCALISATION_MODE_LOST
     if since_last_fix_s is None or since_last_fix_s > thresholds.gnss_timeout_s:
+        if position_std_m > thresholds.lost_std_m:
+            return ego_pb2.LOCALISATION_MODE_LOST
         return ego_pb2.LOCALISATION_MODE_DEAD_RECKONING
-    if position_std_m <= thresholds.precise_std_m and last_fix_mode in RTK_FIX_MODES:
+    if position_std_m <= thresholds.precise_std_m and last_fix_mode in RTK_FIX_MODES and heading_known:
         return ego_pb2.LOCALISATION_MODE_GNSS_PRECISE
     return ego_pb2.LOCALISATION_MODE_GNSS_DEGRADED

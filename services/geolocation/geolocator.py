@@ -10,15 +10,16 @@ from __future__ import annotations
 import enum
 import math
 from collections import Counter
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
+from pymap3d.vincenty import vdist
 
 from coopdrive.can.adapter import OdometryOptions
 from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.roadmap import RoadMap
 from coopdrive.services.geolocation.config import GeolocatorConfig
-from coopdrive.services.geolocation.ekf import GeolocationEkf, gnss_position_std_m
+from coopdrive.services.geolocation.ekf import GeolocationEkf, UpdateKind, gnss_position_std_m
 from coopdrive.services.geolocation.frames import LeverArm, ModeThresholds, localisation_mode
 from coopdrive.services.geolocation.latency import Insertion, ReplayBuffer
 from coopdrive.services.geolocation.motion_models import (
@@ -37,6 +38,8 @@ PENDING_FIX_MAX_AGE_S = 5.0
 INITIAL_YAW_RATE_STD_RADPS = 0.1
 INITIAL_ACCEL_STD_MPS2 = 1.0
 UNKNOWN_HEADING_STD_RAD = math.pi
+NO_LEVER_ARM = LeverArm()
+FIX_INTERVALS_FRESH = 1.5  # a fix is fresh until this many receiver intervals after it
 
 
 class InputEvent(enum.Enum):
@@ -49,6 +52,7 @@ class InputEvent(enum.Enum):
     IMU_INVALID = "imu_invalid"
     TOO_OLD = "too_old"
     STANDSTILL = "standstill"
+    FIX_FAR_FROM_ORIGIN = "fix_far_from_origin"
 
 
 @dataclass(frozen=True)
@@ -60,6 +64,8 @@ class _Fix:
     fix_mode: int
     speed_mps: float
     course_deg: float
+    velocity_valid: bool = False
+    heading_rad: float | None = None  # dual-antenna heading, ENU
 
 
 @dataclass(frozen=True)
@@ -78,17 +84,27 @@ class _Bookkeeping:
     steering_angle_rad: float = 0.0
     # The car's latest yaw rate (its sensor's, else its wheels'): reported while there is no fix.
     last_yaw_rate_radps: float | None = None
+    # False while the filter runs on a position alone (heading unknown, std pi): a heading found later
+    # (dual antenna, course over ground, a track) then re-initialises it.
+    heading_known: bool = False
+    last_odometry_time_s: float | None = None
 
 
 class Geolocator:
     def __init__(self, config: GeolocatorConfig, road_map: RoadMap | None = None,
-                 origin: tuple[float, float, float] | None = None) -> None:
+                 origin: tuple[float, float, float] | None = None, first_fix_origin: bool = False) -> None:
+        """The local frame's origin: the road map's, else origin, else (first_fix_origin) the first fix's."""
         self.config = config
-        if road_map is None and origin is None:
+        if road_map is None and origin is None and not first_fix_origin:
             road_map = RoadMap.load(config.map_name)
         self.road_map = road_map
-        self.origin = origin if origin is not None else road_map.origin
-        self.plane = LocalTangentPlane(*self.origin)
+        self.origin = origin if origin is not None or road_map is None else road_map.origin
+        self.plane = LocalTangentPlane(*self.origin) if self.origin is not None else None
+        # Distance of the first fix refused as too far from the origin (for the service's one log line).
+        self.far_fix_distance_m: float | None = None
+        # The receiver's fix interval (shortest seen): a 1 Hz receiver's fix is fresh for more than 0.5 s.
+        self._fix_interval_s: float | None = None
+        self._last_fix_input_s: float | None = None
         noise = ProcessNoise(config.jerk_std_mps3, config.yaw_accel_std_radps2, config.position_process_std_mps,
                              config.steering_std_rad)
         if config.motion_model is MotionModelKind.KINEMATIC_BICYCLE:
@@ -122,9 +138,31 @@ class Geolocator:
             self.counters[InputEvent.FIX_INVALID] += 1
             return None
         self.odometry.on_gnss_speed(fix.header.sample_time_s, fix.speed_mps)
+        if self.plane is None:
+            self.origin = (fix.latitude_deg, fix.longitude_deg, fix.altitude_m)
+            self.plane = LocalTangentPlane(*self.origin)
+        self._learn_fix_interval(fix.header.sample_time_s)
         east_m, north_m, _ = self.plane.to_enu(fix.latitude_deg, fix.longitude_deg, fix.altitude_m)
-        event = _Fix(east_m, north_m, stds[0], stds[1], fix.fix_mode, fix.speed_mps, fix.course_deg)
+        if math.hypot(east_m, north_m) > self.config.max_origin_distance_m:
+            self.counters[InputEvent.FIX_FAR_FROM_ORIGIN] += 1
+            if self.far_fix_distance_m is None:  # along the ellipsoid: the plane's distance shrinks far out
+                self.far_fix_distance_m = float(vdist(self.origin[0], self.origin[1], fix.latitude_deg,
+                                                      fix.longitude_deg)[0])
+            return None
+        # Producers older than velocity_valid (the simulator's gnss/fix) leave it false but fill the speed.
+        velocity_valid = fix.velocity_valid or fix.speed_mps > 0.0
+        heading_rad = _enu_heading_rad(fix.heading_deg) if fix.heading_valid else None
+        event = _Fix(east_m, north_m, stds[0], stds[1], fix.fix_mode, fix.speed_mps, fix.course_deg,
+                     velocity_valid, heading_rad)
         return self._add(fix.header.sample_time_s, event)
+
+    def _learn_fix_interval(self, time_s: float) -> None:
+        if self._last_fix_input_s is not None and time_s > self._last_fix_input_s:
+            step_s = time_s - self._last_fix_input_s
+            self._fix_interval_s = step_s if self._fix_interval_s is None else min(self._fix_interval_s, step_s)
+            timeout_s = max(self.config.gnss_timeout_s, FIX_INTERVALS_FRESH * self._fix_interval_s)
+            self.thresholds = replace(self.thresholds, gnss_timeout_s=timeout_s)
+        self._last_fix_input_s = time_s
 
     def on_can_state(self, msg: vehicle_pb2.VehicleCanState) -> Insertion | None:
         try:
@@ -173,15 +211,22 @@ class Geolocator:
             self._apply_imu(time_s, event)
 
     def _apply_fix(self, time_s: float, fix: _Fix) -> None:
-        if not self.ekf.initialised:
-            self._try_initialise(time_s, fix)
+        if (not self.ekf.initialised or not self._book.heading_known) and self._try_initialise(time_s, fix):
             return
         self.ekf.predict_to(time_s)
         book = self._book
-        if self.ekf.update_gnss_position(fix.east_m, fix.north_m, fix.std_east_m, fix.std_north_m, self.lever_arm):
+        # Without a heading the state is the antenna itself (see _initialise): a lever arm would let position
+        # noise pass for a heading.
+        lever_arm = self.lever_arm if book.heading_known else NO_LEVER_ARM
+        if self.ekf.update_gnss_position(fix.east_m, fix.north_m, fix.std_east_m, fix.std_north_m, lever_arm):
             self.counters[InputEvent.FIX_FUSED] += 1
             self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, first_gated_time_s=None)
-            return
+        else:
+            self._gated_fix(time_s, fix)
+        self._fuse_gnss_motion(time_s, fix)
+
+    def _gated_fix(self, time_s: float, fix: _Fix) -> None:
+        book = self._book
         self.counters[InputEvent.FIX_GATED] += 1
         if book.first_gated_time_s is None:
             self._book = _replace(book, first_gated_time_s=time_s)
@@ -192,43 +237,87 @@ class Geolocator:
             self.counters[InputEvent.GNSS_RESET] += 1
             self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, first_gated_time_s=None)
 
-    def _try_initialise(self, time_s: float, fix: _Fix) -> None:
-        book = self._book
-        heading_rad, heading_std_rad = None, self.config.initial_heading_std_rad
-        track_speed_mps = None
-        if fix.speed_mps >= self.config.min_course_speed_mps:
-            heading_rad = math.pi / 2.0 - math.radians(fix.course_deg)  # course: from north, clockwise
-        elif book.pending_fix is not None:
+    def _fuse_gnss_motion(self, time_s: float, fix: _Fix) -> None:
+        """The receiver's heading, and without odometry its speed and course (a receiver alone)."""
+        config, book = self.config, self._book
+        if fix.heading_rad is not None:
+            self.ekf.update_heading(fix.heading_rad, math.radians(config.gnss_heading_std_deg))
+        odometry_s = book.last_odometry_time_s
+        if not fix.velocity_valid or (odometry_s is not None and time_s - odometry_s <= config.odometry_timeout_s):
+            return
+        self.ekf.update_speed(fix.speed_mps, config.gnss_speed_std_mps, UpdateKind.GNSS_SPEED, soft=True)
+        if fix.heading_rad is None and fix.speed_mps >= config.min_course_speed_mps:
+            self.ekf.update_heading(_enu_heading_rad(fix.course_deg), math.radians(config.gnss_course_std_deg),
+                                    soft=True)
+
+    def _initial_heading(self, time_s: float, fix: _Fix) -> tuple[float, float, float | None] | None:
+        """(heading, its std, speed along the track or None) when this fix tells the heading, else None."""
+        book, config = self._book, self.config
+        if fix.heading_rad is not None:
+            return fix.heading_rad, math.radians(config.gnss_heading_std_deg), None
+        if fix.velocity_valid and fix.speed_mps >= config.min_course_speed_mps:
+            return _enu_heading_rad(fix.course_deg), config.initial_heading_std_rad, None
+        if book.pending_fix is not None and not fix.velocity_valid:  # a receiver's own slow speed beats a track
             previous_time_s, previous = book.pending_fix
             de, dn = fix.east_m - previous.east_m, fix.north_m - previous.north_m
-            if math.hypot(de, dn) >= HEADING_FROM_TRACK_MIN_M and time_s > previous_time_s:
-                heading_rad = math.atan2(dn, de)
-                track_speed_mps = math.hypot(de, dn) / (time_s - previous_time_s)
-        if heading_rad is None and book.last_speed_mps is not None and abs(book.last_speed_mps) < STATIONARY_SPEED_MPS:
-            heading_rad, heading_std_rad = 0.0, UNKNOWN_HEADING_STD_RAD
-        if heading_rad is None:
+            # A track shorter than the fixes' own noise says nothing about the heading.
+            min_track_m = max(HEADING_FROM_TRACK_MIN_M, 3.0 * max(fix.std_east_m, fix.std_north_m))
+            if math.hypot(de, dn) >= min_track_m and time_s > previous_time_s:
+                return math.atan2(dn, de), config.initial_heading_std_rad, math.hypot(de, dn) / (time_s - previous_time_s)
+        if book.last_speed_mps is not None and abs(book.last_speed_mps) < STATIONARY_SPEED_MPS:
+            return 0.0, UNKNOWN_HEADING_STD_RAD, None  # the wheels say standing: any heading will do for now
+        return None
+
+    def _try_initialise(self, time_s: float, fix: _Fix) -> bool:
+        """(Re)initialises the filter from this fix when it tells the heading, or at the first fix with the
+        heading unknown (a position as soon as there is a fix). False: fuse the fix as usual."""
+        book = self._book
+        found = self._initial_heading(time_s, fix)
+        if found is None:
             # Keep the oldest fix as the start of the track, unless it is too old to tell the heading.
             if book.pending_fix is None or time_s - book.pending_fix[0] > PENDING_FIX_MAX_AGE_S:
-                self._book = _replace(book, pending_fix=(time_s, fix))
-            return
-        speed_mps, speed_std = fix.speed_mps, self.config.initial_speed_std_mps
+                self._book = book = _replace(book, pending_fix=(time_s, fix))
+            if self.ekf.initialised:
+                return False
+            self._initialise(time_s, fix, None, UNKNOWN_HEADING_STD_RAD, None)
+            self._book = _replace(self._book, pending_fix=book.pending_fix, heading_known=False)
+            return True
+        heading_rad, heading_std_rad, track_speed_mps = found
+        self._initialise(time_s, fix, heading_rad, heading_std_rad, track_speed_mps)
+        return True
+
+    def _initialise(self, time_s: float, fix: _Fix, heading_rad: float | None, heading_std_rad: float,
+                    track_speed_mps: float | None) -> None:
+        book = self._book
+        speed_mps, speed_std = (fix.speed_mps if fix.velocity_valid else 0.0), self.config.initial_speed_std_mps
         if book.last_speed_mps is not None:
             speed_mps, speed_std = book.last_speed_mps, self.odometry.speed_std_mps
         elif track_speed_mps is not None:
             speed_mps = track_speed_mps
+        elif fix.velocity_valid:
+            speed_std = self.config.gnss_speed_std_mps
         x0 = np.zeros(STATE_DIM)
-        x0[E], x0[N] = self.lever_arm.rear_axle_position(fix.east_m, fix.north_m, heading_rad)
-        x0[HEADING], x0[SPEED] = heading_rad, speed_mps
         arm_m = math.hypot(self.lever_arm.x_m, self.lever_arm.y_m)
-        P0 = np.diag([fix.std_east_m**2 + (arm_m * heading_std_rad) ** 2,
-                      fix.std_north_m**2 + (arm_m * heading_std_rad) ** 2,
-                      heading_std_rad**2, speed_std**2, INITIAL_YAW_RATE_STD_RADPS**2, INITIAL_ACCEL_STD_MPS2**2])
+        if heading_rad is None:
+            # Heading unknown: the rear axle is somewhere on a circle around the antenna, whose centre is
+            # the best guess (variance arm^2 / 2 along each axis).
+            x0[E], x0[N] = fix.east_m, fix.north_m
+            arm_var = arm_m**2 / 2.0
+        else:
+            x0[E], x0[N] = self.lever_arm.rear_axle_position(fix.east_m, fix.north_m, heading_rad)
+            x0[HEADING] = heading_rad
+            arm_var = (arm_m * heading_std_rad) ** 2
+        x0[SPEED] = speed_mps
+        P0 = np.diag([fix.std_east_m**2 + arm_var, fix.std_north_m**2 + arm_var, heading_std_rad**2, speed_std**2,
+                      INITIAL_YAW_RATE_STD_RADPS**2, INITIAL_ACCEL_STD_MPS2**2])
         self.ekf.initialise(time_s, x0, P0)
         self.counters[InputEvent.FIX_FUSED] += 1
-        self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, pending_fix=None)
+        self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, pending_fix=None,
+                              heading_known=heading_rad is not None, first_gated_time_s=None)
 
     def _apply_odometry(self, time_s: float, sample: OdometrySample) -> None:
-        self._book = _replace(self._book, last_speed_mps=sample.speed_mps, steering_angle_rad=sample.steering_angle_rad)
+        self._book = _replace(self._book, last_speed_mps=sample.speed_mps, steering_angle_rad=sample.steering_angle_rad,
+                              last_odometry_time_s=time_s)
         if sample.yaw_rate_radps is not None:
             self._book = _replace(self._book, last_yaw_rate_radps=sample.yaw_rate_radps)
         if not self.ekf.initialised:
@@ -291,7 +380,8 @@ class Geolocator:
         position_std_m = float(math.sqrt(max(np.linalg.eigvalsh(P[:2, :2])[-1], 0.0)))
         state.position_std_m = position_std_m
         since_fix_s = None if self._book.last_fix_time_s is None else time_s - self._book.last_fix_time_s
-        state.mode = localisation_mode(True, position_std_m, since_fix_s, self._book.last_fix_mode, self.thresholds)
+        state.mode = localisation_mode(True, position_std_m, since_fix_s, self._book.last_fix_mode, self.thresholds,
+                                       heading_known=self._book.heading_known)
         state.latitude_deg, state.longitude_deg, _ = self.plane.to_geodetic(float(x[E]), float(x[N]))
         if self.road_map is not None:
             match = self.road_map.match(x[E], x[N], x[HEADING])
@@ -317,6 +407,11 @@ class Geolocator:
             state.speed_mps = self._book.last_speed_mps or 0.0
             state.yaw_rate_radps = self._book.last_yaw_rate_radps or 0.0
         return state
+
+
+def _enu_heading_rad(course_deg: float) -> float:
+    """NMEA course or heading (from north, clockwise, degrees) -> ENU heading (from east, anticlockwise)."""
+    return math.pi / 2.0 - math.radians(course_deg)
 
 
 def _replace(book: _Bookkeeping, **changes) -> _Bookkeeping:

@@ -1,44 +1,67 @@
-"""The GNSS receiver's serial port, read with pyserial.
+"""The GNSS receiver's port, read with pyserial: a device path or a pyserial URL (`/dev/ttyACM0`,
+`socket://host:port` for receivers that stream NMEA over TCP, `rfc2217://host:port`).
 
 Two ways to read: `read_until(total)` for lockstep runs, where the simulator announces how many bytes it has
 written (gnss/serial_mark) and the reader catches up to exactly that many; `start_thread(on_chunk)` on the
-vehicle, where a daemon thread hands every chunk on as it arrives.
+vehicle, where a daemon thread hands every chunk on as it arrives. When the port drops (a USB receiver
+unplugged, a pty closed, a TCP stream ended) the thread says so once, counts it and reopens the port until
+it is back: it never dies silently.
 """
 
 from __future__ import annotations
 
+import logging
 import os
 import threading
 import time
+from collections import Counter
 from typing import Callable
 
 import serial
 
+from coopdrive.runtime.service import HardwareUnavailable
+
 OPEN_POLL_S = 0.05
 READ_TIMEOUT_S = 0.1  # pyserial read timeout: how often the reader thread checks for stop
 READ_CHUNK_BYTES = 4096
+REOPEN_INTERVAL_S = 1.0
+PORT_ERRORS = (serial.SerialException, OSError, TypeError, AttributeError)
 
 
-class GnssPortError(RuntimeError):
+class GnssPortError(HardwareUnavailable):
     pass
 
 
+def _is_url(port: str) -> bool:
+    return "://" in port
+
+
 class GnssSerial:
-    def __init__(self, port: str, baudrate: int = 115200, open_timeout_s: float = 10.0) -> None:
+    def __init__(self, port: str, baudrate: int = 115200, open_timeout_s: float = 10.0,
+                 log: logging.Logger | None = None, reopen_interval_s: float = REOPEN_INTERVAL_S) -> None:
+        """Raises GnssPortError (one line naming the port) when it cannot be opened within open_timeout_s."""
         self.port = port
+        self.baudrate = baudrate
+        self.log = log or logging.getLogger("coopdrive.geolocation")
+        self.reopen_interval_s = reopen_interval_s
+        self.counters: Counter[str] = Counter()  # gnss_port_drops, gnss_port_reopens
         deadline = time.monotonic() + open_timeout_s
         # The simulator may create the port (a pty symlink) after this service starts.
-        while not os.path.exists(port):
+        while not _is_url(port) and not os.path.exists(port):
             if time.monotonic() >= deadline:
-                raise GnssPortError(f"GNSS serial port {port} did not appear within {open_timeout_s:g} s")
+                raise GnssPortError(f"GNSS port {port} did not appear within {open_timeout_s:g} s")
             time.sleep(OPEN_POLL_S)
-        try:
-            self._serial = serial.Serial(port, baudrate, timeout=READ_TIMEOUT_S)
-        except (serial.SerialException, OSError) as error:
-            raise GnssPortError(f"GNSS serial port {port} could not be opened: {error}") from error
+        self._serial = self._open()
         self.read_total = 0
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
+
+    def _open(self) -> serial.SerialBase:
+        try:
+            return serial.serial_for_url(self.port, self.baudrate, timeout=READ_TIMEOUT_S)
+        except (serial.SerialException, OSError, ValueError) as error:
+            reason = str(error).splitlines()[0] if str(error) else type(error).__name__
+            raise GnssPortError(f"GNSS port {self.port} could not be opened: {reason}") from error
 
     def read_until(self, total_bytes: int, timeout_s: float, on_chunk: Callable[[bytes], None]) -> bool:
         """Reads until read_total reaches total_bytes, passing each chunk on; False on timeout."""
@@ -72,16 +95,40 @@ class GnssSerial:
         while not self._stop.is_set():
             try:
                 chunk = self._serial.read(max(1, min(READ_CHUNK_BYTES, self._serial.in_waiting)))
-            except (serial.SerialException, OSError, TypeError):
+            except PORT_ERRORS as error:
                 if self._stop.is_set():
                     return
-                raise
+                self._dropped(error)
+                continue
             if chunk:
                 self.read_total += len(chunk)
                 on_chunk(chunk)
 
+    def _dropped(self, error: Exception) -> None:
+        """The port went away: say so once, then try to reopen it until it is back or we stop."""
+        self.counters["gnss_port_drops"] += 1
+        self.log.warning("GNSS port %s dropped (%s); reopening every %g s", self.port,
+                         str(error).splitlines()[0] if str(error) else type(error).__name__, self.reopen_interval_s)
+        try:
+            self._serial.close()
+        except PORT_ERRORS:
+            pass
+        while not self._stop.wait(self.reopen_interval_s):
+            if not _is_url(self.port) and not os.path.exists(self.port):
+                continue
+            try:
+                self._serial = self._open()
+            except GnssPortError:
+                continue
+            self.counters["gnss_port_reopens"] += 1
+            self.log.warning("GNSS port %s reopened", self.port)
+            return
+
     def close(self) -> None:
         self._stop.set()
         if self._thread is not None:
-            self._thread.join(timeout=2 * READ_TIMEOUT_S + 1.0)
-        self._serial.close()
+            self._thread.join(timeout=2 * READ_TIMEOUT_S + self.reopen_interval_s + 1.0)
+        try:
+            self._serial.close()
+        except PORT_ERRORS:
+            pass

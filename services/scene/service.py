@@ -67,7 +67,8 @@ class SceneService(Service):
         self.ctx.every(1.0 / config.output_rate_hz, self.publish_scene)
 
     def stop(self) -> None:
-        self.vehicle_bus.close()
+        if getattr(self, "vehicle_bus", None) is not None:  # not there when start failed to open the interface
+            self.vehicle_bus.close()
 
     def _sensor_handler(self, method_name: str):
         method = getattr(self.fusion, method_name)

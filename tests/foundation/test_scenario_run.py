@@ -75,3 +75,19 @@ def test_each_stack_reads_its_gnss_as_nmea_from_its_own_serial_line(two_stacks):
         assert marks > 50, "the simulator wrote no NMEA epochs"
         assert counts.get(f"coopdrive/{vehicle}/ego/gnss", 0) == marks, "an epoch on the line was not decoded"
         assert f"coopdrive/{vehicle}/gnss/fix" not in counts
+
+
+def test_every_byte_geolocation_read_from_its_gnss_line_is_on_gnss_nmea_up_to_a_serial_mark(two_stacks):
+    _, recording = two_stacks
+    marks, chunks = {}, {}
+    for item in read_messages(recording):
+        vehicle = item.topic.split("/")[1]
+        if item.topic.endswith("gnss/serial_mark"):
+            marks.setdefault(vehicle, []).append(item.message.written)
+        elif item.topic.endswith("gnss/nmea"):
+            chunks.setdefault(vehicle, []).append(item.message)
+    for vehicle in ("ego", "f2"):
+        data = b"".join(chunk.data for chunk in chunks[vehicle])
+        # Reads stop exactly at marks; the run may end before the last mark is read.
+        assert len(data) in marks[vehicle][-2:]
+        assert data.startswith(b"$") and all(chunk.port.endswith(f"{vehicle}-gnss0") for chunk in chunks[vehicle])

@@ -184,10 +184,12 @@ def fix_at(east_m: float, north_m: float, time_s: float) -> gnss_pb2.GnssFix:
     return fix
 
 
-def test_without_a_course_the_heading_is_taken_from_two_fixes_two_metres_apart():
+def test_without_a_course_the_first_fix_gives_a_degraded_position_and_two_fixes_two_metres_apart_the_heading():
     geolocator = Geolocator(GeolocatorConfig(antenna_x_m=0.0), origin=ORIGIN)
     geolocator.on_gnss_fix(fix_at(0.0, 0.0, 0.0))
-    assert geolocator.estimate(0.0).mode == ego_pb2.LOCALISATION_MODE_LOST
+    first = geolocator.estimate(0.0)
+    assert first.mode == ego_pb2.LOCALISATION_MODE_GNSS_DEGRADED  # an RTK position, but no heading yet
+    assert np.array(first.covariance).reshape(6, 6)[2, 2] == pytest.approx(math.pi**2)
     geolocator.on_gnss_fix(fix_at(1.0, 1.0, 0.1))  # 1.4 m: not yet
     geolocator.on_gnss_fix(fix_at(2.0, 2.0, 0.2))
     state = geolocator.estimate(0.2)

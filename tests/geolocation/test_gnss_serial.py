@@ -1,4 +1,5 @@
 import datetime as dt
+import logging
 import threading
 from types import SimpleNamespace
 
@@ -118,6 +119,7 @@ class _FakeContext:
     """The parts of ServiceContext the GNSS serial path uses, recording subscriptions and publishes."""
 
     vehicle_id = "ego"
+    log = logging.getLogger("test")
 
     def __init__(self) -> None:
         self.handlers: dict = {}
