@@ -27,7 +27,7 @@ def flatten(message: Message, prefix: str = "", depth: int = 0) -> dict[str, Any
         if _is_map(field):
             row.update({f"{name}.{key}": _scalar(field.message_type.fields_by_name["value"], item)
                         for key, item in sorted(value.items())})
-        elif field.label == FieldDescriptor.LABEL_REPEATED:
+        elif field.is_repeated:
             row[name] = json.dumps([_plain(field, item) for item in value])
         elif field.type == FieldDescriptor.TYPE_MESSAGE:
             if depth < MAX_DEPTH:
