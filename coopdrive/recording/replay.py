@@ -146,7 +146,7 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
         raise ReplayError(f"{recording}: replayed 0 steps through {service_name}: the recording's world/clock "
                           f"ends before its first input")
     # Live outputs stop where the recording stopped; drop replayed ones beyond the last recorded step.
-    last_time = max((m.header.sent_time_s for _, m in recorded_outputs), default=None)
+    last_time = max((m.header.sent_time_s for _, m, _ in recorded_outputs), default=None)
     outputs = ctx.outputs if last_time is None or not clocks else [
         (t, m) for t, m in ctx.outputs if m.header.sent_time_s <= last_time + TIME_EPSILON_S]
     result = ReplayResult(outputs, [(t, m) for t, m, _ in recorded_outputs], steps,
