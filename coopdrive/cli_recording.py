@@ -19,7 +19,7 @@ def add_commands(commands) -> None:
 
 def add_record_command(commands) -> None:
     record = commands.add_parser("record", help="record a live bus to MCAP (with every service's config) until Ctrl-C")
-    record.add_argument("file", type=Path, help="FILE.mcap, or a folder for drive-<UTC time>.mcap")
+    record.add_argument("file", help="FILE.mcap, or a folder (ending in /) for drive-<UTC time>.mcap")
     record.add_argument("--connect", action="append", default=[])
     record.add_argument("--key", default="coopdrive/**")
     record.add_argument("--duration", type=float, metavar="SECONDS", help="stop after this long")

@@ -18,14 +18,15 @@ from coopdrive.recording.live_configs import ServiceConfigCollector
 from coopdrive.recording.writer import McapRecorder, config_metadata
 
 
-def recording_path(path: Path) -> Path:
+def recording_path(text: str | Path) -> Path:
     """A folder (existing, or written with a trailing slash) gets a file named after the UTC start time."""
-    if path.is_dir() or str(path).endswith("/"):
+    path = Path(text)
+    if path.is_dir() or str(text).endswith("/"):
         return path / f"drive-{dt.datetime.now(dt.timezone.utc):%Y%m%d-%H%M%S}.mcap"
     return path
 
 
-def record_live(path: Path, connect: list[str], key_expr: str = "coopdrive/**",
+def record_live(path: str | Path, connect: list[str], key_expr: str = "coopdrive/**",
                 duration_s: float | None = None) -> tuple[Path, int, list[str]]:
     """Returns where it recorded, how many messages, and the services whose configs it stored."""
     stop = threading.Event()
