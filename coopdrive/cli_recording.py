@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import struct
 import sys
 from pathlib import Path
 
@@ -113,6 +114,8 @@ def add_replay_command(commands) -> None:
 
 
 def _replay(args) -> int:
+    from mcap.exceptions import McapError
+
     from coopdrive.recording.replay import ReplayError, replay_service
     from coopdrive.recording.replay_diff import compare_outputs
 
@@ -120,6 +123,9 @@ def _replay(args) -> int:
         result = replay_service(args.file, args.service, args.vehicle, args.out, args.config, args.set)
     except (ReplayError, KeyError) as error:
         print(f"coopdrive: {error.args[0] if error.args else error}", file=sys.stderr)
+        return EXIT_USAGE
+    except (OSError, McapError, struct.error) as error:
+        print(f"coopdrive: replay: {args.file}: not a readable MCAP recording ({error})", file=sys.stderr)
         return EXIT_USAGE
     differences = compare_outputs(result.outputs, result.recorded_outputs)
     summary = {"service": args.service, "mode": result.mode, "steps": result.steps, "outputs": len(result.outputs),
@@ -167,11 +173,13 @@ def add_export_command(commands) -> None:
 
 
 def _export(args) -> int:
+    from mcap.exceptions import McapError
+
     from coopdrive.recording.exporter import ExportError, export_rows, write_rows
 
     try:
         rows = export_rows(args.file, args.topic, args.vehicle)
-    except (ExportError, OSError) as error:
+    except (ExportError, OSError, McapError, struct.error) as error:
         print(f"coopdrive: export: {error}", file=sys.stderr)
         return EXIT_USAGE
     if args.out is None:

@@ -117,17 +117,20 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
     """Lockstep recordings (with world/clock) replay step by step as the run did; any other recording (a
     vehicle's, an import) replays its inputs in arrival order on a clock driven by their log times (see
     replay_wall.py). config_file replaces the recorded config, overrides (KEY=VALUE) change either."""
+    cls = service_class(service_name)
     layout = KeyLayout()
     messages = list(read_messages(recording))
     metadata = read_metadata(recording)
     configs = metadata.get("coopdrive.config", {})
     vehicle_id = vehicle_id or _only_vehicle_of(configs, service_name, recording)
     config_key = f"{vehicle_id}/{service_name}"
-    cls = service_class(service_name)
     config, notes = replay_config(cls, recording, config_key, configs, metadata, config_file, overrides)
     ctx = ReplayContext(vehicle_id=vehicle_id, service_name=service_name)
     service = cls(config, ctx)
-    service.start()
+    try:
+        service.start()
+    except Exception as error:  # e.g. a service that still opens its hardware under replay: one line, not a trace
+        raise ReplayError(f"{service_name} did not start for the replay: {error}") from error
 
     inputs, recorded_outputs, clocks = _split(messages, layout, ctx, service_name, vehicle_id)
     if not inputs:
