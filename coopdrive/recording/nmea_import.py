@@ -118,6 +118,8 @@ def _utc_times(lines: list[_Line], report: SourceReport, path: Path) -> list[flo
     if first_date is None:
         report.notes["no_date_times_are_seconds_of_1970_01_01"] += 1
     day = first_date or _UNIX_EPOCH
+    # Sentences before the first time are stamped as the first epoch's.
+    first_s = next(_unix_s(day, line.seconds_of_day) for line in lines if line.seconds_of_day is not None)
     epoch_s = None
     times, index_in_epoch, last_s = [], 0, float("-inf")
     for line in lines:
@@ -132,10 +134,8 @@ def _utc_times(lines: list[_Line], report: SourceReport, path: Path) -> list[flo
                 report.notes["utc_time_went_back"] += 1
             if start_s != epoch_s:
                 epoch_s, index_in_epoch = start_s, 0
-        if epoch_s is None:  # before the first time: the first epoch's time
-            epoch_s = next(_unix_s(day, l.seconds_of_day) for l in lines if l.seconds_of_day is not None)
         # Strictly increasing, so the recording's log-time order is the file's order.
-        last_s = max(epoch_s + index_in_epoch * SENTENCE_SPACING_S, last_s + 1e-6)
+        last_s = max((first_s if epoch_s is None else epoch_s) + index_in_epoch * SENTENCE_SPACING_S, last_s + 1e-6)
         times.append(last_s)
         index_in_epoch += 1
     return times
