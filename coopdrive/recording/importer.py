@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from coopdrive.bus.keys import KeyLayout
-from coopdrive.recording.candump_import import DEFAULT_BUS, read_candump_log
+from coopdrive.recording.candump_import import read_candump_log
 from coopdrive.recording.import_source import ImportFailure, SourceReport, TimedMessage
 from coopdrive.recording.nmea_import import read_nmea_log
 from coopdrive.recording.pcap_import import read_capture

@@ -15,7 +15,6 @@ import cantools
 import numpy as np
 import pynmea2
 import pymap3d
-import pytest
 
 from tests.shared_data import shared_file
 
