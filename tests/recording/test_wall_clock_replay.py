@@ -1,10 +1,12 @@
 """Replay of recordings without a lockstep clock: inputs in arrival order, time triggers on a clock they drive."""
 
+import datetime as dt
 import json
 import subprocess
 import sys
 
 import pymap3d
+import pynmea2
 import pytest
 
 from coopdrive.bus import KeyLayout
@@ -37,22 +39,45 @@ def fix_at(time_s: float) -> gnss_pb2.GnssFix:
     return fix
 
 
+def nmea_of(fix: gnss_pb2.GnssFix) -> list[gnss_pb2.NmeaChunk]:
+    """The same fix as a receiver's GGA and RMC sentences (RTK fixed, speed in knots)."""
+    when = dt.datetime.fromtimestamp(fix.header.sample_time_s, dt.timezone.utc)
+    clock = f"{when:%H%M%S}.{when.microsecond // 10000:02d}"
+
+    def degrees_minutes(value: float, width: int) -> str:
+        whole = int(abs(value))
+        return f"{whole:0{width}d}{(abs(value) - whole) * 60:07.4f}"
+
+    lat, lon = degrees_minutes(fix.latitude_deg, 2), degrees_minutes(fix.longitude_deg, 3)
+    gga = pynmea2.GGA("GP", "GGA", (clock, lat, "N", lon, "E", "4", "12", "0.6", f"{fix.altitude_m:.1f}", "M",
+                                    "0.0", "M", "", ""))
+    rmc = pynmea2.RMC("GP", "RMC", (clock, "A", lat, "N", lon, "E", f"{SPEED_MPS * 3600 / 1852:.2f}", "90.0",
+                                    f"{when:%d%m%y}", "", "", "D"))
+    return [gnss_pb2.NmeaChunk(data=f"{sentence}\r\n".encode(), port="test") for sentence in (gga, rmc)]
+
+
 @pytest.fixture(scope="module")
 def fixes_recording(tmp_path_factory):
-    """A car driving east at 10 m/s: fixes at 10 Hz reaching the recorder 30 ms after they were sent."""
+    """A car driving east at 10 m/s: fixes at 10 Hz reaching the recorder 30 ms after they were sent, both as the
+    simulator's gnss/fix and as the receiver's NMEA (gnss/nmea), whichever geolocation reads under replay."""
     path = tmp_path_factory.mktemp("wall") / "fixes.mcap"
     recorder = McapRecorder(path, metadata=config_metadata({"ego/geolocation": GeolocationConfig().model_dump_json()}))
     for index in range(FIXES):
         time_s = START_S + index * FIX_PERIOD_S
-        recorder.write("coopdrive/ego/gnss/fix", fix_at(time_s),
-                       log_time_ns=round((time_s + ARRIVAL_DELAY_S) * NANOSECONDS))
+        fix = fix_at(time_s)
+        recorder.write("coopdrive/ego/gnss/fix", fix, log_time_ns=round((time_s + ARRIVAL_DELAY_S) * NANOSECONDS))
+        for position, chunk in enumerate(nmea_of(fix), start=1):
+            arrival_s = time_s + ARRIVAL_DELAY_S + position * 0.001
+            chunk.header.sent_time_s = chunk.header.sample_time_s = arrival_s
+            chunk.header.vehicle_id, chunk.header.sender, chunk.header.sequence = "ego", "geolocation", index + 1
+            recorder.write("coopdrive/ego/gnss/nmea", chunk, log_time_ns=round(arrival_s * NANOSECONDS))
     recorder.close()
     return path
 
 
 def test_a_recording_without_a_clock_replays_its_inputs_with_the_triggers_at_their_periods(fixes_recording):
     result = replay_service(fixes_recording, "geolocation")
-    assert result.mode == "wall" and result.steps == FIXES
+    assert result.mode == "wall" and result.steps >= FIXES  # fixes, or their NMEA, or both
     states = [m for topic, m in result.outputs if topic == "coopdrive/ego/ego/state"]
     times = [state.header.sample_time_s for state in states]
     assert times[0] == pytest.approx(START_S + ARRIVAL_DELAY_S)
