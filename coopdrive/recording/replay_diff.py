@@ -2,7 +2,8 @@
 
 Messages are paired per topic by header.sample_time_s: each recorded message with the replayed one nearest in
 time, within half the recorded messages' typical spacing (a lockstep replay pairs exactly; a wall-clock one
-pairs a periodic output with the one the replay made for the same period). Numeric fields give the largest and
+pairs a periodic output with the one the replay made for the same period); messages without distinct sample
+times are paired by header.sequence. Numeric fields give the largest and
 the RMS difference (angles in _rad and _deg wrapped, so 359 and 1 degrees are 2 apart); text and enum fields
 how many pairs differ. Header fields are left out: sequence numbers and send times say nothing about the
 service's result. Diagnostics are left out too: the replay runs without the runtime that publishes them.
@@ -95,6 +96,11 @@ def _pairs(replayed: list[Message], recorded: list[Message]) -> list[tuple[Messa
         return []
     times = [m.header.sample_time_s for m in replayed]
     recorded_times = [m.header.sample_time_s for m in recorded]
+    if len(set(recorded_times)) == 1 and len(recorded) > 1:  # no sample times to go by: in sequence order
+        def by_sequence(messages):
+            return sorted(messages, key=lambda m: m.header.sequence)
+
+        return list(zip(by_sequence(replayed), by_sequence(recorded)))
     gaps = [b - a for a, b in zip(recorded_times, recorded_times[1:]) if b > a]
     window_s = median(gaps) / 2 if gaps else DEFAULT_PAIRING_WINDOW_S
     pairs, used = [], set()
