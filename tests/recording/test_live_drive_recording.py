@@ -126,6 +126,10 @@ def test_the_recording_holds_the_service_s_config_and_every_input_at_its_arrival
     # The python-can interface sends no header: the MCAP log time is when each arrived, on the wall clock.
     assert all(abs(m.log_time_ns / 1e9 - time.time()) < 300 for m in frames)
     assert [m.log_time_ns for m in messages] == sorted(m.log_time_ns for m in messages)
+
+
+def test_the_recording_holds_the_nmea_bytes_the_service_read_from_its_port(live_drive):
+    messages = list(read_messages(live_drive[0]))
     nmea = b"".join(m.message.data for m in messages if m.topic == "coopdrive/ego/gnss/nmea")
     assert nmea.count(b"$GPGGA") >= DRIVE_S - 2
 
