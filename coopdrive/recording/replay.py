@@ -171,11 +171,20 @@ def _split(messages: list[RecordedMessage], layout: KeyLayout, ctx: ReplayContex
         header = getattr(item.message, "header", None)
         if vehicle == WORLD_ID and topic == "clock":
             clocks.append(item.message)
-        elif any(source in ("*", vehicle) for source, _ in ctx.handlers.get(topic, ())):
-            inputs.append(item)  # before outputs: a service may read a topic its driver side publishes (gnss/nmea)
+        elif _is_input(ctx, vehicle, topic, header, service_name):
+            inputs.append(item)
         elif header is not None and header.sender == service_name and vehicle == vehicle_id:
             recorded_outputs.append((item.topic, item.message, item.log_time_ns))
     return inputs, recorded_outputs, clocks
+
+
+def _is_input(ctx: ReplayContext, vehicle: str, topic: str, header, service_name: str) -> bool:
+    """A topic the service subscribed to for this vehicle, even one it publishes itself (its driver side puts
+    the GNSS bytes on gnss/nmea, its estimator reads them); through a subscription to every vehicle ("*"),
+    only what others sent."""
+    sources = {source for source, _ in ctx.handlers.get(topic, ())}
+    own = header is not None and header.sender == service_name
+    return vehicle in sources or ("*" in sources and not own)
 
 
 def _run_lockstep(ctx: ReplayContext, inputs: list[RecordedMessage], clocks: list[Message], layout: KeyLayout,
