@@ -9,6 +9,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+from coopdrive.cli_recording import add_commands as add_recording_commands
 from coopdrive.cli_v2x import add_commands as add_v2x_commands
 from coopdrive.runtime.config import ConfigError
 from coopdrive.runtime.service import HardwareUnavailable
@@ -118,12 +119,6 @@ def build_parser() -> argparse.ArgumentParser:
     scenarios = commands.add_parser("scenarios", help="list the scenarios with a one-line description")
     scenarios.set_defaults(handler=_scenarios)
 
-    record = commands.add_parser("record", help="record a live bus to MCAP until Ctrl-C")
-    record.add_argument("file", type=Path)
-    record.add_argument("--connect", action="append", default=[])
-    record.add_argument("--key", default="coopdrive/**")
-    record.set_defaults(handler=_record)
-
     health = commands.add_parser("health", help="exit 0 when a service is alive on the bus (container healthcheck)")
     health.add_argument("--connect", action="append", default=[])
     health.add_argument("--vehicle", default="ego")
@@ -133,12 +128,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_v2x_commands(commands)
 
-    replay = commands.add_parser("replay", help="replay a recording through one service")
-    replay.add_argument("file", type=Path)
-    replay.add_argument("--service", required=True)
-    replay.add_argument("--vehicle")
-    replay.add_argument("--out", type=Path, required=True)
-    replay.set_defaults(handler=_replay)
+    add_recording_commands(commands)  # record, import, replay, export
 
     candump = commands.add_parser("candump", help="a vehicle's CAN frames from a recording, as a candump .log")
     candump.add_argument("file", type=Path)
@@ -363,14 +353,6 @@ def _scenarios(args) -> int:
     return scenarios_command()
 
 
-def _record(args) -> int:
-    from coopdrive.launch.live_record import record_live
-
-    count = record_live(args.file, args.connect, args.key)
-    print(f"recorded {count} messages to {args.file}")
-    return EXIT_OK
-
-
 def _health(args) -> int:
     from coopdrive.bus import Bus, BusConfig
 
@@ -382,23 +364,6 @@ def _health(args) -> int:
         bus.close()
     print(f"{args.vehicle}/{args.service}: {'alive' if alive else 'not alive'}")
     return EXIT_OK if alive else EXIT_FAILED
-
-
-def _replay(args) -> int:
-    from coopdrive.recording.replay import ReplayError, replay_service
-
-    try:
-        result = replay_service(args.file, args.service, args.vehicle, args.out)
-    except ReplayError as error:
-        print(f"coopdrive: {error}", file=sys.stderr)
-        return EXIT_USAGE
-    problems = result.mismatches()
-    print(f"replayed {result.steps} steps through {args.service}: {len(result.outputs)} messages to {args.out}")
-    if problems:
-        print("differs from the recording: " + "; ".join(problems))
-        return EXIT_FAILED
-    print("identical to the recorded outputs")
-    return EXIT_OK
 
 
 def _candump(args) -> int:

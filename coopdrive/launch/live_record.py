@@ -1,25 +1,55 @@
-"""`coopdrive record`: writes everything on a live bus to MCAP until SIGINT or SIGTERM."""
+"""`coopdrive record`: writes everything on a live bus to MCAP until SIGINT or SIGTERM (or for a duration).
+
+A replayable recording: each message's MCAP log time is when it arrived here (its publish time the sender's
+header.sent_time_s), and the effective config of every service seen on the bus goes into the metadata as
+`run --record` stores it, so `coopdrive replay` can run any of them again over the drive.
+"""
 
 from __future__ import annotations
 
+import datetime as dt
 import signal
 import threading
+import time
 from pathlib import Path
 
 from coopdrive.bus import Bus, BusConfig
-from coopdrive.recording.writer import McapRecorder
+from coopdrive.recording.live_configs import ServiceConfigCollector
+from coopdrive.recording.writer import McapRecorder, config_metadata
 
 
-def record_live(path: Path, connect: list[str], key_expr: str = "coopdrive/**") -> int:
+def recording_path(text: str | Path) -> Path:
+    """A folder (existing, or written with a trailing slash) gets a file named after the UTC start time."""
+    path = Path(text)
+    if path.is_dir() or str(text).endswith("/"):
+        return path / f"drive-{dt.datetime.now(dt.timezone.utc):%Y%m%d-%H%M%S}.mcap"
+    return path
+
+
+def record_live(path: str | Path, connect: list[str], key_expr: str = "coopdrive/**",
+                duration_s: float | None = None) -> tuple[Path, int, list[str]]:
+    """Returns where it recorded, how many messages, and the services whose configs it stored."""
     stop = threading.Event()
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, lambda *_: stop.set())
+    if threading.current_thread() is threading.main_thread():
+        for signum in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(signum, lambda *_: stop.set())
+    path = recording_path(path)
     bus = Bus(BusConfig(connect=connect))
     recorder = McapRecorder(path)
-    bus.subscribe_key(key_expr, lambda key, message: None if "/_" in key else recorder.write(key, message))
+    configs = ServiceConfigCollector(bus)
+
+    def on_message(key: str, message) -> None:
+        if "/_" not in key:  # liveliness tokens and _info answers are not traffic
+            recorder.write(key, message, log_time_ns=time.time_ns())
+
+    bus.subscribe_key(key_expr, on_message)
+    configs.start()
     try:
-        stop.wait()
+        stop.wait(duration_s)
     finally:
+        found = configs.stop()
         bus.close()
+        for name, values in config_metadata(found).items():
+            recorder.add_metadata(name, values)
         recorder.close()
-    return recorder.messages_written
+    return path, recorder.messages_written, sorted(found)

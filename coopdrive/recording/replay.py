@@ -4,11 +4,13 @@ The service runs in this process with a ReplayContext instead of a bus. Each rec
 lockstep clock step k is replayed by first handing the dispatcher every recorded input sent up
 to that step, then applying the same StepDispatcher rule the live runner used; a
 deterministic service therefore publishes exactly what it published live.
+
+A recording without a lockstep clock (made on a vehicle, or imported) replays on the wall-clock
+path of replay_wall.py instead; replay_diff.py says how the outputs differ from the recorded ones.
 """
 
 from __future__ import annotations
 
-import json
 import logging
 from collections import defaultdict
 from dataclasses import dataclass, field
@@ -20,7 +22,9 @@ from google.protobuf.message import Message
 from coopdrive.bus import Envelope, KeyLayout
 from coopdrive.bus.keys import WORLD_ID
 from coopdrive.recording.reader import RecordedMessage, read_messages, read_metadata
-from coopdrive.recording.writer import McapRecorder
+from coopdrive.recording.replay_config import ReplayError, missing_inputs_text, replay_config
+from coopdrive.recording.replay_wall import run_wall_clock
+from coopdrive.recording.writer import McapRecorder, config_metadata
 from coopdrive.runtime.clock import SimulationClock
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
 from coopdrive.runtime.participants import ParticipantTracker
@@ -28,9 +32,7 @@ from coopdrive.runtime.registry import service_class
 from coopdrive.runtime.service import SequenceCounter
 from coopdrive.runtime.timers import TriggerSet
 
-
-class ReplayError(RuntimeError):
-    pass
+__all__ = ["ReplayContext", "ReplayError", "ReplayResult", "replay_service"]
 
 
 @dataclass
@@ -48,6 +50,8 @@ class ReplayContext:
     _sequence: SequenceCounter | None = None
     layout: KeyLayout = field(default_factory=KeyLayout)
     opens_hardware: bool = False
+    handler_errors: int = 0  # wall-clock replay: inputs whose handler raised (live they are counted too)
+    skipped_s: float = 0.0  # wall-clock replay: time without inputs the triggers did not run through
 
     def now_s(self) -> float:
         return self.clock.now_s()
@@ -76,12 +80,20 @@ class ReplayContext:
     def request_stop(self, reason: str) -> None:
         self.log.info("service asked to stop: %s", reason)
 
+    def dispatch(self, envelope: Envelope) -> None:
+        for source, handler in self.handlers.get(envelope.topic, ()):
+            if source in ("*", envelope.vehicle_id):
+                handler(envelope)
+
 
 @dataclass
 class ReplayResult:
     outputs: list[tuple[str, Message]]
     recorded_outputs: list[tuple[str, Message]]
     steps: int
+    mode: str = "lockstep"  # or "wall": inputs in arrival order, triggers on a clock driven by their times
+    config_changed: bool = False  # --config or --set: differences are the point, not a failure
+    notes: list[str] = field(default_factory=list)
 
     def mismatches(self, skip_topics: tuple[str, ...] = ("diagnostics/",)) -> list[str]:
         """Differences between replayed and recorded outputs, in words (empty when equal)."""
@@ -100,34 +112,84 @@ class ReplayResult:
 
 
 def replay_service(recording: str | Path, service_name: str, vehicle_id: str | None = None,
-                   out: str | Path | None = None) -> ReplayResult:
+                   out: str | Path | None = None, config_file: str | Path | None = None,
+                   overrides: list[str] | tuple[str, ...] = ()) -> ReplayResult:
+    """Lockstep recordings (with world/clock) replay step by step as the run did; any other recording (a
+    vehicle's, an import) replays its inputs in arrival order on a clock driven by their log times (see
+    replay_wall.py). config_file replaces the recorded config, overrides (KEY=VALUE) change either."""
+    cls = service_class(service_name)
     layout = KeyLayout()
     messages = list(read_messages(recording))
-    configs = read_metadata(recording).get("coopdrive.config", {})
+    metadata = read_metadata(recording)
+    configs = metadata.get("coopdrive.config", {})
     vehicle_id = vehicle_id or _only_vehicle_of(configs, service_name, recording)
     config_key = f"{vehicle_id}/{service_name}"
-    if config_key not in configs:
-        raise ReplayError(f"{recording}: no recorded config for {config_key}; recorded: {', '.join(sorted(configs))}")
-    cls = service_class(service_name)
-    config = cls.Config.model_validate(json.loads(configs[config_key]))
+    config, notes = replay_config(cls, recording, config_key, configs, metadata, config_file, overrides)
     ctx = ReplayContext(vehicle_id=vehicle_id, service_name=service_name)
     service = cls(config, ctx)
-    service.start()
+    try:
+        service.start()
+    except Exception as error:  # e.g. a service that still opens its hardware under replay: one line, not a trace
+        raise ReplayError(f"{service_name} did not start for the replay: {error}") from error
 
-    inputs: list[RecordedMessage] = []
-    recorded_outputs: list[tuple[str, Message]] = []
-    clocks = []
+    inputs, recorded_outputs, clocks = _split(messages, layout, ctx, service_name, vehicle_id)
+    if not inputs:
+        service.stop()
+        raise ReplayError(missing_inputs_text(recording, service_name, vehicle_id, ctx, messages, layout))
+    if clocks:
+        steps = _run_lockstep(ctx, inputs, clocks, layout, service_name, vehicle_id)
+    else:
+        steps = run_wall_clock(ctx, inputs, recorded_outputs, layout)
+    service.stop()
+    if ctx.handler_errors:
+        notes.append(f"{ctx.handler_errors} inputs made a handler of {service_name} fail (see the log)")
+    if ctx.skipped_s:
+        notes.append(f"skipped {ctx.skipped_s:.1f} s without inputs (logs not lined up? see import --offset)")
+    if steps == 0:
+        raise ReplayError(f"{recording}: replayed 0 steps through {service_name}: the recording's world/clock "
+                          f"ends before its first input")
+    # Live outputs stop where the recording stopped; drop replayed ones beyond the last recorded step.
+    last_time = max((m.header.sent_time_s for _, m, _ in recorded_outputs), default=None)
+    outputs = ctx.outputs if last_time is None or not clocks else [
+        (t, m) for t, m in ctx.outputs if m.header.sent_time_s <= last_time + TIME_EPSILON_S]
+    result = ReplayResult(outputs, [(t, m) for t, m, _ in recorded_outputs], steps,
+                          "lockstep" if clocks else "wall", bool(config_file or overrides), notes)
+    if out is not None:
+        _write_replay(out, inputs, outputs, {config_key: config.model_dump_json()}, metadata)
+    return result
+
+
+def _split(messages: list[RecordedMessage], layout: KeyLayout, ctx: ReplayContext, service_name: str,
+           vehicle_id: str) -> tuple[list[RecordedMessage], list[tuple[str, Message, int]], list[Message]]:
+    """(inputs: what the service subscribed to, recorded outputs with their log times, lockstep clocks)."""
+    inputs, recorded_outputs, clocks = [], [], []
     for item in messages:
-        vehicle, topic = layout.split(item.topic)
+        try:
+            vehicle, topic = layout.split(item.topic)
+        except ValueError:
+            continue
         header = getattr(item.message, "header", None)
         if vehicle == WORLD_ID and topic == "clock":
             clocks.append(item.message)
-        elif header is not None and header.sender == service_name and vehicle == vehicle_id:
-            recorded_outputs.append((item.topic, item.message))
-        elif topic in ctx.handlers:
+        elif _is_input(ctx, vehicle, topic, header, service_name):
             inputs.append(item)
-    inputs.sort(key=lambda m: m.message.header.sent_time_s)
+        elif header is not None and header.sender == service_name and vehicle == vehicle_id:
+            recorded_outputs.append((item.topic, item.message, item.log_time_ns))
+    return inputs, recorded_outputs, clocks
 
+
+def _is_input(ctx: ReplayContext, vehicle: str, topic: str, header, service_name: str) -> bool:
+    """A topic the service subscribed to for this vehicle, even one it publishes itself (its driver side puts
+    the GNSS bytes on gnss/nmea, its estimator reads them); through a subscription to every vehicle ("*"),
+    only what others sent."""
+    sources = {source for source, _ in ctx.handlers.get(topic, ())}
+    own = header is not None and header.sender == service_name
+    return vehicle in sources or ("*" in sources and not own)
+
+
+def _run_lockstep(ctx: ReplayContext, inputs: list[RecordedMessage], clocks: list[Message], layout: KeyLayout,
+                  service_name: str, vehicle_id: str) -> int:
+    inputs.sort(key=lambda m: m.message.header.sent_time_s)
     participants = ParticipantTracker()
     dispatcher = StepDispatcher(service_name, vehicle_id)
     next_input = 0
@@ -142,24 +204,28 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
             for handler in ctx.liveliness_handlers:
                 handler(participant, alive)
         for envelope in dispatcher.eligible(clock.time_s):
-            for source, handler in ctx.handlers.get(envelope.topic, ()):
-                if source in ("*", envelope.vehicle_id):
-                    handler(envelope)
+            ctx.dispatch(envelope)
         ctx.triggers.run_due(clock.time_s)
         steps += 1
-    service.stop()
-    # Live outputs stop where the recording stopped; drop replayed ones beyond the last recorded step.
-    last_time = max((m.header.sent_time_s for _, m in recorded_outputs), default=-1.0)
-    outputs = [(t, m) for t, m in ctx.outputs if m.header.sent_time_s <= last_time + TIME_EPSILON_S]
-    if out is not None:
-        recorder = McapRecorder(out, metadata={"coopdrive.config": {config_key: configs[config_key]}})
+    return steps
+
+
+def _write_replay(out: str | Path, inputs: list[RecordedMessage], outputs: list[tuple[str, Message]],
+                  configs: dict[str, str], metadata: dict[str, dict[str, str]]) -> None:
+    """The inputs at their recorded log times and the replayed outputs at their sent times, with the config used."""
+    kept = {name: values for name, values in metadata.items() if name != "coopdrive.config"}
+    recorder = McapRecorder(out, metadata={**kept, **config_metadata(configs)})
+    try:
+        for item in inputs:
+            recorder.write(item.topic, item.message, log_time_ns=item.log_time_ns)
         for topic, message in outputs:
             recorder.write(topic, message)
+    finally:
         recorder.close()
-    return ReplayResult(outputs, recorded_outputs, steps)
 
 
 def _only_vehicle_of(configs: dict[str, str], service_name: str, recording) -> str:
+    """The vehicle a service ran on, from the recorded configs."""
     vehicles = sorted(key.split("/")[0] for key in configs if key.endswith(f"/{service_name}"))
     if len(vehicles) != 1:
         raise ReplayError(f"{recording}: choose --vehicle for {service_name}; recorded for: {', '.join(vehicles) or 'none'}")

@@ -35,12 +35,15 @@ class McapRecorder:
         with self._lock:
             self._writer.add_metadata(name, values)
 
-    def write(self, topic: str, message: Message) -> None:
+    def write(self, topic: str, message: Message, log_time_ns: int | None = None) -> None:
+        """log_time_ns: when the message arrived (a live recorder's clock); publish time is its header's sent time.
+        Without it both are the sent time (a lockstep run, where the simulated time is the only clock)."""
         time_ns = message_time_ns(message)
         with self._lock:
             if self._closed:
                 return
-            self._writer.write_message(topic, message, log_time=time_ns, publish_time=time_ns)
+            self._writer.write_message(topic, message, log_time=time_ns if log_time_ns is None else log_time_ns,
+                                       publish_time=time_ns)
             self.messages_written += 1
 
     def close(self) -> None:

@@ -15,7 +15,18 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def compose_services() -> dict:
-    return yaml.safe_load((ROOT / "docker-compose.yml").read_text())["services"]
+    """The stack's services (the optional ones of a profile, such as the recorder, left out)."""
+    services = yaml.safe_load((ROOT / "docker-compose.yml").read_text())["services"]
+    return {name: spec for name, spec in services.items() if "profiles" not in spec}
+
+
+def test_compose_records_the_bus_to_a_mounted_folder_only_when_the_record_profile_is_asked_for():
+    services = yaml.safe_load((ROOT / "docker-compose.yml").read_text())["services"]
+    record = services["record"]
+    assert record["profiles"] == ["record"]
+    assert record["command"][:2] == ["record", "/recordings/"]
+    assert any(volume.endswith(":/recordings") for volume in record["volumes"])
+    assert record["stop_signal"] == "SIGINT"  # the recorder finishes its file on SIGINT or SIGTERM
 
 
 def test_every_compose_service_runs_a_real_coopdrive_service():

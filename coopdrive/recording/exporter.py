@@ -1,0 +1,52 @@
+"""`coopdrive export`: one topic of a recording as CSV or JSON lines, one row per message (see flatten.py).
+
+Each row starts with `log_time_s` (when the message arrived: the MCAP log time) and `vehicle`, then the
+message's fields; this is how a drive gets into pandas (`pandas.read_csv`, `pandas.read_json(lines=True)`).
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+from pathlib import Path
+from typing import Any, TextIO
+
+from coopdrive.bus.keys import KeyLayout
+from coopdrive.recording.flatten import flatten
+from coopdrive.recording.reader import read_messages
+from coopdrive.recording.writer import NANOSECONDS
+
+FORMATS = ("csv", "jsonl")
+
+
+class ExportError(ValueError):
+    """Nothing to export: the topic or vehicle is not in the recording."""
+
+
+def export_rows(recording: str | Path, topic: str, vehicle_id: str | None = None) -> list[dict[str, Any]]:
+    layout = KeyLayout()
+    rows, topics_seen = [], set()
+    for recorded in read_messages(recording):
+        try:
+            vehicle, name = layout.split(recorded.topic)
+        except ValueError:
+            continue
+        topics_seen.add(f"{vehicle}/{name}")
+        if name == topic and vehicle_id in (None, vehicle):
+            rows.append({"log_time_s": recorded.log_time_ns / NANOSECONDS, "vehicle": vehicle,
+                         **flatten(recorded.message)})
+    if not rows:
+        which = f"vehicle {vehicle_id!r}, topic {topic!r}" if vehicle_id else f"topic {topic!r}"
+        raise ExportError(f"{recording}: no messages of {which}; recorded: {', '.join(sorted(topics_seen)) or 'none'}")
+    return rows
+
+
+def write_rows(rows: list[dict[str, Any]], stream: TextIO, file_format: str) -> None:
+    if file_format == "jsonl":
+        for row in rows:
+            stream.write(json.dumps(row) + "\n")
+        return
+    columns = list(dict.fromkeys(key for row in rows for key in row))  # map keys may differ between rows
+    writer = csv.DictWriter(stream, fieldnames=columns, lineterminator="\n")
+    writer.writeheader()
+    writer.writerows(rows)

@@ -1,0 +1,47 @@
+"""The effective config of every service on a live bus, from their `_info` queryables, for a recording's metadata.
+
+Services may start after the recorder, or restart with another config: the bus is asked again every POLL_S
+and once more when the recording ends, and the newest answer of each service is kept.
+"""
+
+from __future__ import annotations
+
+import threading
+
+from coopdrive.bus import Bus
+from coopdrive.v1 import diagnostics_pb2
+
+POLL_S = 2.0
+QUERY_TIMEOUT_S = 1.0
+
+
+class ServiceConfigCollector:
+    def __init__(self, bus: Bus):
+        self._bus = bus
+        self._lock = threading.Lock()
+        self._configs: dict[str, str] = {}
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._poll, name="service-configs", daemon=True)
+
+    def start(self) -> None:
+        self._thread.start()
+
+    def stop(self) -> dict[str, str]:
+        """Stops polling, asks once more and returns {"<vehicle>/<service>": config JSON}."""
+        self._stop.set()
+        self._thread.join()
+        self.collect()
+        with self._lock:
+            return dict(self._configs)
+
+    def collect(self) -> None:
+        pattern = self._bus.layout.service_info("*", "*")
+        for info in self._bus.query(pattern, diagnostics_pb2.ServiceInfo, timeout_s=QUERY_TIMEOUT_S):
+            if info.service and info.vehicle_id and info.config_json:
+                with self._lock:
+                    self._configs[f"{info.vehicle_id}/{info.service}"] = info.config_json
+
+    def _poll(self) -> None:
+        while not self._stop.is_set():
+            self.collect()
+            self._stop.wait(POLL_S)
