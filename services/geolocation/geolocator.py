@@ -40,6 +40,9 @@ INITIAL_ACCEL_STD_MPS2 = 1.0
 UNKNOWN_HEADING_STD_RAD = math.pi
 NO_LEVER_ARM = LeverArm()
 FIX_INTERVALS_FRESH = 1.5  # a fix is fresh until this many receiver intervals after it
+# Until a second fix shows the receiver's rate, it is taken to be the slowest common one: a 1 Hz receiver's
+# first fix must not be stale before its second can come.
+ASSUMED_FIX_INTERVAL_S = 1.0
 
 
 class InputEvent(enum.Enum):
@@ -157,10 +160,12 @@ class Geolocator:
         return self._add(fix.header.sample_time_s, event)
 
     def _learn_fix_interval(self, time_s: float) -> None:
-        if self._last_fix_input_s is not None and time_s > self._last_fix_input_s:
-            step_s = time_s - self._last_fix_input_s
-            self._fix_interval_s = step_s if self._fix_interval_s is None else min(self._fix_interval_s, step_s)
-            timeout_s = max(self.config.gnss_timeout_s, FIX_INTERVALS_FRESH * self._fix_interval_s)
+        if self._last_fix_input_s is None or time_s > self._last_fix_input_s:
+            if self._last_fix_input_s is not None:
+                step_s = time_s - self._last_fix_input_s
+                self._fix_interval_s = step_s if self._fix_interval_s is None else min(self._fix_interval_s, step_s)
+            interval_s = self._fix_interval_s if self._fix_interval_s is not None else ASSUMED_FIX_INTERVAL_S
+            timeout_s = max(self.config.gnss_timeout_s, FIX_INTERVALS_FRESH * interval_s)
             self.thresholds = replace(self.thresholds, gnss_timeout_s=timeout_s)
         self._last_fix_input_s = time_s
 
