@@ -32,7 +32,7 @@ def add_commands(commands) -> None:
 
 def _decode(args: argparse.Namespace) -> int:
     from coopdrive.services.v2x.cli_commands import decode_capture
-    from coopdrive.services.v2x.pcap import PcapFormatError
+    from coopdrive.services.v2x.capture import CaptureFormatError as PcapFormatError
     from coopdrive.services.v2x.security.capture import security_report
 
     try:

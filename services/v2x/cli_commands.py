@@ -34,7 +34,7 @@ from coopdrive.services.v2x.config import parse_mac
 from coopdrive.services.v2x.geonet import GN_VERSION_GCDC
 from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.packet import GnParams, SourcePosition, V2xPacketCodec, default_codec
-from coopdrive.services.v2x.pcap import read_gn_packets
+from coopdrive.services.v2x.capture import read_gn_packets
 from coopdrive.services.v2x.reasons import V2xDecodeError
 from coopdrive.services.v2x.timebase import generation_delta_time_ms
 from coopdrive.v1 import its_pb2

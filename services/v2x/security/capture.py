@@ -13,7 +13,7 @@ from typing import BinaryIO
 from coopdrive.services.v2x.btp import parse_btp_b
 from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE, BasicNextHeader, parse_gn
 from coopdrive.services.v2x.packet import MESSAGE_OF_PORT
-from coopdrive.services.v2x.pcap import read_gn_packets
+from coopdrive.services.v2x.capture import read_gn_packets
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.services.v2x.security.layer import MS_PER_US
 from coopdrive.services.v2x.security.store import CertificateStore
