@@ -53,10 +53,11 @@ def test_decode_shows_who_signed_each_cam_and_whether_it_verified(tmp_path):
             writer.write(tamper_packet(packet) if index == 2 else packet, unix_s_from_tai_ms(now // US_PER_MS))
     result = coopdrive("v2x", "decode", str(capture), "--json", "--pki", str(tmp_path / "pki"))
     assert result.returncode == 0, result.stderr
-    reports = [json.loads(line) for line in result.stdout.splitlines() if '"signed": true' in line]
-    assert [r["verified"] for r in reports] == [True, True, False]
+    reports = [json.loads(line)["security"] for line in result.stdout.splitlines()[:-1]]
+    assert [r["verified"] for r in reports] == [True, True, False] and [r["trusted"] for r in reports][:2] == [True] * 2
     assert reports[2]["reason"] == "invalid_signature"
     assert len({r["signer_digest"] for r in reports}) == 1
+    assert json.loads(result.stdout.splitlines()[-1])["summary"]["signatures"] == {"verified": 2, "invalid": 1}
 
 
 def test_decode_of_a_file_that_is_no_capture_fails_with_its_name(tmp_path):

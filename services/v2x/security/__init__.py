@@ -13,5 +13,4 @@ Public API (pure logic, no Zenoh):
 - `store.CertificateStore`: trusted roots, known authorities, cache of tickets heard in full.
 - `pki.create_test_pki(dir, vehicles)`, `pki.pki_init(dir, vehicles)` (for `coopdrive pki init DIR`),
   faults `create_untrusted_pki`, `issue_expired_ticket`, `tamper_packet`; `load_test_pki(dir)`.
-- `capture.security_report(stream, verifier)`: per packet of a pcap/pcapng, signed / signer digest / verified.
 """
