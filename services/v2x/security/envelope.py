@@ -21,6 +21,8 @@ TBS_OFFSET_IN_ENVELOPE = 3
 # Choice tag + HashedId8; choice tag + SEQUENCE OF quantity (length byte, count byte) before the certificate.
 SIGNER_DIGEST_SIZE = 1 + 8
 SIGNER_CERTIFICATE_OVERHEAD = 3
+CERTIFICATE_ENCODINGS_REMEMBERED = 1024
+_CERTIFICATE_ENCODINGS: dict[bytes, bytes] = {}
 
 
 @dataclass(frozen=True)
@@ -70,6 +72,27 @@ class SignedEnvelope:
         return self.signed["signature"]
 
 
+def _certificate_encoding(value: dict, envelope: bytes, end: int) -> bytes:
+    """The canonical encoding of a received certificate, which must be the bytes ending at envelope[end].
+
+    A station sends the same ticket every second, so encodings are remembered by the certificate's sSig. A
+    remembered encoding is used only when it equals the received bytes; otherwise (another certificate with
+    the same sSig, e.g. a forgery sent to poison the cache) the certificate is encoded afresh.
+    """
+    try:
+        key = value["signature"][1]["sSig"]
+        known = _CERTIFICATE_ENCODINGS.get(key)
+        if known is not None and envelope[end - len(known):end] == known:
+            return known
+        encoded = asn.encode(asn.CERTIFICATE_TYPE, value, check_types=False)
+    except Exception as error:  # noqa: BLE001 -- asn1tools raises many types on garbage
+        raise V2xDecodeError(RejectReason.MALFORMED_SECURITY_ENVELOPE, f"{type(error).__name__}: {error}") from None
+    if len(_CERTIFICATE_ENCODINGS) >= CERTIFICATE_ENCODINGS_REMEMBERED:
+        _CERTIFICATE_ENCODINGS.pop(next(iter(_CERTIFICATE_ENCODINGS)))
+    _CERTIFICATE_ENCODINGS[key] = encoded
+    return encoded
+
+
 def _signer_span(envelope: bytes, signer: tuple[str, object], end_of_signer: int) -> tuple[int, bytes | None]:
     """(where tbsData ends, the certificate's bytes or None for a digest signer)."""
     signer_kind, value = signer
@@ -77,10 +100,7 @@ def _signer_span(envelope: bytes, signer: tuple[str, object], end_of_signer: int
         return end_of_signer - SIGNER_DIGEST_SIZE, None
     if signer_kind != "certificate" or len(value) != 1:
         raise V2xDecodeError(RejectReason.UNSUPPORTED_SIGNER, signer_kind)
-    try:
-        certificate = asn.encode(asn.CERTIFICATE_TYPE, value[0], check_types=False)
-    except Exception as error:  # noqa: BLE001
-        raise V2xDecodeError(RejectReason.MALFORMED_SECURITY_ENVELOPE, f"{type(error).__name__}: {error}") from None
+    certificate = _certificate_encoding(value[0], envelope, end_of_signer)
     # SEQUENCE OF with one element: the choice tag, then quantity length (1) and quantity (1).
     start = end_of_signer - len(certificate)
     if envelope[start:end_of_signer] != certificate:

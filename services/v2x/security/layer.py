@@ -18,8 +18,9 @@ import time
 from collections import OrderedDict
 from collections.abc import Callable
 
-from coopdrive.services.v2x.reasons import V2xDecodeError
-from coopdrive.services.v2x.security.inspection import PacketInspector, SecurityResult, mode_drop_reason
+from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.services.v2x.security.inspection import (
+    UNSIGNED, PacketInspector, SecurityResult, is_secured, mode_drop_reason)
 from coopdrive.services.v2x.security.profile import US_PER_S, SecurityMode
 from coopdrive.services.v2x.security.signer import SecuredPacketSigner
 from coopdrive.services.v2x.security.verifier import SecurityVerifier
@@ -51,19 +52,21 @@ class SecurityLayer:
 
     def open(self, packet: bytes) -> tuple[bytes, SecurityResult]:
         """(the packet without its envelope, what its security says), or V2xDecodeError when the mode drops it."""
+        if not is_secured(packet):  # the common case first: unsigned GCDC traffic costs one byte test
+            if self.mode.drops_failures:
+                self.verifier.rejected_by_reason[RejectReason.UNSECURED_PACKET_REFUSED] += 1
+                raise V2xDecodeError(RejectReason.UNSECURED_PACKET_REFUSED, "security")
+            return packet, UNSIGNED
         now_tai_us = self.clock_tai_us() if self.clock_tai_us is not None else None
         inspected = self.inspector.inspect(packet, now_tai_us)
         security = inspected.security
-        if security.signed:
-            self._count(security)
+        self._count(security)
         drop = mode_drop_reason(self.mode, security)
         if drop is not None:
-            if not security.signed:
-                self.verifier.rejected_by_reason[drop] += 1
             raise V2xDecodeError(drop, "security")
         if inspected.unsecured_packet is None:
             raise V2xDecodeError(security.reason, "security")
-        if security.signed and security.reason is not None:
+        if security.reason is not None:
             self.delivered_unverified_count += 1
         return inspected.unsecured_packet, security
 
