@@ -14,7 +14,7 @@ from coopdrive.services.v2x import units
 from coopdrive.services.v2x.btp import BtpBHeader, BtpPort, parse_btp_b
 from coopdrive.services.v2x.codec import ItsCodec, ItsHeader, ItsMessageId, peek_its_header
 from coopdrive.services.v2x.geonet import (
-    GN_VERSION_GCDC, SUPPORTED_GN_VERSIONS, BasicHeader, CommonHeader, CommonNextHeader, GbcHeader, GeoArea,
+    GN_VERSION_GCDC, SUPPORTED_GN_VERSIONS, BasicHeader, BeaconHeader, CommonHeader, CommonNextHeader, GbcHeader, GeoArea,
     GeoAreaShape, GnAddress, GnPacket, LongPositionVector, ShbHeader, encode_lifetime, parse_gn)
 from coopdrive.services.v2x.mapping.cam import cam_from_asn, cam_to_asn
 from coopdrive.services.v2x.mapping.denm import denm_from_asn, denm_to_asn
@@ -104,6 +104,17 @@ class DecodedPacket(DecodedFrame):
     content: Content = field(kw_only=True)
 
 
+class BeaconPacket(V2xDecodeError):
+    """A GN beacon: no message to decode, only the sender's position vector (gn.extended.source_position).
+
+    Raised by decode_frame / decode_packet so that callers expecting a message need no new return type;
+    a receiver catches it first and updates what it knows of its neighbours."""
+
+    def __init__(self, gn: GnPacket, security: object | None):
+        super().__init__(RejectReason.NOT_BTP_B, "GN beacon")
+        self.gn, self.security = gn, security
+
+
 class V2xPacketCodec:
     """Encodes content messages into GN packets and decodes GN packets into content messages."""
 
@@ -146,6 +157,8 @@ class V2xPacketCodec:
         """GeoNetworking, BTP and UPER decoded; the message still in asn1tools' wire units."""
         data, security = self.security.open(data)
         gn = parse_gn(data, self.accepted_gn_versions)
+        if isinstance(gn.extended, BeaconHeader):
+            raise BeaconPacket(gn, security)
         if gn.common.next_header != CommonNextHeader.BTP_B:
             raise V2xDecodeError(RejectReason.NOT_BTP_B, f"next header {gn.common.next_header.name}")
         btp, uper = parse_btp_b(gn.payload)
