@@ -21,6 +21,8 @@ HASHED_ID3_SIZE = 3
 COORDINATE_SIZE = 32
 _COMPRESSED_EVEN, _COMPRESSED_ODD = 0x02, 0x03
 _PREHASHED = ec.ECDSA(Prehashed(hashes.SHA256()))
+# EccP256CurvePoint forms that carry r (its x coordinate); "fill" carries nothing.
+_R_FORMS = ("x-only", "compressed-y-0", "compressed-y-1", "uncompressedP256")
 
 
 class Curve(enum.Enum):
@@ -115,6 +117,8 @@ def verify_digest(key: ec.EllipticCurvePublicKey, signature: tuple[str, dict], d
     if CURVE_OF_SIGNATURE_CHOICE.get(choice) is not curve_of_key(key):
         return False
     form, point = value["rSig"]
+    if form not in _R_FORMS:
+        return False
     r_bytes = point["x"] if form == "uncompressedP256" else point
     r, s = int.from_bytes(r_bytes, "big"), int.from_bytes(value["sSig"], "big")
     try:
