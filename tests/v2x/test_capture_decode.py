@@ -1,10 +1,12 @@
 """`coopdrive v2x decode` on the real captures of shared/data/v2x, as a user runs it, checked against tshark."""
 
 import json
+import random
 import subprocess
 import sys
 from collections import Counter
 
+import dpkt
 import pytest
 
 from coopdrive.services.v2x.btp import MESSAGE_NAME_OF_PORT
@@ -12,13 +14,14 @@ from coopdrive.services.v2x.capture import read_capture
 from coopdrive.services.v2x.capture_decode import CaptureDecoder
 from coopdrive.services.v2x.pcap import PcapWriter
 from tests.shared_data import shared_file
-from tests.v2x.capture_wrap import wrap_capture
+from tests.v2x.capture_wrap import wrap_capture, wrapped
 from tests.v2x.test_tshark import tshark
 
 SIGNED = "v2x/considerit_signed_testvectors.pcap"
 FLEXSTACK = "v2x/flexstack_cam_vam_beacons.pcap"
 MSVAN3T = "v2x/msvan3t_cam_cpm_trace.pcapng"
 CAR_STATION, RSU_STATION, SPATEM_STATION = 3141730734, 12816437, 10430022
+MUTANTS = 600
 TSHARK_HEADER_TYPES = {"0x10": "beacon", "0x50": "tsb_single_hop", "0x40": "geobroadcast"}
 
 
@@ -112,3 +115,23 @@ def test_every_cam_of_the_ms_van3t_and_flexstack_captures_decodes_and_cpms_and_v
         assert decoder.summary.as_dict()["messages_by_type"] == expected
         cpm_or_vam = [r for r in records if r["message_type"] in ("cpm", "vam")]
         assert all(r["content"]["header"]["stationId"] == r["station_id"] for r in cpm_or_vam)
+
+
+def test_mutated_frames_of_every_real_capture_decode_to_a_record_or_a_named_error_never_a_crash(tmp_path):
+    rng = random.Random(2016)
+    frames = [frame for name in (SIGNED, FLEXSTACK, MSVAN3T) for frame in read_capture(shared_file(name))]
+    path = tmp_path / "mutants.pcap"
+    with open(path, "wb") as stream:
+        writer = dpkt.pcap.Writer(stream, snaplen=65535, linktype=127)
+        for _ in range(MUTANTS):
+            frame = rng.choice(frames)
+            data = bytearray(wrapped("radiotap", frame.source_mac, frame.gn_packet))
+            for _ in range(rng.randint(1, 4)):
+                data[rng.randrange(len(data))] = rng.randrange(256)
+            writer.writepkt(bytes(data[:rng.randint(1, len(data))] if rng.random() < 0.2 else data), 1.0)
+    decoder = CaptureDecoder()
+    records = list(decoder.records(path))
+    assert len(records) == MUTANTS
+    for record in records:
+        assert "unreadable" in record or "gn" in record or "error" in record
+    assert sum(decoder.summary.frames_by_link_type.values()) == MUTANTS
