@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -42,6 +43,9 @@ def _decode(args: argparse.Namespace) -> int:
         for line in decode_capture(args.file, as_json=args.json, trust=[*args.trust, *filter(None, [args.pki])],
                                    freshness=not args.no_freshness):
             print(line)
+    except BrokenPipeError:  # `coopdrive v2x decode F | head`: the reader has seen enough
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
     except (OSError, CaptureFormatError, TrustFileError) as error:
         print(f"coopdrive: {args.file}: {error}", file=sys.stderr)
         return 2
