@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import argparse
-import json
+import os
 import sys
 from pathlib import Path
 
@@ -11,10 +11,14 @@ from pathlib import Path
 def add_commands(commands) -> None:
     v2x = commands.add_parser("v2x", help="V2X tools: decode captures, inject messages")
     v2x_commands = v2x.add_subparsers(dest="v2x_command", required=True)
-    decode = v2x_commands.add_parser("decode", help="print the messages of a pcap or pcapng capture")
+    decode = v2x_commands.add_parser("decode", help="print every frame of a pcap or pcapng capture, and a summary")
     decode.add_argument("file", type=Path)
-    decode.add_argument("--json", action="store_true", help="one JSON object per line")
-    decode.add_argument("--pki", type=Path, help="a PKI folder (coopdrive pki init) whose root to trust when verifying")
+    decode.add_argument("--json", action="store_true", help="one JSON object per frame, then {\"summary\": ...}")
+    decode.add_argument("--trust", type=Path, action="append", default=[], metavar="FILE_OR_DIR",
+                        help="root / authority certificates (COER) to trust; a directory: its .cert/.oer/.coer files")
+    decode.add_argument("--no-freshness", action="store_true",
+                        help="do not judge generation times against the capture's timestamps")
+    decode.add_argument("--pki", type=Path, help=argparse.SUPPRESS)  # older name of --trust PKI_DIR
     decode.set_defaults(handler=_decode)
     send = v2x_commands.add_parser("send", help="send one CAM/DENM/iCLCM described in YAML to a radio box")
     send.add_argument("file", type=Path)
@@ -31,35 +35,21 @@ def add_commands(commands) -> None:
 
 
 def _decode(args: argparse.Namespace) -> int:
+    from coopdrive.services.v2x.capture import CaptureFormatError
     from coopdrive.services.v2x.cli_commands import decode_capture
-    from coopdrive.services.v2x.pcap import PcapFormatError
-    from coopdrive.services.v2x.security.capture import security_report
+    from coopdrive.services.v2x.security.trust import TrustFileError
 
     try:
-        for line in decode_capture(args.file, as_json=args.json):
+        for line in decode_capture(args.file, as_json=args.json, trust=[*args.trust, *filter(None, [args.pki])],
+                                   freshness=not args.no_freshness):
             print(line)
-        verifier = _verifier(args.pki) if args.pki else None
-        with open(args.file, "rb") as stream:
-            for packet in security_report(stream, verifier):
-                if not packet.signed:
-                    continue
-                record = {"index": packet.index, "signed": True, "signer_digest": packet.signer_digest,
-                          "full_certificate": packet.full_certificate, "verified": packet.verified,
-                          "reason": packet.reason.value if packet.reason else None}
-                print(json.dumps(record) if args.json else
-                      f"#{packet.index} signed by {packet.signer_digest} "
-                      f"verified={packet.verified} {record['reason'] or ''}".rstrip())
-    except (OSError, PcapFormatError) as error:
+    except BrokenPipeError:  # `coopdrive v2x decode F | head`: the reader has seen enough
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
+    except (OSError, CaptureFormatError, TrustFileError) as error:
         print(f"coopdrive: {args.file}: {error}", file=sys.stderr)
         return 2
     return 0
-
-
-def _verifier(pki_directory: Path):
-    from coopdrive.services.v2x.security.pki import load_test_pki
-    from coopdrive.services.v2x.security.verifier import SecurityVerifier
-
-    return SecurityVerifier(load_test_pki(pki_directory).store())
 
 
 def _send(args: argparse.Namespace) -> int:

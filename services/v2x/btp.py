@@ -13,11 +13,25 @@ BTP_HEADER_SIZE = _BTP_B.size
 
 
 class BtpPort(enum.IntEnum):
-    """Well-known BTP-B destination ports; GCDC 2016 carried iCLCM on 2010."""
+    """Well-known BTP-B destination ports (ETSI TS 103 248); GCDC 2016 carried iCLCM on 2010."""
 
     CAM = 2001
     DENM = 2002
+    MAPEM = 2003
+    SPATEM = 2004
+    IVIM = 2006
+    SREM = 2007
+    SSEM = 2008
+    CPM = 2009
     ICLCM = 2010
+    VAM = 2018
+
+
+# What each port of TS 103 248 carries, by our message-type names (2010 is EVCSN POI there, iCLCM at GCDC).
+MESSAGE_NAME_OF_PORT = {
+    2001: "cam", 2002: "denm", 2003: "mapem", 2004: "spatem", 2005: "saem", 2006: "ivim", 2007: "srem",
+    2008: "ssem", 2009: "cpm", 2010: "iclcm", 2011: "tpg", 2012: "ev_rsr", 2013: "rtcmem", 2014: "ctlm",
+    2015: "crlm", 2016: "ec_at_request", 2017: "mcdm", 2018: "vam", 2019: "imzm"}
 
 
 class BtpParseError(V2xDecodeError):

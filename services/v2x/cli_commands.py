@@ -1,6 +1,6 @@
 """What `coopdrive v2x decode` and `coopdrive v2x send` do (the CLI only parses arguments and prints).
 
-    for line in decode_capture("drive.pcap", as_json=False): print(line)
+    for line in decode_capture("drive.pcap", as_json=False, trust=[Path("roots/")]): print(line)
     send_from_yaml("cam.yaml", "127.0.0.1", 4401)
 
 A send file names the message type and gives its content as the protobuf JSON of CamContent, DenmContent
@@ -22,20 +22,21 @@ import enum
 import json
 import socket
 import time
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 import yaml
 from google.protobuf import json_format
 from pydantic import BaseModel, ConfigDict, Field
 
+from coopdrive.services.v2x.capture_decode import CaptureDecoder, format_record
+from coopdrive.services.v2x.capture_summary import format_summary
 from coopdrive.services.v2x.codec import ItsMessageId
 from coopdrive.services.v2x.config import parse_mac
 from coopdrive.services.v2x.geonet import GN_VERSION_GCDC
 from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.packet import GnParams, SourcePosition, V2xPacketCodec, default_codec
-from coopdrive.services.v2x.pcap import read_gn_packets
-from coopdrive.services.v2x.reasons import V2xDecodeError
+from coopdrive.services.v2x.security.trust import trust_store
 from coopdrive.services.v2x.timebase import generation_delta_time_ms
 from coopdrive.v1 import its_pb2
 
@@ -71,46 +72,20 @@ class SendFile(BaseModel):
     content: dict = Field(default_factory=dict)
 
 
-def _format_mac(mac: bytes | None) -> str:
-    return ":".join(f"{byte:02x}" for byte in mac) if mac else "-"
+def decode_capture(path: str | Path, as_json: bool = False, trust: Sequence[Path] = (),
+                   freshness: bool = True) -> Iterator[str]:
+    """One line (or JSON object) per frame of a pcap or pcapng file, then the summary (capture_decode.py).
 
-
-def decode_capture(path: str | Path, as_json: bool = False,
-                   codec: V2xPacketCodec | None = None) -> Iterator[str]:
-    """One line per GeoNetworking packet of a pcap or pcapng file: a summary, or a JSON object.
-
-    Undecodable packets give a line with the reject reason, so a capture never stops the listing.
+    Frames that cannot be read or decoded give a line with the reason, so a capture never stops the listing.
+    trust: certificate files or directories (security/trust.py); freshness against the capture's timestamps.
     """
-    codec = codec or default_codec()
-    with open(path, "rb") as stream:
-        for index, captured in enumerate(read_gn_packets(stream)):
-            record = {"index": index, "time_s": captured.time_s, "source_mac": _format_mac(captured.source_mac)}
-            try:
-                decoded = codec.decode_packet(captured.gn_packet)
-            except V2xDecodeError as error:
-                record["error"] = error.reason.value
-                record["detail"] = error.detail
-            else:
-                record["message_type"] = decoded.message_type.name
-                record["station_id"] = decoded.station_id
-                record["gn_version"] = decoded.gn.basic.version
-                record["content"] = json_format.MessageToDict(decoded.content, preserving_proto_field_name=True)
-            yield json.dumps(record, sort_keys=True) if as_json else _summary(record)
-
-
-def _summary(record: dict) -> str:
-    head = f"{record['index']:6d} {record['time_s']:.6f} {record['source_mac']}"
-    if "error" in record:
-        return f"{head} REJECTED {record['error']} {record['detail']}".rstrip()
-    content = record["content"]
-    text = f"{head} GNv{record['gn_version']} {record['message_type']} station {record['station_id']}"
-    position = content.get("reference_position") or content.get("event_position") or {}
-    if "latitude_deg" in position and "longitude_deg" in position:
-        text += f" at {position['latitude_deg']:.7f},{position['longitude_deg']:.7f}"
-    speed = content.get("high_frequency", {}).get("speed_mps")
-    if speed is not None:
-        text += f" {speed:.2f} m/s"
-    return text
+    decoder = CaptureDecoder(trust_store(trust) if trust else None, freshness=freshness)
+    for record in decoder.records(path):
+        yield json.dumps(record, sort_keys=True) if as_json else format_record(record)
+    if as_json:
+        yield json.dumps({"summary": decoder.summary.as_dict()}, sort_keys=True)
+    else:
+        yield from format_summary(decoder.summary)
 
 
 def load_send_file(path: str | Path) -> SendFile:

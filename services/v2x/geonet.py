@@ -1,7 +1,7 @@
 """GeoNetworking (EN 302 636-4-1) basic + common headers, SHB and GBC extended headers.
 
 Only what GCDC-style V2X needs: single-hop broadcast (CAM, iCLCM) and geo-broadcast (DENM) with long
-position vectors. Field values stay in wire units here (1e-7 deg, 0.01 m/s, 0.1 deg); packet.py converts.
+position vectors, and the beacons every real stack sends. Field values stay in wire units here (1e-7 deg, 0.01 m/s, 0.1 deg); packet.py converts.
 Parsing never raises anything but GnParseError, whose reason names the first thing that was wrong.
 """
 
@@ -168,6 +168,16 @@ class ShbHeader:
 
 
 @dataclass(slots=True)
+class BeaconHeader:
+    """A GN beacon: the sender's position vector only, no payload (EN 302 636-4-1, 9.8.6)."""
+
+    source_position: LongPositionVector = field(default_factory=LongPositionVector)
+
+
+BEACON_HEADER_SIZE = _LONG_POSITION_VECTOR.size
+
+
+@dataclass(slots=True)
 class GeoArea:
     shape: GeoAreaShape = GeoAreaShape.CIRCLE
     latitude_tenth_microdeg: int = 0
@@ -189,7 +199,7 @@ class GbcHeader:
 class GnPacket:
     basic: BasicHeader
     common: CommonHeader
-    extended: ShbHeader | GbcHeader
+    extended: ShbHeader | GbcHeader | BeaconHeader
     payload: bytes
 
     def to_bytes(self) -> bytes:
@@ -198,6 +208,8 @@ class GnPacket:
         c.payload_length = len(self.payload)
         if isinstance(self.extended, GbcHeader):
             c.header_type, c.header_subtype = HeaderType.GEOBROADCAST, int(self.extended.area.shape)
+        elif isinstance(self.extended, BeaconHeader):
+            c.header_type, c.header_subtype = HeaderType.BEACON, 0
         else:
             c.header_type, c.header_subtype = HeaderType.TOPOLOGICALLY_SCOPED_BROADCAST, TSB_SUBTYPE_SINGLE_HOP
         parts = [
@@ -238,7 +250,7 @@ def with_basic_next_header(packet: bytes, next_header: BasicNextHeader, rest: by
 
 
 def parse_gn(data: bytes, accepted_versions: tuple[int, ...] = SUPPORTED_GN_VERSIONS) -> GnPacket:
-    """Parse an SHB or GBC packet. Bytes after the payload length (Ethernet padding) are dropped."""
+    """Parse an SHB, GBC or beacon packet. Bytes after the payload length (Ethernet padding) are dropped."""
     basic = parse_basic_header(data, accepted_versions)
     if basic.next_header == BasicNextHeader.SECURED_PACKET:
         raise GnParseError(RejectReason.SECURED_PACKET_UNSUPPORTED)
@@ -252,6 +264,8 @@ def parse_gn(data: bytes, accepted_versions: tuple[int, ...] = SUPPORTED_GN_VERS
         extended_size, header_type = SHB_HEADER_SIZE, HeaderType.TOPOLOGICALLY_SCOPED_BROADCAST
     elif header_type == HeaderType.GEOBROADCAST and subtype in _SHAPE_BY_SUBTYPE:
         extended_size, header_type = GBC_HEADER_SIZE, HeaderType.GEOBROADCAST
+    elif header_type == HeaderType.BEACON:
+        extended_size, header_type = BEACON_HEADER_SIZE, HeaderType.BEACON
     else:
         raise GnParseError(RejectReason.UNSUPPORTED_HEADER_TYPE, f"type {header_type} subtype {subtype}")
     common_next = _COMMON_NEXT_BY_NUMBER.get(next_reserved >> 4, CommonNextHeader.ANY)
@@ -266,6 +280,8 @@ def parse_gn(data: bytes, accepted_versions: tuple[int, ...] = SUPPORTED_GN_VERS
             data, offset + _GBC_HEAD.size + _LONG_POSITION_VECTOR.size)
         extended = GbcHeader(sequence_number, position,
                              GeoArea(_SHAPE_BY_SUBTYPE[subtype], latitude, longitude, a_m, b_m, angle_deg))
+    elif header_type == HeaderType.BEACON:
+        extended = BeaconHeader(LongPositionVector.unpack_from(data, offset))
     else:
         address, timestamp, latitude, longitude, speed, heading, media_dependent = _SHB.unpack_from(data, offset)
         extended = ShbHeader(LongPositionVector.from_fields(

@@ -14,7 +14,7 @@ from coopdrive.services.v2x import units
 from coopdrive.services.v2x.btp import BtpBHeader, BtpPort, parse_btp_b
 from coopdrive.services.v2x.codec import ItsCodec, ItsHeader, ItsMessageId, peek_its_header
 from coopdrive.services.v2x.geonet import (
-    GN_VERSION_GCDC, SUPPORTED_GN_VERSIONS, BasicHeader, CommonHeader, CommonNextHeader, GbcHeader, GeoArea,
+    GN_VERSION_GCDC, SUPPORTED_GN_VERSIONS, BasicHeader, BeaconHeader, CommonHeader, CommonNextHeader, GbcHeader, GeoArea,
     GeoAreaShape, GnAddress, GnPacket, LongPositionVector, ShbHeader, encode_lifetime, parse_gn)
 from coopdrive.services.v2x.mapping.cam import cam_from_asn, cam_to_asn
 from coopdrive.services.v2x.mapping.denm import denm_from_asn, denm_to_asn
@@ -89,7 +89,7 @@ class DecodedFrame:
     value: dict
     gn: GnPacket = field(repr=False)
     btp: BtpBHeader = field(repr=False)
-    # What the security layer reported (security.verifier.OpenedPacket); None without a security layer.
+    # What the security envelope said (security.inspection.SecurityResult; UNSIGNED when there was none).
     security: object | None = field(default=None, repr=False)
 
     @property
@@ -104,6 +104,17 @@ class DecodedPacket(DecodedFrame):
     content: Content = field(kw_only=True)
 
 
+class BeaconPacket(V2xDecodeError):
+    """A GN beacon: no message to decode, only the sender's position vector (gn.extended.source_position).
+
+    Raised by decode_frame / decode_packet so that callers expecting a message need no new return type;
+    a receiver catches it first and updates what it knows of its neighbours."""
+
+    def __init__(self, gn: GnPacket, security: object | None):
+        super().__init__(RejectReason.NOT_BTP_B, "GN beacon")
+        self.gn, self.security = gn, security
+
+
 class V2xPacketCodec:
     """Encodes content messages into GN packets and decodes GN packets into content messages."""
 
@@ -111,8 +122,8 @@ class V2xPacketCodec:
                  security: SecurityLayer | None = None):
         self.its_codec = its_codec or ItsCodec()
         self.accepted_gn_versions = accepted_gn_versions
-        # Without one, secured packets are refused as SECURED_PACKET_UNSUPPORTED.
-        self.security = security
+        # Without one, secured packets are still unwrapped and checked (mode off, no roots, no clock).
+        self.security = security if security is not None else _unwrapping_layer()
 
     def encode_cam(self, content: its_pb2.CamContent, gn_params: GnParams) -> bytes:
         params = gn_params
@@ -144,10 +155,10 @@ class V2xPacketCodec:
 
     def decode_frame(self, data: bytes) -> DecodedFrame:
         """GeoNetworking, BTP and UPER decoded; the message still in asn1tools' wire units."""
-        security = None
-        if self.security is not None:
-            data, security = self.security.open(data)
+        data, security = self.security.open(data)
         gn = parse_gn(data, self.accepted_gn_versions)
+        if isinstance(gn.extended, BeaconHeader):
+            raise BeaconPacket(gn, security)
         if gn.common.next_header != CommonNextHeader.BTP_B:
             raise V2xDecodeError(RejectReason.NOT_BTP_B, f"next header {gn.common.next_header.name}")
         btp, uper = parse_btp_b(gn.payload)
@@ -179,6 +190,16 @@ class V2xPacketCodec:
                 units.heading_enu_rad_to_etsi_tenth_deg(area.angle_rad) // 10))
         payload = BtpBHeader(PORT_OF_MESSAGE[message_type]).pack() + uper
         return GnPacket(basic, common, extended, payload).to_bytes()
+
+
+def _unwrapping_layer() -> SecurityLayer:
+    """Security mode off with an empty certificate store: decode everything, verify what can be verified."""
+    from coopdrive.services.v2x.security.layer import SecurityLayer as Layer
+    from coopdrive.services.v2x.security.profile import SecurityMode
+    from coopdrive.services.v2x.security.store import CertificateStore
+    from coopdrive.services.v2x.security.verifier import SecurityVerifier
+
+    return Layer(SecurityMode.OFF, SecurityVerifier(CertificateStore()), clock_tai_us=None)
 
 
 def _with_position(params: GnParams, position: SourcePosition) -> GnParams:

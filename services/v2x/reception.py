@@ -12,7 +12,8 @@ from dataclasses import dataclass
 from coopdrive.services.v2x.codec import ItsMessageId
 from coopdrive.services.v2x.config import PlausibilityLimits
 from coopdrive.services.v2x.its_clock import ItsClock
-from coopdrive.services.v2x.packet import DecodedPacket, V2xPacketCodec, default_codec
+from coopdrive.services.v2x.geonet import GnPacket
+from coopdrive.services.v2x.packet import BeaconPacket, DecodedPacket, V2xPacketCodec, default_codec
 from coopdrive.services.v2x.plausibility import Observation, PlausibilityChecker
 from coopdrive.services.v2x.reasons import V2xDecodeError
 from coopdrive.services.v2x.station_stats import StationStats
@@ -21,6 +22,14 @@ from coopdrive.v1 import v2x_pb2
 
 # A station silent this long leaves the status (it stays LOST in it until then).
 FORGET_AFTER_S = 60.0
+TENTH_MICRODEG_PER_DEG = 1e7
+
+
+@dataclass(frozen=True)
+class BeaconPosition:
+    latitude_deg: float
+    longitude_deg: float
+    receive_s: float
 
 
 @dataclass(frozen=True)
@@ -81,12 +90,17 @@ class Reception:
         self.rejected_by_reason: Counter[str] = Counter()
         self.packets_received = 0
         self.own_packets_ignored = 0
+        self.beacons_received = 0
+        self.beacon_positions: dict[bytes, BeaconPosition] = {}
 
     def on_packet(self, data: bytes, receive_s: float) -> DecodedPacket | None:
         """The decoded packet when accepted; None when it was ours, undecodable or implausible (counted)."""
         self.packets_received += 1
         try:
             decoded = self.codec.decode_packet(data)
+        except BeaconPacket as beacon:
+            self._on_beacon(beacon.gn, receive_s)
+            return None
         except V2xDecodeError as error:
             self.rejected_by_reason[error.reason.value] += 1
             return None
@@ -105,6 +119,18 @@ class Reception:
         delay_s = transit_delay_s(decoded, receive_tai_ms)
         stats.on_message(decoded.message_type, receive_s, None if delay_s is None else time_tai_ms, delay_s)
         return decoded
+
+    def _on_beacon(self, gn: GnPacket, receive_s: float) -> None:
+        """A beacon names no station id, only its GN address (MAC): its position is kept by MAC."""
+        vector = gn.extended.source_position
+        mac = bytes(vector.address.mid)
+        if mac == self.own.mac:
+            self.own_packets_ignored += 1
+            return
+        self.beacons_received += 1
+        self.beacon_positions[mac] = BeaconPosition(vector.latitude_tenth_microdeg / TENTH_MICRODEG_PER_DEG,
+                                                    vector.longitude_tenth_microdeg / TENTH_MICRODEG_PER_DEG,
+                                                    receive_s)
 
     def status(self, now_s: float) -> v2x_pb2.V2xStatus:
         for station_id in [s.station_id for s in self.stations.values()

@@ -44,7 +44,7 @@ def test_ethernet_padding_after_the_payload_is_dropped():
     (b"\x12\x00\x01\x01", RejectReason.SECURED_PACKET_UNSUPPORTED),
     (b"\x13\x00\x01\x01", RejectReason.UNKNOWN_BASIC_NEXT_HEADER),
     (b"\x11\x00\x01\x01\x20\x50", RejectReason.TRUNCATED_COMMON_HEADER),
-    (b"\x11\x00\x01\x01\x20\x10\x00\x80\x00\x00\x01\x00", RejectReason.UNSUPPORTED_HEADER_TYPE),
+    (b"\x11\x00\x01\x01\x20\x20\x00\x80\x00\x00\x01\x00", RejectReason.UNSUPPORTED_HEADER_TYPE),
     (b"\x11\x00\x01\x01\x20\x50\x00\x80\x00\x00\x01\x00" + bytes(10), RejectReason.TRUNCATED_EXTENDED_HEADER),
 ])
 def test_a_broken_header_is_rejected_with_the_reason_naming_it(data, reason):

@@ -7,7 +7,8 @@ import subprocess
 import pytest
 
 from coopdrive.services.v2x.packet import GnParams, SourcePosition, encode_cam, encode_denm
-from coopdrive.services.v2x.pcap import PcapWriter, parse_ethernet, read_frames
+from coopdrive.services.v2x.capture import read_capture
+from coopdrive.services.v2x.pcap import PcapWriter
 from coopdrive.v1 import its_pb2
 
 from .messages import denm
@@ -76,7 +77,6 @@ def test_our_reader_reads_the_pcapng_tshark_writes_from_our_capture(capture, tmp
     converted = tmp_path / "v2x.pcapng"
     subprocess.run([tshark(), "-r", str(capture), "-F", "pcapng", "-w", str(converted)],
                    check=True, capture_output=True, timeout=60)
-    with open(converted, "rb") as stream:
-        frames = list(read_frames(stream))
+    frames = list(read_capture(converted))
     assert [frame.time_s for frame in frames] == pytest.approx([1.0, 1.04, 1.08])
-    assert parse_ethernet(frames[0].data).source_mac == SOURCE_MAC
+    assert frames[0].source_mac == SOURCE_MAC

@@ -134,6 +134,13 @@ def _alacarte_to_asn(alacarte: its_pb2.DenmAlacarte, protocol_version: int) -> d
     return value
 
 
+def _validity_duration(management: dict) -> int:
+    """validityDuration, or its DEFAULT when left out (canonical UPER omits a DEFAULT value): asn1tools then
+    fills in the value reference's name ('defaultValidity'), not its number."""
+    value = management.get("validityDuration")
+    return value if isinstance(value, int) else round(DEFAULT_VALIDITY_DURATION_S)
+
+
 def denm_from_asn(value: dict) -> its_pb2.DenmContent:
     header, denm = value["header"], value["denm"]
     management = denm["management"]
@@ -142,8 +149,7 @@ def denm_from_asn(value: dict) -> its_pb2.DenmContent:
         originating_station_id=management["actionID"]["originatingStationID"],
         sequence_number=management["actionID"]["sequenceNumber"],
         detection_time_tai_ms=management["detectionTime"], reference_time_tai_ms=management["referenceTime"],
-        validity_duration_s=units.VALIDITY_DURATION_S.to_si(
-            management.get("validityDuration", round(DEFAULT_VALIDITY_DURATION_S))),
+        validity_duration_s=units.VALIDITY_DURATION_S.to_si(_validity_duration(management)),
         station_type=management["stationType"])
     reference_position_from_asn(management["eventPosition"], content.event_position)
     if "termination" in management:

@@ -1,6 +1,9 @@
 """Security envelope of V2X packets: IEEE 1609.2 signed data as profiled by ETSI TS 103 097 v1.3.1 (OER).
 
 Public API (pure logic, no Zenoh):
+- `inspection.PacketInspector(store).inspect(packet, now_tai_us | None)` -> InspectedPacket(security:
+  SecurityResult(signed, signer, signer_digest, verified, fresh, trusted, reason, ...), unsecured_packet);
+  `inspection.mode_drop_reason(mode, result)`: what a mode drops. The contract is in inspection.py.
 - `verifier.SecurityVerifier(store)`: `.verify(packet, now_tai_us) -> (ok, reason, signer_digest)`,
   `.open(...)` also returns the unsecured GN packet; `.rejected_by_reason` counts every failure.
 - `signer.SecuredPacketSigner(tickets)`: `.sign(packet, now_tai_us)`, `.request_full_certificate()`,
@@ -10,5 +13,4 @@ Public API (pure logic, no Zenoh):
 - `store.CertificateStore`: trusted roots, known authorities, cache of tickets heard in full.
 - `pki.create_test_pki(dir, vehicles)`, `pki.pki_init(dir, vehicles)` (for `coopdrive pki init DIR`),
   faults `create_untrusted_pki`, `issue_expired_ticket`, `tamper_packet`; `load_test_pki(dir)`.
-- `capture.security_report(stream, verifier)`: per packet of a pcap/pcapng, signed / signer digest / verified.
 """

@@ -33,11 +33,12 @@ def _paths() -> list[str]:
     return [str(package.joinpath(name)) for name in SECURITY_FILES]
 
 
-def _parsed(paths: list[str], cache_dir: Path) -> dict:
+def parsed_cached(paths: list[str], cache_dir: Path, name: str) -> dict:
+    """asn1tools.parse_files(paths), cached on disk as `<name>-<hash>.py-literal` in cache_dir."""
     digest = hashlib.sha256(asn1tools.__version__.encode())
     for path in paths:
         digest.update(Path(path).read_bytes())
-    cached = cache_dir / f"security-{digest.hexdigest()[:24]}.py-literal"
+    cached = cache_dir / f"{name}-{digest.hexdigest()[:24]}.py-literal"
     if cached.is_file():
         try:
             return ast.literal_eval(cached.read_text(encoding="utf-8"))
@@ -60,7 +61,7 @@ def security_spec(cache_dir: Path | None = None) -> asn1tools.compiler.Specifica
     if _spec is None:
         with _lock:
             if _spec is None:
-                parsed = _parsed(_paths(), Path(cache_dir) if cache_dir else default_cache_dir())
+                parsed = parsed_cached(_paths(), Path(cache_dir) if cache_dir else default_cache_dir(), "security")
                 _spec = asn1tools.compile_dict(parsed, "oer")
     return _spec
 

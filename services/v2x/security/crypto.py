@@ -21,6 +21,8 @@ HASHED_ID3_SIZE = 3
 COORDINATE_SIZE = 32
 _COMPRESSED_EVEN, _COMPRESSED_ODD = 0x02, 0x03
 _PREHASHED = ec.ECDSA(Prehashed(hashes.SHA256()))
+# EccP256CurvePoint forms that carry r (its x coordinate); "fill" carries nothing.
+_R_FORMS = ("x-only", "compressed-y-0", "compressed-y-1", "uncompressedP256")
 
 
 class Curve(enum.Enum):
@@ -104,17 +106,20 @@ def sign_digest(key: ec.EllipticCurvePrivateKey, digest: bytes) -> tuple[str, di
 
 
 def verify_digest(key: ec.EllipticCurvePublicKey, signature: tuple[str, dict], digest: bytes) -> bool:
-    """True when the signature is on this key's curve, in x-only form, and valid for the digest.
+    """True when the signature is on this key's curve and valid for the digest.
 
-    Only the x-only form of rSig is accepted: the compressed forms carry the same r, so accepting them too
-    would let anyone rewrite a valid packet into another valid one (the signature is not itself signed).
+    rSig may come in any form IEEE 1609.2 allows (x-only, compressed, uncompressed): only its x coordinate is
+    r. Real stations send the compressed forms (the signed CAMs in shared/data/v2x do), so all are accepted;
+    a packet rewritten into another form of the same r stays valid, which is why nothing here identifies
+    packets by the hash of their bytes.
     """
     choice, value = signature
     if CURVE_OF_SIGNATURE_CHOICE.get(choice) is not curve_of_key(key):
         return False
-    form, r_bytes = value["rSig"]
-    if form != "x-only":
+    form, point = value["rSig"]
+    if form not in _R_FORMS:
         return False
+    r_bytes = point["x"] if form == "uncompressedP256" else point
     r, s = int.from_bytes(r_bytes, "big"), int.from_bytes(value["sSig"], "big")
     try:
         key.verify(encode_dss_signature(r, s), digest, _PREHASHED)

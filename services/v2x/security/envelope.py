@@ -21,6 +21,8 @@ TBS_OFFSET_IN_ENVELOPE = 3
 # Choice tag + HashedId8; choice tag + SEQUENCE OF quantity (length byte, count byte) before the certificate.
 SIGNER_DIGEST_SIZE = 1 + 8
 SIGNER_CERTIFICATE_OVERHEAD = 3
+CERTIFICATE_ENCODINGS_REMEMBERED = 1024
+_CERTIFICATE_ENCODINGS: dict[bytes, bytes] = {}
 
 
 @dataclass(frozen=True)
@@ -70,27 +72,64 @@ class SignedEnvelope:
         return self.signed["signature"]
 
 
+def _certificate_encoding(value: dict, envelope: bytes, end: int) -> bytes:
+    """The canonical encoding of a received certificate, which must be the bytes ending at envelope[end].
+
+    A station sends the same ticket every second, so encodings are remembered by the certificate's sSig. A
+    remembered encoding is used only when it equals the received bytes; otherwise (another certificate with
+    the same sSig, e.g. a forgery sent to poison the cache) the certificate is encoded afresh.
+    """
+    try:
+        key = value["signature"][1]["sSig"]
+        known = _CERTIFICATE_ENCODINGS.get(key)
+        if known is not None and envelope[end - len(known):end] == known:
+            return known
+        encoded = asn.encode(asn.CERTIFICATE_TYPE, value, check_types=False)
+    except Exception as error:  # noqa: BLE001 -- asn1tools raises many types on garbage
+        raise V2xDecodeError(RejectReason.MALFORMED_SECURITY_ENVELOPE, f"{type(error).__name__}: {error}") from None
+    if len(_CERTIFICATE_ENCODINGS) >= CERTIFICATE_ENCODINGS_REMEMBERED:
+        _CERTIFICATE_ENCODINGS.pop(next(iter(_CERTIFICATE_ENCODINGS)))
+    _CERTIFICATE_ENCODINGS[key] = encoded
+    return encoded
+
+
+def _signer_span(envelope: bytes, signer: tuple[str, object], end_of_signer: int) -> tuple[int, bytes | None]:
+    """(where tbsData ends, the certificate's bytes or None for a digest signer)."""
+    signer_kind, value = signer
+    if signer_kind == "digest":
+        return end_of_signer - SIGNER_DIGEST_SIZE, None
+    if signer_kind != "certificate" or len(value) != 1:
+        raise V2xDecodeError(RejectReason.UNSUPPORTED_SIGNER, signer_kind)
+    certificate = _certificate_encoding(value[0], envelope, end_of_signer)
+    # SEQUENCE OF with one element: the choice tag, then quantity length (1) and quantity (1).
+    start = end_of_signer - len(certificate)
+    if envelope[start:end_of_signer] != certificate:
+        raise V2xDecodeError(RejectReason.MALFORMED_SECURITY_ENVELOPE, "signer certificate not canonical OER")
+    return start - SIGNER_CERTIFICATE_OVERHEAD, certificate
+
+
 def parse_signed_data(envelope: bytes) -> SignedEnvelope:
     """Decode and check the shape of a signed envelope; raises V2xDecodeError, never anything else.
 
-    Non-canonical encodings (and trailing bytes) are refused: the signature covers the bytes as sent, and a
-    second encoding of the same values must not pass for the first one. Being canonical, the envelope is
-    exactly tbsData | signer | signature, so the spans are cut from the received bytes.
+    The spans are cut from the received bytes (the signature covers the bytes as sent): the envelope is
+    header | tbsData | signer | signature, and the signature and the signer's certificate must re-encode to
+    exactly their bytes at the end (so their sizes, and the certificate's HashedId8, are those sent). The
+    to-be-signed part is not re-encoded as a whole: another stack's schema may know more extension additions
+    (HeaderInfo of IEEE 1609.2-2022), whose canonical presence bitmap ours cannot reproduce.
     """
     try:
         value = asn.decode(asn.DATA_TYPE, envelope)
-        canonical = asn.encode(asn.DATA_TYPE, value, check_types=False)
         kind, signed = value["content"]
-        signature_size = len(asn.encode("Signature", signed["signature"], check_types=False)) \
-            if kind == "signedData" else 0
+        signature = asn.encode("Signature", signed["signature"], check_types=False) \
+            if kind == "signedData" else b""
     except Exception as error:  # noqa: BLE001 -- asn1tools raises many types on garbage input
         raise V2xDecodeError(RejectReason.MALFORMED_SECURITY_ENVELOPE, f"{type(error).__name__}: {error}") from None
-    if canonical != envelope:
-        raise V2xDecodeError(RejectReason.MALFORMED_SECURITY_ENVELOPE, "not canonical OER (or trailing bytes)")
     if value["protocolVersion"] != SECURED_DATA_PROTOCOL_VERSION:
         raise V2xDecodeError(RejectReason.MALFORMED_SECURITY_ENVELOPE, f"protocolVersion {value['protocolVersion']}")
     if kind != "signedData":
         raise V2xDecodeError(RejectReason.UNSUPPORTED_SECURED_CONTENT, kind)
+    if not envelope.endswith(signature):
+        raise V2xDecodeError(RejectReason.MALFORMED_SECURITY_ENVELOPE, "signature not canonical OER (or trailing bytes)")
     if signed["hashId"] != "sha256":
         raise V2xDecodeError(RejectReason.UNSUPPORTED_HASH_ALGORITHM, str(signed["hashId"]))
     tbs = signed["tbsData"]
@@ -98,17 +137,7 @@ def parse_signed_data(envelope: bytes) -> SignedEnvelope:
     if data is None or data["protocolVersion"] != SECURED_DATA_PROTOCOL_VERSION or \
             data["content"][0] != "unsecuredData":
         raise V2xDecodeError(RejectReason.UNSUPPORTED_SECURED_CONTENT, "payload is not unsecured data")
-    signer_kind, signer = signed["signer"]
-    end_of_signer = len(envelope) - signature_size
-    if signer_kind == "digest":
-        end_of_tbs, certificate_bytes = end_of_signer - SIGNER_DIGEST_SIZE, None
-    elif signer_kind == "certificate" and len(signer) == 1:
-        # SEQUENCE OF with one element: the choice tag, then quantity length (1) and quantity (1).
-        size = len(asn.encode(asn.CERTIFICATE_TYPE, signer[0], check_types=False))
-        end_of_tbs = end_of_signer - size - SIGNER_CERTIFICATE_OVERHEAD
-        certificate_bytes = envelope[end_of_signer - size:end_of_signer]
-    else:
-        raise V2xDecodeError(RejectReason.UNSUPPORTED_SIGNER, signer_kind)
+    end_of_tbs, certificate_bytes = _signer_span(envelope, signed["signer"], len(envelope) - len(signature))
     header = tbs["headerInfo"]
     location = header.get("generationLocation")
     return SignedEnvelope(

@@ -2,11 +2,14 @@
 
     layer = SecurityLayer(SecurityMode.VERIFY_REQUIRED, verifier, signer, clock_tai_us)
     codec = V2xPacketCodec(security=layer)
-    decoded = codec.decode_packet(packet)        # decoded.security: OpenedPacket, or None if sent unsecured
+    decoded = codec.decode_packet(packet)        # decoded.security: inspection.SecurityResult (UNSIGNED if unsigned)
     wire = layer.seal(codec.encode_cam(...))     # signed unless the mode is off
 
-`verifier.rejected_by_reason` counts every security failure (also those still delivered in
-sign_and_verify); a packet the mode drops raises V2xDecodeError, which the service counts as a rejection.
+Every secured packet is unwrapped and its signature checked whenever the signer's key is known, in every mode
+(inspection.py says what `verified`, `fresh` and `trusted` mean); the mode only decides what is dropped
+(inspection.mode_drop_reason). A dropped packet raises V2xDecodeError, which the service counts as a rejection.
+`status` counts verified packets, packets delivered with something wrong or unknown, and every reason.
+clock_tai_us None: freshness is not judged (a codec without a configured clock).
 """
 
 from __future__ import annotations
@@ -15,14 +18,14 @@ import time
 from collections import OrderedDict
 from collections.abc import Callable
 
-from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE, BasicNextHeader
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
-from coopdrive.services.v2x.security.profile import SecurityMode
+from coopdrive.services.v2x.security.inspection import (
+    UNSIGNED, PacketInspector, SecurityResult, is_secured, mode_drop_reason)
+from coopdrive.services.v2x.security.profile import US_PER_S, SecurityMode
 from coopdrive.services.v2x.security.signer import SecuredPacketSigner
-from coopdrive.services.v2x.security.verifier import OpenedPacket, SecurityVerifier
+from coopdrive.services.v2x.security.verifier import SecurityVerifier
 from coopdrive.services.v2x.timebase import tai_ms_from_unix_s
 
-_NEXT_HEADER_MASK = 0x0F
 # Signers remembered to notice a new station (then our next packet carries the full certificate).
 HEARD_SIGNERS_REMEMBERED = 4096
 MS_PER_US = 1000
@@ -36,34 +39,43 @@ def system_clock_tai_us() -> int:
 class SecurityLayer:
     def __init__(self, mode: SecurityMode, verifier: SecurityVerifier | None = None,
                  signer: SecuredPacketSigner | None = None,
-                 clock_tai_us: Callable[[], int] = system_clock_tai_us):
+                 clock_tai_us: Callable[[], int] | None = system_clock_tai_us):
         if mode.signs and signer is None:
             raise ValueError(f"security mode {mode.value} needs a signer (authorisation ticket)")
         if verifier is None:
             raise ValueError("a security layer needs a verifier (certificate store), also to unwrap")
         self.mode, self.verifier, self.signer, self.clock_tai_us = mode, verifier, signer, clock_tai_us
+        self.inspector = PacketInspector(verifier.store, verifier.max_age_us / US_PER_S,
+                                         verifier.max_ahead_us / US_PER_S)
         self.delivered_unverified_count = 0
         self._heard: OrderedDict[bytes, None] = OrderedDict()
 
-    def open(self, packet: bytes) -> tuple[bytes, OpenedPacket | None]:
-        if len(packet) < BASIC_HEADER_SIZE or packet[0] & _NEXT_HEADER_MASK != BasicNextHeader.SECURED_PACKET:
+    def open(self, packet: bytes) -> tuple[bytes, SecurityResult]:
+        """(the packet without its envelope, what its security says), or V2xDecodeError when the mode drops it."""
+        if not is_secured(packet):  # the common case first: unsigned GCDC traffic costs one byte test
             if self.mode.drops_failures:
-                raise V2xDecodeError(RejectReason.UNSECURED_PACKET_REFUSED)
-            return packet, None
-        if not self.mode.verifies:
-            return self._delivered(self.verifier.unwrap(packet))
-        opened = self.verifier.open(packet, self.clock_tai_us())
-        self._note_signer(opened.result.signer_digest)
-        if opened.result.ok or self.mode.drops_failures:
-            return self._delivered(opened)
-        # sign_and_verify: deliver what failed verification (marked, verified=False) when it can be read.
-        unwrapped = self.verifier.unwrap(packet, count=False)
-        if unwrapped.result.ok:
+                self.verifier.rejected_by_reason[RejectReason.UNSECURED_PACKET_REFUSED] += 1
+                raise V2xDecodeError(RejectReason.UNSECURED_PACKET_REFUSED, "security")
+            return packet, UNSIGNED
+        now_tai_us = self.clock_tai_us() if self.clock_tai_us is not None else None
+        inspected = self.inspector.inspect(packet, now_tai_us)
+        security = inspected.security
+        self._count(security)
+        drop = mode_drop_reason(self.mode, security)
+        if drop is not None:
+            raise V2xDecodeError(drop, "security")
+        if inspected.unsecured_packet is None:
+            raise V2xDecodeError(security.reason, "security")
+        if security.reason is not None:
             self.delivered_unverified_count += 1
-            return unwrapped.unsecured_packet, OpenedPacket(
-                opened.result, unwrapped.unsecured_packet, unwrapped.psid, unwrapped.generation_time_us,
-                unwrapped.full_certificate, verified=False)
-        return self._delivered(opened)
+        return inspected.unsecured_packet, security
+
+    def _count(self, security: SecurityResult) -> None:
+        self._note_signer(security.signer_digest)
+        if security.verified:
+            self.verifier.verified_count += 1
+        if security.reason is not None:
+            self.verifier.rejected_by_reason[security.reason] += 1
 
     def _note_signer(self, digest: bytes | None) -> None:
         if digest is None:
@@ -75,12 +87,6 @@ class SecurityLayer:
         if len(self._heard) > HEARD_SIGNERS_REMEMBERED:
             self._heard.popitem(last=False)
         self.heard_new_station()
-
-    @staticmethod
-    def _delivered(opened: OpenedPacket) -> tuple[bytes, OpenedPacket]:
-        if not opened.result.ok:
-            raise V2xDecodeError(opened.result.reason, "security")
-        return opened.unsecured_packet, opened
 
     def seal(self, packet: bytes, now_tai_us: int | None = None) -> bytes:
         """Our outgoing packet, signed when the mode signs."""

@@ -14,7 +14,12 @@ PSID_DENM = 37
 # a ticket allowed to send awareness messages is not thereby allowed to send platoon/merge commands.
 # 127 is unused by the ETSI ITS-AIDs we know of; change it here (and in the tickets) if an assignment appears.
 PSID_ICLCM = 127
-PSID_OF_PORT = {int(BtpPort.CAM): PSID_CAM, int(BtpPort.DENM): PSID_DENM, int(BtpPort.ICLCM): PSID_ICLCM}
+# ETSI TS 102 965 ITS-AIDs of the other services whose messages real stations sign.
+PSID_SPATEM, PSID_MAPEM, PSID_IVIM, PSID_SREM, PSID_SSEM, PSID_VAM, PSID_CPM = 137, 138, 139, 140, 637, 638, 639
+PSID_OF_PORT = {int(BtpPort.CAM): PSID_CAM, int(BtpPort.DENM): PSID_DENM, int(BtpPort.ICLCM): PSID_ICLCM,
+                int(BtpPort.SPATEM): PSID_SPATEM, int(BtpPort.MAPEM): PSID_MAPEM, int(BtpPort.IVIM): PSID_IVIM,
+                int(BtpPort.SREM): PSID_SREM, int(BtpPort.SSEM): PSID_SSEM, int(BtpPort.VAM): PSID_VAM,
+                int(BtpPort.CPM): PSID_CPM}
 TICKET_PSIDS = (PSID_CAM, PSID_DENM, PSID_ICLCM)
 
 US_PER_S = 1_000_000

@@ -45,6 +45,10 @@ class CertificateStore:
             raise CertificateError(RejectReason.INVALID_CERTIFICATE, f"{certificate.name} may not issue")
         self._issuers[certificate.digest] = certificate
 
+    @property
+    def has_trusted_roots(self) -> bool:
+        return bool(self._trusted)
+
     def is_trusted(self, digest: bytes) -> bool:
         return digest in self._trusted
 
@@ -62,14 +66,17 @@ class CertificateStore:
             forgotten, _ = self._tickets.popitem(last=False)
             self._signature_checked.discard(forgotten)
 
-    def check_chain(self, ticket: Certificate, time_s: float, latitude: int, longitude: int) -> None:
-        """Raise CertificateError naming the first thing wrong in ticket -> ... -> trusted root."""
+    def check_chain(self, ticket: Certificate, time_s: float, latitude: int | None, longitude: int | None) -> None:
+        """Raise CertificateError naming the first thing wrong in ticket -> ... -> trusted root.
+
+        latitude / longitude None (sender position unknown): regions are not checked."""
         if ticket.may_issue or not ticket.app_psids:
             raise CertificateError(RejectReason.INVALID_CERTIFICATE, f"{ticket.name} is no authorisation ticket")
         current = ticket
         for _ in range(MAX_CHAIN_LENGTH):
             current.check_validity(time_s)
-            current.check_region(latitude, longitude)
+            if latitude is not None and longitude is not None:
+                current.check_region(latitude, longitude)
             if current.is_self_signed:
                 if current.digest not in self._trusted:
                     raise CertificateError(RejectReason.UNTRUSTED_ROOT, current.name)

@@ -7,6 +7,8 @@ from coopdrive.services.v2x.security.pki import tamper_packet
 from coopdrive.services.v2x.security.profile import SecurityMode
 from coopdrive.services.v2x.security.verifier import SecurityVerifier
 
+from coopdrive.services.v2x.security.profile import US_PER_S
+
 from .signed import cam_packet, now_tai_us
 
 
@@ -21,9 +23,24 @@ def refused(codec, packet, reason):
     assert error.value.reason == reason
 
 
-def test_without_a_security_layer_a_secured_packet_is_still_refused_as_unsupported(p256_pki):
+def test_without_a_security_layer_a_secured_packet_is_decoded_and_its_signature_checked_but_not_trusted(p256_pki):
     signer = p256_pki.signer("a")
-    refused(V2xPacketCodec(), signer.sign(cam_packet(signer), now_tai_us()), RejectReason.SECURED_PACKET_UNSUPPORTED)
+    decoded = V2xPacketCodec().decode_packet(signer.sign(cam_packet(signer), now_tai_us()))
+    assert decoded.station_id == signer.station_id
+    assert (decoded.security.signed, decoded.security.verified, decoded.security.trusted) == (True, True, None)
+    assert decoded.security.fresh is None  # no clock: not judged
+
+
+def test_sign_and_verify_drops_a_tampered_or_stale_packet_but_delivers_an_unknown_signer(p256_pki):
+    now = now_tai_us()
+    layer, codec = receiver(p256_pki, SecurityMode.SIGN_AND_VERIFY, now)
+    signer = p256_pki.signer("a")
+    secured = signer.sign(cam_packet(signer), now)
+    refused(codec, tamper_packet(secured), RejectReason.INVALID_SIGNATURE)
+    refused(codec, signer.sign(cam_packet(signer), now - 10 * US_PER_S), RejectReason.STALE_GENERATION_TIME)
+    signer.sign(cam_packet(signer), now + 1)  # full certificate, which the stranger below never hears
+    stranger = receiver(p256_pki, SecurityMode.SIGN_AND_VERIFY, now)[1]
+    assert stranger.decode_packet(signer.sign(cam_packet(signer), now + 2)).security.verified is None
 
 
 def test_verify_required_delivers_verified_packets_and_drops_unsecured_and_tampered_ones(p256_pki):
@@ -33,26 +50,27 @@ def test_verify_required_delivers_verified_packets_and_drops_unsecured_and_tampe
     secured = signer.sign(cam_packet(signer), now)
     decoded = codec.decode_packet(secured)
     assert decoded.station_id == signer.station_id and decoded.security.verified
-    assert decoded.security.result.signer_digest == signer.identity.ticket.digest
+    assert decoded.security.trusted and decoded.security.fresh
+    assert decoded.security.signer_digest == signer.identity.ticket.digest
     refused(codec, cam_packet(signer), RejectReason.UNSECURED_PACKET_REFUSED)
     refused(codec, tamper_packet(secured), RejectReason.INVALID_SIGNATURE)
     assert layer.status["verified"] == 1 and layer.status["invalid_signature"] == 1
 
 
-def test_sign_and_verify_delivers_a_failing_packet_marked_unverified_and_counts_why(p256_pki):
+def test_sign_and_verify_delivers_an_unknown_signer_marked_unverified_and_counts_why(p256_pki):
     now = now_tai_us()
     layer, codec = receiver(p256_pki, SecurityMode.SIGN_AND_VERIFY, now)
     signer = p256_pki.signer("a")
     signer.sign(cam_packet(signer), now)
     digest_only = signer.sign(cam_packet(signer), now + 1)
     decoded = codec.decode_packet(digest_only)
-    assert decoded.security.verified is False
-    assert decoded.security.result.reason == RejectReason.UNKNOWN_SIGNER_DIGEST
-    assert codec.decode_packet(cam_packet(signer)).security is None
+    assert decoded.security.verified is None
+    assert decoded.security.reason == RejectReason.UNKNOWN_SIGNER_DIGEST
+    assert codec.decode_packet(cam_packet(signer)).security.signed is False
     assert layer.status == {"verified": 0, "delivered_unverified": 1, "unknown_signer_digest": 1}
 
 
-def test_off_sends_unsigned_and_unwraps_secured_packets_without_checking_them(p256_pki):
+def test_off_sends_unsigned_and_delivers_a_tampered_packet_marked_invalid(p256_pki):
     now = now_tai_us()
     layer = SecurityLayer(SecurityMode.OFF, SecurityVerifier(p256_pki.store()), clock_tai_us=lambda: now)
     codec = V2xPacketCodec(security=layer)

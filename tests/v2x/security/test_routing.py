@@ -8,7 +8,7 @@ from coopdrive.services.v2x.geonet import BasicNextHeader, parse_basic_header, p
 from coopdrive.services.v2x.packet import GnParams
 from coopdrive.services.v2x.pcap import PcapWriter
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
-from coopdrive.services.v2x.security.capture import security_report
+from coopdrive.services.v2x.capture_decode import CaptureDecoder
 
 from .signed import CODEC, cam, cam_packet
 
@@ -39,5 +39,7 @@ def test_the_report_lists_an_unsigned_packet_as_unsigned():
     stream = io.BytesIO()
     PcapWriter(stream, MAC).write(CODEC.encode_cam(cam(7), GnParams(source_mac=MAC)), 1.0)
     stream.seek(0)
-    (row,) = security_report(stream)
-    assert (row.message, row.signed, row.signer_digest, row.verified, row.reason) == ("CAM", False, None, None, None)
+    (row,) = CaptureDecoder().records(stream)
+    security = row["security"]
+    assert (row["message_type"], security["signed"], security["signer_digest"], security["verified"],
+            security["reason"]) == ("cam", False, None, None, None)

@@ -6,9 +6,8 @@ import pytest
 
 from coopdrive.services.v2x.pcap import PcapWriter
 from coopdrive.services.v2x.reasons import RejectReason
-from coopdrive.services.v2x.security.capture import security_report
+from coopdrive.services.v2x.capture_decode import CaptureDecoder
 from coopdrive.services.v2x.security.pki import tamper_packet
-from coopdrive.services.v2x.security.verifier import SecurityVerifier
 from coopdrive.services.v2x.timebase import unix_s_from_tai_ms
 
 from ..test_tshark import tshark
@@ -61,22 +60,23 @@ def test_tshark_sees_the_certificate_once_then_the_digest_we_verify_against(capt
 
 def test_our_report_of_the_capture_says_who_signed_each_packet_and_that_only_the_tampered_one_fails(capture, pki):
     path, signers = capture
-    with open(path, "rb") as stream:
-        rows = list(security_report(stream, SecurityVerifier(pki.store())))
-    assert [row.message for row in rows] == ["CAM", "CAM", "DENM", "ICLCM", "CAM", "CAM"]
-    assert all(row.signed for row in rows)
-    assert [row.full_certificate for row in rows] == [True, False, True, False, True, False]
-    assert [row.signer_digest for row in rows][:2] == [signers["a"].identity.ticket.digest.hex()] * 2
-    assert [row.verified for row in rows] == [True, True, True, True, True, False]
-    assert rows[-1].reason == RejectReason.INVALID_SIGNATURE
+    rows = list(CaptureDecoder(pki.store(), freshness=False).records(path))
+    assert [row["message_type"] for row in rows] == ["cam", "cam", "denm", "iclcm", "cam", "cam"]
+    security = [row["security"] for row in rows]
+    assert all(row["signed"] for row in security)
+    assert [row["signer"] for row in security] == ["certificate", "digest"] * 3
+    assert [row["signer_digest"] for row in security][:2] == [signers["a"].identity.ticket.digest.hex()] * 2
+    assert [row["verified"] for row in security] == [True, True, True, True, True, False]
+    assert [row["trusted"] for row in security][:5] == [True] * 5
+    assert security[-1]["reason"] == RejectReason.INVALID_SIGNATURE.value
 
 
-def test_the_report_reads_the_pcapng_tshark_writes_and_without_a_verifier_only_says_who_signed(capture, tmp_path):
+def test_the_report_reads_the_pcapng_tshark_writes_and_without_roots_verifies_but_trusts_nothing(capture, tmp_path):
     path, signers = capture
     converted = tmp_path / "signed.pcapng"
     subprocess.run([tshark(), "-r", str(path), "-F", "pcapng", "-w", str(converted)],
                    check=True, capture_output=True, timeout=60)
-    with open(converted, "rb") as stream:
-        rows = list(security_report(stream))
-    assert [row.verified for row in rows] == [None] * len(FRAMES)
-    assert rows[4].signer_digest == signers["b"].identity.ticket.digest.hex()
+    security = [row["security"] for row in CaptureDecoder(freshness=False).records(converted)]
+    assert [row["verified"] for row in security] == [True, True, True, True, True, False]
+    assert [row["trusted"] for row in security] == [None] * len(FRAMES)
+    assert security[4]["signer_digest"] == signers["b"].identity.ticket.digest.hex()

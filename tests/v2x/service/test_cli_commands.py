@@ -92,8 +92,9 @@ def capture(tmp_path):
 
 def test_decode_capture_prints_one_line_per_packet_and_the_reason_of_an_undecodable_one(capture):
     lines = list(decode_capture(capture))
-    assert "CAM station 2002" in lines[0] and "02:00:00:00:00:2a" in lines[0] and "20.00 m/s" in lines[0]
-    assert "REJECTED truncated_basic_header" in lines[1]
+    assert "cam station 2002" in lines[0] and "02:00:00:00:00:2a" in lines[0] and "20.00 m/s" in lines[0]
+    assert "ERROR truncated_basic_header" in lines[1]
+    assert "errors: truncated_basic_header 1" in "\n".join(lines[2:])
     rejected = json.loads(list(decode_capture(capture, as_json=True))[1])
     assert rejected["error"] == "truncated_basic_header"
 
@@ -102,6 +103,6 @@ def test_decode_capture_reads_the_pcapng_tshark_writes(capture, tmp_path):
     converted = tmp_path / "mixed.pcapng"
     subprocess.run([tshark(), "-r", str(capture), "-F", "pcapng", "-w", str(converted)],
                    check=True, capture_output=True, timeout=60)
-    records = [json.loads(line) for line in decode_capture(converted, as_json=True)]
+    records = [json.loads(line) for line in decode_capture(converted, as_json=True)][:-1]
     assert records[0]["station_id"] == 2002 and records[0]["time_s"] == pytest.approx(1.0)
     assert records[0]["content"]["station_type"] == its_pb2.StationType.Name(its_pb2.STATION_TYPE_PASSENGER_CAR)

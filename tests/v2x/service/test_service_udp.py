@@ -153,8 +153,8 @@ def test_decode_capture_lists_the_service_pcap_as_text_and_as_json(running, radi
     exchange(service, ctx, radio)
     service.stop()
     lines = list(decode_capture(pcap))
-    assert len(lines) == 3 and f"CAM station {REMOTE_STATION_ID}" in lines[2]
-    records = [json.loads(line) for line in decode_capture(pcap, as_json=True)]
+    assert lines[3] == "summary:" and f"cam station {REMOTE_STATION_ID}" in lines[2]
+    records = [json.loads(line) for line in decode_capture(pcap, as_json=True)][:-1]
     assert [r["station_id"] for r in records] == [OWN_STATION_ID, OWN_STATION_ID, REMOTE_STATION_ID]
     assert records[0]["time_s"] == pytest.approx(EPOCH_UNIX_S + START_S)
     assert records[2]["content"]["high_frequency"]["speed_mps"] == pytest.approx(20.0)

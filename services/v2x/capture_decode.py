@@ -1,0 +1,165 @@
+"""What `coopdrive v2x decode FILE` does: every frame of a real capture, decoded as far as it goes, and a summary.
+
+    decoder = CaptureDecoder(trust_store(["eu-roots/"]), freshness=True)
+    for record in decoder.records("drive.pcapng"):     # one dict per frame, JSON-ready
+        print(format_record(record))                   # or json.dumps(record)
+    print(format_summary(decoder.summary))             # decoder.summary.as_dict() for JSON
+
+A record: index, time_s, link_type, source_mac, ethertype; `unreadable` (+ detail) for frames that carry no
+GeoNetworking; otherwise `gn` (version, header_type, station_type, position), message_type (`beacon`, or by
+BTP port: `cam`, `denm`, `iclcm`, `spatem`, `mapem`, `ivim`, `srem`, `ssem`, `cpm`, `vam`, ..., `btp_<port>`),
+btp_port, station_id, `content` for the types we decode (CAM/DENM/iCLCM in SI units, CPM/VAM as ASN.1 values),
+`error` (+ detail) when that failed, and `security` (security.inspection.SecurityResult.as_dict()).
+Freshness is judged against the capture time of each frame (freshness=False: not judged).
+"""
+
+from __future__ import annotations
+
+import struct
+from collections.abc import Iterator
+from pathlib import Path
+from typing import BinaryIO
+
+from google.protobuf import json_format
+
+from coopdrive.services.v2x.btp import MESSAGE_NAME_OF_PORT, parse_btp_b
+from coopdrive.services.v2x.capture import CapturedFrame, read_capture
+from coopdrive.services.v2x.capture_summary import DecodeSummary
+from coopdrive.services.v2x.geonet import BeaconHeader, CommonNextHeader, GnPacket, HeaderType, parse_gn
+from coopdrive.services.v2x.packet import V2xPacketCodec
+from coopdrive.services.v2x.reasons import V2xDecodeError
+from coopdrive.services.v2x.release2 import TOP_TYPE_OF_MESSAGE, release2_content
+from coopdrive.services.v2x.security.inspection import PacketInspector
+from coopdrive.services.v2x.security.store import CertificateStore
+from coopdrive.services.v2x.timebase import tai_ms_from_unix_s
+
+US_PER_MS = 1000
+TENTH_MICRODEG_PER_DEG = 1e7
+MAPPED_MESSAGES = ("cam", "denm", "iclcm")
+HEADER_TYPE_NAMES = {HeaderType.BEACON: "beacon", HeaderType.TOPOLOGICALLY_SCOPED_BROADCAST: "tsb_single_hop",
+                     HeaderType.GEOBROADCAST: "geobroadcast"}
+# ItsPduHeader in UPER: protocolVersion and messageID (8 bits each), stationID (32 bits), octet-aligned.
+_ITS_PDU_HEADER = struct.Struct(">BBI")
+DECODE_FAILED = "decode_failed"
+
+
+def format_mac(mac: bytes | None) -> str | None:
+    return ":".join(f"{byte:02x}" for byte in mac) if mac else None
+
+
+class CaptureDecoder:
+    def __init__(self, store: CertificateStore | None = None, freshness: bool = True,
+                 codec: V2xPacketCodec | None = None):
+        self.inspector = PacketInspector(store or CertificateStore())
+        self.freshness = freshness
+        self.codec = codec or V2xPacketCodec()
+        self.summary = DecodeSummary()
+
+    def records(self, source: str | Path | BinaryIO) -> Iterator[dict]:
+        """One record per frame, in file order (CaptureFormatError when the file is no capture)."""
+        for frame in read_capture(source):
+            record = self.record(frame)
+            self.summary.add(record)
+            yield record
+
+    def record(self, frame: CapturedFrame) -> dict:
+        record = {"index": frame.index, "time_s": frame.time_s, "link_type": frame.link_type,
+                  "source_mac": format_mac(frame.source_mac),
+                  "ethertype": f"0x{frame.ethertype:04x}" if frame.ethertype is not None else None}
+        if frame.gn_packet is None:
+            return {**record, "unreadable": frame.unreadable, "detail": frame.detail}
+        now_tai_us = tai_ms_from_unix_s(frame.time_s) * US_PER_MS if self.freshness else None
+        inspected = self.inspector.inspect(frame.gn_packet, now_tai_us)
+        record["security"] = inspected.security.as_dict()
+        if inspected.unsecured_packet is None:
+            return {**record, "error": inspected.security.reason.value, "detail": "security envelope"}
+        try:
+            gn = parse_gn(inspected.unsecured_packet)
+        except V2xDecodeError as error:
+            return {**record, "error": error.reason.value, "detail": error.detail}
+        record["gn"] = _gn_record(gn)
+        record.update(self._message(gn, inspected.unsecured_packet))
+        return record
+
+    def _message(self, gn: GnPacket, unsecured: bytes) -> dict:
+        if isinstance(gn.extended, BeaconHeader):
+            return {"message_type": "beacon", "station_id": None}
+        if gn.common.next_header not in (CommonNextHeader.BTP_A, CommonNextHeader.BTP_B):
+            return {"message_type": None, "error": "not_btp", "detail": gn.common.next_header.name}
+        try:
+            btp, payload = parse_btp_b(gn.payload)
+        except V2xDecodeError as error:
+            return {"message_type": None, "error": error.reason.value, "detail": error.detail}
+        port = btp.destination_port
+        message = MESSAGE_NAME_OF_PORT.get(port, f"btp_{port}")
+        record = {"message_type": message, "btp_port": port, "station_id": _station_id(payload)}
+        try:
+            record.update(self._content(message, unsecured, payload))
+        except V2xDecodeError as error:
+            record.update(error=error.reason.value, detail=error.detail)
+        except Exception as error:  # noqa: BLE001 -- asn1tools raises many types on bad UPER
+            record.update(error=DECODE_FAILED, detail=f"{type(error).__name__}: {error}")
+        return record
+
+    def _content(self, message: str, unsecured: bytes, payload: bytes) -> dict:
+        if message in MAPPED_MESSAGES:
+            decoded = self.codec.decode_packet(unsecured)
+            return {"station_id": decoded.station_id,
+                    "content": json_format.MessageToDict(decoded.content, preserving_proto_field_name=True)}
+        if message in TOP_TYPE_OF_MESSAGE:
+            return {"content": release2_content(message, payload)}
+        return {}
+
+
+def _station_id(its_pdu: bytes) -> int | None:
+    if len(its_pdu) < _ITS_PDU_HEADER.size:
+        return None
+    return _ITS_PDU_HEADER.unpack_from(its_pdu)[2]
+
+
+def _gn_record(gn: GnPacket) -> dict:
+    position = gn.extended.source_position
+    return {"version": gn.basic.version,
+            "header_type": HEADER_TYPE_NAMES.get(gn.common.header_type, gn.common.header_type.name.lower()),
+            "station_type": position.address.station_type, "gn_address_mac": format_mac(position.address.mid),
+            "latitude_deg": position.latitude_tenth_microdeg / TENTH_MICRODEG_PER_DEG,
+            "longitude_deg": position.longitude_tenth_microdeg / TENTH_MICRODEG_PER_DEG}
+
+
+def format_record(record: dict) -> str:
+    """One line per frame, for people."""
+    head = f"{record['index']:6d} {record['time_s']:.6f} {record['link_type']} {record['source_mac'] or '-'}"
+    if "unreadable" in record:
+        return f"{head} UNREADABLE {record['unreadable']} {record['detail']}".rstrip()
+    gn = record.get("gn")
+    text = head + (f" GNv{gn['version']} {gn['header_type']}" if gn else "")
+    if record.get("message_type"):
+        text += f" {record['message_type']}"
+    if record.get("station_id") is not None:
+        text += f" station {record['station_id']}"
+    text += _content_text(record.get("content") or {})
+    if "error" in record:
+        text += f" ERROR {record['error']} {record['detail']}".rstrip()
+    return text + _security_text(record.get("security"))
+
+
+def _content_text(content: dict) -> str:
+    text = ""
+    position = content.get("reference_position") or content.get("event_position") or {}
+    if "latitude_deg" in position and "longitude_deg" in position:
+        text += f" at {position['latitude_deg']:.7f},{position['longitude_deg']:.7f}"
+    speed = content.get("high_frequency", {}).get("speed_mps")
+    if speed is not None:
+        text += f" {speed:.2f} m/s"
+    return text
+
+
+def _security_text(security: dict | None) -> str:
+    if not security or not security["signed"]:
+        return ""
+    text = f" signed by {security['signer']} {security['signer_digest']} verified={security['verified']}"
+    text += f" trusted={security['trusted']}"
+    if security["fresh"] is not None:
+        text += f" fresh={security['fresh']}"
+    return text + (f" ({security['reason']})" if security["reason"] else "")
+
