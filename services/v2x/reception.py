@@ -1,7 +1,10 @@
-"""What happens to a GN packet from the radio: decode, drop our own, check plausibility, keep statistics.
+"""What happens to a GN packet from the radio: open its security envelope, decode, drop our own, check
+plausibility, keep statistics.
 
 Pure logic: fed bytes with the service time, returns the accepted DecodedPacket (or None) and builds the
-V2xStatus. Rejections are counted by reason: the decoder's RejectReason and the PlausibilityReason values.
+V2xStatus. Rejections are counted by reason: the security layer's and decoder's RejectReason and the
+PlausibilityReason values. A packet the security mode refuses still counts against its station (read
+through the envelope without checking it), so the station table shows who is being refused and why.
 """
 
 from __future__ import annotations
@@ -14,7 +17,8 @@ from coopdrive.services.v2x.config import PlausibilityLimits
 from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.packet import DecodedPacket, V2xPacketCodec, default_codec
 from coopdrive.services.v2x.plausibility import Observation, PlausibilityChecker
-from coopdrive.services.v2x.reasons import V2xDecodeError
+from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.services.v2x.security_verdict import sender_of, verdict_of_opened, verdict_of_refusal
 from coopdrive.services.v2x.station_stats import StationStats
 from coopdrive.services.v2x.timebase import tai_ms_from_delta
 from coopdrive.v1 import v2x_pb2
@@ -69,8 +73,11 @@ def observation_of(decoded: DecodedPacket, mac: bytes, time_tai_ms: int) -> Obse
 
 class Reception:
     def __init__(self, own: OwnIdentity, clock: ItsClock, limits: PlausibilityLimits, loss_timeout_s: float,
-                 expected_rate_hz: float, window_s: float, codec: V2xPacketCodec | None = None):
+                 expected_rate_hz: float, window_s: float, codec: V2xPacketCodec | None = None,
+                 security=None):
         self.own = own
+        # security.SecurityLayer: open(packet) -> (unsecured packet, OpenedPacket | None), or V2xDecodeError.
+        self.security = security
         self.clock = clock
         self.loss_timeout_s = loss_timeout_s
         self.expected_rate_hz = expected_rate_hz
@@ -81,22 +88,33 @@ class Reception:
         self.rejected_by_reason: Counter[str] = Counter()
         self.packets_received = 0
         self.own_packets_ignored = 0
+        # The GN source MAC of the packet handled last (inside its envelope), None when unreadable.
+        self.last_source_mac: bytes | None = None
 
     def on_packet(self, data: bytes, receive_s: float) -> DecodedPacket | None:
-        """The decoded packet when accepted; None when it was ours, undecodable or implausible (counted)."""
+        """The decoded packet when accepted; None when it was ours, refused, undecodable or implausible (counted)."""
         self.packets_received += 1
+        self.last_source_mac = None
         try:
-            decoded = self.codec.decode_packet(data)
+            unsecured, opened = self.security.open(data) if self.security is not None else (data, None)
+        except V2xDecodeError as error:
+            self._refused_by_security(data, error.reason, receive_s)
+            return None
+        try:
+            decoded = self.codec.decode_packet(unsecured)
         except V2xDecodeError as error:
             self.rejected_by_reason[error.reason.value] += 1
+            self.last_source_mac = sender_of(unsecured).mac
             return None
-        mac = source_mac(decoded)
+        decoded.security = opened
+        mac = self.last_source_mac = source_mac(decoded)
         if mac == self.own.mac or decoded.station_id == self.own.station_id:
             self.own_packets_ignored += 1
             return None
         receive_tai_ms = self.clock.tai_ms(receive_s)
         time_tai_ms = message_time_tai_ms(decoded, receive_tai_ms)
         stats = self._stats(decoded.station_id)
+        stats.security.add(verdict_of_opened(opened), refused=False)
         reason = self.plausibility.check(observation_of(decoded, mac, time_tai_ms), receive_tai_ms)
         if reason is not None:
             self.rejected_by_reason[reason.value] += 1
@@ -106,6 +124,19 @@ class Reception:
         stats.on_message(decoded.message_type, receive_s, None if delay_s is None else time_tai_ms, delay_s)
         return decoded
 
+    def _refused_by_security(self, data: bytes, reason: RejectReason, receive_s: float) -> None:
+        self.rejected_by_reason[reason.value] += 1
+        sender = sender_of(data, self._unwrap)
+        self.last_source_mac = sender.mac
+        if sender.station_id is None or sender.mac == self.own.mac or sender.station_id == self.own.station_id:
+            return
+        stats = self._stats(sender.station_id)
+        stats.on_rejected(receive_s)
+        stats.security.add(verdict_of_refusal(data, reason), refused=True)
+
+    def _unwrap(self, packet: bytes) -> bytes | None:
+        return self.security.verifier.unwrap(packet, count=False).unsecured_packet
+
     def status(self, now_s: float) -> v2x_pb2.V2xStatus:
         for station_id in [s.station_id for s in self.stations.values()
                            if s.last_seen_s is not None and now_s - s.last_seen_s > FORGET_AFTER_S]:
@@ -114,7 +145,8 @@ class Reception:
         status = v2x_pb2.V2xStatus(packets_received=self.packets_received)
         for station_id in sorted(self.stations):
             stats = self.stations[station_id]
-            if stats.last_heard_s is not None:
+            # A station only ever refused by the security mode is listed too (LOST): it is there, and not heard.
+            if stats.last_heard_s is not None or stats.security.refused:
                 status.stations.append(stats.to_proto(now_s, self.loss_timeout_s))
         for reason, count in sorted(self.rejected_by_reason.items()):
             status.rejected_by_reason[reason] = count
