@@ -81,7 +81,10 @@ def v2x_view(snapshot: StoreSnapshot, vehicle_id: str) -> V2xStationsResponse:
         message_rate_hz=s.message_rate_hz, reception_ratio=s.reception_ratio,
         update_delay_p50_s=s.update_delay_p50_s, update_delay_p95_s=s.update_delay_p95_s,
         update_delay_max_s=s.update_delay_max_s, messages_received=s.messages_received,
-        messages_rejected=s.messages_rejected, trust=s.trust, signed=s.signed, verified=s.verified)
+        messages_rejected=s.messages_rejected, trust=s.trust, signed=s.signed, verified=s.verified,
+        trusted=s.trusted, messages_signed=s.messages_signed, messages_verified=s.messages_verified,
+        messages_trusted=s.messages_trusted, signature_failures=s.signature_failures,
+        messages_refused_by_security=s.messages_refused_by_security, last_security_reason=s.last_security_reason)
         for s in status.stations]
     return V2xStationsResponse(
         vehicle_id=vehicle_id, clock_s=snapshot.clock_s, age_s=age_s, stations=stations,
@@ -193,7 +196,9 @@ def live_frame(snapshot: StoreSnapshot, seq: int, alive: dict[str, bool]) -> Liv
         lateral_offset_m=lane.lateral_offset_m if lane is not None and lane.matched else 0.0,
         objects=_live_objects(scene, ego),
         stations=[LiveStation(station_id=s.station_id, state=_station_link(s), trust=s.trust,
-                              reception_ratio=s.reception_ratio) for s in (v2x.stations if v2x else [])],
+                              reception_ratio=s.reception_ratio, signed=s.signed, verified=s.verified,
+                              trusted=s.trusted, last_security_reason=s.last_security_reason)
+                  for s in (v2x.stations if v2x else [])],
         scenario=enum_label(planner_pb2.Scenario, planner.scenario) if planner else None,
         planner_state=planner.state if planner else None,
         time_in_state_s=planner.time_in_state_s if planner else None,
