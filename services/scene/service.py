@@ -16,6 +16,7 @@ from coopdrive.services.scene.fusion import SceneFusion
 from coopdrive.services.scene.intended_accel import IntendedAccelerations
 from coopdrive.services.scene.measurement import V2vObservation
 from coopdrive.services.scene.road_lanes import EgoRoadLanes
+from coopdrive.services.v2x.security_verdict import UNTRUSTED_REASONS
 
 SENSOR_TOPICS = {"lidar/scan": "on_lidar", "camera/frame": "on_camera", "sonar/ranges": "on_sonar"}
 
@@ -57,6 +58,7 @@ class SceneService(Service):
         self.vehicle_bus = VehicleBusInput(self.ctx, VehicleBusReader(
             on_radar_tracks=self.fusion.on_radar, radar_latency_s=config.radar_latency_s), config.can_port)
         self.ctx.subscribe("v2x/cam", self.on_cam)
+        self.ctx.subscribe("v2x/status", self.on_v2x_status)
         self.intended = IntendedAccelerations(config.intended_accel_max_age_s, config.fusion.trust.min_trusted)
         self.ctx.subscribe("v2x/iclcm", lambda envelope: self.intended.on_iclcm(
             envelope.message, envelope.message.header.sample_time_s))
@@ -90,6 +92,15 @@ class SceneService(Service):
             length_m=high.vehicle_length_m if high.HasField("vehicle_length_m") else 0.0,
             width_m=high.vehicle_width_m if high.HasField("vehicle_width_m") else 0.0,
             sample_time_s=cam.header.sample_time_s))
+
+    def on_v2x_status(self, envelope: Envelope) -> None:
+        """Security verdicts per station: failing packets cost trust, an untrusted signer earns none."""
+        time_s = envelope.message.header.sample_time_s
+        for station in envelope.message.stations:
+            if station.messages_signed or station.messages_refused_by_security:
+                self.fusion.trust.on_security(
+                    station.station_id, station.signature_failures + station.messages_refused_by_security,
+                    station.last_security_reason in UNTRUSTED_REASONS, time_s)
 
     def publish_scene(self, now_s: float) -> None:
         scene = self.fusion.scene(now_s)

@@ -99,6 +99,7 @@ def feed_a_following_vehicle(ctx: RecordingContext, clock_s: float = 10.0, speed
     lead.speed_mps.value, lead.speed_mps.confidence = 14.0, 0.7
     lead.accel_mps2.confidence = -1.0
     lead.station_id.value, lead.station_id.confidence = 4242, 1.0
+    scene.station_trust.add(station_id=666, trust=0.05, untrusted_signer=True, security_failing=True)
     ctx.deliver("scene", scene)
     state = planner_pb2.PlannerState(scenario=planner_pb2.SCENARIO_PLATOON, machine="platooning", state="FOLLOWING",
                                      time_in_state_s=2.5, graph_mermaid="stateDiagram-v2\n  JOINING --> FOLLOWING")

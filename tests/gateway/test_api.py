@@ -42,6 +42,8 @@ def test_each_station_shows_whether_it_signs_and_how_its_signatures_and_signer_c
             heard["signature_failures"]) == (250, 249, 249, 1)
     assert (refused["signed"], refused["verified"], refused["trusted"]) == (True, False, False)
     assert (refused["messages_refused_by_security"], refused["last_security_reason"]) == (12, "untrusted")
+    # the trust is the scene's, which knows the station's packets fail security
+    assert refused["trust"] == 0.05
 
 
 def test_scene_objects_carry_each_property_s_confidence_and_unknown_ones_as_null(gateway):
