@@ -205,7 +205,8 @@ def live_frame(snapshot: StoreSnapshot, seq: int, alive: dict[str, bool]) -> Liv
         lateral_offset_m=lane.lateral_offset_m if lane is not None and lane.matched else 0.0,
         objects=_live_objects(scene, ego),
         stations=[LiveStation(station_id=s.station_id, state=_station_link(s),
-                              trust=trust.get(s.station_id, s.trust), reception_ratio=s.reception_ratio, signed=s.signed, verified=s.verified,
+                              trust=trust.get(s.station_id, s.trust), reception_ratio=s.reception_ratio,
+                              signed=s.signed, verified=s.verified,
                               trusted=s.trusted, last_security_reason=s.last_security_reason)
                   for s in (v2x.stations if v2x else [])],
         scenario=enum_label(planner_pb2.Scenario, planner.scenario) if planner else None,

@@ -84,7 +84,8 @@ class StationSecurity:
         last = self.last
         if last is not None:
             stats.signed, stats.verified, stats.trusted = last.signed, last.verified is True, last.trusted is True
-        stats.messages_signed, stats.messages_verified, stats.messages_trusted = self.signed, self.verified, self.trusted
+        stats.messages_signed, stats.messages_verified = self.signed, self.verified
+        stats.messages_trusted = self.trusted
         stats.signature_failures, stats.messages_refused_by_security = self.signature_failures, self.refused
         stats.last_security_reason = self.last_reason
 
