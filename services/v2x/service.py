@@ -15,6 +15,7 @@ from coopdrive.services.v2x.config import GCDC_RATE_HZ, LinkSync, SecurityConfig
 from coopdrive.services.v2x.denm_manager import ActionId
 from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.link import CaptureLog, UdpLink
+from coopdrive.services.v2x.pseudonym import PseudonymChanger
 from coopdrive.services.v2x.reception import OwnIdentity, Reception, transit_delay_s
 from coopdrive.services.v2x.security.certificate import Certificate
 from coopdrive.services.v2x.security.layer import SecurityLayer
@@ -71,6 +72,10 @@ class V2xService(Service):
         self.reception = Reception(OwnIdentity(c.mac_bytes, c.station_id), self.clock, c.plausibility,
                                    c.loss_timeout_s, c.expected_rate_hz, c.statistics_window_s,
                                    security=self.security)
+        self.pseudonyms = None
+        if c.security.pseudonym_period_s is not None:
+            self.pseudonyms = PseudonymChanger(self.security.signer, self.transmitter, self.reception)
+            self.ctx.every(c.security.pseudonym_period_s, lambda now_s: self.pseudonyms.request())
         self.packets_sent = 0
         self._received: list[_Received] = []
         self._capture_file = open(c.pcap_path, "wb") if c.pcap_path else None
@@ -144,18 +149,22 @@ class V2xService(Service):
 
     # ----- time triggers: the only place that publishes -----------------------------------------
     def transmit(self, now_s: float) -> None:
+        if self.pseudonyms is not None and self.pseudonyms.change_if_due(now_s):
+            self.count("pseudonym_changes")
         for outgoing in self.transmitter.due(now_s):
             if self.capture is not None:
-                self.capture.write_packet(outgoing.data, self.clock.unix_s(now_s))
+                self.capture.write_packet(outgoing.data, self.clock.unix_s(now_s), self.transmitter.mac)
             if self.link.send(outgoing.data):
                 self.packets_sent += 1
                 self.count(f"sent_{outgoing.message_type.name.lower()}")
             packet = v2x_pb2.GnPacket(direction=v2x_pb2.PACKET_DIRECTION_SENT, payload=outgoing.data,
-                                      source_mac=self.config.mac_bytes)
+                                      source_mac=self.transmitter.mac)
             self.ctx.publish("v2x/tx", packet, sample_time_s=now_s)
         self.counters["encode_errors"] = self.transmitter.encode_errors
         self.counters["seal_errors"] = self.transmitter.seal_errors
         self.counters["send_errors"] = self.link.send_errors
+        if self.pseudonyms is not None:
+            self.counters["pseudonym_changes_deferred"] = self.pseudonyms.deferred
 
     def flush_received(self, now_s: float) -> None:
         received, self._received = self._received, []
