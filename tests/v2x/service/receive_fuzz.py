@@ -155,7 +155,8 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as folder:
         outcome = run(args.packets, Path(folder))
     print(f"{outcome.packets} packets in {outcome.elapsed_s:.1f} s, {outcome.cpu_s:.1f} s of CPU "
-          f"({outcome.packets / outcome.cpu_s:.0f}/s of CPU), slowest {outcome.slowest_packet_cpu_s * 1000:.1f} ms; accepted {outcome.accepted}, own {outcome.own}, "
+          f"({outcome.packets / outcome.cpu_s:.0f}/s of CPU), slowest {outcome.slowest_packet_cpu_s * 1000:.1f} ms; "
+          f"accepted {outcome.accepted}, own {outcome.own}, "
           f"rejected {sum(outcome.rejected.values())} under {len(outcome.rejected)} reasons; "
           f"up to {outcome.stations_listed_max} stations listed")
     for reason, count in outcome.rejected.most_common():

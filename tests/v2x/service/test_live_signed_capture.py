@@ -59,7 +59,8 @@ def test_the_deployed_v2x_service_fed_the_signed_capture_publishes_the_cams_and_
     hub.subscribe("ego", "v2x/cam", lambda envelope: cams.put(envelope.message))
     hub.subscribe("ego", "v2x/status", lambda envelope: statuses.put(envelope.message))
     v2x = spawn("service", "v2x", "--config", str(REPOSITORY / "deploy/config/v2x.yaml"), "--vehicle", "ego",
-                "--connect", endpoint, "--set", "link.listen_host=127.0.0.1", "--set", f"link.listen_port={listen_port}",
+                "--connect", endpoint, "--set", "link.listen_host=127.0.0.1",
+                "--set", f"link.listen_port={listen_port}",
                 "--set", "link.radio_host=127.0.0.1", "--set", f"link.radio_port={radio_port}",
                 "--set", f"plausibility.max_age_s={OLD_CAPTURE_WINDOW_S}",
                 "--set", f"plausibility.max_future_s={OLD_CAPTURE_WINDOW_S}")
