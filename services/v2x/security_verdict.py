@@ -50,25 +50,31 @@ def is_secured(packet: bytes) -> bool:
 
 
 def verdict_of_opened(opened) -> SecurityVerdict:
-    """The verdict on a delivered packet from the layer's OpenedPacket (None: it came unsigned)."""
+    """The verdict on a delivered packet from what the layer returned with it: None (it came unsigned), a
+    result that answers signed / verified / trusted itself, or today's OpenedPacket (result.ok, verified)."""
     if opened is None:
         return UNSIGNED
+    opened = getattr(opened, "security", opened)
+    if hasattr(opened, "signed"):
+        return SecurityVerdict(opened.signed, opened.verified, opened.trusted, _reason(opened.reason))
     result = opened.result
-    reason = result.reason.value if result.reason is not None else None
-    verified = getattr(opened, "verified", None)
-    trusted = getattr(opened, "trusted", None)
-    if result.ok and not verified:
+    reason = _reason(result.reason)
+    if result.ok and not opened.verified:
         # Only unwrapped (modes off, sign_only): nothing was checked.
-        return SecurityVerdict(True, None, trusted, reason)
+        return SecurityVerdict(True, None, None, reason)
     if not result.ok:
-        verified = False if reason in SIGNATURE_FAILURES else (verified or None)
-        return SecurityVerdict(True, verified, False if reason in UNTRUSTED_REASONS else trusted, reason)
-    # Verified by today's layer means the chain reached a trusted root as well.
-    return SecurityVerdict(True, True, True if trusted is None else trusted, reason)
+        return SecurityVerdict(True, False if reason in SIGNATURE_FAILURES else None,
+                               False if reason in UNTRUSTED_REASONS else None, reason)
+    # Verified by this layer means the chain reached a trusted root as well.
+    return SecurityVerdict(True, True, True, reason)
+
+
+def _reason(reason) -> str | None:
+    return getattr(reason, "value", reason)
 
 
 def verdict_of_refusal(packet: bytes, reason: RejectReason | str) -> SecurityVerdict:
-    reason = reason.value if isinstance(reason, RejectReason) else reason
+    reason = _reason(reason)
     if not is_secured(packet):
         return SecurityVerdict(False, None, None, reason)
     return SecurityVerdict(True, False if reason in SIGNATURE_FAILURES else None,
