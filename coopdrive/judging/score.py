@@ -88,7 +88,9 @@ def v2x_metrics(messages: RunMessages) -> dict[str, float]:
     statuses = list(messages.v2x_status.values())
     if not statuses:
         return {}
-    stations = [station for status in statuses for station in status.stations]
+    # Links of stations heard at all: one only ever refused by the security mode has no link quality to judge
+    # (v2v_listeners says who was not heard).
+    stations = [station for status in statuses for station in status.stations if station.messages_received > 0]
     figures = {"v2x_packets_sent": float(sum(s.packets_sent for s in statuses)),
                "v2x_packets_received": float(sum(s.packets_received for s in statuses)),
                "v2x_packets_rejected": float(sum(sum(s.rejected_by_reason.values()) for s in statuses))}
