@@ -35,6 +35,7 @@ class StationView(BaseModel):
     messages_signed: int = 0
     messages_verified: int = 0
     messages_trusted: int = 0
+    messages_untrusted: int = Field(0, description="Packets whose signer's chain failed (untrusted, expired...).")
     signature_failures: int = Field(0, description="Packets whose signature was invalid.")
     messages_refused_by_security: int = Field(0, description="Packets the security mode dropped.")
     last_security_reason: str = Field("", description="Why its last packet fell short (a reject reason), or ''.")

@@ -91,7 +91,8 @@ def v2x_view(snapshot: StoreSnapshot, vehicle_id: str) -> V2xStationsResponse:
         messages_rejected=s.messages_rejected, trust=trust.get(s.station_id, s.trust), signed=s.signed,
         verified=s.verified,
         trusted=s.trusted, messages_signed=s.messages_signed, messages_verified=s.messages_verified,
-        messages_trusted=s.messages_trusted, signature_failures=s.signature_failures,
+        messages_trusted=s.messages_trusted, messages_untrusted=s.messages_untrusted,
+        signature_failures=s.signature_failures,
         messages_refused_by_security=s.messages_refused_by_security, last_security_reason=s.last_security_reason)
         for s in status.stations]
     return V2xStationsResponse(

@@ -16,7 +16,6 @@ from coopdrive.services.scene.fusion import SceneFusion
 from coopdrive.services.scene.intended_accel import IntendedAccelerations
 from coopdrive.services.scene.measurement import V2vObservation
 from coopdrive.services.scene.road_lanes import EgoRoadLanes
-from coopdrive.services.v2x.security_verdict import UNTRUSTED_REASONS
 
 SENSOR_TOPICS = {"lidar/scan": "on_lidar", "camera/frame": "on_camera", "sonar/ranges": "on_sonar"}
 
@@ -94,13 +93,14 @@ class SceneService(Service):
             sample_time_s=cam.header.sample_time_s))
 
     def on_v2x_status(self, envelope: Envelope) -> None:
-        """Security verdicts per station: failing packets cost trust, an untrusted signer earns none."""
+        """Security verdicts per station: packets with an invalid signature or an untrusted signer cost trust, an
+        untrusted signer earns none. An unknown signer (its certificate not heard yet) says nothing against it."""
         time_s = envelope.message.header.sample_time_s
         for station in envelope.message.stations:
-            if station.messages_signed or station.messages_refused_by_security:
+            if station.messages_signed:
                 self.fusion.trust.on_security(
-                    station.station_id, station.signature_failures + station.messages_refused_by_security,
-                    station.last_security_reason in UNTRUSTED_REASONS, time_s)
+                    station.station_id, station.signature_failures + station.messages_untrusted,
+                    station.messages_untrusted > 0 and not station.trusted, time_s)
 
     def publish_scene(self, now_s: float) -> None:
         scene = self.fusion.scene(now_s)

@@ -20,9 +20,14 @@ from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE, BasicNextHeader, pa
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 
 _NEXT_HEADER_MASK = 0x0F
-# Refusals that say the signature itself is wrong, and those that say the signer is not one we trust.
+# Refusals that say the signature itself is wrong; that the signer's chain does not reach a root we trust; and,
+# among those, that nobody we trust issued it. An unknown signer (digest never heard in full) or a stale
+# generation time is neither: it says nothing against the station.
 SIGNATURE_FAILURES = frozenset({RejectReason.INVALID_SIGNATURE.value})
 UNTRUSTED_REASONS = frozenset({RejectReason.UNKNOWN_ISSUER.value, RejectReason.UNTRUSTED_ROOT.value, "untrusted"})
+CHAIN_FAILURES = UNTRUSTED_REASONS | {reason.value for reason in (
+    RejectReason.CERTIFICATE_EXPIRED, RejectReason.CERTIFICATE_NOT_YET_VALID, RejectReason.OUTSIDE_CERTIFICATE_REGION,
+    RejectReason.PSID_NOT_PERMITTED, RejectReason.INVALID_CERTIFICATE_SIGNATURE, RejectReason.INVALID_CERTIFICATE)}
 
 Unwrap = Callable[[bytes], bytes | None]
 
@@ -64,7 +69,7 @@ def verdict_of_opened(opened) -> SecurityVerdict:
         return SecurityVerdict(True, None, None, reason)
     if not result.ok:
         return SecurityVerdict(True, False if reason in SIGNATURE_FAILURES else None,
-                               False if reason in UNTRUSTED_REASONS else None, reason)
+                               False if reason in CHAIN_FAILURES else None, reason)
     # Verified by this layer means the chain reached a trusted root as well.
     return SecurityVerdict(True, True, True, reason)
 
@@ -78,7 +83,7 @@ def verdict_of_refusal(packet: bytes, reason: RejectReason | str) -> SecurityVer
     if not is_secured(packet):
         return SecurityVerdict(False, None, None, reason)
     return SecurityVerdict(True, False if reason in SIGNATURE_FAILURES else None,
-                           False if reason in UNTRUSTED_REASONS else None, reason)
+                           False if reason in CHAIN_FAILURES else None, reason)
 
 
 def sender_of(packet: bytes, unwrap: Unwrap | None = None) -> Sender:

@@ -65,7 +65,7 @@ class StationSecurity:
 
     def __init__(self) -> None:
         self.last: SecurityVerdict | None = None
-        self.signed = self.verified = self.trusted = self.signature_failures = self.refused = 0
+        self.signed = self.verified = self.trusted = self.untrusted = self.signature_failures = self.refused = 0
         self.last_reason = ""
 
     def add(self, verdict: SecurityVerdict, refused: bool) -> None:
@@ -73,6 +73,7 @@ class StationSecurity:
         self.signed += int(verdict.signed)
         self.verified += int(verdict.verified is True)
         self.trusted += int(verdict.trusted is True)
+        self.untrusted += int(verdict.trusted is False)
         self.signature_failures += int(verdict.verified is False)
         self.refused += int(refused)
         if verdict.reason is not None:
@@ -85,7 +86,7 @@ class StationSecurity:
         if last is not None:
             stats.signed, stats.verified, stats.trusted = last.signed, last.verified is True, last.trusted is True
         stats.messages_signed, stats.messages_verified = self.signed, self.verified
-        stats.messages_trusted = self.trusted
+        stats.messages_trusted, stats.messages_untrusted = self.trusted, self.untrusted
         stats.signature_failures, stats.messages_refused_by_security = self.signature_failures, self.refused
         stats.last_security_reason = self.last_reason
 

@@ -114,7 +114,7 @@ def feed_a_following_vehicle(ctx: RecordingContext, clock_s: float = 10.0, speed
     status.stations.add(station_id=99, state=v2x_pb2.LINK_STATE_LOST, trust=0.4)
     # Heard only as refused: signed by a signer whose root this vehicle does not trust.
     status.stations.add(station_id=666, state=v2x_pb2.LINK_STATE_LOST, signed=True, messages_signed=12,
-                        messages_refused_by_security=12, last_security_reason="untrusted")
+                        messages_refused_by_security=12, messages_untrusted=12, last_security_reason="untrusted")
     status.rejected_by_reason["implausible_speed"] = 3
     ctx.deliver("v2x/status", status)
     actuation = actuation_pb2.ActuationStatus(mode=actuation_pb2.DRIVING_MODE_MANUAL,

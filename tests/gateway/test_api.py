@@ -41,7 +41,8 @@ def test_each_station_shows_whether_it_signs_and_how_its_signatures_and_signer_c
     assert (heard["messages_signed"], heard["messages_verified"], heard["messages_trusted"],
             heard["signature_failures"]) == (250, 249, 249, 1)
     assert (refused["signed"], refused["verified"], refused["trusted"]) == (True, False, False)
-    assert (refused["messages_refused_by_security"], refused["last_security_reason"]) == (12, "untrusted")
+    assert (refused["messages_refused_by_security"], refused["messages_untrusted"]) == (12, 12)
+    assert refused["last_security_reason"] == "untrusted"
     # the trust is the scene's, which knows the station's packets fail security
     assert refused["trust"] == 0.05
 

@@ -71,16 +71,21 @@ def test_the_scene_lists_each_station_s_trust_and_security_state():
 
 def test_the_scene_service_takes_the_verdicts_from_the_v2x_status():
     service = SceneService.__new__(SceneService)
-    service.fusion = SceneFusion(SceneFusionConfig())
+    service.fusion = SceneFusion(SceneFusionConfig(trust=TrustConfig()))
     status = v2x_pb2.V2xStatus()
     status.header.sample_time_s = 2.0
     status.stations.add(station_id=3002, signed=True, messages_signed=10, messages_refused_by_security=10,
-                        last_security_reason="untrusted")
+                        messages_untrusted=10, last_security_reason="unknown_issuer")
     status.stations.add(station_id=3001, signed=True, verified=True, trusted=True, messages_signed=10,
                         messages_verified=10, messages_trusted=10)
+    # refused until its full certificate comes: unknown, which says nothing against it
+    status.stations.add(station_id=3000, signed=True, messages_signed=5, messages_refused_by_security=5,
+                        last_security_reason="unknown_signer_digest")
     status.stations.add(station_id=3021, messages_received=10)
     service.on_v2x_status(Envelope("a1", "v2x/status", status))
     stations = service.fusion.trust.stations()
     assert stations[3002].untrusted_signer and stations[3002].security_failing
-    assert not stations[3001].untrusted_signer and not stations[3001].security_failing
-    assert 3021 not in stations  # unsigned and never refused: security has nothing to say about it
+    for station_id in (3001, 3000):
+        assert not stations[station_id].untrusted_signer and not stations[station_id].security_failing
+        assert stations[station_id].trust == pytest.approx(TrustConfig().initial)
+    assert 3021 not in stations  # unsigned: security has nothing to say about it

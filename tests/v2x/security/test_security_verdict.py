@@ -53,7 +53,8 @@ def test_a_result_that_answers_for_itself_is_read_as_it_is():
 
 @pytest.mark.parametrize("reason, verified, trusted", [
     (RejectReason.INVALID_SIGNATURE, False, None), (RejectReason.UNKNOWN_ISSUER, None, False),
-    (RejectReason.UNTRUSTED_ROOT, None, False), (RejectReason.CERTIFICATE_EXPIRED, None, None)])
+    (RejectReason.UNTRUSTED_ROOT, None, False), (RejectReason.CERTIFICATE_EXPIRED, None, False),
+    (RejectReason.UNKNOWN_SIGNER_DIGEST, None, None), (RejectReason.STALE_GENERATION_TIME, None, None)])
 def test_a_refusal_says_what_its_reason_tells(signed, reason, verified, trusted):
     assert verdict_of_refusal(signed, reason) == SecurityVerdict(True, verified, trusted, reason.value)
 

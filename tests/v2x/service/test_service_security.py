@@ -95,8 +95,8 @@ def test_a_station_with_an_untrusted_ticket_is_dropped_with_its_reason_counted(s
     # listed, never heard: refused by the security mode, signed by a signer nobody trusts
     [rogue_stats] = b_ctx.messages("v2x/status")[-1].stations
     assert (rogue_stats.station_id, rogue_stats.state) == (STATIONS["rogue"][0], v2x_pb2.LINK_STATE_LOST)
-    assert (rogue_stats.messages_signed, rogue_stats.messages_refused_by_security, rogue_stats.messages_trusted) == \
-        (1, 1, 0)
+    assert (rogue_stats.messages_signed, rogue_stats.messages_refused_by_security, rogue_stats.messages_trusted,
+            rogue_stats.messages_untrusted) == (1, 1, 0, 1)
     assert (rogue_stats.signed, rogue_stats.trusted, rogue_stats.messages_received) == (True, False, 0)
     assert rogue_stats.last_security_reason == RejectReason.UNKNOWN_ISSUER.value
 
