@@ -133,7 +133,7 @@ def test_every_sampled_single_bit_flip_of_a_signed_cam_is_rejected_with_a_counte
     assert RejectReason.INVALID_SIGNATURE.value in counts
     # the flips that left the sender readable count against station a, invalid signatures among them
     [a_stats] = b_ctx.messages("v2x/status")[-1].stations
-    assert a_stats.station_id == STATIONS["a"][0] and a_stats.signature_failures == counts["invalid_signature"]
+    assert a_stats.station_id == STATIONS["a"][0] and 0 < a_stats.signature_failures <= counts["invalid_signature"]
     assert 0 < a_stats.messages_refused_by_security <= FLIPPED_BITS_SAMPLED
     # the untouched packet still passes afterwards: the forgeries spoiled nothing
     deliver(b, b_ctx, radio, packet)
