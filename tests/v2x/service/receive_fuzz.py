@@ -21,7 +21,8 @@ from pathlib import Path
 
 from coopdrive.services.v2x.reasons import V2xDecodeError
 from coopdrive.services.v2x.replay import capture_packets
-from coopdrive.services.v2x.security.pki import create_test_pki
+from coopdrive.services.v2x.security.pki import create_test_pki, tamper_packet
+from coopdrive.services.v2x.security_verdict import is_secured
 from coopdrive.services.v2x.service import V2xService
 from coopdrive.services.v2x.timebase import generation_delta_time_ms, tai_ms_from_unix_s
 from tests.shared_data import shared_file
@@ -40,6 +41,9 @@ FLUSH_EVERY = 500
 US_PER_MS = 1000
 # test_fuzz.mutate edits fixed offsets up to here (BTP port, ITS header of an SHB packet).
 MUTATE_GN_MIN_BYTES = 48
+TAMPER_SHARE = 0.25
+# Bits counted from the end of the signed facility message (tamper_packet).
+TAMPER_BITS = 64
 
 
 @dataclass
@@ -53,6 +57,8 @@ class FuzzOutcome:
     cpu_s: float = 0.0
     elapsed_s: float = 0.0
     stations_listed_max: int = 0
+    # The security layer's own counts (sign_and_verify delivers a packet that failed, marked): security_<reason>.
+    security: dict = field(default_factory=dict)
 
 
 def real_seeds() -> list[bytes]:
@@ -76,7 +82,13 @@ def signed_seeds(pki_dir: Path, now_s: float) -> list[bytes]:
 
 
 def mutate(rng: random.Random, packet: bytes) -> bytes:
-    """test_fuzz's mutations; a packet too short for its fixed offsets (a beacon) gets bit flips or a cut."""
+    """test_fuzz's mutations; a packet too short for its fixed offsets (a beacon) gets bit flips or a cut; one
+    secured packet in four has one bit of its signed message flipped (a forgery the signature must catch)."""
+    if is_secured(packet) and rng.random() < TAMPER_SHARE:
+        try:
+            return tamper_packet(packet, rng.randrange(TAMPER_BITS))
+        except V2xDecodeError:
+            pass
     if len(packet) >= MUTATE_GN_MIN_BYTES:
         try:
             return mutate_gn(rng, packet)
@@ -125,6 +137,7 @@ def fuzz(service: V2xService, ctx: FakeContext, groups: list[list[bytes]], packe
     outcome.packets, outcome.own = reception.packets_received, reception.own_packets_ignored
     outcome.rejected = Counter(reception.rejected_by_reason)
     outcome.accepted = sum(count for name, count in service.counters.items() if name.startswith("received_"))
+    outcome.security = {name: count for name, count in service.counters.items() if name.startswith("security_")}
     return outcome
 
 
@@ -161,6 +174,8 @@ def main() -> None:
           f"up to {outcome.stations_listed_max} stations listed")
     for reason, count in outcome.rejected.most_common():
         print(f"  {reason}: {count}")
+    print("security layer: " + ", ".join(f"{name.removeprefix('security_')} {count}"
+                                          for name, count in sorted(outcome.security.items())))
 
 
 if __name__ == "__main__":
