@@ -25,6 +25,12 @@ def add_commands(commands) -> None:
     send.add_argument("--address", default="127.0.0.1")
     send.add_argument("--port", type=int, default=4401)
     send.set_defaults(handler=_send)
+    replay = v2x_commands.add_parser("replay", help="send a capture's GN packets to a radio-box UDP port at their pace")
+    replay.add_argument("file", type=Path)
+    replay.add_argument("--address", default="127.0.0.1")
+    replay.add_argument("--port", type=int, default=4401, help="the v2x service's listen port (link.listen_port)")
+    replay.add_argument("--rate", type=float, default=1.0, help="pace: 2.0 sends twice as fast as recorded")
+    replay.set_defaults(handler=_replay)
 
     pki = commands.add_parser("pki", help="test PKI for signed V2X (ETSI TS 103 097)")
     pki_commands = pki.add_subparsers(dest="pki_command", required=True)
@@ -58,6 +64,21 @@ def _send(args: argparse.Namespace) -> int:
     message_id = send_from_yaml(args.file, args.address, args.port)
     print(f"sent {message_id.name} to {args.address}:{args.port}")
     return 0
+
+
+def _replay(args: argparse.Namespace) -> int:
+    from coopdrive.services.v2x.replay import ReplayError, replay_capture
+
+    try:
+        summary = replay_capture(args.file, (args.address, args.port), args.rate)
+    except (OSError, ReplayError) as error:
+        print(f"coopdrive: {error}", file=sys.stderr)
+        return 2
+    skipped = ", ".join(f"{count} {why}" for why, count in sorted(summary.skipped.items()))
+    print(f"sent {summary.sent} GN packets to {args.address}:{args.port} in {summary.duration_s:.2f} s"
+          + (f"; skipped frames: {skipped}" if skipped else "")
+          + (f"; {summary.send_errors} send errors" if summary.send_errors else ""))
+    return 0 if summary.send_errors == 0 else 1
 
 
 def _pki_init(args: argparse.Namespace) -> int:

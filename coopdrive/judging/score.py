@@ -18,6 +18,8 @@ from coopdrive.judging.run_messages import RunMessages
 from coopdrive.judging.tracking import tracking_metrics
 from coopdrive.services.sim import metrics as judge_metrics
 from coopdrive.services.sim.truth_series import TruthSeries
+from coopdrive.services.v2x.reasons import RejectReason
+from coopdrive.services.v2x.security_verdict import UNTRUSTED_REASONS
 from coopdrive.v1 import ego_pb2
 
 # A scene object is taken for the true vehicle whose rear bumper centre is this close.
@@ -86,13 +88,38 @@ def v2x_metrics(messages: RunMessages) -> dict[str, float]:
     statuses = list(messages.v2x_status.values())
     if not statuses:
         return {}
-    stations = [station for status in statuses for station in status.stations]
+    # Links of stations heard at all: one only ever refused by the security mode has no link quality to judge
+    # (v2v_listeners says who was not heard).
+    stations = [station for status in statuses for station in status.stations if station.messages_received > 0]
     figures = {"v2x_packets_sent": float(sum(s.packets_sent for s in statuses)),
                "v2x_packets_received": float(sum(s.packets_received for s in statuses)),
                "v2x_packets_rejected": float(sum(sum(s.rejected_by_reason.values()) for s in statuses))}
     if stations:
         figures["v2x_reception_ratio_min"] = min(s.reception_ratio for s in stations)
         figures["v2x_update_delay_p95_max_s"] = max(s.update_delay_p95_s for s in stations)
+    rejected = [(reason, count) for status in statuses for reason, count in status.rejected_by_reason.items()]
+    figures["v2x_rejected_untrusted"] = float(sum(count for reason, count in rejected if reason in UNTRUSTED_REASONS))
+    figures["v2x_rejected_certificate_expired"] = float(
+        sum(count for reason, count in rejected if reason == RejectReason.CERTIFICATE_EXPIRED.value))
+    figures.update(v2v_listeners(messages))
+    return figures
+
+
+def v2v_listeners(messages: RunMessages) -> dict[str, float]:
+    """Per stack vehicle, how many other stacks accepted V2X messages from it (v2v_listeners_<vehicle>), and
+    how many stacks none did (v2v_unheard_stacks): a stack whose packets all others drop, e.g. signed under a
+    root nobody trusts, is to them a vehicle without V2V."""
+    stacks = messages.v2x_status
+    if len(stacks) < 2 or not messages.truth:
+        return {}
+    station_of = {vehicle.vehicle_id: vehicle.station_id for truth in messages.truth for vehicle in truth.vehicles}
+    figures = {}
+    for vehicle_id in sorted(stacks):
+        station_id = station_of.get(vehicle_id)
+        figures[f"v2v_listeners_{vehicle_id}"] = float(sum(
+            any(s.station_id == station_id and s.messages_received > 0 for s in status.stations)
+            for listener, status in stacks.items() if listener != vehicle_id))
+    figures["v2v_unheard_stacks"] = float(sum(count == 0 for count in figures.values()))
     return figures
 
 

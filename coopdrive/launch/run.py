@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import shutil
 import signal
 import tempfile
@@ -21,11 +22,13 @@ from coopdrive.launch.scenario_source import resolve_scenario
 from coopdrive.launch.stack_config import vehicle_overrides
 from coopdrive.recording.writer import McapRecorder, config_metadata
 from coopdrive.runtime.registry import VEHICLE_STACK
+from coopdrive.services.sim.fault_config import TicketExpired
 from coopdrive.services.sim.radio_box import RadioPorts
 from coopdrive.services.sim.scenario_config import ScenarioConfig, ScenarioError
 from coopdrive.services.sim.service import SimConfig
+from coopdrive.services.v2x.security.pki import issue_expiring_tickets, load_test_pki
 from coopdrive.services.v2x.security.profile import SecurityMode
-from coopdrive.services.v2x.security.run_setup import security_overrides
+from coopdrive.services.v2x.security.run_setup import UNTRUSTED_SUBDIR, security_overrides
 from coopdrive.services.v2x.timebase import tai_ms_from_utc
 from coopdrive.v1 import sim_pb2
 
@@ -92,6 +95,9 @@ def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[Servic
     # --realtime paces the lockstep run to the wall clock: it is watchable and still deterministic.
     sim = SimConfig(scenario=source.name, seed=options.seed, lockstep=True, paced=options.realtime)
     per_vehicle: dict[str, dict[str, dict]] = {}
+    if options.security is None and source.config is not None and \
+            any(isinstance(f, TicketExpired) for f in source.config.faults):
+        raise ScenarioError("ticket_expired needs --security: an unsecured run has no tickets to expire")
     if source.config is not None:
         stacks = source.stack_vehicles(options.stacks)
         ports = iter(free_udp_ports(2 * len(stacks)))
@@ -143,7 +149,18 @@ def secured_run(config: ScenarioConfig, stacks: list[str], options: RunOptions, 
     sim_senders += [unit.unit_id for unit in config.roadside_units]
     valid_from_tai_s = tai_ms_from_utc(config.utc_epoch) // MS_PER_S - CERTIFICATE_BACKDATE_S
     overrides = security_overrides(pki_dir, list(stacks) + sim_senders, mode, options.untrusted, valid_from_tai_s)
+    _expire_tickets(config, pki_dir, options.untrusted, valid_from_tai_s)
     return {vehicle: overrides[vehicle] for vehicle in stacks}
+
+
+def _expire_tickets(config: ScenarioConfig, pki_dir: Path, untrusted: tuple[str, ...], valid_from_tai_s: int) -> None:
+    """ticket_expired faults: the vehicle's tickets in the run's PKI end at the fault's start."""
+    epoch_tai_s = tai_ms_from_utc(config.utc_epoch) // MS_PER_S
+    for fault in (f for f in config.faults if isinstance(f, TicketExpired)):
+        pki = load_test_pki(pki_dir / UNTRUSTED_SUBDIR if fault.vehicle_id in untrusted else pki_dir)
+        if fault.vehicle_id not in pki.tickets:
+            raise ScenarioError(f"ticket_expired: {fault.vehicle_id} holds no ticket in this run")
+        issue_expiring_tickets(pki, fault.vehicle_id, epoch_tai_s + math.ceil(fault.start_s), valid_from_tai_s)
 
 
 def run_scenario(options: RunOptions) -> sim_pb2.RunResult:

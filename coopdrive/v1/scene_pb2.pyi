@@ -109,7 +109,7 @@ class FreeSpace(_message.Message):
     def __init__(self, range_m: _Optional[_Iterable[float]] = ...) -> None: ...
 
 class Scene(_message.Message):
-    __slots__ = ("header", "objects", "has_mio", "mio_id", "has_forward_mio", "forward_mio_id", "neighbours", "free_space", "ego_lane_index")
+    __slots__ = ("header", "objects", "has_mio", "mio_id", "has_forward_mio", "forward_mio_id", "neighbours", "free_space", "ego_lane_index", "station_trust")
     HEADER_FIELD_NUMBER: _ClassVar[int]
     OBJECTS_FIELD_NUMBER: _ClassVar[int]
     HAS_MIO_FIELD_NUMBER: _ClassVar[int]
@@ -119,6 +119,7 @@ class Scene(_message.Message):
     NEIGHBOURS_FIELD_NUMBER: _ClassVar[int]
     FREE_SPACE_FIELD_NUMBER: _ClassVar[int]
     EGO_LANE_INDEX_FIELD_NUMBER: _ClassVar[int]
+    STATION_TRUST_FIELD_NUMBER: _ClassVar[int]
     header: _header_pb2.Header
     objects: _containers.RepeatedCompositeFieldContainer[SceneObject]
     has_mio: bool
@@ -128,4 +129,19 @@ class Scene(_message.Message):
     neighbours: _containers.RepeatedCompositeFieldContainer[LaneNeighbours]
     free_space: FreeSpace
     ego_lane_index: int
-    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., objects: _Optional[_Iterable[_Union[SceneObject, _Mapping]]] = ..., has_mio: _Optional[bool] = ..., mio_id: _Optional[int] = ..., has_forward_mio: _Optional[bool] = ..., forward_mio_id: _Optional[int] = ..., neighbours: _Optional[_Iterable[_Union[LaneNeighbours, _Mapping]]] = ..., free_space: _Optional[_Union[FreeSpace, _Mapping]] = ..., ego_lane_index: _Optional[int] = ...) -> None: ...
+    station_trust: _containers.RepeatedCompositeFieldContainer[StationTrust]
+    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., objects: _Optional[_Iterable[_Union[SceneObject, _Mapping]]] = ..., has_mio: _Optional[bool] = ..., mio_id: _Optional[int] = ..., has_forward_mio: _Optional[bool] = ..., forward_mio_id: _Optional[int] = ..., neighbours: _Optional[_Iterable[_Union[LaneNeighbours, _Mapping]]] = ..., free_space: _Optional[_Union[FreeSpace, _Mapping]] = ..., ego_lane_index: _Optional[int] = ..., station_trust: _Optional[_Iterable[_Union[StationTrust, _Mapping]]] = ...) -> None: ...
+
+class StationTrust(_message.Message):
+    __slots__ = ("station_id", "trust", "trusted", "security_failing", "untrusted_signer")
+    STATION_ID_FIELD_NUMBER: _ClassVar[int]
+    TRUST_FIELD_NUMBER: _ClassVar[int]
+    TRUSTED_FIELD_NUMBER: _ClassVar[int]
+    SECURITY_FAILING_FIELD_NUMBER: _ClassVar[int]
+    UNTRUSTED_SIGNER_FIELD_NUMBER: _ClassVar[int]
+    station_id: int
+    trust: float
+    trusted: bool
+    security_failing: bool
+    untrusted_signer: bool
+    def __init__(self, station_id: _Optional[int] = ..., trust: _Optional[float] = ..., trusted: _Optional[bool] = ..., security_failing: _Optional[bool] = ..., untrusted_signer: _Optional[bool] = ...) -> None: ...

@@ -29,8 +29,16 @@ class StationView(BaseModel):
     messages_received: int
     messages_rejected: int
     trust: float = Field(description="Trust in the station, [0, 1].")
-    signed: bool
-    verified: bool
+    signed: bool = Field(description="Its last packet was signed (ETSI TS 103 097).")
+    verified: bool = Field(description="Its last packet's signature was checked and valid.")
+    trusted: bool = Field(False, description="Its last packet's signer chains to a root this vehicle trusts.")
+    messages_signed: int = 0
+    messages_verified: int = 0
+    messages_trusted: int = 0
+    messages_untrusted: int = Field(0, description="Packets whose signer's chain failed (untrusted, expired...).")
+    signature_failures: int = Field(0, description="Packets whose signature was invalid.")
+    messages_refused_by_security: int = Field(0, description="Packets the security mode dropped.")
+    last_security_reason: str = Field("", description="Why its last packet fell short (a reject reason), or ''.")
 
 
 class V2xStationsResponse(BaseModel):
@@ -130,6 +138,10 @@ class LiveStation(BaseModel):
     state: LinkStateName
     trust: float
     reception_ratio: float
+    signed: bool = False
+    verified: bool = False
+    trusted: bool = False
+    last_security_reason: str = ""
 
 
 class LiveAvailability(BaseModel):

@@ -73,15 +73,27 @@ def _station_link(station: v2x_pb2.StationLinkStats) -> LinkStateName:
     return LINK_STATES.get(station.state, LinkStateName.UNSPECIFIED)
 
 
+def scene_trust(snapshot: StoreSnapshot) -> dict[int, float]:
+    """The scene's trust in each V2V station it knows (the v2x service itself keeps none)."""
+    scene, _ = _latest(snapshot, "scene")
+    return {station.station_id: station.trust for station in scene.station_trust} if scene is not None else {}
+
+
 def v2x_view(snapshot: StoreSnapshot, vehicle_id: str) -> V2xStationsResponse:
     status, age_s = _latest(snapshot, "v2x/status")
     status = status or v2x_pb2.V2xStatus()
+    trust = scene_trust(snapshot)
     stations = [StationView(
         station_id=s.station_id, state=_station_link(s), last_heard_s=s.last_heard_s,
         message_rate_hz=s.message_rate_hz, reception_ratio=s.reception_ratio,
         update_delay_p50_s=s.update_delay_p50_s, update_delay_p95_s=s.update_delay_p95_s,
         update_delay_max_s=s.update_delay_max_s, messages_received=s.messages_received,
-        messages_rejected=s.messages_rejected, trust=s.trust, signed=s.signed, verified=s.verified)
+        messages_rejected=s.messages_rejected, trust=trust.get(s.station_id, s.trust), signed=s.signed,
+        verified=s.verified,
+        trusted=s.trusted, messages_signed=s.messages_signed, messages_verified=s.messages_verified,
+        messages_trusted=s.messages_trusted, messages_untrusted=s.messages_untrusted,
+        signature_failures=s.signature_failures,
+        messages_refused_by_security=s.messages_refused_by_security, last_security_reason=s.last_security_reason)
         for s in status.stations]
     return V2xStationsResponse(
         vehicle_id=vehicle_id, clock_s=snapshot.clock_s, age_s=age_s, stations=stations,
@@ -185,6 +197,7 @@ def live_frame(snapshot: StoreSnapshot, seq: int, alive: dict[str, bool]) -> Liv
     speed = ego.speed_mps if ego is not None else None
     gap = forward_gap_m(scene)
     lane = ego.lane if ego is not None else None
+    trust = scene_trust(snapshot)
     return LiveFrame(
         seq=seq, clock_s=snapshot.clock_s, speed_mps=speed, accel_mps2=ego.accel_mps2 if ego is not None else None,
         gap_m=gap, time_gap_s=time_gap_s(gap, speed),
@@ -192,8 +205,11 @@ def live_frame(snapshot: StoreSnapshot, seq: int, alive: dict[str, bool]) -> Liv
         ego_lane_index=scene.ego_lane_index if scene is not None and scene.ego_lane_index >= 0 else None,
         lateral_offset_m=lane.lateral_offset_m if lane is not None and lane.matched else 0.0,
         objects=_live_objects(scene, ego),
-        stations=[LiveStation(station_id=s.station_id, state=_station_link(s), trust=s.trust,
-                              reception_ratio=s.reception_ratio) for s in (v2x.stations if v2x else [])],
+        stations=[LiveStation(station_id=s.station_id, state=_station_link(s),
+                              trust=trust.get(s.station_id, s.trust), reception_ratio=s.reception_ratio,
+                              signed=s.signed, verified=s.verified,
+                              trusted=s.trusted, last_security_reason=s.last_security_reason)
+                  for s in (v2x.stations if v2x else [])],
         scenario=enum_label(planner_pb2.Scenario, planner.scenario) if planner else None,
         planner_state=planner.state if planner else None,
         time_in_state_s=planner.time_in_state_s if planner else None,

@@ -126,7 +126,11 @@ class SceneFusion:
     def scene(self, time_s: float) -> scene_pb2.Scene:
         self.tracker.expire(time_s)
         ego = self._ego.at(time_s) if self._ego is not None else EgoPose.from_state(ego_pb2.EgoState())
-        return self._builder.build(time_s, ego, self._views(time_s), list(self._free_ranges_m))
+        scene = self._builder.build(time_s, ego, self._views(time_s), list(self._free_ranges_m))
+        for station_id, state in sorted(self.trust.stations().items()):
+            scene.station_trust.add(station_id=station_id, trust=state.trust, trusted=self.trust.trusted(station_id),
+                                    security_failing=state.security_failing, untrusted_signer=state.untrusted_signer)
+        return scene
 
     def _views(self, time_s: float) -> list[ObjectView]:
         views = []

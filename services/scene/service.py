@@ -61,6 +61,7 @@ class SceneService(Service):
             on_radar_tracks=self.fusion.on_radar, radar_latency_s=config.radar_latency_s,
             vehicle_can=config.vehicle_can), config.can_port)
         self.ctx.subscribe("v2x/cam", self.on_cam)
+        self.ctx.subscribe("v2x/status", self.on_v2x_status)
         self.intended = IntendedAccelerations(config.intended_accel_max_age_s, config.fusion.trust.min_trusted)
         self.ctx.subscribe("v2x/iclcm", lambda envelope: self.intended.on_iclcm(
             envelope.message, envelope.message.header.sample_time_s))
@@ -95,6 +96,16 @@ class SceneService(Service):
             length_m=high.vehicle_length_m if high.HasField("vehicle_length_m") else 0.0,
             width_m=high.vehicle_width_m if high.HasField("vehicle_width_m") else 0.0,
             sample_time_s=cam.header.sample_time_s))
+
+    def on_v2x_status(self, envelope: Envelope) -> None:
+        """Security verdicts per station: packets with an invalid signature or an untrusted signer cost trust, an
+        untrusted signer earns none. An unknown signer (its certificate not heard yet) says nothing against it."""
+        time_s = envelope.message.header.sample_time_s
+        for station in envelope.message.stations:
+            if station.messages_signed:
+                self.fusion.trust.on_security(
+                    station.station_id, station.signature_failures + station.messages_untrusted,
+                    station.messages_untrusted > 0 and not station.trusted, time_s)
 
     def publish_scene(self, now_s: float) -> None:
         scene = self.fusion.scene(now_s)

@@ -3,7 +3,9 @@
 Chalmers 4.3.1: V2V quality "might range from excellent to worthless" depending on the sender, so
 trust is kept per station. It drops fast (drop_per_s) while a station's claims disagree with our own
 ranging or fail plausibility, drops at once by ghost_penalty when it claims a spot our LiDAR and
-radar see as free, and climbs back slowly (raise_per_s) while it agrees.
+radar see as free, and climbs back slowly (raise_per_s) while it agrees. Security counts too (the v2x
+service's verdicts, `on_security`): trust drops while a station's packets fail (invalid signatures, refused by
+the security mode), and never rises for a station whose signer does not chain to a root we trust.
 """
 
 from __future__ import annotations
@@ -27,6 +29,11 @@ class StationState:
     ghost: bool = False
     disagreements: int = 0
     implausible: int = 0
+    # The v2x service's cumulative count of this station's failed packets, when it last reported it.
+    security_failures: int = 0
+    last_security_s: float | None = None
+    security_failing: bool = False
+    untrusted_signer: bool = False
 
 
 class V2vTrust:
@@ -85,7 +92,9 @@ class V2vTrust:
             state.disagreements += 1
             state.trust -= cfg.drop_per_s * step
         elif disagreement_m is not None:
-            state.trust += cfg.raise_per_s * step
+            # An untrusted signer may agree with our sensors: it still earns nothing.
+            if not state.untrusted_signer:
+                state.trust += cfg.raise_per_s * step
             # Our own sensors see it where it says it is: whatever free-space hits came before were wrong.
             state.free_space_hits = 0
             state.ghost = False
@@ -93,6 +102,23 @@ class V2vTrust:
         if state.last_time_s is None or obs.sample_time_s >= state.last_time_s:
             state.last_time_s = obs.sample_time_s
             state.last_observation = obs
+        return state.trust
+
+    def on_security(self, station_id: int, failures: int, untrusted_signer: bool, time_s: float) -> float:
+        """The v2x service's security report on a station: `failures`, its packets so far whose signature was
+        invalid or that the security mode refused. Trust drops (drop_per_s) over each interval with new ones."""
+        cfg = self._config
+        state = self.state(station_id)
+        if state.last_security_s is None:
+            step = _FIRST_STEP_S
+        else:
+            step = min(cfg.max_step_s, max(0.0, time_s - state.last_security_s))
+        state.security_failing = failures > state.security_failures
+        state.security_failures = max(failures, state.security_failures)
+        state.last_security_s = max(time_s, state.last_security_s or time_s)
+        state.untrusted_signer = untrusted_signer
+        if state.security_failing:
+            state.trust = max(0.0, state.trust - cfg.drop_per_s * step)
         return state.trust
 
     def free_space_contradiction(self, station_id: int) -> None:

@@ -154,6 +154,15 @@ class ServiceCrash(_Fault):
     service: str = Field(min_length=1)
 
 
+class TicketExpired(_Fault):
+    """The vehicle's authorisation tickets (all of them) expire at start_s: from then on every verifying station
+    refuses its packets (certificate_expired). Needs a secured run (`coopdrive run --security MODE`); end_s is
+    ignored, an expired ticket stays expired."""
+
+    type: Literal["ticket_expired"]
+    vehicle_id: str
+
+
 Fault = Annotated[Union[GnssOutage, GnssJump, FixDowngrade, V2vLoss, V2vCorruption, SensorDropout, CanErrorBurst,
-                        PartnerSilent, IclcmDrop, GhostVehicle, PositionOffset, ServiceCrash],
+                        PartnerSilent, IclcmDrop, GhostVehicle, PositionOffset, ServiceCrash, TicketExpired],
                  Field(discriminator="type")]

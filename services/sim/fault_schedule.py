@@ -9,13 +9,13 @@ from dataclasses import dataclass
 from typing import Mapping, Sequence
 
 from coopdrive.services.sim.fault_config import (CanErrorBurst, Fault, FixDowngrade, GnssJump, GnssOutage, IclcmDrop,
-                                                 PartnerSilent, SensorDropout, SensorName, ServiceCrash, V2vCorruption,
-                                                 V2vLoss)
+                                                 PartnerSilent, SensorDropout, SensorName, ServiceCrash,
+                                                 TicketExpired, V2vCorruption, V2vLoss)
 from coopdrive.services.sim.radio_channel import RadioChannel
 from coopdrive.services.sim.sensor_suite import SensorSuite
 
-# Faults that only the integrator can carry out (processes, radio transmitters, the CAN transport).
-INTEGRATOR_FAULTS = (PartnerSilent, IclcmDrop, ServiceCrash, CanErrorBurst)
+# Faults that only the integrator can carry out (processes, radio transmitters, the CAN transport, the run's PKI).
+INTEGRATOR_FAULTS = (PartnerSilent, IclcmDrop, ServiceCrash, CanErrorBurst, TicketExpired)
 
 
 @dataclass(frozen=True)

@@ -88,6 +88,9 @@ class SecurityConfig(_Section):
     # More root certificates (files) to trust besides pki_dir/root.cert, and the authorities under them.
     extra_trusted_roots: list[Path] = []
     extra_authorities: list[Path] = []
+    # Change pseudonym (next ticket, random station id and MAC) this often; None: keep the configured identity.
+    # A change falling due during a manoeuvre waits until it is over.
+    pseudonym_period_s: float | None = Field(None, gt=0)
 
     @model_validator(mode="after")
     def _pki_holds_what_the_mode_needs(self) -> "SecurityConfig":
@@ -104,6 +107,8 @@ class SecurityConfig(_Section):
             raise ValueError(f"security.ticket is required in security.mode {self.mode.value}")
         if self.ticket is not None and not any((self.pki_dir / "vehicles" / self.ticket).glob("ticket-*.cert")):
             raise ValueError(f"security.ticket {self.ticket!r}: {self.pki_dir}/vehicles holds no tickets for it")
+        if self.pseudonym_period_s is not None and not self.mode.signs:
+            raise ValueError(f"security.pseudonym_period_s needs a signing security.mode, not {self.mode.value}")
         for root in self.extra_trusted_roots:
             if not root.is_file():
                 raise ValueError(f"security.extra_trusted_roots: no file {root}")

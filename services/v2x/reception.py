@@ -1,7 +1,10 @@
-"""What happens to a GN packet from the radio: decode, drop our own, check plausibility, keep statistics.
+"""What happens to a GN packet from the radio: open its security envelope, decode, drop our own, check
+plausibility, keep statistics.
 
 Pure logic: fed bytes with the service time, returns the accepted DecodedPacket (or None) and builds the
-V2xStatus. Rejections are counted by reason: the decoder's RejectReason and the PlausibilityReason values.
+V2xStatus. Rejections are counted by reason: the security layer's and decoder's RejectReason and the
+PlausibilityReason values. A packet the security mode refuses still counts against its station (read
+through the envelope without checking it), so the station table shows who is being refused and why.
 """
 
 from __future__ import annotations
@@ -15,7 +18,8 @@ from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.geonet import GnPacket
 from coopdrive.services.v2x.packet import BeaconPacket, DecodedPacket, V2xPacketCodec, default_codec
 from coopdrive.services.v2x.plausibility import Observation, PlausibilityChecker
-from coopdrive.services.v2x.reasons import V2xDecodeError
+from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.services.v2x.security_verdict import sender_of, verdict_of_opened, verdict_of_refusal
 from coopdrive.services.v2x.station_stats import StationStats
 from coopdrive.services.v2x.timebase import tai_ms_from_delta
 from coopdrive.v1 import v2x_pb2
@@ -78,8 +82,11 @@ def observation_of(decoded: DecodedPacket, mac: bytes, time_tai_ms: int) -> Obse
 
 class Reception:
     def __init__(self, own: OwnIdentity, clock: ItsClock, limits: PlausibilityLimits, loss_timeout_s: float,
-                 expected_rate_hz: float, window_s: float, codec: V2xPacketCodec | None = None):
+                 expected_rate_hz: float, window_s: float, codec: V2xPacketCodec | None = None,
+                 security=None):
         self.own = own
+        # security.SecurityLayer: open(packet) -> (unsecured packet, OpenedPacket | None), or V2xDecodeError.
+        self.security = security
         self.clock = clock
         self.loss_timeout_s = loss_timeout_s
         self.expected_rate_hz = expected_rate_hz
@@ -92,25 +99,38 @@ class Reception:
         self.own_packets_ignored = 0
         self.beacons_received = 0
         self.beacon_positions: dict[bytes, BeaconPosition] = {}
+        # The GN source MAC of the packet handled last (inside its envelope), None when unreadable.
+        self.last_source_mac: bytes | None = None
 
     def on_packet(self, data: bytes, receive_s: float) -> DecodedPacket | None:
-        """The decoded packet when accepted; None when it was ours, undecodable or implausible (counted)."""
+        """The decoded packet when accepted; None when it was ours, refused, undecodable or implausible (counted)."""
         self.packets_received += 1
+        self.last_source_mac = None
         try:
-            decoded = self.codec.decode_packet(data)
+            unsecured, opened = self.security.open(data) if self.security is not None else (data, None)
+        except V2xDecodeError as error:
+            self._refused_by_security(data, error.reason, receive_s)
+            return None
+        try:
+            decoded = self.codec.decode_packet(unsecured)
         except BeaconPacket as beacon:
             self._on_beacon(beacon.gn, receive_s)
             return None
         except V2xDecodeError as error:
             self.rejected_by_reason[error.reason.value] += 1
+            self.last_source_mac = sender_of(unsecured, self._unwrap).mac
             return None
-        mac = source_mac(decoded)
+        if self.security is not None:
+            decoded.security = opened
+        mac = self.last_source_mac = source_mac(decoded)
         if mac == self.own.mac or decoded.station_id == self.own.station_id:
             self.own_packets_ignored += 1
             return None
         receive_tai_ms = self.clock.tai_ms(receive_s)
         time_tai_ms = message_time_tai_ms(decoded, receive_tai_ms)
         stats = self._stats(decoded.station_id)
+        # Without a layer of ours the codec's own may have opened the envelope: its result rides on the packet.
+        stats.security.add(verdict_of_opened(decoded.security), refused=False)
         reason = self.plausibility.check(observation_of(decoded, mac, time_tai_ms), receive_tai_ms)
         if reason is not None:
             self.rejected_by_reason[reason.value] += 1
@@ -132,6 +152,21 @@ class Reception:
                                                     vector.longitude_tenth_microdeg / TENTH_MICRODEG_PER_DEG,
                                                     receive_s)
 
+    def _refused_by_security(self, data: bytes, reason: RejectReason, receive_s: float) -> None:
+        self.rejected_by_reason[reason.value] += 1
+        sender = sender_of(data, self._unwrap)
+        self.last_source_mac = sender.mac
+        if sender.station_id is None or sender.mac == self.own.mac or sender.station_id == self.own.station_id:
+            return
+        stats = self._stats(sender.station_id)
+        stats.on_rejected(receive_s)
+        stats.security.add(verdict_of_refusal(data, reason), refused=True)
+
+    def _unwrap(self, packet: bytes) -> bytes | None:
+        # Without a layer of our own, the codec's unwrapping one reads the envelope.
+        layer = self.security if self.security is not None else self.codec.security
+        return layer.verifier.unwrap(packet, count=False).unsecured_packet
+
     def status(self, now_s: float) -> v2x_pb2.V2xStatus:
         for station_id in [s.station_id for s in self.stations.values()
                            if s.last_seen_s is not None and now_s - s.last_seen_s > FORGET_AFTER_S]:
@@ -140,7 +175,8 @@ class Reception:
         status = v2x_pb2.V2xStatus(packets_received=self.packets_received)
         for station_id in sorted(self.stations):
             stats = self.stations[station_id]
-            if stats.last_heard_s is not None:
+            # A station only ever refused by the security mode is listed too (LOST): it is there, and not heard.
+            if stats.last_heard_s is not None or stats.security.refused:
                 status.stations.append(stats.to_proto(now_s, self.loss_timeout_s))
         for reason, count in sorted(self.rejected_by_reason.items()):
             status.rejected_by_reason[reason] = count

@@ -13,11 +13,9 @@ from coopdrive.runtime.service import Service
 from coopdrive.services.v2x.codec import ItsMessageId
 from coopdrive.services.v2x.config import GCDC_RATE_HZ, LinkSync, SecurityConfig, V2xConfig
 from coopdrive.services.v2x.denm_manager import ActionId
-from coopdrive.services.v2x.geonet import parse_gn
 from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.link import CaptureLog, UdpLink
-from coopdrive.services.v2x.packet import V2xPacketCodec
-from coopdrive.services.v2x.reasons import V2xDecodeError
+from coopdrive.services.v2x.pseudonym import PseudonymChanger
 from coopdrive.services.v2x.reception import OwnIdentity, Reception, transit_delay_s
 from coopdrive.services.v2x.security.certificate import Certificate
 from coopdrive.services.v2x.security.layer import SecurityLayer
@@ -29,7 +27,7 @@ from coopdrive.services.v2x.security.verifier import SecurityVerifier
 from coopdrive.services.v2x.transmission import Transmitter
 from coopdrive.v1 import its_pb2, v2x_pb2
 
-# Source MAC in the pcap for a received packet whose GN header cannot be parsed (e.g. a secured one).
+# Source MAC in the pcap for a received packet whose GN header cannot be parsed.
 UNKNOWN_MAC = bytes(6)
 TOPIC_OF_MESSAGE = {ItsMessageId.CAM: "v2x/cam", ItsMessageId.DENM: "v2x/denm", ItsMessageId.ICLCM: "v2x/iclcm"}
 US_PER_MS = 1000
@@ -60,13 +58,6 @@ def build_security_layer(config: SecurityConfig, station_id: int, mac: bytes,
     return SecurityLayer(config.mode, verifier, signer, clock_tai_us)
 
 
-def gn_source_mac(data: bytes) -> bytes | None:
-    try:
-        return bytes(parse_gn(data).extended.source_position.address.mid)
-    except V2xDecodeError:
-        return None
-
-
 class V2xService(Service):
     name = "v2x"
     Config = V2xConfig
@@ -77,10 +68,14 @@ class V2xService(Service):
         # Freshness is judged on the ITS clock (sim time + epoch in simulation), as the senders sign with it.
         self.security = build_security_layer(c.security, c.station_id, c.mac_bytes,
                                              lambda: self.clock.tai_ms(self.ctx.now_s()) * US_PER_MS)
-        codec = V2xPacketCodec(security=self.security) if self.security is not None else None
         self.transmitter = Transmitter(c, self.clock, security=self.security)
         self.reception = Reception(OwnIdentity(c.mac_bytes, c.station_id), self.clock, c.plausibility,
-                                   c.loss_timeout_s, c.expected_rate_hz, c.statistics_window_s, codec)
+                                   c.loss_timeout_s, c.expected_rate_hz, c.statistics_window_s,
+                                   security=self.security)
+        self.pseudonyms = None
+        if c.security.pseudonym_period_s is not None:
+            self.pseudonyms = PseudonymChanger(self.security.signer, self.transmitter, self.reception)
+            self.ctx.every(c.security.pseudonym_period_s, lambda now_s: self.pseudonyms.request())
         self.packets_sent = 0
         self._received: list[_Received] = []
         self._capture_file = open(c.pcap_path, "wb") if c.pcap_path else None
@@ -122,12 +117,13 @@ class V2xService(Service):
 
     def on_datagram(self, data: bytes) -> None:
         now_s = self.ctx.now_s()
-        mac = gn_source_mac(data)
+        decoded = self.reception.on_packet(data, now_s)
+        # The sender's MAC, read inside a secured packet's envelope too.
+        mac = self.reception.last_source_mac
         if self.capture is not None:
             self.capture.write_packet(data, self.clock.unix_s(now_s), mac or UNKNOWN_MAC)
         received = _Received(now_s, v2x_pb2.GnPacket(direction=v2x_pb2.PACKET_DIRECTION_RECEIVED, payload=data,
                                                      source_mac=mac or b""))
-        decoded = self.reception.on_packet(data, now_s)
         if decoded is not None:
             received.message_type, received.content = decoded.message_type, decoded.content
             received.sample_s = self._generated_s(decoded, now_s)
@@ -153,18 +149,22 @@ class V2xService(Service):
 
     # ----- time triggers: the only place that publishes -----------------------------------------
     def transmit(self, now_s: float) -> None:
+        if self.pseudonyms is not None and self.pseudonyms.change_if_due(now_s):
+            self.count("pseudonym_changes")
         for outgoing in self.transmitter.due(now_s):
             if self.capture is not None:
-                self.capture.write_packet(outgoing.data, self.clock.unix_s(now_s))
+                self.capture.write_packet(outgoing.data, self.clock.unix_s(now_s), self.transmitter.mac)
             if self.link.send(outgoing.data):
                 self.packets_sent += 1
                 self.count(f"sent_{outgoing.message_type.name.lower()}")
             packet = v2x_pb2.GnPacket(direction=v2x_pb2.PACKET_DIRECTION_SENT, payload=outgoing.data,
-                                      source_mac=self.config.mac_bytes)
+                                      source_mac=self.transmitter.mac)
             self.ctx.publish("v2x/tx", packet, sample_time_s=now_s)
         self.counters["encode_errors"] = self.transmitter.encode_errors
         self.counters["seal_errors"] = self.transmitter.seal_errors
         self.counters["send_errors"] = self.link.send_errors
+        if self.pseudonyms is not None:
+            self.counters["pseudonym_changes_deferred"] = self.pseudonyms.deferred
 
     def flush_received(self, now_s: float) -> None:
         received, self._received = self._received, []

@@ -4,7 +4,9 @@
 - reception ratio: received / expected messages of its periodic streams (CAM, iCLCM), where the expected
   count comes from the generationDeltaTime gaps at the known rate (a 120 ms gap at 25 Hz = 3 slots, 2 lost);
 - update delay: receive time - generation time, p50 / p95 / max;
-- LOST once nothing was heard for the loss timeout (400 ms at GCDC).
+- LOST once nothing was heard for the loss timeout (400 ms at GCDC);
+- security: how many of its packets were signed, verified, trusted, had an invalid signature or were refused
+  by the security mode, and why the last one fell short.
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ from collections import deque
 import numpy as np
 
 from coopdrive.services.v2x.codec import ItsMessageId
+from coopdrive.services.v2x.security_verdict import SecurityVerdict
 from coopdrive.services.v2x.timebase import MS_PER_S
 from coopdrive.v1 import v2x_pb2
 
@@ -57,6 +60,37 @@ class StreamWindow:
         return len(self._entries) / span_s
 
 
+class StationSecurity:
+    """Counts of one station's security verdicts, delivered and refused packets alike."""
+
+    def __init__(self) -> None:
+        self.last: SecurityVerdict | None = None
+        self.signed = self.verified = self.trusted = self.untrusted = self.signature_failures = self.refused = 0
+        self.last_reason = ""
+
+    def add(self, verdict: SecurityVerdict, refused: bool) -> None:
+        self.last = verdict
+        self.signed += int(verdict.signed)
+        self.verified += int(verdict.verified is True)
+        self.trusted += int(verdict.trusted is True)
+        self.untrusted += int(verdict.trusted is False)
+        self.signature_failures += int(verdict.verified is False)
+        self.refused += int(refused)
+        if verdict.reason is not None:
+            self.last_reason = verdict.reason
+        elif verdict.verified and verdict.trusted:
+            self.last_reason = ""
+
+    def fill(self, stats: v2x_pb2.StationLinkStats) -> None:
+        last = self.last
+        if last is not None:
+            stats.signed, stats.verified, stats.trusted = last.signed, last.verified is True, last.trusted is True
+        stats.messages_signed, stats.messages_verified = self.signed, self.verified
+        stats.messages_trusted, stats.messages_untrusted = self.trusted, self.untrusted
+        stats.signature_failures, stats.messages_refused_by_security = self.signature_failures, self.refused
+        stats.last_security_reason = self.last_reason
+
+
 class StationStats:
     def __init__(self, station_id: int, expected_rate_hz: float, window_s: float):
         self.station_id = station_id
@@ -70,6 +104,7 @@ class StationStats:
         self.messages_rejected = 0
         self._streams: dict[ItsMessageId, StreamWindow] = {}
         self._delays: deque[tuple[float, float]] = deque()
+        self.security = StationSecurity()
 
     def on_message(self, message_type: ItsMessageId, receive_s: float, generation_tai_ms: int | None,
                    delay_s: float | None) -> None:
@@ -110,6 +145,7 @@ class StationStats:
             state=v2x_pb2.LINK_STATE_LOST if self.is_lost(now_s, loss_timeout_s) else v2x_pb2.LINK_STATE_ACTIVE,
             last_heard_s=self.last_heard_s or 0.0, reception_ratio=self.reception_ratio(now_s),
             messages_received=self.messages_received, messages_rejected=self.messages_rejected)
+        self.security.fill(stats)
         if self.first_heard_s is not None and self._streams:
             stats.message_rate_hz = max(stream.rate_hz(now_s, self.first_heard_s) for stream in self._streams.values())
         if self._delays:

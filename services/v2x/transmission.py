@@ -56,6 +56,13 @@ class Transmitter:
         self.encode_errors = 0
         self.seal_errors = 0
         self._sequence_number = 0
+        # Our GN source MAC: the configured one until a pseudonym change (use_identity).
+        self.mac = config.mac_bytes
+
+    def use_identity(self, station_id: int, mac: bytes) -> None:
+        """A new pseudonym: every message from now on carries this station id and MAC."""
+        self.cam.station_id = self.iclcm.station_id = self.denm.station_id = station_id
+        self.mac = bytes(mac)
 
     def on_ego_state(self, ego: ego_pb2.EgoState) -> None:
         self.cam.on_ego_state(ego)
@@ -115,7 +122,7 @@ class Transmitter:
     def _params(self, tai_ms: int, position: SourcePosition | None = None,
                 area: DestinationArea | None = None) -> GnParams:
         c = self.config
-        return GnParams(source_mac=c.mac_bytes, station_type=c.station_type, gn_version=c.gn_version,
+        return GnParams(source_mac=self.mac, station_type=c.station_type, gn_version=c.gn_version,
                         time_tai_ms=tai_ms, source_position=position, destination_area=area,
                         sequence_number=self._next_sequence_number() if area is not None else 0)
 

@@ -99,6 +99,7 @@ def feed_a_following_vehicle(ctx: RecordingContext, clock_s: float = 10.0, speed
     lead.speed_mps.value, lead.speed_mps.confidence = 14.0, 0.7
     lead.accel_mps2.confidence = -1.0
     lead.station_id.value, lead.station_id.confidence = 4242, 1.0
+    scene.station_trust.add(station_id=666, trust=0.05, untrusted_signer=True, security_failing=True)
     ctx.deliver("scene", scene)
     state = planner_pb2.PlannerState(scenario=planner_pb2.SCENARIO_PLATOON, machine="platooning", state="FOLLOWING",
                                      time_in_state_s=2.5, graph_mermaid="stateDiagram-v2\n  JOINING --> FOLLOWING")
@@ -107,8 +108,13 @@ def feed_a_following_vehicle(ctx: RecordingContext, clock_s: float = 10.0, speed
     ctx.deliver("planner/state", state)
     status = v2x_pb2.V2xStatus(packets_sent=120, packets_received=250)
     status.stations.add(station_id=4242, state=v2x_pb2.LINK_STATE_ACTIVE, message_rate_hz=25.0, reception_ratio=0.98,
-                        trust=0.9, signed=True, verified=True, messages_received=250)
+                        trust=0.9, signed=True, verified=True, trusted=True, messages_received=250,
+                        messages_signed=250, messages_verified=249, messages_trusted=249, signature_failures=1,
+                        last_security_reason="")
     status.stations.add(station_id=99, state=v2x_pb2.LINK_STATE_LOST, trust=0.4)
+    # Heard only as refused: signed by a signer whose root this vehicle does not trust.
+    status.stations.add(station_id=666, state=v2x_pb2.LINK_STATE_LOST, signed=True, messages_signed=12,
+                        messages_refused_by_security=12, messages_untrusted=12, last_security_reason="untrusted")
     status.rejected_by_reason["implausible_speed"] = 3
     ctx.deliver("v2x/status", status)
     actuation = actuation_pb2.ActuationStatus(mode=actuation_pb2.DRIVING_MODE_MANUAL,

@@ -30,8 +30,21 @@ def test_the_stations_carry_link_statistics_and_trust_from_the_v2x_status(gatewa
     assert by_id[4242]["state"] == "active" and by_id[4242]["trust"] == 0.9 and by_id[4242]["verified"]
     assert by_id[4242]["reception_ratio"] == 0.98 and by_id[4242]["message_rate_hz"] == 25.0
     assert by_id[99]["state"] == "lost"
-    assert (stations["active_count"], stations["lost_count"]) == (1, 1)
+    assert (stations["active_count"], stations["lost_count"]) == (1, 2)
     assert stations["rejected_by_reason"] == {"implausible_speed": 3}
+
+
+def test_each_station_shows_whether_it_signs_and_how_its_signatures_and_signer_checked_out(gateway):
+    by_id = {s["station_id"]: s for s in gateway.http.get("/v2x/stations").json()["stations"]}
+    heard, refused = by_id[4242], by_id[666]
+    assert (heard["signed"], heard["verified"], heard["trusted"]) == (True, True, True)
+    assert (heard["messages_signed"], heard["messages_verified"], heard["messages_trusted"],
+            heard["signature_failures"]) == (250, 249, 249, 1)
+    assert (refused["signed"], refused["verified"], refused["trusted"]) == (True, False, False)
+    assert (refused["messages_refused_by_security"], refused["messages_untrusted"]) == (12, 12)
+    assert refused["last_security_reason"] == "untrusted"
+    # the trust is the scene's, which knows the station's packets fail security
+    assert refused["trust"] == 0.05
 
 
 def test_scene_objects_carry_each_property_s_confidence_and_unknown_ones_as_null(gateway):

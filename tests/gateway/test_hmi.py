@@ -36,6 +36,11 @@ def test_with_the_operator_s_token_the_mode_request_is_sent_and_published(make_g
     page.goto(f"http://127.0.0.1:{gateway.port}/")
     page.wait_for_function("window.hmi.frames > 0")
     assert "cooperative: unavailable — slow enough to engage" in page.text_content("#availability")
+    stations = page.text_content("#stations")
+    assert "#4242 active" in stations and "signed, verified, trusted" in stations
+    assert "#666 lost" in stations and "signed, not verified, not trusted (untrusted)" in stations
+    # a station only ever refused was never a partner: no "lost" alert for it
+    assert not any("666" in alert["text"] for alert in page.evaluate("window.hmi.alerts"))
     page.fill("#token", OPERATOR_TOKEN)
     page.select_option("#mode-select", "cooperative")
     page.click("#mode-button")

@@ -131,7 +131,7 @@ def test_v2x_figures_come_from_each_vehicles_last_status_when_there_is_one():
         early.header.sample_time_s = 0.5
         late = v2x_pb2.V2xStatus(packets_sent=sent, packets_received=sent - 1, rejected_by_reason={"malformed_gn": 2})
         late.header.sample_time_s = 1.0
-        late.stations.add(station_id=1, reception_ratio=ratio, update_delay_p95_s=delay_s)
+        late.stations.add(station_id=1, reception_ratio=ratio, update_delay_p95_s=delay_s, messages_received=sent)
         messages.add(f"coopdrive/{vehicle_id}/v2x/status", late)
         messages.add(f"coopdrive/{vehicle_id}/v2x/status", early)
     metrics = score_messages(messages)
@@ -139,6 +139,30 @@ def test_v2x_figures_come_from_each_vehicles_last_status_when_there_is_one():
         (22, 20, 4)
     assert metrics["v2x_reception_ratio_min"] == pytest.approx(0.8)
     assert metrics["v2x_update_delay_p95_max_s"] == pytest.approx(0.3)
+
+
+def test_a_stack_whose_packets_every_other_stack_refuses_has_no_listeners_and_the_refusals_are_counted():
+    from coopdrive.v1 import v2x_pb2
+    from tests.judging.synthetic import two_car_frames
+
+    messages = RunMessages()
+    for t, vehicles in two_car_frames():
+        for vehicle, station_id in zip(vehicles, (3001, 3002)):
+            vehicle["station_id"] = station_id
+        messages.add("coopdrive/world/ground_truth", truth_at(t, vehicles))
+    # the leader (3001) refuses everything of the follower's (3002) as untrusted; the follower hears the leader
+    leader = v2x_pb2.V2xStatus(rejected_by_reason={"unknown_issuer": 7, "untrusted": 5, "certificate_expired": 2})
+    leader.stations.add(station_id=3002, messages_received=0, messages_refused_by_security=12)
+    follower = v2x_pb2.V2xStatus()
+    follower.stations.add(station_id=3001, messages_received=40, reception_ratio=0.9)
+    messages.add("coopdrive/leader/v2x/status", leader)
+    messages.add("coopdrive/follower/v2x/status", follower)
+    metrics = score_messages(messages)
+    assert (metrics["v2v_listeners_leader"], metrics["v2v_listeners_follower"]) == (1.0, 0.0)
+    assert metrics["v2v_unheard_stacks"] == 1
+    assert (metrics["v2x_rejected_untrusted"], metrics["v2x_rejected_certificate_expired"]) == (12, 2)
+    # the refused station has no link to judge: the worst reception is the heard one's
+    assert metrics["v2x_reception_ratio_min"] == pytest.approx(0.9)
 
 
 def test_an_ego_state_that_says_it_is_lost_is_left_out_of_the_position_rmse():

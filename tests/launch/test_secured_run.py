@@ -3,8 +3,10 @@
 import pytest
 
 from coopdrive.launch.run import RunOptions, build_specs
+from coopdrive.launch.scenario_source import resolve_scenario
 from coopdrive.services.sim.scenario_config import ScenarioError
 from coopdrive.services.v2x.security.pki import load_test_pki
+from coopdrive.services.v2x.timebase import tai_ms_from_utc
 
 
 def specs_of(tmp_path, **options):
@@ -47,3 +49,24 @@ def test_the_built_in_follow_world_refuses_security_for_want_of_a_v2x_service(tm
     with pytest.raises(ScenarioError, match="no v2x service"):
         build_specs(RunOptions(scenario="follow", security="sign_only"), tmp_path)
 
+
+
+EXPIRY_S = 3.0
+
+
+def test_a_ticket_expired_fault_gives_the_vehicle_tickets_that_end_at_the_fault_s_start(tmp_path):
+    fault = {"type": "ticket_expired", "vehicle_id": "a1", "start_s": EXPIRY_S}
+    specs_of(tmp_path, security="verify_required", untrusted=("a2",), extra_faults=(fault,))
+    epoch_tai_s = tai_ms_from_utc(resolve_scenario("merge").config.utc_epoch) // 1000
+    trusted, untrusted = load_test_pki(tmp_path / "pki"), load_test_pki(tmp_path / "pki" / "untrusted")
+    assert len(trusted.tickets["a1"]) == 3
+    for ticket, _ in trusted.tickets["a1"]:
+        assert ticket.valid_until_s == epoch_tai_s + EXPIRY_S and ticket.valid_from_s < epoch_tai_s
+    # the others keep tickets valid for days; the untrusted stack's PKI is left as it was
+    assert all(ticket.valid_until_s > epoch_tai_s + 3600 for ticket, _ in trusted.tickets["b1"])
+    assert all(ticket.valid_until_s > epoch_tai_s + 3600 for ticket, _ in untrusted.tickets["a2"])
+
+
+def test_a_ticket_expired_fault_without_security_is_refused(tmp_path):
+    with pytest.raises(ScenarioError, match="ticket_expired needs --security"):
+        specs_of(tmp_path, extra_faults=({"type": "ticket_expired", "vehicle_id": "a1", "start_s": 1.0},))

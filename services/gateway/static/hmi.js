@@ -47,9 +47,10 @@ function watchForAlerts(previous, frame) {
   if (hadLead !== hasLead) alertOperator(hasLead ? "Vehicle ahead" : "No vehicle ahead");
   if (frame.time_gap_s !== null && frame.time_gap_s < SHORT_TIME_GAP_S &&
       !(previous.time_gap_s !== null && previous.time_gap_s < SHORT_TIME_GAP_S)) alertOperator("Short time gap");
-  const lostBefore = new Set(previous.stations.filter((s) => s.state === "lost").map((s) => s.station_id));
+  // Only a partner we heard can be lost: a station listed only because its packets are refused never was one.
+  const activeBefore = new Set(previous.stations.filter((s) => s.state === "active").map((s) => s.station_id));
   for (const s of frame.stations) {
-    if (s.state === "lost" && !lostBefore.has(s.station_id)) alertOperator(`V2V partner ${s.station_id} lost`);
+    if (s.state === "lost" && activeBefore.has(s.station_id)) alertOperator(`V2V partner ${s.station_id} lost`);
   }
   if (previous.planner_state !== frame.planner_state && frame.planner_state) {
     $("alert").textContent = `Planner: ${frame.planner_state}`;
@@ -177,8 +178,15 @@ function drawPanels(frame) {
   listItems($("availability"), frame.availability.map((a) => a.available
     ? [`${a.mode}: available`, "yes"] : [`${a.mode}: unavailable — ${a.unmet_condition || "unknown"}`, "no"]));
   listItems($("stations"), frame.stations.length ? frame.stations.map((s) =>
-    [`#${s.station_id} ${s.state}, trust ${fmt(s.trust, 2)}, reception ${fmt(s.reception_ratio * 100, 0)}%`,
-     s.state === "active" ? "yes" : "no"]) : [["none heard", "muted"]]);
+    [`#${s.station_id} ${s.state}, trust ${fmt(s.trust, 2)}, reception ${fmt(s.reception_ratio * 100, 0)}%, `
+     + securityText(s), s.state === "active" ? "yes" : "no"]) : [["none heard", "muted"]]);
+}
+
+// What the station's last packet showed: unsigned, or signed and how far it checked out (and why not).
+function securityText(s) {
+  if (!s.signed) return s.last_security_reason ? `unsigned (${s.last_security_reason})` : "unsigned";
+  const checks = [s.verified ? "verified" : "not verified", s.trusted ? "trusted" : "not trusted"].join(", ");
+  return `signed, ${checks}` + (s.last_security_reason ? ` (${s.last_security_reason})` : "");
 }
 
 function render(frame) {

@@ -138,6 +138,20 @@ def issue_expired_ticket(pki: TestPki, vehicle: str) -> Ticket:
     return ticket
 
 
+def issue_expiring_tickets(pki: TestPki, vehicle: str, expiry_tai_s: int, not_before_tai_s: int) -> list[Ticket]:
+    """Fault: replace the vehicle's tickets (same count, same files) by ones valid from at most not_before_tai_s
+    until exactly expiry_tai_s (TAI seconds), e.g. a simulated run's ticket_expired fault."""
+    hours = max(1, -(-(expiry_tai_s - not_before_tai_s) // 3600))
+    folder = pki.directory / "vehicles" / vehicle
+    tickets = []
+    for index in range(len(pki.tickets[vehicle])):
+        ticket = pki.issue_ticket(f"{vehicle}-{index}", start_s=expiry_tai_s - hours * 3600, duration_hours=hours)
+        _write(folder, f"ticket-{index}", *ticket)
+        tickets.append(ticket)
+    pki.tickets[vehicle] = tickets
+    return tickets
+
+
 def tamper_packet(secured_packet: bytes, bit_in_message: int = 0) -> bytes:
     """Fault: the secured packet with one bit of its signed GN payload flipped, counted from the payload's end
     (bit 0: the last bit of the facility message), as a man in the middle changing a value would."""

@@ -18,6 +18,8 @@ def test_5000_mutated_packets_pass_the_receive_path_each_accepted_or_counted_und
     assert outcome.slowest_packet_cpu_s < SLOWEST_PACKET_CPU_S
     # every stage refused something: the security envelope, the decoder, plausibility; and something got through
     assert outcome.rejected["malformed_security_envelope"] > 0
+    # forged packets reach the signature check (sign_and_verify counts them, then delivers them marked)
+    assert outcome.security["security_invalid_signature"] > 0 and outcome.security["security_verified"] > 0
     assert outcome.rejected["unknown_btp_port"] > 0 and outcome.rejected["malformed_asn1"] > 0
     assert sum(outcome.rejected[reason.value] for reason in PlausibilityReason) > 0
     assert outcome.accepted > 0 and outcome.stations_listed_max > 0

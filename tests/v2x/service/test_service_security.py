@@ -4,6 +4,7 @@ import random
 import time
 from datetime import datetime, timezone
 
+import dpkt
 import pytest
 from pydantic import ValidationError
 
@@ -13,7 +14,7 @@ from coopdrive.services.v2x.reasons import RejectReason
 from coopdrive.services.v2x.security.profile import SecurityMode
 from coopdrive.services.v2x.security.run_setup import security_overrides
 from coopdrive.services.v2x.service import V2xService
-from coopdrive.v1 import ego_pb2
+from coopdrive.v1 import ego_pb2, v2x_pb2
 
 from .streams import REMOTE_STATION_ID, cam_packet, remote_cam
 from .test_service_udp import WAIT_S, radio, start_service  # noqa: F401  (fixtures)
@@ -45,7 +46,7 @@ def station(start_service, overrides):  # noqa: F811
     def start(name: str, **extra):
         station_id, mac = STATIONS[name]
         return start_service(START_S, station_id=station_id, vehicle_mac=mac, clock_epoch_utc=epoch,
-                             pcap_path=None, send_iclcm=False, **{**overrides[name], **extra})
+                             send_iclcm=False, **{"pcap_path": None, **overrides[name], **extra})
 
     return start
 
@@ -80,6 +81,9 @@ def test_two_stations_in_verify_required_with_tickets_of_one_pki_hear_each_other
     assert [cam.station_id for cam in a_ctx.messages("v2x/cam")] == [STATIONS["b"][0]]
     assert rejected(a_ctx) == rejected(b_ctx) == {}
     assert b.counters["security_verified"] == 1
+    [a_stats] = b_ctx.messages("v2x/status")[-1].stations
+    assert (a_stats.signed, a_stats.verified, a_stats.trusted, a_stats.last_security_reason) == (True, True, True, "")
+    assert (a_stats.messages_signed, a_stats.messages_verified, a_stats.messages_trusted) == (1, 1, 1)
 
 
 def test_a_station_with_an_untrusted_ticket_is_dropped_with_its_reason_counted(station, radio):  # noqa: F811
@@ -88,7 +92,13 @@ def test_a_station_with_an_untrusted_ticket_is_dropped_with_its_reason_counted(s
     assert b_ctx.messages("v2x/cam") == []
     assert rejected(b_ctx) == {RejectReason.UNKNOWN_ISSUER.value: 1}
     assert b.counters[f"rejected_{RejectReason.UNKNOWN_ISSUER.value}"] == 1
-    assert [s.station_id for s in b_ctx.messages("v2x/status")[-1].stations] == []
+    # listed, never heard: refused by the security mode, signed by a signer nobody trusts
+    [rogue_stats] = b_ctx.messages("v2x/status")[-1].stations
+    assert (rogue_stats.station_id, rogue_stats.state) == (STATIONS["rogue"][0], v2x_pb2.LINK_STATE_LOST)
+    assert (rogue_stats.messages_signed, rogue_stats.messages_refused_by_security, rogue_stats.messages_trusted,
+            rogue_stats.messages_untrusted) == (1, 1, 0, 1)
+    assert (rogue_stats.signed, rogue_stats.trusted, rogue_stats.messages_received) == (True, False, 0)
+    assert rogue_stats.last_security_reason == RejectReason.UNKNOWN_ISSUER.value
 
 
 def test_the_station_with_the_untrusted_ticket_still_hears_and_verifies_the_others(station, radio):  # noqa: F811
@@ -121,6 +131,10 @@ def test_every_sampled_single_bit_flip_of_a_signed_cam_is_rejected_with_a_counte
     assert sum(counts.values()) == FLIPPED_BITS_SAMPLED
     assert set(counts) <= {reason.value for reason in RejectReason}
     assert RejectReason.INVALID_SIGNATURE.value in counts
+    # the flips that left the sender readable count against station a, invalid signatures among them
+    [a_stats] = b_ctx.messages("v2x/status")[-1].stations
+    assert a_stats.station_id == STATIONS["a"][0] and 0 < a_stats.signature_failures <= counts["invalid_signature"]
+    assert 0 < a_stats.messages_refused_by_security <= FLIPPED_BITS_SAMPLED
     # the untouched packet still passes afterwards: the forgeries spoiled nothing
     deliver(b, b_ctx, radio, packet)
     assert [cam.station_id for cam in b_ctx.messages("v2x/cam")] == [STATIONS["a"][0]]
@@ -158,3 +172,12 @@ def test_a_security_config_error_names_the_key(overrides, security, key):
                 for name, value in security.items()}
     with pytest.raises(ValidationError, match=key):
         V2xService.Config.model_validate({"security": security})
+
+
+def test_a_received_signed_cam_keeps_its_sender_s_mac_in_our_pcap(station, radio, tmp_path):  # noqa: F811
+    (a, a_ctx), (b, b_ctx) = station("a"), station("b", pcap_path=str(tmp_path / "b.pcap"))
+    deliver(b, b_ctx, radio, sent_cam(a, a_ctx, radio))
+    b.stop()
+    with open(tmp_path / "b.pcap", "rb") as stream:
+        [(_, frame)] = dpkt.pcap.Reader(stream)
+    assert bytes(dpkt.ethernet.Ethernet(frame).src) == bytes.fromhex(STATIONS["a"][1].replace(":", ""))

@@ -1,0 +1,182 @@
+"""Mutated real packets through the v2x service's whole receive path: security envelope, decoder, plausibility,
+station table, status, pcap and bus hand-over (V2xService.on_datagram, flush_received, publish_status).
+
+Seeds: every GN packet of the three real captures in shared/data/v2x (signed CAMs and a SPATEM from the road,
+ms-van3t CAMs and CPMs, FlexStack CAMs, VAMs and beacons) and our own CAM, DENM and iCLCM, unsigned and signed
+with a test PKI ticket. The CI test runs FUZZ_TEST_PACKETS of them; the full run is
+
+    .venv/bin/python -m tests.v2x.service.receive_fuzz --packets 100000
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import socket
+import tempfile
+import time
+from collections import Counter
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from coopdrive.services.v2x.reasons import V2xDecodeError
+from coopdrive.services.v2x.replay import capture_packets
+from coopdrive.services.v2x.security.pki import create_test_pki, tamper_packet
+from coopdrive.services.v2x.security_verdict import is_secured
+from coopdrive.services.v2x.service import V2xService
+from coopdrive.services.v2x.timebase import generation_delta_time_ms, tai_ms_from_unix_s
+from tests.shared_data import shared_file
+from tests.v2x.security.signed import CODEC, cam, denm_packet, gn_params, iclcm_packet
+from tests.v2x.service.test_service_udp import FakeContext
+from tests.v2x.test_fuzz import mutate as mutate_gn, seeds as unsigned_seeds
+
+CAPTURES = ("v2x/considerit_signed_testvectors.pcap", "v2x/msvan3t_cam_cpm_trace.pcapng",
+            "v2x/flexstack_cam_vam_beacons.pcap")
+# Real packets taken from each capture (the ms-van3t trace holds 929 alike).
+PER_CAPTURE = 60
+SEED = 25
+# Service time per packet: 100 000 packets span 20 s, so stations come, go LOST and are forgotten.
+STEP_S = 0.0002
+FLUSH_EVERY = 500
+US_PER_MS = 1000
+# test_fuzz.mutate edits fixed offsets up to here (BTP port, ITS header of an SHB packet).
+MUTATE_GN_MIN_BYTES = 48
+TAMPER_SHARE = 0.25
+# Bits counted from the end of the signed facility message (tamper_packet).
+TAMPER_BITS = 64
+
+
+@dataclass
+class FuzzOutcome:
+    packets: int = 0
+    accepted: int = 0
+    own: int = 0
+    rejected: Counter = field(default_factory=Counter)
+    # CPU time of this thread: the machine may be shared, a stall shows as CPU spent (or as no end at all).
+    slowest_packet_cpu_s: float = 0.0
+    cpu_s: float = 0.0
+    elapsed_s: float = 0.0
+    stations_listed_max: int = 0
+    # The security layer's own counts (sign_and_verify delivers a packet that failed, marked): security_<reason>.
+    security: dict = field(default_factory=dict)
+
+
+def real_seeds() -> list[bytes]:
+    packets = []
+    for name in CAPTURES:
+        packets += [packet.gn_packet for packet in capture_packets(shared_file(name))][:PER_CAPTURE]
+    return packets
+
+
+def signed_seeds(pki_dir: Path, now_s: float) -> list[bytes]:
+    """A fresh CAM (generated now), a DENM and an iCLCM of one station, signed: the first with its full
+    certificate, the others with its digest."""
+    pki = create_test_pki(pki_dir, ["fuzzer", "ego"])
+    signer = pki.signer("fuzzer", 4242)
+    now_tai_ms = tai_ms_from_unix_s(now_s)
+    content = cam(signer.station_id)
+    content.generation_delta_time_ms = generation_delta_time_ms(now_tai_ms)
+    fresh_cam = CODEC.encode_cam(content, gn_params(signer))
+    return [signer.sign(packet, now_tai_ms * US_PER_MS)
+            for packet in (fresh_cam, denm_packet(signer), iclcm_packet(signer), fresh_cam)]
+
+
+def mutate(rng: random.Random, packet: bytes) -> bytes:
+    """test_fuzz's mutations; a packet too short for its fixed offsets (a beacon) gets bit flips or a cut; one
+    secured packet in four has one bit of its signed message flipped (a forgery the signature must catch)."""
+    if is_secured(packet) and rng.random() < TAMPER_SHARE:
+        try:
+            return tamper_packet(packet, rng.randrange(TAMPER_BITS))
+        except V2xDecodeError:
+            pass
+    if len(packet) >= MUTATE_GN_MIN_BYTES:
+        try:
+            return mutate_gn(rng, packet)
+        except V2xDecodeError:
+            pass  # its "random ASN.1 behind valid headers" rebuilds the GN packet: not for secured ones
+    data = bytearray(packet)
+    if rng.random() < 0.5:
+        return bytes(data[:rng.randrange(len(data))])
+    for _ in range(rng.randint(1, 4)):
+        data[rng.randrange(len(data))] ^= 1 << rng.randrange(8)
+    return bytes(data)
+
+
+def start_service(pki_dir: Path, pcap_path: Path, now_s: float) -> tuple[V2xService, FakeContext, socket.socket]:
+    radio = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    radio.bind(("127.0.0.1", 0))
+    ctx = FakeContext(now_s)
+    config = V2xService.Config.model_validate({
+        "link": {"radio_port": radio.getsockname()[1], "listen_port": 0}, "station_id": 1001,
+        "vehicle_mac": "02:00:00:00:10:01",
+        "pcap_path": str(pcap_path), "send_iclcm": False,
+        "security": {"mode": "sign_and_verify", "pki_dir": str(pki_dir), "ticket": "ego"}})
+    service = V2xService(config, ctx)
+    service.start()
+    return service, ctx, radio
+
+
+def fuzz(service: V2xService, ctx: FakeContext, groups: list[list[bytes]], packets: int,
+         seed: int = SEED) -> FuzzOutcome:
+    """Each packet a mutation (or, one time in twenty, the original) of a seed of a group drawn evenly."""
+    rng = random.Random(seed)
+    outcome = FuzzOutcome()
+    started, started_cpu = time.perf_counter(), time.thread_time()
+    for index in range(packets):
+        original = rng.choice(rng.choice(groups))
+        data = original if rng.random() < 0.05 else mutate(rng, original)
+        before = time.thread_time()
+        service.on_datagram(data)
+        outcome.slowest_packet_cpu_s = max(outcome.slowest_packet_cpu_s, time.thread_time() - before)
+        ctx.time_s += STEP_S
+        if index % FLUSH_EVERY == FLUSH_EVERY - 1:
+            _flush(service, ctx, outcome)
+    _flush(service, ctx, outcome)
+    outcome.elapsed_s, outcome.cpu_s = time.perf_counter() - started, time.thread_time() - started_cpu
+    reception = service.reception
+    outcome.packets, outcome.own = reception.packets_received, reception.own_packets_ignored
+    outcome.rejected = Counter(reception.rejected_by_reason)
+    outcome.accepted = sum(count for name, count in service.counters.items() if name.startswith("received_"))
+    outcome.security = {name: count for name, count in service.counters.items() if name.startswith("security_")}
+    return outcome
+
+
+def _flush(service: V2xService, ctx: FakeContext, outcome: FuzzOutcome) -> None:
+    service.flush_received(ctx.time_s)
+    service.publish_status(ctx.time_s)
+    status = ctx.messages("v2x/status")[-1]
+    outcome.stations_listed_max = max(outcome.stations_listed_max, len(status.stations))
+    ctx.published.clear()
+    ctx.sample_times.clear()
+
+
+def run(packets: int, folder: Path) -> FuzzOutcome:
+    now_s = time.time()
+    groups = [real_seeds(), signed_seeds(folder / "pki", now_s), unsigned_seeds()]
+    service, ctx, radio = start_service(folder / "pki", folder / "fuzz.pcap", now_s)
+    try:
+        return fuzz(service, ctx, groups, packets)
+    finally:
+        service.stop()
+        radio.close()
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--packets", type=int, default=100_000)
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as folder:
+        outcome = run(args.packets, Path(folder))
+    print(f"{outcome.packets} packets in {outcome.elapsed_s:.1f} s, {outcome.cpu_s:.1f} s of CPU "
+          f"({outcome.packets / outcome.cpu_s:.0f}/s of CPU), slowest {outcome.slowest_packet_cpu_s * 1000:.1f} ms; "
+          f"accepted {outcome.accepted}, own {outcome.own}, "
+          f"rejected {sum(outcome.rejected.values())} under {len(outcome.rejected)} reasons; "
+          f"up to {outcome.stations_listed_max} stations listed")
+    for reason, count in outcome.rejected.most_common():
+        print(f"  {reason}: {count}")
+    print("security layer: " + ", ".join(f"{name.removeprefix('security_')} {count}"
+                                          for name, count in sorted(outcome.security.items())))
+
+
+if __name__ == "__main__":
+    main()
