@@ -51,6 +51,8 @@ class FuzzOutcome:
     packets: int = 0
     accepted: int = 0
     own: int = 0
+    # GN beacons: no message to deliver, nor a rejection; they update the neighbour's position.
+    beacons: int = 0
     rejected: Counter = field(default_factory=Counter)
     # CPU time of this thread: the machine may be shared, a stall shows as CPU spent (or as no end at all).
     slowest_packet_cpu_s: float = 0.0
@@ -135,6 +137,7 @@ def fuzz(service: V2xService, ctx: FakeContext, groups: list[list[bytes]], packe
     outcome.elapsed_s, outcome.cpu_s = time.perf_counter() - started, time.thread_time() - started_cpu
     reception = service.reception
     outcome.packets, outcome.own = reception.packets_received, reception.own_packets_ignored
+    outcome.beacons = reception.beacons_received
     outcome.rejected = Counter(reception.rejected_by_reason)
     outcome.accepted = sum(count for name, count in service.counters.items() if name.startswith("received_"))
     outcome.security = {name: count for name, count in service.counters.items() if name.startswith("security_")}
@@ -169,7 +172,7 @@ def main() -> None:
         outcome = run(args.packets, Path(folder))
     print(f"{outcome.packets} packets in {outcome.elapsed_s:.1f} s, {outcome.cpu_s:.1f} s of CPU "
           f"({outcome.packets / outcome.cpu_s:.0f}/s of CPU), slowest {outcome.slowest_packet_cpu_s * 1000:.1f} ms; "
-          f"accepted {outcome.accepted}, own {outcome.own}, "
+          f"accepted {outcome.accepted}, own {outcome.own}, beacons {outcome.beacons}, "
           f"rejected {sum(outcome.rejected.values())} under {len(outcome.rejected)} reasons; "
           f"up to {outcome.stations_listed_max} stations listed")
     for reason, count in outcome.rejected.most_common():

@@ -1,7 +1,7 @@
 """Fuzzing reaches the v2x service's receive path: 5000 mutated real and own packets (the full run,
 `python -m tests.v2x.service.receive_fuzz`, takes 100 000) through V2xService.on_datagram, the station table and
-the status; nothing raises, no packet stalls, and every packet is accepted, ignored as ours or rejected under
-a reason."""
+the status; nothing raises, no packet stalls, and every packet is accepted, ignored as ours, taken as a beacon or
+rejected under a reason."""
 
 from coopdrive.services.v2x.plausibility import PlausibilityReason
 
@@ -14,7 +14,7 @@ SLOWEST_PACKET_CPU_S = 0.1
 def test_5000_mutated_packets_pass_the_receive_path_each_accepted_or_counted_under_a_reason(tmp_path):
     outcome = run(PACKETS, tmp_path)
     assert outcome.packets == PACKETS
-    assert outcome.accepted + outcome.own + sum(outcome.rejected.values()) == PACKETS
+    assert outcome.accepted + outcome.own + outcome.beacons + sum(outcome.rejected.values()) == PACKETS
     assert outcome.slowest_packet_cpu_s < SLOWEST_PACKET_CPU_S
     # every stage refused something: the security envelope, the decoder, plausibility; and something got through
     assert outcome.rejected["malformed_security_envelope"] > 0
