@@ -2,4 +2,4 @@
 
 COUNT_METRICS = ("collisions", "safety_circle_violations", "id_switches", "truth_samples", "participants_lost",
                  "automation_lost", "v2x_packets_sent", "v2x_packets_received", "v2x_packets_rejected",
-                 "gnss_jumps")
+                 "gnss_jumps", "service_crashes", "service_restarts")

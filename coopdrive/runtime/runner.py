@@ -38,6 +38,7 @@ from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
 from coopdrive.runtime.master import ClockMaster
 from coopdrive.runtime.participants import ParticipantTracker
 from coopdrive.runtime.pipeline import participant_name
+from coopdrive.runtime.rejoin import MidRunJoin
 from coopdrive.runtime.service import SequenceCounter, Service, ServiceConfig
 from coopdrive.runtime.timers import TriggerSet
 from coopdrive.v1 import diagnostics_pb2, sim_pb2
@@ -101,6 +102,9 @@ class ServiceRunner:
         self._started_monotonic = time.monotonic()
         self._dispatcher = StepDispatcher(service_cls.name, vehicle_id)
         self._barrier = StepBarrier(service_cls.name)
+        self._join = MidRunJoin(self._barrier)
+        # The last step marker sent, re-sent to a participant that joins mid-run.
+        self._last_marker: sim_pb2.StepDone | None = None
         self._pending_clocks: deque[_ReleasedStep] = deque()
         # Lockstep: what a step publishes, held back until its marker can go with it (publish_step_done).
         self._step_outbox: list[tuple[str, str, Message]] | None = None
@@ -269,7 +273,7 @@ class ServiceRunner:
                     self.dispatch(envelope)
                 self._triggers.run_due(payload.time_s)
         elif kind is _Event.DONE:
-            self._barrier.mark_done(*payload)
+            self._join.on_marker(*payload)
         elif kind is _Event.ALIVE:
             for handler in self._liveliness_handlers:
                 handler(*payload)
@@ -289,11 +293,19 @@ class ServiceRunner:
             self.log.exception("call_soon function failed")
 
     def _queue_clock(self, clock: sim_pb2.SimClock) -> None:
+        started = self._join.started
+        joining = self._join.on_clock(clock.step, frozenset(clock.participants), clock.sequences)
+        if not started and self._join.joined_step > 0:
+            self._start_mid_run(clock)
+            return
+        if joining:
+            self._resend_last_marker()
         if clock.step <= self._last_step:
             return
         # Few of the simulator's topics are ours: look those up rather than walk the whole protobuf map.
         counted = clock.sequences
-        released = _ReleasedStep(clock.step, clock.time_s, clock.step_s, frozenset(clock.participants),
+        # Those joining take part from the next step on.
+        released = _ReleasedStep(clock.step, clock.time_s, clock.step_s, frozenset(clock.participants) - joining,
                                  {key: counted[key] for key in self._barrier.subscribed if key in counted})
         # Participants only ever leave a run: one missing from the newest clock is gone for the older pending
         # steps too, or this service would wait forever for the step marker of a crashed one.
@@ -303,6 +315,20 @@ class ServiceRunner:
             self._pending_clocks[-1] = released  # re-sent with fewer participants after a crash
         else:
             self._pending_clocks.append(released)
+
+    def _start_mid_run(self, clock: sim_pb2.SimClock) -> None:
+        """Restarted after a crash: the run goes on from the step after this clock's (see MidRunJoin)."""
+        start_s = (clock.step + 1) * clock.step_s
+        self._last_step = clock.step
+        self._clock.set(clock.time_s)
+        self._triggers.start_at(start_s)
+        self._dispatcher.start_at(start_s)
+        self.log.info("joined the run at step %d (%.3f s)", clock.step + 1, start_s)
+
+    def _resend_last_marker(self) -> None:
+        if self._last_marker is not None:
+            for topic in self._stepped_topics:
+                self.bus.put_if_subscribed(self.bus.layout.step_done(self.vehicle_id, topic), self._last_marker)
 
     def _run_ready_steps(self) -> None:
         while self._pending_clocks:
@@ -371,6 +397,7 @@ class ServiceRunner:
         marker.header.vehicle_id = self.vehicle_id
         marker.header.sender = self._service_name
         attachment = marker.SerializeToString()
+        self._last_marker = marker
         outbox, self._step_outbox = self._step_outbox or [], None
         last_of_topic = {(vehicle_id, topic): index for index, (vehicle_id, topic, _) in enumerate(outbox)}
         for index, (vehicle_id, topic, message) in enumerate(outbox):

@@ -11,7 +11,7 @@ import math
 from typing import Sequence
 
 from coopdrive.services.sim import metrics as judging
-from coopdrive.services.sim.fault_config import V2vLoss
+from coopdrive.services.sim.fault_config import ServiceCrash, V2vLoss
 from coopdrive.services.sim.roadside_unit import RsuEventKind
 from coopdrive.services.sim.scenario_config import Mission, ScenarioConfig, VehicleRole
 from coopdrive.services.sim.truth_series import TruthSeries
@@ -68,6 +68,9 @@ class MissionJudge:
                 string_end_s=judging_config.string_end_s).items() if math.isfinite(value)}
             self._metrics["collisions"] = float(self.collisions)
             self._metrics["automation_lost"] = float(len(self.automation_lost_s))
+            fallbacks_s = self.crash_to_fallback_s()
+            if fallbacks_s:
+                self._metrics["crash_to_safe_stop_s"] = max(fallbacks_s.values())
             if self.config.mission is Mission.MERGE:
                 self._metrics.update(self._merge_metrics())
             if self.config.mission is Mission.EMERGENCY and math.isfinite(self.corridor_close_time_s()):
@@ -77,13 +80,25 @@ class MissionJudge:
                 self._metrics["crossing_time_s"] = max(crossing_times.values())
         return self._metrics
 
+    def crash_to_fallback_s(self) -> dict[str, float]:
+        """Per stack vehicle that gave the car back to its driver after the scenario crashed one of its services,
+        how long after the first such crash. That fallback (actuation's safe stop) is the reaction a crash is
+        there to test, so it is reported here and does not fail the run; a collision still does."""
+        crash_starts_s: dict[str, float] = {}
+        for fault in self.config.faults:
+            if isinstance(fault, ServiceCrash):
+                crash_starts_s[fault.vehicle_id] = min(fault.start_s, crash_starts_s.get(fault.vehicle_id, math.inf))
+        return {vehicle_id: lost_s - crash_starts_s[vehicle_id] for vehicle_id, lost_s in self.automation_lost_s.items()
+                if lost_s >= crash_starts_s.get(vehicle_id, math.inf)}
+
     def verdict(self) -> tuple[bool, str]:
         if not self.frames:
             return False, "the run ended before any ground truth"
         if self.collisions:
             return False, f"{self.collisions} collision(s)"
-        if self.automation_lost_s:
-            lost = ", ".join(f"{v} at {t:.1f} s" for v, t in sorted(self.automation_lost_s.items(), key=lambda kv: kv[1]))
+        unexpected = {v: t for v, t in self.automation_lost_s.items() if v not in self.crash_to_fallback_s()}
+        if unexpected:
+            lost = ", ".join(f"{v} at {t:.1f} s" for v, t in sorted(unexpected.items(), key=lambda kv: kv[1]))
             return False, f"automation lost: {lost}"
         mission = self.config.mission
         if mission is Mission.PLATOON:

@@ -137,7 +137,8 @@ class ScenarioFeed:
                                    wall_time_s=time.monotonic() - self.service.wall_start_s)
         for key, value in self.judge.metrics().items():
             result.metrics[key] = value
-        result.metrics["participants_lost"] = self.service.counters.get("participants_lost", 0)
+        for counter in ("participants_lost", "service_crashes", "service_restarts"):
+            result.metrics[counter] = self.service.counters.get(counter, 0)
         self.ctx.publish_for(WORLD_ID, "result", result)
         self.ctx.request_stop("scenario finished")
 
