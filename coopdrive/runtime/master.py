@@ -167,6 +167,7 @@ class ClockMaster:
             return
         self._wait_for(lambda: False, SETTLE_S)  # its subscriptions reach the publishers first
         self._participants = [p for p in self._settings.participants if p in self._participants or p == participant]
+        self._runner.barrier.mark_done(participant, self._step - 1)  # it has nothing before its first step
         self._runner.service.count("participants_restarted")
         self._runner.log.info("%s rejoined the run at step %d", participant, self._step)
         # A clock listing it for the first time tells it the step it joins from and has the others re-send their

@@ -35,7 +35,7 @@ from coopdrive.runtime.barrier import StepBarrier
 from coopdrive.runtime.clock import SimulationClock, WallClock
 from coopdrive.runtime.clock_subscription import ClockSubscription
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
-from coopdrive.runtime.master import ClockMaster
+from coopdrive.runtime.master import STALL_WARNING_S, ClockMaster
 from coopdrive.runtime.participants import ParticipantTracker
 from coopdrive.runtime.pipeline import participant_name
 from coopdrive.runtime.rejoin import MidRunJoin
@@ -112,6 +112,7 @@ class ServiceRunner:
         self._last_step = -1
         # (step, since when) the next pending step has been blocked by the barrier.
         self._blocked_since: tuple[int, float] | None = None
+        self._stall_warned_at = 0.0
         self._step_s = 0.0
         # From the first simulator clock: lockstep or paced to wall time; None before it.
         self._lockstep: bool | None = None
@@ -300,6 +301,8 @@ class ServiceRunner:
             return
         if joining:
             self._resend_last_marker()
+            for participant in joining:
+                self._barrier.mark_done(participant, clock.step)  # it has nothing before its first step
         if clock.step <= self._last_step:
             return
         # Few of the simulator's topics are ours: look those up rather than walk the whole protobuf map.
@@ -364,6 +367,9 @@ class ServiceRunner:
             self._blocked_since = (step, now)
             return False
         still_waiting_for_markers = self._barrier.missing(step, participants, markers_only=True)
+        if still_waiting_for_markers and now - max(self._blocked_since[1], self._stall_warned_at) > STALL_WARNING_S:
+            self._stall_warned_at = now  # as the simulator warns: says who holds a stuck run
+            self.log.warning("step %d still waits for %s", step, ", ".join(still_waiting_for_markers))
         if still_waiting_for_markers or now - self._blocked_since[1] < MESSAGE_WAIT_LIMIT_S:
             return False
         self.service.count("lockstep_messages_given_up")
