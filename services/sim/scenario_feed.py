@@ -74,7 +74,8 @@ class ScenarioFeed:
                 self.ctx.log.warning("rejected a CAN command frame from %s: %s", envelope.vehicle_id, error)
             return
         self.judge.observe_automation(envelope.vehicle_id, command.longitudinal_active, self.ctx.now_s())
-        self.judge.observe_mode(envelope.vehicle_id, command.driving_mode, self.ctx.now_s())
+        # When actuation sent it, not when the (feedback-delayed) world applies it.
+        self.judge.observe_mode(envelope.vehicle_id, command.driving_mode, envelope.message.header.sample_time_s)
         model = self.sim.objects.models[envelope.vehicle_id]
         accel = model.command_to_accel_mps2(command.throttle_ratio, command.brake_ratio,
                                             command.deceleration_request_mps2) if command.longitudinal_active else None
