@@ -310,8 +310,9 @@ class ServiceRunner:
         # Those joining take part from the next step on.
         released = _ReleasedStep(clock.step, clock.time_s, clock.step_s, frozenset(clock.participants) - joining,
                                  {key: counted[key] for key in self._barrier.subscribed if key in counted})
-        # Participants only ever leave a run: one missing from the newest clock is gone for the older pending
-        # steps too, or this service would wait forever for the step marker of a crashed one.
+        # Participants only leave the steps already queued (one that rejoins takes part from a later step): one
+        # missing from the newest clock is gone for the older pending steps too, or this service would wait
+        # forever for the step marker of a crashed one.
         for pending in self._pending_clocks:
             pending.participants &= released.participants
         if self._pending_clocks and self._pending_clocks[-1].step == released.step:
