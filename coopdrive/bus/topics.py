@@ -42,6 +42,8 @@ _ALL = [
     Topic("clock", sim_pb2.SimClock, "sim"),
     Topic("ground_truth", sim_pb2.GroundTruth, "sim"),
     Topic("result", sim_pb2.RunResult, "sim"),
+    # For the launcher, which owns the processes; no service waits for it.
+    Topic("service_fault", sim_pb2.ServiceFault, "sim", stepped=False),
     Topic("gnss/fix", gnss_pb2.GnssFix, "sim"),
     Topic("gnss/serial_mark", sim_pb2.WireMark, "sim"),
     Topic("radio/mark", sim_pb2.WireMark, "sim"),

@@ -46,6 +46,8 @@ class ServiceProcesses:
         self.processes: dict[str, subprocess.Popen] = {}
         # Participant -> the name of the process it runs in.
         self.process_of: dict[str, str] = {}
+        # Process name -> what it was started with, to start it again.
+        self._started_with: dict[str, tuple[list[ServiceSpec], list[str]]] = {}
 
     def start(self, spec: ServiceSpec) -> None:
         config_path = self._config_dir / f"{spec.vehicle_id}-{spec.service}.json"
@@ -60,7 +62,7 @@ class ServiceProcesses:
                                          for s in specs]))
         self._spawn(name, specs, ["group", str(spec_path)])
 
-    def _spawn(self, name: str, specs: list[ServiceSpec], arguments: list[str]) -> None:
+    def _spawn(self, name: str, specs: list[ServiceSpec], arguments: list[str], log_mode: str = "wb") -> None:
         command = [sys.executable, "-m", "coopdrive.cli", *arguments, "--connect", self._connect,
                    "--clock", self._clock, *self._clock_step]
         output = None
@@ -68,11 +70,12 @@ class ServiceProcesses:
             # A user who asks for the logs gets what the services tell at INFO, such as the planner's transitions.
             command.append("--verbose")
             self._log_dir.mkdir(parents=True, exist_ok=True)
-            output = open(self._log_dir / f"{name.replace('/', '-')}.log", "wb")
+            output = open(self._log_dir / f"{name.replace('/', '-')}.log", log_mode)
         environment = {"ZENOH_RUNTIME": SIMULATION_ZENOH_RUNTIME, **os.environ}
         self.processes[name] = subprocess.Popen(
             command, stdin=subprocess.DEVNULL, stdout=output, stderr=subprocess.STDOUT if output else None,
             start_new_session=True, env=environment)
+        self._started_with[name] = (specs, arguments)
         for spec in specs:
             self.process_of[spec.participant] = name
 
@@ -83,6 +86,16 @@ class ServiceProcesses:
     def kill(self, participant: str) -> None:
         """Kills the process running a service abruptly (fault injection: a service crash)."""
         self.processes[self.process_of[participant]].kill()
+
+    def restart(self, participant: str) -> None:
+        """Starts the process running a service again, as compose's `restart: on-failure` would after a crash;
+        its log goes on in the same file."""
+        name = self.process_of[participant]
+        old = self.processes[name]
+        if old.poll() is None:
+            old.kill()
+        old.wait()
+        self._spawn(name, *self._started_with[name], log_mode="ab")
 
     def stop_all(self) -> None:
         for process in self.processes.values():

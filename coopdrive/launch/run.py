@@ -24,8 +24,9 @@ from coopdrive.recording.writer import McapRecorder, config_metadata
 from coopdrive.runtime.registry import VEHICLE_STACK
 from coopdrive.services.sim.fault_config import TicketExpired
 from coopdrive.services.sim.radio_box import RadioPorts
-from coopdrive.services.sim.scenario_config import ScenarioConfig, ScenarioError
+from coopdrive.services.sim.scenario_config import ScenarioConfig, ScenarioError, load_scenario
 from coopdrive.services.sim.service import SimConfig
+from coopdrive.services.sim.service_crashes import crashed_participants
 from coopdrive.services.v2x.security.pki import issue_expiring_tickets, load_test_pki
 from coopdrive.services.v2x.security.profile import SecurityMode
 from coopdrive.services.v2x.security.run_setup import UNTRUSTED_SUBDIR, security_overrides
@@ -191,6 +192,8 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     hub.subscribe(WORLD_ID, "result", on_result)
     simulator = next(spec for spec in specs if spec.service == "sim")
     processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir, clock_step_s=simulator.config["step_s"])
+    # The simulator says when (service_crash faults, in simulated time); the launcher owns the processes.
+    hub.subscribe(WORLD_ID, "service_fault", lambda envelope: carry_out(processes, envelope.message))
     started = time.monotonic()
     try:
         start_processes(processes, specs, options)
@@ -222,20 +225,38 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     return results[0]
 
 
+def carry_out(processes: ServiceProcesses, fault: sim_pb2.ServiceFault) -> None:
+    """A service_crash falling due: kill the service's process, or start it again."""
+    if fault.participant not in processes.process_of:
+        return  # not a service of this run: the simulator leaves those out, so a stray message
+    if fault.restart:
+        processes.restart(fault.participant)
+    else:
+        processes.kill(fault.participant)
+
+
+def crashing_participants(specs: list[ServiceSpec]) -> set[str]:
+    """The services the run's service_crash faults kill."""
+    scenario_file = next(spec for spec in specs if spec.service == "sim").config.get("scenario_file")
+    return crashed_participants(load_scenario(scenario_file).faults) if scenario_file else set()
+
+
 def start_processes(processes: ServiceProcesses, specs: list[ServiceSpec], options: RunOptions) -> None:
     """The simulator alone; each stack as one process per service, or with several stacks (or when asked)
-    one process per vehicle: eight stacks of five services would be forty interpreters on a laptop."""
+    one process per vehicle: eight stacks of five services would be forty interpreters on a laptop. A service a
+    service_crash kills runs on its own, so that only it dies."""
+    crashing = crashing_participants(specs)
     by_vehicle: dict[str, list[ServiceSpec]] = {}
     for spec in specs:
         by_vehicle.setdefault(spec.vehicle_id, []).append(spec)
     stack_count = len(by_vehicle) - (WORLD_ID in by_vehicle)
     grouped = options.group_per_vehicle if options.group_per_vehicle is not None else stack_count > 1
     for vehicle_id, vehicle_specs in by_vehicle.items():
-        if grouped and vehicle_id != WORLD_ID:
-            processes.start_group(f"{vehicle_id}/group", vehicle_specs)
-        else:
-            for spec in vehicle_specs:
-                processes.start(spec)
+        alone = [spec for spec in vehicle_specs if not grouped or vehicle_id == WORLD_ID or spec.participant in crashing]
+        if len(alone) < len(vehicle_specs):
+            processes.start_group(f"{vehicle_id}/group", [spec for spec in vehicle_specs if spec not in alone])
+        for spec in alone:
+            processes.start(spec)
 
 
 def _full_config(spec: ServiceSpec) -> str:

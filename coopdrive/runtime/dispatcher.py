@@ -7,6 +7,7 @@ messages it produced live.
 from __future__ import annotations
 
 import heapq
+import math
 from dataclasses import dataclass, field
 
 from coopdrive.bus import Envelope
@@ -30,9 +31,20 @@ class StepDispatcher:
         self._own_vehicle = own_vehicle_id
         self._pending: list[_Pending] = []
         self._arrivals = 0
+        # Data sent before this time is dropped (see start_at).
+        self._start_s = -math.inf
+
+    def start_at(self, start_s: float) -> None:
+        """A service that joins a run mid-way (restarted after a crash) handles only what was sent from its first
+        step on: which older messages still reached its new subscriptions depends on wall timing."""
+        self._start_s = start_s
+        self._pending = [item for item in self._pending if item.sort_key[0] >= start_s - TIME_EPSILON_S]
+        heapq.heapify(self._pending)
 
     def add(self, envelope: Envelope) -> None:
         header = envelope.message.header
+        if header.sent_time_s < self._start_s - TIME_EPSILON_S:
+            return
         self._arrivals += 1
         sort_key = (header.sent_time_s, PIPELINE_RANK.get(header.sender, 99), envelope.topic,
                     envelope.vehicle_id, header.sequence, self._arrivals)

@@ -16,6 +16,18 @@ SETTLE_S = 0.3
 STALL_WARNING_S = 10.0
 # How long a step whose markers are all in may wait for the messages they count (as in runner.py).
 MESSAGE_WAIT_LIMIT_S = 5.0
+# How long a crash may take to end the service's process (its liveliness token gone).
+CRASH_TIMEOUT_S = 30.0
+
+
+@dataclass(frozen=True)
+class Outage:
+    """A participant's process killed before step crash_step and started again before restart_step (None:
+    never): the same steps whatever the wall clock, so a seed still gives one run."""
+
+    participant: str
+    crash_step: int
+    restart_step: int | None = None
 
 
 @dataclass
@@ -33,6 +45,7 @@ class ClockSettings:
     # world model subtracts the extra step from the actuators' dead time.
     feedback_delay_steps: int = 1
     startup_timeout_s: float = 60.0
+    outages: list[Outage] = field(default_factory=list)
 
 
 class ParticipantsMissing(RuntimeError):
@@ -54,6 +67,10 @@ class ClockMaster:
 
         def on_clock_failed(self, reason: str) -> None:
             """Called when the run cannot start (a participant never came up), before the error propagates."""
+
+        def on_outage(self, participant: str, restart: bool) -> None:
+            """An Outage falls due: have the participant's process killed (restart: started again). The clock
+            holds until its liveliness token is gone (restart: back)."""
 
     def __init__(self, runner: ServiceRunner):
         self._runner = runner
@@ -86,6 +103,8 @@ class ClockMaster:
                 lag = max(1, self._settings.feedback_delay_steps)
                 if self._step >= lag and not self._wait_for_step_done(self._step - lag):
                     break
+            if not self._carry_out_outages():
+                break
             if self._settings.paced or not self._settings.lockstep:
                 if not self._wait_until(wall_start + time_s / self._settings.realtime_factor):
                     break
@@ -110,9 +129,50 @@ class ClockMaster:
                 missing = sorted(set(self._participants) - self._alive)
                 raise ParticipantsMissing(f"services did not come up: {', '.join(missing)}")
             self._handle(self._runner.next_event(0.05))
-        settle_until = time.monotonic() + SETTLE_S
-        while time.monotonic() < settle_until:
-            self._handle(self._runner.next_event(settle_until - time.monotonic()))
+        self._wait_for(lambda: False, SETTLE_S)
+
+    def _wait_for(self, condition, timeout_s: float) -> bool:
+        """Handles events until condition() holds (True) or timeout_s has passed or the run stops (False)."""
+        deadline = time.monotonic() + timeout_s
+        while not condition():
+            remaining = deadline - time.monotonic()
+            if remaining <= 0 or self._runner.stopping:
+                return False
+            self._handle(self._runner.next_event(min(remaining, 0.05)))
+        return True
+
+    def _carry_out_outages(self) -> bool:
+        """The crashes and restarts due before this step; False when the run stopped meanwhile."""
+        for outage in self._settings.outages:
+            if outage.crash_step == self._step:
+                self._crash(outage.participant)
+            if outage.restart_step == self._step:
+                self._restart(outage.participant)
+        return not self._runner.stopping
+
+    def _crash(self, participant: str) -> None:
+        # What the service sent up to the last step is in before it dies, so its last outputs do not depend on
+        # how far it had got when the kill came.
+        if self._settings.lockstep and self._step > 0 and not self._wait_for_step_done(self._step - 1):
+            return
+        self._runner.service.on_outage(participant, restart=False)
+        if not self._wait_for(lambda: participant not in self._alive, CRASH_TIMEOUT_S):
+            self._runner.log.warning("%s is still alive after its crash; dropped from the run", participant)
+        self._on_participant_lost(participant)  # nothing more when its token's end already did it
+
+    def _restart(self, participant: str) -> None:
+        self._runner.service.on_outage(participant, restart=True)
+        if not self._wait_for(lambda: participant in self._alive, self._settings.startup_timeout_s):
+            self._runner.log.warning("%s did not come back; continuing without it", participant)
+            return
+        self._wait_for(lambda: False, SETTLE_S)  # its subscriptions reach the publishers first
+        self._participants = [p for p in self._settings.participants if p in self._participants or p == participant]
+        self._runner.barrier.mark_done(participant, self._step - 1)  # it has nothing before its first step
+        self._runner.service.count("participants_restarted")
+        self._runner.log.info("%s rejoined the run at step %d", participant, self._step)
+        # A clock listing it for the first time tells it the step it joins from and has the others re-send their
+        # last step markers to it (see MidRunJoin).
+        self._resend_last_clock()
 
     def _wait_for_step_done(self, step: int) -> bool:
         warned_at = markers_in_at = time.monotonic()
@@ -172,8 +232,11 @@ class ClockMaster:
         self._runner.service.count("participants_lost")
         self._runner.log.warning("%s left the run; continuing without it", participant)
         self._runner.service.on_participant_lost(participant)
+        # Followers blocked on the lost service's marker re-read the participant list.
+        self._resend_last_clock()
+
+    def _resend_last_clock(self) -> None:
         if self._step > 0 and self._settings.lockstep:
-            # Followers blocked on the lost service's marker re-read the participant list.
             self._step -= 1
             self._publish_clock(to_all=True)
             self._step += 1

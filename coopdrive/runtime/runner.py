@@ -35,9 +35,10 @@ from coopdrive.runtime.barrier import StepBarrier
 from coopdrive.runtime.clock import SimulationClock, WallClock
 from coopdrive.runtime.clock_subscription import ClockSubscription
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
-from coopdrive.runtime.master import ClockMaster
+from coopdrive.runtime.master import STALL_WARNING_S, ClockMaster
 from coopdrive.runtime.participants import ParticipantTracker
 from coopdrive.runtime.pipeline import participant_name
+from coopdrive.runtime.rejoin import MidRunJoin
 from coopdrive.runtime.service import SequenceCounter, Service, ServiceConfig
 from coopdrive.runtime.timers import TriggerSet
 from coopdrive.v1 import diagnostics_pb2, sim_pb2
@@ -101,6 +102,9 @@ class ServiceRunner:
         self._started_monotonic = time.monotonic()
         self._dispatcher = StepDispatcher(service_cls.name, vehicle_id)
         self._barrier = StepBarrier(service_cls.name)
+        self._join = MidRunJoin(self._barrier)
+        # The last step marker sent, re-sent to a participant that joins mid-run.
+        self._last_marker: sim_pb2.StepDone | None = None
         self._pending_clocks: deque[_ReleasedStep] = deque()
         # Lockstep: what a step publishes, held back until its marker can go with it (publish_step_done).
         self._step_outbox: list[tuple[str, str, Message]] | None = None
@@ -108,6 +112,7 @@ class ServiceRunner:
         self._last_step = -1
         # (step, since when) the next pending step has been blocked by the barrier.
         self._blocked_since: tuple[int, float] | None = None
+        self._stall_warned_at = 0.0
         self._step_s = 0.0
         # From the first simulator clock: lockstep or paced to wall time; None before it.
         self._lockstep: bool | None = None
@@ -269,7 +274,7 @@ class ServiceRunner:
                     self.dispatch(envelope)
                 self._triggers.run_due(payload.time_s)
         elif kind is _Event.DONE:
-            self._barrier.mark_done(*payload)
+            self._join.on_marker(*payload)
         elif kind is _Event.ALIVE:
             for handler in self._liveliness_handlers:
                 handler(*payload)
@@ -289,20 +294,45 @@ class ServiceRunner:
             self.log.exception("call_soon function failed")
 
     def _queue_clock(self, clock: sim_pb2.SimClock) -> None:
+        started = self._join.started
+        joining = self._join.on_clock(clock.step, frozenset(clock.participants), clock.sequences)
+        if not started and self._join.joined_step > 0:
+            self._start_mid_run(clock)
+            return
+        if joining:
+            self._resend_last_marker()
+            for participant in joining:
+                self._barrier.mark_done(participant, clock.step)  # it has nothing before its first step
         if clock.step <= self._last_step:
             return
         # Few of the simulator's topics are ours: look those up rather than walk the whole protobuf map.
         counted = clock.sequences
-        released = _ReleasedStep(clock.step, clock.time_s, clock.step_s, frozenset(clock.participants),
+        # Those joining take part from the next step on.
+        released = _ReleasedStep(clock.step, clock.time_s, clock.step_s, frozenset(clock.participants) - joining,
                                  {key: counted[key] for key in self._barrier.subscribed if key in counted})
-        # Participants only ever leave a run: one missing from the newest clock is gone for the older pending
-        # steps too, or this service would wait forever for the step marker of a crashed one.
+        # Participants only leave the steps already queued (one that rejoins takes part from a later step): one
+        # missing from the newest clock is gone for the older pending steps too, or this service would wait
+        # forever for the step marker of a crashed one.
         for pending in self._pending_clocks:
             pending.participants &= released.participants
         if self._pending_clocks and self._pending_clocks[-1].step == released.step:
             self._pending_clocks[-1] = released  # re-sent with fewer participants after a crash
         else:
             self._pending_clocks.append(released)
+
+    def _start_mid_run(self, clock: sim_pb2.SimClock) -> None:
+        """Restarted after a crash: the run goes on from the step after this clock's (see MidRunJoin)."""
+        start_s = (clock.step + 1) * clock.step_s
+        self._last_step = clock.step
+        self._clock.set(clock.time_s)
+        self._triggers.start_at(start_s)
+        self._dispatcher.start_at(start_s)
+        self.log.info("joined the run at step %d (%.3f s)", clock.step + 1, start_s)
+
+    def _resend_last_marker(self) -> None:
+        if self._last_marker is not None:
+            for topic in self._stepped_topics:
+                self.bus.put_if_subscribed(self.bus.layout.step_done(self.vehicle_id, topic), self._last_marker)
 
     def _run_ready_steps(self) -> None:
         while self._pending_clocks:
@@ -338,6 +368,9 @@ class ServiceRunner:
             self._blocked_since = (step, now)
             return False
         still_waiting_for_markers = self._barrier.missing(step, participants, markers_only=True)
+        if still_waiting_for_markers and now - max(self._blocked_since[1], self._stall_warned_at) > STALL_WARNING_S:
+            self._stall_warned_at = now  # as the simulator warns: says who holds a stuck run
+            self.log.warning("step %d still waits for %s", step, ", ".join(still_waiting_for_markers))
         if still_waiting_for_markers or now - self._blocked_since[1] < MESSAGE_WAIT_LIMIT_S:
             return False
         self.service.count("lockstep_messages_given_up")
@@ -371,6 +404,7 @@ class ServiceRunner:
         marker.header.vehicle_id = self.vehicle_id
         marker.header.sender = self._service_name
         attachment = marker.SerializeToString()
+        self._last_marker = marker
         outbox, self._step_outbox = self._step_outbox or [], None
         last_of_topic = {(vehicle_id, topic): index for index, (vehicle_id, topic, _) in enumerate(outbox)}
         for index, (vehicle_id, topic, message) in enumerate(outbox):

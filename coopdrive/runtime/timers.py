@@ -41,6 +41,14 @@ class TriggerSet:
         self._triggers.append(trigger)
         return trigger
 
+    def start_at(self, start_s: float) -> None:
+        """Triggers that have never fired first fire on their period's grid from time 0, at or after start_s: a
+        service started mid-run (restarted after a crash) keeps the phase it had, and the simulator's clocks it
+        takes (chosen by period from step 0, see ClockSubscription) stay the ones it needs."""
+        for trigger in self._triggers:
+            if trigger.next_due_s is None:
+                trigger.next_due_s = math.ceil(start_s / trigger.period_s - TIME_EPSILON_S) * trigger.period_s
+
     def periods_s(self) -> list[float]:
         return [trigger.period_s for trigger in self._triggers]
 

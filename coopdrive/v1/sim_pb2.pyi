@@ -131,3 +131,13 @@ class WireMark(_message.Message):
     header: _header_pb2.Header
     written: int
     def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., written: _Optional[int] = ...) -> None: ...
+
+class ServiceFault(_message.Message):
+    __slots__ = ("header", "participant", "restart")
+    HEADER_FIELD_NUMBER: _ClassVar[int]
+    PARTICIPANT_FIELD_NUMBER: _ClassVar[int]
+    RESTART_FIELD_NUMBER: _ClassVar[int]
+    header: _header_pb2.Header
+    participant: str
+    restart: bool
+    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., participant: _Optional[str] = ..., restart: _Optional[bool] = ...) -> None: ...

@@ -11,11 +11,11 @@ import math
 from typing import Sequence
 
 from coopdrive.services.sim import metrics as judging
-from coopdrive.services.sim.fault_config import V2vLoss
+from coopdrive.services.sim.fault_config import ServiceCrash, V2vLoss
 from coopdrive.services.sim.roadside_unit import RsuEventKind
 from coopdrive.services.sim.scenario_config import Mission, ScenarioConfig, VehicleRole
 from coopdrive.services.sim.truth_series import TruthSeries
-from coopdrive.v1 import sim_pb2
+from coopdrive.v1 import actuation_pb2, sim_pb2
 
 # A vehicle counts as having crossed the competition zone once it was inside it and then this far out.
 ZONE_EXIT_MARGIN_M = 5.0
@@ -35,6 +35,9 @@ class MissionJudge:
         # Stack vehicles whose actuation once drove them, and when each first gave the car back to its driver.
         self._automated: set[str] = set()
         self.automation_lost_s: dict[str, float] = {}
+        # Stack vehicle -> when each of its safe stops began (from its CAN commands' driving mode).
+        self.safe_stop_onsets_s: dict[str, list[float]] = {}
+        self._in_safe_stop: dict[str, bool] = {}
 
     def observe(self, time_s: float, truth: sim_pb2.GroundTruth) -> None:
         self.frames.append((time_s, list(truth.vehicles)))
@@ -68,6 +71,9 @@ class MissionJudge:
                 string_end_s=judging_config.string_end_s).items() if math.isfinite(value)}
             self._metrics["collisions"] = float(self.collisions)
             self._metrics["automation_lost"] = float(len(self.automation_lost_s))
+            reactions_s = self.crash_to_safe_stop_s()
+            if reactions_s:
+                self._metrics["crash_to_safe_stop_s"] = max(reactions_s.values())
             if self.config.mission is Mission.MERGE:
                 self._metrics.update(self._merge_metrics())
             if self.config.mission is Mission.EMERGENCY and math.isfinite(self.corridor_close_time_s()):
@@ -77,13 +83,39 @@ class MissionJudge:
                 self._metrics["crossing_time_s"] = max(crossing_times.values())
         return self._metrics
 
+    def observe_mode(self, vehicle_id: str, driving_mode: int, time_s: float) -> None:
+        """A stack's CAN command's driving mode: when each safe stop began."""
+        safe_stop = driving_mode == actuation_pb2.DRIVING_MODE_SAFE_STOP
+        if safe_stop and not self._in_safe_stop.get(vehicle_id, False):
+            self.safe_stop_onsets_s.setdefault(vehicle_id, []).append(time_s)
+            self._metrics = None
+        self._in_safe_stop[vehicle_id] = safe_stop
+
+    def _crash_starts_s(self) -> dict[str, float]:
+        """Each stack vehicle's first service_crash."""
+        starts: dict[str, float] = {}
+        for fault in self.config.faults:
+            if isinstance(fault, ServiceCrash):
+                starts[fault.vehicle_id] = min(fault.start_s, starts.get(fault.vehicle_id, math.inf))
+        return starts
+
+    def crash_to_safe_stop_s(self) -> dict[str, float]:
+        """Per stack vehicle whose service the scenario crashed, how long after the crash its safe stop began."""
+        starts = self._crash_starts_s()
+        return {vehicle_id: min(after) - starts[vehicle_id] for vehicle_id, onsets in self.safe_stop_onsets_s.items()
+                if (after := [t for t in onsets if t >= starts.get(vehicle_id, math.inf)])}
+
     def verdict(self) -> tuple[bool, str]:
         if not self.frames:
             return False, "the run ended before any ground truth"
         if self.collisions:
             return False, f"{self.collisions} collision(s)"
-        if self.automation_lost_s:
-            lost = ", ".join(f"{v} at {t:.1f} s" for v, t in sorted(self.automation_lost_s.items(), key=lambda kv: kv[1]))
+        # The driver taking back a car whose stack the scenario crashed is the fallback the crash tests, not a
+        # failure (its timing is crash_to_safe_stop_s); a collision still fails the run.
+        crash_starts_s = self._crash_starts_s()
+        unexpected = {v: t for v, t in self.automation_lost_s.items() if t < crash_starts_s.get(v, math.inf)}
+        if unexpected:
+            lost = ", ".join(f"{v} at {t:.1f} s" for v, t in sorted(unexpected.items(), key=lambda kv: kv[1]))
             return False, f"automation lost: {lost}"
         mission = self.config.mission
         if mission is Mission.PLATOON:

@@ -74,6 +74,8 @@ class ScenarioFeed:
                 self.ctx.log.warning("rejected a CAN command frame from %s: %s", envelope.vehicle_id, error)
             return
         self.judge.observe_automation(envelope.vehicle_id, command.longitudinal_active, self.ctx.now_s())
+        # When actuation sent it, not when the (feedback-delayed) world applies it.
+        self.judge.observe_mode(envelope.vehicle_id, command.driving_mode, envelope.message.header.sample_time_s)
         model = self.sim.objects.models[envelope.vehicle_id]
         accel = model.command_to_accel_mps2(command.throttle_ratio, command.brake_ratio,
                                             command.deceleration_request_mps2) if command.longitudinal_active else None
@@ -137,7 +139,8 @@ class ScenarioFeed:
                                    wall_time_s=time.monotonic() - self.service.wall_start_s)
         for key, value in self.judge.metrics().items():
             result.metrics[key] = value
-        result.metrics["participants_lost"] = self.service.counters.get("participants_lost", 0)
+        for counter in ("participants_lost", "service_crashes", "service_restarts"):
+            result.metrics[counter] = self.service.counters.get(counter, 0)
         self.ctx.publish_for(WORLD_ID, "result", result)
         self.ctx.request_stop("scenario finished")
 

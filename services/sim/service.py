@@ -19,6 +19,7 @@ from coopdrive.services.sim.follow_judge import FollowJudge
 from coopdrive.services.sim.profiles import PROFILES, ProfileName
 from coopdrive.services.sim.scenario_config import load_scenario
 from coopdrive.services.sim.scenario_feed import ScenarioFeed
+from coopdrive.services.sim.service_crashes import crash_outages
 from coopdrive.services.sim.vehicle_bus_writer import VehicleBusWriter
 from coopdrive.services.sim.vehicle_model import VehicleModel
 from coopdrive.services.sim.world_config import VehicleSpec, WorldConfig
@@ -176,7 +177,16 @@ class SimService(Service, ClockMaster.Driven):
         c: SimConfig = self.config
         return ClockSettings(step_s=c.step_s, lockstep=c.lockstep, paced=c.paced, realtime_factor=c.realtime_factor,
                              participants=list(c.participants), startup_timeout_s=c.startup_timeout_s,
-                             feedback_delay_steps=1 + self._pipelined_steps() if c.lockstep else 1)
+                             feedback_delay_steps=1 + self._pipelined_steps() if c.lockstep else 1,
+                             outages=crash_outages(self.feed.config.faults, c.participants, c.step_s)
+                             if self.feed is not None else [])
+
+    def on_outage(self, participant: str, restart: bool) -> None:
+        """Tells the launcher, which owns the processes, to kill the service's process or start it again."""
+        self.count("service_restarts" if restart else "service_crashes")
+        self.ctx.log.info("service_crash: %s %s at %.2f s", "restarting" if restart else "killing", participant,
+                          self.ctx.now_s())
+        self.ctx.publish_for(WORLD_ID, "service_fault", sim_pb2.ServiceFault(participant=participant, restart=restart))
 
     def _pipelined_steps(self) -> int:
         return self.feed.sim.pipelined_steps if self.feed is not None else self.world.pipelined_steps

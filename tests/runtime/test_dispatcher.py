@@ -39,3 +39,12 @@ def test_order_follows_send_time_then_pipeline_rank_not_arrival():
     dispatcher.add(envelope("ego/state", ego_pb2.EgoState(), "geolocation", 0.01, sequence=0))
     handled = [(e.message.header.sent_time_s, e.message.header.sender) for e in dispatcher.eligible(0.02)]
     assert handled == [(0.01, "geolocation"), (0.02, "geolocation"), (0.02, "planner")]
+
+
+def test_a_service_that_joins_mid_run_handles_nothing_sent_before_its_first_step():
+    dispatcher = StepDispatcher("control", "ego")
+    dispatcher.add(envelope("ego/state", ego_pb2.EgoState(), "geolocation", 6.98))
+    dispatcher.start_at(7.0)
+    dispatcher.add(envelope("ego/state", ego_pb2.EgoState(), "geolocation", 6.99, sequence=2))
+    dispatcher.add(envelope("ego/state", ego_pb2.EgoState(), "geolocation", 7.0, sequence=3))
+    assert [e.message.header.sequence for e in dispatcher.eligible(7.0)] == [3]

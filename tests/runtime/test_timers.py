@@ -54,3 +54,13 @@ def test_without_an_error_handler_a_failing_handler_raises_so_a_replay_stops_whe
     triggers.add(0.02, failing)
     with pytest.raises(ZeroDivisionError):
         triggers.run_due(0.0)
+
+
+def test_triggers_started_mid_run_fire_on_their_grid_from_time_zero():
+    fired = []
+    triggers = TriggerSet()
+    triggers.add(0.1, fired.append)
+    triggers.start_at(7.02)
+    for step in range(700, 722):
+        triggers.run_due(step * 0.01)
+    assert fired == pytest.approx([7.1, 7.2])
