@@ -22,7 +22,7 @@ from coopdrive.bus.keys import KeyLayout
 from coopdrive.recording.candump_import import read_candump_log
 from coopdrive.recording.import_source import ImportFailure, SourceReport, TimedMessage
 from coopdrive.recording.nmea_import import read_nmea_log
-from coopdrive.recording.pcap_import import read_capture
+from coopdrive.recording.pcap_import import read_pcap
 from coopdrive.recording.writer import NANOSECONDS, McapRecorder, config_metadata
 from coopdrive.runtime.registry import VEHICLE_STACK, service_class
 
@@ -64,7 +64,7 @@ def import_logs(request: ImportRequest) -> ImportResult:
         raise ImportFailure("nothing to import: give --nmea, --candump or --pcap")
     sources = [read_nmea_log(path, request.nmea_rate_hz) for path in request.nmea]
     sources += [read_candump_log(path, bus) for path, bus in request.candump]
-    sources += [read_capture(path) for path in request.pcap]
+    sources += [read_pcap(path) for path in request.pcap]
     _apply_offsets(sources, request.offsets_s)
     messages = sorted((m for source in sources for m in source.messages), key=lambda m: m.time_s)
     _stamp(messages, request.vehicle_id)

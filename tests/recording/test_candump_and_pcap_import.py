@@ -4,7 +4,7 @@ import pytest
 
 from coopdrive.recording.candump_import import BATCH_S, read_candump_log
 from coopdrive.recording.import_source import ImportFailure
-from coopdrive.recording.pcap_import import read_capture
+from coopdrive.recording.pcap_import import read_pcap
 from tests.shared_data import shared_file
 
 RAV4_LOG = "can/comma2k19_rav4_bus0_first20s.candump.log"
@@ -43,7 +43,7 @@ def test_bad_candump_lines_are_counted_and_unknown_ids_kept(tmp_path):
 
 
 def test_a_pcapng_named_capture_of_real_cams_and_cpms_gives_every_packet_at_its_capture_time():
-    report = read_capture(shared_file("v2x/msvan3t_cam_cpm_trace.pcapng"))
+    report = read_pcap(shared_file("v2x/msvan3t_cam_cpm_trace.pcapng"))
     assert len(report.messages) == report.items_read == 929 and not report.bad
     assert report.first_s == pytest.approx(1726061434.093, abs=0.001)
     packet = report.messages[0].message
@@ -51,10 +51,21 @@ def test_a_pcapng_named_capture_of_real_cams_and_cpms_gives_every_packet_at_its_
 
 
 def test_the_signed_test_vectors_keep_the_sender_mac_and_a_file_that_is_no_capture_is_one_error(tmp_path):
-    report = read_capture(shared_file("v2x/considerit_signed_testvectors.pcap"))
+    report = read_pcap(shared_file("v2x/considerit_signed_testvectors.pcap"))
     assert [m.time_s for m in report.messages] == [1700000000.0, 1700000001.0, 1700000002.0, 1700000003.0]
     assert report.messages[1].message.source_mac == bytes.fromhex("020000000001")
     junk = tmp_path / "junk.pcap"
     junk.write_bytes(b"not a capture at all")
     with pytest.raises(ImportFailure, match="junk.pcap: not a pcap or pcapng capture"):
-        read_capture(junk)
+        read_pcap(junk)
+
+
+def test_a_capture_from_an_802_11_monitor_interface_imports_the_same_packets(tmp_path):
+    from tests.v2x.capture_wrap import wrap_capture
+
+    original = read_pcap(shared_file("v2x/considerit_signed_testvectors.pcap"))
+    radiotap = read_pcap(wrap_capture(shared_file("v2x/considerit_signed_testvectors.pcap"),
+                                      tmp_path / "radiotap.pcap", "radiotap"))
+    assert [m.message.payload for m in radiotap.messages] == [m.message.payload for m in original.messages]
+    assert [m.message.source_mac for m in radiotap.messages] == [m.message.source_mac for m in original.messages]
+    assert not radiotap.bad

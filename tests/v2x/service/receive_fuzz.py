@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from coopdrive.services.v2x.reasons import V2xDecodeError
-from coopdrive.services.v2x.replay import capture_packets
+from coopdrive.services.v2x.capture import read_gn_packets
 from coopdrive.services.v2x.security.pki import create_test_pki, tamper_packet
 from coopdrive.services.v2x.security_verdict import is_secured
 from coopdrive.services.v2x.service import V2xService
@@ -66,7 +66,7 @@ class FuzzOutcome:
 def real_seeds() -> list[bytes]:
     packets = []
     for name in CAPTURES:
-        packets += [packet.gn_packet for packet in capture_packets(shared_file(name))][:PER_CAPTURE]
+        packets += [packet.gn_packet for packet in read_gn_packets(shared_file(name))][:PER_CAPTURE]
     return packets
 
 
