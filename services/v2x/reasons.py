@@ -32,6 +32,8 @@ class RejectReason(enum.Enum):
     INVALID_CERTIFICATE = "invalid_certificate"
     UNKNOWN_ISSUER = "unknown_issuer"
     UNTRUSTED_ROOT = "untrusted_root"
+    # What verify_required drops a valid signature for when its chain reaches no root we trust.
+    UNTRUSTED = "untrusted"
     INVALID_CERTIFICATE_SIGNATURE = "invalid_certificate_signature"
     CERTIFICATE_NOT_YET_VALID = "certificate_not_yet_valid"
     CERTIFICATE_EXPIRED = "certificate_expired"

@@ -50,6 +50,7 @@ def test_a1_refuses_every_packet_of_the_untrusted_a2_and_counts_it_under_an_untr
     a2 = station(last, A2)
     assert a2 is not None and a2.messages_received == 0 and a2.messages_refused_by_security > 50
     assert a2.signed and not a2.trusted
+    assert last.rejected_by_reason["untrusted"] > 0
     assert sum(count for reason, count in last.rejected_by_reason.items() if reason in UNTRUSTED_REASONS) > 0
 
 

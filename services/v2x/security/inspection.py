@@ -78,6 +78,12 @@ def is_secured(packet: bytes) -> bool:
     return len(packet) >= BASIC_HEADER_SIZE and packet[0] & _NEXT_HEADER_MASK == BasicNextHeader.SECURED_PACKET
 
 
+# A valid signature whose certificate chains to no configured root: verify_required drops it as `untrusted`
+# (the certificate's own faults, expired or outside its region, keep their reasons).
+_UNROOTED_CHAIN = frozenset({None, RejectReason.UNKNOWN_ISSUER, RejectReason.UNTRUSTED_ROOT,
+                             RejectReason.UNKNOWN_ISSUER.value, RejectReason.UNTRUSTED_ROOT.value})
+
+
 def mode_drop_reason(mode: SecurityMode, security: SecurityResult) -> RejectReason | None:
     """Why `mode` drops the packet, None to deliver it: off / sign_only drop nothing; sign_and_verify drops
     invalid signatures and stale or future packets; verify_required also drops unsigned packets, unknown
@@ -91,7 +97,8 @@ def mode_drop_reason(mode: SecurityMode, security: SecurityResult) -> RejectReas
     if not security.signed:
         return RejectReason.UNSECURED_PACKET_REFUSED
     if security.verified is None or security.trusted is not True:
-        return security.reason or RejectReason.UNTRUSTED_ROOT
+        chain_unrooted = security.reason in _UNROOTED_CHAIN
+        return RejectReason.UNTRUSTED if security.verified and chain_unrooted else security.reason or RejectReason.UNTRUSTED
     return None
 
 

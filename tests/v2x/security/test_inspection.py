@@ -67,7 +67,7 @@ STALE = SecurityResult(True, "digest", b"\x01" * 8, verified=True, fresh=False,
     (SecurityMode.OFF, {}),
     (SecurityMode.SIGN_ONLY, {}),
     (SecurityMode.SIGN_AND_VERIFY, {"invalid": "invalid_signature", "stale": "stale_generation_time"}),
-    (SecurityMode.VERIFY_REQUIRED, {"unsigned": "unsecured_packet_refused", "untrusted": "untrusted_root",
+    (SecurityMode.VERIFY_REQUIRED, {"unsigned": "unsecured_packet_refused", "untrusted": "untrusted",
                                     "unknown": "unknown_signer_digest", "invalid": "invalid_signature",
                                     "stale": "stale_generation_time"}),
 ])
