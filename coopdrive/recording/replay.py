@@ -28,6 +28,7 @@ from coopdrive.recording.writer import McapRecorder, config_metadata
 from coopdrive.runtime.clock import SimulationClock
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
 from coopdrive.runtime.participants import ParticipantTracker
+from coopdrive.runtime.pipeline import WORLD_SERVICE
 from coopdrive.runtime.registry import service_class
 from coopdrive.runtime.service import SequenceCounter
 from coopdrive.runtime.timers import TriggerSet
@@ -197,7 +198,7 @@ def _run_lockstep(ctx: ReplayContext, inputs: list[RecordedMessage], clocks: lis
     for clock in clocks:
         while next_input < len(inputs) and inputs[next_input].message.header.sent_time_s <= clock.time_s + TIME_EPSILON_S:
             vehicle, topic = layout.split(inputs[next_input].topic)
-            dispatcher.add(Envelope(vehicle, topic, inputs[next_input].message))
+            dispatcher.add(Envelope(vehicle, topic, _as_hardware_input(inputs[next_input].message, service_name)))
             next_input += 1
         ctx.clock.set(clock.time_s)
         for participant, alive in participants.update(clock.participants):
@@ -208,6 +209,19 @@ def _run_lockstep(ctx: ReplayContext, inputs: list[RecordedMessage], clocks: lis
         ctx.triggers.run_due(clock.time_s)
         steps += 1
     return steps
+
+
+def _as_hardware_input(message: Message, service_name: str) -> Message:
+    """What the service's own driver side published (gnss/nmea: the bytes its port delivered) was read live
+    within the step of the world's mark that announced them, before its own outputs: replayed, it goes to the
+    dispatcher as data from upstream of the service (the world's rank), so it is handled in that same step
+    rather than a step later as the service's own feedback would be."""
+    if message.header.sender != service_name:
+        return message
+    hardware = type(message)()
+    hardware.CopyFrom(message)
+    hardware.header.sender = WORLD_SERVICE
+    return hardware
 
 
 def _write_replay(out: str | Path, inputs: list[RecordedMessage], outputs: list[tuple[str, Message]],

@@ -6,8 +6,11 @@ therefore flow sensor -> estimate -> decision -> command within one step, and ev
 the graph (planner -> v2x -> planner) is cut by exactly one step of delay.
 """
 
+# The service that owns the world (simulated time, sensors, radio): first in every step.
+WORLD_SERVICE = "sim"
+
 PIPELINE_RANK: dict[str, int] = {
-    "sim": 0,
+    WORLD_SERVICE: 0,
     "geolocation": 10,
     "v2x": 20,
     "scene": 30,

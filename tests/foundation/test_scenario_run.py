@@ -91,3 +91,12 @@ def test_every_byte_geolocation_read_from_its_gnss_line_is_on_gnss_nmea_up_to_a_
         # Reads stop exactly at marks; the run may end before the last mark is read.
         assert len(data) in marks[vehicle][-2:]
         assert data.startswith(b"$") and all(chunk.port.endswith(f"{vehicle}-gnss0") for chunk in chunks[vehicle])
+
+
+@pytest.mark.parametrize("service", ["geolocation", "scene"])
+def test_a_stack_service_replayed_over_the_run_reproduces_its_outputs_exactly(two_stacks, service):
+    """geolocation's input is the bytes its own driver side put on gnss/nmea (it read them from a pty); scene's
+    the car's CAN bus (can/vehicle), the ego state and V2X."""
+    _, recording = two_stacks
+    result = coopdrive("replay", str(recording), "--service", service, "--vehicle", "f2")
+    assert "identical to the recorded outputs" in result.stdout, result.stdout[-2000:]
