@@ -52,12 +52,15 @@ def test_every_deployed_config_is_valid_for_its_service():
         service_class(name).Config.model_validate(config)
 
 
-def test_on_the_vehicle_geolocation_scene_and_actuation_read_the_car_s_can_buses_and_geolocation_its_gnss():
+def test_on_the_vehicle_actuation_owns_the_car_s_bus_scene_reads_the_radar_s_and_geolocation_its_gnss():
     def deployed(name: str) -> dict:
         return yaml.safe_load((ROOT / "deploy" / "config" / f"{name}.yaml").read_text())
 
-    for name in ("geolocation", "scene", "actuation"):
-        assert deployed(name)["can_port"]["interface"] == "socketcan", name
+    # Actuation reads the car's bus and publishes it on can/vehicle, which geolocation reads from the bus.
+    assert (deployed("actuation")["can_port"]["interface"], deployed("actuation")["can_port"]["channel"]) == \
+        ("socketcan", "can0")
+    assert "can_port" not in deployed("geolocation")
+    assert deployed("scene")["can_port"]["interface"] == "socketcan"
     gnss_port = deployed("geolocation")["gnss_port"]
     assert any(device.endswith(f":{gnss_port}") for device in compose_services()["geolocation"]["devices"])
 
