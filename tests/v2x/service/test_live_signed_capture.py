@@ -76,10 +76,7 @@ def test_the_deployed_v2x_service_fed_the_signed_capture_publishes_the_cams_and_
                            "--port", str(listen_port), "--rate", "10")
             assert replay.wait(timeout=30) == 0, replay.stderr.read()
             last_status = wait_for(lambda: _status_after_packets(statuses, 4), "a status counting the 4 packets")
-            unreadable = UNREAD_SIGNED_REASONS & set(last_status.rejected_by_reason)
-            if unreadable:
-                pytest.xfail(f"the service cannot read the real signed packets yet ({', '.join(sorted(unreadable))}):"
-                             " branch v2xdec's security work (unwrap in every mode, other stacks' envelopes) makes it")
+            assert not UNREAD_SIGNED_REASONS & set(last_status.rejected_by_reason), last_status.rejected_by_reason
             received: list = []
             wait_for(lambda: len(_drain(cams, received)) >= 2, "both signed CAMs on v2x/cam")
             car = next(cam for cam in received if cam.station_id == CAR_STATION_ID)
