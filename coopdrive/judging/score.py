@@ -20,7 +20,7 @@ from coopdrive.services.sim import metrics as judge_metrics
 from coopdrive.services.sim.truth_series import TruthSeries
 from coopdrive.services.v2x.reasons import RejectReason
 from coopdrive.services.v2x.security_verdict import UNTRUSTED_REASONS
-from coopdrive.v1 import ego_pb2
+from coopdrive.v1 import ego_pb2, v2x_pb2
 
 # A scene object is taken for the true vehicle whose rear bumper centre is this close.
 ASSOCIATION_GATE_M = 3.0
@@ -95,7 +95,7 @@ def v2x_metrics(messages: RunMessages) -> dict[str, float]:
                "v2x_packets_received": float(sum(s.packets_received for s in statuses)),
                "v2x_packets_rejected": float(sum(sum(s.rejected_by_reason.values()) for s in statuses))}
     if stations:
-        figures["v2x_reception_ratio_min"] = min(s.reception_ratio for s in stations)
+        figures.update(pair_reception(stations))
         figures["v2x_update_delay_p95_max_s"] = max(s.update_delay_p95_s for s in stations)
     rejected = [(reason, count) for status in statuses for reason, count in status.rejected_by_reason.items()]
     figures["v2x_rejected_untrusted"] = float(sum(count for reason, count in rejected if reason in UNTRUSTED_REASONS))
@@ -103,6 +103,16 @@ def v2x_metrics(messages: RunMessages) -> dict[str, float]:
         sum(count for reason, count in rejected if reason == RejectReason.CERTIFICATE_EXPIRED.value))
     figures.update(v2v_listeners(messages))
     return figures
+
+
+def pair_reception(stations: list[v2x_pb2.StationLinkStats]) -> dict[str, float]:
+    """Reception ratio of each (sender, receiver) pair while both are sending: periodic messages received over
+    the slots they close, since the sender was first heard (a status without those totals, from before they
+    existed, gives its windowed ratio). The worst pair and the mean over pairs."""
+    ratios = [s.periodic_received_total / s.periodic_expected_total if s.periodic_expected_total
+              else s.reception_ratio for s in stations]
+    return {"v2x_reception_ratio_min": min(ratios), "v2x_reception_ratio_mean": float(np.mean(ratios)),
+            "v2x_reception_pairs": float(len(ratios))}
 
 
 def v2v_listeners(messages: RunMessages) -> dict[str, float]:

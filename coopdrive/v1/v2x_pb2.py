@@ -25,7 +25,7 @@ _sym_db = _symbol_database.Default()
 from coopdrive.v1 import header_pb2 as coopdrive_dot_v1_dot_header__pb2
 
 
-DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x16\x63oopdrive/v1/v2x.proto\x12\x0c\x63oopdrive.v1\x1a\x19\x63oopdrive/v1/header.proto\"\x87\x01\n\x08GnPacket\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x30\n\tdirection\x18\x02 \x01(\x0e\x32\x1d.coopdrive.v1.PacketDirection\x12\x0f\n\x07payload\x18\x03 \x01(\x0c\x12\x12\n\nsource_mac\x18\x04 \x01(\x0c\"\xac\x04\n\x10StationLinkStats\x12\x12\n\nstation_id\x18\x01 \x01(\r\x12&\n\x05state\x18\x02 \x01(\x0e\x32\x17.coopdrive.v1.LinkState\x12\x14\n\x0clast_heard_s\x18\x03 \x01(\x01\x12\x17\n\x0fmessage_rate_hz\x18\x04 \x01(\x01\x12\x17\n\x0freception_ratio\x18\x05 \x01(\x01\x12\x1a\n\x12update_delay_p50_s\x18\x06 \x01(\x01\x12\x1a\n\x12update_delay_p95_s\x18\x07 \x01(\x01\x12\x1a\n\x12update_delay_max_s\x18\x08 \x01(\x01\x12\x19\n\x11messages_received\x18\t \x01(\x04\x12\x19\n\x11messages_rejected\x18\n \x01(\x04\x12\r\n\x05trust\x18\x0b \x01(\x01\x12\x0e\n\x06signed\x18\x0c \x01(\x08\x12\x10\n\x08verified\x18\r \x01(\x08\x12\x0f\n\x07trusted\x18\x0e \x01(\x08\x12\x17\n\x0fmessages_signed\x18\x0f \x01(\x04\x12\x19\n\x11messages_verified\x18\x10 \x01(\x04\x12\x18\n\x10messages_trusted\x18\x11 \x01(\x04\x12\x1a\n\x12signature_failures\x18\x12 \x01(\x04\x12$\n\x1cmessages_refused_by_security\x18\x13 \x01(\x04\x12\x1c\n\x14last_security_reason\x18\x14 \x01(\t\x12\x1a\n\x12messages_untrusted\x18\x15 \x01(\x04\"\x97\x02\n\tV2xStatus\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x30\n\x08stations\x18\x02 \x03(\x0b\x32\x1e.coopdrive.v1.StationLinkStats\x12I\n\x12rejected_by_reason\x18\x03 \x03(\x0b\x32-.coopdrive.v1.V2xStatus.RejectedByReasonEntry\x12\x14\n\x0cpackets_sent\x18\x04 \x01(\x04\x12\x18\n\x10packets_received\x18\x05 \x01(\x04\x1a\x37\n\x15RejectedByReasonEntry\x12\x0b\n\x03key\x18\x01 \x01(\t\x12\r\n\x05value\x18\x02 \x01(\x04:\x02\x38\x01*m\n\x0fPacketDirection\x12 \n\x1cPACKET_DIRECTION_UNSPECIFIED\x10\x00\x12\x1d\n\x19PACKET_DIRECTION_RECEIVED\x10\x01\x12\x19\n\x15PACKET_DIRECTION_SENT\x10\x02*S\n\tLinkState\x12\x1a\n\x16LINK_STATE_UNSPECIFIED\x10\x00\x12\x15\n\x11LINK_STATE_ACTIVE\x10\x01\x12\x13\n\x0fLINK_STATE_LOST\x10\x02\x62\x06proto3')
+DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x16\x63oopdrive/v1/v2x.proto\x12\x0c\x63oopdrive.v1\x1a\x19\x63oopdrive/v1/header.proto\"\x87\x01\n\x08GnPacket\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x30\n\tdirection\x18\x02 \x01(\x0e\x32\x1d.coopdrive.v1.PacketDirection\x12\x0f\n\x07payload\x18\x03 \x01(\x0c\x12\x12\n\nsource_mac\x18\x04 \x01(\x0c\"\xee\x04\n\x10StationLinkStats\x12\x12\n\nstation_id\x18\x01 \x01(\r\x12&\n\x05state\x18\x02 \x01(\x0e\x32\x17.coopdrive.v1.LinkState\x12\x14\n\x0clast_heard_s\x18\x03 \x01(\x01\x12\x17\n\x0fmessage_rate_hz\x18\x04 \x01(\x01\x12\x17\n\x0freception_ratio\x18\x05 \x01(\x01\x12\x1a\n\x12update_delay_p50_s\x18\x06 \x01(\x01\x12\x1a\n\x12update_delay_p95_s\x18\x07 \x01(\x01\x12\x1a\n\x12update_delay_max_s\x18\x08 \x01(\x01\x12\x19\n\x11messages_received\x18\t \x01(\x04\x12\x19\n\x11messages_rejected\x18\n \x01(\x04\x12\r\n\x05trust\x18\x0b \x01(\x01\x12\x0e\n\x06signed\x18\x0c \x01(\x08\x12\x10\n\x08verified\x18\r \x01(\x08\x12\x0f\n\x07trusted\x18\x0e \x01(\x08\x12\x17\n\x0fmessages_signed\x18\x0f \x01(\x04\x12\x19\n\x11messages_verified\x18\x10 \x01(\x04\x12\x18\n\x10messages_trusted\x18\x11 \x01(\x04\x12\x1a\n\x12signature_failures\x18\x12 \x01(\x04\x12$\n\x1cmessages_refused_by_security\x18\x13 \x01(\x04\x12\x1c\n\x14last_security_reason\x18\x14 \x01(\t\x12\x1a\n\x12messages_untrusted\x18\x15 \x01(\x04\x12\x1f\n\x17periodic_received_total\x18\x16 \x01(\x04\x12\x1f\n\x17periodic_expected_total\x18\x17 \x01(\x04\"\x97\x02\n\tV2xStatus\x12$\n\x06header\x18\x01 \x01(\x0b\x32\x14.coopdrive.v1.Header\x12\x30\n\x08stations\x18\x02 \x03(\x0b\x32\x1e.coopdrive.v1.StationLinkStats\x12I\n\x12rejected_by_reason\x18\x03 \x03(\x0b\x32-.coopdrive.v1.V2xStatus.RejectedByReasonEntry\x12\x14\n\x0cpackets_sent\x18\x04 \x01(\x04\x12\x18\n\x10packets_received\x18\x05 \x01(\x04\x1a\x37\n\x15RejectedByReasonEntry\x12\x0b\n\x03key\x18\x01 \x01(\t\x12\r\n\x05value\x18\x02 \x01(\x04:\x02\x38\x01*m\n\x0fPacketDirection\x12 \n\x1cPACKET_DIRECTION_UNSPECIFIED\x10\x00\x12\x1d\n\x19PACKET_DIRECTION_RECEIVED\x10\x01\x12\x19\n\x15PACKET_DIRECTION_SENT\x10\x02*S\n\tLinkState\x12\x1a\n\x16LINK_STATE_UNSPECIFIED\x10\x00\x12\x15\n\x11LINK_STATE_ACTIVE\x10\x01\x12\x13\n\x0fLINK_STATE_LOST\x10\x02\x62\x06proto3')
 
 _globals = globals()
 _builder.BuildMessageAndEnumDescriptors(DESCRIPTOR, _globals)
@@ -34,16 +34,16 @@ if not _descriptor._USE_C_DESCRIPTORS:
   DESCRIPTOR._loaded_options = None
   _globals['_V2XSTATUS_REJECTEDBYREASONENTRY']._loaded_options = None
   _globals['_V2XSTATUS_REJECTEDBYREASONENTRY']._serialized_options = b'8\001'
-  _globals['_PACKETDIRECTION']._serialized_start=1046
-  _globals['_PACKETDIRECTION']._serialized_end=1155
-  _globals['_LINKSTATE']._serialized_start=1157
-  _globals['_LINKSTATE']._serialized_end=1240
+  _globals['_PACKETDIRECTION']._serialized_start=1112
+  _globals['_PACKETDIRECTION']._serialized_end=1221
+  _globals['_LINKSTATE']._serialized_start=1223
+  _globals['_LINKSTATE']._serialized_end=1306
   _globals['_GNPACKET']._serialized_start=68
   _globals['_GNPACKET']._serialized_end=203
   _globals['_STATIONLINKSTATS']._serialized_start=206
-  _globals['_STATIONLINKSTATS']._serialized_end=762
-  _globals['_V2XSTATUS']._serialized_start=765
-  _globals['_V2XSTATUS']._serialized_end=1044
-  _globals['_V2XSTATUS_REJECTEDBYREASONENTRY']._serialized_start=989
-  _globals['_V2XSTATUS_REJECTEDBYREASONENTRY']._serialized_end=1044
+  _globals['_STATIONLINKSTATS']._serialized_end=828
+  _globals['_V2XSTATUS']._serialized_start=831
+  _globals['_V2XSTATUS']._serialized_end=1110
+  _globals['_V2XSTATUS_REJECTEDBYREASONENTRY']._serialized_start=1055
+  _globals['_V2XSTATUS_REJECTEDBYREASONENTRY']._serialized_end=1110
 # @@protoc_insertion_point(module_scope)

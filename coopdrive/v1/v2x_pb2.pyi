@@ -39,7 +39,7 @@ class GnPacket(_message.Message):
     def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., direction: _Optional[_Union[PacketDirection, str]] = ..., payload: _Optional[bytes] = ..., source_mac: _Optional[bytes] = ...) -> None: ...
 
 class StationLinkStats(_message.Message):
-    __slots__ = ("station_id", "state", "last_heard_s", "message_rate_hz", "reception_ratio", "update_delay_p50_s", "update_delay_p95_s", "update_delay_max_s", "messages_received", "messages_rejected", "trust", "signed", "verified", "trusted", "messages_signed", "messages_verified", "messages_trusted", "signature_failures", "messages_refused_by_security", "last_security_reason", "messages_untrusted")
+    __slots__ = ("station_id", "state", "last_heard_s", "message_rate_hz", "reception_ratio", "update_delay_p50_s", "update_delay_p95_s", "update_delay_max_s", "messages_received", "messages_rejected", "trust", "signed", "verified", "trusted", "messages_signed", "messages_verified", "messages_trusted", "signature_failures", "messages_refused_by_security", "last_security_reason", "messages_untrusted", "periodic_received_total", "periodic_expected_total")
     STATION_ID_FIELD_NUMBER: _ClassVar[int]
     STATE_FIELD_NUMBER: _ClassVar[int]
     LAST_HEARD_S_FIELD_NUMBER: _ClassVar[int]
@@ -61,6 +61,8 @@ class StationLinkStats(_message.Message):
     MESSAGES_REFUSED_BY_SECURITY_FIELD_NUMBER: _ClassVar[int]
     LAST_SECURITY_REASON_FIELD_NUMBER: _ClassVar[int]
     MESSAGES_UNTRUSTED_FIELD_NUMBER: _ClassVar[int]
+    PERIODIC_RECEIVED_TOTAL_FIELD_NUMBER: _ClassVar[int]
+    PERIODIC_EXPECTED_TOTAL_FIELD_NUMBER: _ClassVar[int]
     station_id: int
     state: LinkState
     last_heard_s: float
@@ -82,7 +84,9 @@ class StationLinkStats(_message.Message):
     messages_refused_by_security: int
     last_security_reason: str
     messages_untrusted: int
-    def __init__(self, station_id: _Optional[int] = ..., state: _Optional[_Union[LinkState, str]] = ..., last_heard_s: _Optional[float] = ..., message_rate_hz: _Optional[float] = ..., reception_ratio: _Optional[float] = ..., update_delay_p50_s: _Optional[float] = ..., update_delay_p95_s: _Optional[float] = ..., update_delay_max_s: _Optional[float] = ..., messages_received: _Optional[int] = ..., messages_rejected: _Optional[int] = ..., trust: _Optional[float] = ..., signed: _Optional[bool] = ..., verified: _Optional[bool] = ..., trusted: _Optional[bool] = ..., messages_signed: _Optional[int] = ..., messages_verified: _Optional[int] = ..., messages_trusted: _Optional[int] = ..., signature_failures: _Optional[int] = ..., messages_refused_by_security: _Optional[int] = ..., last_security_reason: _Optional[str] = ..., messages_untrusted: _Optional[int] = ...) -> None: ...
+    periodic_received_total: int
+    periodic_expected_total: int
+    def __init__(self, station_id: _Optional[int] = ..., state: _Optional[_Union[LinkState, str]] = ..., last_heard_s: _Optional[float] = ..., message_rate_hz: _Optional[float] = ..., reception_ratio: _Optional[float] = ..., update_delay_p50_s: _Optional[float] = ..., update_delay_p95_s: _Optional[float] = ..., update_delay_max_s: _Optional[float] = ..., messages_received: _Optional[int] = ..., messages_rejected: _Optional[int] = ..., trust: _Optional[float] = ..., signed: _Optional[bool] = ..., verified: _Optional[bool] = ..., trusted: _Optional[bool] = ..., messages_signed: _Optional[int] = ..., messages_verified: _Optional[int] = ..., messages_trusted: _Optional[int] = ..., signature_failures: _Optional[int] = ..., messages_refused_by_security: _Optional[int] = ..., last_security_reason: _Optional[str] = ..., messages_untrusted: _Optional[int] = ..., periodic_received_total: _Optional[int] = ..., periodic_expected_total: _Optional[int] = ...) -> None: ...
 
 class V2xStatus(_message.Message):
     __slots__ = ("header", "stations", "rejected_by_reason", "packets_sent", "packets_received")

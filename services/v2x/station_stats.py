@@ -31,6 +31,9 @@ class StreamWindow:
         self.window_s = window_s
         self._entries: deque[tuple[float, int]] = deque()
         self._last_generation_tai_ms: int | None = None
+        # Since the first message, not only in the window.
+        self.received_total = 0
+        self.expected_total = 0
 
     def add(self, receive_s: float, generation_tai_ms: int | None) -> None:
         slots = 1
@@ -42,6 +45,8 @@ class StreamWindow:
         if generation_tai_ms is not None:
             self._last_generation_tai_ms = generation_tai_ms
         self._entries.append((receive_s, slots))
+        self.received_total += 1
+        self.expected_total += slots
         self.prune(receive_s)
 
     def prune(self, now_s: float) -> None:
@@ -135,6 +140,11 @@ class StationStats:
                 received, expected = received + got, expected + wanted
         return received / expected if expected else 0.0
 
+    def periodic_totals(self) -> tuple[int, int]:
+        """(received, expected) of the periodic streams since the station was first heard."""
+        periodic = [stream for message_type, stream in self._streams.items() if message_type in PERIODIC_TYPES]
+        return sum(s.received_total for s in periodic), sum(s.expected_total for s in periodic)
+
     def to_proto(self, now_s: float, loss_timeout_s: float) -> v2x_pb2.StationLinkStats:
         for stream in self._streams.values():
             stream.prune(now_s)
@@ -145,6 +155,7 @@ class StationStats:
             state=v2x_pb2.LINK_STATE_LOST if self.is_lost(now_s, loss_timeout_s) else v2x_pb2.LINK_STATE_ACTIVE,
             last_heard_s=self.last_heard_s or 0.0, reception_ratio=self.reception_ratio(now_s),
             messages_received=self.messages_received, messages_rejected=self.messages_rejected)
+        stats.periodic_received_total, stats.periodic_expected_total = self.periodic_totals()
         self.security.fill(stats)
         if self.first_heard_s is not None and self._streams:
             stats.message_rate_hz = max(stream.rate_hz(now_s, self.first_heard_s) for stream in self._streams.values())

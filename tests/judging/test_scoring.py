@@ -187,3 +187,23 @@ def test_a_platoon_named_beyond_the_vehicles_of_the_run_is_judged_on_those_prese
     present = [v["vehicle_id"] for v in frames[0][1]]
     metrics = score_messages(messages, JudgingParameters(platoon=(*present, "v9"), string_frequency_hz=0.2))
     assert metrics["string_gain"] == pytest.approx(0.5, abs=0.05)
+
+
+def test_a_pair_s_reception_ratio_counts_only_while_its_sender_sends_so_a_roadside_unit_that_stopped_is_not_zero():
+    from coopdrive.v1 import v2x_pb2
+    from tests.judging.synthetic import two_car_frames
+
+    messages = RunMessages()
+    for t, vehicles in two_car_frames():
+        messages.add("coopdrive/world/ground_truth", truth_at(t, vehicles))
+    status = v2x_pb2.V2xStatus()
+    # the roadside unit stopped long ago: its window is empty (ratio 0) but it was heard 95 of 100 slots
+    status.stations.add(station_id=1, messages_received=95, reception_ratio=0.0, periodic_received_total=95,
+                        periodic_expected_total=100)
+    status.stations.add(station_id=2, messages_received=80, reception_ratio=0.9, periodic_received_total=80,
+                        periodic_expected_total=80)
+    messages.add("coopdrive/follower/v2x/status", status)
+    metrics = score_messages(messages)
+    assert metrics["v2x_reception_ratio_min"] == pytest.approx(0.95)
+    assert metrics["v2x_reception_ratio_mean"] == pytest.approx(0.975)
+    assert metrics["v2x_reception_pairs"] == 2

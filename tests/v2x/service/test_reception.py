@@ -150,3 +150,15 @@ def test_a_station_whose_first_position_was_wrong_is_followed_again_after_one_re
         received = receive(rx, index * PERIOD_S, north_m=300.0 + index)
         assert (received is None) == (index == 1)
     assert dict(rx.status(0.3).rejected_by_reason) == {"position_jump": 1}
+
+
+def test_a_stream_s_totals_since_first_heard_survive_the_window_after_its_sender_stops():
+    rx = reception(window_s=5.0)
+    kept = 0
+    for index in range(100):
+        if index % 10 != 3:
+            receive(rx, index * PERIOD_S)
+            kept += 1
+    stats = station(rx.status(60.0))
+    assert stats.reception_ratio == 0.0
+    assert (stats.periodic_received_total, stats.periodic_expected_total) == (kept, 100)
