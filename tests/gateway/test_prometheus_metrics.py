@@ -24,7 +24,8 @@ def test_the_metrics_parse_and_carry_speed_gap_time_gap_stations_and_rates(make_
     assert values[("coopdrive_gap_m", ())] == 30.0
     assert values[("coopdrive_time_gap_s", ())] == 2.0
     assert values[("coopdrive_v2x_stations", (("state", "active"),))] == 1
-    assert values[("coopdrive_v2x_stations", (("state", "lost"),))] == 1
+    # one gone quiet, one only ever refused by the security mode
+    assert values[("coopdrive_v2x_stations", (("state", "lost"),))] == 2
     assert values[("coopdrive_service_alive", (("service", "scene"),))] == 1
     assert values[("coopdrive_service_alive", (("service", "planner"),))] == 0
     assert ("coopdrive_service_message_rate_hz", (("service", "v2x"),)) in values

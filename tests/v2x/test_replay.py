@@ -53,9 +53,33 @@ def test_the_signed_capture_arrives_as_bare_gn_datagrams_byte_for_byte_at_the_re
     # GN from the first byte: a version 1 basic header; the beacon unsecured, the three others secured
     assert [parse_basic_header(data).version for _, data in arrivals] == [1] * 4
     assert [data[0] & 0x0F for _, data in arrivals] == [1] + [SECURED_NEXT_HEADER] * 3
-    gaps_s = [later - earlier for (earlier, _), (later, _) in zip(arrivals, arrivals[1:])]
-    assert all(gap >= 0.8 * RECORDED_GAP_S / RATE for gap in gaps_s), gaps_s
-    assert summary.duration_s == pytest.approx(3 * RECORDED_GAP_S / RATE, abs=0.05)
+    # it waited for the recorded pace (how late a loaded machine lets it be is not the replay's to promise)
+    assert summary.duration_s >= 3 * RECORDED_GAP_S / RATE
+
+
+class FakeClock:
+    """monotonic() and sleep() of a clock that only moves when slept; it keeps the times slept to."""
+
+    def __init__(self) -> None:
+        self.now_s = 100.0
+        self.woken_at_s: list[float] = []
+
+    def monotonic(self) -> float:
+        return self.now_s
+
+    def sleep(self, seconds: float) -> None:
+        self.now_s += seconds
+        self.woken_at_s.append(self.now_s)
+
+
+def test_each_packet_waits_for_its_recorded_offset_divided_by_the_rate(radio_port):
+    clock = FakeClock()
+    summary = replay_capture(shared_file(SIGNED), radio_port.getsockname(), RATE, sleep=clock.sleep,
+                             monotonic=clock.monotonic)
+    assert summary.sent == 4 and len(received(radio_port, 4)) == 4
+    # the first packet goes at once, each later one when its offset from the first, scaled, has passed
+    assert clock.woken_at_s == pytest.approx([100.0 + k * RECORDED_GAP_S / RATE for k in (1, 2, 3)])
+    assert summary.duration_s == pytest.approx(3 * RECORDED_GAP_S / RATE)
 
 
 def test_a_pcapng_capture_of_929_packets_is_sent_whole(radio_port):

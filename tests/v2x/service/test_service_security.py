@@ -90,15 +90,16 @@ def test_a_station_with_an_untrusted_ticket_is_dropped_with_its_reason_counted(s
     (rogue, rogue_ctx), (b, b_ctx) = station("rogue"), station("b")
     deliver(b, b_ctx, radio, sent_cam(rogue, rogue_ctx, radio))
     assert b_ctx.messages("v2x/cam") == []
-    assert rejected(b_ctx) == {RejectReason.UNKNOWN_ISSUER.value: 1}
-    assert b.counters[f"rejected_{RejectReason.UNKNOWN_ISSUER.value}"] == 1
+    # its signature is valid (the ticket travels with it), but the ticket's issuer chains to no root b trusts
+    assert rejected(b_ctx) == {RejectReason.UNTRUSTED.value: 1}
+    assert b.counters[f"rejected_{RejectReason.UNTRUSTED.value}"] == 1
     # listed, never heard: refused by the security mode, signed by a signer nobody trusts
     [rogue_stats] = b_ctx.messages("v2x/status")[-1].stations
     assert (rogue_stats.station_id, rogue_stats.state) == (STATIONS["rogue"][0], v2x_pb2.LINK_STATE_LOST)
     assert (rogue_stats.messages_signed, rogue_stats.messages_refused_by_security, rogue_stats.messages_trusted,
             rogue_stats.messages_untrusted) == (1, 1, 0, 1)
     assert (rogue_stats.signed, rogue_stats.trusted, rogue_stats.messages_received) == (True, False, 0)
-    assert rogue_stats.last_security_reason == RejectReason.UNKNOWN_ISSUER.value
+    assert rogue_stats.last_security_reason == RejectReason.UNTRUSTED.value
 
 
 def test_the_station_with_the_untrusted_ticket_still_hears_and_verifies_the_others(station, radio):  # noqa: F811
