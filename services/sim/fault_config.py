@@ -49,6 +49,14 @@ class GnssJump(_Fault):
     vehicle_id: str
     east_m: float = 5.0
     north_m: float = 0.0
+    # The offset grows linearly to its full size over this time (0: a step), as a multipath or atmospheric
+    # error builds up slowly enough for a filter's innovation gate to accept every fix.
+    ramp_s: float = Field(default=0.0, ge=0)
+
+    def offset_at(self, now_s: float) -> tuple[float, float]:
+        """(east, north) offset in m at now_s while active."""
+        share = 1.0 if self.ramp_s == 0.0 else min(1.0, max(0.0, (now_s - self.start_s) / self.ramp_s))
+        return share * self.east_m, share * self.north_m
 
 
 class FixDowngrade(_Fault):

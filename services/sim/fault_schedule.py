@@ -43,17 +43,18 @@ class FaultSchedule:
         self._active = active_now
         active = [self.faults[i] for i in sorted(active_now)]
         for vehicle_id, suite in suites.items():
-            self._apply_to_suite(vehicle_id, suite, active)
+            self._apply_to_suite(vehicle_id, suite, active, now_s)
         if channel is not None:
             self._apply_to_channel(channel, active)
         return transitions
 
     @staticmethod
-    def _apply_to_suite(vehicle_id: str, suite: SensorSuite, active: Sequence[Fault]) -> None:
+    def _apply_to_suite(vehicle_id: str, suite: SensorSuite, active: Sequence[Fault], now_s: float) -> None:
         mine = [f for f in active if getattr(f, "vehicle_id", None) == vehicle_id]
         suite.gnss.set_outage(any(isinstance(f, GnssOutage) for f in mine))
         jumps = [f for f in mine if isinstance(f, GnssJump)]
-        suite.gnss.set_offset(sum(f.east_m for f in jumps), sum(f.north_m for f in jumps))
+        offsets = [f.offset_at(now_s) for f in jumps]
+        suite.gnss.set_offset(sum(east for east, _ in offsets), sum(north for _, north in offsets))
         downgrades = sorted((f for f in mine if isinstance(f, FixDowngrade)), key=lambda f: f.start_s)
         suite.gnss.set_fix_mode(downgrades[-1].fix_mode if downgrades else suite.gnss.config.fix_mode)
         for name in SensorName:
