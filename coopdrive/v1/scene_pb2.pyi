@@ -1,12 +1,24 @@
 from coopdrive.v1 import header_pb2 as _header_pb2
 from coopdrive.v1 import sensors_pb2 as _sensors_pb2
 from google.protobuf.internal import containers as _containers
+from google.protobuf.internal import enum_type_wrapper as _enum_type_wrapper
 from google.protobuf import descriptor as _descriptor
 from google.protobuf import message as _message
 from collections.abc import Iterable as _Iterable, Mapping as _Mapping
 from typing import ClassVar as _ClassVar, Optional as _Optional, Union as _Union
 
 DESCRIPTOR: _descriptor.FileDescriptor
+
+class LaneSource(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    LANE_SOURCE_UNSPECIFIED: _ClassVar[LaneSource]
+    LANE_SOURCE_MAP: _ClassVar[LaneSource]
+    LANE_SOURCE_CAMERA: _ClassVar[LaneSource]
+    LANE_SOURCE_FUSED: _ClassVar[LaneSource]
+LANE_SOURCE_UNSPECIFIED: LaneSource
+LANE_SOURCE_MAP: LaneSource
+LANE_SOURCE_CAMERA: LaneSource
+LANE_SOURCE_FUSED: LaneSource
 
 class ScalarProperty(_message.Message):
     __slots__ = ("value", "confidence", "sources", "valid_until_s")
@@ -109,7 +121,7 @@ class FreeSpace(_message.Message):
     def __init__(self, range_m: _Optional[_Iterable[float]] = ...) -> None: ...
 
 class Scene(_message.Message):
-    __slots__ = ("header", "objects", "has_mio", "mio_id", "has_forward_mio", "forward_mio_id", "neighbours", "free_space", "ego_lane_index", "station_trust")
+    __slots__ = ("header", "objects", "has_mio", "mio_id", "has_forward_mio", "forward_mio_id", "neighbours", "free_space", "ego_lane_index", "station_trust", "ego_lane")
     HEADER_FIELD_NUMBER: _ClassVar[int]
     OBJECTS_FIELD_NUMBER: _ClassVar[int]
     HAS_MIO_FIELD_NUMBER: _ClassVar[int]
@@ -120,6 +132,7 @@ class Scene(_message.Message):
     FREE_SPACE_FIELD_NUMBER: _ClassVar[int]
     EGO_LANE_INDEX_FIELD_NUMBER: _ClassVar[int]
     STATION_TRUST_FIELD_NUMBER: _ClassVar[int]
+    EGO_LANE_FIELD_NUMBER: _ClassVar[int]
     header: _header_pb2.Header
     objects: _containers.RepeatedCompositeFieldContainer[SceneObject]
     has_mio: bool
@@ -130,7 +143,50 @@ class Scene(_message.Message):
     free_space: FreeSpace
     ego_lane_index: int
     station_trust: _containers.RepeatedCompositeFieldContainer[StationTrust]
-    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., objects: _Optional[_Iterable[_Union[SceneObject, _Mapping]]] = ..., has_mio: _Optional[bool] = ..., mio_id: _Optional[int] = ..., has_forward_mio: _Optional[bool] = ..., forward_mio_id: _Optional[int] = ..., neighbours: _Optional[_Iterable[_Union[LaneNeighbours, _Mapping]]] = ..., free_space: _Optional[_Union[FreeSpace, _Mapping]] = ..., ego_lane_index: _Optional[int] = ..., station_trust: _Optional[_Iterable[_Union[StationTrust, _Mapping]]] = ...) -> None: ...
+    ego_lane: EgoLane
+    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., objects: _Optional[_Iterable[_Union[SceneObject, _Mapping]]] = ..., has_mio: _Optional[bool] = ..., mio_id: _Optional[int] = ..., has_forward_mio: _Optional[bool] = ..., forward_mio_id: _Optional[int] = ..., neighbours: _Optional[_Iterable[_Union[LaneNeighbours, _Mapping]]] = ..., free_space: _Optional[_Union[FreeSpace, _Mapping]] = ..., ego_lane_index: _Optional[int] = ..., station_trust: _Optional[_Iterable[_Union[StationTrust, _Mapping]]] = ..., ego_lane: _Optional[_Union[EgoLane, _Mapping]] = ...) -> None: ...
+
+class LaneBoundary(_message.Message):
+    __slots__ = ("c0_m", "c1", "c2_1pm", "c3_1pm2", "view_range_m", "confidence")
+    C0_M_FIELD_NUMBER: _ClassVar[int]
+    C1_FIELD_NUMBER: _ClassVar[int]
+    C2_1PM_FIELD_NUMBER: _ClassVar[int]
+    C3_1PM2_FIELD_NUMBER: _ClassVar[int]
+    VIEW_RANGE_M_FIELD_NUMBER: _ClassVar[int]
+    CONFIDENCE_FIELD_NUMBER: _ClassVar[int]
+    c0_m: float
+    c1: float
+    c2_1pm: float
+    c3_1pm2: float
+    view_range_m: float
+    confidence: float
+    def __init__(self, c0_m: _Optional[float] = ..., c1: _Optional[float] = ..., c2_1pm: _Optional[float] = ..., c3_1pm2: _Optional[float] = ..., view_range_m: _Optional[float] = ..., confidence: _Optional[float] = ...) -> None: ...
+
+class EgoLane(_message.Message):
+    __slots__ = ("valid", "lane_index", "lateral_offset_m", "lateral_offset_std_m", "heading_error_rad", "curvature_1pm", "lane_width_m", "source", "left", "right", "map_minus_camera_offset_m")
+    VALID_FIELD_NUMBER: _ClassVar[int]
+    LANE_INDEX_FIELD_NUMBER: _ClassVar[int]
+    LATERAL_OFFSET_M_FIELD_NUMBER: _ClassVar[int]
+    LATERAL_OFFSET_STD_M_FIELD_NUMBER: _ClassVar[int]
+    HEADING_ERROR_RAD_FIELD_NUMBER: _ClassVar[int]
+    CURVATURE_1PM_FIELD_NUMBER: _ClassVar[int]
+    LANE_WIDTH_M_FIELD_NUMBER: _ClassVar[int]
+    SOURCE_FIELD_NUMBER: _ClassVar[int]
+    LEFT_FIELD_NUMBER: _ClassVar[int]
+    RIGHT_FIELD_NUMBER: _ClassVar[int]
+    MAP_MINUS_CAMERA_OFFSET_M_FIELD_NUMBER: _ClassVar[int]
+    valid: bool
+    lane_index: int
+    lateral_offset_m: float
+    lateral_offset_std_m: float
+    heading_error_rad: float
+    curvature_1pm: float
+    lane_width_m: float
+    source: LaneSource
+    left: LaneBoundary
+    right: LaneBoundary
+    map_minus_camera_offset_m: float
+    def __init__(self, valid: _Optional[bool] = ..., lane_index: _Optional[int] = ..., lateral_offset_m: _Optional[float] = ..., lateral_offset_std_m: _Optional[float] = ..., heading_error_rad: _Optional[float] = ..., curvature_1pm: _Optional[float] = ..., lane_width_m: _Optional[float] = ..., source: _Optional[_Union[LaneSource, str]] = ..., left: _Optional[_Union[LaneBoundary, _Mapping]] = ..., right: _Optional[_Union[LaneBoundary, _Mapping]] = ..., map_minus_camera_offset_m: _Optional[float] = ...) -> None: ...
 
 class StationTrust(_message.Message):
     __slots__ = ("station_id", "trust", "trusted", "security_failing", "untrusted_signer")

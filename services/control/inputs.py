@@ -11,6 +11,8 @@ scene keeps a V2V-supported property for its fade time (about a second), far bey
 
 from __future__ import annotations
 
+import math
+
 from coopdrive.v1 import ego_pb2, header_pb2, planner_pb2, scene_pb2
 
 from .longitudinal.types import Spacing, Target
@@ -74,6 +76,27 @@ def stop_line_target(request: planner_pb2.BehaviourRequest, ego_speed_mps: float
     gap_m = request.stop_line_distance_m - ego_speed_mps * age_s
     return Target(object_id=STOP_LINE_OBJECT_ID, gap_m=gap_m - STOP_LINE_MARGIN_M, speed_mps=0.0,
                   role=planner_pb2.TARGET_ROLE_YIELD, stop_line=True)
+
+
+CAMERA_LANE_SOURCES = (scene_pb2.LANE_SOURCE_FUSED, scene_pb2.LANE_SOURCE_CAMERA)
+
+
+def lane_for_steering(ego: ego_pb2.EgoState, scene: scene_pb2.Scene | None, now_s: float,
+                      max_age_s: float) -> ego_pb2.LanePosition:
+    """The lane to steer in: the scene's when it comes from the camera (fused with the map, or alone where the
+    map at the estimated position disagrees) and is fresh, moved on to now_s along its heading error; otherwise
+    the map's lane at the estimated position. Its index and offset change together when the camera sees the car
+    cross a line, so the offset to the target lane stays continuous."""
+    if scene is None or not scene.ego_lane.valid or scene.ego_lane.source not in CAMERA_LANE_SOURCES:
+        return ego.lane
+    age_s = now_s - scene.header.sample_time_s
+    if not 0.0 <= age_s <= max_age_s:
+        return ego.lane
+    seen = scene.ego_lane
+    lane = ego_pb2.LanePosition(matched=True, lane_index=seen.lane_index, lane_width_m=seen.lane_width_m,
+                                heading_error_rad=seen.heading_error_rad, curvature_1pm=seen.curvature_1pm)
+    lane.lateral_offset_m = seen.lateral_offset_m + ego.speed_mps * math.sin(seen.heading_error_rad) * age_s
+    return lane
 
 
 def offset_to_target_lane_m(lane: ego_pb2.LanePosition, request: planner_pb2.BehaviourRequest) -> float:

@@ -8,9 +8,9 @@ from __future__ import annotations
 
 from coopdrive.bus import Envelope
 from coopdrive.runtime.service import Service, ServiceConfig
-from coopdrive.services.control.config import ControlConfig
-from coopdrive.services.control.inputs import (offset_to_target_lane_m, spacing_from_request, stop_line_target,
-                                              targets_from_scene)
+from coopdrive.services.control.config import ControlConfig, LaneSourceChoice
+from coopdrive.services.control.inputs import (lane_for_steering, offset_to_target_lane_m, spacing_from_request,
+                                              stop_line_target, targets_from_scene)
 from coopdrive.services.control.lateral import LateralController
 from coopdrive.services.control.longitudinal import LongitudinalController
 from coopdrive.v1 import control_pb2, ego_pb2
@@ -76,6 +76,8 @@ class ControlService(Service):
     def _steer(self, now_s: float, ego: ego_pb2.EgoState, command: control_pb2.ControlCommand) -> None:
         """Lane keeping needs the lane; without a matched lane the request is straight ahead and lateral off."""
         lane = ego.lane
+        if self.config.lane_source is LaneSourceChoice.SCENE:
+            lane = lane_for_steering(ego, self.scene, now_s, self.config.scene_lane_max_age_s)
         if not lane.matched:
             if self.lateral_active:
                 self.lateral.reset()

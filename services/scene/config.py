@@ -86,6 +86,28 @@ class CameraConfig(BaseModel):
     default_width_m: float = Field(default=1.8, gt=0.0)
 
 
+class LaneFusionConfig(BaseModel):
+    """Map and camera lane fusion (ego_lane.py)."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    # A lane camera's lateral position of a marking: about 0.1 m (engineering estimate of the order reported for
+    # series lane-keeping cameras; the simulator's camera draws 0.05 m per marking), divided by its quality.
+    camera_offset_std_m: float = Field(default=0.1, gt=0.0)
+    camera_heading_std_rad: float = Field(default=0.01, gt=0.0)
+    # The map's centre line itself (survey and digitisation), beside the position estimate's error.
+    map_offset_std_m: float = Field(default=0.1, gt=0.0)
+    map_heading_std_rad: float = Field(default=0.005, gt=0.0)
+    # Map and camera offsets further apart than this many standard deviations of their difference disagree.
+    gate_sigma: float = Field(default=3.0, gt=0.0)
+    min_marking_quality: float = Field(default=0.3, gt=0.0, le=1.0)
+    max_marking_age_s: float = Field(default=0.3, gt=0.0)
+    # A marking pair further apart or closer than these is not one lane.
+    min_lane_width_m: float = Field(default=2.2, gt=0.0)
+    max_lane_width_m: float = Field(default=5.0, gt=0.0)
+    boundary_view_range_m: float = Field(default=40.0, gt=0.0)
+
+
 class SonarConfig(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
@@ -184,6 +206,7 @@ class SceneFusionConfig(BaseModel):
     sonar: SonarConfig = Field(default_factory=SonarConfig)
     v2v: V2vConfig = Field(default_factory=V2vConfig)
     trust: TrustConfig = Field(default_factory=TrustConfig)
+    lanes: LaneFusionConfig = Field(default_factory=LaneFusionConfig)
     tracking: TrackingConfig = Field(default_factory=TrackingConfig)
     lidar_source: SourceConfig = Field(
         default_factory=lambda: SourceConfig(fade_time_s=0.5, decay_per_s=0.4, max_confidence=0.9, gain=0.5))

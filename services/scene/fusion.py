@@ -12,6 +12,7 @@ from __future__ import annotations
 from coopdrive.v1 import ego_pb2, scene_pb2, sensors_pb2
 
 from .config import SceneFusionConfig
+from .ego_lane import EgoLaneFusion
 from .freespace import FreeSpaceOracle
 from .frontends import (
     CameraFrontEnd,
@@ -46,6 +47,9 @@ class SceneFusion:
         self._free_space = FreeSpaceOracle(self.config.trust, self.config.radar, self.config.lidar)
         self._builder = SceneBuilder(self.config, lane_of, frenet_of)
         self._ego: EgoPose | None = None
+        # The latest ego state itself, for its lane on the map.
+        self._ego_state: ego_pb2.EgoState | None = None
+        self.lanes = EgoLaneFusion(self.config.lanes)
         self._free_ranges_m: list[float] = []
         self.lane_markings: LaneMarkings | None = None
 
@@ -58,7 +62,7 @@ class SceneFusion:
             self.rejects.reject(str(error))
             return
         if self._ego is None or pose.time_s >= self._ego.time_s:
-            self._ego = pose
+            self._ego, self._ego_state = pose, ego
 
     def on_lidar(self, scan: sensors_pb2.LidarScan, ego: ego_pb2.EgoState | None = None) -> None:
         pose = self._pose(scan.header.sample_time_s, ego, "lidar")
@@ -130,6 +134,7 @@ class SceneFusion:
         for station_id, state in sorted(self.trust.stations().items()):
             scene.station_trust.add(station_id=station_id, trust=state.trust, trusted=self.trust.trusted(station_id),
                                     security_failing=state.security_failing, untrusted_signer=state.untrusted_signer)
+        scene.ego_lane.CopyFrom(self.lanes.ego_lane(self._ego_state, self.lane_markings, time_s))
         return scene
 
     def _views(self, time_s: float) -> list[ObjectView]:
@@ -155,6 +160,7 @@ class SceneFusion:
         """Diagnostics: tracker events and rejected inputs by reason."""
         out = {f"tracker_{k}": v for k, v in vars(self.tracker.counters).items() if isinstance(v, int)}
         out.update({f"rejected: {k}": v for k, v in self.rejects.counts.items()})
+        out["lane_map_camera_disagreements"] = self.lanes.disagreements
         return out
 
     # -- helpers ---------------------------------------------------------------------------
@@ -167,7 +173,7 @@ class SceneFusion:
                 self.rejects.reject(f"{what}: {error}")
                 return None
             if self._ego is None or given.time_s >= self._ego.time_s:
-                self._ego = given
+                self._ego, self._ego_state = given, ego
             return given.at(time_s)
         if self._ego is None:
             self.rejects.reject(f"{what}: no ego state yet")

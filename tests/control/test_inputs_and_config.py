@@ -1,10 +1,13 @@
 """Bus messages to controller inputs, and the service configuration."""
 
+import math
+
 import pytest
 from pydantic import ValidationError
 
 from coopdrive.services.control.config import ControlConfig
-from coopdrive.services.control.inputs import offset_to_target_lane_m, spacing_from_request, targets_from_scene
+from coopdrive.services.control.inputs import (lane_for_steering, offset_to_target_lane_m, spacing_from_request,
+                                              targets_from_scene)
 from coopdrive.services.control.longitudinal import CaccLaw
 from coopdrive.services.control.profiles import CAR, TRUCK, profile_by_name
 from coopdrive.v1 import ego_pb2, header_pb2, planner_pb2, scene_pb2
@@ -110,3 +113,30 @@ def test_the_offset_to_the_target_lane_stays_continuous_when_the_ego_crosses_the
 def test_without_a_target_lane_the_offset_is_to_the_lane_the_ego_is_in():
     request = planner_pb2.BehaviourRequest(target_lane_index=-1)
     assert offset_to_target_lane_m(lane_position(1, 0.3), request) == pytest.approx(0.3)
+
+
+def _scene_with_lane(source: int, time_s: float = 1.0) -> scene_pb2.Scene:
+    scene = scene_pb2.Scene()
+    scene.header.sample_time_s = time_s
+    lane = scene.ego_lane
+    lane.valid, lane.source, lane.lane_index = True, source, 2
+    lane.lateral_offset_m, lane.heading_error_rad, lane.lane_width_m = 0.1, 0.01, 3.5
+    return scene
+
+
+def test_steering_takes_the_scene_s_camera_lane_while_fresh_moved_on_along_its_heading_error():
+    ego = ego_pb2.EgoState(speed_mps=20.0)
+    ego.lane.matched, ego.lane.lane_index, ego.lane.lateral_offset_m = True, 1, 1.4
+    lane = lane_for_steering(ego, _scene_with_lane(scene_pb2.LANE_SOURCE_CAMERA), 1.05, max_age_s=0.1)
+    assert lane.matched and lane.lane_index == 2
+    assert lane.lateral_offset_m == pytest.approx(0.1 + 20.0 * math.sin(0.01) * 0.05)
+    fused = lane_for_steering(ego, _scene_with_lane(scene_pb2.LANE_SOURCE_FUSED), 1.0, max_age_s=0.1)
+    assert fused.lateral_offset_m == pytest.approx(0.1)
+
+
+def test_steering_keeps_the_map_lane_when_the_scene_s_lane_is_the_map_s_stale_or_missing():
+    ego = ego_pb2.EgoState(speed_mps=20.0)
+    ego.lane.matched, ego.lane.lane_index, ego.lane.lateral_offset_m = True, 1, 1.4
+    for scene, now_s in ((None, 1.0), (_scene_with_lane(scene_pb2.LANE_SOURCE_MAP), 1.0),
+                         (_scene_with_lane(scene_pb2.LANE_SOURCE_CAMERA), 1.2), (scene_pb2.Scene(), 1.0)):
+        assert lane_for_steering(ego, scene, now_s, max_age_s=0.1) == ego.lane
