@@ -28,6 +28,8 @@ escape target. Every waiting state has a timeout whose escape is a safe state (k
 a silent partner (400 ms) or a scene contradicting V2V leaves a waiting state at once. The operator can
 force any state (`Planner.force`), logged as `forced by <who>`. `TIMEOUT` edges are the escapes; states
 noted `safe` need nobody's cooperation; `[*]` marks terminal states. Times are the default configuration's.
+Every edge below, timeouts included, is driven by a test: `tests/planner/*_drivers.py` map each to a driver
+(real planner, real inputs) and `tests/planner/test_every_transition_is_driven.py` fails for an edge without one.
 
 Use from a service:
 

@@ -182,13 +182,17 @@ class IntersectionScenario:
         return events
 
     def count_crossing(self) -> None:
+        """Only a vehicle past the box has crossed: the scenario's end is no crossing to announce."""
         self.counter_intersection += 1
 
     def behaviour(self, state: enum.Enum) -> planner_pb2.BehaviourRequest:
         S, sit, c = CrossState, self.sit, self.config.intersection
+        # The scenario's end does not clear the intersection: a vehicle that has not crossed still gives way to
+        # a priority vehicle the scene shows coming (only to one the scene shows: nothing leaves EXITED).
+        gives_way_after_the_end = state is S.EXITED and self.seen_conflict_before_stop_line()
         if state is S.APPROACH:
             request = self._approach()
-        elif state in (S.GIVE_WAY, S.HOLD_SAFE):
+        elif state in (S.GIVE_WAY, S.HOLD_SAFE) or gives_way_after_the_end:
             request = keep_lane(sit, c.arrival_speed_mps, self.config.platoon.acc_time_gap_s)
             if self.before_stop_line():
                 request.has_stop_line = True
@@ -246,7 +250,8 @@ def build_spec(config: PlannerLogicConfig) -> MachineSpec:
         StateSpec(S.CROSSING, timeout_s=c.crossing_timeout_s, escape=S.HOLD_SAFE,
                   description="as fast as allowed, 7.5 m safety circle"),
         StateSpec(S.HOLD_SAFE, safe=True, description="hold at the stop line, follow the MIO; cross on a clear scene"),
-        StateSpec(S.EXITED, safe=True, terminal=True, on_enter=Ctx.count_crossing, description="crossed"),
+        StateSpec(S.EXITED, safe=True, terminal=True,
+                  description="crossed, or the scenario ended (then still giving way before the stop line)"),
     )
     transitions = (
         Transition(S.IDLE, E.START, S.APPROACH, reason="RSU startPlatoon"),
@@ -260,7 +265,7 @@ def build_spec(config: PlannerLogicConfig) -> MachineSpec:
         Transition(S.GIVE_WAY, E.SCENE_CONTRADICTS_V2V, S.HOLD_SAFE,
                    reason="priority vehicle heard on V2V but not in the scene"),
         Transition(S.HOLD_SAFE, E.PATH_CLEAR_BY_SCENE, S.CROSSING, reason="the scene shows the way clear"),
-        Transition(S.CROSSING, E.CROSSED, S.EXITED, reason="past the intersection box"),
+        Transition(S.CROSSING, E.CROSSED, S.EXITED, action=Ctx.count_crossing, reason="past the intersection box"),
         *from_each([S.IDLE, S.APPROACH, S.HOLD_SAFE], E.END_OF_SCENARIO, S.EXITED, reason="RSU endOfScenario"),
     )
     return MachineSpec("intersection", S.IDLE, states, transitions)

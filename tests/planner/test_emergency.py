@@ -1,17 +1,9 @@
 import pytest
-from planner_world import EMERGENCY_APPROACHING, denm, ego, emergency_cam, inputs, planner, scene
+from drivers import fired
+from emergency_drivers import DRIVERS, world
+from planner_world import planner
 
 from coopdrive.v1 import planner_pb2
-
-EV = 66
-
-
-def world(t, ev_east_m=None, offset_m=0.0, lane=1, with_denm=False, heard_at=None,
-          scenario=planner_pb2.SCENARIO_EMERGENCY):
-    cams = {} if ev_east_m is None else {EV: emergency_cam(EV, t if heard_at is None else heard_at, ev_east_m)}
-    denms = {EV: denm(EMERGENCY_APPROACHING, origin=EV)} if with_denm else {}
-    return inputs(scenario, ego=ego(lane, lateral_offset_m=offset_m), scene=scene(ego_lane=lane), cams=cams,
-                  denms=denms)
 
 
 def opened(p):
@@ -102,3 +94,18 @@ def test_a_stale_cam_of_a_lost_ev_does_not_reopen_the_corridor():
     p.step(4.0, world(4.0, -80.0, offset_m=0.0, heard_at=0.2))
     _, state = p.step(4.1, world(4.1, -80.0, offset_m=0.0, heard_at=0.2))
     assert state.state == "NORMAL"
+
+
+def test_an_ev_that_passes_before_the_corridor_is_open_brings_the_vehicle_back_to_the_lane_centre_at_once():
+    request, state = DRIVERS[("emergency", "OPENING", "EV_PASSED", "CLOSING")]()
+    assert state.state == "CLOSING"
+    assert fired(state, "OPENING", "EV_PASSED", "CLOSING").reason == "emergency vehicle passed"
+    assert request.lateral_offset_m == 0.0
+
+
+@pytest.mark.parametrize("event, reason", [("EV_PASSED", "emergency vehicle passed"),
+                                           ("EV_LOST", "emergency vehicle no longer heard")])
+def test_slow_safe_returns_to_normal_driving_once_the_ev_passed_or_is_no_longer_heard(event, reason):
+    request, state = DRIVERS[("emergency", "SLOW_SAFE", event, "NORMAL")]()
+    assert state.state == "NORMAL" and fired(state, "SLOW_SAFE", event, "NORMAL").reason == reason
+    assert request.lateral_offset_m == 0.0 and request.desired_speed_mps == 25.0

@@ -1,31 +1,14 @@
 import math
 
 import pytest
-from planner_world import ego, iclcm, inputs, obj, planner, rsu_start, scene
+from drivers import fired
+from intersection_drivers import COMPETITOR, DRIVERS, HOLD_SAFE, ORGANISER, cross_planner, world
+from planner_world import iclcm, obj
 
 from coopdrive.services.planner.speed_profile import QuinticArrival
 from coopdrive.v1 import planner_pb2
 
-ORGANISER, COMPETITOR = 77, 55
 NORTH = math.pi / 2
-
-
-def cross_planner(**intersection):
-    return planner(intersection={"organiser_station_ids": [ORGANISER], "arrival_time_s": 20.0, **intersection})
-
-
-def world(t, x_m, organiser_y_m=None, organiser_heard=False, extra=(), start=True, msgs=None,
-          organiser_speed_mps=8.0):
-    objects = list(extra)
-    if organiser_y_m is not None:
-        objects.append(obj(9, ORGANISER, gap_m=-x_m, lane=0, x_m=0.0, y_m=organiser_y_m,
-                           speed_mps=organiser_speed_mps, heading_rad=NORTH))
-    iclcms = {900: rsu_start(t)} if start else {}
-    if organiser_heard or organiser_y_m is not None:
-        iclcms[ORGANISER] = iclcm(ORGANISER, t)
-    iclcms.update(msgs or {})
-    return inputs(planner_pb2.SCENARIO_INTERSECTION, ego=ego(speed_mps=8.0, x_m=x_m), iclcms=iclcms,
-                  scene=scene(*objects))
 
 
 def test_the_quintic_profile_arrives_at_the_point_on_time_at_the_speed_without_acceleration():
@@ -157,3 +140,30 @@ def test_a_competitor_further_into_the_zone_on_our_own_road_is_no_conflict_when_
     p.step(0.1, world(0.1, -95.0))
     _, state = p.step(0.2, world(0.2, -90.0, extra=[competitor], msgs=ahead_in_zone))
     assert state.state == "CROSSING"
+
+
+@pytest.mark.parametrize("source", ["IDLE", "APPROACH", "HOLD_SAFE"])
+def test_the_rsu_end_of_scenario_ends_the_scenario_before_the_box_without_counting_a_crossing(source):
+    request, state = DRIVERS[("intersection", source, "END_OF_SCENARIO", "EXITED")]()
+    assert state.state == "EXITED"
+    assert fired(state, source, "END_OF_SCENARIO", "EXITED").reason == "RSU endOfScenario"
+    assert request.iclcm.counter_intersection == 0
+
+
+def test_a_vehicle_held_before_the_stop_line_when_the_scenario_ends_still_gives_way_until_the_organiser_passed():
+    request, state = DRIVERS[("intersection", "HOLD_SAFE", "END_OF_SCENARIO", "EXITED")]()
+    assert state.state == "EXITED"
+    assert request.has_stop_line and request.stop_line_distance_m == pytest.approx(45.0)
+    assert [t.station_id for t in request.targets if t.role == planner_pb2.TARGET_ROLE_YIELD] == [ORGANISER]
+    p, _ = HOLD_SAFE.run()
+    HOLD_SAFE.step(p, 0.3, end=True)
+    request, state = HOLD_SAFE.step(p, 0.4, end=True, organiser_y_m=30.0)
+    assert state.state == "EXITED" and not request.has_stop_line
+    assert request.desired_speed_mps == pytest.approx(50 / 3.6)
+
+
+def test_after_the_scenario_ended_an_organiser_heard_but_never_seen_does_not_hold_the_vehicle_for_ever():
+    p, _ = HOLD_SAFE.run()
+    HOLD_SAFE.step(p, 0.3, end=True)
+    request, state = HOLD_SAFE.step(p, 0.4, end=True, organiser_y_m=None, organiser_heard=True)
+    assert state.state == "EXITED" and not request.has_stop_line

@@ -1,49 +1,26 @@
 import pytest
-from planner_world import ME, ROADWORKS, denm, ego, iclcm, inputs, obj, planner, rsu_end, rsu_start, scene
+from drivers import fired
+from merge_drivers import (A_PARTNER, ACKED, B_AHEAD, B_MIO, B_PARTNER, DRIVERS, GAP_MAKER_STATES, LANE_A, LANE_B,
+                           PAIRING, PARTNER_STATES, gap_maker, merger)
+from planner_world import ME, ROADWORKS, denm, ego, iclcm, inputs, obj, planner, rsu_start, scene
 
 from coopdrive.v1 import planner_pb2
 
-A_PARTNER, B_PARTNER, B_AHEAD, A_AHEAD, B_MIO = 21, 31, 41, 51, 11
-LANE_A, LANE_B = 1, 0
-
-
-def gap_maker(t, partner_msg=None, partner_gap_m=5.0, partner_lane=LANE_A, heard_at=None, start=True,
-              roadworks=True, partner=True, end=False):
-    msgs = {}
-    if start:
-        msgs[900] = rsu_end(t) if end else rsu_start(t)
-    if partner:
-        msgs[A_PARTNER] = iclcm(A_PARTNER, t if heard_at is None else heard_at, **(partner_msg or {}))
-    objects = [obj(1, B_MIO, 20.0, LANE_B)]
-    if partner:
-        objects.append(obj(2, A_PARTNER, partner_gap_m, partner_lane))
-    world = scene(*objects, forward_mio=1, ego_lane=LANE_B, neighbours={1: (2 if partner else None, None)})
-    return inputs(planner_pb2.SCENARIO_MERGE, platoon_id=2, ego=ego(LANE_B), scene=world, iclcms=msgs,
-                  denms={900: denm(ROADWORKS)} if roadworks else {})
-
-
-def merger(t, partner_msg=None, head=False, ego_lane=LANE_A, heard_at=None, partner=True):
-    msgs = {900: rsu_start(t)}
-    if partner:
-        msgs[B_PARTNER] = iclcm(B_PARTNER, t if heard_at is None else heard_at, **(partner_msg or {}))
-    objects = [obj(4, B_AHEAD, 15.0, LANE_B)]
-    if partner:
-        objects.append(obj(3, B_PARTNER, -10.0, LANE_B))
-    if not head:
-        objects.append(obj(5, A_AHEAD, 20.0, LANE_A))
-    world = scene(*objects, forward_mio=None if head else 5, ego_lane=ego_lane,
-                  neighbours={-1: (4, 3 if partner else None)})
-    return inputs(planner_pb2.SCENARIO_MERGE, platoon_id=1, ego=ego(ego_lane), scene=world, iclcms=msgs,
-                  denms={900: denm(ROADWORKS)})
-
-
-ACKED = {"backward_id": ME, "acknowledge_flag": True}
-
 
 def gap_maker_pairing(p):
-    p.step(0.0, gap_maker(0.0, start=False, roadworks=False))
-    p.step(0.1, gap_maker(0.1, roadworks=False))
-    return p.step(0.2, gap_maker(0.2))
+    return PAIRING.run(p)[1]
+
+
+def own_lane(source: str) -> int:
+    return LANE_B if source in (*GAP_MAKER_STATES, "IDLE", "PLATOONING", "SAFE_KEEP_LANE") else LANE_A
+
+
+def assert_keeps_its_lane_without_protocol_flags(request, lane):
+    assert request.target_lane_index == lane and request.lane_change_duration_s == 0.0
+    assert request.spacing.time_gap_s == 1.5 and request.desired_speed_mps == pytest.approx(40 / 3.6)
+    assert not any(t.role == planner_pb2.TARGET_ROLE_VIRTUAL for t in request.targets)
+    i = request.iclcm
+    assert not (i.safe_to_merge or i.merge_request or i.merge_flag or i.merge_flag_head)
 
 
 def test_a_lane_b_vehicle_pairs_makes_a_gap_sends_stom_and_platoons_behind_its_merged_partner():
@@ -100,21 +77,37 @@ def test_keep_lane_retries_the_pairing_while_the_road_works_last():
     assert state.state == "PAIRING" and state.recent_transitions[-1].event == "RETRY"
 
 
-def test_a_partner_silent_for_400_ms_ends_the_gap_making_at_once():
-    p = planner()
-    gap_maker_pairing(p)
-    p.step(0.3, gap_maker(0.3, ACKED))
-    request, state = p.step(0.8, gap_maker(0.8, ACKED, heard_at=0.3))
-    assert state.state == "SAFE_KEEP_LANE" and "silent" in state.recent_transitions[-1].reason
-    assert request.target_lane_index == LANE_B and not request.iclcm.safe_to_merge
-
-
-def test_a_scene_that_puts_the_forward_partner_behind_us_ends_the_pairing():
-    p = planner()
-    gap_maker_pairing(p)
-    _, state = p.step(0.3, gap_maker(0.3, partner_gap_m=-20.0))
+@pytest.mark.parametrize("source", PARTNER_STATES)
+def test_a_partner_silent_for_400_ms_ends_each_partner_state_at_once_and_the_vehicle_keeps_its_lane(source):
+    request, state = DRIVERS[("merge", source, "PARTNER_LOST", "SAFE_KEEP_LANE")]()
     assert state.state == "SAFE_KEEP_LANE"
-    assert state.recent_transitions[-1].event == "SCENE_CONTRADICTS_V2V"
+    assert fired(state, source, "PARTNER_LOST", "SAFE_KEEP_LANE").reason == "partner silent for 400 ms"
+    assert_keeps_its_lane_without_protocol_flags(request, own_lane(source))
+    assert request.iclcm.forward_id == 0 and request.iclcm.backward_id == 0
+
+
+@pytest.mark.parametrize("source", PARTNER_STATES)
+def test_a_scene_that_puts_the_partner_on_the_wrong_side_ends_each_partner_state_and_the_vehicle_keeps_its_lane(
+        source):
+    request, state = DRIVERS[("merge", source, "SCENE_CONTRADICTS_V2V", "SAFE_KEEP_LANE")]()
+    assert state.state == "SAFE_KEEP_LANE"
+    assert fired(state, source, "SCENE_CONTRADICTS_V2V", "SAFE_KEEP_LANE").reason \
+        == "scene contradicts the partner's V2V"
+    assert_keeps_its_lane_without_protocol_flags(request, own_lane(source))
+    assert request.iclcm.forward_id == 0 and request.iclcm.backward_id == 0
+
+
+def test_road_works_heard_before_the_rsu_start_begin_the_pairing_from_idle():
+    request, state = DRIVERS[("merge", "IDLE", "ROADWORKS", "PAIRING")]()
+    assert state.state == "PAIRING" and fired(state, "IDLE", "ROADWORKS", "PAIRING").reason == "road works DENM"
+    assert request.iclcm.forward_id == A_PARTNER and request.target_lane_index == LANE_B
+
+
+def test_a_gap_maker_whose_partner_acknowledges_another_vehicle_lets_it_go_and_has_no_gap_to_make():
+    request, state = DRIVERS[("merge", "PAIRING", "NO_PARTNER", "DONE")]()
+    assert state.state == "DONE" and fired(state, "PAIRING", "NO_PARTNER", "DONE")
+    assert request.iclcm.forward_id == 0
+    assert_keeps_its_lane_without_protocol_flags(request, LANE_B)
 
 
 def test_a_lane_a_vehicle_pairs_waits_for_the_head_flag_and_merges_on_stom():
@@ -163,11 +156,13 @@ def test_a_lane_change_not_done_in_time_escapes_to_keep_lane():
     assert state.state == "SAFE_KEEP_LANE" and state.recent_transitions[-1].from_state == "MERGING"
 
 
-def test_the_rsu_end_of_scenario_ends_the_merge_from_a_waiting_state():
-    p = planner()
-    gap_maker_pairing(p)
-    _, state = p.step(0.3, gap_maker(0.3, end=True))
+@pytest.mark.parametrize("source", ["IDLE", "PLATOONING", "SAFE_KEEP_LANE", *PARTNER_STATES])
+def test_the_rsu_end_of_scenario_ends_the_merge_from_every_state_but_a_lane_change_and_the_vehicle_keeps_its_lane(
+        source):
+    request, state = DRIVERS[("merge", source, "END_OF_SCENARIO", "DONE")]()
     assert state.state == "DONE"
+    assert fired(state, source, "END_OF_SCENARIO", "DONE").reason == "RSU endOfScenario"
+    assert_keeps_its_lane_without_protocol_flags(request, own_lane(source))
 
 
 def merger_among_traffic(t, behind_gap_m, behind_speed_mps, ego_lane=LANE_A, works_east_m=None):

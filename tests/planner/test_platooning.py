@@ -1,26 +1,19 @@
 import pytest
-from planner_world import DT_S, ego, iclcm, inputs, obj, planner, rsu_end, rsu_start, scene, transitions
+from drivers import fired
+from platoon_drivers import CLOSE_GAP_M, CUT_IN, DRIVERS, PARTNER, PLATOONING, platoon_world
+from planner_world import DT_S, ego, inputs, planner, rsu_start, scene, transitions
 
 from coopdrive.v1 import planner_pb2
 
-PARTNER = 7
-CLOSE_GAP_M = 13.5  # 6 m + 0.5 s * 15 m/s
-FAR_GAP_M = 40.0
+LEAVE_TIME_GAP_S = 2.5
 
 
-def step(p, t, gap_m=FAR_GAP_M, heard_at=None, start=True, end=False, leave=False):
-    msgs = {PARTNER: iclcm(PARTNER, t if heard_at is None else heard_at)}
-    if start:
-        msgs[900] = rsu_end(t) if end else rsu_start(t)
-    world = inputs(planner_pb2.SCENARIO_PLATOON, platoon_id=2, ego=ego(), iclcms=msgs, leave_requested=leave,
-                   scene=scene(obj(1, PARTNER, gap_m), forward_mio=1))
-    return p.step(t, world)
+def step(p, t, **world):
+    return p.step(t, platoon_world(t, **world))
 
 
 def joined(p):
-    step(p, 0.0, start=False)
-    step(p, 0.1)
-    return step(p, 0.2, gap_m=CLOSE_GAP_M)
+    return PLATOONING.run(p)[1]
 
 
 def test_the_platoon_waits_for_the_rsu_then_joins_behind_the_partner_and_platoons():
@@ -100,11 +93,29 @@ def test_leaving_ends_after_its_timeout_even_if_the_gap_never_opens():
     assert state.state == "DONE" and state.recent_transitions[-1].event == "TIMEOUT"
 
 
-def test_the_rsu_end_of_scenario_makes_the_platoon_leave():
-    p = planner()
-    joined(p)
-    _, state = step(p, 0.3, gap_m=CLOSE_GAP_M, end=True)
-    assert state.state == "LEAVING" and state.recent_transitions[-1].reason == "RSU endOfScenario"
+@pytest.mark.parametrize("source", ["IDLE", "JOINING", "PLATOONING", "DEGRADED_ACC", "FOLLOW_SAFE"])
+def test_the_rsu_end_of_scenario_makes_the_vehicle_leave_from_every_state_before_leaving(source):
+    request, state = DRIVERS[("platooning", source, "END_OF_SCENARIO", "LEAVING")]()
+    assert state.state == "LEAVING"
+    assert fired(state, source, "END_OF_SCENARIO", "LEAVING").reason == "RSU endOfScenario"
+    assert request.spacing.time_gap_s == LEAVE_TIME_GAP_S
+
+
+@pytest.mark.parametrize("source", ["JOINING", "PLATOONING", "DEGRADED_ACC", "FOLLOW_SAFE"])
+def test_a_leave_request_opens_the_gap_from_every_platoon_state(source):
+    request, state = DRIVERS[("platooning", source, "LEAVE_REQUESTED", "LEAVING")]()
+    assert state.state == "LEAVING"
+    assert fired(state, source, "LEAVE_REQUESTED", "LEAVING").reason == "leave requested"
+    assert request.spacing.time_gap_s == LEAVE_TIME_GAP_S
+    assert [t.station_id for t in request.targets] == [PARTNER]
+
+
+def test_a_vehicle_cutting_in_while_joining_makes_the_joiner_follow_it_with_the_acc_gap():
+    request, state = DRIVERS[("platooning", "JOINING", "SCENE_CONTRADICTS_V2V", "FOLLOW_SAFE")]()
+    assert state.state == "FOLLOW_SAFE"
+    assert fired(state, "JOINING", "SCENE_CONTRADICTS_V2V", "FOLLOW_SAFE").reason == "scene: a vehicle cut in"
+    assert request.spacing.time_gap_s == 1.5
+    assert [(t.object_id, t.role) for t in request.targets] == [(CUT_IN, planner_pb2.TARGET_ROLE_PREDECESSOR)]
 
 
 def test_the_operator_can_force_the_platoon_out_of_joining():
@@ -120,9 +131,7 @@ def test_the_operator_can_force_the_platoon_out_of_joining():
 def test_a_vehicle_cutting_in_before_the_partner_degrades_the_platoon_until_it_leaves():
     p = planner()
     joined(p)
-    world = inputs(planner_pb2.SCENARIO_PLATOON, platoon_id=2, ego=ego(),
-                   iclcms={PARTNER: iclcm(PARTNER, 0.3), 900: rsu_start(0.3)},
-                   scene=scene(obj(1, PARTNER, 30.0), obj(2, 0, 10.0), forward_mio=2))
+    world = platoon_world(0.3, gap_m=30.0, cut_in=True)
     request, state = p.step(0.3, world)
     assert state.state == "DEGRADED_ACC" and state.recent_transitions[-1].event == "SCENE_CONTRADICTS_V2V"
     assert request.spacing.time_gap_s == 1.5
