@@ -1,4 +1,4 @@
-"""The scenarios coopdrive knows: the built-in follow world and the YAML files of coopdrive.scenarios."""
+"""The scenarios coopdrive knows: the YAML files of coopdrive.scenarios."""
 
 from __future__ import annotations
 
@@ -8,18 +8,14 @@ from importlib import resources
 import yaml
 
 from coopdrive.judging.score import JudgingParameters
-from coopdrive.services.sim.scenario_config import ScenarioConfig, ScenarioError, parse_scenario
-
-SCENARIO_PACKAGE = "coopdrive.scenarios"
-# Scenarios the simulator builds in code (services/sim/service.py), with what `run NAME` does.
-BUILT_IN = {"follow": "a scripted leader changes speed; the ego stack follows at d = r + h v (r = 6 m, h = 1.5 s)"}
+from coopdrive.services.sim.scenario_config import SCENARIO_PACKAGE, ScenarioConfig, ScenarioError, parse_scenario
 
 
 @dataclass(frozen=True)
 class ScenarioEntry:
     name: str
     description: str
-    source: str  # "built-in" or the YAML file name
+    source: str  # the YAML file name
     error: str = ""
 
 
@@ -39,15 +35,12 @@ def scenario_files() -> dict[str, ScenarioConfig | ScenarioError]:
 
 
 def list_scenarios() -> list[ScenarioEntry]:
-    """Built-in scenarios first (described by their YAML file when one has the same name), then the others."""
-    entries = {name: ScenarioEntry(name, description, "built-in") for name, description in BUILT_IN.items()}
+    """Every packaged scenario file, with the one-line error of a file that does not load."""
+    entries: dict[str, ScenarioEntry] = {}
     for file_name, scenario in scenario_files().items():
         if isinstance(scenario, ScenarioError):
             stem = file_name.rsplit(".", 1)[0]
             entries.setdefault(stem, ScenarioEntry(stem, "", file_name, str(scenario)))
-        elif scenario.name in BUILT_IN:
-            entries[scenario.name] = ScenarioEntry(scenario.name, scenario.description or BUILT_IN[scenario.name],
-                                                   f"built-in, {file_name}")
         else:
             entries.setdefault(scenario.name, ScenarioEntry(scenario.name, scenario.description, file_name))
     return list(entries.values())

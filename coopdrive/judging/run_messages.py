@@ -13,7 +13,7 @@ from coopdrive.v1 import ego_pb2, gnss_pb2, scene_pb2, sim_pb2, v2x_pb2
 
 TRUTH_SUFFIX = "/ground_truth"
 EGO_STATE_SUFFIX = "/ego/state"
-# The receiver's fixes: as the follow world publishes them, and as geolocation decoded them from a serial port.
+# The receiver's fixes: as a gnss/fix topic carries them, and as geolocation decoded them from a serial port.
 GNSS_FIX_SUFFIXES = ("/gnss/fix", "/ego/gnss")
 SCENE_SUFFIX = "/scene"
 V2X_STATUS_SUFFIX = "/v2x/status"

@@ -1,6 +1,6 @@
 """Scores a run from its messages with the simulator's judge (services/sim/metrics.py).
 
-Everything is computed from the recorded GroundTruth samples (10 Hz in the follow world), so scoring a
+Everything is computed from the recorded GroundTruth samples (10 Hz), so scoring a
 recording afterwards and scoring the same messages live give the same numbers.
 """
 

@@ -19,7 +19,7 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from coopdrive.judging.catalogue import BUILT_IN, SCENARIO_PACKAGE
+from coopdrive.services.sim.scenario_config import SCENARIO_PACKAGE
 
 # Metrics averaged in the summary table, when the runs report them.
 TABLE_METRICS = ("collisions", "min_gap_m", "spacing_error_m", "string_gain", "rms_jerk_mps3")
@@ -79,8 +79,8 @@ def parse_seeds(text: str) -> list[int]:
 
 
 def scenario_names() -> list[str]:
-    """Every scenario `run all` runs: the built-in ones and each packaged YAML file."""
-    names = set(BUILT_IN)
+    """Every scenario `run all` runs: each packaged YAML file."""
+    names = set()
     for entry in resources.files(SCENARIO_PACKAGE).iterdir():
         if entry.name.endswith((".yaml", ".yml")):
             names.add(entry.name.rsplit(".", 1)[0])

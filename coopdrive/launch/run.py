@@ -74,11 +74,6 @@ class RunAborted(RuntimeError):
     pass
 
 
-# What the follow world's sensors are like, told to the stack: its radar reports the centre of
-# the target's rear face, not the nearest corner the full sensor models report.
-FOLLOW_STACK_CONFIG: dict[str, dict] = {"scene": {"fusion": {"radar": {"reports_nearest_point": False}}}}
-
-
 def merged(base: dict, override: dict) -> dict:
     result = dict(base)
     for key, value in override.items():
@@ -95,35 +90,26 @@ def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[Servic
         source = source.with_faults(options.extra_faults, run_dir)
     # --realtime paces the lockstep run to the wall clock: it is watchable and still deterministic.
     sim = SimConfig(scenario=source.name, seed=options.seed, lockstep=True, paced=options.realtime)
-    per_vehicle: dict[str, dict[str, dict]] = {}
-    if options.security is None and source.config is not None and \
-            any(isinstance(f, TicketExpired) for f in source.config.faults):
+    if options.security is None and any(isinstance(f, TicketExpired) for f in source.config.faults):
         raise ScenarioError("ticket_expired needs --security: an unsecured run has no tickets to expire")
-    if source.config is not None:
-        stacks = source.stack_vehicles(options.stacks)
-        ports = iter(free_udp_ports(2 * len(stacks)))
-        radio = {vehicle_id: RadioPorts(next(ports), next(ports)) for vehicle_id in stacks}
-        sim.scenario_file, sim.stacks = str(source.file), stacks
-        sim.radio_links = {vehicle_id: vars(ports) for vehicle_id, ports in radio.items()}
-        sim.duration_s, sim.step_s = source.config.duration_s, source.config.step_s
-        world_needs = sim.stack_overrides()
-        services = VEHICLE_STACK + ("v2x",)
-        run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-")) if run_dir is None else run_dir
-        # Each stack's GNSS receiver is a pty the simulator writes NMEA to, found through a link in the run folder.
-        sim.gnss_ports = {v: str(run_dir / f"{v}-gnss0") for v in stacks}
-        per_vehicle = {v: merged(vehicle_overrides(source.config, v, radio[v]),
-                                 {"geolocation": {"gnss_port": sim.gnss_ports[v], "serial_sync": "marks"}})
-                       for v in stacks}
-        if options.security is not None:
-            security = secured_run(source.config, stacks, options, run_dir / "pki")
-            per_vehicle = {v: merged(per_vehicle[v], {"v2x": security[v]}) for v in stacks}
-            sim.security_pki_dir = str(run_dir / "pki")
-    elif options.security is not None:
-        raise ScenarioError("--security needs a scenario file run: the built-in follow world has no v2x service")
-    else:
-        stacks = [v.vehicle_id for v in sim.world.vehicles if not v.speed_profile]
-        world_needs = merged(FOLLOW_STACK_CONFIG, sim.stack_overrides())
-        services = VEHICLE_STACK
+    stacks = source.stack_vehicles(options.stacks)
+    ports = iter(free_udp_ports(2 * len(stacks)))
+    radio = {vehicle_id: RadioPorts(next(ports), next(ports)) for vehicle_id in stacks}
+    sim.scenario_file, sim.stacks = str(source.file), stacks
+    sim.radio_links = {vehicle_id: vars(ports) for vehicle_id, ports in radio.items()}
+    sim.duration_s, sim.step_s = source.config.duration_s, source.config.step_s
+    world_needs = sim.stack_overrides()
+    services = VEHICLE_STACK + ("v2x",)
+    run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-")) if run_dir is None else run_dir
+    # Each stack's GNSS receiver is a pty the simulator writes NMEA to, found through a link in the run folder.
+    sim.gnss_ports = {v: str(run_dir / f"{v}-gnss0") for v in stacks}
+    per_vehicle = {v: merged(vehicle_overrides(source.config, v, radio[v]),
+                             {"geolocation": {"gnss_port": sim.gnss_ports[v], "serial_sync": "marks"}})
+                   for v in stacks}
+    if options.security is not None:
+        security = secured_run(source.config, stacks, options, run_dir / "pki")
+        per_vehicle = {v: merged(per_vehicle[v], {"v2x": security[v]}) for v in stacks}
+        sim.security_pki_dir = str(run_dir / "pki")
     if options.duration_s is not None:
         sim.duration_s = options.duration_s
     specs = [ServiceSpec(name, vehicle, merged(merged(world_needs.get(name, {}), per_vehicle.get(vehicle, {}).get(name, {})),

@@ -1,4 +1,4 @@
-"""Finds the scenario a run names: the built-in follow world, a packaged YAML file, or a user's own file."""
+"""Finds the scenario a run names: a packaged YAML file, or a user's own file."""
 
 from __future__ import annotations
 
@@ -9,21 +9,18 @@ from typing import Sequence
 
 import yaml
 
-from coopdrive.judging.catalogue import BUILT_IN, SCENARIO_PACKAGE
-from coopdrive.services.sim.scenario_config import ScenarioConfig, ScenarioError, VehicleRole, load_scenario
+from coopdrive.services.sim.scenario_config import (SCENARIO_PACKAGE, ScenarioConfig, ScenarioError, VehicleRole,
+                                                    load_scenario)
 
 
 @dataclass(frozen=True)
 class ScenarioSource:
     name: str
-    # None: a world the simulator builds in code.
-    file: Path | None = None
-    config: ScenarioConfig | None = None
+    file: Path
+    config: ScenarioConfig
 
     def stack_vehicles(self, stacks: int | None) -> list[str]:
         """The vehicle ids that run a coopdrive stack: the file's stack vehicles, the first `stacks` of them."""
-        if self.config is None:
-            return []
         ids = [v.vehicle_id for v in self.config.vehicles if v.role is VehicleRole.STACK]
         if stacks is not None:
             if not 1 <= stacks <= len(ids):
@@ -33,8 +30,6 @@ class ScenarioSource:
 
     def with_faults(self, faults: Sequence[dict], folder: Path) -> ScenarioSource:
         """The same scenario with faults added to its own, written to folder: the simulator loads a file."""
-        if self.config is None:
-            raise ScenarioError(f"{self.name}: faults need a scenario file run; the built-in world has no radio")
         data = yaml.safe_load(self.file.read_text(encoding="utf-8"))
         data["faults"] = list(data.get("faults") or []) + list(faults)
         path = Path(folder) / f"{self.name}.yaml"
@@ -44,15 +39,12 @@ class ScenarioSource:
 
 def resolve_scenario(name_or_path: str) -> ScenarioSource:
     """Raises ScenarioError (one line) for an unknown name or a file that does not validate."""
-    if name_or_path in BUILT_IN:
-        return ScenarioSource(name_or_path)
     path = Path(name_or_path)
     if path.suffix not in (".yaml", ".yml") or not path.exists():
         packaged = resources.files(SCENARIO_PACKAGE) / f"{name_or_path}.yaml"
         if not packaged.is_file():
-            known = sorted(set(BUILT_IN) | {entry.name.rsplit(".", 1)[0]
-                                            for entry in resources.files(SCENARIO_PACKAGE).iterdir()
-                                            if entry.name.endswith(".yaml")})
+            known = sorted(entry.name.rsplit(".", 1)[0] for entry in resources.files(SCENARIO_PACKAGE).iterdir()
+                           if entry.name.endswith(".yaml"))
             raise ScenarioError(f"{name_or_path}: no such scenario or file; known: {', '.join(known)}")
         path = Path(str(packaged))
     config = load_scenario(path)

@@ -56,7 +56,7 @@ class SerialSync(enum.Enum):
 class GeolocationConfig(ServiceConfig):
     geolocator: GeolocatorConfig = GeolocatorConfig()
     # Lane map (a shipped name such as "a270" or a GeoJSON path) for lane matching; its origin is the local frame.
-    # None: no lane matching (lane.matched stays false), e.g. the follow world, which lies off every map.
+    # None: no lane matching (lane.matched stays false), e.g. a road no map holds.
     map_name: str | None = None
     # The local frame's origin, only when there is no map; None: the first fix's position (logged).
     origin: LocalOrigin | None = None

@@ -22,6 +22,10 @@ GCDC_2016_FINAL = dt.datetime(2016, 5, 28, 10, 0, 0, tzinfo=dt.timezone.utc)
 _TAG_KEYS = ("type", "kind")
 
 
+# The package that holds the scenario files coopdrive ships (scenarios/*.yaml).
+SCENARIO_PACKAGE = "coopdrive.scenarios"
+
+
 class ScenarioError(ValueError):
     """A scenario that cannot be used; str() is one line: '<source>: <key.path>: <message>'."""
 

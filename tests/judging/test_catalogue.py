@@ -16,11 +16,11 @@ def _scenario_folder(monkeypatch, tmp_path, files: dict[str, str]) -> None:
     monkeypatch.setattr(catalogue.resources, "files", lambda _package: tmp_path)
 
 
-def test_scenario_files_are_listed_after_the_built_in_ones_with_their_description(monkeypatch, tmp_path):
+def test_scenario_files_are_listed_with_their_description_and_nothing_else_is(monkeypatch, tmp_path):
     _scenario_folder(monkeypatch, tmp_path, {"sinus.yaml": GOOD, "notes.txt": "not a scenario"})
     entries = catalogue.list_scenarios()
-    assert [(e.name, e.source) for e in entries] == [("follow", "built-in"), ("sinus", "sinus.yaml")]
-    assert entries[1].description == "a sinusoid leader"
+    assert [(e.name, e.source) for e in entries] == [("sinus", "sinus.yaml")]
+    assert entries[0].description == "a sinusoid leader"
 
 
 def test_a_broken_scenario_file_is_listed_with_its_one_line_error(monkeypatch, tmp_path):

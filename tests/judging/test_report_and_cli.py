@@ -68,23 +68,6 @@ def test_scenarios_lists_follow_with_its_description(capsys):
     assert len(follow) == 1 and "leader" in follow[0]
 
 
-def test_the_follow_scenario_file_describes_the_built_in_follow_world():
-    from importlib import resources
-
-    from coopdrive.services.sim.service import default_follow_world
-
-    with resources.as_file(resources.files("coopdrive.scenarios") / "follow.yaml") as path:
-        scenario = load_scenario(path)
-    world = {v.vehicle_id: v for v in default_follow_world().vehicles}
-    assert scenario.name == "follow" and {v.vehicle_id for v in scenario.vehicles} == set(world)
-    for vehicle in scenario.vehicles:
-        assert vehicle.station_m == world[vehicle.vehicle_id].station_m
-        assert vehicle.station_id == world[vehicle.vehicle_id].station_id
-    leader = next(v for v in scenario.vehicles if v.vehicle_id == "leader")
-    assert [(p.time_s, p.speed_mps) for p in leader.speed_profile.points] == \
-        [tuple(map(float, point)) for point in world["leader"].speed_profile]
-
-
 def test_run_follow_with_a_report_writes_metrics_figures_and_index(follow_report):
     summary, folder = follow_report
     metrics = json.loads((folder / "metrics.json").read_text())

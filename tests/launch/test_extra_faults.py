@@ -33,9 +33,10 @@ def test_without_added_faults_the_packaged_file_is_used_as_it_is(tmp_path):
     assert sim_config(tmp_path)["scenario_file"] == str(EXAMPLE.resolve())
 
 
-def test_the_built_in_world_refuses_faults_for_want_of_a_radio(tmp_path):
-    with pytest.raises(ScenarioError, match="faults need a scenario file run"):
-        build_specs(RunOptions(scenario="follow", extra_faults=LOSSY), tmp_path)
+def test_follow_takes_added_faults_as_every_scenario_file_does(tmp_path):
+    [sim] = [spec for spec in build_specs(RunOptions(scenario="follow", extra_faults=LOSSY), tmp_path)
+             if spec.service == "sim"]
+    assert "faults" in Path(sim.config["scenario_file"]).read_text()
 
 
 @pytest.mark.parametrize("flag, value, message", [

@@ -45,9 +45,10 @@ def test_a_bad_security_option_is_refused_naming_it(tmp_path, options, message):
         specs_of(tmp_path, **options)
 
 
-def test_the_built_in_follow_world_refuses_security_for_want_of_a_v2x_service(tmp_path):
-    with pytest.raises(ScenarioError, match="no v2x service"):
-        build_specs(RunOptions(scenario="follow", security="sign_only"), tmp_path)
+def test_follow_is_a_scenario_file_like_any_other_so_its_stack_runs_v2x_with_security(tmp_path):
+    specs = build_specs(RunOptions(scenario="follow", security="sign_only"), tmp_path)
+    [v2x] = [spec for spec in specs if spec.service == "v2x"]
+    assert v2x.vehicle_id == "ego" and v2x.config["security"]["mode"] == "sign_only"
 
 
 
