@@ -94,7 +94,7 @@ class ServiceRunner:
         self._bus_subscriptions: set[tuple[str, str]] = set()
         self._liveliness_handlers: list[Callable[[str, bool], None]] = []
         self._participant_tracker = ParticipantTracker()
-        self._triggers = TriggerSet(on_error=self._on_trigger_error)
+        self._triggers = TriggerSet(on_error=self._on_trigger_error, on_overrun=self._on_trigger_overrun)
         self._trigger_failures: dict[str, int] = {}
         self._sequence = SequenceCounter(service_cls.name)
         self._stop = threading.Event()
@@ -444,6 +444,13 @@ class ServiceRunner:
         if failures == 1 or failures % TRIGGER_FAILURE_LOG_EVERY == 0:
             self.log.error("periodic %s failed (%d times)", name, failures, exc_info=error)
 
+    def _on_trigger_overrun(self, trigger, missed: int) -> None:
+        """Logged the first time a trigger misses periods and then every so often; counted in diagnostics."""
+        if trigger.overruns == missed or trigger.overruns // TRIGGER_FAILURE_LOG_EVERY > \
+                (trigger.overruns - missed) // TRIGGER_FAILURE_LOG_EVERY:
+            self.log.warning("periodic %s ran late: %d period(s) of %.3f s missed (%d so far)", trigger.name, missed,
+                             trigger.period_s, trigger.overruns)
+
     def dispatch(self, envelope: Envelope) -> None:
         for source, handler in self._handlers.get(envelope.topic, ()):
             if source not in ("*", envelope.vehicle_id):
@@ -471,6 +478,8 @@ class ServiceRunner:
         for name, value in self.service.counters.items():
             message.counters[name] = value
         message.counters["bus_decode_errors"] = self.bus.decode_errors
+        for name, overruns in self._triggers.overruns().items():
+            message.counters[f"overruns_{name}"] = overruns
         # CPU the service's own worker thread has used (handlers and triggers): where a run's time goes.
         message.counters["worker_cpu_s"] = time.thread_time()
         self.publish(f"diagnostics/{self._service_name}", message)

@@ -72,6 +72,8 @@ def test_a_malformed_payload_is_counted_and_the_service_keeps_running(endpoint, 
             garbage.put(b"\xff\xff\xff\x0f not a protobuf")
         report = wait_for(diagnostics, lambda e: e.message.counters["bus_decode_errors"] >= 3)
         assert report.message.header.sender == "planner"
+        # each time trigger's missed periods are in the diagnostics too
+        assert report.message.counters["overruns__publish_diagnostics"] >= 0
     finally:
         hub.close()
 

@@ -25,6 +25,25 @@ def test_missed_periods_are_skipped_not_burst():
     assert fired == [0.0, 0.55, 0.6]
 
 
+def test_missed_periods_are_counted_per_trigger_and_reported_when_they_happen():
+    reported = []
+
+    def control(now_s: float) -> None:
+        pass
+
+    def status(now_s: float) -> None:
+        pass
+
+    triggers = TriggerSet(on_overrun=lambda trigger, missed: reported.append((trigger.name, missed)))
+    triggers.add(0.1, control)
+    triggers.add(1.0, status)
+    for now_s in (0.0, 0.1, 0.45, 0.5, 0.8):
+        triggers.run_due(now_s)
+    # control was due at 0.2 and 0.3 (ran at 0.45, due again 0.5) and at 0.6 and 0.7 (ran at 0.8)
+    assert reported == [("control", 2), ("control", 2)]
+    assert triggers.overruns() == {"control": 4, "status": 0}
+
+
 def test_the_next_due_time_is_known_once_every_trigger_has_fired():
     triggers = TriggerSet()
     triggers.add(0.1, lambda now: None)
