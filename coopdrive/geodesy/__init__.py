@@ -1,3 +1,4 @@
 from coopdrive.geodesy.local_tangent_plane import LocalTangentPlane
+from coopdrive.geodesy.origin import GeodeticOrigin
 
-__all__ = ["LocalTangentPlane"]
+__all__ = ["GeodeticOrigin", "LocalTangentPlane"]

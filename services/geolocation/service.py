@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import enum
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import Field, model_validator
 
+from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.bus import Envelope
 from coopdrive.can.adapter import VehicleCanPath, load_adapter
 from coopdrive.can.bus_input import VehicleBusInput
@@ -18,16 +19,6 @@ from coopdrive.services.geolocation.geolocator import Geolocator
 from coopdrive.services.geolocation.gnss_serial import GnssSerial
 from coopdrive.services.geolocation.nmea_decoder import NmeaDecoder, SentenceType
 from coopdrive.v1 import gnss_pb2
-
-
-class LocalOrigin(BaseModel):
-    """WGS84 origin of the local ENU frame."""
-
-    model_config = ConfigDict(extra="forbid")
-
-    lat_deg: float = Field(51.4758, ge=-90.0, le=90.0)
-    lon_deg: float = Field(5.6247, ge=-180.0, le=180.0)
-    alt_m: float = 20.0
 
 
 class GnssInput(enum.Enum):
@@ -59,7 +50,7 @@ class GeolocationConfig(ServiceConfig):
     # None: no lane matching (lane.matched stays false), e.g. a road no map holds.
     map_name: str | None = None
     # The local frame's origin, only when there is no map; None: the first fix's position (logged).
-    origin: LocalOrigin | None = None
+    origin: GeodeticOrigin | None = None
     output_rate_hz: float = Field(50.0, gt=0.0)
     use_imu: bool = True
     gnss_input: GnssInput = GnssInput.AUTO

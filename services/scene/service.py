@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pydantic import Field
 
+from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.bus import Envelope
 from coopdrive.can.adapter import VehicleCanPath
 from coopdrive.can.bus_input import VehicleBusInput
@@ -25,10 +26,8 @@ class SceneConfig(ServiceConfig):
     output_rate_hz: float = 25.0
     # Lanes come from this map when set; without one, lanes are bands along the ego heading.
     map_name: str | None = None
-    # WGS84 origin of the local ENU frame (used for V2V positions when no map is set).
-    origin_lat_deg: float = 51.4758
-    origin_lon_deg: float = 5.6247
-    origin_alt_m: float = 20.0
+    # The local ENU frame's origin (used for V2V positions when no map is set).
+    origin: GeodeticOrigin = GeodeticOrigin()
     # A station's iCLCM acceleration request older than this is not put on its object.
     intended_accel_max_age_s: float = Field(default=0.4, gt=0)
     fusion: SceneFusionConfig = Field(default_factory=SceneFusionConfig)
@@ -50,7 +49,7 @@ class SceneService(Service):
         if self.road_map is not None:
             self.origin = self.road_map.origin
         else:
-            self.origin = (config.origin_lat_deg, config.origin_lon_deg, config.origin_alt_m)
+            self.origin = config.origin.as_tuple()
         self.plane = LocalTangentPlane(*self.origin)
         self.road_lanes = EgoRoadLanes(self.road_map) if self.road_map is not None else None
         self.fusion = SceneFusion(config.fusion, lane_of=self.road_lanes.lane_of if self.road_lanes else None)

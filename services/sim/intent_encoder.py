@@ -11,8 +11,9 @@ from __future__ import annotations
 import datetime as dt
 from typing import Callable
 
+from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.services.sim.participants import IntentKind, MessageIntent
-from coopdrive.services.v2x.config import CamMode, VehicleDimensions, WgsOrigin
+from coopdrive.services.v2x.config import CamMode, VehicleDimensions
 from coopdrive.services.v2x.generation import CamGenerator
 from coopdrive.services.sim.geometry import rear_overhang_m
 from coopdrive.services.v2x.its_clock import ItsClock
@@ -66,7 +67,7 @@ class IntentEncoder:
         generator = self._cams.get(intent.station_id)
         if generator is None:
             generator = CamGenerator(CamMode.GCDC, intent.station_id, station_type, ITS_PROTOCOL_VERSION,
-                                     WgsOrigin(), VehicleDimensions(
+                                     GeodeticOrigin(), VehicleDimensions(
                                          length_m=fields["length_m"], width_m=fields["width_m"],
                                          rear_axle_location_m=fields["length_m"] - rear_overhang_m(fields["length_m"])))
             self._cams[intent.station_id] = generator

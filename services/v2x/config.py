@@ -8,12 +8,12 @@ from pathlib import Path
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
+from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.runtime.service import ServiceConfig
-from coopdrive.services.v2x.geonet import GN_VERSION_GCDC, SUPPORTED_GN_VERSIONS
+from coopdrive.services.v2x.geonet import GN_VERSION_GCDC, MAC_SIZE_BYTES, SUPPORTED_GN_VERSIONS
 from coopdrive.services.v2x.security.profile import SecurityMode
 from coopdrive.v1 import its_pb2
 
-MAC_SIZE_BYTES = 6
 GCDC_RATE_HZ = 25.0
 
 
@@ -49,14 +49,6 @@ class RadioLinkConfig(_Section):
     # 0: any free port (tests).
     listen_port: int = Field(4401, ge=0, le=65535)
     max_packet_bytes: int = Field(2048, gt=0)
-
-
-class WgsOrigin(_Section):
-    """WGS84 origin of the local ENU frame (used when an EgoState carries no latitude/longitude)."""
-
-    lat_deg: float = Field(51.4758, ge=-90.0, le=90.0)
-    lon_deg: float = Field(5.6247, ge=-180.0, le=180.0)
-    alt_m: float = 20.0
 
 
 class VehicleDimensions(_Section):
@@ -130,7 +122,8 @@ class V2xConfig(ServiceConfig):
     send_iclcm: bool = True
     # Every packet sent and received, as Ethernet frames (ethertype 0x8947); None: no capture.
     pcap_path: str | None = None
-    origin: WgsOrigin = WgsOrigin()
+    # The local ENU frame's origin, used when an EgoState carries no latitude/longitude.
+    origin: GeodeticOrigin = GeodeticOrigin()
     vehicle: VehicleDimensions = VehicleDimensions()
     # The service clock plus this instant is UTC. None: the clock already is unix time (the wall clock);
     # in simulation give the UTC instant of sim time 0, e.g. "2016-05-28T10:00:00Z".

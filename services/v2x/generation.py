@@ -10,8 +10,9 @@ import enum
 import math
 from dataclasses import dataclass
 
+from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.geodesy import LocalTangentPlane
-from coopdrive.services.v2x.config import GCDC_RATE_HZ, CamMode, VehicleDimensions, WgsOrigin
+from coopdrive.services.v2x.config import GCDC_RATE_HZ, CamMode, VehicleDimensions
 from coopdrive.services.v2x.plausibility import EARTH_RADIUS_M
 from coopdrive.services.v2x.timebase import generation_delta_time_ms
 from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2
@@ -73,7 +74,7 @@ class CamGenerator:
     """CAMs from the latest EgoState, at 25 Hz (GCDC) or by the EN 302 637-2 rules."""
 
     def __init__(self, mode: CamMode, station_id: int, station_type: int, protocol_version: int,
-                 origin: WgsOrigin, vehicle: VehicleDimensions):
+                 origin: GeodeticOrigin, vehicle: VehicleDimensions):
         self.mode = mode
         self.station_id = station_id
         self.station_type = station_type

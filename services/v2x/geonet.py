@@ -16,7 +16,8 @@ from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 GN_VERSION_GCDC = 0
 GN_VERSION_CURRENT = 1
 SUPPORTED_GN_VERSIONS = (GN_VERSION_GCDC, GN_VERSION_CURRENT)
-MID_SIZE_BYTES = 6
+# A GN address's MID is the station's link-layer (MAC) address.
+MAC_SIZE_BYTES = 6
 
 _BASIC = struct.Struct(">BBBB")
 _COMMON = struct.Struct(">BBBBHBB")
@@ -121,7 +122,7 @@ class GnAddress:
     manual: bool = False
     station_type: int = 5
     reserved: int = 0
-    mid: bytes = bytes(MID_SIZE_BYTES)
+    mid: bytes = bytes(MAC_SIZE_BYTES)
 
 
 @dataclass(slots=True)
@@ -155,7 +156,7 @@ class LongPositionVector:
         speed_cmps = speed & 0x7FFF
         if speed_cmps >= 1 << (_SPEED_BITS - 1):
             speed_cmps -= 1 << _SPEED_BITS
-        mid = bytes(data[offset + _ADDRESS_FLAGS_SIZE:offset + _ADDRESS_FLAGS_SIZE + MID_SIZE_BYTES])
+        mid = bytes(data[offset + _ADDRESS_FLAGS_SIZE:offset + _ADDRESS_FLAGS_SIZE + MAC_SIZE_BYTES])
         return cls(GnAddress(address >= 1 << 63, (address >> 58) & 0x1F, (address >> 48) & 0x3FF, mid),
                    timestamp, latitude, longitude, bool(speed & _PAI_FLAG), speed_cmps, heading)
 

@@ -14,15 +14,14 @@ from coopdrive.services.v2x import units
 from coopdrive.services.v2x.btp import BtpBHeader, BtpPort, parse_btp_b
 from coopdrive.services.v2x.codec import ItsCodec, ItsHeader, ItsMessageId, peek_its_header
 from coopdrive.services.v2x.geonet import (
-    GN_VERSION_GCDC, SUPPORTED_GN_VERSIONS, BasicHeader, BeaconHeader, CommonHeader, CommonNextHeader, GbcHeader, GeoArea,
-    GeoAreaShape, GnAddress, GnPacket, LongPositionVector, ShbHeader, encode_lifetime, parse_gn)
+    GN_VERSION_GCDC, MAC_SIZE_BYTES, SUPPORTED_GN_VERSIONS, BasicHeader, BeaconHeader, CommonHeader, CommonNextHeader,
+    GbcHeader, GeoArea, GeoAreaShape, GnAddress, GnPacket, LongPositionVector, ShbHeader, encode_lifetime, parse_gn)
 from coopdrive.services.v2x.mapping.cam import cam_from_asn, cam_to_asn
 from coopdrive.services.v2x.mapping.denm import denm_from_asn, denm_to_asn
 from coopdrive.services.v2x.mapping.iclcm import iclcm_from_asn, iclcm_to_asn
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.v1 import its_pb2
 
-MAC_SIZE_BYTES = 6
 STATION_TYPE_PASSENGER_CAR = 5
 PORT_OF_MESSAGE = {ItsMessageId.CAM: BtpPort.CAM, ItsMessageId.DENM: BtpPort.DENM, ItsMessageId.ICLCM: BtpPort.ICLCM}
 MESSAGE_OF_PORT = {int(port): message for message, port in PORT_OF_MESSAGE.items()}

@@ -14,7 +14,8 @@ from coopdrive.recording.reader import RecordedMessage, read_messages
 from coopdrive.recording.replay import ReplayContext, replay_service
 from coopdrive.recording.replay_wall import run_wall_clock
 from coopdrive.recording.writer import NANOSECONDS, McapRecorder, config_metadata
-from coopdrive.services.geolocation.service import GeolocationConfig, LocalOrigin
+from coopdrive.geodesy import GeodeticOrigin
+from coopdrive.services.geolocation.service import GeolocationConfig
 from coopdrive.v1 import gnss_pb2, v2x_pb2
 
 START_S = 1_700_000_000.0
@@ -29,7 +30,7 @@ def coopdrive(*args: str) -> subprocess.CompletedProcess:
 
 
 def fix_at(time_s: float) -> gnss_pb2.GnssFix:
-    origin = LocalOrigin()
+    origin = GeodeticOrigin()
     lat, lon, alt = pymap3d.enu2geodetic(SPEED_MPS * (time_s - START_S), 0.0, 0.0,
                                          origin.lat_deg, origin.lon_deg, origin.alt_m)
     fix = gnss_pb2.GnssFix(latitude_deg=lat, longitude_deg=lon, altitude_m=alt, fix_mode=gnss_pb2.FIX_MODE_RTK_FIXED,

@@ -19,13 +19,12 @@ from cryptography.hazmat.primitives.asymmetric import ec
 
 from coopdrive.services.v2x.btp import parse_btp_b
 from coopdrive.services.v2x.codec import peek_its_header
-from coopdrive.services.v2x.geonet import BasicNextHeader, parse_gn, with_basic_next_header
+from coopdrive.services.v2x.geonet import MAC_SIZE_BYTES, BasicNextHeader, parse_gn, with_basic_next_header
 from coopdrive.services.v2x.security.certificate import Certificate
 from coopdrive.services.v2x.security.envelope import GenerationLocation, build_signed_data
 from coopdrive.services.v2x.security.profile import (
     ELEVATION_UNKNOWN, FULL_CERTIFICATE_INTERVAL_S, PSID_DENM, PSID_OF_PORT, US_PER_S)
 
-MAC_SIZE_BYTES = 6
 STATION_ID_MODULUS = 2**32
 _LOCALLY_ADMINISTERED, _MULTICAST = 0x02, 0x01
 

@@ -3,7 +3,8 @@ import math
 import pymap3d
 import pytest
 
-from coopdrive.services.v2x.config import CamMode, VehicleDimensions, WgsOrigin
+from coopdrive.geodesy import GeodeticOrigin
+from coopdrive.services.v2x.config import CamMode, VehicleDimensions
 from coopdrive.services.v2x.generation import CamGenerator, CamTrigger, IclcmGenerator
 from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.timebase import generation_delta_time_ms, tai_ms_from_utc
@@ -11,7 +12,7 @@ from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2
 
 from .streams import CLOCK
 
-ORIGIN = WgsOrigin(lat_deg=51.4758, lon_deg=5.6247, alt_m=20.0)
+ORIGIN = GeodeticOrigin(lat_deg=51.4758, lon_deg=5.6247, alt_m=20.0)
 STEP_S = 0.01
 
 
