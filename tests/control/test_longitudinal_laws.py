@@ -33,7 +33,7 @@ def test_the_spacing_error_and_its_rate_follow_the_constant_time_gap_policy():
 
 def test_ploeg_integrates_its_filter_equation_one_euler_step():
     law = PloegCacc(PloegGains())
-    law.reset(0.3)
+    law.reset(0.3, CLOSE)
     # u' = (1/0.5)(-0.3 + 0.2*4 + 0.7*0.75 + 1.0) = 4.05  ->  u = 0.3 + 0.02*4.05
     assert law.step(DT, CLOSE) == pytest.approx(0.381)
 
@@ -48,7 +48,7 @@ def test_our_cacc_adds_the_lag_compensated_feedforward_to_the_spacing_pd():
 
 def test_ploeg_takes_the_predecessors_request_over_its_measured_acceleration():
     law = PloegCacc(PloegGains())
-    law.reset(0.3)
+    law.reset(0.3, CLOSE)
     # u' = (1/0.5)(-0.3 + 0.2*4 + 0.7*0.75 + 2.0) = 6.05
     assert law.step(DT, replace(CLOSE, pred_intended_accel_mps2=2.0)) == pytest.approx(0.3 + 0.02 * 6.05)
 

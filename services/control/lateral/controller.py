@@ -18,7 +18,7 @@ from .lane_change import QuinticTransition
 from .pd import HeudiasycPd
 from .pure_pursuit import PurePursuit
 from .stanley import Stanley
-from .types import LateralCommand, LateralLaw, LateralMode, PathState
+from .types import LateralCommand, LateralLaw, LateralMode, PathState, SteeringLaw
 
 DEFAULT_DT_S = 0.02
 MAX_DT_S = 0.5
@@ -32,7 +32,7 @@ class LateralController:
         self.law_kind = law
         wb = profile.wheelbase_m
         gains = profile.lateral
-        self.law = {
+        self.law: SteeringLaw = {
             LateralLaw.HEUDIASYC_PD: HeudiasycPd,
             LateralLaw.STANLEY: Stanley,
             LateralLaw.PURE_PURSUIT: PurePursuit,

@@ -5,6 +5,7 @@ from __future__ import annotations
 import enum
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Protocol
 
 from coopdrive.v1 import control_pb2
 
@@ -59,3 +60,10 @@ class LateralCommand:
         msg.lateral_error_m = self.lateral_error_m
         msg.heading_error_rad = self.heading_error_rad
         return msg
+
+
+class SteeringLaw(Protocol):
+    """The contract of the interchangeable lateral laws (Heudiasyc's PD, Stanley, pure pursuit)."""
+
+    def steering_rad(self, p: PathState) -> float:
+        """The road-wheel angle (rad, positive left) that brings the vehicle onto the reference of p."""

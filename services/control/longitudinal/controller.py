@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from ..profiles import VehicleProfile
 from .acc import RadarAcc, RajamaniAcc
 from .cacc import LagCompensatedCacc
+from .contracts import CruiseLaw, FollowingLaw
 from .cruise import CruisePi
 from .dcacc import Dcacc
 from .drivertive import DrivertiveSpeed
@@ -42,9 +43,9 @@ MODE = LongitudinalMode
 class _Track:
     """What the controller remembers about one target between steps."""
 
-    cacc: LagCompensatedCacc | PloegCacc
+    cacc: FollowingLaw
     dcacc: Dcacc
-    acc: RadarAcc | RajamaniAcc
+    acc: FollowingLaw
     mode: int = MODE.LONGITUDINAL_MODE_UNSPECIFIED
     time_gap_s: float = math.nan
 
@@ -59,7 +60,7 @@ class LongitudinalController:
     ) -> None:
         self.profile = profile
         self.cacc_law, self.acc_law, self.speed_law = cacc_law, acc_law, speed_law
-        self.cruise = CruisePi(profile) if speed_law is SpeedLaw.PI else DrivertiveSpeed(profile)
+        self.cruise: CruiseLaw = CruisePi(profile) if speed_law is SpeedLaw.PI else DrivertiveSpeed(profile)
         self.shaper = CommandShaper(profile.limits)
         self.emergency = EmergencyBrake(profile.limits)
         self.stop_line = StopLineApproach()
@@ -126,12 +127,10 @@ class LongitudinalController:
             time_gap_s=track.time_gap_s,
             pred_intended_accel_mps2=t.intended_accel_mps2 if fresh else None,
         )
-        law = {MODE.LONGITUDINAL_MODE_CACC: track.cacc, MODE.LONGITUDINAL_MODE_DCACC: track.dcacc}.get(mode, track.acc)
+        law: FollowingLaw = {MODE.LONGITUDINAL_MODE_CACC: track.cacc,
+                             MODE.LONGITUDINAL_MODE_DCACC: track.dcacc}.get(mode, track.acc)
         if mode != track.mode:
-            if isinstance(law, PloegCacc):
-                law.reset(self.shaper.last_mps2)
-            else:
-                law.reset(self.shaper.last_mps2, f)
+            law.reset(self.shaper.last_mps2, f)
             track.mode = mode
         return law.step(dt_s, f), mode, f
 
@@ -194,7 +193,7 @@ class LongitudinalController:
         else:
             applied = self.shaper.step(dt, u)
         if best[1] == MODE.LONGITUDINAL_MODE_CRUISE and not decision.active:
-            if getattr(self.cruise, "engaged", True):
+            if self.cruise.engaged:
                 self.cruise.track(dt, applied)
             else:
                 self.cruise.engage(applied, ego_speed_mps)

@@ -19,6 +19,7 @@ class DrivertiveSpeed:
     def __init__(self, profile: VehicleProfile) -> None:
         self.profile = profile
         self.gains = profile.drivertive
+        self.engaged = False
 
     def gain_1ps(self, speed_mps: float, error_mps: float) -> float:
         g = self.gains
@@ -31,9 +32,11 @@ class DrivertiveSpeed:
 
     def engage(self, command_mps2: float, ego_speed_mps: float) -> None:
         """Static law: nothing to initialise."""
+        self.engaged = True
 
     def disengage(self) -> None:
         """Static law: nothing to release."""
+        self.engaged = False
 
     def step(self, dt_s: float, ego_speed_mps: float, desired_speed_mps: float) -> float:
         error = desired_speed_mps - ego_speed_mps

@@ -17,8 +17,8 @@ class PloegCacc:
         self.gains = gains
         self.u_mps2 = 0.0
 
-    def reset(self, command_mps2: float) -> None:
-        """Bumpless start: the filter state is the command being applied now."""
+    def reset(self, command_mps2: float, f: FollowInput) -> None:
+        """Bumpless start: the filter state is the command being applied now (the situation f adds nothing)."""
         self.u_mps2 = command_mps2
 
     def step(self, dt_s: float, f: FollowInput) -> float:
