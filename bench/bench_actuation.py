@@ -12,9 +12,10 @@ import time
 
 from coopdrive.can.codec import VehicleCanCodec, VehicleCommand
 from coopdrive.services.actuation.actuator import Actuator
+from coopdrive.services.actuation.config import STACK_UPSTREAM
 from coopdrive.v1 import actuation_pb2, control_pb2, ego_pb2, vehicle_pb2
 
-SERVICES = ("geolocation", "scene", "planner", "control", "v2x")
+SERVICES = STACK_UPSTREAM
 STEP_S = 0.01
 NS_PER_US = 1000.0
 DEFAULT_ITERATIONS = 5000

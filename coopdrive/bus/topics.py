@@ -8,6 +8,8 @@ from dataclasses import dataclass
 
 from google.protobuf.message import Message
 
+from coopdrive.bus.services import SERVICE_NAMES
+
 from coopdrive.v1 import (
     actuation_pb2,
     control_pb2,
@@ -76,7 +78,7 @@ _ALL = [
     Topic("gateway/estop", actuation_pb2.EmergencyStop, "gateway"),
     Topic("gateway/planner_force", planner_pb2.PlannerForce, "gateway"),
 ]
-for _service in ("sim", "geolocation", "v2x", "scene", "planner", "control", "actuation", "gateway"):
+for _service in SERVICE_NAMES:
     _ALL.append(Topic(f"diagnostics/{_service}", diagnostics_pb2.Diagnostics, _service, stepped=False))
 
 TOPICS: dict[str, Topic] = {topic.name: topic for topic in _ALL}

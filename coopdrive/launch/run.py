@@ -99,7 +99,7 @@ def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[Servic
     sim.radio_links = {vehicle_id: vars(ports) for vehicle_id, ports in radio.items()}
     sim.duration_s, sim.step_s = source.config.duration_s, source.config.step_s
     world_needs = sim.stack_overrides()
-    services = VEHICLE_STACK + ("v2x",)
+    services = VEHICLE_STACK
     run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-")) if run_dir is None else run_dir
     # Each stack's GNSS receiver is a pty the simulator writes NMEA to, found through a link in the run folder.
     sim.gnss_ports = {v: str(run_dir / f"{v}-gnss0") for v in stacks}

@@ -31,7 +31,7 @@ SENDER = "import"
 CONFIG_SOURCE_METADATA = "coopdrive.config_source"
 IMPORT_METADATA = "coopdrive.import"
 # The services whose default configs an import writes: the vehicle's stack and its radio.
-IMPORT_CONFIG_SERVICES = (*VEHICLE_STACK, "v2x")
+IMPORT_CONFIG_SERVICES = VEHICLE_STACK
 
 
 @dataclass

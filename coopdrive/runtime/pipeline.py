@@ -6,29 +6,16 @@ therefore flow sensor -> estimate -> decision -> command within one step, and ev
 the graph (planner -> v2x -> planner) is cut by exactly one step of delay.
 """
 
-# The service that owns the world (simulated time, sensors, radio): first in every step.
-WORLD_SERVICE = "sim"
+from coopdrive.bus.services import SERVICES, WORLD_SERVICE, service_entry
 
-PIPELINE_RANK: dict[str, int] = {
-    WORLD_SERVICE: 0,
-    "geolocation": 10,
-    "v2x": 20,
-    "scene": 30,
-    "planner": 40,
-    "control": 50,
-    "actuation": 60,
-    "gateway": 90,
-}
+PIPELINE_RANK: dict[str, int] = {entry.name: entry.pipeline_rank for entry in SERVICES}
+LOCKSTEP_SERVICES = tuple(entry.name for entry in SERVICES if entry.lockstep)
 
-# Services that take part in the lockstep barrier; the gateway only observes.
-LOCKSTEP_SERVICES = tuple(name for name, rank in PIPELINE_RANK.items() if rank < 90)
+__all__ = ["LOCKSTEP_SERVICES", "PIPELINE_RANK", "WORLD_SERVICE", "participant_name", "rank_of", "split_participant"]
 
 
 def rank_of(service: str) -> int:
-    try:
-        return PIPELINE_RANK[service]
-    except KeyError:
-        raise KeyError(f"unknown service {service!r}; known: {', '.join(PIPELINE_RANK)}") from None
+    return service_entry(service).pipeline_rank
 
 
 def participant_name(vehicle_id: str, service: str) -> str:

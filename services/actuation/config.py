@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from coopdrive.bus.services import VEHICLE_STACK
 from coopdrive.v1 import ego_pb2
 
 
@@ -88,11 +89,15 @@ class ModeRequirements(BaseModel):
     max_speed_mps: float = Field(gt=0.0)
 
 
+# An automated mode needs every other service of the vehicle's stack alive.
+STACK_UPSTREAM = [name for name in VEHICLE_STACK if name != "actuation"]
+
+
 class ModesConfig(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     cooperative: ModeRequirements = ModeRequirements(
-        required_services=["geolocation", "scene", "planner", "control", "v2x"],
+        required_services=STACK_UPSTREAM,
         localisation_modes=[ego_pb2.LOCALISATION_MODE_GNSS_PRECISE, ego_pb2.LOCALISATION_MODE_GNSS_DEGRADED,
                             ego_pb2.LOCALISATION_MODE_DEAD_RECKONING],
         v2x_required=True, max_speed_mps=MOTORWAY_MAX_SPEED_MPS)
@@ -100,7 +105,7 @@ class ModesConfig(BaseModel):
     # ours drives motorway platoons, whose speed waves go above the GCDC's 80 km/h (set 50 / 3.6 to reproduce
     # Heudiasyc).
     autonomous: ModeRequirements = ModeRequirements(
-        required_services=["geolocation", "scene", "planner", "control", "v2x"],
+        required_services=STACK_UPSTREAM,
         localisation_modes=[ego_pb2.LOCALISATION_MODE_GNSS_PRECISE],
         v2x_required=True, max_speed_mps=MOTORWAY_MAX_SPEED_MPS)
     # Heudiasyc: non-manual modes are entered stopped or below 10 km/h.

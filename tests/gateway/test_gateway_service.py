@@ -74,6 +74,8 @@ def test_liveliness_of_the_vehicle_s_services_and_the_world_simulator_shows_in_h
     for participant in ["world/sim", *(f"ego/{name}" for name in VEHICLE_STACK), "leader/planner"]:
         ctx.liveliness[0](participant, True)
     ctx.liveliness[0]("ego/scene", False)
+    ctx.liveliness[0]("leader/v2x", True)  # another vehicle's service is not ours
+    ctx.liveliness[0]("ego/v2x", False)
     services = client.get("/health").json()["services"]
     assert services["sim"]["alive"] and services["planner"]["alive"]
     assert not services["scene"]["alive"]
