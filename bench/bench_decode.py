@@ -25,7 +25,7 @@ from cryptography.hazmat.primitives.asymmetric.utils import Prehashed, encode_ds
 
 from bench.bench_v2x import GN, typical_cam
 from coopdrive.services.v2x.btp import parse_btp_b
-from coopdrive.services.v2x.capture import read_capture
+from coopdrive.recording.capture import read_capture
 from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE, BasicNextHeader, parse_gn, with_basic_next_header
 from coopdrive.services.v2x.packet import V2xPacketCodec
 from coopdrive.services.v2x.security import asn

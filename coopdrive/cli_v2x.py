@@ -41,7 +41,7 @@ def add_commands(commands) -> None:
 
 
 def _decode(args: argparse.Namespace) -> int:
-    from coopdrive.services.v2x.capture import CaptureFormatError
+    from coopdrive.recording.capture import CaptureFormatError
     from coopdrive.services.v2x.cli_commands import decode_capture
     from coopdrive.services.v2x.security.trust import TrustFileError
 

@@ -1,5 +1,5 @@
 """A V2X capture (pcap or pcapng of any link type real captures use) as v2x/rx GnPacket messages at the
-capture's times, read by the V2X service's capture reader (services/v2x/capture.py, dpkt).
+capture's times, read by the capture reader (coopdrive/recording/capture.py, dpkt).
 
 Frames that carry no GeoNetworking are counted, never silently dropped: other traffic on the link (another
 ethertype, 802.11 management frames) as notes, frames that cannot be read as bad.
@@ -10,7 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from coopdrive.recording.import_source import ImportFailure, SourceReport, TimedMessage
-from coopdrive.services.v2x.capture import NOT_A_DATA_FRAME, OTHER_ETHERTYPE, CaptureFormatError, read_capture
+from coopdrive.recording.capture import NOT_A_DATA_FRAME, OTHER_ETHERTYPE, CaptureFormatError, read_capture
 from coopdrive.v1 import v2x_pb2
 
 TOPIC = "v2x/rx"

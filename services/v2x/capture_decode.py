@@ -23,7 +23,7 @@ from typing import BinaryIO
 from google.protobuf import json_format
 
 from coopdrive.services.v2x.btp import MESSAGE_NAME_OF_PORT, parse_btp_b
-from coopdrive.services.v2x.capture import CapturedFrame, read_capture
+from coopdrive.recording.capture import CapturedFrame, read_capture
 from coopdrive.services.v2x.capture_summary import DecodeSummary
 from coopdrive.services.v2x.geonet import BeaconHeader, CommonNextHeader, GnPacket, HeaderType, parse_gn
 from coopdrive.services.v2x.packet import V2xPacketCodec

@@ -1,7 +1,7 @@
 """pcap writer: Ethernet frames carrying GeoNetworking (what our v2x service logs).
 
 Wireshark dissects GeoNetworking on ethertype 0x8947, so packets are written as Ethernet II frames.
-Captures are read with services/v2x/capture.py (dpkt, every link type real captures use).
+Captures are read with coopdrive/recording/capture.py (dpkt, every link type real captures use).
 """
 
 from __future__ import annotations

@@ -17,7 +17,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from coopdrive.services.v2x.capture import CaptureFormatError, read_capture
+from coopdrive.recording.capture import CaptureFormatError, read_capture
 
 
 class ReplayError(ValueError):

@@ -4,7 +4,7 @@ import struct
 import dpkt
 import pytest
 
-from coopdrive.services.v2x.capture import (
+from coopdrive.recording.capture import (
     MALFORMED_FRAME, NOT_A_DATA_FRAME, NOT_LLC_SNAP, OTHER_ETHERTYPE, UNSUPPORTED_LINK_TYPE, CaptureFormatError,
     read_capture, read_gn_packets)
 from tests.shared_data import shared_file

@@ -10,7 +10,7 @@ import dpkt
 import pytest
 
 from coopdrive.services.v2x.btp import MESSAGE_NAME_OF_PORT
-from coopdrive.services.v2x.capture import read_capture
+from coopdrive.recording.capture import read_capture
 from coopdrive.services.v2x.capture_decode import CaptureDecoder
 from coopdrive.services.v2x.pcap import PcapWriter
 from tests.shared_data import shared_file

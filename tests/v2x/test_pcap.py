@@ -2,7 +2,7 @@ import io
 
 import pytest
 
-from coopdrive.services.v2x.capture import read_capture
+from coopdrive.recording.capture import read_capture
 from coopdrive.services.v2x.pcap import ETHERTYPE_GEONETWORKING, PcapWriter
 
 SOURCE_MAC = bytes.fromhex("02000000002a")

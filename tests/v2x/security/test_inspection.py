@@ -4,7 +4,7 @@ import random
 
 import pytest
 
-from coopdrive.services.v2x.capture import read_gn_packets
+from coopdrive.recording.capture import read_gn_packets
 from coopdrive.services.v2x.reasons import RejectReason
 from coopdrive.services.v2x.security.inspection import UNSIGNED, PacketInspector, SecurityResult, mode_drop_reason
 from coopdrive.services.v2x.security.pki import create_untrusted_pki, tamper_packet

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from coopdrive.services.v2x.reasons import V2xDecodeError
-from coopdrive.services.v2x.capture import read_gn_packets
+from coopdrive.recording.capture import read_gn_packets
 from coopdrive.services.v2x.security.pki import create_test_pki, tamper_packet
 from coopdrive.services.v2x.security_verdict import is_secured
 from coopdrive.services.v2x.service import V2xService

@@ -2,7 +2,7 @@
 
 import pytest
 
-from coopdrive.services.v2x.capture import read_gn_packets
+from coopdrive.recording.capture import read_gn_packets
 from coopdrive.services.v2x.config import PlausibilityLimits
 from coopdrive.services.v2x.reception import OwnIdentity, Reception
 from tests.shared_data import shared_file
