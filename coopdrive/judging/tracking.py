@@ -9,7 +9,7 @@ lasted is what the scene issue bounds (0.5 s).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -64,17 +64,60 @@ class _Pose:
         return np.hypot(outside_along, outside_across)
 
 
+@dataclass
+class _Tally:
+    """What the scenes of a run add up to: errors to nearest objects, matches, identities per scene."""
+
+    gate_m: float
+    errors_m: list[float] = field(default_factory=list)
+    expected: int = 0
+    matched: int = 0
+    beyond_gate: int = 0
+    longest_false_s: float = 0.0
+    # Per scene, "<observer>:<true vehicle>" -> the object id the observer gave it.
+    frames: list[dict[str, int]] = field(default_factory=list)
+
+    def match(self, observer: str, k: int, own: _Pose, present: dict[str, _Pose], placed: list,
+              range_m: float) -> None:
+        """Each vehicle within range against its nearest object in scene k."""
+        frame = {}
+        for vid, pose in present.items():
+            rear_x, rear_y = pose.rear_centre(k)
+            if math.hypot(rear_x - own.x_m[k], rear_y - own.y_m[k]) > range_m:
+                continue
+            self.expected += 1
+            nearest = min(((math.hypot(o.position.x_m - rear_x, o.position.y_m - rear_y), o.object_id)
+                           for o in placed), default=None)
+            if nearest is None:
+                continue
+            # Every truth that has a nearest object counts towards the percentile, the ones beyond the gate
+            # too (they are reported as a count): leaving them out would hide the worst errors.
+            self.errors_m.append(nearest[0])
+            if nearest[0] >= self.gate_m:
+                self.beyond_gate += 1
+                continue
+            self.matched += 1
+            frame[f"{observer}:{vid}"] = nearest[1]
+        self.frames.append(frame)
+
+    def false_objects(self, k: int, present: dict[str, _Pose], placed: list) -> set[int]:
+        """Objects of scene k farther than the gate from every vehicle's body."""
+        if not placed:
+            return set()
+        placed_xy_m = np.array([[o.position.x_m, o.position.y_m] for o in placed])
+        nearest_body_m = np.full(len(placed), np.inf)
+        for pose in present.values():
+            nearest_body_m = np.minimum(nearest_body_m, pose.distances_to_body_m(k, placed_xy_m))
+        return {o.object_id for o, distance_m in zip(placed, nearest_body_m) if distance_m >= self.gate_m}
+
+
 def tracking_metrics(series: TruthSeries, messages: RunMessages, gate_m: float,
                      range_m: float = TRACKING_RANGE_M) -> dict[str, float]:
     """id_switches (and per tracked vehicle per 10 min), object_position_error_p95_m (over every vehicle within
     range and its nearest object, however far; how many were beyond the gate is
     object_position_errors_beyond_gate), object_coverage_ratio (vehicles within range that had an object within
     the gate) and false_object_max_s; empty without scenes."""
-    errors_m: list[float] = []
-    expected = matched = beyond_gate = 0
-    longest_false_s = 0.0
-    # Per scene, "<observer>:<true vehicle>" -> the object id the observer gave it.
-    frames: list[dict[str, int]] = []
+    tally = _Tally(gate_m)
     start_s, end_s = float(series.time_s[0]), float(series.time_s[-1])
     for observer, scenes in sorted(messages.scenes.items()):
         if observer not in series.values:
@@ -89,45 +132,20 @@ def tracking_metrics(series: TruthSeries, messages: RunMessages, gate_m: float,
             time_s = float(times_s[k])
             # An object whose position has faded (confidence -1) claims no place to be judged on.
             placed = [o for o in scene.objects if o.position.confidence >= 0]
-            frame = {}
             present = {vid: pose for vid, pose in others.items() if math.isfinite(pose.x_m[k])}
-            for vid, pose in present.items():
-                rear_x, rear_y = pose.rear_centre(k)
-                if math.hypot(rear_x - own.x_m[k], rear_y - own.y_m[k]) > range_m:
-                    continue
-                expected += 1
-                nearest = min(((math.hypot(o.position.x_m - rear_x, o.position.y_m - rear_y), o.object_id)
-                               for o in placed), default=None)
-                if nearest is None:
-                    continue
-                # Every truth that has a nearest object counts towards the percentile, the ones beyond the gate
-                # too (they are reported as a count): leaving them out would hide the worst errors.
-                errors_m.append(nearest[0])
-                if nearest[0] >= gate_m:
-                    beyond_gate += 1
-                    continue
-                matched += 1
-                frame[f"{observer}:{vid}"] = nearest[1]
-            frames.append(frame)
-            false_now = set()
-            if placed:
-                placed_xy_m = np.array([[o.position.x_m, o.position.y_m] for o in placed])
-                nearest_body_m = np.full(len(placed), np.inf)
-                for pose in present.values():
-                    nearest_body_m = np.minimum(nearest_body_m, pose.distances_to_body_m(k, placed_xy_m))
-                false_now = {o.object_id for o, distance_m in zip(placed, nearest_body_m) if distance_m >= gate_m}
-            false_since = {oid: false_since.get(oid, time_s) for oid in false_now}
-            longest_false_s = max([longest_false_s] + [time_s - since for since in false_since.values()])
-    if expected == 0:
+            tally.match(observer, k, own, present, placed, range_m)
+            false_since = {oid: false_since.get(oid, time_s) for oid in tally.false_objects(k, present, placed)}
+            tally.longest_false_s = max([tally.longest_false_s] + [time_s - since for since in false_since.values()])
+    if tally.expected == 0:
         return {}
-    switches = judge_metrics.identity_switches(frames)
-    tracked_pairs = {pair for frame in frames for pair in frame}
+    switches = judge_metrics.identity_switches(tally.frames)
+    tracked_pairs = {pair for frame in tally.frames for pair in frame}
     duration_s = max(end_s - start_s, 1e-9)
     return {
         "id_switches": float(switches),
         "id_switches_per_vehicle_per_10min": switches / max(len(tracked_pairs), 1) / (duration_s / SECONDS_PER_10_MIN),
-        "object_position_error_p95_m": float(np.percentile(errors_m, 95)) if errors_m else math.nan,
-        "object_position_errors_beyond_gate": float(beyond_gate),
-        "object_coverage_ratio": matched / expected,
-        "false_object_max_s": longest_false_s,
+        "object_position_error_p95_m": float(np.percentile(tally.errors_m, 95)) if tally.errors_m else math.nan,
+        "object_position_errors_beyond_gate": float(tally.beyond_gate),
+        "object_coverage_ratio": tally.matched / tally.expected,
+        "false_object_max_s": tally.longest_false_s,
     }

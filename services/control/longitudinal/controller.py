@@ -50,6 +50,15 @@ class _Track:
     time_gap_s: float = math.nan
 
 
+@dataclass(frozen=True)
+class _Choice:
+    """A law's request in the min-select: its acceleration, its mode, and the target it follows."""
+
+    accel_mps2: float
+    mode: int
+    target: Target | None = None
+
+
 class LongitudinalController:
     def __init__(
         self,
@@ -144,6 +153,29 @@ class LongitudinalController:
         spacing: Spacing | None = None,
     ) -> LongitudinalCommand:
         """One control period. Units: s, m/s, m/s2. spacing may be the planner's SpacingPolicy message."""
+        dt = self._period_s(time_s, ego_speed_mps, ego_accel_mps2, desired_speed_mps)
+        spacing = self._spacing(spacing)
+        cruise_u = self.cruise.step(dt, ego_speed_mps, desired_speed_mps)
+        outputs = {"cruise": cruise_u}
+        best = _Choice(cruise_u, MODE.LONGITUDINAL_MODE_CRUISE)
+        valid = [t for t in targets if self._accepted(t)]
+        for t in valid:
+            if t.stop_line:
+                u = outputs["stop_line"] = self.stop_line.step(t.gap_m, ego_speed_mps)
+                choice = _Choice(u, MODE.LONGITUDINAL_MODE_STOP_LINE)
+            else:
+                u, mode, f = self._follow(dt, time_s, t, ego_speed_mps, ego_accel_mps2, spacing)
+                outputs[f"{LongitudinalMode.Name(mode)}:{t.object_id}"] = u
+                choice = _Choice(u, mode, t)
+            if self._wins(choice.accel_mps2, best):
+                best = choice
+        seen = {t.object_id for t in valid if not t.stop_line}
+        for object_id in [k for k in self._tracks if k not in seen]:
+            del self._tracks[object_id]
+        return self._apply(dt, best, valid, ego_speed_mps, desired_speed_mps, spacing, outputs)
+
+    def _period_s(self, time_s: float, ego_speed_mps: float, ego_accel_mps2: float, desired_speed_mps: float) -> float:
+        """The period since the last step; a gap in the calls too long, or backwards, restarts the controller."""
         for name, value in (("time_s", time_s), ("ego_speed_mps", ego_speed_mps),
                             ("ego_accel_mps2", ego_accel_mps2), ("desired_speed_mps", desired_speed_mps)):
             if not math.isfinite(value):
@@ -154,45 +186,33 @@ class LongitudinalController:
             self.reset(self.shaper.last_mps2, ego_speed_mps)
             dt = DEFAULT_DT_S
         self._last_time_s = time_s
+        return dt
+
+    def _spacing(self, spacing: Spacing | None) -> Spacing:
+        """The planner's spacing policy; the profile's time gap where it gives none."""
         sp = self.profile.spacing
         if spacing is None or spacing.time_gap_s <= 0:
-            spacing = Spacing(sp.standstill_m if spacing is None else spacing.standstill_m, sp.time_gap_s)
-        else:
-            spacing = Spacing(spacing.standstill_m, spacing.time_gap_s)
+            return Spacing(sp.standstill_m if spacing is None else spacing.standstill_m, sp.time_gap_s)
+        return Spacing(spacing.standstill_m, spacing.time_gap_s)
 
-        cruise_u = self.cruise.step(dt, ego_speed_mps, desired_speed_mps)
-        outputs = {"cruise": cruise_u}
-        best = (cruise_u, MODE.LONGITUDINAL_MODE_CRUISE, None, None)
-        valid: list[Target] = []
-        for t in targets:
-            reason = t.invalid_reason()
-            if reason is not None:
-                self._reject(reason)
-                continue
-            valid.append(t)
-            if t.stop_line:
-                u = self.stop_line.step(t.gap_m, ego_speed_mps)
-                outputs["stop_line"] = u
-                if self._wins(u, best):
-                    best = (u, MODE.LONGITUDINAL_MODE_STOP_LINE, None, None)
-                continue
-            u, mode, f = self._follow(dt, time_s, t, ego_speed_mps, ego_accel_mps2, spacing)
-            outputs[f"{LongitudinalMode.Name(mode)}:{t.object_id}"] = u
-            if self._wins(u, best):
-                best = (u, mode, t, f)
-        seen = {t.object_id for t in valid if not t.stop_line}
-        for object_id in [k for k in self._tracks if k not in seen]:
-            del self._tracks[object_id]
+    def _accepted(self, t: Target) -> bool:
+        reason = t.invalid_reason()
+        if reason is not None:
+            self._reject(reason)
+        return reason is None
 
+    def _apply(self, dt: float, best: _Choice, valid: list[Target], ego_speed_mps: float, desired_speed_mps: float,
+               spacing: Spacing, outputs: dict[str, float]) -> LongitudinalCommand:
+        """The emergency path may override the min-select's winner; the shaper limits what is applied."""
         decision = self.emergency.step(ego_speed_mps, [self._emergency_view(t) for t in valid])
-        u, mode, target, follow = best
+        mode, target = best.mode, best.target
         if decision.active:
             applied = self.shaper.step(dt, decision.accel_mps2, emergency=True)
             mode = MODE.LONGITUDINAL_MODE_EMERGENCY_BRAKE
             target = next((t for t in valid if t.object_id == decision.object_id), target)
         else:
-            applied = self.shaper.step(dt, u)
-        if best[1] == MODE.LONGITUDINAL_MODE_CRUISE and not decision.active:
+            applied = self.shaper.step(dt, best.accel_mps2)
+        if best.mode == MODE.LONGITUDINAL_MODE_CRUISE and not decision.active:
             if self.cruise.engaged:
                 self.cruise.track(dt, applied)
             else:
@@ -201,32 +221,24 @@ class LongitudinalController:
             self.cruise.disengage()
         if mode != MODE.LONGITUDINAL_MODE_EMERGENCY_BRAKE and ego_speed_mps < STANDSTILL_SPEED_MPS and applied <= 0:
             mode = MODE.LONGITUDINAL_MODE_STANDSTILL
-
         cmd = LongitudinalCommand(
-            accel_request_mps2=applied,
-            mode=mode,
-            emergency_brake=decision.active,
-            cruise_speed_mps=desired_speed_mps,
-            law_outputs_mps2=outputs,
-            response_time_constant_s=self.profile.engine_lag_s,
-            response_time_delay_s=self.profile.actuation_delay_s,
-        )
+            accel_request_mps2=applied, mode=mode, emergency_brake=decision.active, cruise_speed_mps=desired_speed_mps,
+            law_outputs_mps2=outputs, response_time_constant_s=self.profile.engine_lag_s,
+            response_time_delay_s=self.profile.actuation_delay_s)
         if target is not None:
             track = self._tracks.get(target.object_id)
             h = track.time_gap_s if track is not None else spacing.time_gap_s
-            cmd.target_object_id = target.object_id
-            cmd.gap_m = target.gap_m
-            cmd.time_gap_s = h
+            cmd.target_object_id, cmd.gap_m, cmd.time_gap_s = target.object_id, target.gap_m, h
             cmd.desired_gap_m = spacing.standstill_m + target.extra_gap_m + h * ego_speed_mps
         return cmd
 
-    def _wins(self, u: float, best: tuple) -> bool:
+    def _wins(self, u: float, best: _Choice) -> bool:
         """Min-select over what the shaper would apply: above the comfort acceleration every law commands the
         same, so a follow law wanting more than the limit must not hand the vehicle to cruise, whose gentle
         reference model would then cap its acceleration below its braking and let it fall behind."""
         cap = self.profile.limits.max_accel_mps2
-        u, best_u = min(u, cap), min(best[0], cap)
-        return u < best_u or (u == best_u and best[1] == MODE.LONGITUDINAL_MODE_CRUISE)
+        u, best_u = min(u, cap), min(best.accel_mps2, cap)
+        return u < best_u or (u == best_u and best.mode == MODE.LONGITUDINAL_MODE_CRUISE)
 
     def _emergency_view(self, t: Target) -> tuple[int, float, float, float]:
         """(object_id, gap_m, speed_mps, accel_mps2) for the TTC path. A stop line's gap already ends at its
