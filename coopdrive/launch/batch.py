@@ -2,7 +2,7 @@
 
 `coopdrive run all --seeds 1-20` and `coopdrive run merge --seeds 1-5` come here. Each run is an ordinary
 lockstep run in its own worker (so the same seed gives the same metrics as a single run); with --out each
-writes <out>/<scenario>/seed-<n>/metrics.json and the batch writes summary.json and summary.csv.
+writes <out>/<scenario>/seed-<n>/metrics.json and the batch writes summary.json, summary.csv and pass_table.md.
 """
 
 from __future__ import annotations
@@ -19,6 +19,7 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from coopdrive.launch.pass_table import pass_table_markdown
 from coopdrive.services.sim.scenario_config import SCENARIO_PACKAGE
 
 # Metrics averaged in the summary table, when the runs report them.
@@ -167,3 +168,4 @@ def write_summary(summary: BatchSummary, out_dir: Path) -> None:
         for o in sorted(summary.outcomes, key=lambda o: (o.scenario, o.seed)):
             writer.writerow([o.scenario, o.seed, o.success, o.failure_reason, round(o.wall_time_s, 3),
                              *(o.metrics.get(key, "") for key in keys)])
+    (out_dir / "pass_table.md").write_text(pass_table_markdown(summary))

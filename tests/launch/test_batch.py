@@ -37,5 +37,6 @@ def test_a_batch_runs_each_seed_once_in_parallel_and_the_same_seed_gives_the_sam
     assert again.outcomes[0].metrics == first["metrics"]
     rows = list(csv.DictReader(open(tmp_path / "summary.csv")))
     assert [row["seed"] for row in rows] == ["1", "2"]
+    assert "| follow | 2/2 | pass | pass |" in (tmp_path / "pass_table.md").read_text()
     printed = console.export_text()
     assert "coopdrive batch" in printed and "pass rate" in printed and "follow" in printed
