@@ -31,13 +31,12 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from coopdrive.services.v2x.capture_decode import CaptureDecoder, format_record
 from coopdrive.services.v2x.capture_summary import format_summary
-from coopdrive.services.v2x.codec import ItsMessageId
 from coopdrive.services.v2x.config import parse_mac
 from coopdrive.services.v2x.geonet import GN_VERSION_GCDC
-from coopdrive.services.v2x.its_clock import ItsClock
+from coopdrive.services.v2x.its_pdu import ItsMessageId
 from coopdrive.services.v2x.packet import GnParams, SourcePosition, V2xPacketCodec, default_codec
 from coopdrive.services.v2x.security.trust import trust_store
-from coopdrive.services.v2x.timebase import generation_delta_time_ms
+from coopdrive.services.v2x.timebase import ItsClock, generation_delta_time_ms
 from coopdrive.v1 import its_pb2
 
 

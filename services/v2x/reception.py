@@ -12,16 +12,15 @@ from __future__ import annotations
 from collections import Counter
 from dataclasses import dataclass
 
-from coopdrive.services.v2x.codec import ItsMessageId
 from coopdrive.services.v2x.config import PlausibilityLimits
-from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.geonet import GnPacket
+from coopdrive.services.v2x.its_pdu import ItsMessageId
 from coopdrive.services.v2x.packet import BeaconPacket, DecodedPacket, V2xPacketCodec, default_codec
 from coopdrive.services.v2x.plausibility import Observation, PlausibilityChecker
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.services.v2x.security_verdict import sender_of, verdict_of_opened, verdict_of_refusal
 from coopdrive.services.v2x.station_stats import StationStats
-from coopdrive.services.v2x.timebase import tai_ms_from_delta
+from coopdrive.services.v2x.timebase import ItsClock, tai_ms_from_delta
 from coopdrive.v1 import v2x_pb2
 
 # A station silent this long leaves the status (it stays LOST in it until then).
@@ -85,7 +84,7 @@ class Reception:
                  expected_rate_hz: float, window_s: float, codec: V2xPacketCodec | None = None,
                  security=None):
         self.own = own
-        # security.SecurityLayer: open(packet) -> (unsecured packet, OpenedPacket | None), or V2xDecodeError.
+        # A packet.SecurityLayer: open(packet) -> (unsecured packet, OpenedPacket | None), or V2xDecodeError.
         self.security = security
         self.clock = clock
         self.loss_timeout_s = loss_timeout_s

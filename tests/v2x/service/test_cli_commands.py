@@ -6,7 +6,7 @@ import pytest
 
 from coopdrive.services.v2x.cli_commands import (
     SendFileError, decode_capture, load_send_file, packet_from_send_file, send_from_yaml)
-from coopdrive.services.v2x.codec import ItsMessageId
+from coopdrive.services.v2x.its_pdu import ItsMessageId
 from coopdrive.services.v2x.packet import decode_packet
 from coopdrive.services.v2x.pcap import PcapWriter
 from coopdrive.services.v2x.timebase import tai_ms_from_unix_s
