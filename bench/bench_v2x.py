@@ -12,7 +12,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from coopdrive.services.v2x.codec import ItsCodec, ItsMessageId, PDU_TYPE_NAMES
+from coopdrive.services.v2x.its_pdu import ItsCodec, ItsMessageId, PDU_TYPE_NAMES
 from coopdrive.services.v2x.mapping.cam import cam_to_asn
 from coopdrive.services.v2x.mapping.iclcm import iclcm_to_asn
 from coopdrive.services.v2x.packet import GnParams, SourcePosition, V2xPacketCodec

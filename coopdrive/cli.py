@@ -10,7 +10,7 @@ import tempfile
 from pathlib import Path
 
 from coopdrive.cli_recording import add_commands as add_recording_commands
-from coopdrive.cli_v2x import add_commands as add_v2x_commands
+from coopdrive.services.v2x.cli import add_commands as add_v2x_commands
 from coopdrive.runtime.config import ConfigError
 from coopdrive.runtime.service import HardwareUnavailable
 

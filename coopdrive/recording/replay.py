@@ -12,10 +12,8 @@ path of replay_wall.py instead; replay_diff.py says how the outputs differ from 
 from __future__ import annotations
 
 import logging
-from collections import defaultdict
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable
 
 from google.protobuf.message import Message
 
@@ -25,66 +23,22 @@ from coopdrive.recording.reader import RecordedMessage, read_messages, read_meta
 from coopdrive.recording.replay_config import ReplayError, missing_inputs_text, replay_config
 from coopdrive.recording.replay_wall import run_wall_clock
 from coopdrive.recording.writer import McapRecorder, config_metadata
-from coopdrive.runtime.clock import SimulationClock
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
 from coopdrive.runtime.participants import ParticipantTracker
 from coopdrive.runtime.pipeline import WORLD_SERVICE
 from coopdrive.runtime.registry import service_class
-from coopdrive.runtime.service import SequenceCounter
-from coopdrive.runtime.timers import TriggerSet
+from coopdrive.runtime.testing import MemoryContext
 
 __all__ = ["ReplayContext", "ReplayError", "ReplayResult", "replay_service"]
 
 
-@dataclass
-class ReplayContext:
-    """A ServiceContext backed by a recording instead of a bus."""
+class ReplayContext(MemoryContext):
+    """A ServiceContext backed by a recording instead of a bus: a MemoryContext on the recording's clock."""
 
-    vehicle_id: str
-    service_name: str
-    log: logging.Logger = field(default_factory=lambda: logging.getLogger("coopdrive.replay"))
-    clock: SimulationClock = field(default_factory=SimulationClock)
-    triggers: TriggerSet = field(default_factory=TriggerSet)
-    handlers: dict = field(default_factory=lambda: defaultdict(list))
-    outputs: list[tuple[str, Message]] = field(default_factory=list)
-    liveliness_handlers: list = field(default_factory=list)
-    _sequence: SequenceCounter | None = None
-    layout: KeyLayout = field(default_factory=KeyLayout)
-    opens_hardware: bool = False
-    handler_errors: int = 0  # wall-clock replay: inputs whose handler raised (live they are counted too)
-    skipped_s: float = 0.0  # wall-clock replay: time without inputs the triggers did not run through
-
-    def now_s(self) -> float:
-        return self.clock.now_s()
-
-    def subscribe(self, topic: str, handler: Callable[[Envelope], None], vehicle_id: str | None = None) -> None:
-        self.handlers[topic].append((vehicle_id or self.vehicle_id, handler))
-
-    def publish(self, topic: str, message: Message, sample_time_s: float | None = None) -> None:
-        self.publish_for(self.vehicle_id, topic, message, sample_time_s)
-
-    def publish_for(self, vehicle_id: str, topic: str, message: Message, sample_time_s: float | None = None) -> None:
-        if self._sequence is None:
-            self._sequence = SequenceCounter(self.service_name)
-        self._sequence.stamp(message, vehicle_id, topic, self.clock.now_s(), sample_time_s)
-        self.outputs.append((self.layout.topic(vehicle_id, topic), message))
-
-    def every(self, period_s: float, handler: Callable[[float], None]) -> None:
-        self.triggers.add(period_s, handler)
-
-    def watch_liveliness(self, handler: Callable[[str, bool], None]) -> None:
-        self.liveliness_handlers.append(handler)
-
-    def call_soon(self, function: Callable[[], None]) -> None:
-        function()
-
-    def request_stop(self, reason: str) -> None:
-        self.log.info("service asked to stop: %s", reason)
-
-    def dispatch(self, envelope: Envelope) -> None:
-        for source, handler in self.handlers.get(envelope.topic, ()):
-            if source in ("*", envelope.vehicle_id):
-                handler(envelope)
+    def __init__(self, vehicle_id: str, service_name: str) -> None:
+        super().__init__(vehicle_id, service_name, log=logging.getLogger("coopdrive.replay"))
+        self.handler_errors = 0  # wall-clock replay: inputs whose handler raised (live they are counted too)
+        self.skipped_s = 0.0  # wall-clock replay: time without inputs the triggers did not run through
 
 
 @dataclass

@@ -61,6 +61,9 @@ class TriggerSet:
             if trigger.next_due_s is None:
                 trigger.next_due_s = math.ceil(start_s / trigger.period_s - TIME_EPSILON_S) * trigger.period_s
 
+    def __iter__(self):
+        return iter(self._triggers)
+
     def periods_s(self) -> list[float]:
         return [trigger.period_s for trigger in self._triggers]
 

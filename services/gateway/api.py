@@ -9,7 +9,7 @@ from __future__ import annotations
 import asyncio
 import logging
 from pathlib import Path
-from typing import Protocol
+from typing import Callable, Protocol
 
 from fastapi import Depends, FastAPI, HTTPException, Response, WebSocket, status
 from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
@@ -58,13 +58,27 @@ def build_app(backend: GatewayBackend, tokens: TokenBook) -> FastAPI:
     app = FastAPI(title=API_TITLE, version=API_VERSION,
                   description="Health, live state and commands of one coopdrive vehicle, over its Zenoh bus.")
     bearer = HTTPBearer(auto_error=False, description="A token from the gateway's config (tokens, read_token).")
+    _add_read_routes(app, backend, _read_guard(tokens, bearer))
+    _add_command_routes(app, backend, _command_guard(backend, tokens, bearer))
+    _add_live_route(app, backend, tokens)
+    app.mount("/", StaticFiles(directory=STATIC_DIR, html=True), name="hmi")
+    return app
 
+
+def _read_guard(tokens: TokenBook, bearer: HTTPBearer) -> Callable[..., None]:
+    """The dependency of the read-only routes: 401 unless the gateway is open or the token may read."""
     def may_read(credentials: HTTPAuthorizationCredentials | None = Depends(bearer)) -> None:
         if not tokens.may_read(credentials.credentials if credentials else None):
             raise HTTPException(status.HTTP_401_UNAUTHORIZED, "a valid bearer token is needed",
                                 headers={"WWW-Authenticate": "Bearer"})
+    return may_read
 
-    def allowed(command: Command):
+
+def _command_guard(backend: GatewayBackend, tokens: TokenBook,
+                   bearer: HTTPBearer) -> Callable[[Command], Callable[..., Principal]]:
+    """allowed(command): the dependency naming who sends it; 401 without a known token, 403 for a role that
+    may not (both remembered by the backend as refused commands)."""
+    def allowed(command: Command) -> Callable[..., Principal]:
         def who_may(credentials: HTTPAuthorizationCredentials | None = Depends(bearer)) -> Principal:
             who = tokens.identify(credentials.credentials if credentials else None)
             if who is None:
@@ -77,7 +91,10 @@ def build_app(backend: GatewayBackend, tokens: TokenBook) -> FastAPI:
                                     f"{who.name} ({who.role.value}) may not {command.value}")
             return who
         return who_may
+    return allowed
 
+
+def _add_read_routes(app: FastAPI, backend: GatewayBackend, may_read: Callable[..., None]) -> None:
     read = {"dependencies": [Depends(may_read)], "tags": ["read"]}
 
     @app.get("/health", response_model=HealthResponse, summary="Liveliness, message age and rate of every service",
@@ -113,11 +130,16 @@ def build_app(backend: GatewayBackend, tokens: TokenBook) -> FastAPI:
     def get_metrics() -> Response:
         return Response(content=backend.metrics(), media_type=CONTENT_TYPE)
 
-    def answered(result: CommandResponse, response: Response) -> CommandResponse:
-        if result.outcome is CommandOutcome.REFUSED:
-            response.status_code = status.HTTP_409_CONFLICT
-        return result
 
+def _answered(result: CommandResponse, response: Response) -> CommandResponse:
+    """A command not carried out is answered 409 (its detail says why); one carried out, 202."""
+    if result.outcome is CommandOutcome.REFUSED:
+        response.status_code = status.HTTP_409_CONFLICT
+    return result
+
+
+def _add_command_routes(app: FastAPI, backend: GatewayBackend,
+                        allowed: Callable[[Command], Callable[..., Principal]]) -> None:
     command = {"tags": ["command"], "response_model": CommandResponse, "status_code": status.HTTP_202_ACCEPTED,
                "responses": {409: {"model": CommandResponse, "description": "Not carried out; detail says why"}}}
 
@@ -125,23 +147,25 @@ def build_app(backend: GatewayBackend, tokens: TokenBook) -> FastAPI:
               **command)
     def post_mode(body: ModeCommand, response: Response,
                   who: Principal = Depends(allowed(Command.MODE))) -> CommandResponse:
-        return answered(backend.mode(who, body), response)
+        return _answered(backend.mode(who, body), response)
 
     @app.post("/estop", summary="Emergency stop (published as EmergencyStop on gateway/estop)", **command)
     def post_estop(body: EstopCommand, response: Response,
                    who: Principal = Depends(allowed(Command.ESTOP))) -> CommandResponse:
-        return answered(backend.estop(who, body), response)
+        return _answered(backend.estop(who, body), response)
 
     @app.post("/planner/force", summary="Put the planner's machine in a state by name", **command)
     def post_force(body: PlannerForceCommand, response: Response,
                    who: Principal = Depends(allowed(Command.PLANNER_FORCE))) -> CommandResponse:
-        return answered(backend.planner_force(who, body), response)
+        return _answered(backend.planner_force(who, body), response)
 
     @app.post("/recording", summary="Start or stop recording what the gateway hears to MCAP", **command)
     def post_recording(body: RecordingCommand, response: Response,
                        who: Principal = Depends(allowed(Command.RECORDING))) -> CommandResponse:
-        return answered(backend.recording(who, body), response)
+        return _answered(backend.recording(who, body), response)
 
+
+def _add_live_route(app: FastAPI, backend: GatewayBackend, tokens: TokenBook) -> None:
     @app.websocket("/ws")
     async def live(websocket: WebSocket, token: str | None = None) -> None:
         """Live frames (LiveFrame JSON); a browser passes its token as ?token=, others may use the header."""
@@ -161,6 +185,3 @@ def build_app(backend: GatewayBackend, tokens: TokenBook) -> FastAPI:
             log.debug("live client left: %r", error)
         finally:
             sending.cancel()
-
-    app.mount("/", StaticFiles(directory=STATIC_DIR, html=True), name="hmi")
-    return app

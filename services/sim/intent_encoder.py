@@ -16,9 +16,8 @@ from coopdrive.services.sim.participants import IntentKind, MessageIntent
 from coopdrive.services.v2x.config import CamMode, VehicleDimensions
 from coopdrive.services.v2x.generation import CamGenerator
 from coopdrive.services.sim.geometry import rear_overhang_m
-from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.packet import DestinationArea, GnParams, SourcePosition, V2xPacketCodec
-from coopdrive.services.v2x.timebase import generation_delta_time_ms
+from coopdrive.services.v2x.timebase import ItsClock, generation_delta_time_ms
 from coopdrive.v1 import ego_pb2, its_pb2
 
 ToGeodetic = Callable[[float, float], tuple[float, float, float]]

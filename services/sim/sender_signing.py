@@ -13,10 +13,10 @@ from pathlib import Path
 from coopdrive.services.sim.intent_encoder import station_mac
 from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE, BasicNextHeader
 from coopdrive.services.sim.participants import MessageIntent
-from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.security.pki import load_test_pki
 from coopdrive.services.v2x.security.signer import SecuredPacketSigner
 from coopdrive.services.v2x.security.verifier import SecurityVerifier
+from coopdrive.services.v2x.timebase import ItsClock
 
 US_PER_MS = 1000
 NEXT_HEADER_MASK = 0x0F

@@ -1,5 +1,7 @@
 """What `coopdrive v2x decode FILE` does: every frame of a real capture, decoded as far as it goes, and a summary.
 
+    for line in decode_capture("drive.pcapng", as_json=False, trust=[Path("eu-roots/")]): print(line)
+    # or, record by record:
     decoder = CaptureDecoder(trust_store(["eu-roots/"]), freshness=True)
     for record in decoder.records("drive.pcapng"):     # one dict per frame, JSON-ready
         print(format_record(record))                   # or json.dumps(record)
@@ -15,8 +17,9 @@ Freshness is judged against the capture time of each frame (freshness=False: not
 
 from __future__ import annotations
 
+import json
 import struct
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import BinaryIO
 
@@ -24,13 +27,14 @@ from google.protobuf import json_format
 
 from coopdrive.services.v2x.btp import MESSAGE_NAME_OF_PORT, parse_btp_b
 from coopdrive.recording.capture import CapturedFrame, read_capture
-from coopdrive.services.v2x.capture_summary import DecodeSummary
+from coopdrive.services.v2x.capture_summary import DecodeSummary, format_summary
 from coopdrive.services.v2x.geonet import BeaconHeader, CommonNextHeader, GnPacket, HeaderType, parse_gn
 from coopdrive.services.v2x.packet import V2xPacketCodec
 from coopdrive.services.v2x.reasons import V2xDecodeError
 from coopdrive.services.v2x.release2 import TOP_TYPE_OF_MESSAGE, release2_content
 from coopdrive.services.v2x.security.inspection import PacketInspector
 from coopdrive.services.v2x.security.store import CertificateStore
+from coopdrive.services.v2x.security.trust import trust_store
 from coopdrive.services.v2x.timebase import tai_ms_from_unix_s
 
 US_PER_MS = 1000
@@ -124,6 +128,22 @@ def _gn_record(gn: GnPacket) -> dict:
             "station_type": position.address.station_type, "gn_address_mac": format_mac(position.address.mid),
             "latitude_deg": position.latitude_tenth_microdeg / TENTH_MICRODEG_PER_DEG,
             "longitude_deg": position.longitude_tenth_microdeg / TENTH_MICRODEG_PER_DEG}
+
+
+def decode_capture(path: str | Path, as_json: bool = False, trust: Sequence[Path] = (),
+                   freshness: bool = True) -> Iterator[str]:
+    """One line (or JSON object) per frame of a pcap or pcapng file, then the summary.
+
+    Frames that cannot be read or decoded give a line with the reason, so a capture never stops the listing.
+    trust: certificate files or directories (security/trust.py); freshness against the capture's timestamps.
+    """
+    decoder = CaptureDecoder(trust_store(trust) if trust else None, freshness=freshness)
+    for record in decoder.records(path):
+        yield json.dumps(record, sort_keys=True) if as_json else format_record(record)
+    if as_json:
+        yield json.dumps({"summary": decoder.summary.as_dict()}, sort_keys=True)
+    else:
+        yield from format_summary(decoder.summary)
 
 
 def format_record(record: dict) -> str:

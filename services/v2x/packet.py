@@ -12,10 +12,10 @@ from typing import Protocol
 
 from coopdrive.services.v2x import units
 from coopdrive.services.v2x.btp import BtpBHeader, BtpPort, parse_btp_b
-from coopdrive.services.v2x.codec import ItsCodec, ItsHeader, ItsMessageId, peek_its_header
 from coopdrive.services.v2x.geonet import (
     GN_VERSION_GCDC, MAC_SIZE_BYTES, SUPPORTED_GN_VERSIONS, BasicHeader, BeaconHeader, CommonHeader, CommonNextHeader,
     GbcHeader, GeoArea, GeoAreaShape, GnAddress, GnPacket, LongPositionVector, ShbHeader, encode_lifetime, parse_gn)
+from coopdrive.services.v2x.its_pdu import ItsCodec, ItsHeader, ItsMessageId, peek_its_header
 from coopdrive.services.v2x.mapping.cam import cam_from_asn, cam_to_asn
 from coopdrive.services.v2x.mapping.denm import denm_from_asn, denm_to_asn
 from coopdrive.services.v2x.mapping.iclcm import iclcm_from_asn, iclcm_to_asn
@@ -73,7 +73,8 @@ class GnParams:
 
 
 class SecurityLayer(Protocol):
-    """Unwraps (and per its mode verifies) secured packets: services/v2x/security/layer.py."""
+    """The contract of the codec's security: unwraps (and as it is configured, verifies) secured packets.
+    Implemented by security/layer.py's ModeSecurityLayer."""
 
     def open(self, packet: bytes) -> tuple[bytes, object | None]:
         """(the packet without its security envelope, what the layer found) or raise V2xDecodeError."""
@@ -193,12 +194,12 @@ class V2xPacketCodec:
 
 def _unwrapping_layer() -> SecurityLayer:
     """Security mode off with an empty certificate store: decode everything, verify what can be verified."""
-    from coopdrive.services.v2x.security.layer import SecurityLayer as Layer
+    from coopdrive.services.v2x.security.layer import ModeSecurityLayer
     from coopdrive.services.v2x.security.profile import SecurityMode
     from coopdrive.services.v2x.security.store import CertificateStore
     from coopdrive.services.v2x.security.verifier import SecurityVerifier
 
-    return Layer(SecurityMode.OFF, SecurityVerifier(CertificateStore()), clock_tai_us=None)
+    return ModeSecurityLayer(SecurityMode.OFF, SecurityVerifier(CertificateStore()), clock_tai_us=None)
 
 
 def _with_position(params: GnParams, position: SourcePosition) -> GnParams:

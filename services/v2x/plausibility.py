@@ -11,8 +11,8 @@ import enum
 import math
 from dataclasses import dataclass
 
-from coopdrive.services.v2x.codec import ItsMessageId
 from coopdrive.services.v2x.config import PlausibilityLimits
+from coopdrive.services.v2x.its_pdu import ItsMessageId
 from coopdrive.services.v2x.timebase import MS_PER_S
 
 EARTH_RADIUS_M = 6_371_008.8

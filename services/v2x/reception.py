@@ -12,16 +12,15 @@ from __future__ import annotations
 from collections import Counter
 from dataclasses import dataclass
 
-from coopdrive.services.v2x.codec import ItsMessageId
 from coopdrive.services.v2x.config import PlausibilityLimits
-from coopdrive.services.v2x.its_clock import ItsClock
 from coopdrive.services.v2x.geonet import GnPacket
+from coopdrive.services.v2x.its_pdu import ItsMessageId
 from coopdrive.services.v2x.packet import BeaconPacket, DecodedPacket, V2xPacketCodec, default_codec
 from coopdrive.services.v2x.plausibility import Observation, PlausibilityChecker
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.services.v2x.security_verdict import sender_of, verdict_of_opened, verdict_of_refusal
 from coopdrive.services.v2x.station_stats import StationStats
-from coopdrive.services.v2x.timebase import tai_ms_from_delta
+from coopdrive.services.v2x.timebase import ItsClock, tai_ms_from_delta
 from coopdrive.v1 import v2x_pb2
 
 # A station silent this long leaves the status (it stays LOST in it until then).
@@ -34,6 +33,25 @@ class BeaconPosition:
     latitude_deg: float
     longitude_deg: float
     receive_s: float
+
+
+@dataclass(frozen=True)
+class Heard:
+    """What reception made of one packet from the radio, so that nobody reads it again."""
+
+    receive_s: float
+    # The sender's GN address (read inside a secured packet's envelope); None when unreadable or a beacon.
+    source_mac: bytes | None = None
+    decoded: DecodedPacket | None = None  # the packet, when accepted
+    transit_delay_s: float | None = None  # a CAM's or iCLCM's, from its generation to reception
+
+    @property
+    def generated_s(self) -> float:
+        """A CAM's or iCLCM's generation time on our clock (its position and speed were true then, not at
+        reception); a DENM's reference time is the event's, so it keeps the reception time."""
+        if self.transit_delay_s is None:
+            return self.receive_s
+        return self.receive_s - max(self.transit_delay_s, 0.0)
 
 
 @dataclass(frozen=True)
@@ -85,7 +103,7 @@ class Reception:
                  expected_rate_hz: float, window_s: float, codec: V2xPacketCodec | None = None,
                  security=None):
         self.own = own
-        # security.SecurityLayer: open(packet) -> (unsecured packet, OpenedPacket | None), or V2xDecodeError.
+        # A packet.SecurityLayer: open(packet) -> (unsecured packet, OpenedPacket | None), or V2xDecodeError.
         self.security = security
         self.clock = clock
         self.loss_timeout_s = loss_timeout_s
@@ -99,33 +117,29 @@ class Reception:
         self.own_packets_ignored = 0
         self.beacons_received = 0
         self.beacon_positions: dict[bytes, BeaconPosition] = {}
-        # The GN source MAC of the packet handled last (inside its envelope), None when unreadable.
-        self.last_source_mac: bytes | None = None
 
-    def on_packet(self, data: bytes, receive_s: float) -> DecodedPacket | None:
-        """The decoded packet when accepted; None when it was ours, refused, undecodable or implausible (counted)."""
+    def on_packet(self, data: bytes, receive_s: float) -> Heard:
+        """What became of the packet: decoded when accepted; not when it was ours, refused, undecodable or
+        implausible (counted)."""
         self.packets_received += 1
-        self.last_source_mac = None
         try:
             unsecured, opened = self.security.open(data) if self.security is not None else (data, None)
         except V2xDecodeError as error:
-            self._refused_by_security(data, error.reason, receive_s)
-            return None
+            return Heard(receive_s, self._refused_by_security(data, error.reason, receive_s))
         try:
             decoded = self.codec.decode_packet(unsecured)
         except BeaconPacket as beacon:
             self._on_beacon(beacon.gn, receive_s)
-            return None
+            return Heard(receive_s)
         except V2xDecodeError as error:
             self.rejected_by_reason[error.reason.value] += 1
-            self.last_source_mac = sender_of(unsecured, self._unwrap).mac
-            return None
+            return Heard(receive_s, sender_of(unsecured, self._unwrap).mac)
         if self.security is not None:
             decoded.security = opened
-        mac = self.last_source_mac = source_mac(decoded)
+        mac = source_mac(decoded)
         if mac == self.own.mac or decoded.station_id == self.own.station_id:
             self.own_packets_ignored += 1
-            return None
+            return Heard(receive_s, mac)
         receive_tai_ms = self.clock.tai_ms(receive_s)
         time_tai_ms = message_time_tai_ms(decoded, receive_tai_ms)
         stats = self._stats(decoded.station_id)
@@ -135,10 +149,10 @@ class Reception:
         if reason is not None:
             self.rejected_by_reason[reason.value] += 1
             stats.on_rejected(receive_s)
-            return None
+            return Heard(receive_s, mac)
         delay_s = transit_delay_s(decoded, receive_tai_ms)
         stats.on_message(decoded.message_type, receive_s, None if delay_s is None else time_tai_ms, delay_s)
-        return decoded
+        return Heard(receive_s, mac, decoded, delay_s)
 
     def _on_beacon(self, gn: GnPacket, receive_s: float) -> None:
         """A beacon names no station id, only its GN address (MAC): its position is kept by MAC."""
@@ -152,15 +166,16 @@ class Reception:
                                                     vector.longitude_tenth_microdeg / TENTH_MICRODEG_PER_DEG,
                                                     receive_s)
 
-    def _refused_by_security(self, data: bytes, reason: RejectReason, receive_s: float) -> None:
+    def _refused_by_security(self, data: bytes, reason: RejectReason, receive_s: float) -> bytes | None:
+        """Counts the refusal against its sender, read through the envelope; returns the sender's MAC."""
         self.rejected_by_reason[reason.value] += 1
         sender = sender_of(data, self._unwrap)
-        self.last_source_mac = sender.mac
         if sender.station_id is None or sender.mac == self.own.mac or sender.station_id == self.own.station_id:
-            return
+            return sender.mac
         stats = self._stats(sender.station_id)
         stats.on_rejected(receive_s)
         stats.security.add(verdict_of_refusal(data, reason), refused=True)
+        return sender.mac
 
     def _unwrap(self, packet: bytes) -> bytes | None:
         # Without a layer of our own, the codec's unwrapping one reads the envelope.

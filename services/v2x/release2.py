@@ -15,7 +15,7 @@ from pathlib import Path
 
 import asn1tools
 
-from coopdrive.services.v2x.codec import default_cache_dir
+from coopdrive.services.v2x.its_pdu import default_cache_dir
 from coopdrive.services.v2x.security.asn import parsed_cached
 
 TOP_TYPE_OF_MESSAGE = {"cpm": "CollectivePerceptionMessage", "vam": "VAM"}

@@ -15,8 +15,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from coopdrive.services.v2x.btp import parse_btp_b
-from coopdrive.services.v2x.codec import peek_its_header
 from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE, BasicNextHeader, parse_gn
+from coopdrive.services.v2x.its_pdu import peek_its_header
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 
 _NEXT_HEADER_MASK = 0x0F

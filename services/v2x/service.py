@@ -10,20 +10,20 @@ from dataclasses import dataclass
 
 from coopdrive.bus import Envelope
 from coopdrive.runtime.service import Service
-from coopdrive.services.v2x.codec import ItsMessageId
 from coopdrive.services.v2x.config import GCDC_RATE_HZ, LinkSync, SecurityConfig, V2xConfig
 from coopdrive.services.v2x.denm_manager import ActionId
-from coopdrive.services.v2x.its_clock import ItsClock
+from coopdrive.services.v2x.its_pdu import ItsMessageId
 from coopdrive.services.v2x.link import CaptureLog, UdpLink
 from coopdrive.services.v2x.pseudonym import PseudonymChanger
-from coopdrive.services.v2x.reception import OwnIdentity, Reception, transit_delay_s
+from coopdrive.services.v2x.reception import OwnIdentity, Reception
 from coopdrive.services.v2x.security.certificate import Certificate
-from coopdrive.services.v2x.security.layer import SecurityLayer
+from coopdrive.services.v2x.security.layer import ModeSecurityLayer
 from coopdrive.services.v2x.security.pki import load_test_pki
 from coopdrive.services.v2x.security.profile import SecurityMode
 from coopdrive.services.v2x.security.signer import SecuredPacketSigner
 from coopdrive.services.v2x.security.store import CertificateStore
 from coopdrive.services.v2x.security.verifier import SecurityVerifier
+from coopdrive.services.v2x.timebase import ItsClock
 from coopdrive.services.v2x.transmission import Transmitter
 from coopdrive.v1 import its_pb2, v2x_pb2
 
@@ -44,7 +44,7 @@ class _Received:
 
 
 def build_security_layer(config: SecurityConfig, station_id: int, mac: bytes,
-                         clock_tai_us) -> SecurityLayer | None:
+                         clock_tai_us) -> ModeSecurityLayer | None:
     """The layer of the configured mode, or None when the mode is off and no PKI is given (today's
     behaviour: unsecured packets only). Our signer keeps the configured station id and MAC (no pseudonym
     change here), since the generators stamp those into every packet."""
@@ -55,7 +55,7 @@ def build_security_layer(config: SecurityConfig, station_id: int, mac: bytes,
     authorities = [pki.authority] + [Certificate.from_bytes(path.read_bytes()) for path in config.extra_authorities]
     verifier = SecurityVerifier(CertificateStore(trusted_roots=roots, authorities=authorities))
     signer = SecuredPacketSigner(pki.tickets[config.ticket], station_id, mac) if config.ticket else None
-    return SecurityLayer(config.mode, verifier, signer, clock_tai_us)
+    return ModeSecurityLayer(config.mode, verifier, signer, clock_tai_us)
 
 
 class V2xService(Service):
@@ -117,24 +117,17 @@ class V2xService(Service):
 
     def on_datagram(self, data: bytes) -> None:
         now_s = self.ctx.now_s()
-        decoded = self.reception.on_packet(data, now_s)
-        # The sender's MAC, read inside a secured packet's envelope too.
-        mac = self.reception.last_source_mac
+        heard = self.reception.on_packet(data, now_s)
+        mac = heard.source_mac
         if self.capture is not None:
             self.capture.write_packet(data, self.clock.unix_s(now_s), mac or UNKNOWN_MAC)
         received = _Received(now_s, v2x_pb2.GnPacket(direction=v2x_pb2.PACKET_DIRECTION_RECEIVED, payload=data,
                                                      source_mac=mac or b""))
-        if decoded is not None:
-            received.message_type, received.content = decoded.message_type, decoded.content
-            received.sample_s = self._generated_s(decoded, now_s)
-            self.count(f"received_{decoded.message_type.name.lower()}")
+        if heard.decoded is not None:
+            received.message_type, received.content = heard.decoded.message_type, heard.decoded.content
+            received.sample_s = heard.generated_s
+            self.count(f"received_{heard.decoded.message_type.name.lower()}")
         self._received.append(received)
-
-    def _generated_s(self, decoded, receive_s: float) -> float:
-        """A CAM's or iCLCM's generation time on our clock (its position and speed were true then, not at
-        reception); a DENM's reference time is the event's, so it keeps the reception time."""
-        delay_s = transit_delay_s(decoded, self.clock.tai_ms(receive_s))
-        return receive_s if delay_s is None else receive_s - max(delay_s, 0.0)
 
     # DENM API for in-process callers (roadside unit logic, hazard detection).
     def trigger_denm(self, event: its_pb2.DenmContent, repetition_interval_s: float | None = None,

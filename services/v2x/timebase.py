@@ -1,4 +1,5 @@
-"""ITS time: TAI milliseconds since 2004-01-01T00:00:00Z (TimestampIts) and generationDeltaTime.
+"""ITS time: TAI milliseconds since 2004-01-01T00:00:00Z (TimestampIts), generationDeltaTime, and the service
+clock as ITS time (ItsClock).
 
 TimestampIts counts TAI milliseconds since the 2004 epoch; unix time counts UTC seconds without leap
 seconds, so leap seconds inserted after 2004 are added back from the table below.
@@ -8,6 +9,7 @@ from __future__ import annotations
 
 import bisect
 import calendar
+from dataclasses import dataclass
 from datetime import datetime, timezone
 
 MS_PER_S = 1000
@@ -67,3 +69,27 @@ def tai_ms_from_delta(delta_ms: int, reference_tai_ms: int) -> int:
     if offset >= GENERATION_DELTA_TIME_MODULUS // 2:
         offset -= GENERATION_DELTA_TIME_MODULUS
     return reference_tai_ms + offset
+
+
+@dataclass(frozen=True)
+class ItsClock:
+    """The service clock as ITS time: the clock plus a configured epoch is UTC, UTC gives TimestampIts.
+
+    On a vehicle the clock is unix time and the epoch is 0; in simulation the clock starts at 0 and the epoch
+    is the UTC instant the scenario pretends to start at.
+    """
+
+    epoch_unix_s: float = 0.0
+
+    def unix_s(self, clock_s: float) -> float:
+        return clock_s + self.epoch_unix_s
+
+    def tai_ms(self, clock_s: float) -> int:
+        return tai_ms_from_unix_s(self.unix_s(clock_s))
+
+    def clock_s_of_tai(self, tai_ms: int) -> float:
+        return unix_s_from_tai_ms(tai_ms) - self.epoch_unix_s
+
+    @staticmethod
+    def seconds_between(earlier_tai_ms: int, later_tai_ms: int) -> float:
+        return (later_tai_ms - earlier_tai_ms) / MS_PER_S

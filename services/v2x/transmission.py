@@ -8,13 +8,13 @@ from __future__ import annotations
 import logging
 from dataclasses import dataclass
 
-from coopdrive.services.v2x.codec import ItsMessageId
 from coopdrive.services.v2x.config import V2xConfig
 from coopdrive.services.v2x.denm_manager import ActionId, DenmManager
 from coopdrive.services.v2x.generation import CamGenerator, IclcmGenerator
-from coopdrive.services.v2x.its_clock import ItsClock
+from coopdrive.services.v2x.its_pdu import ItsMessageId
 from coopdrive.services.v2x.packet import DestinationArea, GnParams, SourcePosition, V2xPacketCodec, default_codec
-from coopdrive.services.v2x.security.layer import SecurityLayer
+from coopdrive.services.v2x.security.layer import ModeSecurityLayer
+from coopdrive.services.v2x.timebase import ItsClock
 from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2
 
 log = logging.getLogger(__name__)
@@ -43,7 +43,7 @@ class OutgoingPacket:
 
 class Transmitter:
     def __init__(self, config: V2xConfig, clock: ItsClock, codec: V2xPacketCodec | None = None,
-                 security: SecurityLayer | None = None):
+                 security: ModeSecurityLayer | None = None):
         self.config = config
         self.clock = clock
         self.codec = codec or default_codec()

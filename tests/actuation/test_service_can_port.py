@@ -3,7 +3,6 @@ on the bus each cycle and the car's VEH_ feedback frames are the vehicle state i
 
 import logging
 import math
-import queue
 import uuid
 
 import can
@@ -11,56 +10,17 @@ import pytest
 from actuation_fixtures import ALL_SERVICES, control_command, mode_request, vehicle_state
 
 from coopdrive.can.codec import VehicleCanCodec
+from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.actuation.service import ActuationService
 from coopdrive.v1 import actuation_pb2, ego_pb2, vehicle_pb2
 
 WAIT_S = 2.0
 
 
-class BusFreeContext:
-    """Just what the actuation service asks of its context, with call_soon functions run by pump()."""
-
-    vehicle_id = "ego"
-    log = logging.getLogger("test.actuation")
-    opens_hardware = True
-
-    def __init__(self) -> None:
-        self.time_s = 0.0
-        self.published: list[tuple[str, object]] = []
-        self.calls: queue.Queue = queue.Queue()
-        self.timers: list = []
-
-    def now_s(self) -> float:
-        return self.time_s
-
-    def subscribe(self, topic, handler, vehicle_id=None) -> None:
-        pass
-
-    def publish(self, topic, message, sample_time_s=None) -> None:
-        self.published.append((topic, message))
-
-    def every(self, period_s, handler) -> None:
-        self.timers.append(handler)
-
-    def run_timers(self) -> None:
-        for handler in self.timers:
-            handler(self.time_s)
-
-    def watch_liveliness(self, handler) -> None:
-        pass
-
-    def call_soon(self, function) -> None:
-        self.calls.put(function)
-
-    def pump(self, calls: int) -> None:
-        for _ in range(calls):
-            self.calls.get(timeout=WAIT_S)()
-
-
 @pytest.fixture
 def service_on_bus():
     channel = f"actuation-{uuid.uuid4().hex[:8]}"
-    ctx = BusFreeContext()
+    ctx = MemoryContext(log=logging.getLogger("test.actuation"), opens_hardware=True, queue_calls=True)
     config = ActuationService.Config.model_validate({"can_port": {"interface": "virtual", "channel": channel}})
     service = ActuationService(config, ctx)
     service.start()
@@ -93,7 +53,7 @@ def test_the_cars_feedback_frames_reach_the_actuator_as_its_vehicle_state(servic
     for frame in feedback:
         car_end.send(frame)
     ctx.pump(len(feedback))
-    ctx.time_s = 0.04
+    ctx.clock.set(0.04)
     service.actuate(0.04)
     assert "vehicle state received" not in unmet_for_cooperative(service)
 
@@ -102,11 +62,11 @@ def test_actuation_owns_the_car_s_bus_every_frame_it_reads_goes_on_can_vehicle_s
     service, ctx, car_end = service_on_bus
     # The car's frames carry its interface's clock; the service's clock is another.
     feedback = VehicleCanCodec().encode_vehicle_state(vehicle_pb2.VehicleCanState(), timestamp_s=46408.0)
-    ctx.time_s = 1234.5
+    ctx.clock.set(1234.5)
     for frame in feedback:
         car_end.send(frame)
     ctx.pump(len(feedback))
-    ctx.run_timers()
+    ctx.advance_to(ctx.now_s())
     batches = [m for topic, m in ctx.published if topic == "can/vehicle"]
     frames = [frame for batch in batches for frame in batch.frames]
     assert [f.arbitration_id for f in frames] == [f.arbitration_id for f in feedback]
@@ -135,9 +95,10 @@ class CarOnTheBus:
         self.codec = VehicleCanCodec()
 
     def drive(self, duration_s: float, **driver) -> None:
-        start_s = self.ctx.time_s
+        start_s = self.ctx.now_s()
         for k in range(1, round(duration_s / CYCLE_S) + 1):
-            self.ctx.time_s = now_s = start_s + k * CYCLE_S
+            now_s = start_s + k * CYCLE_S
+            self.ctx.clock.set(now_s)
             self.keep_the_rest_of_the_stack_healthy(now_s)
             self.service.actuator.on_control_command(control_command(0.5), now_s)
             feedback = self.codec.encode_vehicle_state(vehicle_state(CREEP_MPS, **driver))
@@ -157,7 +118,7 @@ class CarOnTheBus:
     def engage_autonomous(self) -> None:
         self.drive(0.05)
         decision = self.service.actuator.on_mode_request(mode_request(actuation_pb2.DRIVING_MODE_AUTONOMOUS),
-                                                         self.ctx.time_s)
+                                                         self.ctx.now_s())
         assert decision.accepted, decision.unmet
         self.drive(CYCLE_S)
         assert self.service.status.mode == actuation_pb2.DRIVING_MODE_AUTONOMOUS

@@ -1,4 +1,4 @@
-"""A GatewayService on a loopback port with a stand-in context (no Zenoh), and bus messages to feed it."""
+"""A GatewayService on a loopback port with an in-memory context (no Zenoh), and bus messages to feed it."""
 
 import logging
 import signal
@@ -9,8 +9,8 @@ import time
 import httpx
 import pytest
 
-from coopdrive.bus import Envelope
 from coopdrive.launch.ports import free_tcp_port
+from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.gateway.service import GatewayService
 from coopdrive.v1 import actuation_pb2, ego_pb2, header_pb2, planner_pb2, scene_pb2, v2x_pb2
 
@@ -22,48 +22,8 @@ TOKENS = {"alice": {"token": OPERATOR_TOKEN, "role": "operator"},
           "dashboard": {"token": OBSERVER_TOKEN, "role": "observer"}}
 
 
-class RecordingContext:
-    """Runs call_soon at once (as the worker would, later) and remembers what was published from it."""
-
-    vehicle_id = "ego"
-    log = logging.getLogger("test.gateway")
-
-    def __init__(self):
-        self.clock_s = 0.0
-        self.subscriptions: dict[tuple[str, str], object] = {}
-        self.liveliness = []
-        self.timers = []
-        self.published: list[tuple[str, object]] = []
-        self.stop_reason = None
-
-    def now_s(self) -> float:
-        return self.clock_s
-
-    def subscribe(self, topic, handler, vehicle_id=None):
-        self.subscriptions[(vehicle_id or self.vehicle_id, topic)] = handler
-
-    def publish(self, topic, message, sample_time_s=None):
-        self.published.append((topic, message))
-
-    def every(self, period_s, handler):
-        self.timers.append(handler)
-
-    def call_soon(self, function):
-        function()
-
-    def watch_liveliness(self, handler):
-        self.liveliness.append(handler)
-
-    def request_stop(self, reason):
-        self.stop_reason = reason
-
-    def deliver(self, topic: str, message, vehicle_id: str = "ego") -> None:
-        message.header.sent_time_s = self.clock_s
-        self.subscriptions[(vehicle_id, topic)](Envelope(vehicle_id, topic, message))
-
-
 class Gateway:
-    def __init__(self, service: GatewayService, ctx: RecordingContext, client: httpx.Client):
+    def __init__(self, service: GatewayService, ctx: MemoryContext, client: httpx.Client):
         self.service, self.ctx, self.http = service, ctx, client
         self.port = service.config.port
 
@@ -73,7 +33,7 @@ def make_gateway():
     started: list[Gateway] = []
 
     def make(**config) -> Gateway:
-        ctx = RecordingContext()
+        ctx = MemoryContext(log=logging.getLogger("test.gateway"))
         service = GatewayService(GatewayService.Config(port=free_tcp_port(), **config), ctx)
         service.start()
         client = httpx.Client(base_url=f"http://127.0.0.1:{service.config.port}", timeout=REQUEST_TIMEOUT_S)
@@ -86,9 +46,9 @@ def make_gateway():
         gateway.service.stop()
 
 
-def feed_a_following_vehicle(ctx: RecordingContext, clock_s: float = 10.0, speed_mps: float = 15.0) -> None:
+def feed_a_following_vehicle(ctx: MemoryContext, clock_s: float = 10.0, speed_mps: float = 15.0) -> None:
     """One of each message the views read: ego at (100, 0) heading north, a lead car 30 m ahead with V2V."""
-    ctx.clock_s = clock_s
+    ctx.clock.set(clock_s)
     ego = ego_pb2.EgoState(x_m=100.0, y_m=0.0, heading_rad=1.5707963267948966, speed_mps=speed_mps)
     ego.lane.matched, ego.lane.lane_width_m, ego.lane.lane_index = True, 3.5, 0
     ctx.deliver("ego/state", ego)

@@ -1,10 +1,11 @@
-"""The HMI in Chromium against a gateway fed by a stand-in bus: a mode request with a token, and reconnection."""
+"""The HMI in Chromium against a gateway fed by an in-memory bus: a mode request with a token, and reconnection."""
 
 from pathlib import Path
 
 import pytest
 
-from conftest import OPERATOR_TOKEN, TOKENS, RecordingContext
+from conftest import OPERATOR_TOKEN, TOKENS
+from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.gateway.service import GatewayService
 
 CHROMIUM = Path("/usr/bin/chromium")
@@ -58,7 +59,7 @@ def test_the_hmi_reconnects_by_itself_when_the_gateway_comes_back(make_gateway, 
     page.wait_for_function("window.hmi.connected && window.hmi.frames > 0")
     gateway.service.stop()
     page.wait_for_function("!window.hmi.connected")
-    ctx = RecordingContext()
+    ctx = MemoryContext()
     revived = GatewayService(GatewayService.Config(port=gateway.port), ctx)
     revived.start()
     try:

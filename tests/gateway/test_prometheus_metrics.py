@@ -14,7 +14,7 @@ def samples(text: str) -> dict[tuple[str, tuple], float]:
 
 def test_the_metrics_parse_and_carry_speed_gap_time_gap_stations_and_rates(make_gateway, feed):
     gateway = make_gateway()
-    gateway.ctx.liveliness[0]("ego/scene", True)
+    gateway.ctx.set_alive("ego/scene", True)
     feed(gateway.ctx, speed_mps=15.0)
     response = gateway.http.get("/metrics")
     assert response.status_code == 200

@@ -12,7 +12,8 @@ import time
 import pytest
 from pydantic import ValidationError
 
-from coopdrive.recording.replay import ReplayContext
+from coopdrive.runtime.clock import WallClock
+from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.geolocation.gnss_serial import GnssPortError, GnssSerial
 from coopdrive.services.geolocation.nmea_decoder import with_checksum
 from coopdrive.services.geolocation.service import GeolocationConfig, GeolocationService, GnssInput, gnss_sources
@@ -28,39 +29,9 @@ def epoch(second: int) -> bytes:
     return b"".join((with_checksum(body.format(second)) + "\r\n").encode() for body in (RMC, GGA))
 
 
-class _LiveContext:
-    """A live service's context: wall clock, call_soon at once, hardware opened; records what is published."""
-
-    vehicle_id = "ego"
-    opens_hardware = True
-    log = logging.getLogger("test.geolocation")
-
-    def __init__(self) -> None:
-        self.handlers: dict = {}
-        self.published: list = []
-        self.lock = threading.Lock()
-
-    def now_s(self) -> float:
-        return time.monotonic()
-
-    def subscribe(self, topic, handler, vehicle_id=None) -> None:
-        self.handlers[topic] = handler
-
-    def publish(self, topic, message, sample_time_s=None) -> None:
-        if sample_time_s is not None and hasattr(message, "header"):
-            message.header.sample_time_s = sample_time_s
-        with self.lock:
-            self.published.append((topic, message))
-
-    def every(self, period_s, handler) -> None:
-        pass
-
-    def call_soon(self, function) -> None:
-        function()
-
-    def messages(self, topic: str) -> list:
-        with self.lock:
-            return [message for name, message in self.published if name == topic]
+def live_context() -> MemoryContext:
+    """A live service's context: wall clock, call_soon at once, hardware opened."""
+    return MemoryContext(log=logging.getLogger("test.geolocation"), clock=WallClock(), opens_hardware=True)
 
 
 def wait_for(condition, timeout_s: float = WAIT_S) -> bool:
@@ -92,12 +63,12 @@ def test_replaying_a_service_configured_with_a_port_decodes_gnss_nmea_without_op
 
 
 def test_a_live_port_s_bytes_go_on_gnss_nmea_stamped_on_arrival_and_are_decoded(tmp_path):
-    ctx = _LiveContext()
+    ctx = live_context()
     with GnssPty(tmp_path / "gnss0") as pty:
         service = GeolocationService(GeolocationConfig(gnss_port=str(tmp_path / "gnss0")), ctx)
         service.start()
         try:
-            before_s = time.monotonic()
+            before_s = time.time()
             data = epoch(0) + epoch(1) + epoch(2)
             pty.write(data)
             assert wait_for(lambda: sum(len(c.data) for c in ctx.messages("gnss/nmea")) == len(data))
@@ -106,7 +77,7 @@ def test_a_live_port_s_bytes_go_on_gnss_nmea_stamped_on_arrival_and_are_decoded(
     chunks = ctx.messages("gnss/nmea")
     assert b"".join(chunk.data for chunk in chunks) == data
     assert all(chunk.port == str(tmp_path / "gnss0") for chunk in chunks)
-    assert all(before_s <= chunk.header.sample_time_s <= time.monotonic() for chunk in chunks)
+    assert all(before_s <= chunk.header.sample_time_s <= time.time() for chunk in chunks)
     assert len(ctx.messages("ego/gnss")) >= 2
 
 
@@ -157,7 +128,7 @@ def test_a_receiver_streaming_over_tcp_is_read_through_a_socket_url_and_reconnec
 
 
 def test_a_port_that_cannot_be_opened_is_one_line_and_stop_after_the_failed_start_is_safe():
-    service = GeolocationService(GeolocationConfig(gnss_port="socket://127.0.0.1:1"), _LiveContext())
+    service = GeolocationService(GeolocationConfig(gnss_port="socket://127.0.0.1:1"), live_context())
     with pytest.raises(GnssPortError) as error:
         service.start()
     assert "socket://127.0.0.1:1" in str(error.value) and "\n" not in str(error.value)

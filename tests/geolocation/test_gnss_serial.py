@@ -1,11 +1,10 @@
 import datetime as dt
-import logging
 import threading
-from types import SimpleNamespace
 
 import pymap3d
 import pytest
 
+from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.geolocation.gnss_serial import GnssPortError, GnssSerial
 from coopdrive.services.geolocation.nmea_decoder import BadSentence, NmeaDecoder
 from coopdrive.services.sim.gnss_pty import GnssPty
@@ -115,38 +114,12 @@ def test_opening_a_port_that_never_appears_fails_with_one_line_naming_it(tmp_pat
     assert str(tmp_path / "missing") in message and "\n" not in message
 
 
-class _FakeContext:
-    """The parts of ServiceContext the GNSS serial path uses, recording subscriptions and publishes."""
-
-    vehicle_id = "ego"
-    log = logging.getLogger("test")
-
-    def __init__(self) -> None:
-        self.handlers: dict = {}
-        self.published: list = []
-
-    def now_s(self) -> float:
-        return 0.0
-
-    def subscribe(self, topic, handler, vehicle_id=None) -> None:
-        self.handlers[topic] = handler
-
-    def publish(self, topic, message, sample_time_s=None) -> None:
-        self.published.append((topic, message))
-
-    def every(self, period_s, handler) -> None:
-        pass
-
-    def call_soon(self, function) -> None:
-        function()
-
-
 def test_the_service_in_marks_mode_reads_to_each_mark_and_publishes_the_receivers_fixes(tmp_path):
     from coopdrive.services.geolocation.service import GeolocationConfig, GeolocationService
 
     outputs = _outputs(2)
     with GnssPty(tmp_path / "gnss0") as pty:
-        ctx = _FakeContext()
+        ctx = MemoryContext(opens_hardware=True)
         config = GeolocationConfig(gnss_port=str(tmp_path / "gnss0"), serial_sync="marks",
                                    origin={"lat_deg": ORIGIN[0], "lon_deg": ORIGIN[1], "alt_m": ORIGIN[2]})
         service = GeolocationService(config, ctx)
@@ -155,13 +128,13 @@ def test_the_service_in_marks_mode_reads_to_each_mark_and_publishes_the_receiver
             assert "gnss/fix" not in ctx.handlers
             for output in outputs:
                 mark = sim_pb2.WireMark(written=pty.write(output.data))
-                ctx.handlers["gnss/serial_mark"](SimpleNamespace(message=mark))
+                ctx.deliver("gnss/serial_mark", mark)
             mark = sim_pb2.WireMark(written=pty.written + 10)  # never written: times out, counted
             service.config = config.model_copy(update={"serial_mark_timeout_s": 0.2})
-            ctx.handlers["gnss/serial_mark"](SimpleNamespace(message=mark))
+            ctx.deliver("gnss/serial_mark", mark)
         finally:
             service.stop()
-    fixes = [message for topic, message in ctx.published if topic == "ego/gnss"]
+    fixes = ctx.messages("ego/gnss")
     assert [fix.latitude_deg for fix in fixes] == pytest.approx([o.message.latitude_deg for o in outputs], abs=1e-6)
     assert service.counters["serial_mark_timeouts"] == 1
     assert service.counters["serial_lost_bytes"] == 10

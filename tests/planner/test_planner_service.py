@@ -2,32 +2,13 @@
 
 import logging
 
+from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.planner.service import PlannerService
 from coopdrive.v1 import planner_pb2
 
 
-class FakeContext:
-    vehicle_id = "ego"
-    log = logging.getLogger("test.planner")
-
-    def __init__(self):
-        self.published = []
-
-    def now_s(self) -> float:
-        return 0.0
-
-    def subscribe(self, topic, handler, vehicle_id=None):
-        pass
-
-    def publish(self, topic, message, sample_time_s=None):
-        self.published.append((topic, message))
-
-    def every(self, period_s, handler):
-        pass
-
-
 def test_each_transition_is_logged_once_with_its_reason(caplog):
-    ctx = FakeContext()
+    ctx = MemoryContext(log=logging.getLogger("test.planner"))
     service = PlannerService(PlannerService.Config(), ctx)
     service.start()
     with caplog.at_level(logging.INFO, logger="test.planner"):

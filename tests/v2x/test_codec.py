@@ -1,6 +1,6 @@
 import pytest
 
-from coopdrive.services.v2x.codec import ItsCodec, ItsMessageId, default_cache_dir, peek_its_header
+from coopdrive.services.v2x.its_pdu import ItsCodec, ItsMessageId, default_cache_dir, peek_its_header
 from coopdrive.services.v2x.mapping.iclcm import iclcm_to_asn
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 

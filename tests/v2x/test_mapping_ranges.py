@@ -6,7 +6,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from coopdrive.services.v2x.codec import ItsCodec, ItsMessageId
+from coopdrive.services.v2x.its_pdu import ItsCodec, ItsMessageId
 from coopdrive.services.v2x.mapping.cam import cam_to_asn
 from coopdrive.services.v2x.mapping.denm import denm_to_asn
 from coopdrive.services.v2x.mapping.iclcm import iclcm_to_asn

@@ -100,7 +100,7 @@ def test_a_hand_built_reference_cam_decodes_to_the_fields_it_was_built_from():
 
 
 def test_our_encoder_produces_the_reference_bytes_from_the_decoded_content():
-    from coopdrive.services.v2x.codec import ItsCodec, ItsMessageId
+    from coopdrive.services.v2x.its_pdu import ItsCodec, ItsMessageId
     from coopdrive.services.v2x.mapping.cam import cam_to_asn
     uper = reference_cam_uper()
     decoded = decode_packet(reference_gn_packet(uper)).content

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 from coopdrive.services.v2x import units
-from coopdrive.services.v2x.codec import PROTOCOL_VERSION_GCDC, ItsMessageId
 from coopdrive.services.v2x.mapping.common import (
     EnumTable, bits_to_flags, checked_code, flags_to_bits, heading_to_asn, optional,
     path_point_from_asn, path_point_to_asn, reference_position_from_asn, reference_position_to_asn, set_optional,
     speed_to_asn, wire_protocol_version)
+from coopdrive.services.v2x.its_pdu import PROTOCOL_VERSION_GCDC, ItsMessageId
 from coopdrive.services.v2x.timebase import generation_delta_time_ms
 from coopdrive.v1 import its_pb2
 

@@ -7,7 +7,7 @@ from collections.abc import Sequence
 from google.protobuf.message import Message
 
 from coopdrive.services.v2x import units
-from coopdrive.services.v2x.codec import PROTOCOL_VERSION_GCDC
+from coopdrive.services.v2x.its_pdu import PROTOCOL_VERSION_GCDC
 from coopdrive.services.v2x.reasons import V2xEncodeError
 from coopdrive.v1 import its_pb2
 

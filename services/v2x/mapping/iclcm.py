@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from coopdrive.services.v2x import units
-from coopdrive.services.v2x.codec import PROTOCOL_VERSION_GCDC, ItsMessageId
+from coopdrive.services.v2x.its_pdu import PROTOCOL_VERSION_GCDC, ItsMessageId
 from coopdrive.services.v2x.mapping.common import checked_code, optional, set_optional
 from coopdrive.services.v2x.timebase import generation_delta_time_ms
 from coopdrive.v1 import its_pb2

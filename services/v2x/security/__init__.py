@@ -8,7 +8,7 @@ Public API (pure logic, no Zenoh):
   `.open(...)` also returns the unsecured GN packet; `.rejected_by_reason` counts every failure.
 - `signer.SecuredPacketSigner(tickets)`: `.sign(packet, now_tai_us)`, `.request_full_certificate()`,
   `.rotate_pseudonym()` (ticket, station id and MAC together; refused under `.manoeuvre_lock(name)`).
-- `layer.SecurityLayer(mode, verifier, signer)`: what `V2xPacketCodec(security=...)` calls; `.seal(packet)`.
+- `layer.ModeSecurityLayer(mode, verifier, signer)`: what `V2xPacketCodec(security=...)` calls; `.seal(packet)`.
 - `profile.SecurityMode`: off, sign_only, sign_and_verify, verify_required; PSIDs 36 CAM, 37 DENM, 127 iCLCM.
 - `store.CertificateStore`: trusted roots, known authorities, cache of tickets heard in full.
 - `pki.create_test_pki(dir, vehicles)`, `pki.pki_init(dir, vehicles)` (for `coopdrive pki init DIR`),

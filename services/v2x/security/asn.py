@@ -1,7 +1,7 @@
 """OER codec of the security envelope (EtsiTs103097Data, certificates), compiled once per process.
 
 Parsing the three modules takes about a second, so the parsed dict is cached on disk next to the ITS
-schemas (same directory and scheme as codec.py: a Python literal keyed by the files' hash and the
+schemas (same directory and scheme as its_pdu.py: a Python literal keyed by the files' hash and the
 asn1tools version, read back with ast.literal_eval) and the compiled specification is kept per process.
 """
 
@@ -16,7 +16,7 @@ from pathlib import Path
 
 import asn1tools
 
-from coopdrive.services.v2x.codec import default_cache_dir
+from coopdrive.services.v2x.its_pdu import default_cache_dir
 
 SECURITY_FILES = ("IEEE1609dot2BaseTypes.asn", "IEEE1609dot2.asn", "TS103097v131.asn")
 DATA_TYPE = "EtsiTs103097Data"

@@ -1,6 +1,6 @@
-"""The security mode applied to packets in and out: what V2xPacketCodec(security=...) calls.
+"""The security mode applied to packets in and out: the SecurityLayer that V2xPacketCodec(security=...) calls.
 
-    layer = SecurityLayer(SecurityMode.VERIFY_REQUIRED, verifier, signer, clock_tai_us)
+    layer = ModeSecurityLayer(SecurityMode.VERIFY_REQUIRED, verifier, signer, clock_tai_us)
     codec = V2xPacketCodec(security=layer)
     decoded = codec.decode_packet(packet)        # decoded.security: inspection.SecurityResult (UNSIGNED if unsigned)
     wire = layer.seal(codec.encode_cam(...))     # signed unless the mode is off
@@ -36,7 +36,10 @@ def system_clock_tai_us() -> int:
     return tai_ms_from_unix_s(time.time()) * MS_PER_US
 
 
-class SecurityLayer:
+class ModeSecurityLayer:
+    """The packet codec's SecurityLayer (packet.py) for a SecurityMode: opens, checks and drops incoming
+    packets as the mode says, and seals outgoing ones."""
+
     def __init__(self, mode: SecurityMode, verifier: SecurityVerifier | None = None,
                  signer: SecuredPacketSigner | None = None,
                  clock_tai_us: Callable[[], int] | None = system_clock_tai_us):

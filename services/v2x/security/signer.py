@@ -18,8 +18,8 @@ from dataclasses import dataclass
 from cryptography.hazmat.primitives.asymmetric import ec
 
 from coopdrive.services.v2x.btp import parse_btp_b
-from coopdrive.services.v2x.codec import peek_its_header
 from coopdrive.services.v2x.geonet import MAC_SIZE_BYTES, BasicNextHeader, parse_gn, with_basic_next_header
+from coopdrive.services.v2x.its_pdu import peek_its_header
 from coopdrive.services.v2x.security.certificate import Certificate
 from coopdrive.services.v2x.security.envelope import GenerationLocation, build_signed_data
 from coopdrive.services.v2x.security.profile import (

@@ -2,7 +2,7 @@ import pytest
 
 from coopdrive.services.v2x.packet import V2xPacketCodec
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
-from coopdrive.services.v2x.security.layer import SecurityLayer
+from coopdrive.services.v2x.security.layer import ModeSecurityLayer
 from coopdrive.services.v2x.security.pki import tamper_packet
 from coopdrive.services.v2x.security.profile import SecurityMode
 from coopdrive.services.v2x.security.verifier import SecurityVerifier
@@ -13,7 +13,7 @@ from .signed import cam_packet, now_tai_us
 
 
 def receiver(pki, mode, now):
-    layer = SecurityLayer(mode, SecurityVerifier(pki.store()), pki.signer("b"), clock_tai_us=lambda: now)
+    layer = ModeSecurityLayer(mode, SecurityVerifier(pki.store()), pki.signer("b"), clock_tai_us=lambda: now)
     return layer, V2xPacketCodec(security=layer)
 
 
@@ -72,7 +72,7 @@ def test_sign_and_verify_delivers_an_unknown_signer_marked_unverified_and_counts
 
 def test_off_sends_unsigned_and_delivers_a_tampered_packet_marked_invalid(p256_pki):
     now = now_tai_us()
-    layer = SecurityLayer(SecurityMode.OFF, SecurityVerifier(p256_pki.store()), clock_tai_us=lambda: now)
+    layer = ModeSecurityLayer(SecurityMode.OFF, SecurityVerifier(p256_pki.store()), clock_tai_us=lambda: now)
     codec = V2xPacketCodec(security=layer)
     signer = p256_pki.signer("a")
     assert layer.seal(cam_packet(signer)) == cam_packet(signer)
@@ -96,4 +96,4 @@ def test_a_station_heard_for_the_first_time_makes_our_next_packet_carry_the_full
 
 def test_a_signing_mode_needs_a_signer(p256_pki):
     with pytest.raises(ValueError, match="sign_only needs a signer"):
-        SecurityLayer(SecurityMode.SIGN_ONLY, SecurityVerifier(p256_pki.store()))
+        ModeSecurityLayer(SecurityMode.SIGN_ONLY, SecurityVerifier(p256_pki.store()))

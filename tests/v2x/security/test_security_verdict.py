@@ -6,7 +6,7 @@ from dataclasses import dataclass
 import pytest
 
 from coopdrive.services.v2x.reasons import RejectReason
-from coopdrive.services.v2x.security.layer import SecurityLayer
+from coopdrive.services.v2x.security.layer import ModeSecurityLayer
 from coopdrive.services.v2x.security.profile import SecurityMode
 from coopdrive.services.v2x.security.verifier import SecurityVerifier
 from coopdrive.services.v2x.security_verdict import (
@@ -21,8 +21,8 @@ def signed(p256_pki):
     return signer.sign(cam_packet(signer), now_tai_us())
 
 
-def layer(pki, mode: SecurityMode) -> SecurityLayer:
-    return SecurityLayer(mode, SecurityVerifier(pki.store()), pki.signer("b") if mode.signs else None)
+def layer(pki, mode: SecurityMode) -> ModeSecurityLayer:
+    return ModeSecurityLayer(mode, SecurityVerifier(pki.store()), pki.signer("b") if mode.signs else None)
 
 
 def test_a_packet_verified_against_our_root_is_signed_verified_and_trusted(p256_pki, signed):

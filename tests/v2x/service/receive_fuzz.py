@@ -21,13 +21,13 @@ from pathlib import Path
 
 from coopdrive.services.v2x.reasons import V2xDecodeError
 from coopdrive.recording.capture import read_gn_packets
+from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.v2x.security.pki import create_test_pki, tamper_packet
 from coopdrive.services.v2x.security_verdict import is_secured
 from coopdrive.services.v2x.service import V2xService
 from coopdrive.services.v2x.timebase import generation_delta_time_ms, tai_ms_from_unix_s
 from tests.shared_data import shared_file
 from tests.v2x.security.signed import CODEC, cam, denm_packet, gn_params, iclcm_packet
-from tests.v2x.service.test_service_udp import FakeContext
 from tests.v2x.test_fuzz import mutate as mutate_gn, seeds as unsigned_seeds
 
 CAPTURES = ("v2x/considerit_signed_testvectors.pcap", "v2x/msvan3t_cam_cpm_trace.pcapng",
@@ -104,10 +104,11 @@ def mutate(rng: random.Random, packet: bytes) -> bytes:
     return bytes(data)
 
 
-def start_service(pki_dir: Path, pcap_path: Path, now_s: float) -> tuple[V2xService, FakeContext, socket.socket]:
+def start_service(pki_dir: Path, pcap_path: Path, now_s: float) -> tuple[V2xService, MemoryContext, socket.socket]:
     radio = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
     radio.bind(("127.0.0.1", 0))
-    ctx = FakeContext(now_s)
+    ctx = MemoryContext(queue_calls=True)
+    ctx.clock.set(now_s)
     config = V2xService.Config.model_validate({
         "link": {"radio_port": radio.getsockname()[1], "listen_port": 0}, "station_id": 1001,
         "vehicle_mac": "02:00:00:00:10:01",
@@ -118,7 +119,7 @@ def start_service(pki_dir: Path, pcap_path: Path, now_s: float) -> tuple[V2xServ
     return service, ctx, radio
 
 
-def fuzz(service: V2xService, ctx: FakeContext, groups: list[list[bytes]], packets: int,
+def fuzz(service: V2xService, ctx: MemoryContext, groups: list[list[bytes]], packets: int,
          seed: int = SEED) -> FuzzOutcome:
     """Each packet a mutation (or, one time in twenty, the original) of a seed of a group drawn evenly."""
     rng = random.Random(seed)
@@ -130,7 +131,7 @@ def fuzz(service: V2xService, ctx: FakeContext, groups: list[list[bytes]], packe
         before = time.thread_time()
         service.on_datagram(data)
         outcome.slowest_packet_cpu_s = max(outcome.slowest_packet_cpu_s, time.thread_time() - before)
-        ctx.time_s += STEP_S
+        ctx.clock.set(ctx.now_s() + STEP_S)
         if index % FLUSH_EVERY == FLUSH_EVERY - 1:
             _flush(service, ctx, outcome)
     _flush(service, ctx, outcome)
@@ -144,13 +145,12 @@ def fuzz(service: V2xService, ctx: FakeContext, groups: list[list[bytes]], packe
     return outcome
 
 
-def _flush(service: V2xService, ctx: FakeContext, outcome: FuzzOutcome) -> None:
-    service.flush_received(ctx.time_s)
-    service.publish_status(ctx.time_s)
+def _flush(service: V2xService, ctx: MemoryContext, outcome: FuzzOutcome) -> None:
+    service.flush_received(ctx.now_s())
+    service.publish_status(ctx.now_s())
     status = ctx.messages("v2x/status")[-1]
     outcome.stations_listed_max = max(outcome.stations_listed_max, len(status.stations))
-    ctx.published.clear()
-    ctx.sample_times.clear()
+    ctx.outputs.clear()
 
 
 def run(packets: int, folder: Path) -> FuzzOutcome:

@@ -6,8 +6,7 @@ import pytest
 from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.services.v2x.config import CamMode, VehicleDimensions
 from coopdrive.services.v2x.generation import CamGenerator, CamTrigger, IclcmGenerator
-from coopdrive.services.v2x.its_clock import ItsClock
-from coopdrive.services.v2x.timebase import generation_delta_time_ms, tai_ms_from_utc
+from coopdrive.services.v2x.timebase import ItsClock, generation_delta_time_ms, tai_ms_from_utc
 from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2
 
 from .streams import CLOCK

@@ -18,7 +18,8 @@ def reception(window_s: float = 60.0) -> Reception:
 
 def receive(rx: Reception, generation_s: float, receive_s: float | None = None, mac: bytes = REMOTE_MAC, **cam):
     content = remote_cam(generation_s, **cam)
-    return rx.on_packet(cam_packet(content, generation_s, mac), generation_s + DELAY_S if receive_s is None else receive_s)
+    receive_s = generation_s + DELAY_S if receive_s is None else receive_s
+    return rx.on_packet(cam_packet(content, generation_s, mac), receive_s).decoded
 
 
 def station(status: v2x_pb2.V2xStatus, station_id: int = REMOTE_STATION_ID) -> v2x_pb2.StationLinkStats:
@@ -119,8 +120,8 @@ def test_our_own_packets_looped_back_by_the_radio_are_ignored_by_mac_or_station_
 
 def test_undecodable_packets_are_counted_by_the_decoder_reason():
     rx = reception()
-    assert rx.on_packet(b"\x00", 0.0) is None
-    assert rx.on_packet(bytes([0x20]) + bytes(60), 0.0) is None
+    assert rx.on_packet(b"\x00", 0.0).decoded is None
+    assert rx.on_packet(bytes([0x20]) + bytes(60), 0.0).decoded is None
     status = rx.status(0.1)
     assert dict(status.rejected_by_reason) == {"truncated_basic_header": 1, "unsupported_gn_version": 1}
     assert status.packets_received == 2
@@ -162,3 +163,15 @@ def test_a_stream_s_totals_since_first_heard_survive_the_window_after_its_sender
     stats = station(rx.status(60.0))
     assert stats.reception_ratio == 0.0
     assert (stats.periodic_received_total, stats.periodic_expected_total) == (kept, 100)
+
+
+def test_what_reception_heard_carries_the_sender_s_mac_and_the_transit_delay_so_nobody_reads_the_packet_again():
+    rx = reception()
+    generation_s = 3.0
+    heard = rx.on_packet(cam_packet(remote_cam(generation_s), generation_s, REMOTE_MAC), generation_s + 0.02)
+    assert heard.source_mac == REMOTE_MAC
+    assert heard.decoded.station_id == REMOTE_STATION_ID
+    assert heard.transit_delay_s == pytest.approx(0.02, abs=1e-3)
+    assert heard.generated_s == pytest.approx(generation_s, abs=1e-3)
+    undecodable = rx.on_packet(b"\x00", 4.0)
+    assert (undecodable.source_mac, undecodable.decoded, undecodable.generated_s) == (None, None, 4.0)

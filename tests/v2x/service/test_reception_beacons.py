@@ -19,7 +19,7 @@ def test_beacons_of_a_real_capture_update_the_neighbour_positions_and_are_not_re
     start_s = frames[0].time_s
     beacons = [frame for frame in frames if frame.gn_packet[5] >> 4 == 1]  # common header type 1
     for frame in beacons:
-        assert reception.on_packet(frame.gn_packet, frame.time_s - start_s) is None
+        assert reception.on_packet(frame.gn_packet, frame.time_s - start_s).decoded is None
     assert reception.beacons_received == len(beacons) == 9
     assert dict(reception.rejected_by_reason) == {}
     position = reception.beacon_positions[FLEXSTACK_MAC]

@@ -19,9 +19,9 @@ CAM_PERIOD_S = 0.04
 
 def sent(service, ctx, radio) -> bytes:  # noqa: F811
     """Our next packet: one CAM period later."""
-    ctx.time_s += CAM_PERIOD_S
+    ctx.clock.set(ctx.now_s() + CAM_PERIOD_S)
     ctx.deliver("ego/state", ego_pb2.EgoState(x_m=5.0, y_m=2.0, heading_rad=0.2, speed_mps=15.0))
-    service.transmit(ctx.time_s)
+    service.transmit(ctx.now_s())
     packet, _ = radio.recvfrom(4096)
     return packet
 
@@ -34,7 +34,7 @@ def identity(packet: bytes, pki_dir) -> tuple[int, bytes, bytes]:
 
 
 def period_trigger(ctx):
-    return next(handler for period_s, handler in ctx.triggers if period_s == PERIOD_S)
+    return next(trigger.handler for trigger in ctx.triggers if trigger.period_s == PERIOD_S)
 
 
 def test_the_pseudonym_changes_on_its_period_and_the_new_one_is_heard_verified(station, radio, overrides):  # noqa: F811
@@ -43,7 +43,7 @@ def test_the_pseudonym_changes_on_its_period_and_the_new_one_is_heard_verified(s
         station("b")
     before = identity(sent(a, a_ctx, radio), pki_dir)
     assert before[:2] == (STATIONS["a"][0], bytes.fromhex(STATIONS["a"][1].replace(":", "")))
-    period_trigger(a_ctx)(a_ctx.time_s)
+    period_trigger(a_ctx)(a_ctx.now_s())
     packet = sent(a, a_ctx, radio)
     after = identity(packet, pki_dir)
     assert all(old != new for old, new in zip(before, after)), (before, after)
@@ -61,7 +61,7 @@ def test_a_change_due_during_a_manoeuvre_waits_until_it_is_over(station, radio, 
     pki_dir = overrides["a"]["security"]["pki_dir"]
     a, a_ctx = station("a", security={**overrides["a"]["security"], "pseudonym_period_s": PERIOD_S})
     a_ctx.deliver("planner/behaviour", planner_pb2.BehaviourRequest(iclcm=intent))
-    period_trigger(a_ctx)(a_ctx.time_s)
+    period_trigger(a_ctx)(a_ctx.now_s())
     held = [identity(sent(a, a_ctx, radio), pki_dir)[0] for _ in range(3)]
     assert held == [STATIONS["a"][0]] * 3 and a.pseudonyms.deferred >= 3
     a_ctx.deliver("planner/behaviour", planner_pb2.BehaviourRequest())

@@ -53,7 +53,7 @@ def station(start_service, overrides):  # noqa: F811
 
 def sent_cam(service, ctx, radio) -> bytes:  # noqa: F811
     ctx.deliver("ego/state", ego_pb2.EgoState(x_m=5.0, y_m=2.0, heading_rad=0.2, speed_mps=15.0))
-    service.transmit(ctx.time_s)
+    service.transmit(ctx.now_s())
     packet, _ = radio.recvfrom(4096)
     return packet
 
@@ -62,8 +62,8 @@ def deliver(service, ctx, radio, *packets: bytes) -> None:  # noqa: F811
     for packet in packets:
         radio.sendto(packet, service.link.local_address)
     ctx.pump(len(packets))
-    service.flush_received(ctx.time_s)
-    service.publish_status(ctx.time_s)
+    service.flush_received(ctx.now_s())
+    service.publish_status(ctx.now_s())
 
 
 def rejected(ctx) -> dict[str, int]:

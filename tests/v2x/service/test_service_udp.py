@@ -2,17 +2,17 @@
 
 import json
 import logging
-import queue
 import socket
 import subprocess
 import time
 
 import pytest
 
-from coopdrive.bus import Envelope
-from coopdrive.services.v2x.cli_commands import decode_capture, send_from_yaml
+from coopdrive.runtime.testing import MemoryContext
+from coopdrive.services.v2x.capture_decode import decode_capture
 from coopdrive.services.v2x.geonet import GbcHeader
 from coopdrive.services.v2x.packet import decode_packet
+from coopdrive.services.v2x.send_file import send_from_yaml
 from coopdrive.services.v2x.service import V2xService
 from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2, v2x_pb2
 
@@ -22,47 +22,6 @@ from .streams import EPOCH_UNIX_S, REMOTE_STATION_ID, cam_packet, remote_cam
 OWN_STATION_ID = 1001
 START_S = 10.0
 WAIT_S = 2.0
-
-
-class FakeContext:
-    """A ServiceContext without a bus: publishes are kept, call_soon functions wait for pump()."""
-
-    vehicle_id = "ego"
-    log = logging.getLogger("test.v2x")
-
-    def __init__(self, now_s: float):
-        self.time_s = now_s
-        self.published: list[tuple[str, object]] = []
-        self.sample_times: list[tuple[str, float | None]] = []
-        self.handlers: dict[str, object] = {}
-        self.triggers: list[tuple[float, object]] = []
-        self.calls: queue.Queue = queue.Queue()
-
-    def now_s(self) -> float:
-        return self.time_s
-
-    def subscribe(self, topic, handler, vehicle_id=None) -> None:
-        self.handlers[topic] = handler
-
-    def publish(self, topic, message, sample_time_s=None) -> None:
-        self.published.append((topic, message))
-        self.sample_times.append((topic, sample_time_s))
-
-    def every(self, period_s, handler) -> None:
-        self.triggers.append((period_s, handler))
-
-    def call_soon(self, function) -> None:
-        self.calls.put(function)
-
-    def deliver(self, topic: str, message) -> None:
-        self.handlers[topic](Envelope(self.vehicle_id, topic, message))
-
-    def pump(self, count: int) -> None:
-        for _ in range(count):
-            self.calls.get(timeout=WAIT_S)()
-
-    def messages(self, topic: str) -> list:
-        return [message for name, message in self.published if name == topic]
 
 
 @pytest.fixture
@@ -80,7 +39,8 @@ def start_service(radio, tmp_path):
     started = []
 
     def start(now_s: float, **overrides):
-        ctx = FakeContext(now_s)
+        ctx = MemoryContext(log=logging.getLogger("test.v2x"), queue_calls=True)
+        ctx.clock.set(now_s)
         config = V2xService.Config.model_validate({
             "link": {"radio_port": radio.getsockname()[1], "listen_port": 0}, "station_id": OWN_STATION_ID,
             "vehicle_mac": "02:00:00:00:00:01", "pcap_path": str(tmp_path / "v2x.pcap"), **overrides})
@@ -100,7 +60,7 @@ def running(start_service, tmp_path):
     return service, ctx, tmp_path / "v2x.pcap"
 
 
-def exchange(service: V2xService, ctx: FakeContext, radio: socket.socket) -> bytes:
+def exchange(service: V2xService, ctx: MemoryContext, radio: socket.socket) -> bytes:
     """Our CAM out to the radio, looped back by it, and one remote CAM in; returns our packet."""
     ctx.deliver("ego/state", ego_pb2.EgoState(x_m=5.0, y_m=2.0, heading_rad=0.2, speed_mps=15.0))
     service.transmit(START_S)
@@ -125,11 +85,11 @@ def test_a_remote_cam_from_the_radio_is_published_and_our_looped_back_one_is_ign
     service, ctx, _ = running
     exchange(service, ctx, radio)
     assert ctx.messages("v2x/cam") == []  # socket input is only published by the flush trigger
-    ctx.time_s = START_S + 0.02
-    service.flush_received(ctx.time_s)
+    ctx.clock.set(START_S + 0.02)
+    service.flush_received(ctx.now_s())
     assert [cam.station_id for cam in ctx.messages("v2x/cam")] == [REMOTE_STATION_ID]
     assert [packet.direction for packet in ctx.messages("v2x/rx")] == [v2x_pb2.PACKET_DIRECTION_RECEIVED] * 2
-    service.publish_status(ctx.time_s)
+    service.publish_status(ctx.now_s())
     status = ctx.messages("v2x/status")[-1]
     assert [(s.station_id, s.state) for s in status.stations] == [(REMOTE_STATION_ID, v2x_pb2.LINK_STATE_ACTIVE)]
     assert (status.packets_sent, status.packets_received) == (1, 2)
@@ -168,7 +128,7 @@ def test_send_from_yaml_injects_an_iclcm_the_service_publishes(start_service, tm
                            "content: {station_id: 7, controller_type: CONTROLLER_TYPE_CACC, time_headway_s: 0.5}\n")
     send_from_yaml(description, *service.link.local_address)
     ctx.pump(1)
-    service.flush_received(ctx.time_s)
+    service.flush_received(ctx.now_s())
     [iclcm] = ctx.messages("v2x/iclcm")
     assert (iclcm.station_id, iclcm.controller_type, iclcm.time_headway_s) == (7, its_pb2.CONTROLLER_TYPE_CACC, 0.5)
 
@@ -185,9 +145,9 @@ def test_the_service_sends_an_iclcm_from_the_behaviour_and_the_command(running, 
 
 def test_the_service_publishes_only_from_the_time_triggers_it_registered(running):
     service, ctx, _ = running
-    handlers = {handler.__name__ for _, handler in ctx.triggers}
-    assert handlers == {"transmit", "flush_received", "publish_status"}
-    assert dict((h.__name__, p) for p, h in ctx.triggers)["publish_status"] == pytest.approx(0.2)
+    periods_s = ctx.trigger_periods_s()
+    assert set(periods_s) == {"transmit", "flush_received", "publish_status"}
+    assert periods_s["publish_status"] == pytest.approx(0.2)
 
 
 def test_a_denm_triggered_through_the_service_is_geo_broadcast_around_its_event(running, radio):
@@ -212,5 +172,5 @@ def test_a_received_cam_is_published_at_its_generation_time_not_when_it_arrived(
     radio.sendto(cam_packet(remote_cam(generated_s), generated_s), service.link.local_address)
     ctx.pump(1)
     service.flush_received(START_S + 0.02)
-    assert [t for topic, t in ctx.sample_times if topic == "v2x/cam"] == [pytest.approx(generated_s, abs=1e-3)]
-    assert [t for topic, t in ctx.sample_times if topic == "v2x/rx"] == [START_S]
+    assert [m.header.sample_time_s for m in ctx.messages("v2x/cam")] == [pytest.approx(generated_s, abs=1e-3)]
+    assert [m.header.sample_time_s for m in ctx.messages("v2x/rx")] == [START_S]

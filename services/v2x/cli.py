@@ -1,4 +1,9 @@
-"""`coopdrive v2x ...` and `coopdrive pki ...`: thin wiring to the v2x service's tools."""
+"""The v2x command line: `coopdrive v2x decode|send|replay ...` and `coopdrive pki init ...`.
+
+Arguments are parsed and results printed here; the work is done by the module each command is named for
+(capture_decode.py, send_file.py, replay.py, security/pki.py), imported only when its command runs so
+that every other `coopdrive` command starts without the codec.
+"""
 
 from __future__ import annotations
 
@@ -42,7 +47,7 @@ def add_commands(commands) -> None:
 
 def _decode(args: argparse.Namespace) -> int:
     from coopdrive.recording.capture import CaptureFormatError
-    from coopdrive.services.v2x.cli_commands import decode_capture
+    from coopdrive.services.v2x.capture_decode import decode_capture
     from coopdrive.services.v2x.security.trust import TrustFileError
 
     try:
@@ -59,7 +64,7 @@ def _decode(args: argparse.Namespace) -> int:
 
 
 def _send(args: argparse.Namespace) -> int:
-    from coopdrive.services.v2x.cli_commands import send_from_yaml
+    from coopdrive.services.v2x.send_file import send_from_yaml
 
     message_id = send_from_yaml(args.file, args.address, args.port)
     print(f"sent {message_id.name} to {args.address}:{args.port}")

@@ -1,4 +1,5 @@
-"""ASN.1 UPER codec for CAM, DENM and iCLCM, schema chosen by ItsPduHeader.protocolVersion.
+"""ITS PDUs (CAM, DENM, iCLCM) in ASN.1 UPER, schema chosen by ItsPduHeader.protocolVersion: the layer under
+packet.py, which is the V2X codec's one facade (GeoNetworking + BTP + UPER).
 
 Parsing the modules takes about a second per set, so the parsed specification is cached on disk
 ($XDG_CACHE_HOME/coopdrive/asn1 or ~/.cache/coopdrive/asn1) and later start-ups take tens of ms.

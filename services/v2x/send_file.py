@@ -1,6 +1,5 @@
-"""What `coopdrive v2x decode` and `coopdrive v2x send` do (the CLI only parses arguments and prints).
+"""What `coopdrive v2x send FILE` does: one CAM, DENM or iCLCM described in YAML, encoded and sent as UDP.
 
-    for line in decode_capture("drive.pcap", as_json=False, trust=[Path("roots/")]): print(line)
     send_from_yaml("cam.yaml", "127.0.0.1", 4401)
 
 A send file names the message type and gives its content as the protobuf JSON of CamContent, DenmContent
@@ -19,25 +18,19 @@ A missing generationDeltaTime (CAM, iCLCM) or detection/reference time (DENM) is
 from __future__ import annotations
 
 import enum
-import json
 import socket
 import time
-from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 import yaml
 from google.protobuf import json_format
 from pydantic import BaseModel, ConfigDict, Field
 
-from coopdrive.services.v2x.capture_decode import CaptureDecoder, format_record
-from coopdrive.services.v2x.capture_summary import format_summary
-from coopdrive.services.v2x.codec import ItsMessageId
 from coopdrive.services.v2x.config import parse_mac
 from coopdrive.services.v2x.geonet import GN_VERSION_GCDC
-from coopdrive.services.v2x.its_clock import ItsClock
+from coopdrive.services.v2x.its_pdu import ItsMessageId
 from coopdrive.services.v2x.packet import GnParams, SourcePosition, V2xPacketCodec, default_codec
-from coopdrive.services.v2x.security.trust import trust_store
-from coopdrive.services.v2x.timebase import generation_delta_time_ms
+from coopdrive.services.v2x.timebase import ItsClock, generation_delta_time_ms
 from coopdrive.v1 import its_pb2
 
 
@@ -70,22 +63,6 @@ class SendFile(BaseModel):
     type: MessageKind
     gn: GnSettings = GnSettings()
     content: dict = Field(default_factory=dict)
-
-
-def decode_capture(path: str | Path, as_json: bool = False, trust: Sequence[Path] = (),
-                   freshness: bool = True) -> Iterator[str]:
-    """One line (or JSON object) per frame of a pcap or pcapng file, then the summary (capture_decode.py).
-
-    Frames that cannot be read or decoded give a line with the reason, so a capture never stops the listing.
-    trust: certificate files or directories (security/trust.py); freshness against the capture's timestamps.
-    """
-    decoder = CaptureDecoder(trust_store(trust) if trust else None, freshness=freshness)
-    for record in decoder.records(path):
-        yield json.dumps(record, sort_keys=True) if as_json else format_record(record)
-    if as_json:
-        yield json.dumps({"summary": decoder.summary.as_dict()}, sort_keys=True)
-    else:
-        yield from format_summary(decoder.summary)
 
 
 def load_send_file(path: str | Path) -> SendFile:
