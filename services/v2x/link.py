@@ -108,3 +108,20 @@ class UdpLink:
                     return
                 continue
             self._on_datagram(datagram)
+
+
+class RecordedLink:
+    """The radio box under replay, where no hardware is opened: what was received arrives as the recording's
+    v2x/rx packets, and what the service sends goes nowhere (counted as sent, as the live box took it)."""
+
+    send_errors = 0
+    missing_datagrams = 0
+
+    def start(self) -> None:
+        """Nothing to listen to."""
+
+    def send(self, datagram: bytes) -> bool:
+        return True
+
+    def close(self) -> None:
+        """Nothing to close."""

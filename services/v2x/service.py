@@ -13,7 +13,7 @@ from coopdrive.runtime.service import Service
 from coopdrive.services.v2x.config import GCDC_RATE_HZ, LinkSync, SecurityConfig, V2xConfig
 from coopdrive.services.v2x.denm_manager import ActionId
 from coopdrive.services.v2x.its_pdu import ItsMessageId
-from coopdrive.services.v2x.link import CaptureLog, UdpLink
+from coopdrive.services.v2x.link import CaptureLog, RecordedLink, UdpLink
 from coopdrive.services.v2x.pseudonym import PseudonymChanger
 from coopdrive.services.v2x.reception import OwnIdentity, Reception
 from coopdrive.services.v2x.security.certificate import Certificate
@@ -78,11 +78,16 @@ class V2xService(Service):
             self.ctx.every(c.security.pseudonym_period_s, lambda now_s: self.pseudonyms.request())
         self.packets_sent = 0
         self._received: list[_Received] = []
-        self._capture_file = open(c.pcap_path, "wb") if c.pcap_path else None
+        # Under replay the recording's own capture is not overwritten, and the radio box is the recording.
+        self._capture_file = open(c.pcap_path, "wb") if c.pcap_path and self.ctx.opens_hardware else None
         self.capture = CaptureLog(self._capture_file, c.mac_bytes) if self._capture_file else None
-        self.link = UdpLink((c.link.listen_host, c.link.listen_port), (c.link.radio_host, c.link.radio_port),
-                            lambda datagram: self.ctx.call_soon(lambda: self.on_datagram(datagram)),
-                            c.link.max_packet_bytes)
+        if not self.ctx.opens_hardware:
+            self.link = RecordedLink()
+            self.ctx.subscribe("v2x/rx", self.on_recorded_packet, vehicle_id=self.ctx.vehicle_id)
+        else:
+            self.link = UdpLink((c.link.listen_host, c.link.listen_port), (c.link.radio_host, c.link.radio_port),
+                                lambda datagram: self.ctx.call_soon(lambda: self.on_datagram(datagram)),
+                                c.link.max_packet_bytes)
         self.ctx.subscribe("ego/state", lambda envelope: self.transmitter.on_ego_state(envelope.message))
         self.ctx.subscribe("planner/behaviour", self.on_behaviour)
         self.ctx.subscribe("control/command", self.on_command)
@@ -90,6 +95,8 @@ class V2xService(Service):
         self.ctx.every(1.0 / max(c.iclcm_rate_hz, GCDC_RATE_HZ), self.transmit)
         self.ctx.every(c.receive_flush_period_s, self.flush_received)
         self.ctx.every(1.0 / c.status_rate_hz, self.publish_status)
+        if not self.ctx.opens_hardware:
+            return
         if c.link.sync is LinkSync.MARKS:
             self.ctx.subscribe("radio/mark", self.on_radio_mark)
         else:
@@ -114,6 +121,11 @@ class V2xService(Service):
         for datagram in self.link.receive_until(envelope.message.written, self.config.link.mark_timeout_s):
             self.on_datagram(datagram)
         self.counters["missing_datagrams"] = self.link.missing_datagrams
+
+    def on_recorded_packet(self, envelope: Envelope) -> None:
+        """Replay: a packet the radio box delivered when the drive was recorded."""
+        if envelope.message.direction == v2x_pb2.PACKET_DIRECTION_RECEIVED:
+            self.on_datagram(envelope.message.payload)
 
     def on_datagram(self, data: bytes) -> None:
         now_s = self.ctx.now_s()
@@ -162,7 +174,9 @@ class V2xService(Service):
     def flush_received(self, now_s: float) -> None:
         received, self._received = self._received, []
         for item in received:
-            self.ctx.publish("v2x/rx", item.packet, sample_time_s=item.receive_s)
+            if self.ctx.opens_hardware:
+                # What the radio box delivered; under replay it is the recording's, not ours to publish again.
+                self.ctx.publish("v2x/rx", item.packet, sample_time_s=item.receive_s)
             if item.content is not None:
                 self.ctx.publish(TOPIC_OF_MESSAGE[item.message_type], item.content, sample_time_s=item.sample_s)
 

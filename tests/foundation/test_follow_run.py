@@ -116,7 +116,7 @@ def test_coopdrive_candump_of_a_vehicle_without_frames_names_the_vehicles_that_h
     assert "no CAN frames of vehicle 'nobody' (vehicles with frames: ego)" in result.stderr
 
 
-@pytest.mark.parametrize("service", ["geolocation", "scene", "planner", "control", "actuation"])
+@pytest.mark.parametrize("service", ["geolocation", "v2x", "scene", "planner", "control", "actuation"])
 def test_replaying_a_service_reproduces_its_recorded_outputs_exactly(recorded_run, service, tmp_path):
     _, recording = recorded_run
     result = replay_service(recording, service, out=tmp_path / f"{service}.mcap")

@@ -107,7 +107,7 @@ def mutate(rng: random.Random, packet: bytes) -> bytes:
 def start_service(pki_dir: Path, pcap_path: Path, now_s: float) -> tuple[V2xService, MemoryContext, socket.socket]:
     radio = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
     radio.bind(("127.0.0.1", 0))
-    ctx = MemoryContext(queue_calls=True)
+    ctx = MemoryContext(queue_calls=True, opens_hardware=True)
     ctx.clock.set(now_s)
     config = V2xService.Config.model_validate({
         "link": {"radio_port": radio.getsockname()[1], "listen_port": 0}, "station_id": 1001,

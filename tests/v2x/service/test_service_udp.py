@@ -39,7 +39,7 @@ def start_service(radio, tmp_path):
     started = []
 
     def start(now_s: float, **overrides):
-        ctx = MemoryContext(log=logging.getLogger("test.v2x"), queue_calls=True)
+        ctx = MemoryContext(log=logging.getLogger("test.v2x"), queue_calls=True, opens_hardware=True)
         ctx.clock.set(now_s)
         config = V2xService.Config.model_validate({
             "link": {"radio_port": radio.getsockname()[1], "listen_port": 0}, "station_id": OWN_STATION_ID,
