@@ -1,4 +1,8 @@
-"""McapRecorder: writes protobuf messages to MCAP with their schemas, safe to call from many threads."""
+"""McapRecorder: writes protobuf messages to MCAP with their schemas, safe to call from many threads.
+
+Every recording also carries the channels Foxglove draws (coopdrive.visual), derived from the messages as they
+are written, so any MCAP the stack writes opens in Foxglove with its map, 3D view and plots.
+"""
 
 from __future__ import annotations
 
@@ -9,7 +13,11 @@ from pathlib import Path
 from google.protobuf.message import Message
 from mcap_protobuf.writer import Writer
 
+from coopdrive.roadmap import RoadMap
+from coopdrive.visual import VisualChannels, recorded_road_map
+
 NANOSECONDS = 1_000_000_000
+CONFIG_METADATA = "coopdrive.config"
 
 
 def message_time_ns(message: Message) -> int:
@@ -20,7 +28,10 @@ def message_time_ns(message: Message) -> int:
 
 
 class McapRecorder:
-    def __init__(self, path: str | Path, metadata: dict[str, dict[str, str]] | None = None):
+    def __init__(self, path: str | Path, metadata: dict[str, dict[str, str]] | None = None,
+                 road_map: RoadMap | None = None, visuals: bool = True):
+        """road_map: the lane map the Foxglove channels draw (default: the one the configs in `metadata` name).
+        visuals: False writes the messages alone."""
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self._file = open(self.path, "wb")
@@ -30,6 +41,9 @@ class McapRecorder:
         self.messages_written = 0
         for name, values in (metadata or {}).items():
             self.add_metadata(name, values)
+        if road_map is None:
+            road_map = recorded_road_map((metadata or {}).get(CONFIG_METADATA, {}))
+        self._visuals = VisualChannels(self._write_visual, road_map) if visuals else None
 
     def add_metadata(self, name: str, values: dict[str, str]) -> None:
         with self._lock:
@@ -39,12 +53,18 @@ class McapRecorder:
         """log_time_ns: when the message arrived (a live recorder's clock); publish time is its header's sent time.
         Without it both are the sent time (a lockstep run, where the simulated time is the only clock)."""
         time_ns = message_time_ns(message)
+        log_time_ns = time_ns if log_time_ns is None else log_time_ns
         with self._lock:
             if self._closed:
                 return
-            self._writer.write_message(topic, message, log_time=time_ns if log_time_ns is None else log_time_ns,
-                                       publish_time=time_ns)
+            self._writer.write_message(topic, message, log_time=log_time_ns, publish_time=time_ns)
             self.messages_written += 1
+            if self._visuals is not None:
+                self._visuals.on_message(topic, message, log_time_ns)
+
+    def _write_visual(self, topic: str, message: Message, time_ns: int) -> None:
+        """Called under the lock by the visual channels, at the log time of the message they came from."""
+        self._writer.write_message(topic, message, log_time=time_ns, publish_time=time_ns)
 
     def close(self) -> None:
         with self._lock:
@@ -57,5 +77,5 @@ class McapRecorder:
 
 def config_metadata(configs: dict[str, str]) -> dict[str, dict[str, str]]:
     """Service configs as MCAP metadata: {"coopdrive.config": {"<vehicle>/<service>": json}}."""
-    return {"coopdrive.config": {key: value if isinstance(value, str) else json.dumps(value)
-                                 for key, value in configs.items()}}
+    return {CONFIG_METADATA: {key: value if isinstance(value, str) else json.dumps(value)
+                              for key, value in configs.items()}}
