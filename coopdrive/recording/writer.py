@@ -45,6 +45,13 @@ class McapRecorder:
             road_map = recorded_road_map((metadata or {}).get(CONFIG_METADATA, {}))
         self._visuals = VisualChannels(self._write_visual, road_map) if visuals else None
 
+    def learn_config(self, participant: str, config_json: str) -> None:
+        """A live service's config (ServiceConfigCollector): geolocation's names the lane map to draw."""
+        if self._visuals is not None and participant.endswith("/geolocation"):
+            road_map = recorded_road_map({participant: config_json})
+            with self._lock:
+                self._visuals.road_map = road_map
+
     def add_metadata(self, name: str, values: dict[str, str]) -> None:
         with self._lock:
             self._writer.add_metadata(name, values)
