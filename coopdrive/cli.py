@@ -50,6 +50,8 @@ def build_parser() -> argparse.ArgumentParser:
     service.add_argument("--clock-step", type=float, metavar="SECONDS",
                          help="with --clock sim: the simulator's step, so only the clocks this service runs on come")
     service.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="override a config key")
+    service.add_argument("--hardware-retry", type=float, metavar="SECONDS",
+                         help="a device that cannot be opened: say so once and try again this often (default: exit)")
     service.add_argument("-v", "--verbose", action="store_true")
     service.set_defaults(handler=_service)
 
@@ -137,6 +139,7 @@ def build_parser() -> argparse.ArgumentParser:
 def _service(args) -> int:
     from coopdrive.bus import BusConfig
     from coopdrive.runtime.config import load_config
+    from coopdrive.runtime.hardware_wait import run_waiting_for_hardware
     from coopdrive.runtime.priority import lower_cpu_priority
     from coopdrive.runtime.registry import service_class
     from coopdrive.runtime.runner import ClockMode, ServiceRunner
@@ -151,8 +154,11 @@ def _service(args) -> int:
         lower_cpu_priority(config.cpu_nice)  # before the bus opens its threads, which inherit it
     bus = BusConfig(connect=args.connect, listen=args.listen or ["tcp/127.0.0.1:0"],
                     zenoh_config_file=str(args.zenoh_config) if args.zenoh_config else None)
-    runner = ServiceRunner(cls, config, args.vehicle, bus, ClockMode(args.clock), clock_step_s=args.clock_step)
-    runner.run()
+    if args.hardware_retry is not None and args.hardware_retry <= 0:
+        raise ConfigError(f"--hardware-retry {args.hardware_retry:g}: a time in seconds above 0")
+    run_waiting_for_hardware(
+        lambda: ServiceRunner(cls, config, args.vehicle, bus, ClockMode(args.clock), clock_step_s=args.clock_step),
+        args.hardware_retry, f"{args.vehicle}/{args.name}")
     return EXIT_OK
 
 
