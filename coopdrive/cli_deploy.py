@@ -7,10 +7,12 @@ import json
 import signal
 import sys
 import threading
+import time
 from pathlib import Path
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 DEFAULT_FOXGLOVE_PORT = 8765
+HEALTH_RETRY_S = 0.1
 
 
 def add_commands(commands) -> None:
@@ -31,7 +33,8 @@ def add_health_command(commands) -> None:
     health = commands.add_parser("health", help="exit 0 when a service is alive on the bus (container healthcheck)")
     health.add_argument("--connect", action="append", default=[])
     health.add_argument("--vehicle", default="ego")
-    health.add_argument("--service", required=True)
+    health.add_argument("--service", action="append", required=True,
+                        help="repeat for several (a group's): all must be alive")
     health.add_argument("--timeout", type=float, default=2.0)
     health.set_defaults(handler=_health)
 
@@ -40,13 +43,24 @@ def _health(args) -> int:
     from coopdrive.bus import Bus, BusConfig
 
     bus = Bus(BusConfig(connect=args.connect, listen=[]))
+    wanted = {service: bus.layout.liveliness(args.vehicle, service) for service in args.service}
+    # A session just opened may be answered before it has learned the bus's tokens (an empty or partial reply
+    # at once): ask again until every one is there or the time is up.
+    deadline = time.monotonic() + args.timeout
+    tokens: set[str] = set()
     try:
-        key = bus.layout.liveliness(args.vehicle, args.service)
-        alive = key in bus.alive_tokens(key, timeout_s=args.timeout)
+        while True:
+            tokens |= set(bus.alive_tokens(bus.layout.liveliness(args.vehicle, "*"),
+                                           timeout_s=max(0.1, deadline - time.monotonic())))
+            if set(wanted.values()) <= tokens or time.monotonic() >= deadline:
+                break
+            time.sleep(HEALTH_RETRY_S)
     finally:
         bus.close()
-    print(f"{args.vehicle}/{args.service}: {'alive' if alive else 'not alive'}")
-    return EXIT_OK if alive else EXIT_FAILED
+    alive = {service: key in tokens for service, key in wanted.items()}
+    for service, up in alive.items():
+        print(f"{args.vehicle}/{service}: {'alive' if up else 'not alive'}")
+    return EXIT_OK if all(alive.values()) else EXIT_FAILED
 
 
 def add_router_command(commands) -> None:
