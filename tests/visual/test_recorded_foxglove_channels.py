@@ -89,3 +89,15 @@ def test_export_names_a_file_that_is_not_a_recording_in_one_line(tmp_path):
                              str(tmp_path / "out.mcap")], capture_output=True, text=True, timeout=60)
     assert result.returncode == 2
     assert result.stderr.count("\n") == 1 and "bad.mcap" in result.stderr
+
+
+def test_every_topic_the_layout_names_is_in_the_recording(merge_recording):
+    from mcap.reader import make_reader
+
+    from coopdrive.visual.layout import drive_layout, layout_topics
+
+    with open(merge_recording, "rb") as stream:
+        recorded = {channel.topic for channel in make_reader(stream).get_summary().channels.values()}
+    for vehicle in STACKS:
+        named = layout_topics(drive_layout(vehicle).to_json())
+        assert named - recorded == set(), f"{vehicle}: the layout names topics the recording lacks"
