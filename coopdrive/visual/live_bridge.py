@@ -32,7 +32,6 @@ class FoxgloveBridge:
         self._lock = threading.Lock()
         self._visuals = VisualChannels(self._log, road_map)
         self._configs = None if road_map is not None else ServiceConfigCollector(bus, self._learn_config)
-        self.messages_in = 0
         bus.subscribe_key(bus.layout.all_topics(), self._on_bus)
         if self._configs is not None:
             self._configs.start()
@@ -46,7 +45,6 @@ class FoxgloveBridge:
             return
         now_ns = time.time_ns()
         with self._lock:
-            self.messages_in += 1
             self._log(key, message, now_ns)
             self._visuals.on_message(key, message, now_ns)
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from foxglove_schemas_protobuf.SceneEntity_pb2 import SceneEntity
 from foxglove_schemas_protobuf.SceneEntityDeletion_pb2 import SceneEntityDeletion
 from foxglove_schemas_protobuf.SceneUpdate_pb2 import SceneUpdate
@@ -62,12 +63,9 @@ def object_entity(vehicle_id: str, obj: scene_pb2.SceneObject, is_mio: bool, tim
         text += f" / {obj.station_id.value}"
     if is_mio:
         text += " MIO"
-    x_m, y_m = obj.position.x_m, obj.position.y_m
-    centre_x = x_m + length_m / 2.0 * math.cos(heading_rad)
-    centre_y = y_m + length_m / 2.0 * math.sin(heading_rad)
+    cube = box(obj.position.x_m, obj.position.y_m, heading_rad, length_m, width_m, fill)
     return SceneEntity(timestamp=timestamp(time_s), frame_id=MAP_FRAME, id=f"{vehicle_id}/object/{obj.object_id}",
-                       cubes=[box(x_m, y_m, heading_rad, length_m, width_m, fill)],
-                       texts=[label(centre_x, centre_y, text, LABEL_COLOR)])
+                       cubes=[cube], texts=[label(cube.pose.position.x, cube.pose.position.y, text, LABEL_COLOR)])
 
 
 def ego_entity(vehicle_id: str, time_s: float) -> SceneEntity:
@@ -93,7 +91,7 @@ def planned_path(ego: ego_pb2.EgoState, behaviour: planner_pb2.BehaviourRequest 
                  ego.y_m + k * PATH_STEP_M * math.sin(ego.heading_rad)) for k in range(steps)]
     start_m = lane.project_full(ego.x_m, ego.y_m).station_m
     offset_m = behaviour.lateral_offset_m if behaviour is not None else 0.0
-    return [lane.pose_at(start_m + k * PATH_STEP_M, offset_m)[:2] for k in range(steps)]
+    return [(x_m, y_m) for x_m, y_m in lane.points_at(start_m + PATH_STEP_M * np.arange(steps), offset_m).tolist()]
 
 
 def scene_update(vehicle_id: str, scene: scene_pb2.Scene, ego: ego_pb2.EgoState | None,
