@@ -5,7 +5,8 @@ Fed every bus message with its key and time; for each it calls emit(topic, foxgl
 more times. The channels (topic: Foxglove schema, from):
 
 - foxglove/<vehicle>/ego: foxglove.LocationFix, one per ego estimate (ego/state)
-- foxglove/<vehicle>/gnss: foxglove.LocationFix, one per raw receiver fix (ego/gnss)
+- foxglove/<vehicle>/gnss: foxglove.LocationFix, one per raw receiver fix: each epoch of the receiver's NMEA bytes
+  (gnss/nmea, decoded as geolocation decodes them), or the simulator's fix where it sends no NMEA (gnss/fix)
 - foxglove/<vehicle>/v2x_stations: foxglove.LocationFix, one per CAM heard (v2x/cam), frame "station <id>"
 - foxglove/transforms: foxglove.FrameTransforms, map -> <vehicle> at each ego estimate
 - foxglove/<vehicle>/scene: foxglove.SceneUpdate, one per scene: objects, the MIO, the ego, its planned path
@@ -27,6 +28,7 @@ from google.protobuf.message import Message
 
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.roadmap import RoadMap
+from coopdrive.services.geolocation.nmea_decoder import NmeaDecoder
 from coopdrive.visual.primitives import MAP_FRAME, NANOSECONDS, color, timestamp, yaw_quaternion
 from coopdrive.visual.scene_entities import lanes_update, scene_update, truth_update
 from coopdrive.v1 import ego_pb2, gnss_pb2, its_pb2, planner_pb2, scene_pb2, sim_pb2
@@ -59,8 +61,11 @@ class VisualChannels:
         self._ego: dict[str, ego_pb2.EgoState] = {}
         self._behaviour: dict[str, planner_pb2.BehaviourRequest] = {}
         self._map_sent_ns: int | None = None
+        self._nmea: dict[str, NmeaDecoder] = {}
+        # The log time of the NMEA chunk being decoded, for the fixes it completes.
+        self._nmea_time_ns = 0
         self._handlers: dict[str, Callable[[str, Message, int], None]] = {
-            "ego/state": self._on_ego, "ego/gnss": self._on_gnss, "v2x/cam": self._on_cam,
+            "ego/state": self._on_ego, "gnss/nmea": self._on_nmea, "gnss/fix": self._on_gnss, "v2x/cam": self._on_cam,
             "scene": self._on_scene, "planner/behaviour": self._on_behaviour, "ground_truth": self._on_truth,
         }
 
@@ -110,6 +115,14 @@ class VisualChannels:
         if fix.heading_valid:
             out.heading = fix.heading_deg
         self.emit(vehicle_topic(vehicle_id, "gnss"), out, time_ns)
+
+    def _on_nmea(self, vehicle_id: str, chunk: gnss_pb2.NmeaChunk, time_ns: int) -> None:
+        decoder = self._nmea.get(vehicle_id)
+        if decoder is None:
+            decoder = NmeaDecoder(lambda fix: self._on_gnss(vehicle_id, fix, self._nmea_time_ns))
+            self._nmea[vehicle_id] = decoder
+        self._nmea_time_ns = time_ns
+        decoder.feed(chunk.data, chunk.header.sample_time_s)
 
     def _on_cam(self, vehicle_id: str, cam: its_pb2.CamContent, time_ns: int) -> None:
         position = cam.reference_position

@@ -101,3 +101,23 @@ def test_every_topic_the_layout_names_is_in_the_recording(merge_recording):
     for vehicle in STACKS:
         named = layout_topics(drive_layout(vehicle).to_json())
         assert named - recorded == set(), f"{vehicle}: the layout names topics the recording lacks"
+
+
+def test_an_imported_nmea_log_opens_in_foxglove_with_its_fixes_on_the_map(tmp_path):
+    from coopdrive.services.geolocation.nmea_decoder import with_checksum
+
+    log = tmp_path / "drive.nmea"
+    lines = []
+    for second in range(5):
+        latitude = f"5128.{548 + second}"
+        lines += [with_checksum(f"GPGGA,12000{second}.00,{latitude},N,00537.482,E,4,12,0.8,20.0,M,47.0,M,,"),
+                  with_checksum(f"GPRMC,12000{second}.00,A,{latitude},N,00537.482,E,10.0,90.0,250926,,,D"),
+                  with_checksum(f"GPGST,12000{second}.00,0.5,0.02,0.02,0,0.02,0.03,0.05")]
+    log.write_text("\r\n".join(lines) + "\r\n")
+    out = tmp_path / "drive.mcap"
+    result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "import", "--nmea", str(log), "--out", str(out)],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    fixes = foxglove_channels(out)["foxglove/ego/gnss"]
+    assert len(fixes) >= 4  # the last epoch may wait for a next one that never comes
+    assert fixes[0].latitude == pytest.approx(51 + 28.548 / 60)

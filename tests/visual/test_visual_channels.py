@@ -71,7 +71,7 @@ def test_raw_gnss_fixes_and_every_v2x_station_heard_become_location_fixes():
     out = Collected()
     channels = VisualChannels(out)
     fix = gnss_pb2.GnssFix(latitude_deg=51.0, longitude_deg=5.0, std_east_m=0.5, std_north_m=0.4)
-    channels.on_message("coopdrive/a1/ego/gnss", fix, S)
+    channels.on_message("coopdrive/a1/gnss/fix", fix, S)
     heard = its_pb2.CamContent(station_id=3002)
     heard.reference_position.latitude_deg, heard.reference_position.longitude_deg = 51.1, 5.1
     channels.on_message("coopdrive/a1/v2x/cam", heard, S)
@@ -81,6 +81,23 @@ def test_raw_gnss_fixes_and_every_v2x_station_heard_become_location_fixes():
     assert gnss.position_covariance[0] == pytest.approx(0.25)
     [station] = out.on("foxglove/a1/v2x_stations")
     assert (station.frame_id, station.latitude, station.longitude) == ("station 3002", 51.1, 5.1)
+
+
+def test_each_epoch_of_the_receiver_s_nmea_bytes_becomes_one_location_fix():
+    from coopdrive.services.geolocation.nmea_decoder import with_checksum
+
+    out = Collected()
+    channels = VisualChannels(out)
+    for second, latitude in ((10, "5128.548"), (11, "5128.549")):
+        lines = [with_checksum(f"GPGGA,1200{second}.00,{latitude},N,00537.482,E,4,12,0.8,20.0,M,47.0,M,,"),
+                 with_checksum(f"GPRMC,1200{second}.00,A,{latitude},N,00537.482,E,10.0,90.0,250926,,,D"),
+                 with_checksum(f"GPGST,1200{second}.00,0.5,0.02,0.02,0,0.02,0.03,0.05")]
+        chunk = gnss_pb2.NmeaChunk(data=("\r\n".join(lines) + "\r\n").encode())
+        chunk.header.sample_time_s = float(second)
+        channels.on_message("coopdrive/a1/gnss/nmea", chunk, second * S)
+    fixes = out.on("foxglove/a1/gnss")
+    assert [round(f.latitude, 5) for f in fixes] == [round(51 + 28.548 / 60, 5), round(51 + 28.549 / 60, 5)]
+    assert [time_ns for topic, _, time_ns in out.items if topic == "foxglove/a1/gnss"] == [10 * S, 11 * S]
 
 
 def test_a_scene_becomes_one_update_with_a_box_per_object_shaded_by_confidence_labelled_and_the_mio_marked():
