@@ -4,6 +4,7 @@ zenohd image) and foxglove (the live bus to Foxglove). One add_* function per co
 from __future__ import annotations
 
 import json
+import re
 import signal
 import sys
 import threading
@@ -84,7 +85,11 @@ def _router(args) -> int:
             config.insert_json5("listen/endpoints", json.dumps(args.listen or ["tcp/0.0.0.0:7447"]))
         session = zenoh.open(config)
     except zenoh.ZError as error:
-        raise ConfigError(f"router: {' '.join(str(error).split())}") from None
+        # Zenoh's messages end with where in its Rust source they were raised: not the user's business.
+        reason = re.sub(r" at \S+\.rs:\d+\.?$", "", " ".join(str(error).split()))
+        given = [f"--config {args.config}"] if args.config else []
+        given += [f"--listen {endpoint}" for endpoint in args.listen]
+        raise ConfigError(f"router {' '.join(given)}: {reason}") from None
     print(f"zenoh router {session.zid()} listening", flush=True)
     try:
         wait_for_stop_signal()
