@@ -7,6 +7,7 @@ are written, so any MCAP the stack writes opens in Foxglove with its map, 3D vie
 from __future__ import annotations
 
 import json
+import queue
 import threading
 from pathlib import Path
 
@@ -44,6 +45,12 @@ class McapRecorder:
         if road_map is None:
             road_map = recorded_road_map((metadata or {}).get(CONFIG_METADATA, {}))
         self._visuals = VisualChannels(self._write_visual, road_map) if visuals else None
+        # Derived on a thread of their own: a live recorder stamps each message's arrival in the bus's callback,
+        # which must not wait for the scene drawn from the one before.
+        self._to_derive: queue.SimpleQueue = queue.SimpleQueue()
+        self._deriver = threading.Thread(target=self._derive, name="mcap-visuals", daemon=True)
+        if self._visuals is not None:
+            self._deriver.start()
 
     def learn_config(self, participant: str, config_json: str) -> None:
         """A live service's config (ServiceConfigCollector): geolocation's names the lane map to draw."""
@@ -66,14 +73,22 @@ class McapRecorder:
                 return
             self._writer.write_message(topic, message, log_time=log_time_ns, publish_time=time_ns)
             self.messages_written += 1
-            if self._visuals is not None:
-                self._visuals.on_message(topic, message, log_time_ns)
+        if self._visuals is not None:
+            self._to_derive.put((topic, message, log_time_ns))
+
+    def _derive(self) -> None:
+        while (item := self._to_derive.get()) is not None:
+            with self._lock:
+                self._visuals.on_message(*item)
 
     def _write_visual(self, topic: str, message: Message, time_ns: int) -> None:
         """Called under the lock by the visual channels, at the log time of the message they came from."""
         self._writer.write_message(topic, message, log_time=time_ns, publish_time=time_ns)
 
     def close(self) -> None:
+        if self._deriver.is_alive():
+            self._to_derive.put(None)  # after every message written so far
+            self._deriver.join()
         with self._lock:
             if self._closed:
                 return
