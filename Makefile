@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: run test bench proto proto-check clean
+.PHONY: run desk test bench proto proto-check clean
 
 $(STAMP): pyproject.toml setup.py
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -15,6 +15,11 @@ $(STAMP): pyproject.toml setup.py
 ## run: the follow scenario with every service as its own process; prints the summary
 run: $(STAMP)
 	$(BIN)/coopdrive run follow --record out/follow.mcap
+
+## desk: the deployed stack without the car or Docker: docker-compose.yml's desk profile as local processes
+## (simulated follow world, one stack, gateway on :8080, Foxglove on ws://localhost:8765) until Ctrl-C
+desk: $(STAMP)
+	$(BIN)/python -m coopdrive.launch.compose_processes --profile desk
 
 ## test: the whole test suite (and a check that generated protobuf code is current)
 test: $(STAMP) proto-check

@@ -9,6 +9,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+from coopdrive.cli_deploy import add_commands as add_deploy_commands
 from coopdrive.cli_recording import add_commands as add_recording_commands
 from coopdrive.services.v2x.cli import add_commands as add_v2x_commands
 from coopdrive.runtime.config import ConfigError
@@ -49,6 +50,8 @@ def build_parser() -> argparse.ArgumentParser:
     service.add_argument("--clock-step", type=float, metavar="SECONDS",
                          help="with --clock sim: the simulator's step, so only the clocks this service runs on come")
     service.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="override a config key")
+    service.add_argument("--hardware-retry", type=float, metavar="SECONDS",
+                         help="a device that cannot be opened: say so once and try again this often (default: exit)")
     service.add_argument("-v", "--verbose", action="store_true")
     service.set_defaults(handler=_service)
 
@@ -88,6 +91,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--realtime", action="store_true", help="pace the simulation to wall time")
     run.add_argument("--record", type=Path, metavar="FILE.mcap")
     run.add_argument("--gateway", type=int, metavar="PORT", help="serve the gateway HTTP API on this port")
+    run.add_argument("--foxglove", type=int, metavar="PORT", help="serve the run to Foxglove (WebSocket) on this port")
     run.add_argument("--listen", action="append", default=[], metavar="ENDPOINT",
                      help="the run's bus also listens here (e.g. tcp/127.0.0.1:7447) for other tools to join")
     run.add_argument("--duration", type=float, help="simulated seconds (default: the scenario's)")
@@ -119,16 +123,10 @@ def build_parser() -> argparse.ArgumentParser:
     scenarios = commands.add_parser("scenarios", help="list the scenarios with a one-line description")
     scenarios.set_defaults(handler=_scenarios)
 
-    health = commands.add_parser("health", help="exit 0 when a service is alive on the bus (container healthcheck)")
-    health.add_argument("--connect", action="append", default=[])
-    health.add_argument("--vehicle", default="ego")
-    health.add_argument("--service", required=True)
-    health.add_argument("--timeout", type=float, default=2.0)
-    health.set_defaults(handler=_health)
-
     add_v2x_commands(commands)
 
     add_recording_commands(commands)  # record, import, replay, export
+    add_deploy_commands(commands)  # health, router, foxglove
 
     candump = commands.add_parser("candump", help="a vehicle's CAN frames from a recording, as a candump .log")
     candump.add_argument("file", type=Path)
@@ -141,6 +139,7 @@ def build_parser() -> argparse.ArgumentParser:
 def _service(args) -> int:
     from coopdrive.bus import BusConfig
     from coopdrive.runtime.config import load_config
+    from coopdrive.runtime.hardware_wait import run_waiting_for_hardware
     from coopdrive.runtime.priority import lower_cpu_priority
     from coopdrive.runtime.registry import service_class
     from coopdrive.runtime.runner import ClockMode, ServiceRunner
@@ -155,8 +154,11 @@ def _service(args) -> int:
         lower_cpu_priority(config.cpu_nice)  # before the bus opens its threads, which inherit it
     bus = BusConfig(connect=args.connect, listen=args.listen or ["tcp/127.0.0.1:0"],
                     zenoh_config_file=str(args.zenoh_config) if args.zenoh_config else None)
-    runner = ServiceRunner(cls, config, args.vehicle, bus, ClockMode(args.clock), clock_step_s=args.clock_step)
-    runner.run()
+    if args.hardware_retry is not None and args.hardware_retry <= 0:
+        raise ConfigError(f"--hardware-retry {args.hardware_retry:g}: a time in seconds above 0")
+    run_waiting_for_hardware(
+        lambda: ServiceRunner(cls, config, args.vehicle, bus, ClockMode(args.clock), clock_step_s=args.clock_step),
+        args.hardware_retry, f"{args.vehicle}/{args.name}")
     return EXIT_OK
 
 
@@ -189,7 +191,8 @@ def _run(args) -> int:
     if args.scenario == "all" or args.seeds:
         return _batch(args)
     options = RunOptions(scenario=args.scenario, seed=args.seed, realtime=args.realtime, record=args.record,
-                         gateway_port=args.gateway, listen=tuple(args.listen), duration_s=args.duration,
+                         gateway_port=args.gateway, foxglove_port=args.foxglove, listen=tuple(args.listen),
+                         duration_s=args.duration,
                          log_dir=args.logs, stacks=args.stacks,
                          group_per_vehicle=None if args.processes is None else args.processes == "vehicle",
                          security=args.security, untrusted=tuple(args.untrusted), extra_faults=_extra_faults(args))
@@ -268,7 +271,8 @@ def _compare_with_baseline(args, options, result, recorded_to) -> int:
     from coopdrive.services.control.longitudinal import CaccLaw
 
     law = CaccLaw(args.baseline)
-    baseline_options = dataclasses.replace(with_cacc_law(options, law), record=None, gateway_port=None, listen=())
+    baseline_options = dataclasses.replace(with_cacc_law(options, law), record=None, gateway_port=None,
+                                           foxglove_port=None, listen=())
     baseline_report = None if args.report is None else args.report / "baseline"
     baseline, baseline_recorded_to = _run_once(baseline_options, baseline_report, None)
     comparison = BaselineComparison.of(law, result, baseline)
@@ -351,19 +355,6 @@ def _scenarios(args) -> int:
     from coopdrive.judging.commands import scenarios_command
 
     return scenarios_command()
-
-
-def _health(args) -> int:
-    from coopdrive.bus import Bus, BusConfig
-
-    bus = Bus(BusConfig(connect=args.connect, listen=[]))
-    try:
-        key = bus.layout.liveliness(args.vehicle, args.service)
-        alive = key in bus.alive_tokens(key, timeout_s=args.timeout)
-    finally:
-        bus.close()
-    print(f"{args.vehicle}/{args.service}: {'alive' if alive else 'not alive'}")
-    return EXIT_OK if alive else EXIT_FAILED
 
 
 def _candump(args) -> int:

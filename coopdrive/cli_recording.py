@@ -163,9 +163,12 @@ def _print_replay(args, result, differences, problems, exact: bool) -> None:
 
 
 def add_export_command(commands) -> None:
-    export = commands.add_parser("export", help="one topic of a recording as CSV or JSON lines")
+    export = commands.add_parser("export", help="one topic of a recording as CSV or JSON lines, or the recording "
+                                                "with the channels Foxglove draws")
     export.add_argument("file", type=Path)
-    export.add_argument("--topic", required=True, help="e.g. ego/state")
+    export.add_argument("--topic", help="e.g. ego/state")
+    export.add_argument("--foxglove", type=Path, metavar="OUT.mcap",
+                        help="write the recording with Foxglove's map, 3D and plot channels added")
     export.add_argument("--vehicle", help="only this vehicle's messages (default: every vehicle's)")
     export.add_argument("--format", choices=["csv", "jsonl"], default="csv")
     export.add_argument("--out", type=Path, help="file to write (default: standard output)")
@@ -177,6 +180,11 @@ def _export(args) -> int:
 
     from coopdrive.recording.exporter import ExportError, export_rows, write_rows
 
+    if (args.topic is None) == (args.foxglove is None):
+        print("coopdrive: export: give either --topic TOPIC or --foxglove OUT.mcap", file=sys.stderr)
+        return EXIT_USAGE
+    if args.foxglove is not None:
+        return _export_foxglove(args)
     try:
         rows = export_rows(args.file, args.topic, args.vehicle)
     except (ExportError, OSError, McapError, struct.error) as error:
@@ -189,3 +197,25 @@ def _export(args) -> int:
             write_rows(rows, stream, args.format)
         print(f"{len(rows)} rows of {args.topic} to {args.out}", file=sys.stderr)
     return EXIT_OK
+
+
+def _export_foxglove(args) -> int:
+    from mcap.exceptions import McapError
+
+    from coopdrive.recording.foxglove_export import export_foxglove
+
+    if args.foxglove.resolve() == args.file.resolve():
+        print(f"coopdrive: export: --foxglove {args.foxglove}: write to another file than the recording read",
+              file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        count = export_foxglove(args.file, args.foxglove)
+    except (OSError, McapError, struct.error) as error:
+        print(f"coopdrive: export: {args.file}: not a readable MCAP recording ({_one_line(error)})", file=sys.stderr)
+        return EXIT_USAGE
+    print(f"{count} messages with Foxglove's channels to {args.foxglove}", file=sys.stderr)
+    return EXIT_OK
+
+
+def _one_line(error: Exception) -> str:
+    return " ".join(str(error).split())

@@ -36,7 +36,7 @@ def record_live(path: str | Path, connect: list[str], key_expr: str = "coopdrive
     path = recording_path(path)
     bus = Bus(BusConfig(connect=connect))
     recorder = McapRecorder(path)
-    configs = ServiceConfigCollector(bus)
+    configs = ServiceConfigCollector(bus, recorder.learn_config)
 
     def on_message(key: str, message) -> None:
         if "/_" not in key:  # liveliness tokens and _info answers are not traffic

@@ -41,6 +41,8 @@ class RunOptions:
     realtime: bool = False
     record: Path | None = None
     gateway_port: int | None = None
+    # Serve the run's bus to Foxglove on this WebSocket port (coopdrive.visual.live_bridge).
+    foxglove_port: int | None = None
     # Zenoh endpoints the run's hub listens on besides its own, so other tools (coopdrive record, python-can's
     # coopdrive interface, a zenohd router) can join the run's bus.
     listen: tuple[str, ...] = ()
@@ -169,10 +171,16 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
 
     previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
     recorder = None
+    configs = {spec.participant: _full_config(spec) for spec in specs}
     if options.record is not None:
-        recorder = McapRecorder(options.record, config_metadata(
-            {spec.participant: _full_config(spec) for spec in specs}))
+        recorder = McapRecorder(options.record, config_metadata(configs))
         hub.subscribe_key("coopdrive/**", lambda key, message: None if "/_" in key else recorder.write(key, message))
+    bridge = None
+    if options.foxglove_port is not None:
+        from coopdrive.visual import recorded_road_map
+        from coopdrive.visual.live_bridge import FoxgloveBridge
+
+        bridge = FoxgloveBridge(hub, options.foxglove_port, road_map=recorded_road_map(configs))
     if options.observer is not None:
         hub.subscribe_key("coopdrive/**", options.observer)
     hub.subscribe(WORLD_ID, "result", on_result)
@@ -200,6 +208,8 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         if recorder is not None:
             time.sleep(0.1)
             recorder.close()
+        if bridge is not None:
+            bridge.close()
         hub.close()
         for signum, handler in previous.items():
             signal.signal(signum, handler)

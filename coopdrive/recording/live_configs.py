@@ -7,6 +7,7 @@ and once more when the recording ends, and the newest answer of each service is 
 from __future__ import annotations
 
 import threading
+from typing import Callable
 
 from coopdrive.bus import Bus
 from coopdrive.v1 import diagnostics_pb2
@@ -16,8 +17,10 @@ QUERY_TIMEOUT_S = 1.0
 
 
 class ServiceConfigCollector:
-    def __init__(self, bus: Bus):
+    def __init__(self, bus: Bus, on_config: Callable[[str, str], None] | None = None):
+        """on_config(participant, config JSON): called for each config first seen or changed."""
         self._bus = bus
+        self._on_config = on_config
         self._lock = threading.Lock()
         self._configs: dict[str, str] = {}
         self._stop = threading.Event()
@@ -26,11 +29,13 @@ class ServiceConfigCollector:
     def start(self) -> None:
         self._thread.start()
 
-    def stop(self) -> dict[str, str]:
-        """Stops polling, asks once more and returns {"<vehicle>/<service>": config JSON}."""
+    def stop(self, ask_again: bool = True) -> dict[str, str]:
+        """Stops polling, asks once more (ask_again) and returns {"<vehicle>/<service>": config JSON}. Without
+        ask_again it returns at once, leaving a query in flight to time out on the daemon thread."""
         self._stop.set()
-        self._thread.join()
-        self.collect()
+        if ask_again:
+            self._thread.join()
+            self.collect()
         with self._lock:
             return dict(self._configs)
 
@@ -38,8 +43,12 @@ class ServiceConfigCollector:
         pattern = self._bus.layout.service_info("*", "*")
         for info in self._bus.query(pattern, diagnostics_pb2.ServiceInfo, timeout_s=QUERY_TIMEOUT_S):
             if info.service and info.vehicle_id and info.config_json:
+                participant = f"{info.vehicle_id}/{info.service}"
                 with self._lock:
-                    self._configs[f"{info.vehicle_id}/{info.service}"] = info.config_json
+                    changed = self._configs.get(participant) != info.config_json
+                    self._configs[participant] = info.config_json
+                if changed and self._on_config is not None:
+                    self._on_config(participant, info.config_json)
 
     def _poll(self) -> None:
         while not self._stop.is_set():

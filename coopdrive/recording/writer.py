@@ -1,15 +1,24 @@
-"""McapRecorder: writes protobuf messages to MCAP with their schemas, safe to call from many threads."""
+"""McapRecorder: writes protobuf messages to MCAP with their schemas, safe to call from many threads.
+
+Every recording also carries the channels Foxglove draws (coopdrive.visual), derived from the messages as they
+are written, so any MCAP the stack writes opens in Foxglove with its map, 3D view and plots.
+"""
 
 from __future__ import annotations
 
 import json
+import queue
 import threading
 from pathlib import Path
 
 from google.protobuf.message import Message
 from mcap_protobuf.writer import Writer
 
+from coopdrive.roadmap import RoadMap
+from coopdrive.visual import VisualChannels, recorded_road_map
+
 NANOSECONDS = 1_000_000_000
+CONFIG_METADATA = "coopdrive.config"
 
 
 def message_time_ns(message: Message) -> int:
@@ -20,7 +29,10 @@ def message_time_ns(message: Message) -> int:
 
 
 class McapRecorder:
-    def __init__(self, path: str | Path, metadata: dict[str, dict[str, str]] | None = None):
+    def __init__(self, path: str | Path, metadata: dict[str, dict[str, str]] | None = None,
+                 road_map: RoadMap | None = None, visuals: bool = True):
+        """road_map: the lane map the Foxglove channels draw (default: the one the configs in `metadata` name).
+        visuals: False writes the messages alone."""
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self._file = open(self.path, "wb")
@@ -30,6 +42,22 @@ class McapRecorder:
         self.messages_written = 0
         for name, values in (metadata or {}).items():
             self.add_metadata(name, values)
+        if road_map is None:
+            road_map = recorded_road_map((metadata or {}).get(CONFIG_METADATA, {}))
+        self._visuals = VisualChannels(self._write_visual, road_map) if visuals else None
+        # Derived on a thread of their own: a live recorder stamps each message's arrival in the bus's callback,
+        # which must not wait for the scene drawn from the one before.
+        self._to_derive: queue.SimpleQueue = queue.SimpleQueue()
+        self._deriver = threading.Thread(target=self._derive, name="mcap-visuals", daemon=True)
+        if self._visuals is not None:
+            self._deriver.start()
+
+    def learn_config(self, participant: str, config_json: str) -> None:
+        """A live service's config (ServiceConfigCollector): geolocation's names the lane map to draw."""
+        if self._visuals is not None and participant.endswith("/geolocation"):
+            road_map = recorded_road_map({participant: config_json})
+            with self._lock:
+                self._visuals.road_map = road_map
 
     def add_metadata(self, name: str, values: dict[str, str]) -> None:
         with self._lock:
@@ -39,14 +67,28 @@ class McapRecorder:
         """log_time_ns: when the message arrived (a live recorder's clock); publish time is its header's sent time.
         Without it both are the sent time (a lockstep run, where the simulated time is the only clock)."""
         time_ns = message_time_ns(message)
+        log_time_ns = time_ns if log_time_ns is None else log_time_ns
         with self._lock:
             if self._closed:
                 return
-            self._writer.write_message(topic, message, log_time=time_ns if log_time_ns is None else log_time_ns,
-                                       publish_time=time_ns)
+            self._writer.write_message(topic, message, log_time=log_time_ns, publish_time=time_ns)
             self.messages_written += 1
+        if self._visuals is not None:
+            self._to_derive.put((topic, message, log_time_ns))
+
+    def _derive(self) -> None:
+        while (item := self._to_derive.get()) is not None:
+            with self._lock:
+                self._visuals.on_message(*item)
+
+    def _write_visual(self, topic: str, message: Message, time_ns: int) -> None:
+        """Called under the lock by the visual channels, at the log time of the message they came from."""
+        self._writer.write_message(topic, message, log_time=time_ns, publish_time=time_ns)
 
     def close(self) -> None:
+        if self._deriver.is_alive():
+            self._to_derive.put(None)  # after every message written so far
+            self._deriver.join()
         with self._lock:
             if self._closed:
                 return
@@ -57,5 +99,5 @@ class McapRecorder:
 
 def config_metadata(configs: dict[str, str]) -> dict[str, dict[str, str]]:
     """Service configs as MCAP metadata: {"coopdrive.config": {"<vehicle>/<service>": json}}."""
-    return {"coopdrive.config": {key: value if isinstance(value, str) else json.dumps(value)
-                                 for key, value in configs.items()}}
+    return {CONFIG_METADATA: {key: value if isinstance(value, str) else json.dumps(value)
+                              for key, value in configs.items()}}

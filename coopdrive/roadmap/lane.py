@@ -90,6 +90,15 @@ class Lane:
         y_m = self._start[i, 1] + uy * along_m + ux * lateral_offset_m
         return float(x_m), float(y_m), float(self._seg_heading[i])
 
+    def points_at(self, stations_m: np.ndarray, lateral_offset_m: float = 0.0) -> np.ndarray:
+        """pose_at's points (N x 2) for many stations at once, in one vectorised pass."""
+        stations_m = np.asarray(stations_m, dtype=float)
+        i = np.clip(np.searchsorted(self._station0, stations_m, side="right") - 1, 0, len(self._seg_len) - 1)
+        along_m = stations_m - self._station0[i]
+        unit = self._unit[i]
+        left = np.column_stack((-unit[:, 1], unit[:, 0]))
+        return self._start[i] + unit * along_m[:, None] + left * lateral_offset_m
+
     def curvature_at(self, station_m: float) -> float:
         """Curvature interpolated between vertices, positive to the left, 1/m."""
         i = self._segment_at(station_m)

@@ -15,9 +15,23 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def compose_services() -> dict:
-    """The stack's services (the optional ones of a profile, such as the recorder, left out)."""
+    """The stack's services on the vehicle (the default profile, through .env) and the router they share."""
     services = yaml.safe_load((ROOT / "docker-compose.yml").read_text())["services"]
-    return {name: spec for name, spec in services.items() if "profiles" not in spec}
+    return {name: spec for name, spec in services.items() if spec.get("profiles", ["vehicle"]) == ["vehicle"]}
+
+
+def test_the_vehicle_profile_is_the_default_and_the_router_serves_every_profile():
+    assert "COMPOSE_PROFILES=vehicle" in (ROOT / ".env").read_text().splitlines()
+    services = yaml.safe_load((ROOT / "docker-compose.yml").read_text())["services"]
+    assert "profiles" not in services["zenohd"]
+    assert {name for name, spec in services.items() if spec.get("profiles") == ["desk"]} == \
+        {"desk-sim", "desk-stack", "desk-gateway", "desk-foxglove"}
+
+
+def test_on_the_vehicle_a_service_without_its_device_waits_for_it_instead_of_restarting():
+    for name, spec in compose_services().items():
+        if spec["command"][0] == "service":
+            assert spec["command"][-2:] == ["--hardware-retry", "5"], name
 
 
 def test_compose_records_the_bus_to_a_mounted_folder_only_when_the_record_profile_is_asked_for():
@@ -35,6 +49,9 @@ def test_every_compose_service_runs_a_real_coopdrive_service():
             assert spec["image"].startswith("eclipse/zenoh")
             continue
         command = spec["command"]
+        if name == "foxglove":
+            assert command[0] == "foxglove" and "healthcheck" in spec
+            continue
         assert command[:2] == ["service", name], f"{name} does not run 'coopdrive service {name}'"
         assert service_class(name).name == name
         assert spec["restart"] == "on-failure" and "healthcheck" in spec
@@ -44,7 +61,7 @@ def test_every_compose_service_runs_a_real_coopdrive_service():
 
 def test_every_deployed_config_is_valid_for_its_service():
     for name, spec in compose_services().items():
-        if name == "zenohd":
+        if name in ("zenohd", "foxglove"):
             continue
         command = spec["command"]
         config = yaml.safe_load((ROOT / "deploy" / "config" / Path(command[command.index("--config") + 1]).name)
@@ -90,3 +107,22 @@ def test_pip_builds_a_normal_wheel_with_one_top_level_package(tmp_path):
         assert expected in names
     entry_points = next(n for n in names if n.endswith("entry_points.txt"))
     assert "coopdrive = coopdrive.cli:main" in zipfile.ZipFile(wheel).read(entry_points).decode()
+
+
+def test_the_desk_stack_is_configured_as_a_run_of_the_follow_world_configures_its_stack():
+    import json
+
+    from coopdrive.launch.run import RunOptions, build_specs
+    from coopdrive.services.sim.service import SimConfig
+
+    # On a shared laptop paced to the wall clock a control command may come late by more than a car allows:
+    # the desk's actuation watchdog waits 0.5 s instead of 0.1 s before a safe stop.
+    desk_overrides = {"actuation": {"actuator": {"watchdog": {"command_timeout_s": 0.5}}}}
+    specs = build_specs(RunOptions("follow", service_overrides=desk_overrides))
+    stack = [{"service": s.service, "vehicle": s.vehicle_id, "config": s.config} for s in specs if s.service != "sim"]
+    assert json.loads((ROOT / "deploy" / "desk" / "stack.json").read_text()) == stack
+    for entry in stack:
+        service_class(entry["service"]).Config.model_validate(entry["config"])
+    sim = SimConfig.model_validate(yaml.safe_load((ROOT / "deploy" / "desk" / "sim.yaml").read_text()))
+    assert sim.participants == [entry["vehicle"] + "/" + entry["service"] for entry in stack]
+    assert (sim.scenario, sim.lockstep, sim.paced) == ("follow", False, True)  # the wall clock, no barrier

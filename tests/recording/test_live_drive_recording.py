@@ -134,6 +134,18 @@ def test_the_recording_holds_the_nmea_bytes_the_service_read_from_its_port(live_
     assert nmea.count(b"$GPGGA") >= DRIVE_S - 2
 
 
+def test_the_live_recording_and_a_replay_of_it_carry_foxglove_s_channels(live_drive, tmp_path):
+    from tests.visual.foxglove_mcap import foxglove_channels
+
+    estimates = [m for m in read_messages(live_drive[0]) if m.topic == "coopdrive/ego/ego/state"]
+    channels = foxglove_channels(live_drive[0])
+    assert len(channels["foxglove/ego/ego"]) == len([e for e in estimates if e.message.latitude_deg])
+    assert channels["foxglove/ego/gnss"] and channels["foxglove/transforms"]
+    replayed = tmp_path / "replayed.mcap"
+    replay_json(live_drive[0], "--out", str(replayed))
+    assert foxglove_channels(replayed)["foxglove/ego/ego"]
+
+
 def replay_json(recording, *extra: str) -> dict:
     result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "replay", str(recording), "--service",
                              "geolocation", "--json", *extra], capture_output=True, text=True, timeout=120)

@@ -83,3 +83,14 @@ def test_projecting_a_pose_on_the_a270_gives_back_its_station_and_offset(station
     x, y, heading = lane.pose_at(station_m, lateral_m)
     # Off the centre line, the inside of a polyline corner is a few millimetres off the true arc.
     assert lane.project(x, y)[:3] == pytest.approx((station_m, lateral_m, heading), abs=0.01)
+
+
+def test_points_at_many_stations_are_pose_at_each():
+    import numpy as np
+
+    from coopdrive.roadmap import RoadMap
+
+    lane = RoadMap.load("a270").lanes[0]
+    stations_m = np.array([-5.0, 0.0, 10.0, 123.4, lane.length_m, lane.length_m + 7.0])
+    expected = [lane.pose_at(station_m, 1.5)[:2] for station_m in stations_m]
+    assert np.allclose(lane.points_at(stations_m, 1.5), expected)
