@@ -109,20 +109,18 @@ def test_pip_builds_a_normal_wheel_with_one_top_level_package(tmp_path):
     assert "coopdrive = coopdrive.cli:main" in zipfile.ZipFile(wheel).read(entry_points).decode()
 
 
-def test_the_desk_stack_is_configured_as_a_run_of_the_follow_world_configures_its_stack():
+def test_the_desk_stack_is_configured_as_a_run_of_the_follow_scenario_configures_its_stack():
     import json
 
-    from coopdrive.launch.run import RunOptions, build_specs
+    from coopdrive.launch.desk import desk_stack
     from coopdrive.services.sim.service import SimConfig
 
-    # On a shared laptop paced to the wall clock a control command may come late by more than a car allows:
-    # the desk's actuation watchdog waits 0.5 s instead of 0.1 s before a safe stop.
-    desk_overrides = {"actuation": {"actuator": {"watchdog": {"command_timeout_s": 0.5}}}}
-    specs = build_specs(RunOptions("follow", service_overrides=desk_overrides))
-    stack = [{"service": s.service, "vehicle": s.vehicle_id, "config": s.config} for s in specs if s.service != "sim"]
+    stack = desk_stack()
     assert json.loads((ROOT / "deploy" / "desk" / "stack.json").read_text()) == stack
     for entry in stack:
         service_class(entry["service"]).Config.model_validate(entry["config"])
+    geolocation = next(entry["config"] for entry in stack if entry["service"] == "geolocation")
+    assert geolocation["map_name"] == "a270" and "gnss_port" not in geolocation  # fixes come on gnss/fix
     sim = SimConfig.model_validate(yaml.safe_load((ROOT / "deploy" / "desk" / "sim.yaml").read_text()))
     assert sim.participants == [entry["vehicle"] + "/" + entry["service"] for entry in stack]
     assert (sim.scenario, sim.lockstep, sim.paced) == ("follow", False, True)  # the wall clock, no barrier
