@@ -54,6 +54,8 @@ class RunOptions:
     # holding a ticket from a root nobody else trusts.
     security: str | None = None
     untrusted: tuple[str, ...] = ()
+    # The world the scenario runs in: "real" (its file's, real unless it says otherwise) or "ideal".
+    world: str = "real"
     # Faults added to the scenario file's own (fault_config models as dicts, e.g. every V2V link lossy).
     extra_faults: tuple[dict, ...] = ()
     # Extra config per service name, merged over the defaults (e.g. {"control": {...}}).
@@ -94,7 +96,8 @@ def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[Servic
         run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-")) if run_dir is None else run_dir
         source = source.with_faults(options.extra_faults, run_dir)
     # --realtime paces the lockstep run to the wall clock: it is watchable and still deterministic.
-    sim = SimConfig(scenario=source.name, seed=options.seed, lockstep=True, paced=options.realtime)
+    sim = SimConfig(scenario=source.name, seed=options.seed, lockstep=True, paced=options.realtime,
+                    world_profile=options.world)
     per_vehicle: dict[str, dict[str, dict]] = {}
     if options.security is None and source.config is not None and \
             any(isinstance(f, TicketExpired) for f in source.config.faults):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import time
+from typing import Literal
 
 import numpy as np
 import pymap3d
@@ -67,6 +68,9 @@ class SimConfig(ServiceConfig):
     world: WorldConfig = Field(default_factory=default_follow_world)
     # A scenario file (scenarios/*.yaml or a user's own) instead of the built-in follow world.
     scenario_file: str = ""
+    # `ideal` runs the scenario in the ideal world (world_profile.py) whatever its file says; `real` keeps the
+    # file's own `world` (real unless it says ideal).
+    world_profile: Literal["real", "ideal"] = "real"
     # Its vehicles that run a coopdrive stack; empty: every stack vehicle of the file.
     stacks: list[str] = Field(default_factory=list)
     # vehicle_id -> {"box_port", "stack_port"}: the UDP ports of that vehicle's simulated radio box.
