@@ -25,6 +25,7 @@ from coopdrive.runtime.registry import VEHICLE_STACK
 from coopdrive.services.sim.fault_config import TicketExpired
 from coopdrive.services.sim.radio_box import RadioPorts
 from coopdrive.services.sim.scenario_config import ScenarioConfig, ScenarioError, load_scenario
+from coopdrive.services.sim.world_profile import WorldProfile
 from coopdrive.services.sim.service import SimConfig
 from coopdrive.services.sim.service_crashes import crashed_participants
 from coopdrive.services.v2x.security.pki import issue_expiring_tickets, load_test_pki
@@ -114,7 +115,9 @@ def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[Servic
         run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-")) if run_dir is None else run_dir
         # Each stack's GNSS receiver is a pty the simulator writes NMEA to, found through a link in the run folder.
         sim.gnss_ports = {v: str(run_dir / f"{v}-gnss0") for v in stacks}
-        per_vehicle = {v: merged(vehicle_overrides(source.config, v, radio[v]),
+        # The stacks are told their sensors as they are in the run's world (latencies, the GNSS timing jitter).
+        world_config = source.config.in_world(WorldProfile(options.world))
+        per_vehicle = {v: merged(vehicle_overrides(world_config, v, radio[v]),
                                  {"geolocation": {"gnss_port": sim.gnss_ports[v], "serial_sync": "marks"}})
                        for v in stacks}
         if options.security is not None:

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import heapq
 import itertools
+import math
 import zlib
 from typing import Any, Callable, Generic, TypeVar
 
@@ -14,6 +15,15 @@ Output = TypeVar("Output")
 
 # Tolerance on the sample schedule so that floating-point step times do not skip a sample.
 _SCHEDULE_EPS_S = 1e-9
+
+
+# Mean of a half-normal variable over its scale: sqrt(2 / pi).
+HALF_NORMAL_MEAN = math.sqrt(2.0 / math.pi)
+
+
+def mean_latency_s(config: SensorTimingConfig) -> float:
+    """A sensor's mean delivery latency: the fixed part and its half-normal jitter's mean."""
+    return config.latency_s + HALF_NORMAL_MEAN * config.latency_jitter_s
 
 
 def sensor_rng(seed: int, vehicle_id: str, sensor_name: str) -> np.random.Generator:
