@@ -182,6 +182,6 @@ class TicketExpired(_Fault):
     vehicle_id: str
 
 
-Fault = Annotated[Union[GnssOutage, GnssJump, GnssMultipath, RadarClutter, FixDowngrade, V2vLoss, V2vCorruption, SensorDropout, CanErrorBurst,
-                        PartnerSilent, IclcmDrop, GhostVehicle, PositionOffset, ServiceCrash, TicketExpired],
+Fault = Annotated[Union[GnssOutage, GnssJump, GnssMultipath, RadarClutter, FixDowngrade, V2vLoss, V2vCorruption,
+                        SensorDropout, CanErrorBurst, PartnerSilent, IclcmDrop, GhostVehicle, PositionOffset, ServiceCrash, TicketExpired],
                  Field(discriminator="type")]

@@ -110,7 +110,9 @@ class RadarSensor:
 
     def _width_m(self, true_width_m: float) -> float:
         sigma_m = self.config.width_sigma_m
-        return max(true_width_m + sigma_m * self.rng.standard_normal(), MIN_RADAR_WIDTH_M) if sigma_m > 0 else true_width_m
+        if sigma_m <= 0.0:
+            return true_width_m
+        return max(true_width_m + sigma_m * self.rng.standard_normal(), MIN_RADAR_WIDTH_M)
 
     def _add_false_alarms(self, tracks: sensors_pb2.RadarTracks, ego_speed_mps: float) -> None:
         """Stationary reflectors the radar takes for targets for one scan."""

@@ -41,7 +41,8 @@ def test_under_radar_clutter_no_false_track_becomes_the_forward_mio(run):
     _, scenes = run
     cluttered = [s for s in scenes if CLUTTER_S[0] <= s.header.sample_time_s < CLUTTER_S[1]]
     assert len(cluttered) > 100
-    phantoms = [s.header.sample_time_s for s in cluttered if s.has_forward_mio and s.forward_mio_id not in leader_ids(s)]
+    phantoms = [s.header.sample_time_s for s in cluttered
+                if s.has_forward_mio and s.forward_mio_id not in leader_ids(s)]
     assert phantoms == []
 
 

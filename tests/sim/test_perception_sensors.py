@@ -72,7 +72,8 @@ def test_radar_range_noise_matches_config_and_tracks_stay_in_the_narrow_field_of
 
 
 def test_radar_reports_at_most_the_configured_number_of_tracks_nearest_first():
-    sensor = RadarSensor(ideal(RadarConfig(timing=TIMING, max_tracks=3, range_sigma_m=0.0)), sensor_rng(2, "e", "r"), "e")
+    config = ideal(RadarConfig(timing=TIMING, max_tracks=3, range_sigma_m=0.0))
+    sensor = RadarSensor(config, sensor_rng(2, "e", "r"), "e")
     world = _world(*[_car(f"v{k}", 20.0 + 10.0 * k) for k in range(6)])
     tracks = sensor.poll(0.0, world)[0].tracks
     assert len(tracks) == 3

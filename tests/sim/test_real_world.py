@@ -79,7 +79,8 @@ def test_the_radar_clutter_fault_raises_the_false_tracks_until_it_ends():
 def test_real_lidar_beams_drop_out_and_echo_off_clutter_short_of_their_target():
     world = WorldView(_truth("ego", 0.0), [_truth("lead", 30.0, length_m=4.5)])
     config = LidarConfig(timing=TIMING, range_sigma_m=0.0, layer_elevations_rad=[0.0], clutter_probability=0.05)
-    real = [r for s in _scans(LidarSensor(config, sensor_rng(4, "e", "l"), "e"), world, 20) for r in s.layers[0].range_m]
+    real_scans = _scans(LidarSensor(config, sensor_rng(4, "e", "l"), "e"), world, 20)
+    real = [r for s in real_scans for r in s.layers[0].range_m]
     perfect = [r for s in _scans(LidarSensor(ideal(config.model_copy(update={"clutter_probability": 0.0})),
                                              sensor_rng(4, "e", "l"), "e"), world, 20) for r in s.layers[0].range_m]
     rear_m = min(perfect)
