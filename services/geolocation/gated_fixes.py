@@ -1,31 +1,30 @@
 """Fixes the gate refused, kept to decide whether the filter or the receiver is wrong.
 
-A filter that drifted (dead reckoning through an outage) sees the returning fixes all off by about the same
-offset: resetting to them is right. A receiver in multipath jumps around: its fixes disagree with each other as
-much as with the filter, and a reset would only move the estimate onto one of the jumps.
+A filter that drifted (dead reckoning through an outage, a float solution turning fixed) sees the fixes move
+smoothly against it, each about where the last one was: resetting to them after a while is right. A receiver in
+multipath jumps: its fixes step by metres from one to the next, and a reset would only move the estimate onto one
+of the jumps. So the refused fixes count towards a reset only since the last such step.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
 
-# Fixes agree when they lie within this many of their reported sigmas of the newest one (or the floor in
+# Consecutive fixes agree when they are within this many of their reported sigmas of each other (or the floor in
 # GeolocatorConfig.gnss_reset_consistency_m, whichever is larger).
 CONSISTENCY_SIGMAS = 4.0
 
 
 @dataclass(frozen=True)
 class GatedFixes:
+    # Since when the refused fixes have moved smoothly.
     since_s: float
-    # Each refused fix's offset from the estimate (rear-axle east, north).
-    offsets_m: tuple[tuple[float, float], ...]
+    # The newest refused fix's offset from the estimate (rear-axle east, north).
+    offset_m: tuple[float, float]
 
-    def with_fix(self, offset_m: tuple[float, float]) -> GatedFixes:
-        return GatedFixes(self.since_s, self.offsets_m + (offset_m,))
-
-    def consistent(self, fix_std_m: float, floor_m: float) -> bool:
-        """Whether every refused fix is within the tolerance of the newest: one offset, not jumps."""
+    def with_fix(self, time_s: float, offset_m: tuple[float, float], fix_std_m: float,
+                 floor_m: float) -> GatedFixes:
+        """The next refused fix: a step beyond the tolerance from the last one starts the count again."""
         tolerance_m = max(floor_m, CONSISTENCY_SIGMAS * fix_std_m)
-        newest_east, newest_north = self.offsets_m[-1]
-        return all(math.hypot(east - newest_east, north - newest_north) <= tolerance_m
-                   for east, north in self.offsets_m)
+        step_m = math.hypot(offset_m[0] - self.offset_m[0], offset_m[1] - self.offset_m[1])
+        return GatedFixes(self.since_s if step_m <= tolerance_m else time_s, offset_m)

@@ -240,19 +240,16 @@ class Geolocator:
         self.counters[InputEvent.FIX_GATED] += 1
         x, y = self.lever_arm.rear_axle_position(fix.east_m, fix.north_m, self.ekf.x[HEADING])
         offset_m = (x - float(self.ekf.x[E]), y - float(self.ekf.x[N]))
-        gated = GatedFixes(time_s, ()) if book.gated is None else book.gated
-        gated = gated.with_fix(offset_m)
         fix_std_m = max(fix.std_east_m, fix.std_north_m)
+        gated = GatedFixes(time_s, offset_m) if book.gated is None else book.gated.with_fix(
+            time_s, offset_m, fix_std_m, config.gnss_reset_consistency_m)
         if time_s - gated.since_s >= config.gnss_reset_after_s:
-            if gated.consistent(fix_std_m, config.gnss_reset_consistency_m):
-                # The GNSS has disagreed for long, and with one voice: trust it over a filter that has drifted.
-                self.ekf.reset_position(x, y, fix_std_m)
-                self.counters[InputEvent.GNSS_RESET] += 1
-                self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None)
-                return
-            # Jumping fixes (multipath): keep the estimate and look again at the next ones.
-            gated = GatedFixes(time_s, (offset_m,))
-        self._book = _replace(book, gated=gated)
+            # The GNSS has disagreed for long, and smoothly: trust it over a filter that has drifted.
+            self.ekf.reset_position(x, y, fix_std_m)
+            self.counters[InputEvent.GNSS_RESET] += 1
+            self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None)
+        else:
+            self._book = _replace(book, gated=gated)
 
     def _fuse_gnss_motion(self, time_s: float, fix: _Fix) -> None:
         """The receiver's heading, and without odometry its speed and course (a receiver alone)."""
