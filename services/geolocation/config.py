@@ -34,7 +34,7 @@ class GeolocatorConfig(BaseModel):
     # Gating and recovery.
     gate_probability: float = Field(0.999, gt=0.5, lt=1.0)
     gnss_reset_after_s: float = Field(3.0, gt=0.0)
-    # ... counted since the last step of this much between consecutive refused fixes (gated_fixes.py): multipath
+    # ... counted since the last step of this much between consecutive refused RTK fixes (gated_fixes.py): multipath
     # jumps, a drifted filter sees the fixes move smoothly.
     gnss_reset_consistency_m: float = Field(0.5, gt=0.0)
     # Latency: inputs older than the newest by up to history_s are fused at their sample time.

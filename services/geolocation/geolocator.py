@@ -21,7 +21,7 @@ from coopdrive.roadmap import RoadMap
 from coopdrive.services.geolocation.config import GeolocatorConfig
 from coopdrive.services.geolocation.ekf import GeolocationEkf, UpdateKind, gnss_position_std_m
 from coopdrive.services.geolocation.gated_fixes import GatedFixes
-from coopdrive.services.geolocation.frames import LeverArm, ModeThresholds, localisation_mode
+from coopdrive.services.geolocation.frames import RTK_FIX_MODES, LeverArm, ModeThresholds, localisation_mode
 from coopdrive.services.geolocation.latency import Insertion, ReplayBuffer
 from coopdrive.services.geolocation.motion_models import (
     ACCEL, HEADING, SPEED, STATE_DIM, YAW_RATE, CtraModel, E, KinematicBicycleModel, MotionModelKind, N,
@@ -241,8 +241,10 @@ class Geolocator:
         x, y = self.lever_arm.rear_axle_position(fix.east_m, fix.north_m, self.ekf.x[HEADING])
         offset_m = (x - float(self.ekf.x[E]), y - float(self.ekf.x[N]))
         fix_std_m = max(fix.std_east_m, fix.std_north_m)
+        # Only an RTK solution is precise enough to tell a multipath step from its own noise.
+        floor_m = config.gnss_reset_consistency_m if fix.fix_mode in RTK_FIX_MODES else math.inf
         gated = GatedFixes(time_s, offset_m) if book.gated is None else book.gated.with_fix(
-            time_s, offset_m, fix_std_m, config.gnss_reset_consistency_m)
+            time_s, offset_m, fix_std_m, floor_m)
         if time_s - gated.since_s >= config.gnss_reset_after_s:
             # The GNSS has disagreed for long, and smoothly: trust it over a filter that has drifted.
             self.ekf.reset_position(x, y, fix_std_m)
