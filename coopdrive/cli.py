@@ -69,6 +69,9 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--seed", type=int, default=1)
     run.add_argument("--seeds", metavar="A-B", help="run every seed of a range (e.g. 1-20 or 1,4,7-9) in parallel")
     run.add_argument("--stacks", type=int, metavar="N", help="run the stack on the first N stack vehicles only")
+    run.add_argument("--world", choices=["real", "ideal"], default="real",
+                     help="real: every sensor's and the radio's error sources (the default); ideal: none of them, "
+                          "for runs that need exact answers (services/sim/README.md)")
     run.add_argument("--workers", type=int, default=2, help="parallel runs for `all` and --seeds")
     run.add_argument("--out", type=Path, metavar="DIR", help="batch runs: metrics.json per run and summary files")
     run.add_argument("--processes", choices=["service", "vehicle"],
@@ -195,7 +198,8 @@ def _run(args) -> int:
                          duration_s=args.duration,
                          log_dir=args.logs, stacks=args.stacks,
                          group_per_vehicle=None if args.processes is None else args.processes == "vehicle",
-                         security=args.security, untrusted=tuple(args.untrusted), extra_faults=_extra_faults(args))
+                         security=args.security, untrusted=tuple(args.untrusted), extra_faults=_extra_faults(args),
+                         world=args.world)
     if args.untrusted and args.security is None:
         print("coopdrive: --untrusted needs --security", file=sys.stderr)
         return EXIT_USAGE
@@ -304,7 +308,8 @@ def _batch(args) -> int:
         print("coopdrive: --untrusted is for single runs (name the vehicle of one scenario)", file=sys.stderr)
         return EXIT_USAGE
     summary = run_batch(BatchOptions(scenarios=scenarios, seeds=seeds, stacks=args.stacks, workers=args.workers,
-                                     out_dir=args.out, duration_s=args.duration, security=args.security))
+                                     out_dir=args.out, duration_s=args.duration, security=args.security,
+                                     world=args.world))
     return EXIT_OK if summary.all_passed else EXIT_FAILED
 
 

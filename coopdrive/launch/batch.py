@@ -36,6 +36,8 @@ class BatchOptions:
     duration_s: float | None = None
     # V2X security of every stack in every run (a SecurityMode value), as `coopdrive run --security`.
     security: str | None = None
+    # The world every run is in, as `coopdrive run --world`.
+    world: str = "real"
 
 
 @dataclass
@@ -89,13 +91,13 @@ def scenario_names() -> list[str]:
 
 
 def run_one(scenario: str, seed: int, stacks: int | None, duration_s: float | None,
-            out_dir: str | None, security: str | None = None) -> RunOutcome:
+            out_dir: str | None, security: str | None = None, world: str = "real") -> RunOutcome:
     """One run in a worker process (module level, so the spawn context can import it)."""
     from coopdrive.launch.run import RunOptions, run_scenario
 
     try:
         result = run_scenario(RunOptions(scenario=scenario, seed=seed, stacks=stacks, duration_s=duration_s,
-                                         security=security))
+                                         security=security, world=world))
         outcome = RunOutcome(scenario, seed, result.success, result.failure_reason, result.wall_time_s,
                              dict(result.metrics))
     except Exception as error:  # a run that cannot even start is a failed run, not a failed batch
@@ -118,7 +120,8 @@ def run_batch(options: BatchOptions, console: Console | None = None) -> BatchSum
             ProcessPoolExecutor(max_workers=max(1, options.workers), mp_context=context) as pool:
         task = progress.add_task("runs", total=len(jobs))
         pending: dict[Future, tuple[str, int]] = {
-            pool.submit(run_one, scenario, seed, options.stacks, options.duration_s, out, options.security):
+            pool.submit(run_one, scenario, seed, options.stacks, options.duration_s, out, options.security,
+                        options.world):
                 (scenario, seed)
             for scenario, seed in jobs}
         try:

@@ -25,6 +25,7 @@ from coopdrive.runtime.registry import VEHICLE_STACK
 from coopdrive.services.sim.fault_config import TicketExpired
 from coopdrive.services.sim.radio_box import RadioPorts
 from coopdrive.services.sim.scenario_config import ScenarioConfig, ScenarioError, load_scenario
+from coopdrive.services.sim.world_profile import WorldProfile
 from coopdrive.services.sim.service import SimConfig
 from coopdrive.services.sim.service_crashes import crashed_participants
 from coopdrive.services.v2x.security.pki import issue_expiring_tickets, load_test_pki
@@ -56,6 +57,8 @@ class RunOptions:
     # holding a ticket from a root nobody else trusts.
     security: str | None = None
     untrusted: tuple[str, ...] = ()
+    # The world the scenario runs in: "real" (its file's, real unless it says otherwise) or "ideal".
+    world: str = "real"
     # Faults added to the scenario file's own (fault_config models as dicts, e.g. every V2V link lossy).
     extra_faults: tuple[dict, ...] = ()
     # Extra config per service name, merged over the defaults (e.g. {"control": {...}}).
@@ -91,7 +94,8 @@ def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[Servic
         run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-")) if run_dir is None else run_dir
         source = source.with_faults(options.extra_faults, run_dir)
     # --realtime paces the lockstep run to the wall clock: it is watchable and still deterministic.
-    sim = SimConfig(scenario=source.name, seed=options.seed, lockstep=True, paced=options.realtime)
+    sim = SimConfig(scenario=source.name, seed=options.seed, lockstep=True, paced=options.realtime,
+                    world_profile=options.world)
     if options.security is None and any(isinstance(f, TicketExpired) for f in source.config.faults):
         raise ScenarioError("ticket_expired needs --security: an unsecured run has no tickets to expire")
     stacks = source.stack_vehicles(options.stacks)
@@ -105,7 +109,9 @@ def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[Servic
     run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-")) if run_dir is None else run_dir
     # Each stack's GNSS receiver is a pty the simulator writes NMEA to, found through a link in the run folder.
     sim.gnss_ports = {v: str(run_dir / f"{v}-gnss0") for v in stacks}
-    per_vehicle = {v: merged(vehicle_overrides(source.config, v, radio[v]),
+    # The stacks are told their sensors as they are in the run's world (latencies, the GNSS timing jitter).
+    world_config = source.config.in_world(WorldProfile(options.world))
+    per_vehicle = {v: merged(vehicle_overrides(world_config, v, radio[v]),
                              {"geolocation": {"gnss_port": sim.gnss_ports[v], "serial_sync": "marks"}})
                    for v in stacks}
     if options.security is not None:

@@ -11,6 +11,7 @@ from coopdrive.services.sim.profiles import PROFILES, ProfileName
 from coopdrive.services.sim.radio_box import RadioPorts
 from coopdrive.services.sim.scenario_builder import speed_profile_of
 from coopdrive.services.sim.scenario_config import ScenarioConfig, VehicleRole
+from coopdrive.services.sim.sensor_timing import mean_latency_s
 
 MIN_CRUISE_SPEED_MPS = 5.0
 PROFILE_SAMPLE_S = 0.1
@@ -58,8 +59,10 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
     sensors = config.sensors_of(vehicle)
     geolocation = {"geolocator": {"track_width_m": profile.track_width_m, "wheelbase_m": profile.wheelbase_m,
                                   "antenna_x_m": sensors.gnss.antenna_x_m, "antenna_y_m": sensors.gnss.antenna_y_m,
-                                  "wheel_speed_std_mps": max(sensors.can_state.wheel_speed_sigma_mps, 1e-3)},
-                   "gnss_receiver_latency_s": sensors.gnss.timing.latency_s,
+                                  "wheel_speed_std_mps": max(sensors.can_state.wheel_speed_sigma_mps, 1e-3),
+                                  "gnss_time_jitter_s": sensors.gnss.timing.latency_jitter_s},
+                   # The receiver's mean latency (its half-normal jitter included).
+                   "gnss_receiver_latency_s": mean_latency_s(sensors.gnss.timing),
                    "can_latency_s": sensors.can_state.timing.latency_s,
                    "imu_latency_s": sensors.imu.timing.latency_s}
     scene = {"radar_latency_s": sensors.radar.timing.latency_s}

@@ -95,7 +95,7 @@ class Actuator:
         return detection
 
     def on_ego_state(self, ego: ego_pb2.EgoState, now_s: float) -> None:
-        self.modes.set_localisation_mode(ego.mode, now_s)
+        self.modes.set_localisation_mode(ego.mode, now_s, ego.position_std_m)
 
     def on_v2x_health(self, healthy: bool, now_s: float) -> None:
         self.modes.set_v2x_healthy(healthy, now_s)

@@ -87,6 +87,9 @@ class ModeRequirements(BaseModel):
     localisation_modes: list[ego_pb2.LocalisationMode.ValueType]
     v2x_required: bool
     max_speed_mps: float = Field(gt=0.0)
+    # Once in the mode, a localisation mode not in the list is ridden out while the ego estimate's position
+    # std stays within this (0: never).
+    hold_position_std_m: float = Field(default=0.0, ge=0.0)
 
 
 # An automated mode needs every other service of the vehicle's stack alive.
@@ -107,7 +110,8 @@ class ModesConfig(BaseModel):
     autonomous: ModeRequirements = ModeRequirements(
         required_services=STACK_UPSTREAM,
         localisation_modes=[ego_pb2.LOCALISATION_MODE_GNSS_PRECISE],
-        v2x_required=True, max_speed_mps=MOTORWAY_MAX_SPEED_MPS)
+        # Lane-level: a car 1.8 m wide in a 3.5 m lane has 0.85 m either side, about two of these sigmas.
+        v2x_required=True, max_speed_mps=MOTORWAY_MAX_SPEED_MPS, hold_position_std_m=0.4)
     # Heudiasyc: non-manual modes are entered stopped or below 10 km/h.
     max_engage_speed_mps: float = Field(default=10.0 / 3.6, ge=0.0)
     # Inputs older than this count as absent.

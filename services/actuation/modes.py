@@ -8,6 +8,7 @@ Supervision (the watchdog, driver overrides) can force any mode; every forced tr
 
 import enum
 import logging
+import math
 from collections import deque
 from dataclasses import dataclass
 
@@ -76,7 +77,8 @@ class DrivingModeManager:
         self.last_change_reason = "start"
         self.transitions: deque[ModeTransition] = deque(maxlen=config.transition_history)
         self._alive: dict[str, bool] = {}
-        self._localisation: tuple[ego_pb2.LocalisationMode.ValueType, float] | None = None
+        # (localisation mode, the estimate's position std, when)
+        self._localisation: tuple[ego_pb2.LocalisationMode.ValueType, float, float] | None = None
         self._v2x: tuple[bool, float] | None = None
         self._vehicle: tuple[float, vehicle_pb2.Gear.ValueType, float] | None = None
         self._last_command_s: float | None = None
@@ -87,8 +89,9 @@ class DrivingModeManager:
     def set_service_alive(self, name: str, alive: bool) -> None:
         self._alive[name] = alive
 
-    def set_localisation_mode(self, mode: ego_pb2.LocalisationMode.ValueType, now_s: float) -> None:
-        self._localisation = (mode, now_s)
+    def set_localisation_mode(self, mode: ego_pb2.LocalisationMode.ValueType, now_s: float,
+                              position_std_m: float = math.inf) -> None:
+        self._localisation = (mode, position_std_m, now_s)
 
     def set_v2x_healthy(self, healthy: bool, now_s: float) -> None:
         self._v2x = (healthy, now_s)
@@ -129,18 +132,21 @@ class DrivingModeManager:
         for name in need.required_services:
             if not self._alive.get(name, False):
                 return UnmetCondition(Condition.SERVICES_ALIVE, f"{name} not alive")
-        unmet = self._localisation_unmet(need, now_s) or self._v2x_unmet(need, now_s)
+        unmet = self._localisation_unmet(need, now_s, engaging) or self._v2x_unmet(need, now_s)
         if unmet is not None:
             return unmet
         if self._last_command_s is None or now_s - self._last_command_s > self.command_timeout_s:
             return UnmetCondition(Condition.CONTROL_COMMAND, f"none valid in the last {self.command_timeout_s} s")
         return None
 
-    def _localisation_unmet(self, need: ModeRequirements, now_s: float) -> UnmetCondition | None:
-        if self._localisation is None or now_s - self._localisation[1] > self.config.input_timeout_s:
+    def _localisation_unmet(self, need: ModeRequirements, now_s: float, engaging: bool) -> UnmetCondition | None:
+        if self._localisation is None or now_s - self._localisation[2] > self.config.input_timeout_s:
             return UnmetCondition(Condition.LOCALISATION, f"no ego state in the last {self.config.input_timeout_s} s")
-        mode = self._localisation[0]
-        if mode not in need.localisation_modes:
+        mode, position_std_m, _ = self._localisation
+        # Once engaged, a short loss of RTK or a multipath jump the filter refused is ridden out while the
+        # estimate itself stays as good as the mode needs.
+        held = not engaging and mode != ego_pb2.LOCALISATION_MODE_LOST and position_std_m <= need.hold_position_std_m
+        if mode not in need.localisation_modes and not held:
             return UnmetCondition(Condition.LOCALISATION, f"{ego_pb2.LocalisationMode.Name(mode)} not accepted")
         return None
 

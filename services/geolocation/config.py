@@ -28,9 +28,15 @@ class GeolocatorConfig(BaseModel):
     yaw_accel_std_radps2: float = Field(0.02, gt=0.0)
     position_process_std_mps: float = Field(0.02, ge=0.0)
     steering_std_rad: float = Field(0.002, ge=0.0)
+    # Standard deviation of a fix's latency around the configured one (serial line, scheduling): its position
+    # is uncertain by speed times this along the track.
+    gnss_time_jitter_s: float = Field(0.0, ge=0.0)
     # Gating and recovery.
     gate_probability: float = Field(0.999, gt=0.5, lt=1.0)
     gnss_reset_after_s: float = Field(3.0, gt=0.0)
+    # ... counted since the last step of this much between consecutive refused RTK fixes (gated_fixes.py): multipath
+    # jumps, a drifted filter sees the fixes move smoothly.
+    gnss_reset_consistency_m: float = Field(0.5, gt=0.0)
     # Latency: inputs older than the newest by up to history_s are fused at their sample time.
     compensate_latency: bool = True
     history_s: float = Field(1.0, gt=0.0)

@@ -20,7 +20,8 @@ from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.roadmap import RoadMap
 from coopdrive.services.geolocation.config import GeolocatorConfig
 from coopdrive.services.geolocation.ekf import GeolocationEkf, UpdateKind, gnss_position_std_m
-from coopdrive.services.geolocation.frames import LeverArm, ModeThresholds, localisation_mode
+from coopdrive.services.geolocation.gated_fixes import GatedFixes
+from coopdrive.services.geolocation.frames import RTK_FIX_MODES, LeverArm, ModeThresholds, localisation_mode
 from coopdrive.services.geolocation.latency import Insertion, ReplayBuffer
 from coopdrive.services.geolocation.motion_models import (
     ACCEL, HEADING, SPEED, STATE_DIM, YAW_RATE, CtraModel, E, KinematicBicycleModel, MotionModelKind, N,
@@ -81,7 +82,8 @@ class _Imu:
 class _Bookkeeping:
     last_fix_time_s: float | None = None
     last_fix_mode: int = gnss_pb2.FIX_MODE_UNSPECIFIED
-    first_gated_time_s: float | None = None
+    # The fixes refused since the last fused one (None while fixes are fused).
+    gated: GatedFixes | None = None
     pending_fix: tuple[float, _Fix] | None = None
     last_speed_mps: float | None = None
     steering_angle_rad: float = 0.0
@@ -155,8 +157,11 @@ class Geolocator:
         # Producers older than velocity_valid (the simulator's gnss/fix) leave it false but fill the speed.
         velocity_valid = fix.velocity_valid or fix.speed_mps > 0.0
         heading_rad = _enu_heading_rad(fix.heading_deg) if fix.heading_valid else None
-        event = _Fix(east_m, north_m, stds[0], stds[1], fix.fix_mode, fix.speed_mps, fix.course_deg,
-                     velocity_valid, heading_rad)
+        # A fix's time is known only to the spread of its latency: it is off along the track by up to speed
+        # times that, which its noise must allow for (else a 1 cm RTK fix late by 4 ms at 80 km/h is refused).
+        timing_std_m = fix.speed_mps * self.config.gnss_time_jitter_s
+        event = _Fix(east_m, north_m, math.hypot(stds[0], timing_std_m), math.hypot(stds[1], timing_std_m),
+                     fix.fix_mode, fix.speed_mps, fix.course_deg, velocity_valid, heading_rad)
         return self._add(fix.header.sample_time_s, event)
 
     def _learn_fix_interval(self, time_s: float) -> None:
@@ -225,22 +230,28 @@ class Geolocator:
         lever_arm = self.lever_arm if book.heading_known else NO_LEVER_ARM
         if self.ekf.update_gnss_position(fix.east_m, fix.north_m, fix.std_east_m, fix.std_north_m, lever_arm):
             self.counters[InputEvent.FIX_FUSED] += 1
-            self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, first_gated_time_s=None)
+            self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None)
         else:
             self._gated_fix(time_s, fix)
         self._fuse_gnss_motion(time_s, fix)
 
     def _gated_fix(self, time_s: float, fix: _Fix) -> None:
-        book = self._book
+        book, config = self._book, self.config
         self.counters[InputEvent.FIX_GATED] += 1
-        if book.first_gated_time_s is None:
-            self._book = _replace(book, first_gated_time_s=time_s)
-        elif time_s - book.first_gated_time_s >= self.config.gnss_reset_after_s:
-            # The GNSS has disagreed for long: trust it over a filter that has drifted.
-            x, y = self.lever_arm.rear_axle_position(fix.east_m, fix.north_m, self.ekf.x[HEADING])
-            self.ekf.reset_position(x, y, max(fix.std_east_m, fix.std_north_m))
+        x, y = self.lever_arm.rear_axle_position(fix.east_m, fix.north_m, self.ekf.x[HEADING])
+        offset_m = (x - float(self.ekf.x[E]), y - float(self.ekf.x[N]))
+        fix_std_m = max(fix.std_east_m, fix.std_north_m)
+        # Only an RTK solution is precise enough to tell a multipath step from its own noise.
+        floor_m = config.gnss_reset_consistency_m if fix.fix_mode in RTK_FIX_MODES else math.inf
+        gated = GatedFixes(time_s, offset_m) if book.gated is None else book.gated.with_fix(
+            time_s, offset_m, fix_std_m, floor_m)
+        if time_s - gated.since_s >= config.gnss_reset_after_s:
+            # The GNSS has disagreed for long, and smoothly: trust it over a filter that has drifted.
+            self.ekf.reset_position(x, y, fix_std_m)
             self.counters[InputEvent.GNSS_RESET] += 1
-            self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, first_gated_time_s=None)
+            self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None)
+        else:
+            self._book = _replace(book, gated=gated)
 
     def _fuse_gnss_motion(self, time_s: float, fix: _Fix) -> None:
         """The receiver's heading, and without odometry its speed and course (a receiver alone)."""
@@ -318,7 +329,7 @@ class Geolocator:
         self.ekf.initialise(time_s, x0, P0)
         self.counters[InputEvent.FIX_FUSED] += 1
         self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, pending_fix=None,
-                              heading_known=heading_rad is not None, first_gated_time_s=None)
+                              heading_known=heading_rad is not None, gated=None)
 
     def _apply_odometry(self, time_s: float, sample: OdometrySample) -> None:
         self._book = _replace(self._book, last_speed_mps=sample.speed_mps, steering_angle_rad=sample.steering_angle_rad,

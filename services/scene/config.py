@@ -162,6 +162,10 @@ class TrustConfig(BaseModel):
     jump_tolerance_m: float = Field(default=3.0, gt=0.0)
     # Free-space test: the claim is free if beams pass this far beyond it.
     free_margin_m: float = Field(default=1.0, gt=0.0)
+    # Within this range a radar or camera object the LiDAR looks through (its beams reach past it) and does not
+    # see itself is no MIO: a false track, or a car's readings split off beside it (the LiDAR's reach on dark
+    # cars, an engineering estimate, bounds where its silence means anything).
+    lidar_veto_range_m: float = Field(default=60.0, ge=0.0)
 
 
 class TrackingConfig(BaseModel):

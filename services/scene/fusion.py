@@ -9,7 +9,9 @@ Nothing here reads a clock or draws a random number, so the same calls give the 
 
 from __future__ import annotations
 
-from coopdrive.v1 import ego_pb2, scene_pb2, sensors_pb2
+import numpy as np
+
+from coopdrive.v1 import ego_pb2, header_pb2, scene_pb2, sensors_pb2
 
 from .config import SceneFusionConfig
 from .ego_lane import EgoLaneFusion
@@ -25,6 +27,7 @@ from .frontends import (
 from .lidar import LidarClusterer
 from .measurement import EgoPose, Measurement, V2vObservation
 from .scene_builder import FrenetOf, LaneOf, ObjectView, SceneBuilder
+from .track import Track
 from .tracker import Tracker
 from .trust import V2vTrust
 
@@ -151,10 +154,23 @@ class SceneFusion:
                 # alone gives a bearing but a poor range: its object, often a car our radar already holds
                 # a few metres off, must not take the MIO from that car and brake us for a phantom.
                 eligible = False
+            elif self._lidar_sees_through(track, time_s):
+                # Radar clutter, or readings of a car split off into a track beside it: no MIO to brake for.
+                eligible = False
             else:
                 eligible = not ghost
             views.append(ObjectView(track, eligible, ghost, self.trust.trust(station)))
         return views
+
+    def _lidar_sees_through(self, track: Track, time_s: float) -> bool:
+        """Near enough for the LiDAR to see it, not seen by it, and its beams reach past where it would be."""
+        if track.props.position.has_source(header_pb2.SENSOR_SOURCE_LIDAR, time_s):
+            return False
+        position_m = Track.position_of(track.predicted(time_s)[0])
+        ego = self._ego.at(time_s) if self._ego is not None else None
+        if ego is None or np.hypot(*(position_m - ego.position_m)) > self.config.trust.lidar_veto_range_m:
+            return False
+        return self._free_space.lidar_free(position_m, time_s) is True
 
     def counters(self) -> dict[str, int]:
         """Diagnostics: tracker events and rejected inputs by reason."""

@@ -1,4 +1,5 @@
-"""A front camera: detected vehicles (unoccluded, in view) and the ego lane's markings from the map."""
+"""A front camera: detected vehicles (unoccluded, in view; some missed, some misclassified, widths noisy) and
+the ego lane's markings from the map."""
 from __future__ import annotations
 
 import math
@@ -19,6 +20,10 @@ LANE_SAMPLES = 12
 CUBIC = 3
 # Detection confidence falls linearly from 1 at the camera to this value at max range.
 FAR_CONFIDENCE = 0.5
+# What a misclassified detection may be taken for.
+CLASSES = (sensors_pb2.OBJECT_CLASS_CAR, sensors_pb2.OBJECT_CLASS_TRUCK, sensors_pb2.OBJECT_CLASS_EMERGENCY_VEHICLE,
+           sensors_pb2.OBJECT_CLASS_OBSTACLE)
+MIN_WIDTH_M = 0.3
 
 
 class CameraSensor:
@@ -69,9 +74,20 @@ class CameraSensor:
             x_m, y_m = point + cfg.position_sigma_m * self.rng.standard_normal(2)
             frame.detections.add(
                 detection_id=self._detection_ids.setdefault(other.vehicle_id, len(self._detection_ids) + 1),
-                object_class=world.object_class(other), x_m=x_m, y_m=y_m, width_m=other.width_m,
+                object_class=self._classify(world.object_class(other)), x_m=x_m, y_m=y_m,
+                width_m=self._width_m(other.width_m),
                 confidence=1.0 - (1.0 - FAR_CONFIDENCE) * distance_m / cfg.max_range_m,
             )
+
+    def _classify(self, true_class: int) -> int:
+        probability = self.config.misclassification_probability
+        if probability <= 0.0 or self.rng.random() >= probability:
+            return true_class
+        return int(self.rng.choice([c for c in CLASSES if c != true_class]))
+
+    def _width_m(self, true_width_m: float) -> float:
+        sigma_m = self.config.width_sigma_m
+        return max(true_width_m + sigma_m * self.rng.standard_normal(), MIN_WIDTH_M) if sigma_m > 0 else true_width_m
 
     def _lane_markings(self, world: WorldView, frame: sensors_pb2.CameraFrame) -> None:
         if not self.lanes:

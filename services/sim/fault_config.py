@@ -59,6 +59,25 @@ class GnssJump(_Fault):
         return share * self.east_m, share * self.north_m
 
 
+class GnssMultipath(_Fault):
+    """Multipath beside a wall or a truck: the fixes jump by about jump_m in a new random direction every hop_s,
+    the receiver still claiming its mode and accuracy (unlike gnss_jump, one fixed offset)."""
+
+    type: Literal["gnss_multipath"]
+    vehicle_id: str
+    jump_m: float = Field(default=3.0, gt=0)
+    hop_s: float = Field(default=1.0, gt=0)
+
+
+class RadarClutter(_Fault):
+    """The vehicle's radar reports this many false tracks per scan (stationary reflectors: a gantry, guardrail
+    posts, a tunnel entrance), each for one scan, anywhere in its field of view."""
+
+    type: Literal["radar_clutter"]
+    vehicle_id: str
+    false_alarms_per_scan: float = Field(default=5.0, ge=0)
+
+
 class FixDowngrade(_Fault):
     type: Literal["fix_downgrade"]
     vehicle_id: str
@@ -171,6 +190,6 @@ class TicketExpired(_Fault):
     vehicle_id: str
 
 
-Fault = Annotated[Union[GnssOutage, GnssJump, FixDowngrade, V2vLoss, V2vCorruption, SensorDropout, CanErrorBurst,
-                        PartnerSilent, IclcmDrop, GhostVehicle, PositionOffset, ServiceCrash, TicketExpired],
+Fault = Annotated[Union[GnssOutage, GnssJump, GnssMultipath, RadarClutter, FixDowngrade, V2vLoss, V2vCorruption,
+                        SensorDropout, CanErrorBurst, PartnerSilent, IclcmDrop, GhostVehicle, PositionOffset, ServiceCrash, TicketExpired],
                  Field(discriminator="type")]

@@ -8,9 +8,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Mapping, Sequence
 
-from coopdrive.services.sim.fault_config import (CanErrorBurst, Fault, FixDowngrade, GnssJump, GnssOutage, IclcmDrop,
-                                                 PartnerSilent, SensorDropout, SensorName, ServiceCrash,
-                                                 TicketExpired, V2vCorruption, V2vLoss)
+from coopdrive.services.sim.fault_config import (CanErrorBurst, Fault, FixDowngrade, GnssJump, GnssMultipath,
+                                                 GnssOutage, IclcmDrop, PartnerSilent, RadarClutter, SensorDropout,
+                                                 SensorName, ServiceCrash, TicketExpired, V2vCorruption, V2vLoss)
 from coopdrive.services.sim.radio_channel import RadioChannel
 from coopdrive.services.sim.sensor_suite import SensorSuite
 
@@ -55,6 +55,10 @@ class FaultSchedule:
         jumps = [f for f in mine if isinstance(f, GnssJump)]
         offsets = [f.offset_at(now_s) for f in jumps]
         suite.gnss.set_offset(sum(east for east, _ in offsets), sum(north for _, north in offsets))
+        multipath = next((f for f in mine if isinstance(f, GnssMultipath)), None)
+        suite.gnss.set_multipath(multipath.jump_m if multipath else None, multipath.hop_s if multipath else 1.0)
+        clutter = [f.false_alarms_per_scan for f in mine if isinstance(f, RadarClutter)]
+        suite.radar.set_clutter(max(clutter) if clutter else None)
         downgrades = sorted((f for f in mine if isinstance(f, FixDowngrade)), key=lambda f: f.start_s)
         suite.gnss.set_fix_mode(downgrades[-1].fix_mode if downgrades else suite.gnss.config.fix_mode)
         for name in SensorName:

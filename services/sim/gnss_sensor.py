@@ -3,11 +3,13 @@ from __future__ import annotations
 
 import datetime as dt
 import math
+import zlib
 from dataclasses import dataclass
-from typing import Callable
+from typing import Callable, Sequence
 
 import numpy as np
 
+from coopdrive.services.sim.gnss_error import GaussMarkovError, GnssEpisodes, jump_offset_m
 from coopdrive.services.sim.nmea_writer import GgaQuality, NmeaFix, NmeaWriter
 from coopdrive.services.sim.sensor_config import FixModeName, GnssConfig
 from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
@@ -28,6 +30,8 @@ TYPICAL_HDOP = 0.9
 DIFFERENTIAL_AGE_S = 1.0
 
 SENDER = "sim"
+# The gnss_multipath fault's jumps come from their own generator, so that a fault does not shift the noise.
+MULTIPATH_FAULT_SEED = 0x6E55
 
 ToGeodetic = Callable[[float, float, float], tuple[float, float, float]]
 
@@ -77,8 +81,13 @@ class GnssSensor:
         self.fix_mode = config.fix_mode.proto
         self.outage = False
         self.offset_east_m, self.offset_north_m = 0.0, 0.0
-        self._error_enu_m = np.zeros(3)
-        self._last_sample_s: float | None = None
+        self._error = GaussMarkovError(rng, config.error_correlation_time_s)
+        self.episodes = GnssEpisodes(config, rng)
+        self._near_obstacle = False
+        self._fault_multipath: tuple[float, float] | None = None
+        self._fault_offset_m = (0.0, 0.0)
+        self._fault_next_hop_s = 0.0
+        self._fault_rng = np.random.default_rng([MULTIPATH_FAULT_SEED, zlib.crc32(vehicle_id.encode())])
         self.vehicle_id = vehicle_id
         self._sequence = 0
 
@@ -98,11 +107,28 @@ class GnssSensor:
         """Fault hook (gnss_jump): the fixes are off by this much (multipath) until set back to zero."""
         self.offset_east_m, self.offset_north_m = east_m, north_m
 
+    def set_multipath(self, jump_m: float | None, hop_s: float = 1.0) -> None:
+        """Fault hook (gnss_multipath): the fixes jump by about jump_m in a new direction every hop_s, the
+        receiver still claiming its mode; None ends it."""
+        if jump_m is None:
+            self._fault_multipath, self._fault_offset_m = None, (0.0, 0.0)
+        elif self._fault_multipath != (jump_m, hop_s):
+            self._fault_multipath, self._fault_next_hop_s = (jump_m, hop_s), -math.inf
+
     @property
     def effective_fix_mode(self) -> int:
-        return gnss_pb2.FIX_MODE_NO_FIX if self.outage else self.fix_mode
+        if self.outage or self.episodes.outage:
+            return gnss_pb2.FIX_MODE_NO_FIX
+        return self.episodes.mode(self.fix_mode)
 
-    def poll(self, now_s: float, ego: sim_pb2.VehicleTruth) -> list[GnssOutput]:
+    def poll(self, now_s: float, ego: sim_pb2.VehicleTruth,
+             obstacles: Sequence[tuple[sim_pb2.VehicleTruth, float]] = ()) -> list[GnssOutput]:
+        """obstacles: the other vehicles with their heights; one taller than the antenna within the configured
+        range makes multipath and outages likelier."""
+        cfg = self.config
+        self._near_obstacle = any(
+            height_m > cfg.antenna_height_m and math.hypot(o.x_m - ego.x_m, o.y_m - ego.y_m) < cfg.obstacle_range_m
+            for o, height_m in obstacles)
         outputs = []
         for sample_s, delivery_s, (fix, sentences, x_m, y_m) in self.timing.poll(
                 now_s, lambda sample_s: self._measure(sample_s, ego)):
@@ -112,28 +138,30 @@ class GnssSensor:
             outputs.append(GnssOutput(sample_s, delivery_s, fix, sentences, x_m, y_m, message))
         return outputs
 
-    def _update_error(self, sample_s: float, sigma_m: np.ndarray) -> np.ndarray:
-        tau_s = self.config.error_correlation_time_s
-        if tau_s > 0.0 and self._last_sample_s is not None:
-            phi = math.exp(-(sample_s - self._last_sample_s) / tau_s)
-        else:
-            phi = 0.0
-        self._last_sample_s = sample_s
-        # First-order Gauss-Markov: stationary standard deviation sigma whatever the correlation time.
-        self._error_enu_m = phi * self._error_enu_m + math.sqrt(1.0 - phi * phi) * sigma_m * self.rng.standard_normal(3)
-        return self._error_enu_m
+    def _multipath_offset_m(self, sample_s: float) -> tuple[float, float]:
+        if self._fault_multipath is not None:
+            jump_m, hop_s = self._fault_multipath
+            if sample_s >= self._fault_next_hop_s:
+                self._fault_offset_m = jump_offset_m(self._fault_rng, jump_m)
+                self._fault_next_hop_s = sample_s + hop_s
+        east_m, north_m = self.episodes.offset_m
+        return (self.offset_east_m + east_m + self._fault_offset_m[0],
+                self.offset_north_m + north_m + self._fault_offset_m[1])
 
     def _measure(self, sample_s: float, ego: sim_pb2.VehicleTruth) -> tuple:
         cfg = self.config
+        self.episodes.update(sample_s, self._near_obstacle)
         mode = self.effective_fix_mode
         sigma_h = axis_sigma_m(mode) * cfg.accuracy_scale
         sigma = np.array([sigma_h, sigma_h, sigma_h * VERTICAL_TO_HORIZONTAL_RATIO])
-        error = self._update_error(sample_s, sigma)
+        # First-order Gauss-Markov: stationary standard deviation sigma whatever the correlation time.
+        error = sigma * self._error.sample(sample_s)
+        offset_east_m, offset_north_m = self._multipath_offset_m(sample_s)
         cos_h, sin_h = math.cos(ego.heading_rad), math.sin(ego.heading_rad)
         true_x = ego.x_m + cfg.antenna_x_m * cos_h - cfg.antenna_y_m * sin_h
         true_y = ego.y_m + cfg.antenna_x_m * sin_h + cfg.antenna_y_m * cos_h
-        x_m = true_x + error[0] + self.offset_east_m
-        y_m = true_y + error[1] + self.offset_north_m
+        x_m = true_x + error[0] + offset_east_m
+        y_m = true_y + error[1] + offset_north_m
         z_m = cfg.antenna_height_m + error[2]
         lat_deg, lon_deg, alt_m = self.to_geodetic(x_m, y_m, z_m)
         speed = max(ego.speed_mps + cfg.speed_sigma_mps * self.rng.standard_normal(), 0.0)

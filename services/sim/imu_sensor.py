@@ -17,6 +17,14 @@ class ImuSensor:
         self.vehicle_id = vehicle_id
         self.timing: SensorTiming[vehicle_pb2.ImuSample] = SensorTiming(config.timing, rng)
         self._sequence = 0
+        # This unit's biases: the configured ones plus a turn-on bias drawn once (not at all when zero, so that an
+        # ideal unit's noise sequence is unchanged).
+        self.accel_bias_mps2 = config.accel_bias_mps2 + self._turn_on_bias(config.accel_turn_on_bias_sigma_mps2)
+        self.yaw_rate_bias_radps = config.yaw_rate_bias_radps + self._turn_on_bias(
+            config.yaw_rate_turn_on_bias_sigma_radps)
+
+    def _turn_on_bias(self, sigma: float) -> float:
+        return sigma * float(self.rng.standard_normal()) if sigma > 0.0 else 0.0
 
     def set_dropout(self, active: bool) -> None:
         self.timing.forced_dropout = active
@@ -34,7 +42,7 @@ class ImuSensor:
         noise = self.rng.standard_normal(3)
         # At the rear axle of a kinematic bicycle the lateral acceleration is centripetal only: v * yaw rate.
         return vehicle_pb2.ImuSample(
-            accel_longitudinal_mps2=ego.accel_mps2 + cfg.accel_bias_mps2 + cfg.accel_sigma_mps2 * noise[0],
+            accel_longitudinal_mps2=ego.accel_mps2 + self.accel_bias_mps2 + cfg.accel_sigma_mps2 * noise[0],
             accel_lateral_mps2=ego.speed_mps * ego.yaw_rate_radps + cfg.accel_sigma_mps2 * noise[1],
-            yaw_rate_radps=ego.yaw_rate_radps + cfg.yaw_rate_bias_radps + cfg.yaw_rate_sigma_radps * noise[2],
+            yaw_rate_radps=ego.yaw_rate_radps + self.yaw_rate_bias_radps + cfg.yaw_rate_sigma_radps * noise[2],
         )

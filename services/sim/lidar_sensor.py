@@ -1,4 +1,5 @@
-"""A multi-layer scanning LiDAR: per layer, the nearest return of each beam on vehicles or the ground."""
+"""A multi-layer scanning LiDAR: per layer, the nearest return of each beam on vehicles or the ground, some
+beams lost (dropouts) and some echoing off rain or spray (clutter)."""
 from __future__ import annotations
 
 import math
@@ -41,6 +42,15 @@ class LidarSensor:
             outputs.append(message)
         return outputs
 
+    def _with_clutter(self, ranges: np.ndarray) -> np.ndarray:
+        """Beams that echo off rain, spray or dust somewhere short of what they would have hit."""
+        probability = self.config.clutter_probability
+        if probability <= 0.0:
+            return ranges
+        cluttered = self.rng.random(ranges.size) < probability
+        reach_m = np.minimum(ranges, self.config.max_range_m)
+        return np.where(cluttered, self.rng.random(ranges.size) * reach_m, ranges)
+
     def _measure(self, world: WorldView) -> sensors_pb2.LidarScan:
         cfg = self.config
         mount = (cfg.mount_x_m, cfg.mount_y_m)
@@ -58,6 +68,7 @@ class LidarSensor:
             if elevation_rad < 0.0:
                 ground_m = cfg.mount_height_m / math.tan(-elevation_rad)
                 ranges = np.minimum(ranges, ground_m)
+            ranges = self._with_clutter(ranges)
             keep = (ranges <= cfg.max_range_m) & (self.rng.random(ranges.size) >= cfg.point_dropout_probability)
             ranges = ranges[keep] + cfg.range_sigma_m * self.rng.standard_normal(int(keep.sum()))
             azimuths = self.beam_azimuths_rad[keep]

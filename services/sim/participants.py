@@ -10,6 +10,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Sequence
 
+from coopdrive.services.sim.cam_noise import CamNoise
 from coopdrive.services.sim.geometry import rear_overhang_m
 from coopdrive.services.sim.profiles import VehicleProfile
 from coopdrive.services.sim.road_geometry import LaneGeometry
@@ -92,6 +93,8 @@ class ScriptedVehicle:
         self.lateral_offset_m = lateral_offset_m
         self.ignores_protocol = ignores_protocol
         self._cam_gate = RateGate(cam_rate_hz, start_s)
+        # The receiver whose solution the CAMs carry (None: the exact truth, as in the ideal world).
+        self.cam_noise: CamNoise | None = None
         self.lane_index = lane_index
         self.station_m = station_m
         self.time_s = start_s
@@ -223,7 +226,10 @@ class ScriptedVehicle:
     def messages_due(self, now_s: float) -> list[MessageIntent]:
         if not self._cam_gate.due(now_s):
             return []
-        return [MessageIntent(IntentKind.CAM, self.vehicle_id, self.station_id, now_s, self.cam_fields())]
+        fields = self.cam_fields()
+        if self.cam_noise is not None:
+            fields = self.cam_noise.apply(fields, now_s)
+        return [MessageIntent(IntentKind.CAM, self.vehicle_id, self.station_id, now_s, fields)]
 
 
 class EmergencyVehicle(ScriptedVehicle):

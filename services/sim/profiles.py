@@ -5,6 +5,19 @@ import enum
 
 from pydantic import BaseModel, ConfigDict, Field
 
+STANDARD_GRAVITY_MPS2 = 9.80665
+AIR_DENSITY_KGPM3 = 1.2
+
+
+def rolling_resistance_mps2(rolling_coefficient: float) -> float:
+    """Rolling resistance as a deceleration: c_r g."""
+    return rolling_coefficient * STANDARD_GRAVITY_MPS2
+
+
+def drag_1pm(drag_area_m2: float, mass_kg: float) -> float:
+    """Aerodynamic drag as a deceleration per speed squared: rho c_d A / (2 m)."""
+    return 0.5 * AIR_DENSITY_KGPM3 * drag_area_m2 / mass_kg
+
 
 class ProfileName(enum.Enum):
     PASSENGER_CAR = "passenger_car"
@@ -46,6 +59,8 @@ PASSENGER_CAR = VehicleProfile(
     accel_time_constant_s=0.5, accel_dead_time_s=0.1, max_accel_mps2=2.0, max_decel_mps2=8.0,
     max_jerk_mps3=10.0, steer_time_constant_s=0.1, steer_dead_time_s=0.05, max_steer_rad=0.55,
     max_steer_rate_radps=0.6, max_speed_mps=50.0, max_brake_pressure_bar=150.0,
+    # A 1500 kg car, c_r 0.013 and c_d A 0.65 m2: about 0.25 m/s2 at 80 km/h.
+    rolling_resistance_mps2=rolling_resistance_mps2(0.013), drag_1pm=drag_1pm(0.65, 1500.0),
 )
 
 # A loaded tractor-trailer: slow engine and air brakes (lag 0.8 s, dead time 0.3 s), 0.8 m/s2 at full
@@ -55,6 +70,8 @@ TRUCK = VehicleProfile(
     accel_time_constant_s=0.8, accel_dead_time_s=0.3, max_accel_mps2=0.8, max_decel_mps2=5.0,
     max_jerk_mps3=4.0, steer_time_constant_s=0.2, steer_dead_time_s=0.1, max_steer_rad=0.6,
     max_steer_rate_radps=0.3, max_speed_mps=25.0, max_brake_pressure_bar=8.0,
+    # An 18 t tractor-trailer, c_r 0.007 and c_d A 5.5 m2.
+    rolling_resistance_mps2=rolling_resistance_mps2(0.007), drag_1pm=drag_1pm(5.5, 18000.0),
 )
 
 PROFILES: dict[ProfileName, VehicleProfile] = {ProfileName.PASSENGER_CAR: PASSENGER_CAR, ProfileName.TRUCK: TRUCK}

@@ -1,4 +1,5 @@
-"""A long-range radar: tracked targets in a narrow field of view with range, azimuth and range-rate noise."""
+"""A long-range radar: tracked targets in a narrow field of view with range, azimuth and range-rate noise and
+bias, missed targets, false tracks, unresolved neighbours merged into one track, and track ids that switch."""
 from __future__ import annotations
 
 import math
@@ -13,6 +14,10 @@ from coopdrive.services.sim.world_view import WorldView
 from coopdrive.v1 import sensors_pb2
 
 SENDER = "sim"
+# A width estimate never falls below this (a radar sees at least a reflector's extent).
+MIN_RADAR_WIDTH_M = 0.5
+# False tracks are reported from here out to the maximum range.
+MIN_FALSE_ALARM_RANGE_M = 5.0
 
 
 class RadarSensor:
@@ -26,10 +31,17 @@ class RadarSensor:
         self.vehicle_id = vehicle_id
         self.timing: SensorTiming[sensors_pb2.RadarTracks] = SensorTiming(config.timing, rng)
         self._track_ids: dict[str, int] = {}
+        self._next_track_id = 1
         self._sequence = 0
+        # Fault hook (radar_clutter): false tracks per scan instead of the configured rate.
+        self.clutter_per_scan: float | None = None
 
     def set_dropout(self, active: bool) -> None:
         self.timing.forced_dropout = active
+
+    def set_clutter(self, false_alarms_per_scan: float | None) -> None:
+        """Fault hook (radar_clutter): this many false tracks per scan; None goes back to the configured rate."""
+        self.clutter_per_scan = false_alarms_per_scan
 
     def poll(self, now_s: float, world: WorldView) -> list[sensors_pb2.RadarTracks]:
         outputs = []
@@ -39,9 +51,28 @@ class RadarSensor:
             outputs.append(message)
         return outputs
 
+    def _new_track_id(self) -> int:
+        self._next_track_id += 1
+        return self._next_track_id - 1
+
     def _track_id(self, vehicle_id: str) -> int:
-        # Stable ids per target, as a radar's tracker keeps them while the target stays in view.
-        return self._track_ids.setdefault(vehicle_id, len(self._track_ids) + 1)
+        # Ids per target as the radar's tracker keeps them, now and then lost and started afresh.
+        p_switch = self.config.track_id_switch_probability
+        if vehicle_id not in self._track_ids or (p_switch > 0.0 and self.rng.random() < p_switch):
+            self._track_ids[vehicle_id] = self._new_track_id()
+        return self._track_ids[vehicle_id]
+
+    def _resolved(self, candidates: list) -> list:
+        """The candidates (nearest first) without those the radar cannot tell from a nearer one."""
+        cfg = self.config
+        kept: list = []
+        for candidate in candidates:
+            point = candidate[2]
+            range_m, azimuth = float(np.hypot(*point)), math.atan2(point[1], point[0])
+            if not any(abs(range_m - r) < cfg.range_resolution_m and abs(azimuth - a) < cfg.azimuth_resolution_rad
+                       for r, a in (k[3] for k in kept)):
+                kept.append((*candidate, (range_m, azimuth)))
+        return kept
 
     def _measure(self, world: WorldView) -> sensors_pb2.RadarTracks:
         cfg = self.config
@@ -57,11 +88,9 @@ class RadarSensor:
             candidates.append((distance_m, other, point))
         candidates.sort(key=lambda c: c[0])
         tracks = sensors_pb2.RadarTracks()
-        for distance_m, other, point in candidates[:cfg.max_tracks]:
+        for distance_m, other, point, (range_m, azimuth_rad) in self._resolved(candidates)[:cfg.max_tracks]:
             if self.rng.random() < cfg.miss_probability:
                 continue
-            range_m = float(np.hypot(*point))
-            azimuth_rad = math.atan2(point[1], point[0])
             los = point / max(range_m, 1e-9)
             rel_heading = other.heading_rad - ego.heading_rad
             # Target velocity relative to the ego frame, at the reflection point (ego rotation included).
@@ -70,10 +99,30 @@ class RadarSensor:
             range_rate = rel_vx * los[0] + rel_vy * los[1]
             tracks.tracks.add(
                 track_id=self._track_id(other.vehicle_id),
-                range_m=max(range_m + cfg.range_sigma_m * self.rng.standard_normal(), 0.0),
-                azimuth_rad=azimuth_rad + cfg.azimuth_sigma_rad * self.rng.standard_normal(),
+                range_m=max(range_m + cfg.range_bias_m + cfg.range_sigma_m * self.rng.standard_normal(), 0.0),
+                azimuth_rad=azimuth_rad + cfg.azimuth_bias_rad + cfg.azimuth_sigma_rad * self.rng.standard_normal(),
                 range_rate_mps=range_rate + cfg.range_rate_sigma_mps * self.rng.standard_normal(),
                 accel_mps2=other.accel_mps2 * math.cos(rel_heading),
-                width_m=other.width_m,
+                width_m=self._width_m(other.width_m),
             )
+        self._add_false_alarms(tracks, ego.speed_mps)
         return tracks
+
+    def _width_m(self, true_width_m: float) -> float:
+        sigma_m = self.config.width_sigma_m
+        if sigma_m <= 0.0:
+            return true_width_m
+        return max(true_width_m + sigma_m * self.rng.standard_normal(), MIN_RADAR_WIDTH_M)
+
+    def _add_false_alarms(self, tracks: sensors_pb2.RadarTracks, ego_speed_mps: float) -> None:
+        """Stationary reflectors the radar takes for targets for one scan."""
+        cfg = self.config
+        rate = cfg.false_alarms_per_scan if self.clutter_per_scan is None else self.clutter_per_scan
+        if rate <= 0.0:
+            return
+        for _ in range(int(self.rng.poisson(rate))):
+            range_m = self.rng.uniform(MIN_FALSE_ALARM_RANGE_M, cfg.max_range_m)
+            azimuth_rad = self.rng.uniform(-cfg.half_fov_rad, cfg.half_fov_rad)
+            tracks.tracks.add(track_id=self._new_track_id(), range_m=range_m, azimuth_rad=azimuth_rad,
+                              range_rate_mps=-ego_speed_mps * math.cos(azimuth_rad), accel_mps2=0.0,
+                              width_m=MIN_RADAR_WIDTH_M)

@@ -4,6 +4,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Protocol, Sequence
 
+from coopdrive.services.sim.cam_noise import CamNoise
 from coopdrive.services.sim.fault_schedule import FaultSchedule
 from coopdrive.services.sim.participants import EmergencyVehicle, ScriptedVehicle
 from coopdrive.services.sim.profiles import PROFILES
@@ -15,8 +16,11 @@ from coopdrive.services.sim.sensor_suite import SensorSuite
 from coopdrive.services.sim.sensor_timing import sensor_rng
 from coopdrive.services.sim.speed_profiles import ConstantSpeed, SpeedProfile
 from coopdrive.services.sim.vehicle_model import VehicleModel, VehicleState
+from coopdrive.services.sim.world_profile import WorldProfile, ideal
 
 CHANNEL_RNG_NAME = "radio_channel"
+# The generator of a scripted vehicle's own GNSS receiver, whose solution its CAMs carry.
+CAM_GNSS_RNG_NAME = "cam_gnss"
 
 
 class RoadMapLike(Protocol):
@@ -68,7 +72,8 @@ def build_scenario(config: ScenarioConfig, road_map: RoadMapLike) -> ScenarioObj
     for vehicle in config.vehicles:
         road_lanes = _road_lanes(road_map, vehicle)
         lanes[vehicle.vehicle_id] = road_lanes
-        profile = PROFILES[vehicle.profile]
+        real = config.world is WorldProfile.REAL
+        profile = PROFILES[vehicle.profile] if real else ideal(PROFILES[vehicle.profile])
         if vehicle.role is VehicleRole.STACK:
             lane = next(lane for lane in road_lanes if lane.lane_index == vehicle.lane)
             x_m, y_m, heading = lane.pose_at(vehicle.station_m, vehicle.lateral_offset_m)
@@ -89,6 +94,9 @@ def build_scenario(config: ScenarioConfig, road_map: RoadMapLike) -> ScenarioObj
                 siren_off_s=siren.off_s if siren else float("inf"))
         else:
             participants[vehicle.vehicle_id] = ScriptedVehicle(**common)
+        if real:
+            participants[vehicle.vehicle_id].cam_noise = CamNoise(
+                config.sensors_of(vehicle).gnss, sensor_rng(config.seed, vehicle.vehicle_id, CAM_GNSS_RNG_NAME))
     units = [RoadsideUnit(u.unit_id, u.station_id, u.x_m, u.y_m, u.events, u.rate_hz) for u in config.roadside_units]
     channel = RadioChannel(config.channel, sensor_rng(config.seed, "", CHANNEL_RNG_NAME))
     return ScenarioObjects(config, lanes, models, suites, participants, units, channel, FaultSchedule(config.faults))

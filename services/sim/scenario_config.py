@@ -16,6 +16,7 @@ from coopdrive.services.sim.profiles import ProfileName
 from coopdrive.services.sim.roadside_unit import RsuEvent
 from coopdrive.services.sim.sensor_config import SensorSuiteConfig
 from coopdrive.services.sim.speed_profiles import LaneChange, SpeedProfile
+from coopdrive.services.sim.world_profile import WorldProfile, ideal
 
 GCDC_2016_FINAL = dt.datetime(2016, 5, 28, 10, 0, 0, tzinfo=dt.timezone.utc)
 # Keys that select a member of a tagged union; pydantic puts their value in error paths.
@@ -124,6 +125,19 @@ class ScenarioConfig(_Strict):
     faults: list[Fault] = []
     engage: EngageMode = EngageMode.AUTONOMOUS
     judging: JudgingConfig = JudgingConfig()
+    # The real world (every sensor's and the radio's error sources, driving resistance, scripted vehicles'
+    # CAMs from their own GNSS) or the ideal one for tests needing exact answers (world_profile.py).
+    world: WorldProfile = WorldProfile.REAL
+
+    @model_validator(mode="after")
+    def _world_applied(self) -> ScenarioConfig:
+        if self.world is WorldProfile.IDEAL:
+            self.sensors = ideal(self.sensors)
+            self.channel = ideal(self.channel)
+            for vehicle in self.vehicles:
+                if vehicle.sensors is not None:
+                    vehicle.sensors = ideal(vehicle.sensors)
+        return self
 
     @model_validator(mode="after")
     def _references_resolve(self) -> ScenarioConfig:
@@ -145,6 +159,13 @@ class ScenarioConfig(_Strict):
 
     def sensors_of(self, vehicle: VehicleConfig) -> SensorSuiteConfig:
         return vehicle.sensors or self.sensors
+
+    def in_world(self, world: WorldProfile) -> ScenarioConfig:
+        """This scenario in the given world: the ideal one applies to whatever the file did not set itself;
+        asking for the real one keeps the file's own choice."""
+        if world is WorldProfile.REAL or self.world is WorldProfile.IDEAL:
+            return self
+        return self.model_validate({**dict(self), "world": world})
 
 
 def _key_path(loc: tuple[Any, ...], data: Any) -> str:

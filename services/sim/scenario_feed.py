@@ -25,6 +25,7 @@ from coopdrive.services.sim.sender_signing import SenderSigning
 from coopdrive.services.sim.mission_verdict import MissionJudge
 from coopdrive.services.sim.radio_box import RadioBox, RadioPorts
 from coopdrive.services.sim.scenario_config import load_scenario
+from coopdrive.services.sim.world_profile import WorldProfile
 from coopdrive.services.sim.scenario_sim import ScenarioSim, StackCommand
 from coopdrive.services.sim.vehicle_bus_writer import VehicleBusWriter
 from coopdrive.v1 import sim_pb2
@@ -41,7 +42,8 @@ class ScenarioFeed:
         self.service = service
         self.ctx = service.ctx
         # The run's seed (`coopdrive run --seed`) draws the noise, losses and dropouts, not the file's default.
-        config = load_scenario(scenario_file).model_copy(update={"seed": service.config.seed})
+        config = load_scenario(scenario_file).model_copy(update={"seed": service.config.seed}).in_world(
+            WorldProfile(service.config.world_profile))
         self.road_map = RoadMap.load(config.map)
         self.stacks = stacks or [v.vehicle_id for v in config.vehicles if v.role.value == "stack"]
         self.sim = ScenarioSim(config, self.road_map, self.stacks, already_delayed_steps)

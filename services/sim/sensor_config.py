@@ -1,4 +1,9 @@
-"""Configuration of the simulated sensors: noise, rate, latency and dropout, units in field names."""
+"""Configuration of the simulated sensors: noise, rate, latency and dropout, units in field names.
+
+The defaults are the real world: each error source a real device has, at a value taken from a datasheet or a
+published measurement (services/sim/README.md names the source of each). `world_profile.py` holds the ideal
+world (every error source off) that tests needing exact answers ask for with `--world ideal`.
+"""
 from __future__ import annotations
 
 import enum
@@ -44,15 +49,31 @@ class SensorTimingConfig(_Strict):
     latency_s: float = Field(default=0.0, ge=0)
     # Probability that one sample is lost (never delivered).
     dropout_probability: float = Field(default=0.0, ge=0, le=1)
+    # Standard deviation of a half-normal delay added to latency_s (bus arbitration, scheduling); samples still
+    # arrive in the order they were taken.
+    latency_jitter_s: float = Field(default=0.0, ge=0)
 
 
 class GnssConfig(_Strict):
-    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=20.0, latency_s=0.02)
+    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=20.0, latency_s=0.02, latency_jitter_s=0.005)
     fix_mode: FixModeName = FixModeName.RTK_FIXED
     # Multiplies the fix mode's accuracy: 0 gives a perfect receiver, 2 a poor sky view.
     accuracy_scale: float = Field(default=1.0, ge=0)
     # First-order Gauss-Markov correlation of the position error; 0 gives white noise.
-    error_correlation_time_s: float = Field(default=0.0, ge=0)
+    error_correlation_time_s: float = Field(default=60.0, ge=0)
+    # Episodes in which the receiver loses its configured mode (RTK fixed to float or DGPS): mean rate and
+    # mean length, both exponential; an episode falls one mode (DEGRADE_TWO_MODES_SHARE of them two).
+    degradation_rate_per_h: float = Field(default=12.0, ge=0)
+    degradation_mean_duration_s: float = Field(default=8.0, gt=0)
+    # Multipath episodes: the fix jumps by about multipath_jump_m (random direction) while the receiver keeps
+    # its mode. Rare under open sky, frequent beside a vehicle taller than the antenna within obstacle_range_m,
+    # where a share of the episodes is an outage (no fix) instead.
+    multipath_rate_per_h: float = Field(default=2.0, ge=0)
+    multipath_near_obstacle_rate_per_h: float = Field(default=60.0, ge=0)
+    multipath_jump_m: float = Field(default=1.5, ge=0)
+    multipath_mean_duration_s: float = Field(default=2.0, gt=0)
+    obstacle_range_m: float = Field(default=10.0, gt=0)
+    near_obstacle_outage_share: float = Field(default=0.3, ge=0, le=1)
     speed_sigma_mps: float = Field(default=0.03, ge=0)
     course_sigma_deg: float = Field(default=0.2, ge=0)
     talker_id: str = Field(default="GN", min_length=2, max_length=2)
@@ -66,43 +87,61 @@ class GnssConfig(_Strict):
 
 
 class CanStateConfig(_Strict):
-    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=100.0, latency_s=0.005)
+    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=100.0, latency_s=0.005, latency_jitter_s=0.002)
     wheel_speed_sigma_mps: float = Field(default=0.02, ge=0)
     yaw_rate_sigma_radps: float = Field(default=0.002, ge=0)
     steering_sigma_rad: float = Field(default=0.0005, ge=0)
 
 
 class ImuConfig(_Strict):
-    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=100.0, latency_s=0.005)
+    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=100.0, latency_s=0.005, latency_jitter_s=0.002)
     accel_sigma_mps2: float = Field(default=0.05, ge=0)
     yaw_rate_sigma_radps: float = Field(default=0.002, ge=0)
-    # Constant biases of this unit (turn-on bias), as a fusion filter must estimate them.
+    # Constant biases of this unit, as a fusion filter must estimate them: these fixed values plus a turn-on
+    # bias drawn once per unit and run (normal, these standard deviations).
     accel_bias_mps2: float = 0.0
     yaw_rate_bias_radps: float = 0.0
+    accel_turn_on_bias_sigma_mps2: float = Field(default=0.03, ge=0)
+    yaw_rate_turn_on_bias_sigma_radps: float = Field(default=0.001, ge=0)
 
 
 class RadarConfig(_Strict):
-    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=20.0, latency_s=0.05)
+    # ARS 408-21: a cycle of about 72 ms.
+    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=13.9, latency_s=0.05, latency_jitter_s=0.005)
     # None: centre of the front bumper of the vehicle's profile.
     mount_x_m: float | None = None
     mount_y_m: float = 0.0
     max_range_m: float = Field(default=200.0, gt=0)
     half_fov_rad: float = Field(default=math.radians(9.0), gt=0)
     max_tracks: int = Field(default=40, ge=1)
-    range_sigma_m: float = Field(default=0.25, ge=0)
-    azimuth_sigma_rad: float = Field(default=math.radians(0.3), ge=0)
-    range_rate_sigma_mps: float = Field(default=0.12, ge=0)
+    range_sigma_m: float = Field(default=0.2, ge=0)
+    azimuth_sigma_rad: float = Field(default=math.radians(0.2), ge=0)
+    range_rate_sigma_mps: float = Field(default=0.1, ge=0)
+    # Calibration errors of this unit: a range offset and a mounting misalignment, the same every scan.
+    range_bias_m: float = 0.1
+    azimuth_bias_rad: float = math.radians(0.2)
+    # Probability that a visible target is missing from one scan.
+    miss_probability: float = Field(default=0.05, ge=0, le=1)
+    # False tracks (stationary reflectors: signs, guardrail posts, manholes) per scan, Poisson, each lasting
+    # one scan, placed uniformly in range and azimuth within the field of view.
+    false_alarms_per_scan: float = Field(default=0.2, ge=0)
+    # Probability per scan that the radar's tracker gives a target a new track id.
+    track_id_switch_probability: float = Field(default=0.005, ge=0, le=1)
+    # Two targets closer than both resolutions are reported as one track (the nearer's).
+    range_resolution_m: float = Field(default=1.79, ge=0)
+    azimuth_resolution_rad: float = Field(default=math.radians(1.0), ge=0)
+    # The reported width is an estimate: the true width plus this noise (never below MIN_RADAR_WIDTH_M).
+    width_sigma_m: float = Field(default=0.3, ge=0)
 
     def placed(self, profile: VehicleProfile = PASSENGER_CAR) -> RadarConfig:
         if self.mount_x_m is not None:
             return self
         return self.model_copy(update={"mount_x_m": front_bumper_x_m(profile)})
-    # Probability that a visible target is missing from one scan.
-    miss_probability: float = Field(default=0.0, ge=0, le=1)
 
 
 class LidarConfig(_Strict):
-    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=12.5, latency_s=0.03)
+    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=12.5, latency_s=0.03, dropout_probability=0.002,
+                                                    latency_jitter_s=0.005)
     # None: centre of the front bumper of the vehicle's profile.
     mount_x_m: float | None = None
     mount_y_m: float = 0.0
@@ -114,8 +153,10 @@ class LidarConfig(_Strict):
     azimuth_resolution_rad: float = Field(default=math.radians(0.5), gt=0)
     max_range_m: float = Field(default=200.0, gt=0)
     range_sigma_m: float = Field(default=0.05, ge=0)
-    # Probability that one beam returns nothing.
-    point_dropout_probability: float = Field(default=0.0, ge=0, le=1)
+    # Probability that one beam returns nothing (dark paint, glancing incidence, spray).
+    point_dropout_probability: float = Field(default=0.03, ge=0, le=1)
+    # Probability that one beam returns a spurious echo (rain, spray, dust) at a uniform range short of its true one.
+    clutter_probability: float = Field(default=0.002, ge=0, le=1)
 
     def placed(self, profile: VehicleProfile = PASSENGER_CAR) -> LidarConfig:
         if self.mount_x_m is not None:
@@ -124,7 +165,7 @@ class LidarConfig(_Strict):
 
 
 class CameraConfig(_Strict):
-    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=15.0, latency_s=0.08)
+    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=15.0, latency_s=0.08, latency_jitter_s=0.01)
     # None: behind the windscreen, CAMERA_BEHIND_FRONT_BUMPER_M behind the front bumper.
     mount_x_m: float | None = None
     mount_y_m: float = 0.0
@@ -134,7 +175,10 @@ class CameraConfig(_Strict):
     lane_view_range_m: float = Field(default=40.0, gt=0)
     lane_offset_sigma_m: float = Field(default=0.05, ge=0)
     lane_heading_sigma_rad: float = Field(default=0.005, ge=0)
-    miss_probability: float = Field(default=0.0, ge=0, le=1)
+    miss_probability: float = Field(default=0.05, ge=0, le=1)
+    # Probability that a detection carries another class than its own.
+    misclassification_probability: float = Field(default=0.02, ge=0, le=1)
+    width_sigma_m: float = Field(default=0.15, ge=0)
 
     def placed(self, profile: VehicleProfile = PASSENGER_CAR) -> CameraConfig:
         if self.mount_x_m is not None:
@@ -164,7 +208,7 @@ def sonar_mounts_for(profile: VehicleProfile) -> list[SonarMount]:
 
 
 class SonarConfig(_Strict):
-    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=10.0, latency_s=0.02)
+    timing: SensorTimingConfig = SensorTimingConfig(rate_hz=10.0, latency_s=0.02, latency_jitter_s=0.005)
     # None: sonar_mounts_for(the vehicle's profile).
     mounts: list[SonarMount] | None = None
     max_range_m: float = Field(default=4.0, gt=0)

@@ -60,7 +60,7 @@ class SensorSuite:
         """world.ego is this vehicle's truth at now_s; every sensor samples what is due and hands over what
         its latency lets out by now_s."""
         return SensorOutputs(
-            gnss=self.gnss.poll(now_s, world.ego),
+            gnss=self.gnss.poll(now_s, world.ego, [(o, world.height_m(o)) for o in world.others]),
             can_state=self.can_state.poll(now_s, world.ego, brake_pressure_bar, driver),
             imu=self.imu.poll(now_s, world.ego),
             radar=self.radar.poll(now_s, world),

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import heapq
 import itertools
+import math
 import zlib
 from typing import Any, Callable, Generic, TypeVar
 
@@ -16,13 +17,23 @@ Output = TypeVar("Output")
 _SCHEDULE_EPS_S = 1e-9
 
 
+# Mean of a half-normal variable over its scale: sqrt(2 / pi).
+HALF_NORMAL_MEAN = math.sqrt(2.0 / math.pi)
+
+
+def mean_latency_s(config: SensorTimingConfig) -> float:
+    """A sensor's mean delivery latency: the fixed part and its half-normal jitter's mean."""
+    return config.latency_s + HALF_NORMAL_MEAN * config.latency_jitter_s
+
+
 def sensor_rng(seed: int, vehicle_id: str, sensor_name: str) -> np.random.Generator:
     """A generator per (run seed, vehicle, sensor): the same seed gives the same noise, whatever else runs."""
     return np.random.default_rng([seed, zlib.crc32(vehicle_id.encode()), zlib.crc32(sensor_name.encode())])
 
 
 class SensorTiming(Generic[Output]):
-    """Samples at rate_hz, drops samples with dropout_probability, delivers the rest latency_s later.
+    """Samples at rate_hz, drops samples with dropout_probability, delivers the rest latency_s later plus a
+    half-normal jitter (never before an earlier sample: a bus keeps one sender's frames in order).
 
     `poll(now_s, measure)` calls `measure(sample_time_s)` when a sample is due and returns the outputs whose
     delivery time has come, oldest first, as (sample_time_s, delivery_time_s, output).
@@ -36,10 +47,16 @@ class SensorTiming(Generic[Output]):
         self._sample_index = 0
         self._next_sample_s = start_s
         self._pending: list[tuple[float, int, float, Any]] = []
+        self._last_delivery_s = -float("inf")
         self._order = itertools.count()
         self.forced_dropout = False
         self.samples_taken = 0
         self.samples_dropped = 0
+
+    def _jitter_s(self) -> float:
+        # No draw without jitter, so that an ideal sensor's noise sequence is what it was before jitter existed.
+        jitter_s = self.config.latency_jitter_s
+        return abs(jitter_s * self.rng.standard_normal()) if jitter_s > 0.0 else 0.0
 
     def poll(self, now_s: float, measure: Callable[[float], Output | None]) -> list[tuple[float, float, Output]]:
         while self._next_sample_s <= now_s + _SCHEDULE_EPS_S:
@@ -55,7 +72,8 @@ class SensorTiming(Generic[Output]):
                 continue
             output = measure(sample_s)
             if output is not None:
-                delivery_s = sample_s + self.config.latency_s
+                delivery_s = max(sample_s + self.config.latency_s + self._jitter_s(), self._last_delivery_s)
+                self._last_delivery_s = delivery_s
                 heapq.heappush(self._pending, (delivery_s, next(self._order), sample_s, output))
         ready = []
         while self._pending and self._pending[0][0] <= now_s + _SCHEDULE_EPS_S:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import time
 from importlib import resources
+from typing import Literal
 
 from pydantic import Field
 
@@ -41,6 +42,9 @@ class SimConfig(ServiceConfig):
     feedback_delay_steps: int = Field(default=3, ge=1)
     # A scenario file (scenarios/*.yaml or a user's own); "": the packaged scenario named by `scenario`.
     scenario_file: str = ""
+    # `ideal` runs the scenario in the ideal world (world_profile.py) whatever its file says; `real` keeps the
+    # file's own `world` (real unless it says ideal).
+    world_profile: Literal["real", "ideal"] = "real"
     # Its vehicles that run a coopdrive stack; empty: every stack vehicle of the file.
     stacks: list[str] = Field(default_factory=list)
     # vehicle_id -> {"box_port", "stack_port"}: the UDP ports of that vehicle's simulated radio box.

@@ -9,7 +9,7 @@ import math
 from collections import deque
 from dataclasses import dataclass, replace
 
-from coopdrive.services.sim.profiles import VehicleProfile
+from coopdrive.services.sim.profiles import STANDARD_GRAVITY_MPS2, VehicleProfile
 
 DEFAULT_SUBSTEPS = 10
 
@@ -61,6 +61,8 @@ class VehicleModel:
         self.substeps = substeps
         self.substep_s = dt_s / substeps
         self.state = state or VehicleState()
+        # Road grade, positive uphill (the maps are flat: 0 unless a caller sets it).
+        self.grade_rad = 0.0
         self._accel_alpha = lag_alpha(self.substep_s, profile.accel_time_constant_s)
         self._steer_alpha = lag_alpha(self.substep_s, profile.steer_time_constant_s)
         # The actuator starts where it holds the initial acceleration against the driving resistance.
@@ -71,10 +73,12 @@ class VehicleModel:
         self.steer_request_rad = self.state.steer_rad
 
     def resistance_mps2(self, speed_mps: float) -> float:
+        """Driving resistance: rolling and aerodynamic while moving, and the grade's share of gravity."""
         p = self.profile
+        grade_mps2 = STANDARD_GRAVITY_MPS2 * math.sin(self.grade_rad)
         if speed_mps <= 0.0:
-            return 0.0
-        return p.rolling_resistance_mps2 + p.drag_1pm * speed_mps * speed_mps
+            return grade_mps2
+        return p.rolling_resistance_mps2 + p.drag_1pm * speed_mps * speed_mps + grade_mps2
 
     def clip_accel_request(self, accel_mps2: float) -> float:
         return _clip(accel_mps2, -self.profile.max_decel_mps2, self.profile.max_accel_mps2)

@@ -155,6 +155,19 @@ def test_a_condition_lost_while_engaged_forces_a_logged_safe_stop(caplog):
     assert "forced autonomous -> safe_stop" in caplog.text
 
 
+def test_autonomous_rides_out_a_short_loss_of_rtk_while_the_estimate_stays_lane_level_but_never_engages_on_it():
+    manager = ready_manager()
+    assert manager.request(AUTONOMOUS, 0.0).accepted
+    feed(manager, 0.1)
+    manager.set_localisation_mode(ego_pb2.LOCALISATION_MODE_DEAD_RECKONING, 0.1, position_std_m=0.2)
+    assert manager.update(0.1) is None and manager.mode == AUTONOMOUS
+    manager.set_localisation_mode(ego_pb2.LOCALISATION_MODE_GNSS_DEGRADED, 0.1, position_std_m=0.6)
+    assert manager.update(0.1).to_mode == SAFE_STOP
+    fresh = ready_manager()
+    fresh.set_localisation_mode(ego_pb2.LOCALISATION_MODE_GNSS_DEGRADED, 0.0, position_std_m=0.1)
+    assert refused(fresh).condition is Condition.LOCALISATION
+
+
 def test_conditions_that_keep_holding_keep_the_mode():
     manager = ready_manager()
     manager.request(COOPERATIVE, 0.0)

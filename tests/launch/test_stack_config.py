@@ -1,5 +1,6 @@
 """What each stack vehicle of a scenario-file run is told about itself."""
 
+import math
 from pathlib import Path
 
 import pytest
@@ -30,5 +31,16 @@ def test_each_stack_reads_its_nmea_fixes_from_the_simulated_receiver_and_knows_i
              for s in build_specs(RunOptions(scenario="string", stacks=2), tmp_path)}
     geolocation = specs[(next(v for v, service in specs if v != "world"), "geolocation")]
     assert geolocation["gnss_port"].endswith("-gnss0")
-    # The simulated receiver's 20 ms: without it every estimate trailed its car by 0.5 m at 90 km/h.
+    # The simulated receiver's 20 ms and, in the real world, its 5 ms jitter's mean: without them every
+    # estimate trailed its car by 0.5 m at 90 km/h.
+    assert geolocation["gnss_receiver_latency_s"] == pytest.approx(0.02 + math.sqrt(2.0 / math.pi) * 0.005)
+    assert geolocation["geolocator"]["gnss_time_jitter_s"] == pytest.approx(0.005)
+
+
+def test_in_the_ideal_world_the_simulator_runs_it_and_the_stacks_are_told_fixed_latencies(tmp_path):
+    specs = {(s.vehicle_id, s.service): s.config
+             for s in build_specs(RunOptions(scenario="string", stacks=2, world="ideal"), tmp_path)}
+    assert specs[("world", "sim")]["world_profile"] == "ideal"
+    geolocation = specs[(next(v for v, service in specs if v != "world"), "geolocation")]
     assert geolocation["gnss_receiver_latency_s"] == pytest.approx(0.02)
+    assert geolocation["geolocator"]["gnss_time_jitter_s"] == 0.0

@@ -19,6 +19,8 @@ name: sensor_dropout
 description: A stack behind a scripted leader loses its ranging sensors for 2 s, then every source.
 map: a270
 seed: 3
+# Exact answers (one MIO id through the dropout, nothing but the faults' own losses): the ideal world.
+world: ideal
 duration_s: 13
 step_s: 0.02
 vehicles:

@@ -19,7 +19,9 @@ RUN_TIMEOUT_S = 600
 def run_with_fault(folder, fault: str) -> list[scene_pb2.Scene]:
     recording = folder / "run.mcap"
     result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "platoon40", "--stacks", "1",
-                             "--duration", str(DURATION_S), "--fault", fault, "--record", str(recording)],
+                             # Exact answers (the leader is the MIO in every scene): the ideal world.
+                             "--world", "ideal", "--duration", str(DURATION_S), "--fault", fault,
+                             "--record", str(recording)],
                             capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
     assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
     return [r.message for r in read_messages(recording) if isinstance(r.message, scene_pb2.Scene)]

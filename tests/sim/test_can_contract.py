@@ -8,6 +8,7 @@ from coopdrive.services.sim.sensor_config import CanStateConfig, RadarConfig, Se
 from coopdrive.services.sim.sensor_timing import sensor_rng
 from coopdrive.services.sim.world_view import WorldView
 from coopdrive.v1 import sim_pb2
+from coopdrive.services.sim.world_profile import ideal
 
 codec_module = pytest.importorskip("coopdrive.can.codec")
 TIMING = SensorTimingConfig(rate_hz=10.0)
@@ -31,7 +32,7 @@ def test_the_vehicle_can_state_round_trips_through_the_dbc():
 
 
 def test_a_full_radar_scan_fits_the_radar_object_list():
-    sensor = RadarSensor(RadarConfig(timing=TIMING, half_fov_rad=0.5), sensor_rng(2, "ego", "radar"), "ego")
+    sensor = RadarSensor(ideal(RadarConfig(timing=TIMING, half_fov_rad=0.5)), sensor_rng(2, "ego", "radar"), "ego")
     world = WorldView(_truth("ego", 0.0), [_truth(f"v{k}", 15.0 + 4.0 * k, y_m=(k % 5 - 2) * 3.0)
                                            for k in range(45)])
     tracks = sensor.poll(0.0, world)[0]

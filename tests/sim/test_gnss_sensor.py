@@ -13,6 +13,7 @@ from coopdrive.services.sim.nmea_writer import NmeaFix, NmeaWriter, checksum
 from coopdrive.services.sim.sensor_config import FixModeName, GnssConfig, SensorTimingConfig
 from coopdrive.services.sim.sensor_timing import sensor_rng
 from coopdrive.v1 import gnss_pb2, sim_pb2
+from coopdrive.services.sim.world_profile import ideal
 
 ORIGIN = (51.4504, 5.6260, 20.0)  # near the A270, Helmond
 EPOCH = dt.datetime(2016, 5, 28, 10, 0, 0, tzinfo=dt.timezone.utc)
@@ -31,7 +32,7 @@ def _flat_to_geodetic(x_m, y_m, z_m):
 
 def _sensor(to_geodetic=_to_geodetic, **config):
     config.setdefault("timing", SensorTimingConfig(rate_hz=10.0))
-    return GnssSensor(GnssConfig(**config), sensor_rng(7, "ego", "gnss"), to_geodetic, EPOCH)
+    return GnssSensor(ideal(GnssConfig(**config)), sensor_rng(7, "ego", "gnss"), to_geodetic, EPOCH)
 
 
 def _ego(x_m=120.0, y_m=-35.0, heading_rad=0.3, speed_mps=11.0):
@@ -143,8 +144,8 @@ def test_any_position_and_time_written_as_nmea_reads_back_within_a_millimetre(la
 
 
 def test_each_epoch_also_comes_as_a_gnss_fix_message_with_its_header():
-    sensor = GnssSensor(GnssConfig(fix_mode=FixModeName.RTK_FLOAT, timing=SensorTimingConfig(rate_hz=10.0,
-                                                                                              latency_s=0.03)),
+    sensor = GnssSensor(ideal(GnssConfig(fix_mode=FixModeName.RTK_FLOAT, timing=SensorTimingConfig(rate_hz=10.0,
+                                                                                              latency_s=0.03))),
                         sensor_rng(7, "ego", "gnss"), _to_geodetic, EPOCH, vehicle_id="ego")
     outputs = [o for k in range(3) for o in sensor.poll(k * 0.1, _ego())]
     message = outputs[-1].message

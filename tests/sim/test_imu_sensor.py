@@ -5,11 +5,12 @@ from coopdrive.services.sim.imu_sensor import ImuSensor
 from coopdrive.services.sim.sensor_config import ImuConfig, SensorTimingConfig
 from coopdrive.services.sim.sensor_timing import sensor_rng
 from coopdrive.v1 import sim_pb2
+from coopdrive.services.sim.world_profile import ideal
 
 
 def test_imu_noise_and_bias_match_the_configuration_and_lateral_acceleration_is_centripetal():
-    config = ImuConfig(timing=SensorTimingConfig(rate_hz=100.0), accel_sigma_mps2=0.1, yaw_rate_sigma_radps=0.01,
-                       yaw_rate_bias_radps=0.003)
+    config = ideal(ImuConfig(timing=SensorTimingConfig(rate_hz=100.0), accel_sigma_mps2=0.1, yaw_rate_sigma_radps=0.01,
+                       yaw_rate_bias_radps=0.003))
     sensor = ImuSensor(config, sensor_rng(4, "ego", "imu"), "ego")
     ego = sim_pb2.VehicleTruth(vehicle_id="ego", speed_mps=20.0, accel_mps2=-1.0, yaw_rate_radps=0.05)
     samples = [m for k in range(40) for m in sensor.poll(k * 0.1, ego)]

@@ -15,6 +15,7 @@ from coopdrive.services.sim.sensor_timing import sensor_rng
 from coopdrive.services.sim.sonar_sensor import SonarSensor
 from coopdrive.services.sim.world_view import WorldView
 from coopdrive.v1 import sensors_pb2, sim_pb2
+from coopdrive.services.sim.world_profile import ideal
 
 TIMING = SensorTimingConfig(rate_hz=10.0)
 
@@ -55,7 +56,7 @@ def test_can_state_noise_matches_the_configured_sigma():
 
 
 def test_radar_range_noise_matches_config_and_tracks_stay_in_the_narrow_field_of_view():
-    config = RadarConfig(timing=TIMING, range_sigma_m=0.5, range_rate_sigma_mps=0.2)
+    config = ideal(RadarConfig(timing=TIMING, range_sigma_m=0.5, range_rate_sigma_mps=0.2))
     sensor = RadarSensor(config, sensor_rng(2, "ego", "radar"), "ego")
     world = _world(_car("lead", 40.0, speed_mps=18.0), _car("side", 20.0, y_m=-15.0), _car("behind", -30.0))
     ranges, rates = [], []
@@ -71,7 +72,8 @@ def test_radar_range_noise_matches_config_and_tracks_stay_in_the_narrow_field_of
 
 
 def test_radar_reports_at_most_the_configured_number_of_tracks_nearest_first():
-    sensor = RadarSensor(RadarConfig(timing=TIMING, max_tracks=3, range_sigma_m=0.0), sensor_rng(2, "e", "r"), "e")
+    config = ideal(RadarConfig(timing=TIMING, max_tracks=3, range_sigma_m=0.0))
+    sensor = RadarSensor(config, sensor_rng(2, "e", "r"), "e")
     world = _world(*[_car(f"v{k}", 20.0 + 10.0 * k) for k in range(6)])
     tracks = sensor.poll(0.0, world)[0].tracks
     assert len(tracks) == 3
@@ -79,7 +81,7 @@ def test_radar_reports_at_most_the_configured_number_of_tracks_nearest_first():
 
 
 def test_lidar_sees_the_nearest_vehicle_and_not_the_one_it_hides():
-    config = LidarConfig(timing=TIMING, range_sigma_m=0.0, layer_elevations_rad=[0.0])
+    config = ideal(LidarConfig(timing=TIMING, range_sigma_m=0.0, layer_elevations_rad=[0.0]))
     sensor = LidarSensor(config, sensor_rng(3, "ego", "lidar"), "ego")
     scan = sensor.poll(0.0, _world(_car("near", 20.0), _car("hidden", 40.0)))[0]
     layer = scan.layers[0]
@@ -94,7 +96,7 @@ def test_lidar_sees_the_nearest_vehicle_and_not_the_one_it_hides():
 
 
 def test_lidar_lower_layers_return_from_the_ground_and_range_noise_matches_config():
-    config = LidarConfig(timing=TIMING, range_sigma_m=0.1, layer_elevations_rad=[math.radians(-2.0), 0.0])
+    config = ideal(LidarConfig(timing=TIMING, range_sigma_m=0.1, layer_elevations_rad=[math.radians(-2.0), 0.0]))
     sensor = LidarSensor(config, sensor_rng(3, "ego", "lidar"), "ego")
     scan = sensor.poll(0.0, _world(_car("lead", 30.0)))[0]
     ground_m = config.mount_height_m / math.tan(math.radians(2.0))
@@ -109,8 +111,8 @@ def test_lidar_lower_layers_return_from_the_ground_and_range_noise_matches_confi
 
 def test_camera_detects_unoccluded_vehicles_and_fits_the_lane_markings():
     lanes = straight_road(2, width_m=3.5)
-    sensor = CameraSensor(CameraConfig(timing=TIMING, position_sigma_m=0.0, lane_offset_sigma_m=0.0,
-                                       lane_heading_sigma_rad=0.0), sensor_rng(4, "ego", "camera"), "ego", lanes)
+    sensor = CameraSensor(ideal(CameraConfig(timing=TIMING, position_sigma_m=0.0, lane_offset_sigma_m=0.0,
+                                       lane_heading_sigma_rad=0.0)), sensor_rng(4, "ego", "camera"), "ego", lanes)
     ego = _car("ego", 0.0, y_m=0.3)
     frame = sensor.poll(0.0, _world(_car("lead", 25.0), _car("hidden", 45.0), _car("left", 30.0, y_m=3.5),
                                     ego=ego))[0]
@@ -143,7 +145,7 @@ def test_mounts_left_out_are_placed_on_the_vehicles_bumpers():
     ranges = sonar.poll(0.0, _world(_car("close", truck_front_m + 1.5 + 0.9)))[0].ranges
     assert ranges[1].mount_x_m == truck_front_m and ranges[4].mount_x_m == -TRUCK.rear_overhang_m
     assert ranges[1].range_m == pytest.approx(1.5, abs=1e-6)
-    radar = RadarSensor(RadarConfig(timing=TIMING), sensor_rng(2, "t", "radar"), "t", TRUCK)
+    radar = RadarSensor(ideal(RadarConfig(timing=TIMING)), sensor_rng(2, "t", "radar"), "t", TRUCK)
     assert radar.config.mount_x_m == truck_front_m
-    placed = RadarConfig(timing=TIMING, mount_x_m=1.0).placed(TRUCK)
+    placed = ideal(RadarConfig(timing=TIMING, mount_x_m=1.0)).placed(TRUCK)
     assert placed.mount_x_m == 1.0

@@ -18,6 +18,7 @@ from coopdrive.services.sim.truth_series import TruthSeries
 from coopdrive.services.sim.vehicle_model import VehicleModel, VehicleState
 from coopdrive.services.sim.vehicle_truth import vehicle_truth
 from coopdrive.services.sim.world_view import WorldView
+from coopdrive.services.sim.world_profile import ideal
 
 roadmap = pytest.importorskip("coopdrive.roadmap")
 
@@ -31,9 +32,10 @@ def test_a_follower_keeps_its_gap_behind_a_braking_leader_and_everything_is_obse
     leader = ScriptedVehicle("leader", 1, PASSENGER_CAR, lanes, 0, 300.0, PiecewiseSpeed(points=[
         SpeedPoint(time_s=3.0, speed_mps=16.7), SpeedPoint(time_s=8.0, speed_mps=11.1)]))
     x_m, y_m, heading = lanes[0].pose_at(300.0 - 35.0)
-    model = VehicleModel(PASSENGER_CAR, STEP_S, VehicleState(x_m=x_m, y_m=y_m, heading_rad=heading, speed_mps=16.7))
-    suite = SensorSuite(SensorSuiteConfig(), 3, "ego", PASSENGER_CAR, road.to_geodetic, GCDC_2016_FINAL, lanes)
-    channel = RadioChannel(RadioChannelConfig(), np.random.default_rng(3))
+    start = VehicleState(x_m=x_m, y_m=y_m, heading_rad=heading, speed_mps=16.7)
+    model = VehicleModel(ideal(PASSENGER_CAR), STEP_S, start)
+    suite = SensorSuite(ideal(SensorSuiteConfig()), 3, "ego", PASSENGER_CAR, road.to_geodetic, GCDC_2016_FINAL, lanes)
+    channel = RadioChannel(ideal(RadioChannelConfig()), np.random.default_rng(3))
     frames, radar_ranges, gnss_count, cams = [], [], 0, 0
     ego = vehicle_truth("ego", 2, model.state, PASSENGER_CAR, lanes)
     for k in range(1, 241):

@@ -5,12 +5,13 @@ import pytest
 
 from coopdrive.services.sim.channel_config import GilbertElliottConfig, RadioChannelConfig
 from coopdrive.services.sim.radio_channel import RadioChannel, RadioNode
+from coopdrive.services.sim.world_profile import ideal
 
 PACKETS = 10000
 
 
 def _channel(seed=11, **config):
-    return RadioChannel(RadioChannelConfig(**config), np.random.default_rng(seed))
+    return RadioChannel(ideal(RadioChannelConfig(**config)), np.random.default_rng(seed))
 
 
 def _send_many(channel, distance_m, count=PACKETS):
@@ -28,8 +29,8 @@ def test_distance_loss_is_half_at_the_half_loss_distance_and_grows_with_distance
 
 
 def test_gilbert_elliott_loss_rate_and_burst_length_match_the_configuration():
-    burst = GilbertElliottConfig(good_to_bad_probability=0.02, bad_to_good_probability=0.25,
-                                 loss_in_good_probability=0.0, loss_in_bad_probability=0.9)
+    burst = ideal(GilbertElliottConfig(good_to_bad_probability=0.02, bad_to_good_probability=0.25,
+                                 loss_in_good_probability=0.0, loss_in_bad_probability=0.9))
     received = np.array(_send_many(_channel(burst=burst), 10.0, 40000))
     assert 1.0 - received.mean() == pytest.approx(burst.mean_loss_probability, rel=0.08)
     # Losses come in runs: mean run of consecutive losses well above the 1 / (1 - p) of independent losses.
@@ -66,7 +67,7 @@ def test_nothing_is_due_before_its_arrival_time():
 
 
 def test_the_same_seed_gives_the_same_deliveries():
-    burst = GilbertElliottConfig(good_to_bad_probability=0.1, bad_to_good_probability=0.3)
+    burst = ideal(GilbertElliottConfig(good_to_bad_probability=0.1, bad_to_good_probability=0.3))
     a = _send_many(_channel(seed=3, burst=burst), 450.0, 2000)
     b = _send_many(_channel(seed=3, burst=burst), 450.0, 2000)
     assert a == b

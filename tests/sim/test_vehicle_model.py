@@ -2,8 +2,12 @@ import math
 
 import pytest
 
-from coopdrive.services.sim.profiles import PASSENGER_CAR, TRUCK
+from coopdrive.services.sim import profiles
 from coopdrive.services.sim.vehicle_model import VehicleModel, VehicleState, lag_alpha
+from coopdrive.services.sim.world_profile import ideal
+
+# Exact kinematics: the ideal world's vehicles, without driving resistance.
+PASSENGER_CAR, TRUCK = ideal(profiles.PASSENGER_CAR), ideal(profiles.TRUCK)
 
 
 def _unlimited(profile, **changes):
@@ -90,3 +94,26 @@ def test_two_models_with_the_same_inputs_agree_exactly():
     b = VehicleModel(PASSENGER_CAR, 0.02, VehicleState(speed_mps=5.0))
     for k in range(100):
         assert a.step(math.sin(k / 7), 0.01) == b.step(math.sin(k / 7), 0.01)
+
+
+def test_driving_resistance_slows_a_coasting_car_by_rolling_and_drag_and_the_grade_adds_gravity():
+    car = profiles.PASSENGER_CAR
+    model = VehicleModel(car, dt_s=0.02, state=VehicleState(speed_mps=22.2))
+    expected_mps2 = car.rolling_resistance_mps2 + car.drag_1pm * 22.2 ** 2
+    # About 0.25 m/s2 at 80 km/h, as the control's feed-forward expects of a car.
+    assert 0.2 < expected_mps2 < 0.3
+    assert model.resistance_mps2(22.2) == pytest.approx(expected_mps2)
+    model.grade_rad = math.radians(2.0)
+    assert model.resistance_mps2(22.2) == pytest.approx(expected_mps2 + 9.80665 * math.sin(math.radians(2.0)))
+    model.grade_rad = 0.0
+    for _ in range(150):
+        model.step(0.0, 0.0)
+    assert model.state.speed_mps < 22.2 - 0.5
+    assert model.state.accel_mps2 == pytest.approx(-model.resistance_mps2(model.state.speed_mps), abs=0.01)
+
+
+def test_an_ideal_world_vehicle_holds_its_speed_with_no_request():
+    model = VehicleModel(PASSENGER_CAR, dt_s=0.02, state=VehicleState(speed_mps=22.2))
+    for _ in range(50):
+        model.step(0.0, 0.0)
+    assert model.state.speed_mps == pytest.approx(22.2)

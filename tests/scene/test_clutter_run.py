@@ -1,0 +1,52 @@
+"""The radar_clutter fault in the real world (issue 26): for 12 s the radar of the first follower in platoon40
+reports five false tracks per scan (stationary reflectors anywhere in its field of view). None of them may become
+its forward MIO, and it must not brake for them."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from coopdrive.recording.reader import read_messages
+from coopdrive.v1 import scene_pb2
+
+CLUTTER_S = (4.0, 16.0)
+DURATION_S = 18.0
+LEADER_STATION = 5001
+# Behind a leader at a steady 40 km/h the follower's accelerations stay small (0.5 m/s2 at most in a whole run).
+PHANTOM_BRAKING_MPS2 = 1.0
+RUN_TIMEOUT_S = 600
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory) -> tuple[dict, list[scene_pb2.Scene]]:
+    recording = tmp_path_factory.mktemp("clutter") / "run.mcap"
+    fault = (f"{{type: radar_clutter, vehicle_id: p1, false_alarms_per_scan: 5, start_s: {CLUTTER_S[0]},"
+             f" end_s: {CLUTTER_S[1]}}}")
+    result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "platoon40", "--stacks", "1",
+                             "--duration", str(DURATION_S), "--fault", fault, "--record", str(recording), "--json"],
+                            capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
+    assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
+    scenes = [r.message for r in read_messages(recording)
+              if isinstance(r.message, scene_pb2.Scene) and r.message.header.vehicle_id == "p1"]
+    return json.loads(result.stdout), scenes
+
+
+def leader_ids(scene: scene_pb2.Scene) -> set[int]:
+    return {o.object_id for o in scene.objects if o.station_id.confidence > 0 and o.station_id.value == LEADER_STATION}
+
+
+def test_under_radar_clutter_no_false_track_becomes_the_forward_mio(run):
+    _, scenes = run
+    cluttered = [s for s in scenes if CLUTTER_S[0] <= s.header.sample_time_s < CLUTTER_S[1]]
+    assert len(cluttered) > 100
+    phantoms = [s.header.sample_time_s for s in cluttered
+                if s.has_forward_mio and s.forward_mio_id not in leader_ids(s)]
+    assert phantoms == []
+
+
+def test_under_radar_clutter_the_follower_does_not_brake_and_the_run_passes(run):
+    summary, _ = run
+    assert summary["success"] and summary["collisions"] == 0
+    assert summary["max_abs_accel_mps2"] < PHANTOM_BRAKING_MPS2
