@@ -38,7 +38,16 @@ def main(argv: list[str] | None = None) -> int:
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="coopdrive", description="Cooperative automated driving stack")
     commands = parser.add_subparsers(dest="command", required=True)
+    _add_service_commands(commands)  # service, group
+    _add_run_command(commands)
+    _add_judging_commands(commands)  # score, analyze, scenarios, candump
+    add_v2x_commands(commands)
+    add_recording_commands(commands)  # record, import, replay, export
+    add_deploy_commands(commands)  # health, router, foxglove
+    return parser
 
+
+def _add_service_commands(commands) -> None:
     service = commands.add_parser("service", help="run one service (what docker compose runs)")
     service.add_argument("name")
     service.add_argument("--config", type=Path, help="YAML or JSON config of the service")
@@ -64,6 +73,8 @@ def build_parser() -> argparse.ArgumentParser:
     group.add_argument("-v", "--verbose", action="store_true")
     group.set_defaults(handler=_group)
 
+
+def _add_run_command(commands) -> None:
     run = commands.add_parser("run", help="run a scenario with the full stack")
     run.add_argument("scenario", help="a scenario name (see `coopdrive scenarios`), a YAML file, or `all`")
     run.add_argument("--seed", type=int, default=1)
@@ -104,6 +115,8 @@ def build_parser() -> argparse.ArgumentParser:
                      help="write metrics.json, plots and index.html to DIR (records to DIR/run.mcap without --record)")
     run.set_defaults(handler=_run)
 
+
+def _add_judging_commands(commands) -> None:
     score = commands.add_parser("score", help="judge a recording from its ground truth")
     score.add_argument("file", type=Path)
     score.add_argument("--scenario", help="judging settings of this scenario (default: the recorded one)")
@@ -126,17 +139,11 @@ def build_parser() -> argparse.ArgumentParser:
     scenarios = commands.add_parser("scenarios", help="list the scenarios with a one-line description")
     scenarios.set_defaults(handler=_scenarios)
 
-    add_v2x_commands(commands)
-
-    add_recording_commands(commands)  # record, import, replay, export
-    add_deploy_commands(commands)  # health, router, foxglove
-
     candump = commands.add_parser("candump", help="a vehicle's CAN frames from a recording, as a candump .log")
     candump.add_argument("file", type=Path)
     candump.add_argument("--vehicle", default="ego")
     candump.add_argument("--out", type=Path, required=True, metavar="FILE.log")
     candump.set_defaults(handler=_candump)
-    return parser
 
 
 def _service(args) -> int:

@@ -176,19 +176,7 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         finished.set()
 
     previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
-    recorder = None
-    configs = {spec.participant: _full_config(spec) for spec in specs}
-    if options.record is not None:
-        recorder = McapRecorder(options.record, config_metadata(configs))
-        hub.subscribe_key("coopdrive/**", lambda key, message: None if "/_" in key else recorder.write(key, message))
-    bridge = None
-    if options.foxglove_port is not None:
-        from coopdrive.visual import recorded_road_map
-        from coopdrive.visual.live_bridge import FoxgloveBridge
-
-        bridge = FoxgloveBridge(hub, options.foxglove_port, road_map=recorded_road_map(configs))
-    if options.observer is not None:
-        hub.subscribe_key("coopdrive/**", options.observer)
+    recorder, bridge = _watch(options, hub, {spec.participant: _full_config(spec) for spec in specs})
     hub.subscribe(WORLD_ID, "result", on_result)
     simulator = next(spec for spec in specs if spec.service == "sim")
     processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir, clock_step_s=simulator.config["step_s"])
@@ -200,14 +188,7 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         if options.gateway_port is not None:
             watched = next(spec.vehicle_id for spec in specs if spec.vehicle_id != WORLD_ID)
             processes.start(ServiceSpec("gateway", watched, {"port": options.gateway_port}))
-        while not finished.wait(0.2):
-            crashed = {name: code for name, code in processes.exited().items()
-                       if code != 0 and not name.endswith("/gateway")}
-            if "world/sim" in processes.exited():
-                finished.wait(RESULT_GRACE_S)
-                break
-            if crashed and len(crashed) == len(processes.processes):
-                raise RunAborted(f"every service exited: {crashed}")
+        _wait_for_the_end(processes, finished)
     finally:
         processes.stop_all()
         shutil.rmtree(run_dir, ignore_errors=True)
@@ -225,6 +206,34 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
                                    wall_time_s=time.monotonic() - started)
         return result
     return results[0]
+
+
+def _watch(options: RunOptions, hub: Bus, configs: dict[str, dict]):
+    """What watches the run's bus besides the launcher: the recorder, the Foxglove bridge, the caller's observer."""
+    recorder = bridge = None
+    if options.record is not None:
+        recorder = McapRecorder(options.record, config_metadata(configs))
+        hub.subscribe_key("coopdrive/**", lambda key, message: None if "/_" in key else recorder.write(key, message))
+    if options.foxglove_port is not None:
+        from coopdrive.visual import recorded_road_map
+        from coopdrive.visual.live_bridge import FoxgloveBridge
+
+        bridge = FoxgloveBridge(hub, options.foxglove_port, road_map=recorded_road_map(configs))
+    if options.observer is not None:
+        hub.subscribe_key("coopdrive/**", options.observer)
+    return recorder, bridge
+
+
+def _wait_for_the_end(processes: ServiceProcesses, finished: threading.Event) -> None:
+    """Until the result (or a signal) comes; once the simulator has exited, a grace period for its result."""
+    while not finished.wait(0.2):
+        crashed = {name: code for name, code in processes.exited().items()
+                   if code != 0 and not name.endswith("/gateway")}
+        if "world/sim" in processes.exited():
+            finished.wait(RESULT_GRACE_S)
+            return
+        if crashed and len(crashed) == len(processes.processes):
+            raise RunAborted(f"every service exited: {crashed}")
 
 
 def carry_out(processes: ServiceProcesses, fault: sim_pb2.ServiceFault) -> None:

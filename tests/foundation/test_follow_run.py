@@ -1,6 +1,7 @@
 """The closed loop of the foundation: `coopdrive run follow` as a user runs it."""
 
 import json
+import math
 import signal
 import subprocess
 import sys
@@ -87,11 +88,18 @@ def test_the_ego_s_can_bus_in_the_recording_decodes_with_the_dbc_to_the_true_spe
     for time_s, speed_mps in speeds:
         if round(time_s, 2) in truth_by_time:
             assert speed_mps == pytest.approx(truth_by_time[round(time_s, 2)]["ego"].speed_mps, abs=0.2)
+    # The real world's radar misses some scans and reports false tracks: most scans hold an object at the leader's
+    # rear (between its rear axle and a car length behind it, within the radar's noise and bias), not every one.
+    by_scan: dict[float, list[float]] = {}
     for time_s, dist_m in objects:
         if round(time_s, 2) in truth_by_time:
-            ego, leader = truth_by_time[round(time_s, 2)]["ego"], truth_by_time[round(time_s, 2)]["leader"]
-            # The radar sees the leader's rear, somewhere between its rear axle and a car length behind it.
-            assert leader.x_m - ego.x_m - leader.length_m - 0.5 < dist_m < leader.x_m - ego.x_m + 0.5
+            by_scan.setdefault(round(time_s, 2), []).append(dist_m)
+    at_leader = 0
+    for time_s, distances_m in by_scan.items():
+        ego, leader = truth_by_time[time_s]["ego"], truth_by_time[time_s]["leader"]
+        apart_m = math.hypot(leader.x_m - ego.x_m, leader.y_m - ego.y_m)
+        at_leader += any(apart_m - leader.length_m - 1.0 < d < apart_m + 1.0 for d in distances_m)
+    assert at_leader >= 0.9 * len(by_scan) >= 20
 
 
 def test_coopdrive_candump_writes_the_ego_s_bus_as_a_candump_log_that_python_can_reads_back(recorded_run, tmp_path):
