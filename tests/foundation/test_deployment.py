@@ -83,8 +83,10 @@ def test_on_the_vehicle_actuation_owns_the_car_s_bus_scene_reads_the_radar_s_and
 
 
 @pytest.mark.skipif(shutil.which("docker-compose") is None, reason="Debian's docker-compose is installed by .ci/run")
-def test_docker_compose_accepts_the_file():
-    result = subprocess.run(["docker-compose", "-f", str(ROOT / "docker-compose.yml"), "config", "-q"],
+@pytest.mark.parametrize("profile", [None, "vehicle", "desk", "record"])
+def test_docker_compose_accepts_the_file_with_each_profile(profile):
+    chosen = [] if profile is None else ["--profile", profile]
+    result = subprocess.run(["docker-compose", "-f", str(ROOT / "docker-compose.yml"), *chosen, "config", "-q"],
                             capture_output=True, text=True, timeout=60)
     assert result.returncode == 0, result.stderr
 
