@@ -20,6 +20,12 @@ def wrap_angle_rad(angle_rad: float) -> float:
     return (angle_rad + math.pi) % (2.0 * math.pi) - math.pi
 
 
+def lateral_offset_after_m(offset_m: float, speed_mps: float, heading_error_rad: float, elapsed_s: float) -> float:
+    """A lateral offset from a lane's centre moved on by elapsed_s at the given speed and heading error (a
+    straight lane over so short a time): what a lane measured a moment ago says now."""
+    return offset_m + speed_mps * math.sin(heading_error_rad) * elapsed_s
+
+
 @dataclass(frozen=True)
 class Projection:
     station_m: float

@@ -11,8 +11,7 @@ scene keeps a V2V-supported property for its fade time (about a second), far bey
 
 from __future__ import annotations
 
-import math
-
+from coopdrive.roadmap.lane import lateral_offset_after_m
 from coopdrive.v1 import ego_pb2, header_pb2, planner_pb2, scene_pb2
 
 from .longitudinal.types import Spacing, Target
@@ -95,7 +94,7 @@ def lane_for_steering(ego: ego_pb2.EgoState, scene: scene_pb2.Scene | None, now_
     seen = scene.ego_lane
     lane = ego_pb2.LanePosition(matched=True, lane_index=seen.lane_index, lane_width_m=seen.lane_width_m,
                                 heading_error_rad=seen.heading_error_rad, curvature_1pm=seen.curvature_1pm)
-    lane.lateral_offset_m = seen.lateral_offset_m + ego.speed_mps * math.sin(seen.heading_error_rad) * age_s
+    lane.lateral_offset_m = lateral_offset_after_m(seen.lateral_offset_m, ego.speed_mps, seen.heading_error_rad, age_s)
     return lane
 
 

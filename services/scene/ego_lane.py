@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from coopdrive.roadmap.lane import lateral_offset_after_m
 from coopdrive.v1 import ego_pb2, scene_pb2, sensors_pb2
 
 from .config import LaneFusionConfig
@@ -49,7 +50,7 @@ def map_view(ego: ego_pb2.EgoState, config: LaneFusionConfig, time_s: float) -> 
         return None
     heading_var = ego.covariance[HEADING * STATE_SIZE + HEADING] if len(ego.covariance) == STATE_SIZE ** 2 else 0.0
     age_s = max(0.0, time_s - ego.header.sample_time_s)
-    offset_m = lane.lateral_offset_m + ego.speed_mps * math.sin(lane.heading_error_rad) * age_s
+    offset_m = lateral_offset_after_m(lane.lateral_offset_m, ego.speed_mps, lane.heading_error_rad, age_s)
     return LaneView(offset_m, math.hypot(ego.position_std_m, config.map_offset_std_m),
                     lane.heading_error_rad, math.sqrt(max(heading_var, 0.0) + config.map_heading_std_rad ** 2),
                     lane.lane_width_m, lane.curvature_1pm)
@@ -76,7 +77,7 @@ def camera_view(markings: LaneMarkings, config: LaneFusionConfig, fallback_width
         return None
     heading_error_rad = -math.atan(slope)
     age_s = max(0.0, time_s - markings.time_s)
-    offset_m = -centre_c0 + speed_mps * math.sin(heading_error_rad) * age_s
+    offset_m = lateral_offset_after_m(-centre_c0, speed_mps, heading_error_rad, age_s)
     return LaneView(offset_m, config.camera_offset_std_m / quality, heading_error_rad,
                     config.camera_heading_std_rad / quality, width_m, curvature)
 
