@@ -7,6 +7,7 @@ import json
 import logging
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 from coopdrive.cli_deploy import add_commands as add_deploy_commands
@@ -16,6 +17,8 @@ from coopdrive.runtime.config import ConfigError
 from coopdrive.runtime.service import HardwareUnavailable
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+# A run's start-up time is counted from here: the command as its user waits for it, less the interpreter's start.
+COMMAND_STARTED_MONOTONIC_S = time.monotonic()
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -206,7 +209,7 @@ def _run(args) -> int:
                          log_dir=args.logs, stacks=args.stacks,
                          group_per_vehicle=None if args.processes is None else args.processes == "vehicle",
                          security=args.security, untrusted=tuple(args.untrusted), extra_faults=_extra_faults(args),
-                         world=args.world)
+                         world=args.world, started_monotonic_s=COMMAND_STARTED_MONOTONIC_S)
     if args.untrusted and args.security is None:
         print("coopdrive: --untrusted needs --security", file=sys.stderr)
         return EXIT_USAGE

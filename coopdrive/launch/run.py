@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 import shutil
 import signal
@@ -20,18 +21,14 @@ from coopdrive.launch.ports import free_tcp_port, free_udp_ports, loopback_endpo
 from coopdrive.launch.processes import ServiceProcesses, ServiceSpec
 from coopdrive.launch.scenario_source import resolve_scenario
 from coopdrive.launch.stack_config import vehicle_overrides
-from coopdrive.recording.writer import McapRecorder, config_metadata
 from coopdrive.runtime.registry import VEHICLE_STACK
 from coopdrive.services.sim.fault_config import TicketExpired
 from coopdrive.services.sim.radio_box import RadioPorts
 from coopdrive.services.sim.scenario_config import ScenarioConfig, ScenarioError, load_scenario
 from coopdrive.services.sim.world_profile import WorldProfile
-from coopdrive.services.sim.service import SimConfig
+from coopdrive.services.sim.config import SimConfig
 from coopdrive.services.sim.service_crashes import crashed_participants
-from coopdrive.services.v2x.security.pki import issue_expiring_tickets, load_test_pki
 from coopdrive.services.v2x.security.profile import SecurityMode
-from coopdrive.services.v2x.security.run_setup import UNTRUSTED_SUBDIR, security_overrides
-from coopdrive.services.v2x.timebase import tai_ms_from_utc
 from coopdrive.v1 import sim_pb2
 
 
@@ -65,6 +62,9 @@ class RunOptions:
     service_overrides: dict[str, dict] = field(default_factory=dict)
     # Called as observer(key, message) for every message on the bus (benchmarks, live tools).
     observer: Callable[[str, Message], None] | None = None
+    # When the command started (time.monotonic()), for the summary's startup_time_s; None: when run_scenario is
+    # called.
+    started_monotonic_s: float | None = None
 
 
 MS_PER_S = 1000
@@ -132,6 +132,9 @@ def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[Servic
 def secured_run(config: ScenarioConfig, stacks: list[str], options: RunOptions, pki_dir: Path) -> dict[str, dict]:
     """A test PKI valid from the scenario's start for the stacks and the simulator's own senders; per stack
     its v2x `security` section."""
+    from coopdrive.services.v2x.security.run_setup import security_overrides
+    from coopdrive.services.v2x.timebase import tai_ms_from_utc
+
     try:
         mode = SecurityMode(options.security)
     except ValueError:
@@ -150,6 +153,10 @@ def secured_run(config: ScenarioConfig, stacks: list[str], options: RunOptions, 
 
 def _expire_tickets(config: ScenarioConfig, pki_dir: Path, untrusted: tuple[str, ...], valid_from_tai_s: int) -> None:
     """ticket_expired faults: the vehicle's tickets in the run's PKI end at the fault's start."""
+    from coopdrive.services.v2x.security.pki import issue_expiring_tickets, load_test_pki
+    from coopdrive.services.v2x.security.run_setup import UNTRUSTED_SUBDIR
+    from coopdrive.services.v2x.timebase import tai_ms_from_utc
+
     epoch_tai_s = tai_ms_from_utc(config.utc_epoch) // MS_PER_S
     for fault in (f for f in config.faults if isinstance(f, TicketExpired)):
         pki = load_test_pki(pki_dir / UNTRUSTED_SUBDIR if fault.vehicle_id in untrusted else pki_dir)
@@ -159,6 +166,7 @@ def _expire_tickets(config: ScenarioConfig, pki_dir: Path, untrusted: tuple[str,
 
 
 def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
+    started = time.monotonic() if options.started_monotonic_s is None else options.started_monotonic_s
     endpoint = loopback_endpoint(free_tcp_port())
     hub = Bus(BusConfig(listen=[endpoint, *options.listen]))
     finished = threading.Event()
@@ -176,13 +184,12 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         finished.set()
 
     previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
-    recorder, bridge = _watch(options, hub, {spec.participant: _full_config(spec) for spec in specs})
+    recorder, bridge = _watch(options, hub, {spec.participant: json.dumps(spec.config) for spec in specs})
     hub.subscribe(WORLD_ID, "result", on_result)
     simulator = next(spec for spec in specs if spec.service == "sim")
     processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir, clock_step_s=simulator.config["step_s"])
     # The simulator says when (service_crash faults, in simulated time); the launcher owns the processes.
     hub.subscribe(WORLD_ID, "service_fault", lambda envelope: carry_out(processes, envelope.message))
-    started = time.monotonic()
     try:
         start_processes(processes, specs, options)
         if options.gateway_port is not None:
@@ -190,6 +197,9 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
             processes.start(ServiceSpec("gateway", watched, {"port": options.gateway_port}))
         _wait_for_the_end(processes, finished)
     finally:
+        ended = time.monotonic()
+        if recorder is not None:
+            recorder.add_configs(effective_configs(hub, specs))
         processes.stop_all()
         shutil.rmtree(run_dir, ignore_errors=True)
         if recorder is not None:
@@ -202,20 +212,27 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
             signal.signal(signum, handler)
     if not results:
         reason = f"stopped by {stop_reason[0]}" if stop_reason else "the simulator ended without a result"
-        result = sim_pb2.RunResult(scenario=options.scenario, seed=options.seed, success=False, failure_reason=reason,
-                                   wall_time_s=time.monotonic() - started)
-        return result
-    return results[0]
+        return sim_pb2.RunResult(scenario=options.scenario, seed=options.seed, success=False, failure_reason=reason,
+                                 wall_time_s=ended - started, shutdown_time_s=time.monotonic() - ended)
+    result = results[0]
+    if result.clock_started_monotonic_s > 0:
+        result.startup_time_s = result.clock_started_monotonic_s - started
+    result.shutdown_time_s = time.monotonic() - ended
+    return result
 
 
 def _watch(options: RunOptions, hub: Bus, configs: dict[str, dict]):
     """What watches the run's bus besides the launcher: the recorder, the Foxglove bridge, the caller's observer."""
     recorder = bridge = None
+    if options.record is not None or options.foxglove_port is not None:
+        from coopdrive.visual import recorded_road_map
     if options.record is not None:
-        recorder = McapRecorder(options.record, config_metadata(configs))
+        from coopdrive.recording.writer import McapRecorder
+
+        # The configs go in at the end, as the services ran them (effective_configs); the map is needed now.
+        recorder = McapRecorder(options.record, road_map=recorded_road_map(configs))
         hub.subscribe_key("coopdrive/**", lambda key, message: None if "/_" in key else recorder.write(key, message))
     if options.foxglove_port is not None:
-        from coopdrive.visual import recorded_road_map
         from coopdrive.visual.live_bridge import FoxgloveBridge
 
         bridge = FoxgloveBridge(hub, options.foxglove_port, road_map=recorded_road_map(configs))
@@ -270,10 +287,21 @@ def start_processes(processes: ServiceProcesses, specs: list[ServiceSpec], optio
             processes.start(spec)
 
 
+def effective_configs(hub: Bus, specs: list[ServiceSpec]) -> dict[str, str]:
+    """The config each service actually ran with, for the recording: as the running services tell it (their
+    `_info` queryables); a service that does not answer (crashed, never started) by its class's defaults
+    completed by the spec. Asked at the end, so the launcher never imports the services' code (filterpy, scipy)
+    while they start."""
+    from coopdrive.recording.live_configs import ServiceConfigCollector
+
+    collector = ServiceConfigCollector(hub)
+    collector.collect()
+    told = collector.stop(ask_again=False)
+    return {spec.participant: told.get(spec.participant) or _full_config(spec) for spec in specs}
+
+
 def _full_config(spec: ServiceSpec) -> str:
     """The config a service will actually run with: its defaults completed by the spec."""
-    import json
-
     from coopdrive.runtime.registry import service_class
 
     model = service_class(spec.service).Config.model_validate(spec.config)

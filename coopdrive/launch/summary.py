@@ -10,6 +10,9 @@ from rich.table import Table
 from coopdrive.judging.counts import COUNT_METRICS
 from coopdrive.v1 import sim_pb2
 
+# The summary's keys read off the wall clock: they differ between two runs of one seed, the others may not.
+WALL_CLOCK_KEYS = ("wall_time_s", "realtime_factor", "startup_time_s", "shutdown_time_s")
+
 
 def summary_dict(result: sim_pb2.RunResult) -> dict:
     summary = {
@@ -20,6 +23,9 @@ def summary_dict(result: sim_pb2.RunResult) -> dict:
         "sim_time_s": round(result.sim_time_s, 6),
         "wall_time_s": round(result.wall_time_s, 3),
         "realtime_factor": round(result.sim_time_s / result.wall_time_s, 2) if result.wall_time_s > 0 else 0.0,
+        # Besides the stepping: from the command's start to step 0, and from the result to the last process gone.
+        "startup_time_s": round(result.startup_time_s, 3),
+        "shutdown_time_s": round(result.shutdown_time_s, 3),
     }
     for key, value in sorted(result.metrics.items()):
         summary[key] = int(value) if key in COUNT_METRICS else round(value, 6)

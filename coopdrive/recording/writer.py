@@ -59,6 +59,11 @@ class McapRecorder:
             with self._lock:
                 self._visuals.road_map = road_map
 
+    def add_configs(self, configs: dict[str, str]) -> None:
+        """Every service's config ("<vehicle>/<service>" -> JSON), as replay and scoring read them back."""
+        for name, values in config_metadata(configs).items():
+            self.add_metadata(name, values)
+
     def add_metadata(self, name: str, values: dict[str, str]) -> None:
         with self._lock:
             self._writer.add_metadata(name, values)

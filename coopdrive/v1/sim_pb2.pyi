@@ -98,7 +98,7 @@ class GroundTruth(_message.Message):
     def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., vehicles: _Optional[_Iterable[_Union[VehicleTruth, _Mapping]]] = ..., collisions: _Optional[int] = ...) -> None: ...
 
 class RunResult(_message.Message):
-    __slots__ = ("header", "scenario", "seed", "success", "failure_reason", "sim_time_s", "wall_time_s", "metrics")
+    __slots__ = ("header", "scenario", "seed", "success", "failure_reason", "sim_time_s", "wall_time_s", "metrics", "clock_started_monotonic_s", "startup_time_s", "shutdown_time_s")
     class MetricsEntry(_message.Message):
         __slots__ = ("key", "value")
         KEY_FIELD_NUMBER: _ClassVar[int]
@@ -114,6 +114,9 @@ class RunResult(_message.Message):
     SIM_TIME_S_FIELD_NUMBER: _ClassVar[int]
     WALL_TIME_S_FIELD_NUMBER: _ClassVar[int]
     METRICS_FIELD_NUMBER: _ClassVar[int]
+    CLOCK_STARTED_MONOTONIC_S_FIELD_NUMBER: _ClassVar[int]
+    STARTUP_TIME_S_FIELD_NUMBER: _ClassVar[int]
+    SHUTDOWN_TIME_S_FIELD_NUMBER: _ClassVar[int]
     header: _header_pb2.Header
     scenario: str
     seed: int
@@ -122,7 +125,10 @@ class RunResult(_message.Message):
     sim_time_s: float
     wall_time_s: float
     metrics: _containers.ScalarMap[str, float]
-    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., scenario: _Optional[str] = ..., seed: _Optional[int] = ..., success: _Optional[bool] = ..., failure_reason: _Optional[str] = ..., sim_time_s: _Optional[float] = ..., wall_time_s: _Optional[float] = ..., metrics: _Optional[_Mapping[str, float]] = ...) -> None: ...
+    clock_started_monotonic_s: float
+    startup_time_s: float
+    shutdown_time_s: float
+    def __init__(self, header: _Optional[_Union[_header_pb2.Header, _Mapping]] = ..., scenario: _Optional[str] = ..., seed: _Optional[int] = ..., success: _Optional[bool] = ..., failure_reason: _Optional[str] = ..., sim_time_s: _Optional[float] = ..., wall_time_s: _Optional[float] = ..., metrics: _Optional[_Mapping[str, float]] = ..., clock_started_monotonic_s: _Optional[float] = ..., startup_time_s: _Optional[float] = ..., shutdown_time_s: _Optional[float] = ...) -> None: ...
 
 class WireMark(_message.Message):
     __slots__ = ("header", "written")

@@ -138,7 +138,8 @@ class ScenarioFeed:
         success, reason = self.judge.verdict()
         result = sim_pb2.RunResult(scenario=self.config.name, seed=self.service.config.seed, success=success,
                                    failure_reason=reason, sim_time_s=now_s,
-                                   wall_time_s=time.monotonic() - self.service.wall_start_s)
+                                   wall_time_s=time.monotonic() - self.service.wall_start_s,
+                                   clock_started_monotonic_s=self.service.wall_start_s)
         for key, value in self.judge.metrics().items():
             result.metrics[key] = value
         for counter in ("participants_lost", "service_crashes", "service_restarts"):

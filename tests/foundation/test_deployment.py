@@ -115,7 +115,7 @@ def test_the_desk_stack_is_configured_as_a_run_of_the_follow_scenario_configures
     import json
 
     from coopdrive.launch.desk import desk_stack
-    from coopdrive.services.sim.service import SimConfig
+    from coopdrive.services.sim.config import SimConfig
 
     stack = desk_stack()
     assert json.loads((ROOT / "deploy" / "desk" / "stack.json").read_text()) == stack

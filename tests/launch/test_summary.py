@@ -15,3 +15,11 @@ def test_event_counts_are_integers_and_measurements_keep_their_decimals():
     assert summary["realtime_factor"] == 5.0
     # A run that measured no gap still says so in the field scripts read.
     assert summary["min_gap_m"] == -1.0 and summary["collisions"] == 0
+
+
+def test_the_summary_says_start_up_and_shut_down_apart_from_the_stepping():
+    result = sim_pb2.RunResult(scenario="follow", seed=1, success=True, sim_time_s=60.0, wall_time_s=3.0,
+                               startup_time_s=1.2345, shutdown_time_s=0.25)
+    summary = summary_dict(result)
+    assert (summary["wall_time_s"], summary["startup_time_s"], summary["shutdown_time_s"]) == (3.0, 1.234, 0.25)
+    assert summary["realtime_factor"] == 20.0
