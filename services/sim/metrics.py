@@ -45,8 +45,22 @@ def _onsets(truth: TruthSeries, condition: Callable[[sim_pb2.VehicleTruth, sim_p
     return count
 
 
+def _reach_m(v: sim_pb2.VehicleTruth) -> float:
+    """The farthest any point of the footprint is from the vehicle's reference point (its rear axle)."""
+    back_m = geometry.rear_overhang_m(v.length_m)
+    return math.hypot(max(back_m, v.length_m - back_m), v.width_m / 2.0)
+
+
+def _footprints_overlap(a: sim_pb2.VehicleTruth, b: sim_pb2.VehicleTruth) -> bool:
+    # Footprints farther apart than their reaches cannot touch: most pairs of most frames are settled without
+    # building corners (the same answer, a tenth of the judge's time in an 8-stack run).
+    if math.hypot(a.x_m - b.x_m, a.y_m - b.y_m) > _reach_m(a) + _reach_m(b):
+        return False
+    return geometry.rectangles_overlap(_corners(a), _corners(b))
+
+
 def collisions(truth: TruthSeries) -> int:
-    return _onsets(truth, lambda a, b: geometry.rectangles_overlap(_corners(a), _corners(b)))
+    return _onsets(truth, _footprints_overlap)
 
 
 def safety_circle_violations(truth: TruthSeries, radius_m: float = DEFAULT_SAFETY_RADIUS_M) -> int:

@@ -2,8 +2,10 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from coopdrive.services.sim import metrics
+from coopdrive.services.sim import geometry, metrics
 from coopdrive.services.sim.truth_series import TruthSeries
 from coopdrive.v1 import sim_pb2
 
@@ -136,3 +138,12 @@ def test_the_judge_measures_the_string_gain_only_inside_its_window():
     to_the_end = metrics.judge(truth, platoon=["lead", "f"], string_start_s=10.0, string_frequency_hz=0.2)
     assert windowed["string_gain"] == pytest.approx(0.8, abs=0.01)
     assert to_the_end["string_gain"] > 1.0
+
+
+@settings(max_examples=300, deadline=None)
+@given(dx=st.floats(-12.0, 12.0), dy=st.floats(-6.0, 6.0), heading_a=st.floats(-math.pi, math.pi),
+       heading_b=st.floats(-math.pi, math.pi), length_m=st.floats(1.0, 18.0), width_m=st.floats(0.5, 2.6))
+def test_the_reach_shortcut_finds_exactly_the_overlaps_the_corners_find(dx, dy, heading_a, heading_b, length_m, width_m):
+    a = sim_pb2.VehicleTruth(vehicle_id="a", heading_rad=heading_a, length_m=4.5, width_m=1.8)
+    b = sim_pb2.VehicleTruth(vehicle_id="b", x_m=dx, y_m=dy, heading_rad=heading_b, length_m=length_m, width_m=width_m)
+    assert metrics._footprints_overlap(a, b) == geometry.rectangles_overlap(metrics._corners(a), metrics._corners(b))
