@@ -38,6 +38,7 @@ from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
 from coopdrive.runtime.master import STALL_WARNING_S, ClockMaster
 from coopdrive.runtime.participants import ParticipantTracker
 from coopdrive.runtime.pipeline import participant_name
+from coopdrive.runtime.profiling import WorkerProfile
 from coopdrive.runtime.rejoin import MidRunJoin
 from coopdrive.runtime.service import SequenceCounter, Service, ServiceConfig
 from coopdrive.runtime.timers import TriggerSet
@@ -171,14 +172,16 @@ class ServiceRunner:
         if threading.current_thread() is threading.main_thread():
             for signum in (signal.SIGINT, signal.SIGTERM):
                 signal.signal(signum, lambda sig, _frame: self.request_stop(signal.Signals(sig).name))
+        profile = WorkerProfile.from_environment(f"{self.vehicle_id}-{self._service_name}")
         try:
             self.service.start()
             self._triggers.add(DIAGNOSTICS_PERIOD_S, self._publish_diagnostics)
             self._declare_runtime_entities()
-            if self._master is not None:
-                self._master.run()
-            else:
-                self._follow()
+            with profile:
+                if self._master is not None:
+                    self._master.run()
+                else:
+                    self._follow()
         finally:
             try:
                 self.service.stop()

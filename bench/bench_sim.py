@@ -1,0 +1,107 @@
+"""The simulator's own CPU per simulated second, without the stacks or the bus: the simulator service of a string
+run with 1, 4 and 8 stack vehicles, stepped in memory (MemoryContext) as the clock master steps it. Everything
+it does per step counts (vehicles, every stack's sensors, CAN frames, the scripted vehicles' CAMs, the radio
+boxes' datagrams, ground truth, the judge) and each message is serialised as the bus would; the lockstep
+barrier and Zenoh do not. The stacks send no commands, so their drivers hold speed and lane: the same sensors,
+the same world. GNSS goes out as gnss/fix, not NMEA on a pty.
+
+    .venv/bin/python -m bench.bench_sim            (make bench runs it too)
+    .venv/bin/python -m bench.bench_sim --profile  (cProfile of the 8-stack case, top functions)
+
+Issue 27's figure before the work (a whole 8-stack run, the simulator's process): 1,645 ms per simulated second.
+"""
+
+from __future__ import annotations
+
+import argparse
+import cProfile
+import pstats
+import socket
+import time
+
+from rich.console import Console
+from rich.table import Table
+
+from coopdrive.launch.ports import free_udp_ports
+from coopdrive.runtime.testing import MemoryContext
+from coopdrive.services.sim.config import SimConfig
+from coopdrive.services.sim.scenario_config import load_scenario
+from coopdrive.services.sim.service import SimService
+
+SCENARIO = "string"
+STACK_COUNTS = (1, 4, 8)
+DURATION_S = 10.0
+TARGET_MS_PER_SIMULATED_S = 150.0
+
+
+class SimulatorAlone:
+    """The simulator service of a string run with `stacks` stack vehicles, in memory; each stack's radio box
+    port has a socket that is never read (the kernel drops what overflows it, as a busy stack would not)."""
+
+    def __init__(self, stacks: int):
+        config = SimConfig(scenario=SCENARIO)
+        scenario = load_scenario(config.scenario_path())
+        stack_ids = [v.vehicle_id for v in scenario.vehicles if v.role.value == "stack"][:stacks]
+        ports = iter(free_udp_ports(2 * len(stack_ids)))
+        links = {vehicle_id: {"box_port": next(ports), "stack_port": next(ports)} for vehicle_id in stack_ids}
+        self._stack_sockets = []
+        for link in links.values():
+            sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+            sock.bind(("127.0.0.1", link["stack_port"]))
+            self._stack_sockets.append(sock)
+        self.config = config.model_copy(update={"stacks": stack_ids, "radio_links": links,
+                                                "duration_s": DURATION_S + 1.0})
+        self.ctx = MemoryContext("world", "sim")
+        self.service = SimService(self.config, self.ctx)
+        self.service.start()
+        self.service.on_clock_started(time.monotonic())
+
+    def run(self, duration_s: float) -> None:
+        step_s = self.config.step_s
+        for k in range(round(duration_s / step_s) + 1):
+            self.ctx.advance_to(k * step_s)
+            for _, message in self.ctx.outputs:
+                message.SerializeToString()
+            self.ctx.outputs.clear()
+
+    def close(self) -> None:
+        self.service.stop()
+        for sock in self._stack_sockets:
+            sock.close()
+
+
+def cpu_ms_per_simulated_s(stacks: int) -> float:
+    simulator = SimulatorAlone(stacks)
+    try:
+        started = time.process_time()
+        simulator.run(DURATION_S)
+        return 1000.0 * (time.process_time() - started) / DURATION_S
+    finally:
+        simulator.close()
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description="the simulator's CPU per simulated second")
+    parser.add_argument("--profile", action="store_true", help="cProfile the 8-stack world instead")
+    args = parser.parse_args(argv or [])
+    if args.profile:
+        simulator = SimulatorAlone(max(STACK_COUNTS))
+        profiler = cProfile.Profile()
+        profiler.runcall(simulator.run, DURATION_S)
+        simulator.close()
+        pstats.Stats(profiler).sort_stats("tottime").print_stats(35)
+        return
+    table = Table(title=f"simulator alone, {SCENARIO}, {DURATION_S:.0f} s simulated, real world "
+                        f"(target: below {TARGET_MS_PER_SIMULATED_S:.0f} ms per simulated s with 8 stacks)")
+    for column in ("stacks", "CPU ms per simulated s", "per stack"):
+        table.add_column(column, justify="right")
+    for stacks in STACK_COUNTS:
+        cpu_ms = cpu_ms_per_simulated_s(stacks)
+        table.add_row(str(stacks), f"{cpu_ms:.0f}", f"{cpu_ms / stacks:.0f}")
+    Console().print(table)
+
+
+if __name__ == "__main__":
+    import sys
+
+    main(sys.argv[1:])
