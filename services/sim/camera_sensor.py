@@ -58,9 +58,9 @@ class CameraSensor:
     def _detect(self, world: WorldView, frame: sensors_pb2.CameraFrame) -> None:
         cfg = self.config
         mount = np.array([cfg.mount_x_m, cfg.mount_y_m])
-        polygons = world.footprints_in_ego_frame()
-        for index, (other, corners) in enumerate(zip(world.others, polygons)):
-            point = geometry.closest_point_on_polygon(tuple(mount), corners)
+        outlines = world.outlines()
+        for index, (other, corners, edges) in enumerate(zip(world.others, outlines.corners, outlines.edges)):
+            point = geometry.closest_point_on_polygon(tuple(mount), corners, edges)
             rel = point - mount
             distance_m = float(np.hypot(*rel))
             bearing_rad = math.atan2(rel[1], rel[0])
@@ -68,7 +68,7 @@ class CameraSensor:
                 continue
             centre = corners.mean(axis=0) - mount
             _, hit = geometry.cast_rays(tuple(mount), np.array([math.atan2(centre[1], centre[0]), bearing_rad]),
-                                        polygons, cfg.max_range_m)
+                                        outlines, cfg.max_range_m)
             if index not in hit or self.rng.random() < cfg.miss_probability:
                 continue
             x_m, y_m = point + cfg.position_sigma_m * self.rng.standard_normal(2)

@@ -5,6 +5,7 @@ Vehicle positions (VehicleTruth.x_m / y_m) are at the centre of the rear axle, l
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Sequence
 
 import numpy as np
@@ -54,18 +55,36 @@ def rectangles_overlap(a: np.ndarray, b: np.ndarray) -> bool:
     return True
 
 
+@dataclass(frozen=True)
+class Outlines:
+    """Polygons of one corner count stacked (polygon, corner, xy) with each corner's edge to the next: built
+    once per view of the world and shared by every ray cast and closest-point query on it."""
+
+    corners: np.ndarray
+    edges: np.ndarray
+
+    @classmethod
+    def of(cls, polygons: Sequence[np.ndarray]) -> Outlines:
+        corners = np.asarray(polygons, dtype=float).reshape(len(polygons), -1, 2) if len(polygons) else \
+            np.empty((0, 0, 2))
+        return cls(corners, np.roll(corners, -1, axis=1) - corners)
+
+    def __len__(self) -> int:
+        return len(self.corners)
+
+
 def ray_polygon_ranges(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,
-                       polygons: Sequence[np.ndarray]) -> np.ndarray:
+                       polygons: Sequence[np.ndarray] | Outlines) -> np.ndarray:
     """Distance along each ray (rows) to the first crossing of each polygon's outline (columns); inf on a miss."""
     azimuths = np.atleast_1d(np.asarray(azimuths_rad, dtype=float))
     if not len(polygons):
         return np.full((azimuths.size, 0), np.inf)
-    if len({len(corners) for corners in polygons}) > 1:
-        return np.column_stack([ray_polygon_ranges(origin_xy, azimuths, [corners]) for corners in polygons])
-    corners = np.asarray(polygons, dtype=float)  # polygon, corner, xy
-    edges = np.roll(corners, -1, axis=1) - corners
-    rel = corners - np.asarray(origin_xy, dtype=float)
-    edge_x, edge_y, rel_x, rel_y = edges[..., 0], edges[..., 1], rel[..., 0], rel[..., 1]
+    if not isinstance(polygons, Outlines):
+        if len({len(corners) for corners in polygons}) > 1:
+            return np.column_stack([ray_polygon_ranges(origin_xy, azimuths, [corners]) for corners in polygons])
+        polygons = Outlines.of(polygons)
+    rel = polygons.corners - np.asarray(origin_xy, dtype=float)
+    edge_x, edge_y, rel_x, rel_y = polygons.edges[..., 0], polygons.edges[..., 1], rel[..., 0], rel[..., 1]
     # Every ray (axis 0) against every edge (axes 1, 2): solve origin + t d = start + u e.
     dir_x, dir_y = np.cos(azimuths)[:, None, None], np.sin(azimuths)[:, None, None]
     denom = dir_x * edge_y - dir_y * edge_x
@@ -77,7 +96,7 @@ def ray_polygon_ranges(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,
 
 
 def cast_rays(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,
-              polygons: Sequence[np.ndarray], max_range_m: float) -> tuple[np.ndarray, np.ndarray]:
+              polygons: Sequence[np.ndarray] | Outlines, max_range_m: float) -> tuple[np.ndarray, np.ndarray]:
     """Nearest hit of each ray on the polygons: (range_m, index of the polygon hit or -1); inf on a miss."""
     azimuths = np.atleast_1d(np.asarray(azimuths_rad, dtype=float))
     if not len(polygons):
@@ -91,11 +110,14 @@ def cast_rays(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,
     return ranges, hit_index
 
 
-def closest_point_on_polygon(point_xy: tuple[float, float], corners: np.ndarray) -> np.ndarray:
-    """The point of the polygon's outline nearest to point_xy."""
+def closest_point_on_polygon(point_xy: tuple[float, float], corners: np.ndarray,
+                             edges: np.ndarray | None = None) -> np.ndarray:
+    """The point of the polygon's outline nearest to point_xy; `edges` (corner to next corner), when the caller
+    has them already (Outlines)."""
     point = np.asarray(point_xy, dtype=float)
     starts = corners
-    edges = np.roll(corners, -1, axis=0) - corners
+    if edges is None:
+        edges = np.roll(corners, -1, axis=0) - corners
     lengths_sq = np.maximum((edges ** 2).sum(axis=1), 1e-12)
     u = np.clip(((point - starts) * edges).sum(axis=1) / lengths_sq, 0.0, 1.0)
     candidates = starts + u[:, None] * edges

@@ -54,9 +54,9 @@ class LidarSensor:
     def _measure(self, world: WorldView) -> sensors_pb2.LidarScan:
         cfg = self.config
         mount = (cfg.mount_x_m, cfg.mount_y_m)
-        polygons = world.footprints_in_ego_frame()
+        outlines = world.outlines()
         heights = np.array([world.height_m(o) for o in world.others])
-        table = geometry.ray_polygon_ranges(mount, self.beam_azimuths_rad, polygons) if polygons else \
+        table = geometry.ray_polygon_ranges(mount, self.beam_azimuths_rad, outlines) if len(outlines) else \
             np.full((self.beam_azimuths_rad.size, 0), np.inf)
         scan = sensors_pb2.LidarScan(max_range_m=cfg.max_range_m)
         for layer_index, elevation_rad in enumerate(cfg.layer_elevations_rad):

@@ -79,8 +79,9 @@ class RadarSensor:
         ego = world.ego
         mount = np.array([cfg.mount_x_m, cfg.mount_y_m])
         candidates = []
-        for other, corners in zip(world.others, world.footprints_in_ego_frame()):
-            point = geometry.closest_point_on_polygon(tuple(mount), corners)
+        outlines = world.outlines()
+        for other, corners, edges in zip(world.others, outlines.corners, outlines.edges):
+            point = geometry.closest_point_on_polygon(tuple(mount), corners, edges)
             rel = point - mount
             distance_m = float(np.hypot(*rel))
             if rel[0] <= 0.0 or distance_m > cfg.max_range_m or abs(math.atan2(rel[1], rel[0])) > cfg.half_fov_rad:

@@ -20,7 +20,7 @@ from coopdrive.services.sim.sensor_suite import SensorOutputs
 from coopdrive.services.sim.station_faults import StationFaults
 from coopdrive.services.sim.vehicle_model import VehicleModel
 from coopdrive.services.sim.vehicle_truth import vehicle_truth
-from coopdrive.services.sim.world_view import WorldView
+from coopdrive.services.sim.world_view import WorldView, footprints_enu
 from coopdrive.v1 import sim_pb2
 
 
@@ -116,6 +116,7 @@ class ScenarioSim:
     def sensor_outputs(self, now_s: float) -> dict[str, SensorOutputs]:
         truths = self.truths()
         classes = {vid: p.object_class for vid, p in self.objects.participants.items()}
+        corners = footprints_enu(truths)
         outputs = {}
         for ego in truths:
             suite = self.objects.sensor_suites.get(ego.vehicle_id)
@@ -123,7 +124,7 @@ class ScenarioSim:
                 continue
             others = [t for t in truths if t.vehicle_id != ego.vehicle_id]
             model = self.objects.models[ego.vehicle_id]
-            outputs[ego.vehicle_id] = suite.poll(now_s, WorldView(ego, others, classes), model.brake_pressure_bar())
+            outputs[ego.vehicle_id] = suite.poll(now_s, WorldView(ego, others, classes, corners), model.brake_pressure_bar())
         return outputs
 
     def intents(self, now_s: float) -> list[MessageIntent]:

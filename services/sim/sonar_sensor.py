@@ -37,10 +37,10 @@ class SonarSensor:
 
     def _measure(self, world: WorldView) -> sensors_pb2.SonarRanges:
         cfg = self.config
-        polygons = world.footprints_in_ego_frame()
+        outlines = world.outlines()
         message = sensors_pb2.SonarRanges()
         for index, mount in enumerate(cfg.mounts):
-            ranges, _ = geometry.cast_rays((mount.x_m, mount.y_m), mount.yaw_rad + self._cone_rad, polygons,
+            ranges, _ = geometry.cast_rays((mount.x_m, mount.y_m), mount.yaw_rad + self._cone_rad, outlines,
                                            cfg.max_range_m)
             nearest_m = float(ranges.min()) if ranges.size else np.inf
             echo = bool(np.isfinite(nearest_m))

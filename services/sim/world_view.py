@@ -22,10 +22,19 @@ HEIGHT_BY_CLASS_M = {
 
 @dataclass
 class WorldView:
+    """One vehicle's view of one instant. Every sensor of the vehicle polls the same view, so what they all need
+    (the other vehicles' outlines in the ego frame, their edges) is built once and shared: read it, do not
+    modify it."""
+
     ego: sim_pb2.VehicleTruth
     others: Sequence[sim_pb2.VehicleTruth]
     # vehicle_id -> sensors_pb2.ObjectClass; vehicles not listed are classed by their length.
     object_classes: Mapping[str, int] = field(default_factory=dict)
+    # vehicle_id -> corners (4 x 2, ENU) at this instant, shared by every vehicle's view (footprints_enu);
+    # vehicles not listed are outlined here.
+    corners_enu: Mapping[str, np.ndarray] = field(default_factory=dict)
+    _in_ego_frame: list[np.ndarray] | None = field(default=None, init=False, repr=False)
+    _outlines: geometry.Outlines | None = field(default=None, init=False, repr=False)
 
     def object_class(self, truth: sim_pb2.VehicleTruth) -> int:
         if truth.vehicle_id in self.object_classes:
@@ -37,7 +46,27 @@ class WorldView:
 
     def footprints_in_ego_frame(self) -> list[np.ndarray]:
         """Corners (4 x 2) of every other vehicle in the ego frame, in the order of `others`."""
-        ego = self.ego
-        return [geometry.to_ego_frame(
-            geometry.footprint_corners(o.x_m, o.y_m, o.heading_rad, o.length_m, o.width_m),
-            ego.x_m, ego.y_m, ego.heading_rad) for o in self.others]
+        if self._in_ego_frame is None:
+            ego = self.ego
+            self._in_ego_frame = [geometry.to_ego_frame(self._corners_enu(o), ego.x_m, ego.y_m, ego.heading_rad)
+                                  for o in self.others]
+        return self._in_ego_frame
+
+    def outlines(self) -> geometry.Outlines:
+        """footprints_in_ego_frame() stacked with their edges, for casting rays and finding closest points."""
+        if self._outlines is None:
+            self._outlines = geometry.Outlines.of(self.footprints_in_ego_frame())
+        return self._outlines
+
+    def _corners_enu(self, truth: sim_pb2.VehicleTruth) -> np.ndarray:
+        corners = self.corners_enu.get(truth.vehicle_id)
+        return corners if corners is not None else footprint_enu(truth)
+
+
+def footprint_enu(truth: sim_pb2.VehicleTruth) -> np.ndarray:
+    return geometry.footprint_corners(truth.x_m, truth.y_m, truth.heading_rad, truth.length_m, truth.width_m)
+
+
+def footprints_enu(truths: Sequence[sim_pb2.VehicleTruth]) -> dict[str, np.ndarray]:
+    """Every vehicle's corners at one instant, for the WorldViews of that instant to share."""
+    return {truth.vehicle_id: footprint_enu(truth) for truth in truths}

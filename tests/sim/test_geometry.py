@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 
+from coopdrive.services.sim import geometry
 from coopdrive.services.sim.geometry import cast_rays, ray_polygon_ranges
 
 
@@ -35,3 +36,16 @@ def test_the_nearer_of_two_vehicles_in_line_hides_the_farther_one():
 def test_a_hit_beyond_the_sensor_range_is_no_hit():
     ranges, hit = cast_rays((0.0, 0.0), np.array([0.0]), [square(20.0, 0.0)], max_range_m=10.0)
     assert (ranges[0], hit[0]) == (math.inf, -1)
+
+
+def test_outlines_built_once_give_exactly_the_ranges_and_closest_points_of_the_polygons_themselves():
+    rng = np.random.default_rng(7)
+    polygons = [geometry.footprint_corners(*rng.uniform(-40.0, 40.0, 2), rng.uniform(-3.2, 3.2), 4.5, 1.8)
+                for _ in range(9)]
+    outlines = geometry.Outlines.of(polygons)
+    azimuths = np.linspace(-1.5, 1.5, 181)
+    assert np.array_equal(geometry.ray_polygon_ranges((1.0, 0.2), azimuths, outlines),
+                          geometry.ray_polygon_ranges((1.0, 0.2), azimuths, polygons))
+    for corners, edges in zip(outlines.corners, outlines.edges):
+        assert np.array_equal(geometry.closest_point_on_polygon((1.0, 0.2), corners, edges),
+                              geometry.closest_point_on_polygon((1.0, 0.2), corners))
