@@ -7,6 +7,8 @@ the same world. GNSS goes out as gnss/fix, not NMEA on a pty.
 
     .venv/bin/python -m bench.bench_sim            (make bench runs it too)
     .venv/bin/python -m bench.bench_sim --profile  (cProfile of the 8-stack case, top functions)
+    .venv/bin/python -m bench.bench_sim --digest   (sha256 of every message of the 8-stack case: a change meant
+                                                    to leave the model alone must leave it alone)
 
 Issue 27's figure before the work (a whole 8-stack run, the simulator's process): 1,645 ms per simulated second.
 """
@@ -15,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import cProfile
+import hashlib
 import pstats
 import socket
 import time
@@ -56,12 +59,16 @@ class SimulatorAlone:
         self.service.start()
         self.service.on_clock_started(time.monotonic())
 
-    def run(self, duration_s: float) -> None:
+    def run(self, duration_s: float, digest=None) -> None:
+        """Steps the simulator for duration_s; `digest` (a hashlib object), if given, takes every message."""
         step_s = self.config.step_s
         for k in range(round(duration_s / step_s) + 1):
             self.ctx.advance_to(k * step_s)
-            for _, message in self.ctx.outputs:
-                message.SerializeToString()
+            for key, message in self.ctx.outputs:
+                wire = message.SerializeToString()
+                if digest is not None:
+                    digest.update(key.encode())
+                    digest.update(wire)
             self.ctx.outputs.clear()
 
     def close(self) -> None:
@@ -83,7 +90,14 @@ def cpu_ms_per_simulated_s(stacks: int) -> float:
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description="the simulator's CPU per simulated second")
     parser.add_argument("--profile", action="store_true", help="cProfile the 8-stack world instead")
+    parser.add_argument("--digest", action="store_true", help="print the sha256 of the 8-stack world's messages")
     args = parser.parse_args(argv or [])
+    if args.digest:
+        simulator, digest = SimulatorAlone(max(STACK_COUNTS)), hashlib.sha256()
+        simulator.run(DURATION_S, digest)
+        simulator.close()
+        print(digest.hexdigest())
+        return
     if args.profile:
         simulator = SimulatorAlone(max(STACK_COUNTS))
         profiler = cProfile.Profile()
