@@ -1,96 +1,73 @@
-"""The topic registry: which message each topic carries and which service publishes it.
+"""The topic registry: which message each topic carries and which service publishes it, built from the services
+table and each service's own declaration of what it publishes.
 
 One publisher service per topic and vehicle is what lets the lockstep barrier order data flow
 (see coopdrive.runtime.dispatcher).
+
+The declaration modules are imported on first use, not when this module is: a declaration imports
+coopdrive.bus.topic, so reading the declarations while coopdrive.bus is still being imported would be circular.
+`TOPICS` stays a module attribute (PEP 562 __getattr__) for its existing readers.
 """
 
-from dataclasses import dataclass
+from __future__ import annotations
 
-from google.protobuf.message import Message
+import importlib
+from functools import cache
+from types import ModuleType
 
-from coopdrive.bus.services import SERVICE_NAMES
+from coopdrive.bus.services import SERVICES, ServiceEntry
+from coopdrive.bus.topic import Topic
+from coopdrive.v1 import diagnostics_pb2
 
-from coopdrive.v1 import (
-    actuation_pb2,
-    control_pb2,
-    diagnostics_pb2,
-    ego_pb2,
-    gnss_pb2,
-    its_pb2,
-    planner_pb2,
-    scene_pb2,
-    sensors_pb2,
-    sim_pb2,
-    v2x_pb2,
-    vehicle_pb2,
-)
+__all__ = ["TOPICS", "Topic", "declarations_of", "diagnostics_topic", "published_by", "stepped_topics_of", "topic_named",
+           "topic_registry"]
 
 
-@dataclass(frozen=True)
-class Topic:
-    name: str
-    message_type: type[Message]
-    publisher: str
-    # Lockstep services wait for a stepped topic's messages of a step; the others (diagnostics) are
-    # only observed, so nobody waits for them and their publishers send no step markers for them.
-    stepped: bool = True
-
-    @property
-    def type_name(self) -> str:
-        return self.message_type.DESCRIPTOR.full_name
+def declarations_of(entry: ServiceEntry) -> ModuleType:
+    """The service's declaration module (PUBLISHES, SUBSCRIBES)."""
+    return importlib.import_module(entry.declarations)
 
 
-_ALL = [
-    Topic("clock", sim_pb2.SimClock, "sim"),
-    Topic("ground_truth", sim_pb2.GroundTruth, "sim"),
-    Topic("result", sim_pb2.RunResult, "sim"),
-    # For the launcher, which owns the processes; no service waits for it.
-    Topic("service_fault", sim_pb2.ServiceFault, "sim", stepped=False),
-    Topic("gnss/fix", gnss_pb2.GnssFix, "sim"),
-    Topic("gnss/serial_mark", sim_pb2.WireMark, "sim"),
-    Topic("radio/mark", sim_pb2.WireMark, "sim"),
-    # The vehicle's CAN bus (VEH_ feedback and inertial frames, the radar's RDR_ object lists) as the simulator
-    # would put it on the wire. On a vehicle there is no simulator: actuation, the owner of the car's bus,
-    # publishes every frame it reads here, stamped on arrival (coopdrive/can/bus_input.py).
-    Topic("can/vehicle", vehicle_pb2.CanFrames, "sim"),
-    Topic("can/command", vehicle_pb2.CanFrame, "actuation"),
-    Topic("lidar/scan", sensors_pb2.LidarScan, "sim"),
-    Topic("camera/frame", sensors_pb2.CameraFrame, "sim"),
-    Topic("sonar/ranges", sensors_pb2.SonarRanges, "sim"),
-    Topic("ego/state", ego_pb2.EgoState, "geolocation"),
-    Topic("ego/gnss", gnss_pb2.GnssFix, "geolocation"),
-    # What the receiver's port delivered, stamped on arrival: geolocation's estimator reads this stream.
-    Topic("gnss/nmea", gnss_pb2.NmeaChunk, "geolocation"),
-    Topic("v2x/rx", v2x_pb2.GnPacket, "v2x"),
-    Topic("v2x/tx", v2x_pb2.GnPacket, "v2x"),
-    Topic("v2x/status", v2x_pb2.V2xStatus, "v2x"),
-    Topic("v2x/cam", its_pb2.CamContent, "v2x"),
-    Topic("v2x/denm", its_pb2.DenmContent, "v2x"),
-    Topic("v2x/iclcm", its_pb2.IclcmContent, "v2x"),
-    Topic("scene", scene_pb2.Scene, "scene"),
-    Topic("planner/state", planner_pb2.PlannerState, "planner"),
-    Topic("planner/behaviour", planner_pb2.BehaviourRequest, "planner"),
-    Topic("control/command", control_pb2.ControlCommand, "control"),
-    Topic("actuation/command", actuation_pb2.ActuatorCommand, "actuation"),
-    Topic("actuation/status", actuation_pb2.ActuationStatus, "actuation"),
-    Topic("actuation/override", actuation_pb2.OverrideEvent, "actuation"),
-    Topic("gateway/mode_request", actuation_pb2.ModeRequest, "gateway"),
-    Topic("gateway/estop", actuation_pb2.EmergencyStop, "gateway"),
-    Topic("gateway/planner_force", planner_pb2.PlannerForce, "gateway"),
-]
-for _service in SERVICE_NAMES:
-    _ALL.append(Topic(f"diagnostics/{_service}", diagnostics_pb2.Diagnostics, _service, stepped=False))
+def diagnostics_topic(service: str) -> Topic:
+    """The runtime publishes every service's counters here (coopdrive.runtime.runner), so no service declares it."""
+    return Topic(f"diagnostics/{service}", diagnostics_pb2.Diagnostics, service, stepped=False)
 
-TOPICS: dict[str, Topic] = {topic.name: topic for topic in _ALL}
+
+def published_by(entry: ServiceEntry) -> tuple[Topic, ...]:
+    """The topics the service declares it publishes (without its diagnostics)."""
+    topics = tuple(declarations_of(entry).PUBLISHES)
+    strays = [topic.name for topic in topics if topic.publisher != entry.name]
+    if strays:
+        raise ValueError(f"{entry.declarations} declares topics of another publisher: {', '.join(strays)}")
+    return topics
+
+
+@cache
+def topic_registry() -> dict[str, Topic]:
+    """Every topic by name, in the services table's order: each service's declared topics, then the diagnostics."""
+    every = [topic for entry in SERVICES for topic in published_by(entry)]
+    every += [diagnostics_topic(entry.name) for entry in SERVICES]
+    registry = {topic.name: topic for topic in every}
+    if len(registry) != len(every):
+        names = [topic.name for topic in every]
+        raise ValueError(f"topics declared twice: {sorted({n for n in names if names.count(n) > 1})}")
+    return registry
+
+
+def __getattr__(name: str):
+    if name == "TOPICS":
+        return topic_registry()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def stepped_topics_of(service: str) -> list[str]:
     """The stepped topics `service` publishes, sorted."""
-    return sorted(topic.name for topic in _ALL if topic.publisher == service and topic.stepped)
+    return sorted(topic.name for topic in topic_registry().values() if topic.publisher == service and topic.stepped)
 
 
 def topic_named(name: str) -> Topic:
+    registry = topic_registry()
     try:
-        return TOPICS[name]
+        return registry[name]
     except KeyError:
-        raise KeyError(f"unknown topic {name!r}; known topics: {', '.join(sorted(TOPICS))}") from None
+        raise KeyError(f"unknown topic {name!r}; known topics: {', '.join(sorted(registry))}") from None

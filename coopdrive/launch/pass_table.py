@@ -3,13 +3,19 @@ figures averaged over its runs (each figure as the runs define it: mean absolute
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Iterable
 
 if TYPE_CHECKING:
-    from coopdrive.launch.batch import BatchSummary
+    from coopdrive.launch.batch import BatchSummary, RunOutcome
 
 FIGURES = ("speed_error_kmh", "spacing_error_m", "lateral_error_m", "min_gap_m", "collisions")
 PASSED, FAILED = "pass", "FAIL"
+
+
+def mean_cell(outcomes: Iterable[RunOutcome], key: str) -> str:
+    """One figure averaged over the runs that report it, as a table shows it ("-": none does)."""
+    values = [o.metrics[key] for o in outcomes if o.metrics.get(key) is not None]
+    return f"{sum(values) / len(values):.3f}" if values else "-"
 
 
 def pass_table_markdown(summary: BatchSummary) -> str:
@@ -24,11 +30,7 @@ def pass_table_markdown(summary: BatchSummary) -> str:
         lines.append(f"| {scenario} | {passed}/{len(outcomes)} | " + " | ".join(cells) + " |")
     lines += ["", "| scenario | " + " | ".join(FIGURES) + " |", "|---|" + "---|" * len(FIGURES)]
     for scenario, outcomes in grouped.items():
-        means = []
-        for key in FIGURES:
-            values = [o.metrics[key] for o in outcomes if o.metrics.get(key) is not None]
-            means.append(f"{sum(values) / len(values):.3f}" if values else "-")
-        lines.append(f"| {scenario} | " + " | ".join(means) + " |")
+        lines.append(f"| {scenario} | " + " | ".join(mean_cell(outcomes, key) for key in FIGURES) + " |")
     failures = [o for outcomes in grouped.values() for o in outcomes if not o.success]
     if failures:
         lines += ["", "Failures:", ""] + [f"- {o.scenario} seed {o.seed}: {o.failure_reason}" for o in failures]

@@ -1,5 +1,7 @@
 """Ego-state EKF after DRIVERTIVE (GCDC 2016): state (eq. 6), observations (eq. 7), yaw rate from the rear
-wheels (eq. 8), built on filterpy's ExtendedKalmanFilter.
+wheels (eq. 8), built on filterpy's ExtendedKalmanFilter through its own hooks: the motion model steps the state
+in predict_x (its input u: the step and the steering angle held over it), and angles are differenced by the
+update's residual function.
 
 GNSS position noise comes from the fix mode (Heudiasyc Table 1) and, when reported, the NMEA GST sigmas;
 every update passes a chi-square gate on the normalised innovation squared (NIS) first.
@@ -50,9 +52,22 @@ class UpdateKind(enum.Enum):
 
 @dataclass(frozen=True)
 class EkfSnapshot:
-    time_s: float
+    """All the filter's state, for going back in time (a late input is fused where it belongs, see latency.py)."""
+
+    time_s: float | None
     x: np.ndarray
     P: np.ndarray
+    steering_angle_rad: float
+    accepted: Counter[UpdateKind]
+    rejected: Counter[UpdateKind]
+
+
+@dataclass(frozen=True)
+class StepInput:
+    """filterpy's control input u of one prediction step."""
+
+    dt_s: float
+    steering_angle_rad: float
 
 
 def gnss_position_std_m(fix_mode: int, gst_std_east_m: float = 0.0, gst_std_north_m: float = 0.0
@@ -68,14 +83,38 @@ def _wrap(angle_rad: float) -> float:
     return (angle_rad + math.pi) % (2.0 * math.pi) - math.pi
 
 
+def _residual(z: np.ndarray, hx: np.ndarray, angle_rows: tuple[int, ...] = ()) -> np.ndarray:
+    """z - h(x), the angles among them wrapped (a heading of 179 deg against 181 deg is 2 deg off, not 358)."""
+    y = z - hx
+    for row in angle_rows:
+        y[row] = _wrap(y[row])
+    return y
+
+
+class _ModelDrivenFilter(ExtendedKalmanFilter):
+    """filterpy's EKF whose predict() steps a motion model instead of the linear x = F x + B u."""
+
+    def __init__(self, model: MotionModel) -> None:
+        super().__init__(dim_x=STATE_DIM, dim_z=2)
+        self.model = model
+
+    def predict_x(self, u: StepInput) -> None:
+        # filterpy then propagates P with the F and Q set here.
+        x_new, self.F, self.Q = self.model.step(self.x, u.dt_s, u.steering_angle_rad)
+        x_new[HEADING] = _wrap(x_new[HEADING])
+        self.x = x_new
+
+
 class GeolocationEkf:
     """The filter proper: predict to a time, then gated updates; knows nothing of messages or frames."""
 
     def __init__(self, model: MotionModel | None = None, gate_probability: float = 0.999) -> None:
         self.model = model or CtraModel(ProcessNoise())
-        self.kf = ExtendedKalmanFilter(dim_x=STATE_DIM, dim_z=2)
+        self.kf = _ModelDrivenFilter(self.model)
         self.kf.x = np.zeros(STATE_DIM)
         self.time_s: float | None = None
+        # The road-wheel steering angle, held until the next odometry sample (only the bicycle model reads it).
+        self.steering_angle_rad = 0.0
         self.gate_probability = gate_probability
         self._gate_cache: dict[int, float] = {}
         self.accepted: Counter[UpdateKind] = Counter()
@@ -100,12 +139,27 @@ class GeolocationEkf:
         self.time_s = time_s
 
     def snapshot(self) -> EkfSnapshot:
-        return EkfSnapshot(self.time_s, self.kf.x.copy(), self.kf.P.copy())
+        return EkfSnapshot(self.time_s, self.kf.x.copy(), self.kf.P.copy(), self.steering_angle_rad,
+                           self.accepted.copy(), self.rejected.copy())
 
     def restore(self, snap: EkfSnapshot) -> None:
+        """Back to a snapshot; one taken before initialise() makes the filter uninitialised again."""
         self.time_s = snap.time_s
-        self.kf.x = snap.x.copy()
-        self.kf.P = snap.P.copy()
+        self.steering_angle_rad = snap.steering_angle_rad
+        self.accepted, self.rejected = snap.accepted.copy(), snap.rejected.copy()
+        if snap.time_s is not None:
+            self.kf.x = snap.x.copy()
+            self.kf.P = snap.P.copy()
+
+    def hold_steering(self, steering_angle_rad: float) -> None:
+        """The steering angle the predictions from now on are driven by (a zero-order hold of the wheels)."""
+        self.steering_angle_rad = steering_angle_rad
+
+    def update_counts(self) -> dict[str, int]:
+        """Accepted and gated updates of each kind, for diagnostics."""
+        counts = {f"accepted_{kind.value}": n for kind, n in self.accepted.items()}
+        counts.update({f"gated_{kind.value}": n for kind, n in self.rejected.items()})
+        return counts
 
     # --- prediction ----------------------------------------------------------------------------
     def predict_to(self, time_s: float) -> None:
@@ -113,10 +167,7 @@ class GeolocationEkf:
         remaining_s = time_s - self.time_s
         while remaining_s > 1e-9:
             dt = min(remaining_s, MAX_STEP_S)
-            x_new, F, Q = self.model.step(self.kf.x, dt)
-            x_new[HEADING] = _wrap(x_new[HEADING])
-            self.kf.x = x_new
-            self.kf.P = F @ self.kf.P @ F.T + Q
+            self.kf.predict(u=StepInput(dt, self.steering_angle_rad))
             remaining_s -= dt
         self.time_s = max(self.time_s, time_s)
 
@@ -139,9 +190,7 @@ class GeolocationEkf:
         """soft: a measurement beyond the gate is not refused but fused with its noise inflated until it sits
         on the gate (for a receiver alone, whose speed and course are all there is: refusing one leaves the
         filter believing its own extrapolation, and the next one is further off still)."""
-        y = z - hx
-        for row in angle_rows:
-            y[row] = _wrap(y[row])
+        y = _residual(z, hx, angle_rows)
         S = H @ self.kf.P @ H.T + R
         self.last_nis = float(y @ np.linalg.solve(S, y))
         if self.last_nis > self.gate(len(z)):
@@ -149,7 +198,9 @@ class GeolocationEkf:
             if not soft:
                 return False
             R = R * (self.last_nis / self.gate(len(z)))
-        self.kf.update(z, HJacobian=lambda _x: H, Hx=lambda _x: z - y, R=R)
+        # H and h(x) were taken at the state the update starts from, so they need not be computed again.
+        self.kf.update(z, HJacobian=lambda _x: H, Hx=lambda _x: hx, R=R,
+                       residual=lambda z_, hx_: _residual(z_, hx_, angle_rows))
         self.kf.x[HEADING] = _wrap(self.kf.x[HEADING])
         self.accepted[kind] += 1
         return True

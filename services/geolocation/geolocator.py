@@ -86,7 +86,6 @@ class _Bookkeeping:
     gated: GatedFixes | None = None
     pending_fix: tuple[float, _Fix] | None = None
     last_speed_mps: float | None = None
-    steering_angle_rad: float = 0.0
     # The car's latest yaw rate (its sensor's, else its wheels'): reported while there is no fix.
     last_yaw_rate_radps: float | None = None
     # False while the filter runs on a position alone (heading unknown, std pi): a heading found later
@@ -112,12 +111,9 @@ class Geolocator:
         self._last_fix_input_s: float | None = None
         noise = ProcessNoise(config.jerk_std_mps3, config.yaw_accel_std_radps2, config.position_process_std_mps,
                              config.steering_std_rad)
-        if config.motion_model is MotionModelKind.KINEMATIC_BICYCLE:
-            self._bicycle: KinematicBicycleModel | None = KinematicBicycleModel(noise, config.wheelbase_m)
-            model = self._bicycle
-        else:
-            self._bicycle = None
-            model = CtraModel(noise)
+        # The bicycle model turns by the steering angle: its yaw rate is not measured but follows the wheels.
+        self._steered = config.motion_model is MotionModelKind.KINEMATIC_BICYCLE
+        model = KinematicBicycleModel(noise, config.wheelbase_m) if self._steered else CtraModel(noise)
         self.ekf = GeolocationEkf(model, config.gate_probability)
         self.odometry = Odometry(config.track_width_m, config.wheel_speed_std_mps)
         self.lever_arm = LeverArm(config.antenna_x_m, config.antenna_y_m)
@@ -200,17 +196,11 @@ class Geolocator:
 
     # --- fusion (called by the replay buffer, in time order) ------------------------------------
     def _snapshot(self) -> tuple:
-        return self.ekf.snapshot(), self._book, self.ekf.accepted.copy(), self.ekf.rejected.copy()
+        return self.ekf.snapshot(), self._book
 
     def _restore(self, snap: tuple) -> None:
-        ekf_snap, self._book, accepted, rejected = snap
-        self.ekf.accepted, self.ekf.rejected = accepted.copy(), rejected.copy()
-        if self._bicycle is not None:
-            self._bicycle.steering_angle_rad = self._book.steering_angle_rad
-        if ekf_snap.time_s is None:
-            self.ekf.time_s = None
-        else:
-            self.ekf.restore(ekf_snap)
+        ekf_snap, self._book = snap
+        self.ekf.restore(ekf_snap)
 
     def _apply(self, time_s: float, event: object) -> None:
         if isinstance(event, _Fix):
@@ -332,20 +322,19 @@ class Geolocator:
                               heading_known=heading_rad is not None, gated=None)
 
     def _apply_odometry(self, time_s: float, sample: OdometrySample) -> None:
-        self._book = _replace(self._book, last_speed_mps=sample.speed_mps, steering_angle_rad=sample.steering_angle_rad,
-                              last_odometry_time_s=time_s)
+        self._book = _replace(self._book, last_speed_mps=sample.speed_mps, last_odometry_time_s=time_s)
         if sample.yaw_rate_radps is not None:
             self._book = _replace(self._book, last_yaw_rate_radps=sample.yaw_rate_radps)
         if not self.ekf.initialised:
+            self.ekf.hold_steering(sample.steering_angle_rad)
             return
-        self.ekf.predict_to(time_s)
+        self.ekf.predict_to(time_s)  # under the steering held since the previous sample
+        self.ekf.hold_steering(sample.steering_angle_rad)
         if abs(sample.speed_mps) < STANDSTILL_SPEED_MPS:
             self.counters[InputEvent.STANDSTILL] += 1
             self.ekf.zero_velocity_update()
             return
-        if self._bicycle is not None or sample.yaw_rate_radps is None:
-            if self._bicycle is not None:
-                self._bicycle.steering_angle_rad = sample.steering_angle_rad
+        if self._steered or sample.yaw_rate_radps is None:
             self.ekf.update_speed(sample.speed_mps, sample.speed_std_mps)
         else:
             self.ekf.update_odometry(sample.speed_mps, sample.yaw_rate_radps, sample.speed_std_mps,
@@ -356,7 +345,7 @@ class Geolocator:
         if not self.ekf.initialised:
             return
         self.ekf.predict_to(time_s)
-        if self._bicycle is None:
+        if not self._steered:
             self.ekf.update_yaw_rate(imu.yaw_rate_radps, self.config.imu_yaw_rate_std_radps)
         if self.config.use_imu_accel and math.isfinite(imu.accel_mps2):
             self.ekf.update_accel(imu.accel_mps2, self.config.imu_accel_std_mps2)
@@ -369,8 +358,7 @@ class Geolocator:
     def stats(self) -> dict[str, int]:
         """Counters for diagnostics: inputs by outcome, gated and accepted updates, replays."""
         counts = {f"input_{event.value}": n for event, n in self.counters.items()}
-        counts.update({f"accepted_{kind.value}": n for kind, n in self.ekf.accepted.items()})
-        counts.update({f"gated_{kind.value}": n for kind, n in self.ekf.rejected.items()})
+        counts.update(self.ekf.update_counts())
         counts.update({f"insertion_{kind.value}": n for kind, n in self._buffer.counts.items()})
         counts["replayed_events"] = self._buffer.replayed_events
         counts.update(self.odometry.stats())
@@ -387,8 +375,6 @@ class Geolocator:
         state.last_fix_mode = self._book.last_fix_mode
         if not self.ekf.initialised:
             return self._without_position(state)
-        if self._bicycle is not None:
-            self._bicycle.steering_angle_rad = self._book.steering_angle_rad
         x, P = self.ekf.predicted(time_s)
         state.x_m, state.y_m, state.heading_rad = x[E], x[N], x[HEADING]
         state.speed_mps, state.yaw_rate_radps, state.accel_mps2 = x[SPEED], x[YAW_RATE], x[ACCEL]

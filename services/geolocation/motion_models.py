@@ -1,6 +1,7 @@
 """Motion models over the DRIVERTIVE state x = [E, N, heading, v, yaw_rate, a] (eq. 6).
 
-Each model returns the propagated state, its Jacobian F and the process noise Q for one step dt.
+Each model returns the propagated state, its Jacobian F and the process noise Q for one step dt, given the step's
+input (the road-wheel steering angle, held over the step; the filter owns it, see ekf.py).
 - CTRA (constant turn rate and acceleration), the model of the DRIVERTIVE EKF: position integrated at the
   mid-step heading and speed, which is exact to second order in dt.
 - Kinematic bicycle, rear-axle reference point, driven by the road-wheel steering angle:
@@ -62,7 +63,9 @@ class CtraModel:
         self.noise = noise
         self._q_by_dt: dict[float, np.ndarray] = {}  # inputs come at a few fixed rates
 
-    def step(self, x: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def step(self, x: np.ndarray, dt: float, steering_angle_rad: float = 0.0
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The steering angle does not enter CTRA: its yaw rate is a state of its own."""
         F = np.eye(STATE_DIM)
         x_new = x.copy()
         _position_step(x, x[YAW_RATE], dt, F, x_new)
@@ -98,10 +101,10 @@ class KinematicBicycleModel:
             raise ValueError(f"wheelbase_m must be positive, got {wheelbase_m}")
         self.noise = noise
         self.wheelbase_m = wheelbase_m
-        self.steering_angle_rad = 0.0
 
-    def step(self, x: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        tan_delta = math.tan(self.steering_angle_rad)
+    def step(self, x: np.ndarray, dt: float, steering_angle_rad: float = 0.0
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        tan_delta = math.tan(steering_angle_rad)
         yaw_rate = x[SPEED] * tan_delta / self.wheelbase_m
         F = np.zeros((STATE_DIM, STATE_DIM))
         np.fill_diagonal(F, 1.0)
@@ -119,13 +122,13 @@ class KinematicBicycleModel:
         F[YAW_RATE, YAW_RATE] = 0.0
         F[YAW_RATE, SPEED] = d_yaw_rate_dv
         F[YAW_RATE, ACCEL] = d_yaw_rate_dv * dt
-        return x_new, F, self.process_noise(x, dt)
+        return x_new, F, self.process_noise(x, dt, steering_angle_rad)
 
-    def process_noise(self, x: np.ndarray, dt: float) -> np.ndarray:
+    def process_noise(self, x: np.ndarray, dt: float, steering_angle_rad: float) -> np.ndarray:
         Q = np.zeros((STATE_DIM, STATE_DIM))
         Q[E, E] = Q[N, N] = self.noise.position_std_mps**2 * dt
         # Steering noise seen as yaw-rate noise: d(yaw_rate)/d(delta) = v / (L cos^2 delta).
-        gain = x[SPEED] / (self.wheelbase_m * math.cos(self.steering_angle_rad) ** 2)
+        gain = x[SPEED] / (self.wheelbase_m * math.cos(steering_angle_rad) ** 2)
         yaw_rate_var = (gain * self.noise.steering_std_rad) ** 2
         Q[HEADING, HEADING] = yaw_rate_var * dt * dt + self.noise.yaw_accel_std_radps2**2 * dt**3 / 3.0
         Q[YAW_RATE, YAW_RATE] = yaw_rate_var

@@ -99,13 +99,18 @@ def gga(msg: pynmea2.NMEASentence, fix: gnss_pb2.GnssFix, quality_map: dict[int,
     if quality not in quality_map:
         raise KeyError(quality)
     fix.fix_mode = quality_map[quality]
+    _position(msg, fix, msg.horizontal_dil)
+
+
+def _position(msg: pynmea2.NMEASentence, fix: gnss_pb2.GnssFix, hdop: str | None) -> None:
+    """The position (when the fix mode has one), satellites and HDOP, which GGA and GNS carry alike."""
     if fix.fix_mode != gnss_pb2.FIX_MODE_NO_FIX:
         fix.latitude_deg = msg.latitude
         fix.longitude_deg = msg.longitude
         # Ellipsoidal height = height above the geoid + geoid separation.
         fix.altitude_m = float(msg.altitude or 0.0) + float(msg.geo_sep or 0.0)
     fix.satellites = int(msg.num_sats or 0)
-    fix.hdop = float(msg.horizontal_dil or 0.0)
+    fix.hdop = float(hdop or 0.0)
 
 
 def gns(msg: pynmea2.NMEASentence, fix: gnss_pb2.GnssFix) -> None:
@@ -114,12 +119,7 @@ def gns(msg: pynmea2.NMEASentence, fix: gnss_pb2.GnssFix) -> None:
         return
     modes = [GNS_MODE_FIX_MODE[letter] for letter in msg.mode_indicator or "" if letter in GNS_MODE_FIX_MODE]
     fix.fix_mode = max(modes, default=gnss_pb2.FIX_MODE_NO_FIX)
-    if fix.fix_mode != gnss_pb2.FIX_MODE_NO_FIX:
-        fix.latitude_deg = msg.latitude
-        fix.longitude_deg = msg.longitude
-        fix.altitude_m = float(msg.altitude or 0.0) + float(msg.geo_sep or 0.0)
-    fix.satellites = int(msg.num_sats or 0)
-    fix.hdop = float(msg.hdop or 0.0)
+    _position(msg, fix, msg.hdop)
 
 
 def gst(msg: pynmea2.NMEASentence, fix: gnss_pb2.GnssFix) -> None:

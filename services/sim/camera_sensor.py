@@ -11,11 +11,10 @@ from coopdrive.services.sim import geometry
 from coopdrive.services.sim.road_geometry import LaneGeometry, match_lane
 from coopdrive.services.sim.profiles import PASSENGER_CAR, VehicleProfile
 from coopdrive.services.sim.sensor_config import CameraConfig
-from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
+from coopdrive.services.sim.timed_sensor import TimedSensor
 from coopdrive.services.sim.world_view import WorldView
 from coopdrive.v1 import sensors_pb2
 
-SENDER = "sim"
 LANE_SAMPLES = 12
 CUBIC = 3
 # Detection confidence falls linearly from 1 at the camera to this value at max range.
@@ -26,28 +25,17 @@ CLASSES = (sensors_pb2.OBJECT_CLASS_CAR, sensors_pb2.OBJECT_CLASS_TRUCK, sensors
 MIN_WIDTH_M = 0.3
 
 
-class CameraSensor:
+class CameraSensor(TimedSensor[sensors_pb2.CameraFrame]):
     def __init__(self, config: CameraConfig, rng: np.random.Generator, vehicle_id: str,
                  lanes: Sequence[LaneGeometry] = (), profile: VehicleProfile = PASSENGER_CAR) -> None:
         # Mounts left out of the configuration sit where they would on this vehicle.
         self.config = config = config.placed(profile)
-        self.rng = rng
-        self.vehicle_id = vehicle_id
         self.lanes = list(lanes)
-        self.timing: SensorTiming[sensors_pb2.CameraFrame] = SensorTiming(config.timing, rng)
+        super().__init__(config.timing, rng, vehicle_id)
         self._detection_ids: dict[str, int] = {}
-        self._sequence = 0
-
-    def set_dropout(self, active: bool) -> None:
-        self.timing.forced_dropout = active
 
     def poll(self, now_s: float, world: WorldView) -> list[sensors_pb2.CameraFrame]:
-        outputs = []
-        for sample_s, delivery_s, message in self.timing.poll(now_s, lambda _: self._measure(world)):
-            self._sequence += 1
-            stamp(message.header, sample_s, delivery_s, self.vehicle_id, SENDER, self._sequence)
-            outputs.append(message)
-        return outputs
+        return self._deliver(now_s, lambda: self._measure(world))
 
     def _measure(self, world: WorldView) -> sensors_pb2.CameraFrame:
         frame = sensors_pb2.CameraFrame()

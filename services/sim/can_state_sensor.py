@@ -8,10 +8,8 @@ import numpy as np
 
 from coopdrive.services.sim.profiles import VehicleProfile
 from coopdrive.services.sim.sensor_config import CanStateConfig
-from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
+from coopdrive.services.sim.timed_sensor import TimedSensor
 from coopdrive.v1 import sim_pb2, vehicle_pb2
-
-SENDER = "sim"
 
 
 @dataclass(frozen=True)
@@ -36,31 +34,18 @@ def wheel_speeds_mps(speed_mps: float, yaw_rate_radps: float, wheelbase_m: float
     return at(half_track, lateral_front), at(-half_track, lateral_front), at(half_track, 0.0), at(-half_track, 0.0)
 
 
-class CanStateSensor:
+class CanStateSensor(TimedSensor[vehicle_pb2.VehicleCanState]):
     def __init__(self, config: CanStateConfig, rng: np.random.Generator, profile: VehicleProfile,
                  vehicle_id: str) -> None:
         self.config = config
-        self.rng = rng
         self.profile = profile
-        self.vehicle_id = vehicle_id
-        self.timing: SensorTiming[vehicle_pb2.VehicleCanState] = SensorTiming(config.timing, rng)
-        self._sequence = 0
-
-    def set_dropout(self, active: bool) -> None:
-        """Fault hook (sensor_dropout, can_error_burst): no frames while active."""
-        self.timing.forced_dropout = active
+        super().__init__(config.timing, rng, vehicle_id)
 
     def poll(self, now_s: float, ego: sim_pb2.VehicleTruth, brake_pressure_bar: float,
              driver: DriverPedals = DriverPedals()) -> list[vehicle_pb2.VehicleCanState]:
         """ego carries speed, yaw rate and road-wheel angle; brake_pressure_bar comes from
         VehicleModel.brake_pressure_bar()."""
-        outputs = []
-        measure = lambda _: self._measure(ego, brake_pressure_bar, driver)  # noqa: E731
-        for sample_s, delivery_s, message in self.timing.poll(now_s, measure):
-            self._sequence += 1
-            stamp(message.header, sample_s, delivery_s, self.vehicle_id, SENDER, self._sequence)
-            outputs.append(message)
-        return outputs
+        return self._deliver(now_s, lambda: self._measure(ego, brake_pressure_bar, driver))
 
     def _measure(self, ego: sim_pb2.VehicleTruth, brake_pressure_bar: float,
                  driver: DriverPedals) -> vehicle_pb2.VehicleCanState:

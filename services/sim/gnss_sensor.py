@@ -12,7 +12,7 @@ import numpy as np
 from coopdrive.services.sim.gnss_error import GaussMarkovError, GnssEpisodes, jump_offset_m
 from coopdrive.services.sim.nmea_writer import GgaQuality, NmeaFix, NmeaWriter
 from coopdrive.services.sim.sensor_config import FixModeName, GnssConfig
-from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
+from coopdrive.services.sim.sensor_timing import SENDER, SensorTiming, stamp
 from coopdrive.v1 import gnss_pb2, sim_pb2
 
 # Heudiasyc Table 1 (NovAtel APN-051): horizontal accuracy per positioning mode, taken as a 2D RMS error;
@@ -29,7 +29,6 @@ VERTICAL_TO_HORIZONTAL_RATIO = 1.5
 TYPICAL_HDOP = 0.9
 DIFFERENTIAL_AGE_S = 1.0
 
-SENDER = "sim"
 # The gnss_multipath fault's jumps come from their own generator, so that a fault does not shift the noise.
 MULTIPATH_FAULT_SEED = 0x6E55
 

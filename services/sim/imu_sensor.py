@@ -4,19 +4,14 @@ from __future__ import annotations
 import numpy as np
 
 from coopdrive.services.sim.sensor_config import ImuConfig
-from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
+from coopdrive.services.sim.timed_sensor import TimedSensor
 from coopdrive.v1 import sim_pb2, vehicle_pb2
 
-SENDER = "sim"
 
-
-class ImuSensor:
+class ImuSensor(TimedSensor[vehicle_pb2.ImuSample]):
     def __init__(self, config: ImuConfig, rng: np.random.Generator, vehicle_id: str) -> None:
         self.config = config
-        self.rng = rng
-        self.vehicle_id = vehicle_id
-        self.timing: SensorTiming[vehicle_pb2.ImuSample] = SensorTiming(config.timing, rng)
-        self._sequence = 0
+        super().__init__(config.timing, rng, vehicle_id)
         # This unit's biases: the configured ones plus a turn-on bias drawn once (not at all when zero, so that an
         # ideal unit's noise sequence is unchanged).
         self.accel_bias_mps2 = config.accel_bias_mps2 + self._turn_on_bias(config.accel_turn_on_bias_sigma_mps2)
@@ -26,16 +21,8 @@ class ImuSensor:
     def _turn_on_bias(self, sigma: float) -> float:
         return sigma * float(self.rng.standard_normal()) if sigma > 0.0 else 0.0
 
-    def set_dropout(self, active: bool) -> None:
-        self.timing.forced_dropout = active
-
     def poll(self, now_s: float, ego: sim_pb2.VehicleTruth) -> list[vehicle_pb2.ImuSample]:
-        outputs = []
-        for sample_s, delivery_s, message in self.timing.poll(now_s, lambda _: self._measure(ego)):
-            self._sequence += 1
-            stamp(message.header, sample_s, delivery_s, self.vehicle_id, SENDER, self._sequence)
-            outputs.append(message)
-        return outputs
+        return self._deliver(now_s, lambda: self._measure(ego))
 
     def _measure(self, ego: sim_pb2.VehicleTruth) -> vehicle_pb2.ImuSample:
         cfg = self.config

@@ -9,14 +9,12 @@ import numpy as np
 from coopdrive.services.sim import geometry
 from coopdrive.services.sim.profiles import PASSENGER_CAR, VehicleProfile
 from coopdrive.services.sim.sensor_config import LidarConfig
-from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
+from coopdrive.services.sim.timed_sensor import TimedSensor
 from coopdrive.services.sim.world_view import WorldView
 from coopdrive.v1 import sensors_pb2
 
-SENDER = "sim"
 
-
-class LidarSensor:
+class LidarSensor(TimedSensor[sensors_pb2.LidarScan]):
     """Beams leave the mount; returns are reported as horizontal range and azimuth from the rear axle
     (ego frame), nearer vehicles occluding farther ones, a beam passing over a vehicle flying on."""
 
@@ -24,23 +22,12 @@ class LidarSensor:
                  profile: VehicleProfile = PASSENGER_CAR) -> None:
         # Mounts left out of the configuration sit where they would on this vehicle.
         self.config = config = config.placed(profile)
-        self.rng = rng
-        self.vehicle_id = vehicle_id
-        self.timing: SensorTiming[sensors_pb2.LidarScan] = SensorTiming(config.timing, rng)
+        super().__init__(config.timing, rng, vehicle_id)
         steps = int(round(2.0 * config.half_fov_rad / config.azimuth_resolution_rad))
         self.beam_azimuths_rad = np.linspace(-config.half_fov_rad, config.half_fov_rad, steps + 1)
-        self._sequence = 0
-
-    def set_dropout(self, active: bool) -> None:
-        self.timing.forced_dropout = active
 
     def poll(self, now_s: float, world: WorldView) -> list[sensors_pb2.LidarScan]:
-        outputs = []
-        for sample_s, delivery_s, message in self.timing.poll(now_s, lambda _: self._measure(world)):
-            self._sequence += 1
-            stamp(message.header, sample_s, delivery_s, self.vehicle_id, SENDER, self._sequence)
-            outputs.append(message)
-        return outputs
+        return self._deliver(now_s, lambda: self._measure(world))
 
     def _with_clutter(self, ranges: np.ndarray) -> np.ndarray:
         """Beams that echo off rain, spray or dust somewhere short of what they would have hit."""

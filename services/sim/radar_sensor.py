@@ -9,47 +9,35 @@ import numpy as np
 from coopdrive.services.sim import geometry
 from coopdrive.services.sim.profiles import PASSENGER_CAR, VehicleProfile
 from coopdrive.services.sim.sensor_config import RadarConfig
-from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
+from coopdrive.services.sim.timed_sensor import TimedSensor
 from coopdrive.services.sim.world_view import WorldView
 from coopdrive.v1 import sensors_pb2
 
-SENDER = "sim"
 # A width estimate never falls below this (a radar sees at least a reflector's extent).
 MIN_RADAR_WIDTH_M = 0.5
 # False tracks are reported from here out to the maximum range.
 MIN_FALSE_ALARM_RANGE_M = 5.0
 
 
-class RadarSensor:
+class RadarSensor(TimedSensor[sensors_pb2.RadarTracks]):
     """Range and azimuth are in the ego frame (origin rear axle); visibility is judged from the mount."""
 
     def __init__(self, config: RadarConfig, rng: np.random.Generator, vehicle_id: str,
                  profile: VehicleProfile = PASSENGER_CAR) -> None:
         # Mounts left out of the configuration sit where they would on this vehicle.
         self.config = config = config.placed(profile)
-        self.rng = rng
-        self.vehicle_id = vehicle_id
-        self.timing: SensorTiming[sensors_pb2.RadarTracks] = SensorTiming(config.timing, rng)
+        super().__init__(config.timing, rng, vehicle_id)
         self._track_ids: dict[str, int] = {}
         self._next_track_id = 1
-        self._sequence = 0
         # Fault hook (radar_clutter): false tracks per scan instead of the configured rate.
         self.clutter_per_scan: float | None = None
-
-    def set_dropout(self, active: bool) -> None:
-        self.timing.forced_dropout = active
 
     def set_clutter(self, false_alarms_per_scan: float | None) -> None:
         """Fault hook (radar_clutter): this many false tracks per scan; None goes back to the configured rate."""
         self.clutter_per_scan = false_alarms_per_scan
 
     def poll(self, now_s: float, world: WorldView) -> list[sensors_pb2.RadarTracks]:
-        outputs = []
-        for sample_s, delivery_s, message in self.timing.poll(now_s, lambda _: self._measure(world)):
-            self._sequence += 1
-            stamp(message.header, sample_s, delivery_s, self.vehicle_id, SENDER, self._sequence)
-            outputs.append(message)
-        return outputs
+        return self._deliver(now_s, lambda: self._measure(world))
 
     def _new_track_id(self) -> int:
         self._next_track_id += 1

@@ -12,6 +12,8 @@ import numpy as np
 from coopdrive.services.sim.sensor_config import SensorTimingConfig
 
 Output = TypeVar("Output")
+# The sender every simulated sensor's messages name in their header.
+SENDER = "sim"
 
 # Tolerance on the sample schedule so that floating-point step times do not skip a sample.
 _SCHEDULE_EPS_S = 1e-9

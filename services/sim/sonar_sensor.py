@@ -6,34 +6,21 @@ import numpy as np
 from coopdrive.services.sim import geometry
 from coopdrive.services.sim.profiles import PASSENGER_CAR, VehicleProfile
 from coopdrive.services.sim.sensor_config import SonarConfig
-from coopdrive.services.sim.sensor_timing import SensorTiming, stamp
+from coopdrive.services.sim.timed_sensor import TimedSensor
 from coopdrive.services.sim.world_view import WorldView
 from coopdrive.v1 import sensors_pb2
 
-SENDER = "sim"
 
-
-class SonarSensor:
+class SonarSensor(TimedSensor[sensors_pb2.SonarRanges]):
     def __init__(self, config: SonarConfig, rng: np.random.Generator, vehicle_id: str,
                  profile: VehicleProfile = PASSENGER_CAR) -> None:
         # Mounts left out of the configuration sit where they would on this vehicle.
         self.config = config = config.placed(profile)
-        self.rng = rng
-        self.vehicle_id = vehicle_id
-        self.timing: SensorTiming[sensors_pb2.SonarRanges] = SensorTiming(config.timing, rng)
+        super().__init__(config.timing, rng, vehicle_id)
         self._cone_rad = np.linspace(-config.half_beam_rad, config.half_beam_rad, config.rays_per_beam)
-        self._sequence = 0
-
-    def set_dropout(self, active: bool) -> None:
-        self.timing.forced_dropout = active
 
     def poll(self, now_s: float, world: WorldView) -> list[sensors_pb2.SonarRanges]:
-        outputs = []
-        for sample_s, delivery_s, message in self.timing.poll(now_s, lambda _: self._measure(world)):
-            self._sequence += 1
-            stamp(message.header, sample_s, delivery_s, self.vehicle_id, SENDER, self._sequence)
-            outputs.append(message)
-        return outputs
+        return self._deliver(now_s, lambda: self._measure(world))
 
     def _measure(self, world: WorldView) -> sensors_pb2.SonarRanges:
         cfg = self.config

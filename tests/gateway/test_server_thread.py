@@ -4,7 +4,7 @@ import socket
 
 import httpx
 import pytest
-from fastapi import FastAPI
+from ping_app import ping_app
 from pydantic import ValidationError
 
 from coopdrive.launch.ports import free_tcp_port
@@ -14,16 +14,6 @@ from coopdrive.services.gateway.server import HttpServerThread
 # Generous: a loaded 2-core machine may take a while to schedule the server thread.
 START_DEADLINE_S = 20.0
 STOP_TIMEOUT_S = 5.0
-
-
-def ping_app() -> FastAPI:
-    app = FastAPI()
-
-    @app.get("/ping")
-    def ping() -> dict:
-        return {"pong": True}
-
-    return app
 
 
 def test_the_server_answers_on_its_port_and_stops_when_asked():

@@ -10,7 +10,7 @@ from cryptography import x509
 from cryptography.hazmat.primitives import hashes, serialization
 from cryptography.hazmat.primitives.asymmetric import ec
 from cryptography.x509.oid import NameOID
-from fastapi import FastAPI
+from ping_app import ping_app
 
 from coopdrive.launch.ports import free_tcp_port
 from coopdrive.services.gateway.config import TlsConfig
@@ -50,16 +50,6 @@ def pki(tmp_path):
     server = write(tmp_path, "server", *issue("gateway", ca_key, ca.subject, ip="127.0.0.1"))
     client = write(tmp_path, "alice", *issue("alice", ca_key, ca.subject))
     return {"ca": ca_path, "server": server, "client": client}
-
-
-def ping_app() -> FastAPI:
-    app = FastAPI()
-
-    @app.get("/ping")
-    def ping() -> dict:
-        return {"pong": True}
-
-    return app
 
 
 def test_with_a_client_ca_only_clients_with_a_certificate_from_it_are_served(pki):

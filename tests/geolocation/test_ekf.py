@@ -43,21 +43,20 @@ def test_ctra_follows_the_exact_constant_turn_rate_and_acceleration_path():
 
 @pytest.mark.parametrize("model", [CtraModel(ProcessNoise()), KinematicBicycleModel(ProcessNoise(), 2.7)])
 def test_the_model_jacobian_matches_finite_differences(model):
-    if isinstance(model, KinematicBicycleModel):
-        model.steering_angle_rad = 0.04
-    _, F, _ = model.step(STATE, 0.02)
+    steering_rad = 0.04
+    _, F, _ = model.step(STATE, 0.02, steering_rad)
     numeric = np.zeros((6, 6))
     for j in range(6):
         step = np.zeros(6)
         step[j] = 1e-6
-        numeric[:, j] = (model.step(STATE + step, 0.02)[0] - model.step(STATE - step, 0.02)[0]) / 2e-6
+        numeric[:, j] = (model.step(STATE + step, 0.02, steering_rad)[0]
+                         - model.step(STATE - step, 0.02, steering_rad)[0]) / 2e-6
     assert F == pytest.approx(numeric, abs=1e-6)
 
 
 def test_the_bicycle_model_turns_at_v_tan_delta_over_wheelbase():
     model = KinematicBicycleModel(ProcessNoise(), wheelbase_m=2.7)
-    model.steering_angle_rad = math.atan(0.27)
-    x, _, _ = model.step(np.array([0.0, 0.0, 0.0, 10.0, 0.0, 0.0]), 0.01)
+    x, _, _ = model.step(np.array([0.0, 0.0, 0.0, 10.0, 0.0, 0.0]), 0.01, math.atan(0.27))
     assert x[4] == pytest.approx(1.0)
     assert x[2] == pytest.approx(0.01)
 
@@ -90,3 +89,30 @@ def test_predicting_ahead_does_not_move_the_filter():
     x, P = ekf.predicted(1.0)
     assert ekf.time_s == 0.0 and ekf.x == pytest.approx(STATE)
     assert x[0] > STATE[0] and P[0, 0] > 0.01
+
+
+def test_a_heading_across_the_wrap_pulls_the_estimate_the_short_way():
+    ekf = GeolocationEkf()
+    ekf.initialise(0.0, np.array([0.0, 0.0, math.pi - 0.01, 20.0, 0.0, 0.0]), np.diag([0.01, 0.01, 1e-2, 0.01, 0.1, 1]))
+    assert ekf.update_heading(-math.pi + 0.01, 0.01)
+    assert abs(ekf.x[2]) > math.pi - 0.01
+
+
+def test_a_snapshot_brings_back_the_counts_and_the_held_steering():
+    ekf = started_ekf(KinematicBicycleModel(ProcessNoise(), 2.7))
+    ekf.hold_steering(0.05)
+    snap = ekf.snapshot()
+    ekf.hold_steering(-0.05)
+    ekf.update_speed(20.0, 0.1)
+    ekf.predict_to(0.5)
+    ekf.restore(snap)
+    assert ekf.steering_angle_rad == 0.05 and ekf.update_counts() == {}
+    assert ekf.time_s == 0.0 and ekf.x == pytest.approx(STATE)
+
+
+def test_a_snapshot_from_before_the_start_leaves_the_filter_uninitialised():
+    ekf = GeolocationEkf()
+    snap = ekf.snapshot()
+    ekf.initialise(1.0, STATE, np.eye(6))
+    ekf.restore(snap)
+    assert not ekf.initialised
