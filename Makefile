@@ -12,7 +12,7 @@ $(STAMP): pyproject.toml setup.py
 	$(BIN)/python -m pip install --quiet -e '.[test]'
 	@touch $(STAMP)
 
-## run: the follow scenario with every service as its own process; prints the summary
+## run: the follow scenario with the full stack (the simulator and the stack, a process each); prints the summary
 run: $(STAMP)
 	$(BIN)/coopdrive run follow --record out/follow.mcap
 

@@ -3,6 +3,9 @@
 Latency is measured on the wall clock at the run's hub: from the arrival of the simulator's
 clock message that closes step k (its sensor samples went out just before it) to the arrival of
 the actuation command computed in that step.
+
+Before issue 27 (quiet 2-core machine, one process per service): real-time factor 4.2, sensor -> command p50
+7.1 ms, p99 15.6 ms. The issue asks for 20 and a p99 of at most 5 ms.
 """
 
 from __future__ import annotations
@@ -16,7 +19,7 @@ from bench.step_latency import StepLatency
 from coopdrive.launch.run import RunOptions, run_scenario
 
 DURATION_S = 60.0
-REQUIRED_REALTIME_FACTOR = 5.0
+REQUIRED_REALTIME_FACTOR = 20.0
 STEP_S = 0.02
 
 

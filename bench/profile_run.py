@@ -100,9 +100,9 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("scenario")
     parser.add_argument("--stacks", type=int)
     parser.add_argument("--duration", type=float, default=30.0)
-    parser.add_argument("--processes", choices=["service", "vehicle"])
+    parser.add_argument("--processes", choices=["service", "vehicle"], default="vehicle")
     args = parser.parse_args(argv)
-    grouped = None if args.processes is None else args.processes == "vehicle"
+    grouped = args.processes == "vehicle"
     result, per_process, launcher_cpu_s = profile(RunOptions(scenario=args.scenario, stacks=args.stacks,
                                                              duration_s=args.duration, group_per_vehicle=grouped))
     sim_s = max(result.sim_time_s, 1e-9)

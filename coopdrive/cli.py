@@ -88,8 +88,8 @@ def _add_run_command(commands) -> None:
                           "for runs that need exact answers (services/sim/README.md)")
     run.add_argument("--workers", type=int, default=2, help="parallel runs for `all` and --seeds")
     run.add_argument("--out", type=Path, metavar="DIR", help="batch runs: metrics.json per run and summary files")
-    run.add_argument("--processes", choices=["service", "vehicle"],
-                     help="one process per service or per vehicle (default: per vehicle when several stacks run)")
+    run.add_argument("--processes", choices=["service", "vehicle"], default="vehicle",
+                     help="one process per vehicle's stack (the default) or one per service, as on the vehicle")
     run.add_argument("--security", choices=[m.value for m in _security_modes()],
                      help="V2X security of every stack (ETSI TS 103 097): each gets tickets from a test PKI")
     run.add_argument("--untrusted", action="append", default=[], metavar="VEHICLE",
@@ -112,7 +112,7 @@ def _add_run_command(commands) -> None:
     run.add_argument("--listen", action="append", default=[], metavar="ENDPOINT",
                      help="the run's bus also listens here (e.g. tcp/127.0.0.1:7447) for other tools to join")
     run.add_argument("--duration", type=float, help="simulated seconds (default: the scenario's)")
-    run.add_argument("--logs", type=Path, help="folder for each service's log")
+    run.add_argument("--logs", type=Path, help="folder for each process's log (<vehicle>-group.log, or <vehicle>-<service>.log)")
     run.add_argument("--json", action="store_true", help="print the summary as JSON")
     run.add_argument("--report", type=Path, metavar="DIR",
                      help="write metrics.json, plots and index.html to DIR (records to DIR/run.mcap without --record)")
@@ -207,7 +207,7 @@ def _run(args) -> int:
                          gateway_port=args.gateway, foxglove_port=args.foxglove, listen=tuple(args.listen),
                          duration_s=args.duration,
                          log_dir=args.logs, stacks=args.stacks,
-                         group_per_vehicle=None if args.processes is None else args.processes == "vehicle",
+                         group_per_vehicle=args.processes == "vehicle",
                          security=args.security, untrusted=tuple(args.untrusted), extra_faults=_extra_faults(args),
                          world=args.world, started_monotonic_s=COMMAND_STARTED_MONOTONIC_S)
     if args.untrusted and args.security is None:

@@ -47,8 +47,9 @@ class RunOptions:
     duration_s: float | None = None
     # Scenario files: how many of the file's stack vehicles run a stack (None: all of them); the others are scripted.
     stacks: int | None = None
-    # Each vehicle's services in one process (`coopdrive group`); None: only when several stacks run.
-    group_per_vehicle: bool | None = None
+    # Each vehicle's services in one process (`coopdrive group`, the default) or one process per service, as on
+    # the vehicle (False).
+    group_per_vehicle: bool = True
     log_dir: Path | None = None
     # V2X security of every stack (a SecurityMode value; None: the v2x default, off), and the stack vehicles
     # holding a ticket from a root nobody else trusts.
@@ -73,6 +74,9 @@ CERTIFICATE_BACKDATE_S = 3600
 # After the simulator exits its result may still be queued behind the run's last messages, which on a loaded
 # host (an 8-stack run on two cores) can take more than a second to drain.
 RESULT_GRACE_S = 5.0
+# What the stacks publish in the last step reaches the recorder after the result: it waits for a quiet bus.
+RECORDING_QUIET_S = 0.2
+RECORDING_DRAIN_S = 3.0
 
 
 class RunAborted(RuntimeError):
@@ -199,6 +203,7 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     finally:
         ended = time.monotonic()
         if recorder is not None:
+            _drain(recorder)
             recorder.add_configs(effective_configs(hub, specs))
         processes.stop_all()
         shutil.rmtree(run_dir, ignore_errors=True)
@@ -241,6 +246,16 @@ def _watch(options: RunOptions, hub: Bus, configs: dict[str, dict]):
     return recorder, bridge
 
 
+def _drain(recorder) -> None:
+    """The simulator's result comes in its last step, while the stacks still publish theirs: the recording
+    takes what is on its way until the bus has been quiet for RECORDING_QUIET_S (at most RECORDING_DRAIN_S)."""
+    deadline = time.monotonic() + RECORDING_DRAIN_S
+    written = -1
+    while recorder.messages_written != written and time.monotonic() < deadline:
+        written = recorder.messages_written
+        time.sleep(RECORDING_QUIET_S)
+
+
 def _wait_for_the_end(processes: ServiceProcesses, finished: threading.Event) -> None:
     """Until the result (or a signal) comes; once the simulator has exited, a grace period for its result."""
     while not finished.wait(0.2):
@@ -270,15 +285,15 @@ def crashing_participants(specs: list[ServiceSpec]) -> set[str]:
 
 
 def start_processes(processes: ServiceProcesses, specs: list[ServiceSpec], options: RunOptions) -> None:
-    """The simulator alone; each stack as one process per service, or with several stacks (or when asked)
-    one process per vehicle: eight stacks of five services would be forty interpreters on a laptop. A service a
-    service_crash kills runs on its own, so that only it dies."""
+    """The simulator alone; each stack as one process (`coopdrive group`), or one process per service when asked
+    (`--processes service`, as on the vehicle). One process per vehicle starts one interpreter instead of six and
+    spends about a third less CPU per step (docs/performance.md), with the same metrics (a test holds it). A
+    service a service_crash kills runs on its own, so that only it dies."""
     crashing = crashing_participants(specs)
     by_vehicle: dict[str, list[ServiceSpec]] = {}
     for spec in specs:
         by_vehicle.setdefault(spec.vehicle_id, []).append(spec)
-    stack_count = len(by_vehicle) - (WORLD_ID in by_vehicle)
-    grouped = options.group_per_vehicle if options.group_per_vehicle is not None else stack_count > 1
+    grouped = options.group_per_vehicle
     for vehicle_id, vehicle_specs in by_vehicle.items():
         alone = [spec for spec in vehicle_specs if not grouped or vehicle_id == WORLD_ID or spec.participant in crashing]
         if len(alone) < len(vehicle_specs):

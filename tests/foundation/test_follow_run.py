@@ -46,9 +46,9 @@ def test_the_ego_follows_without_collision_and_keeps_the_standstill_distance(rec
         assert key in summary
 
 
-def test_the_same_seed_gives_identical_metrics_even_with_the_stack_in_one_process(recorded_run):
+def test_the_same_seed_gives_identical_metrics_with_one_process_per_service_as_on_the_vehicle(recorded_run):
     first, _ = recorded_run
-    second = run_follow("--processes", "vehicle")
+    second = run_follow("--processes", "service")
     assert {k: v for k, v in first.items() if k not in WALL_CLOCK_KEYS} == \
         {k: v for k, v in second.items() if k not in WALL_CLOCK_KEYS}
 
@@ -69,6 +69,13 @@ def test_the_recording_holds_every_service_with_its_schema(recorded_run):
     senders = Counter(message.message.header.sender for message in read_messages(recording))
     for service in ("sim", "geolocation", "scene", "planner", "control", "actuation"):
         assert senders[service] > 0, f"nothing from {service} in the recording"
+
+
+def test_the_recording_holds_what_the_stack_published_in_the_last_step_too(recorded_run):
+    summary, recording = recorded_run
+    commands_s = [m.message.header.sample_time_s for m in read_messages(recording)
+                  if m.topic == "coopdrive/ego/can/command"]
+    assert max(commands_s) == pytest.approx(summary["sim_time_s"])
 
 
 def test_the_ego_s_can_bus_in_the_recording_decodes_with_the_dbc_to_the_true_speed_and_radar_range(recorded_run):
