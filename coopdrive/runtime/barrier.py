@@ -55,14 +55,17 @@ class StepBarrier:
     def done_step(self, participant: str) -> int:
         return self._done_step.get(participant, -1)
 
+    def waits(self, step: int, participants: Collection[str], markers_only: bool = False) -> bool:
+        """Whether missing() would name anyone: asked on every burst of events, so it stops at the first."""
+        return any(self._waits_for(participant, lag_steps, step, markers_only)
+                   for participant, lag_steps in self._lag_steps.items() if participant in participants)
+
+    def _waits_for(self, participant: str, lag_steps: int, step: int, markers_only: bool) -> bool:
+        return self.done_step(participant) < step - lag_steps or (
+            not markers_only and not self.holds(self._promised_sequences.get(participant, {})))
+
     def missing(self, step: int, participants: Collection[str], markers_only: bool = False) -> list[str]:
         """Running dependencies whose step marker (and the messages it counts, unless markers_only) this
         service still needs before handling `step`, sorted. Called on every event: pass a set."""
-        waiting = []
-        for participant, lag_steps in self._lag_steps.items():
-            if participant not in participants:
-                continue
-            if self.done_step(participant) < step - lag_steps or (
-                    not markers_only and not self.holds(self._promised_sequences.get(participant, {}))):
-                waiting.append(participant)
-        return sorted(waiting)
+        return sorted(participant for participant, lag_steps in self._lag_steps.items()
+                      if participant in participants and self._waits_for(participant, lag_steps, step, markers_only))

@@ -179,9 +179,9 @@ class ClockMaster:
         while not self._runner.stopping:
             barrier = self._runner.barrier
             running = set(self._participants)
-            if not barrier.missing(step + 1, running):
+            if not barrier.waits(step + 1, running):
                 return True
-            if barrier.missing(step + 1, running, markers_only=True):
+            if barrier.waits(step + 1, running, markers_only=True):
                 markers_in_at = time.monotonic()
             elif time.monotonic() - markers_in_at > MESSAGE_WAIT_LIMIT_S:
                 # Every marker is in but a message it counts never came: go on without it (see runner.py).
@@ -190,6 +190,8 @@ class ClockMaster:
                                          ", ".join(barrier.missing(step + 1, running)))
                 return True
             self._handle(self._runner.next_event(0.5))
+            # What queued behind it first: the barrier is asked once per burst of markers, not once per marker.
+            self._handle_queued()
             if time.monotonic() - warned_at > STALL_WARNING_S:
                 warned_at = time.monotonic()
                 waiting = barrier.missing(step + 1, running)
@@ -203,6 +205,10 @@ class ClockMaster:
                 return True
             self._handle(self._runner.next_event(remaining))
         return False
+
+    def _handle_queued(self) -> None:
+        for _ in range(self._runner.queued_events()):
+            self._handle(self._runner.next_event(0.0))
 
     def _handle(self, event) -> None:
         if event is None:

@@ -345,7 +345,7 @@ class ServiceRunner:
                 self._pending_clocks.popleft()  # idle step: our last marker already covers it
                 continue
             step, participants = released.step, released.participants
-            if self._barrier.missing(step, participants) or not self._barrier.holds(released.sequences):
+            if self._barrier.waits(step, participants) or not self._barrier.holds(released.sequences):
                 if not self._gave_up_waiting_for_messages(step, participants):
                     return
             self._blocked_since = None
@@ -382,6 +382,9 @@ class ServiceRunner:
         return True
 
     # ----- shared by followers and the master -----------------------------------------------
+    def queued_events(self) -> int:
+        return self._events.qsize()
+
     def next_event(self, timeout_s: float):
         try:
             return self._events.get(timeout=max(timeout_s, 0.0))
