@@ -153,6 +153,7 @@ def _service(args) -> int:
     from coopdrive.bus import BusConfig
     from coopdrive.runtime.config import load_config
     from coopdrive.runtime.hardware_wait import run_waiting_for_hardware
+    from coopdrive.runtime.launcher_watch import exit_with_launcher
     from coopdrive.runtime.priority import lower_cpu_priority
     from coopdrive.runtime.registry import service_class
     from coopdrive.runtime.runner import ClockMode, ServiceRunner
@@ -163,6 +164,7 @@ def _service(args) -> int:
         print(f"coopdrive: {error.args[0]}", file=sys.stderr)
         return EXIT_USAGE
     config = load_config(cls.Config, args.config, args.set)
+    exit_with_launcher()
     if config.cpu_nice:
         lower_cpu_priority(config.cpu_nice)  # before the bus opens its threads, which inherit it
     bus = BusConfig(connect=args.connect, listen=args.listen or ["tcp/127.0.0.1:0"],
@@ -179,6 +181,7 @@ def _group(args) -> int:
     from coopdrive.bus import BusConfig
     from coopdrive.runtime.config import ConfigError, validate_config
     from coopdrive.runtime.group import GroupMember, ServiceGroup
+    from coopdrive.runtime.launcher_watch import exit_with_launcher
     from coopdrive.runtime.registry import service_class
     from coopdrive.runtime.runner import ClockMode
 
@@ -191,6 +194,7 @@ def _group(args) -> int:
                                                             f"{args.spec}[{index}]"), entry.get("vehicle", "ego")))
     except (OSError, ValueError, KeyError, TypeError) as error:
         raise ConfigError(f"{args.spec}: {error.args[0] if error.args else error}") from None
+    exit_with_launcher()
     bus = BusConfig(connect=args.connect, listen=args.listen or ["tcp/127.0.0.1:0"])
     group = ServiceGroup(members, bus, ClockMode(args.clock), clock_step_s=args.clock_step)
     group.run()
