@@ -66,10 +66,12 @@ def run_label(scenario: str, fault: str, seed: int) -> str:
 @dataclass
 class BatchSummary:
     outcomes: list[RunOutcome]
+    # Runs that never ended (the sweep was interrupted).
+    unfinished: int = 0
 
     @property
     def all_passed(self) -> bool:
-        return bool(self.outcomes) and all(o.success for o in self.outcomes)
+        return bool(self.outcomes) and not self.unfinished and all(o.success for o in self.outcomes)
 
     def in_order(self) -> list[RunOutcome]:
         return sorted(self.outcomes, key=lambda o: (o.scenario, o.fault, o.seed))
@@ -163,7 +165,7 @@ def run_batch(options: BatchOptions, console: Console | None = None) -> BatchSum
             unfinished = stream_runs(client, jobs, finished)
     if unfinished:
         console.print(f"[yellow]interrupted: {len(unfinished)} run(s) not finished[/]")
-    summary = BatchSummary(outcomes)
+    summary = BatchSummary(outcomes, unfinished=len(unfinished))
     for line in retried_lines(summary):
         console.print(line)
     if options.out_dir is not None:

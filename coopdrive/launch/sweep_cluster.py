@@ -78,11 +78,7 @@ def stream_runs(client, jobs: list[SweepJob],
     try:
         for future in as_completed(list(futures), loop=client.loop):
             job = futures.pop(future)
-            outcome, files = _result(future, job)
-            starts = run_starts(client, topic).get(job.label, [])
-            # A finished run's last start is the one that finished; every start of a run given up on was lost.
-            outcome.lost_workers = starts[:-1] if future.status == "finished" else starts
-            outcome.retried = bool(outcome.lost_workers)
+            outcome, files = finished_run(future, job, run_starts(client, topic).get(job.label, []))
             future.release()
             on_outcome(outcome, files)
     except KeyboardInterrupt:
@@ -98,13 +94,23 @@ def run_starts(client, topic: str) -> dict[str, list[str]]:
     return starts
 
 
-def _result(future, job: SweepJob) -> tuple[RunOutcome, dict[str, bytes]]:
+def finished_run(future, job: SweepJob, starts: list[str]) -> tuple[RunOutcome, dict[str, bytes]]:
+    """The run's outcome and report files from its ended future, with the workers that died under it (`starts`:
+    the workers its attempts started on)."""
     from distributed import KilledWorker
 
     try:
-        return future.result()
+        outcome, files = future.result()
+        lost = starts[:-1]  # the last start is the one that ended
     except KilledWorker:
-        reason = "not run: each worker it was given died running it (KilledWorker)"
-    except Exception as error:  # the task itself failed, e.g. a worker without coopdrive installed
-        reason = f"not run: {type(error).__name__}: {' '.join(str(error).split())}"
-    return RunOutcome(job.scenario, job.seed, False, reason, fault=job.fault), {}
+        outcome, files = _not_run(job, "each worker it was given died running it (KilledWorker)"), {}
+        lost = list(starts)
+    except Exception as error:  # the task itself failed, e.g. on a worker without coopdrive installed
+        outcome, files = _not_run(job, f"{type(error).__name__}: {' '.join(str(error).split())}"), {}
+        lost = starts[:-1]
+    outcome.lost_workers, outcome.retried = lost, bool(lost)
+    return outcome, files
+
+
+def _not_run(job: SweepJob, reason: str) -> RunOutcome:
+    return RunOutcome(job.scenario, job.seed, False, f"not run: {reason}", fault=job.fault)

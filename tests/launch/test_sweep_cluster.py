@@ -6,14 +6,18 @@ import signal
 import threading
 import time
 
+from types import SimpleNamespace
+
 import psutil
 import pytest
-from distributed import Client, LocalCluster
+from distributed import Client, KilledWorker, LocalCluster
 from rich.console import Console
 
 from coopdrive.launch.batch import BatchOptions, run_batch
 from coopdrive.launch.run import RunOptions, run_scenario
-from coopdrive.launch.sweep_cluster import SweepError, sweep_client
+from coopdrive.launch.batch import RunOutcome
+from coopdrive.launch.sweep_cluster import SweepError, finished_run, sweep_client
+from coopdrive.launch.sweep_task import SweepJob
 
 SEEDS = [1, 2, 3, 4]
 DURATION_S = 3.0
@@ -104,3 +108,39 @@ def test_a_cluster_address_where_no_scheduler_answers_is_one_line(monkeypatch):
     with pytest.raises(SweepError, match=r"^--cluster tcp://127.0.0.1:9: no Dask scheduler answered \(.*\)$"):
         with sweep_client("tcp://127.0.0.1:9", 2):
             pass
+
+
+class Ended:
+    """A future that has ended with this value or error."""
+
+    def __init__(self, value=None, error=None):
+        self.value, self.error = value, error
+
+    def result(self):
+        if self.error is not None:
+            raise self.error
+        return self.value
+
+
+def test_a_run_given_up_on_after_its_workers_died_is_a_failed_run_that_lost_each_of_them():
+    job = SweepJob("follow", "none", 3)
+    gave_up = KilledWorker("coopdrive-run-follow/none/seed-3", SimpleNamespace(address="tcp://b:1"), 1)
+    outcome, files = finished_run(Ended(error=gave_up), job, ["tcp://a:1", "tcp://b:1"])
+    assert (outcome.seed, outcome.success, files) == (3, False, {})
+    assert outcome.failure_reason == "not run: each worker it was given died running it (KilledWorker)"
+    assert outcome.retried and outcome.lost_workers == ["tcp://a:1", "tcp://b:1"]
+
+
+def test_a_run_that_ended_on_its_second_start_lost_only_the_first_worker():
+    ran = RunOutcome("follow", 3, True, "", fault="none")
+    outcome, files = finished_run(Ended((ran, {"index.html": b""})), SweepJob("follow", "none", 3),
+                                  ["tcp://a:1", "tcp://b:1"])
+    assert outcome.success and files == {"index.html": b""}
+    assert outcome.retried and outcome.lost_workers == ["tcp://a:1"]
+
+
+def test_a_task_that_raised_is_a_failed_run_in_one_line_and_not_a_retried_one():
+    error = ModuleNotFoundError("No module named 'coopdrive'\n(on the worker)")
+    outcome, _ = finished_run(Ended(error=error), SweepJob("follow", "none", 1), ["tcp://a:1"])
+    assert outcome.failure_reason == "not run: ModuleNotFoundError: No module named 'coopdrive' (on the worker)"
+    assert not outcome.retried
