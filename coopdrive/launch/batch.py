@@ -163,6 +163,8 @@ def run_batch(options: BatchOptions, console: Console | None = None) -> BatchSum
 
         with sweep_client(options.cluster, options.workers) as client:
             unfinished = stream_runs(client, jobs, finished)
+    if not console.is_terminal:
+        console.line()  # a live display ends its last line itself only on a terminal
     if unfinished:
         console.print(f"[yellow]interrupted: {len(unfinished)} run(s) not finished[/]")
     summary = BatchSummary(outcomes, unfinished=len(unfinished))
