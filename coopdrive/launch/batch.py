@@ -13,6 +13,7 @@ import tempfile
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from rich.console import Console, Group
 from rich.live import Live
@@ -20,6 +21,9 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 
 from coopdrive.launch.sweep_faults import NO_FAULTS
 from coopdrive.services.sim.scenario_config import SCENARIO_PACKAGE, ScenarioError
+
+if TYPE_CHECKING:
+    from coopdrive.launch.sweep_task import SweepJob
 
 
 @dataclass
@@ -109,9 +113,9 @@ def scenario_names() -> list[str]:
     return sorted(names)
 
 
-def sweep_jobs(options: BatchOptions) -> list:
+def sweep_jobs(options: BatchOptions) -> list[SweepJob]:
     """Every (scenario, fault variant, seed) once, in that order."""
-    from coopdrive.launch.sweep_task import SweepJob
+    from coopdrive.launch.sweep_task import SweepJob  # it imports this module's RunOutcome
 
     return [SweepJob(scenario, fault, seed, faults, options.stacks, options.duration_s, options.security,
                      options.world, report=options.out_dir is not None)
@@ -142,6 +146,7 @@ def check_runs(options: BatchOptions) -> None:
 def run_batch(options: BatchOptions, console: Console | None = None) -> BatchSummary:
     """Runs the sweep on options.cluster, or on a local cluster of options.workers processes. ScenarioError or
     SweepError, before anything runs, for a sweep that cannot start."""
+    # Both import this module's data classes.
     from coopdrive.launch.sweep_cluster import stream_runs, sweep_client
     from coopdrive.launch.sweep_output import retried_lines, summary_table, write_run, write_summary
 
