@@ -46,8 +46,10 @@ def sweep_client(cluster: str | None, workers: int) -> Iterator:
         return
     # The scheduler reads this when it starts; a remote scheduler has its own setting.
     with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES}), _quiet_distributed():
+        # No dashboard (bokeh is not installed); the scheduler's HTTP routes on a free loopback port, not on 8787.
         local = LocalCluster(n_workers=max(1, workers), threads_per_worker=1, processes=True,
-                             dashboard_address=None, silence_logs=logging.ERROR)
+                             dashboard_address="127.0.0.1:0", scheduler_kwargs={"dashboard": False},
+                             silence_logs=logging.ERROR)
         with local, Client(local, set_as_default=False) as client:
             yield client
 

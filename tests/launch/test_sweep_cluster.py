@@ -10,7 +10,7 @@ from types import SimpleNamespace
 
 import psutil
 import pytest
-from distributed import Client, KilledWorker, LocalCluster
+from distributed import Client, KilledWorker
 from rich.console import Console
 
 from coopdrive.launch.batch import BatchOptions, run_batch
@@ -25,9 +25,9 @@ DURATION_S = 3.0
 
 @pytest.fixture(scope="module")
 def cluster():
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as local, \
-            Client(local) as client:
-        yield local.scheduler_address, client
+    """A local cluster of two workers, as a sweep starts it; the sweeps join it by its address."""
+    with sweep_client(None, 2) as client:
+        yield client.scheduler.address, client
 
 
 @pytest.fixture(scope="module")
