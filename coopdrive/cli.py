@@ -86,8 +86,14 @@ def _add_run_command(commands) -> None:
     run.add_argument("--world", choices=["real", "ideal"], default="real",
                      help="real: every sensor's and the radio's error sources (the default); ideal: none of them, "
                           "for runs that need exact answers (services/sim/README.md)")
-    run.add_argument("--workers", type=int, default=2, help="parallel runs for `all` and --seeds")
-    run.add_argument("--out", type=Path, metavar="DIR", help="batch runs: metrics.json per run and summary files")
+    run.add_argument("--workers", type=int, default=2,
+                     help="parallel runs for `all` and --seeds: the local Dask cluster's worker processes")
+    run.add_argument("--cluster", metavar="ADDRESS",
+                     help="run `all`/--seeds on this Dask scheduler's workers (tcp://host:8786), not a local cluster")
+    run.add_argument("--faults", type=Path, metavar="FILE",
+                     help="sweep these fault variants too (YAML: name -> faults, as docs/sweep-faults.yaml)")
+    run.add_argument("--out", type=Path, metavar="DIR",
+                     help="batch runs: metrics.json and the report per run, and summary files")
     run.add_argument("--processes", choices=["service", "vehicle"], default="vehicle",
                      help="one process per vehicle's stack (the default) or one per service, as on the vehicle")
     run.add_argument("--security", choices=[m.value for m in _security_modes()],
@@ -153,6 +159,7 @@ def _service(args) -> int:
     from coopdrive.bus import BusConfig
     from coopdrive.runtime.config import load_config
     from coopdrive.runtime.hardware_wait import run_waiting_for_hardware
+    from coopdrive.runtime.launcher_watch import exit_with_launcher
     from coopdrive.runtime.priority import lower_cpu_priority
     from coopdrive.runtime.registry import service_class
     from coopdrive.runtime.runner import ClockMode, ServiceRunner
@@ -163,6 +170,7 @@ def _service(args) -> int:
         print(f"coopdrive: {error.args[0]}", file=sys.stderr)
         return EXIT_USAGE
     config = load_config(cls.Config, args.config, args.set)
+    exit_with_launcher()
     if config.cpu_nice:
         lower_cpu_priority(config.cpu_nice)  # before the bus opens its threads, which inherit it
     bus = BusConfig(connect=args.connect, listen=args.listen or ["tcp/127.0.0.1:0"],
@@ -179,6 +187,7 @@ def _group(args) -> int:
     from coopdrive.bus import BusConfig
     from coopdrive.runtime.config import ConfigError, validate_config
     from coopdrive.runtime.group import GroupMember, ServiceGroup
+    from coopdrive.runtime.launcher_watch import exit_with_launcher
     from coopdrive.runtime.registry import service_class
     from coopdrive.runtime.runner import ClockMode
 
@@ -191,6 +200,7 @@ def _group(args) -> int:
                                                             f"{args.spec}[{index}]"), entry.get("vehicle", "ego")))
     except (OSError, ValueError, KeyError, TypeError) as error:
         raise ConfigError(f"{args.spec}: {error.args[0] if error.args else error}") from None
+    exit_with_launcher()
     bus = BusConfig(connect=args.connect, listen=args.listen or ["tcp/127.0.0.1:0"])
     group = ServiceGroup(members, bus, ClockMode(args.clock), clock_step_s=args.clock_step)
     group.run()
@@ -201,7 +211,7 @@ def _run(args) -> int:
     from coopdrive.launch.run import RunOptions, build_specs
     from coopdrive.services.sim.scenario_config import ScenarioError
 
-    if args.scenario == "all" or args.seeds:
+    if args.scenario == "all" or args.seeds or args.faults or args.cluster:
         return _batch(args)
     options = RunOptions(scenario=args.scenario, seed=args.seed, realtime=args.realtime, record=args.record,
                          gateway_port=args.gateway, foxglove_port=args.foxglove, listen=tuple(args.listen),
@@ -307,9 +317,16 @@ def _compare_with_baseline(args, options, result, recorded_to) -> int:
 
 def _batch(args) -> int:
     from coopdrive.launch.batch import BatchOptions, parse_seeds, run_batch, scenario_names
+    from coopdrive.launch.sweep_cluster import SweepError
+    from coopdrive.launch.sweep_faults import NO_FAULTS, FaultsFileError, load_fault_variants
+    from coopdrive.services.sim.scenario_config import ScenarioError
 
     try:
         seeds = parse_seeds(args.seeds) if args.seeds else [args.seed]
+        variants = load_fault_variants(args.faults) if args.faults else {NO_FAULTS: ()}
+    except FaultsFileError as error:
+        print(f"coopdrive: --faults {error}", file=sys.stderr)
+        return EXIT_USAGE
     except ValueError as error:
         print(f"coopdrive: --seeds: {error}", file=sys.stderr)
         return EXIT_USAGE
@@ -317,9 +334,16 @@ def _batch(args) -> int:
     if args.untrusted:
         print("coopdrive: --untrusted is for single runs (name the vehicle of one scenario)", file=sys.stderr)
         return EXIT_USAGE
-    summary = run_batch(BatchOptions(scenarios=scenarios, seeds=seeds, stacks=args.stacks, workers=args.workers,
-                                     out_dir=args.out, duration_s=args.duration, security=args.security,
-                                     world=args.world))
+    added = _extra_faults(args)  # --fault and --v2v-*: in every run, before each variant's own
+    options = BatchOptions(scenarios=scenarios, seeds=seeds, stacks=args.stacks, workers=args.workers,
+                           out_dir=args.out, duration_s=args.duration, security=args.security, world=args.world,
+                           fault_variants={name: added + faults for name, faults in variants.items()},
+                           cluster=args.cluster)
+    try:
+        summary = run_batch(options)
+    except (ScenarioError, SweepError) as error:
+        print(f"coopdrive: {error}", file=sys.stderr)
+        return EXIT_USAGE
     return EXIT_OK if summary.all_passed else EXIT_FAILED
 
 

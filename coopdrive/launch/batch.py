@@ -1,29 +1,29 @@
-"""Batch runs: every (scenario, seed) in parallel worker processes, a progress bar, and a summary table.
+"""Batch runs (sweeps): every (scenario, fault variant, seed) on a Dask cluster, a live progress bar and
+summary table, and the summary files.
 
-`coopdrive run all --seeds 1-20` and `coopdrive run merge --seeds 1-5` come here. Each run is an ordinary
-lockstep run in its own worker (so the same seed gives the same metrics as a single run); with --out each
-writes <out>/<scenario>/seed-<n>/metrics.json and the batch writes summary.json, summary.csv and pass_table.md.
+`coopdrive run all --seeds 1-20` and `coopdrive run merge --seeds 1-5 --faults FILE --cluster ADDRESS` come here.
+Each run is an ordinary lockstep run on a worker (so the same seed gives the same metrics as a single run); with
+--out each run's folder <out>/<scenario>/<fault>/seed-<n>/ holds metrics.json and the run's report (report/), and
+the sweep writes summary.json, summary.csv and pass_table.md. sweep_cluster.py is the Dask side.
 """
 
 from __future__ import annotations
 
-import csv
-import json
-import multiprocessing
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+import tempfile
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from rich.console import Console
+from rich.console import Console, Group
+from rich.live import Live
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-from rich.table import Table
 
-from coopdrive.launch.pass_table import pass_table_markdown
-from coopdrive.services.sim.scenario_config import SCENARIO_PACKAGE
+from coopdrive.launch.sweep_faults import NO_FAULTS
+from coopdrive.services.sim.scenario_config import SCENARIO_PACKAGE, ScenarioError
 
-# Metrics averaged in the summary table, when the runs report them.
-TABLE_METRICS = ("collisions", "min_gap_m", "spacing_error_m", "string_gain", "rms_jerk_mps3")
+if TYPE_CHECKING:
+    from coopdrive.launch.sweep_task import SweepJob
 
 
 @dataclass
@@ -38,6 +38,10 @@ class BatchOptions:
     security: str | None = None
     # The world every run is in, as `coopdrive run --world`.
     world: str = "real"
+    # Fault variant name -> the faults it adds to every scenario (sweep_faults.py); each is a sweep dimension.
+    fault_variants: dict[str, tuple[dict, ...]] = field(default_factory=lambda: {NO_FAULTS: ()})
+    # A running Dask scheduler's address (tcp://host:8786); None: a local cluster of `workers` processes.
+    cluster: str | None = None
 
 
 @dataclass
@@ -48,20 +52,39 @@ class RunOutcome:
     failure_reason: str
     wall_time_s: float = 0.0
     metrics: dict[str, float] = field(default_factory=dict)
+    fault: str = NO_FAULTS
+    # A worker died while running it, and another ran it again; lost_workers are the ones that died.
+    retried: bool = False
+    lost_workers: list[str] = field(default_factory=list)
+
+    @property
+    def label(self) -> str:
+        return run_label(self.scenario, self.fault, self.seed)
+
+
+def run_label(scenario: str, fault: str, seed: int) -> str:
+    """How a sweep names one of its runs, in its task keys and in what it prints."""
+    return f"{scenario}/{fault}/seed-{seed}"
 
 
 @dataclass
 class BatchSummary:
     outcomes: list[RunOutcome]
+    # Runs that never ended (the sweep was interrupted).
+    unfinished: int = 0
 
     @property
     def all_passed(self) -> bool:
-        return bool(self.outcomes) and all(o.success for o in self.outcomes)
+        return bool(self.outcomes) and not self.unfinished and all(o.success for o in self.outcomes)
 
-    def by_scenario(self) -> dict[str, list[RunOutcome]]:
-        grouped: dict[str, list[RunOutcome]] = {}
-        for outcome in sorted(self.outcomes, key=lambda o: (o.scenario, o.seed)):
-            grouped.setdefault(outcome.scenario, []).append(outcome)
+    def in_order(self) -> list[RunOutcome]:
+        return sorted(self.outcomes, key=lambda o: (o.scenario, o.fault, o.seed))
+
+    def by_case(self) -> dict[tuple[str, str], list[RunOutcome]]:
+        """(scenario, fault variant) -> its runs, by seed."""
+        grouped: dict[tuple[str, str], list[RunOutcome]] = {}
+        for outcome in self.in_order():
+            grouped.setdefault((outcome.scenario, outcome.fault), []).append(outcome)
         return grouped
 
 
@@ -90,85 +113,68 @@ def scenario_names() -> list[str]:
     return sorted(names)
 
 
-def run_one(scenario: str, seed: int, stacks: int | None, duration_s: float | None,
-            out_dir: str | None, security: str | None = None, world: str = "real") -> RunOutcome:
-    """One run in a worker process (module level, so the spawn context can import it)."""
-    from coopdrive.launch.run import RunOptions, run_scenario
+def sweep_jobs(options: BatchOptions) -> list[SweepJob]:
+    """Every (scenario, fault variant, seed) once, in that order."""
+    from coopdrive.launch.sweep_task import SweepJob  # it imports this module's RunOutcome
 
-    try:
-        result = run_scenario(RunOptions(scenario=scenario, seed=seed, stacks=stacks, duration_s=duration_s,
-                                         security=security, world=world))
-        outcome = RunOutcome(scenario, seed, result.success, result.failure_reason, result.wall_time_s,
-                             dict(result.metrics))
-    except Exception as error:  # a run that cannot even start is a failed run, not a failed batch
-        outcome = RunOutcome(scenario, seed, False, f"{type(error).__name__}: {error}")
-    if out_dir is not None:
-        folder = Path(out_dir) / scenario / f"seed-{seed}"
-        folder.mkdir(parents=True, exist_ok=True)
-        (folder / "metrics.json").write_text(json.dumps(vars(outcome), indent=2))
-    return outcome
+    return [SweepJob(scenario, fault, seed, faults, options.stacks, options.duration_s, options.security,
+                     options.world, report=options.out_dir is not None)
+            for scenario in dict.fromkeys(options.scenarios)
+            for fault, faults in options.fault_variants.items()
+            for seed in dict.fromkeys(options.seeds)]
+
+
+def check_runs(options: BatchOptions) -> None:
+    """Builds each (scenario, fault variant)'s run as a run would, so that a bad scenario, a fault naming a vehicle
+    the scenario lacks or a bad --stacks stops the sweep before anything starts (ScenarioError, one line)."""
+    from coopdrive.launch.run import RunOptions, build_specs
+
+    for scenario in dict.fromkeys(options.scenarios):
+        for fault, faults in options.fault_variants.items():
+            run = RunOptions(scenario=scenario, stacks=options.stacks, security=options.security,
+                             world=options.world, extra_faults=faults)
+            with tempfile.TemporaryDirectory(prefix="coopdrive-check-") as folder:
+                try:
+                    build_specs(run, Path(folder))
+                except ScenarioError as error:
+                    # The scenario with the variant's faults is a file in the check's folder: name it alone.
+                    message = str(error).replace(f"{folder}/", "")
+                    raise ScenarioError(f"fault variant {fault!r}: {message}"
+                                        if faults else message) from None
 
 
 def run_batch(options: BatchOptions, console: Console | None = None) -> BatchSummary:
+    """Runs the sweep on options.cluster, or on a local cluster of options.workers processes. ScenarioError or
+    SweepError, before anything runs, for a sweep that cannot start."""
+    # Both import this module's data classes.
+    from coopdrive.launch.sweep_cluster import stream_runs, sweep_client
+    from coopdrive.launch.sweep_output import retried_lines, summary_table, write_run, write_summary
+
     console = console or Console()
-    jobs = list(dict.fromkeys((scenario, seed) for scenario in options.scenarios for seed in options.seeds))
+    check_runs(options)
+    jobs = sweep_jobs(options)
     outcomes: list[RunOutcome] = []
-    out = str(options.out_dir) if options.out_dir is not None else None
-    context = multiprocessing.get_context("spawn")
     columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn())
-    with Progress(*columns, console=console) as progress, \
-            ProcessPoolExecutor(max_workers=max(1, options.workers), mp_context=context) as pool:
-        task = progress.add_task("runs", total=len(jobs))
-        pending: dict[Future, tuple[str, int]] = {
-            pool.submit(run_one, scenario, seed, options.stacks, options.duration_s, out, options.security,
-                        options.world):
-                (scenario, seed)
-            for scenario, seed in jobs}
-        try:
-            while pending:
-                done, _ = wait(pending, return_when=FIRST_COMPLETED)
-                for future in done:
-                    scenario, seed = pending.pop(future)
-                    try:
-                        outcomes.append(future.result())
-                    except Exception as error:  # the worker itself died
-                        outcomes.append(RunOutcome(scenario, seed, False, f"worker failed: {error}"))
-                    progress.advance(task)
-        except KeyboardInterrupt:
-            for future in pending:
-                future.cancel()
-            console.print(f"[yellow]interrupted: {len(pending)} run(s) not finished[/]")
-    summary = BatchSummary(outcomes)
-    console.print(summary_table(summary))
+    progress = Progress(*columns, console=console)
+    bar = progress.add_task("runs", total=len(jobs))
+    with Live(progress, console=console, refresh_per_second=4) as live:
+        def finished(outcome: RunOutcome, files: dict[str, bytes]) -> None:
+            outcomes.append(outcome)
+            if options.out_dir is not None:
+                write_run(options.out_dir, outcome, files)
+            retried = sum(o.retried for o in outcomes)
+            progress.update(bar, advance=1, description=f"runs ({retried} retried)" if retried else "runs")
+            live.update(Group(progress, summary_table(BatchSummary(outcomes))))
+
+        with sweep_client(options.cluster, options.workers) as client:
+            unfinished = stream_runs(client, jobs, finished)
+    if not console.is_terminal:
+        console.line()  # a live display ends its last line itself only on a terminal
+    if unfinished:
+        console.print(f"[yellow]interrupted: {len(unfinished)} run(s) not finished[/]")
+    summary = BatchSummary(outcomes, unfinished=len(unfinished))
+    for line in retried_lines(summary):
+        console.print(line)
     if options.out_dir is not None:
         write_summary(summary, options.out_dir)
     return summary
-
-
-def summary_table(summary: BatchSummary) -> Table:
-    table = Table(title="coopdrive batch")
-    for column in ("scenario", "runs", "pass rate", *TABLE_METRICS, "first failure"):
-        table.add_column(column, justify="left" if column in ("scenario", "first failure") else "right")
-    for scenario, outcomes in summary.by_scenario().items():
-        passed = sum(o.success for o in outcomes)
-        means = []
-        for key in TABLE_METRICS:
-            values = [o.metrics[key] for o in outcomes if key in o.metrics]
-            means.append(f"{sum(values) / len(values):.3f}" if values else "-")
-        failure = next((f"seed {o.seed}: {o.failure_reason}" for o in outcomes if not o.success), "")
-        table.add_row(scenario, str(len(outcomes)), f"{passed / len(outcomes):.0%}", *means, failure)
-    return table
-
-
-def write_summary(summary: BatchSummary, out_dir: Path) -> None:
-    out_dir.mkdir(parents=True, exist_ok=True)
-    rows = [vars(o) for o in sorted(summary.outcomes, key=lambda o: (o.scenario, o.seed))]
-    (out_dir / "summary.json").write_text(json.dumps(rows, indent=2))
-    keys = sorted({key for o in summary.outcomes for key in o.metrics})
-    with open(out_dir / "summary.csv", "w", newline="") as stream:
-        writer = csv.writer(stream)
-        writer.writerow(["scenario", "seed", "success", "failure_reason", "wall_time_s", *keys])
-        for o in sorted(summary.outcomes, key=lambda o: (o.scenario, o.seed)):
-            writer.writerow([o.scenario, o.seed, o.success, o.failure_reason, round(o.wall_time_s, 3),
-                             *(o.metrics.get(key, "") for key in keys)])
-    (out_dir / "pass_table.md").write_text(pass_table_markdown(summary))

@@ -1,5 +1,6 @@
-"""The pass table of a sweep: which (scenario, seed) passed, why the others failed, and each scenario's error
-figures averaged over its runs (each figure as the runs define it: mean absolute error, see the README)."""
+"""The pass table of a sweep: which (scenario, fault variant, seed) passed, why the others failed, which a worker's
+death made run again, and each case's error figures averaged over its runs (each figure as the runs define it:
+mean absolute error, see the README)."""
 
 from __future__ import annotations
 
@@ -19,19 +20,24 @@ def mean_cell(outcomes: Iterable[RunOutcome], key: str) -> str:
 
 
 def pass_table_markdown(summary: BatchSummary) -> str:
-    grouped = summary.by_scenario()
+    grouped = summary.by_case()
     seeds = sorted({o.seed for o in summary.outcomes})
-    lines = ["| scenario | passed | " + " | ".join(f"seed {seed}" for seed in seeds) + " |",
-             "|---|---|" + "---|" * len(seeds)]
-    for scenario, outcomes in grouped.items():
+    lines = ["| scenario | fault | passed | " + " | ".join(f"seed {seed}" for seed in seeds) + " |",
+             "|---|---|---|" + "---|" * len(seeds)]
+    for (scenario, fault), outcomes in grouped.items():
         by_seed = {o.seed: o for o in outcomes}
         cells = [(PASSED if by_seed[seed].success else FAILED) if seed in by_seed else "" for seed in seeds]
         passed = sum(o.success for o in outcomes)
-        lines.append(f"| {scenario} | {passed}/{len(outcomes)} | " + " | ".join(cells) + " |")
-    lines += ["", "| scenario | " + " | ".join(FIGURES) + " |", "|---|" + "---|" * len(FIGURES)]
-    for scenario, outcomes in grouped.items():
-        lines.append(f"| {scenario} | " + " | ".join(mean_cell(outcomes, key) for key in FIGURES) + " |")
-    failures = [o for outcomes in grouped.values() for o in outcomes if not o.success]
+        lines.append(f"| {scenario} | {fault} | {passed}/{len(outcomes)} | " + " | ".join(cells) + " |")
+    lines += ["", "| scenario | fault | " + " | ".join(FIGURES) + " |", "|---|---|" + "---|" * len(FIGURES)]
+    for (scenario, fault), outcomes in grouped.items():
+        lines.append(f"| {scenario} | {fault} | " + " | ".join(mean_cell(outcomes, key) for key in FIGURES) + " |")
+    ordered = summary.in_order()
+    failures = [o for o in ordered if not o.success]
     if failures:
-        lines += ["", "Failures:", ""] + [f"- {o.scenario} seed {o.seed}: {o.failure_reason}" for o in failures]
+        lines += ["", "Failures:", ""] + [f"- {o.label}: {o.failure_reason}" for o in failures]
+    retried = [o for o in ordered if o.retried]
+    if retried:
+        lines += ["", "Retried (a worker died under them):", ""] + [
+            f"- {o.label}: lost {', '.join(o.lost_workers)}" for o in retried]
     return "\n".join(lines) + "\n"

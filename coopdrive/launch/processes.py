@@ -14,6 +14,8 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from coopdrive.runtime.launcher_watch import launcher_environment
+
 TERMINATE_GRACE_S = 1.5
 # Zenoh's runtimes default to several threads each. A run puts a process per service on a few cores, where
 # each service's traffic is a handful of messages per step: one thread per runtime hands them on with fewer
@@ -71,13 +73,18 @@ class ServiceProcesses:
             command.append("--verbose")
             self._log_dir.mkdir(parents=True, exist_ok=True)
             output = open(self._log_dir / f"{name.replace('/', '-')}.log", log_mode)
-        environment = {"ZENOH_RUNTIME": SIMULATION_ZENOH_RUNTIME, **os.environ}
         self.processes[name] = subprocess.Popen(
             command, stdin=subprocess.DEVNULL, stdout=output, stderr=subprocess.STDOUT if output else None,
-            start_new_session=True, env=environment)
+            start_new_session=True, env=self.environment())
         self._started_with[name] = (specs, arguments)
         for spec in specs:
             self.process_of[spec.participant] = name
+
+    @staticmethod
+    def environment() -> dict[str, str]:
+        """A service's environment: ours (a ZENOH_RUNTIME set by the user wins over the simulation's), and this
+        process as its launcher, so that the service ends with it."""
+        return {"ZENOH_RUNTIME": SIMULATION_ZENOH_RUNTIME, **os.environ, **launcher_environment()}
 
     def exited(self) -> dict[str, int]:
         """Processes that have ended, with their exit codes."""

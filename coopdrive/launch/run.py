@@ -187,7 +187,9 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         stop_reason.append(signal.Signals(signum).name)
         finished.set()
 
-    previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
+    # Signals reach only the main thread; a run in a sweep worker's thread is stopped by its worker instead.
+    in_main_thread = threading.current_thread() is threading.main_thread()
+    previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)} if in_main_thread else {}
     recorder, bridge = _watch(options, hub, {spec.participant: json.dumps(spec.config) for spec in specs})
     hub.subscribe(WORLD_ID, "result", on_result)
     simulator = next(spec for spec in specs if spec.service == "sim")

@@ -1,12 +1,21 @@
-"""Batch runs: seeds parsed as users write them, runs in parallel workers, a table and summary files."""
+"""Batch runs (sweeps): seeds parsed as users write them, every (scenario, fault variant, seed) once, a bad pair
+refused before anything runs, and the summary files with each run's folder."""
 
 import csv
 import json
+import os
+import subprocess
+import sys
 
 import pytest
 from rich.console import Console
 
-from coopdrive.launch.batch import BatchOptions, parse_seeds, run_batch, scenario_names
+from coopdrive.launch.batch import (BatchOptions, BatchSummary, RunOutcome, check_runs, parse_seeds, scenario_names,
+                                    sweep_jobs)
+from coopdrive.launch.sweep_output import retried_lines, summary_table, write_run, write_summary
+from coopdrive.services.sim.scenario_config import ScenarioError
+
+LOSSY = ({"type": "v2v_loss", "start_s": 0.0, "loss_probability": 0.3},)
 
 
 @pytest.mark.parametrize("text, seeds", [("3", [3]), ("1-4", [1, 2, 3, 4]), ("1,4,7-9", [1, 4, 7, 8, 9]),
@@ -26,17 +35,78 @@ def test_all_means_the_built_in_follow_and_every_packaged_scenario():
     assert {"follow", "string", "merge", "intersection", "emergency"} <= set(names)
 
 
-def test_a_batch_runs_each_seed_once_in_parallel_and_the_same_seed_gives_the_same_metrics(tmp_path):
-    console = Console(record=True, width=200)
-    summary = run_batch(BatchOptions(scenarios=["follow"], seeds=[1, 2, 1], workers=2, out_dir=tmp_path,
-                                     duration_s=3.0), console)
-    assert sorted(o.seed for o in summary.outcomes) == [1, 2]  # a seed asked twice runs once
-    first = json.loads((tmp_path / "follow" / "seed-1" / "metrics.json").read_text())
-    assert first["scenario"] == "follow" and "min_gap_m" in first["metrics"]
-    again = run_batch(BatchOptions(scenarios=["follow"], seeds=[1], workers=1, duration_s=3.0), console)
-    assert again.outcomes[0].metrics == first["metrics"]
+def test_a_sweep_runs_every_scenario_fault_variant_and_seed_once():
+    jobs = sweep_jobs(BatchOptions(scenarios=["follow", "merge"], seeds=[1, 2, 1], duration_s=3.0,
+                                   fault_variants={"none": (), "lossy": LOSSY}))
+    assert [job.label for job in jobs] == [
+        "follow/none/seed-1", "follow/none/seed-2", "follow/lossy/seed-1", "follow/lossy/seed-2",
+        "merge/none/seed-1", "merge/none/seed-2", "merge/lossy/seed-1", "merge/lossy/seed-2"]
+    assert jobs[2].faults == LOSSY and jobs[0].faults == () and jobs[0].duration_s == 3.0
+    assert not jobs[0].report  # a report only where there is an --out to write it to
+
+
+def test_a_fault_variant_naming_a_vehicle_the_scenario_lacks_stops_the_sweep_before_anything_runs():
+    outage = ({"type": "gnss_outage", "vehicle_id": "a9", "start_s": 5},)
+    with pytest.raises(ScenarioError) as raised:
+        check_runs(BatchOptions(scenarios=["follow"], seeds=[1], fault_variants={"none": (), "outage": outage}))
+    assert str(raised.value) == "fault variant 'outage': follow.yaml: faults.0.vehicle_id: unknown vehicle 'a9'"
+
+
+def test_each_run_has_its_folder_and_the_summaries_name_the_fault_variant_and_the_retried_runs(tmp_path):
+    retried = RunOutcome("follow", 2, True, "", 4.2, {"min_gap_m": 30.0}, fault="lossy", retried=True,
+                         lost_workers=["tcp://10.0.0.7:40111"])
+    summary = BatchSummary([RunOutcome("follow", 1, True, "", 4.0, {"min_gap_m": 31.0}, fault="lossy"), retried])
+    write_run(tmp_path, retried, {"index.html": b"<html>", "figures/gaps.png": b"png"})
+    write_summary(summary, tmp_path)
+    folder = tmp_path / "follow" / "lossy" / "seed-2"
+    assert json.loads((folder / "metrics.json").read_text())["lost_workers"] == ["tcp://10.0.0.7:40111"]
+    assert (folder / "report" / "figures" / "gaps.png").read_bytes() == b"png"
     rows = list(csv.DictReader(open(tmp_path / "summary.csv")))
-    assert [row["seed"] for row in rows] == ["1", "2"]
-    assert "| follow | 2/2 | pass | pass |" in (tmp_path / "pass_table.md").read_text()
+    assert [(row["fault"], row["seed"], row["retried"]) for row in rows] == [("lossy", "1", "False"),
+                                                                            ("lossy", "2", "True")]
+    assert [row["retried"] for row in json.loads((tmp_path / "summary.json").read_text())] == [False, True]
+    console = Console(record=True, width=200)
+    console.print(summary_table(summary))
+    for line in retried_lines(summary):
+        console.print(line)
     printed = console.export_text()
-    assert "coopdrive batch" in printed and "pass rate" in printed and "follow" in printed
+    assert "retried follow/lossy/seed-2 after its worker died: tcp://10.0.0.7:40111" in printed
+    assert "| follow | lossy | 2/2 |" in (tmp_path / "pass_table.md").read_text()
+
+
+def test_a_scenario_given_as_a_file_gets_a_folder_inside_out_named_by_the_file(tmp_path):
+    outcome = RunOutcome("/elsewhere/my-test.yaml", 1, True, "")
+    write_run(tmp_path / "out", outcome, {})
+    assert (tmp_path / "out" / "my-test" / "none" / "seed-1" / "metrics.json").is_file()
+
+
+def test_a_bad_faults_file_stops_the_command_in_one_line_before_any_cluster_starts(tmp_path):
+    faults = tmp_path / "faults.yaml"
+    faults.write_text("lossy: [{type: v2v_loss, start_s: -1}]\n")
+    completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--seeds", "1-2",
+                                "--faults", str(faults)], capture_output=True, text=True, timeout=60)
+    assert completed.returncode == 2
+    assert completed.stderr == (f"coopdrive: --faults {faults}: variant 'lossy', fault 0: start_s: "
+                                "Input should be greater than or equal to 0\n")
+
+
+def test_the_command_sweeps_on_a_local_cluster_and_writes_the_summaries_and_each_runs_report(tmp_path):
+    faults = tmp_path / "faults.yaml"
+    faults.write_text("lossy: [{type: v2v_loss, start_s: 0, loss_probability: 0.3}]\n")
+    out = tmp_path / "sweep"
+    completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--seeds", "1-2",
+                                "--workers", "2", "--duration", "3", "--faults", str(faults), "--out", str(out)],
+                               capture_output=True, text=True, timeout=240, env={**os.environ, "COLUMNS": "200"})
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    assert "coopdrive batch" in completed.stdout and "lossy" in completed.stdout
+    rows = json.loads((out / "summary.json").read_text())
+    assert [(row["scenario"], row["fault"], row["seed"], row["success"], row["retried"]) for row in rows] == [
+        ("follow", "lossy", 1, True, False), ("follow", "lossy", 2, True, False)]
+    for seed in (1, 2):
+        folder = out / "follow" / "lossy" / f"seed-{seed}"
+        assert json.loads((folder / "metrics.json").read_text())["metrics"] == rows[seed - 1]["metrics"]
+        report = json.loads((folder / "report" / "metrics.json").read_text())
+        assert report["seed"] == seed and (folder / "report" / "index.html").is_file()
+        assert (folder / "report" / "run.mcap").stat().st_size > 0
+    assert [row["seed"] for row in csv.DictReader(open(out / "summary.csv"))] == ["1", "2"]
+    assert "| follow | lossy | 2/2 | pass | pass |" in (out / "pass_table.md").read_text()

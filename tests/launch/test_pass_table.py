@@ -1,21 +1,26 @@
-"""The sweep's pass table: a row per scenario, a column per seed, figures averaged, every failure named."""
+"""The sweep's pass table: a row per (scenario, fault variant), a column per seed, figures averaged, every failure
+and every retried run named."""
 
 from coopdrive.launch.batch import BatchSummary, RunOutcome
 from coopdrive.launch.pass_table import pass_table_markdown
 
 
-def test_the_pass_table_marks_each_seed_averages_the_figures_and_names_every_failure():
+def test_the_pass_table_marks_each_seed_averages_the_figures_and_names_every_failure_and_retry():
     summary = BatchSummary([
         RunOutcome("merge", 1, True, "", metrics={"spacing_error_m": 0.5, "collisions": 0.0}),
         RunOutcome("merge", 2, False, "merge not completed: a1 still in the closed lane",
                    metrics={"spacing_error_m": 1.5, "collisions": 0.0}),
         RunOutcome("follow", 1, True, "", metrics={"speed_error_kmh": 0.7}),
+        RunOutcome("follow", 1, True, "", metrics={"speed_error_kmh": 0.9}, fault="lossy", retried=True,
+                   lost_workers=["tcp://10.0.0.7:40111"]),
     ])
     table = pass_table_markdown(summary)
     lines = table.splitlines()
-    assert lines[0] == "| scenario | passed | seed 1 | seed 2 |"
-    assert "| follow | 1/1 | pass |  |" in lines
-    assert "| merge | 1/2 | pass | FAIL |" in lines
-    merge_figures = next(line for line in lines if line.startswith("| merge |") and "1.000" in line)
-    assert merge_figures.split(" | ")[2] == "1.000"  # spacing error: mean of 0.5 and 1.5
-    assert "- merge seed 2: merge not completed: a1 still in the closed lane" in lines
+    assert lines[0] == "| scenario | fault | passed | seed 1 | seed 2 |"
+    assert "| follow | none | 1/1 | pass |  |" in lines
+    assert "| follow | lossy | 1/1 | pass |  |" in lines
+    assert "| merge | none | 1/2 | pass | FAIL |" in lines
+    merge_figures = next(line for line in lines if line.startswith("| merge | none |") and "1.000" in line)
+    assert merge_figures.split(" | ")[3] == "1.000"  # spacing error: mean of 0.5 and 1.5
+    assert "- merge/none/seed-2: merge not completed: a1 still in the closed lane" in lines
+    assert "- follow/lossy/seed-1: lost tcp://10.0.0.7:40111" in lines

@@ -1,0 +1,69 @@
+"""One run of a sweep, as a Dask task on whichever worker the scheduler picks.
+
+The run is an ordinary lockstep run (so the same seed gives the same metrics as a run made alone), its Zenoh
+hub and services on the worker's loopback. Nothing is written where the sweep's client could not read it: the
+run's report comes back with its outcome as file contents, so workers on other hosts need no shared folder.
+"""
+
+from __future__ import annotations
+
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+from coopdrive.launch.batch import RunOutcome, run_label
+
+
+@dataclass(frozen=True)
+class SweepJob:
+    scenario: str
+    fault: str
+    seed: int
+    # The fault variant's faults (and any --fault), added to the scenario's own.
+    faults: tuple[dict, ...] = ()
+    stacks: int | None = None
+    duration_s: float | None = None
+    security: str | None = None
+    world: str = "real"
+    # Write the run's report (metrics, plots, index.html, recording) and send it back.
+    report: bool = False
+
+    @property
+    def label(self) -> str:
+        return run_label(self.scenario, self.fault, self.seed)
+
+
+def run_job(job: SweepJob, topic: str) -> tuple[RunOutcome, dict[str, bytes]]:
+    """The task: tells the scheduler this attempt started (topic), runs, returns the outcome and the report's
+    files by their path in the report folder."""
+    from distributed import get_worker
+
+    worker = get_worker()
+    # Logged on the scheduler before the run starts: a second attempt of the same run means its worker was lost.
+    worker.log_event(topic, {"run": job.label, "worker": worker.address})
+    if not job.report:
+        return run_one(job, None), {}
+    with tempfile.TemporaryDirectory(prefix="coopdrive-sweep-") as folder:
+        outcome = run_one(job, Path(folder))
+        files = {str(path.relative_to(folder)): path.read_bytes()
+                 for path in sorted(Path(folder).rglob("*")) if path.is_file()}
+    return outcome, files
+
+
+def run_one(job: SweepJob, report_dir: Path | None) -> RunOutcome:
+    """One run; a run that cannot even start is a failed run, not a failed sweep."""
+    from coopdrive.launch.run import RunOptions, run_scenario
+
+    options = RunOptions(scenario=job.scenario, seed=job.seed, stacks=job.stacks, duration_s=job.duration_s,
+                         security=job.security, world=job.world, extra_faults=job.faults)
+    try:
+        if report_dir is None:
+            result = run_scenario(options)
+        else:
+            from coopdrive.judging.commands import run_with_report
+
+            result = run_with_report(options, report_dir)
+    except Exception as error:
+        return RunOutcome(job.scenario, job.seed, False, f"{type(error).__name__}: {error}", fault=job.fault)
+    return RunOutcome(job.scenario, job.seed, result.success, result.failure_reason, result.wall_time_s,
+                      dict(result.metrics), fault=job.fault)
