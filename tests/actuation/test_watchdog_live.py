@@ -62,7 +62,8 @@ class LiveRun:
 
 
 def run_with_control_killed(tmp_path) -> LiveRun:
-    options = RunOptions(duration_s=RUN_DURATION_S)
+    # Each service its own process, as on the vehicle: only control dies.
+    options = RunOptions(duration_s=RUN_DURATION_S, group_per_vehicle=False)
     specs = build_specs(options)
     endpoint = loopback_endpoint(free_tcp_port())
     hub = Bus(BusConfig(listen=[endpoint]))
