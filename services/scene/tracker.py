@@ -21,7 +21,7 @@ from .association import assign, gate_groups, likelihood_cost, match_quality, po
 from .config import SceneFusionConfig
 from .measurement import Measurement
 from .properties import ObjectProperties
-from .track import RANGING_SOURCES, Track, TrackStatus, predict_positions
+from .track import RANGING_SOURCES, Track, TrackStatus, filter_steps, predict_positions
 
 
 @dataclass
@@ -74,8 +74,8 @@ class Tracker:
         gate = self._config.tracking.gate_chi2
         fused, unmatched = self._associate(*self._geometry(measurements, tracks))
         # In measurement order, as one joint assignment would fuse and start them.
-        for i, j, cost in sorted(fused):
-            self._fuse(tracks[j], measurements[i], match_quality(cost, gate))
+        pairs = [(tracks[j], measurements[i], match_quality(cost, gate)) for i, j, cost in sorted(fused)]
+        self._fuse_frame(pairs)
         for i in sorted(unmatched):
             if not measurements[i].ambiguous:
                 self._start(measurements[i])
@@ -235,12 +235,30 @@ class Tracker:
 
     # -- life cycle ------------------------------------------------------------------------
 
+    def _fuse_frame(self, pairs: list[tuple[Track, Measurement, float]]) -> None:
+        """Fuse one frame's (track, measurement, match quality) pairs, each track at most once: the in-sequence
+        ones through one batched filter step, the late ones by their tracks' replay."""
+        in_sequence = [pair for pair in pairs if pair[1].time_s >= pair[0].time_s]
+        late = [pair for pair in pairs if pair[1].time_s < pair[0].time_s]
+        if in_sequence:
+            x, p = filter_steps([track for track, _, _ in in_sequence], [meas for _, meas, _ in in_sequence],
+                                self._config.tracking)
+            for (track, meas, quality), x_k, p_k in zip(in_sequence, x, p, strict=True):
+                track.accept(meas, x_k, p_k)
+                self._credit(track, meas, quality)
+        for track, meas, quality in late:
+            self._fuse(track, meas, quality)
+
     def _fuse(self, track: Track, meas: Measurement, quality: float, v2v_weight: float = 1.0) -> None:
         replays_before = track.replays
         if not track.apply(meas):
             self.counters.too_late += 1
             return
         self.counters.replayed += track.replays - replays_before
+        self._credit(track, meas, quality, v2v_weight)
+
+    def _credit(self, track: Track, meas: Measurement, quality: float, v2v_weight: float = 1.0) -> None:
+        """The track's properties and life cycle after a fused measurement."""
         if not meas.ambiguous:
             track.props.support(meas, quality, v2v_weight)
         self._maybe_confirm(track)
