@@ -100,7 +100,8 @@ class Tracker:
         of measurements and tracks that gate with each other only."""
         cfg = self._config.tracking
         fused, unmatched, single_meas, single_tracks = [], [], [], []
-        for group_meas, group_tracks in gate_groups(meas_xy, meas_cov, track_xy, track_cov, cfg.gate_chi2):
+        for group_meas, group_tracks in gate_groups(meas_xy, meas_cov, origins, track_xy, track_cov, cfg.gate_chi2,
+                                                     cfg.angle_emphasis):
             if group_tracks.size == 0:
                 unmatched.extend(int(i) for i in group_meas)
                 continue

@@ -110,7 +110,9 @@ def joint_pairs(meas_xy, meas_cov, track_xy, track_cov):
 
 def grouped_pairs(meas_xy, meas_cov, track_xy, track_cov):
     pairs = set()
-    for group_meas, group_tracks in gate_groups(meas_xy, meas_cov, track_xy, track_cov, GATE, dense_pairs_max=0):
+    origins = np.zeros_like(meas_xy)
+    for group_meas, group_tracks in gate_groups(meas_xy, meas_cov, origins, track_xy, track_cov, GATE, 1.2,
+                                                dense_pairs_max=0):
         if group_tracks.size:
             found = joint_pairs(meas_xy[group_meas], meas_cov[group_meas], track_xy[group_tracks],
                                 track_cov[group_tracks])
@@ -139,14 +141,14 @@ def test_far_apart_objects_fall_into_groups_of_their_own():
     track_xy = np.array([[10.0, 0.0], [50.0, 0.0], [90.0, 3.5]])
     meas_xy = track_xy + 0.1
     cov = np.repeat(np.eye(2)[None] * 0.04, 3, axis=0)
-    groups = gate_groups(meas_xy, cov, track_xy, cov, GATE, dense_pairs_max=0)
+    groups = gate_groups(meas_xy, cov, np.zeros_like(meas_xy), track_xy, cov, GATE, 1.2, dense_pairs_max=0)
     assert sorted((g[0].tolist(), g[1].tolist()) for g in groups) == [([0], [0]), ([1], [1]), ([2], [2])]
 
 
 def test_a_few_objects_make_one_group_since_one_small_matrix_is_cheaper():
     xy = np.array([[10.0, 0.0], [50.0, 0.0]])
     cov = np.repeat(np.eye(2)[None] * 0.04, 2, axis=0)
-    [(measurements, tracks)] = gate_groups(xy, cov, xy, cov, GATE)
+    [(measurements, tracks)] = gate_groups(xy, cov, np.zeros_like(xy), xy, cov, GATE, 1.2)
     assert measurements.tolist() == [0, 1] and tracks.tolist() == [0, 1]
 
 
