@@ -9,7 +9,6 @@ than the longest fade time of the sources that saw it.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -17,8 +16,9 @@ from scipy.spatial import cKDTree
 
 from coopdrive.v1 import header_pb2
 
-from .association import assign, gate_groups, likelihood_cost, match_quality, polar_cost_matrix, polar_cost_pairs
+from .association import match_quality, polar_cost_matrix
 from .config import SceneFusionConfig
+from .frame_association import associate
 from .measurement import Measurement
 from .properties import ObjectProperties
 from .track import RANGING_SOURCES, Track, TrackStatus, filter_steps, predict_positions
@@ -48,13 +48,8 @@ class V2vLink:
 
 
 class Tracker:
-    def __init__(self, config: SceneFusionConfig, cost_fn: Callable = polar_cost_matrix,
-                 pair_cost_fn: Callable | None = polar_cost_pairs) -> None:
-        """cost_fn: costs of measurements x tracks; pair_cost_fn: the same costs for aligned pairs (None: cost_fn
-        one pair at a time). They must agree: the bench swaps in a brute-force cost_fn with pair_cost_fn None."""
+    def __init__(self, config: SceneFusionConfig) -> None:
         self._config = config
-        self._cost_fn = cost_fn
-        self._pair_cost_fn = pair_cost_fn
         self.tracks: dict[int, Track] = {}
         self._next_id = 1
         self._station_links: dict[int, int] = {}
@@ -72,7 +67,7 @@ class Tracker:
             return
         tracks = list(self.tracks.values())
         gate = self._config.tracking.gate_chi2
-        fused, unmatched = self._associate(*self._geometry(measurements, tracks))
+        fused, unmatched = associate(*self._geometry(measurements, tracks), self._config.tracking)
         # In measurement order, as one joint assignment would fuse and start them.
         pairs = [(tracks[j], measurements[i], match_quality(cost, gate)) for i, j, cost in sorted(fused)]
         self._fuse_frame(pairs)
@@ -95,48 +90,12 @@ class Tracker:
             track_xy, track_cov = np.zeros((0, 2)), np.zeros((0, 2, 2))
         return meas_xy, meas_cov, origins, track_xy, track_cov
 
-    def _associate(self, meas_xy, meas_cov, origins, track_xy, track_cov) -> tuple[list, list[int]]:
-        """(measurement, track, d^2) pairs and unmatched measurements of the joint assignment, solved per group
-        of measurements and tracks that gate with each other only."""
-        cfg = self._config.tracking
-        fused, unmatched, single_meas, single_tracks = [], [], [], []
-        for group_meas, group_tracks in gate_groups(meas_xy, meas_cov, origins, track_xy, track_cov, cfg.gate_chi2,
-                                                     cfg.angle_emphasis):
-            if group_tracks.size == 0:
-                unmatched.extend(int(i) for i in group_meas)
-                continue
-            if group_meas.size == 1 and group_tracks.size == 1:
-                # Most groups are one car seen once: their costs are taken together below.
-                single_meas.append(int(group_meas[0]))
-                single_tracks.append(int(group_tracks[0]))
-                continue
-            d2, log_det = self._cost_fn(meas_xy[group_meas], meas_cov[group_meas], origins[group_meas],
-                                        track_xy[group_tracks], track_cov[group_tracks], cfg.angle_emphasis,
-                                        with_log_det=True)
-            pairs, left = assign(likelihood_cost(d2, log_det), cfg.gate_chi2, gate_cost=d2)
-            fused += [(int(group_meas[i]), int(group_tracks[j]), d2[i, j]) for i, j in pairs]
-            unmatched.extend(int(group_meas[i]) for i in left)
-        if single_meas:
-            i, j = np.array(single_meas), np.array(single_tracks)
-            d2, _ = self._pair_costs(meas_xy[i], meas_cov[i], origins[i], track_xy[j], track_cov[j])
-            fused += [(int(i[k]), int(j[k]), d2[k]) for k in np.flatnonzero(d2 <= cfg.gate_chi2)]
-            unmatched.extend(int(i[k]) for k in np.flatnonzero(d2 > cfg.gate_chi2))
-        return fused, unmatched
-
-    def _pair_costs(self, meas_xy, meas_cov, origins, track_xy, track_cov) -> tuple[np.ndarray, np.ndarray]:
-        emphasis = self._config.tracking.angle_emphasis
-        if self._pair_cost_fn is not None:
-            return self._pair_cost_fn(meas_xy, meas_cov, origins, track_xy, track_cov, emphasis)
-        costs = [self._cost_fn(meas_xy[k:k + 1], meas_cov[k:k + 1], origins[k:k + 1], track_xy[k:k + 1],
-                               track_cov[k:k + 1], emphasis, with_log_det=True) for k in range(len(meas_xy))]
-        return np.array([d2[0, 0] for d2, _ in costs]), np.array([log_det[0, 0] for _, log_det in costs])
-
     def _costs(self, measurements: list[Measurement], tracks: list[Track]) -> tuple[np.ndarray, np.ndarray]:
         """Squared Mahalanobis distances and innovation log-determinants, measurements x tracks."""
         if not tracks:
             return np.zeros((len(measurements), 0)), np.zeros((len(measurements), 0))
-        return self._cost_fn(*self._geometry(measurements, tracks), self._config.tracking.angle_emphasis,
-                             with_log_det=True)
+        return polar_cost_matrix(*self._geometry(measurements, tracks), self._config.tracking.angle_emphasis,
+                                 with_log_det=True)
 
     # -- V2V -------------------------------------------------------------------------------
 

@@ -6,6 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from coopdrive.services.scene.association import (
+    DENSE_PAIRS_MAX,
     assign,
     gate_groups,
     likelihood_cost,
@@ -14,6 +15,8 @@ from coopdrive.services.scene.association import (
     polar_cost_matrix,
     polar_cost_pairs,
 )
+from coopdrive.services.scene.config import TrackingConfig
+from coopdrive.services.scene.frame_association import associate
 
 ORIGIN = np.zeros(2)
 
@@ -162,3 +165,23 @@ def test_the_costs_of_given_pairs_are_the_matching_entries_of_the_cost_matrix():
     pair_d2, pair_log_det = polar_cost_pairs(meas_xy, meas_cov, origins, track_xy, track_cov, 1.2)
     # polar_cost_matrix measures each track from the measurement's origin: the diagonal pairs are the same.
     assert pair_d2 == pytest.approx(np.diag(d2)) and pair_log_det == pytest.approx(np.diag(log_det))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 40), st.integers(0, 40), st.sampled_from([0, 30, DENSE_PAIRS_MAX]))
+def test_a_frames_association_gives_the_pairs_of_one_joint_assignment(seed, tracks, clutter, dense_pairs_max):
+    rng = np.random.default_rng(seed)
+    track_xy = rng.uniform([-60.0, -10.0], [60.0, 10.0], (tracks, 2))
+    track_cov = np.einsum("k,ij->kij", rng.uniform(0.01, 4.0, tracks), np.eye(2))
+    seen = track_xy[rng.random(tracks) < 0.8]
+    meas_xy = np.vstack([seen + rng.normal(0.0, 0.5, seen.shape), rng.uniform([-60.0, -10.0], [60.0, 10.0],
+                                                                               (clutter, 2))])
+    if len(meas_xy) == 0:
+        return
+    meas_cov = np.einsum("k,ij->kij", rng.uniform(0.01, 1.0, len(meas_xy)), np.eye(2))
+    tracking = TrackingConfig(gate_chi2=GATE, angle_emphasis=1.2)
+    matches, unmatched = associate(meas_xy, meas_cov, np.zeros_like(meas_xy), track_xy, track_cov, tracking,
+                                   dense_pairs_max)
+    expected = joint_pairs(meas_xy, meas_cov, track_xy, track_cov)
+    assert {(i, j) for i, j, _ in matches} == expected
+    assert sorted(unmatched) == sorted(set(range(len(meas_xy))) - {i for i, _ in expected})
