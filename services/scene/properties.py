@@ -2,38 +2,46 @@
 
 Position, speed, acceleration and heading take their values from the track filter; the filter is the
 confidence-weighted average for them. Width, length, class and station id have no filter and blend
-by (C4) in confidence.py.
+by (C4) in support_table.py. Every object's properties are one row of a SupportTable shared by all objects
+(one slot per property), so a frame's readings credit every object in a few array operations (support_many).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 
+import numpy as np
+
 from coopdrive.v1 import header_pb2, sensors_pb2
 
 from .config import SourceConfig, TrackingConfig
 from .confidence import FusedProperty
 from .measurement import Measurement
+from .support_table import SupportTable
 
 _SPEED_SOURCES = (header_pb2.SENSOR_SOURCE_RADAR, header_pb2.SENSOR_SOURCE_V2V)
 _DERIVED_SPEED_SOURCES = (header_pb2.SENSOR_SOURCE_LIDAR, header_pb2.SENSOR_SOURCE_CAMERA)
+_V2V = header_pb2.SENSOR_SOURCE_V2V
+# The table's slot of each property.
+SLOTS = ("position", "speed", "accel", "heading", "length", "width", "object_class", "station_id")
+POSITION, SPEED, ACCEL, HEADING, LENGTH, WIDTH, OBJECT_CLASS, STATION_ID = range(len(SLOTS))
+
+
+def property_table(source_config: Callable[[int], SourceConfig], tracking: TrackingConfig) -> SupportTable:
+    """A table for the properties of many objects. No slot has a closer bias: a narrower reading is not safer,
+    and the filter, not the table, estimates the distance-like values."""
+    return SupportTable(source_config, len(SLOTS), new_data_bias=tracking.new_data_bias)
 
 
 class ObjectProperties:
-    def __init__(self, source_config: Callable[[int], SourceConfig], tracking: TrackingConfig) -> None:
-        def make(closer: float = 1.0) -> FusedProperty:
-            return FusedProperty(source_config, new_data_bias=tracking.new_data_bias, closer_bias=closer)
-
-        self._derived_quality = tracking.derived_quality
-        self.position = make()
-        self.speed = make()
-        self.accel = make()
-        self.heading = make()
-        self.length = make()
-        # A narrower reading is not safer, so width gets no closer bias; nor does anything but range.
-        self.width = make()
-        self.object_class = make()
-        self.station_id = make()
+    def __init__(self, source_config: Callable[[int], SourceConfig], tracking: TrackingConfig,
+                 table: SupportTable | None = None) -> None:
+        """One object's properties: a row of table (of a table of their own without one)."""
+        self.table = table if table is not None else property_table(source_config, tracking)
+        self.row = self.table.allocate()
+        self.derived_quality = tracking.derived_quality
+        self.position, self.speed, self.accel, self.heading, self.length, self.width, self.object_class, \
+            self.station_id = (FusedProperty.in_table(self.table, self.row, slot) for slot in range(len(SLOTS)))
         # The partner's own reported acceleration, kept as sent (brief: the object carries it).
         self.reported_accel_mps2: float | None = None
         # When the latest V2V reading was measured (0: never).
@@ -42,37 +50,66 @@ class ObjectProperties:
 
     def support(self, meas: Measurement, quality: float, v2v_weight: float = 1.0) -> None:
         """Credit every property this reading says something about. v2v_weight scales V2V by trust."""
-        q = quality * meas.quality
-        if meas.source == header_pb2.SENSOR_SOURCE_V2V:
-            q *= v2v_weight
-        t = meas.time_s
-        self.position.support(meas.source, t, q)
-        if meas.source in _SPEED_SOURCES:
-            self.speed.support(meas.source, t, q)
-        elif meas.source in _DERIVED_SPEED_SOURCES:
-            # The filter's velocity out of a series of positions gives the direction as well as the speed.
-            self.speed.support(meas.source, t, q * self._derived_quality)
-            self.heading.support(meas.source, t, q * self._derived_quality)
-        if meas.source == header_pb2.SENSOR_SOURCE_V2V:
-            self.heading.support(meas.source, t, q)
-            self.accel.support(meas.source, t, q)
-            self.reported_accel_mps2 = meas.accel_mps2
-            self.v2v_time_s = max(self.v2v_time_s, t)
-            if meas.station_id is not None:
-                self.station_id.update(meas.source, t, float(meas.station_id), q)
-        elif meas.source == header_pb2.SENSOR_SOURCE_RADAR:
-            self.heading.support(meas.source, t, q * self._derived_quality)
-        if meas.width_m is not None:
-            self.width.update(meas.source, t, meas.width_m, q)
-        if meas.length_m is not None:
-            self.length.update(meas.source, t, meas.length_m, q)
-        if meas.object_class != sensors_pb2.OBJECT_CLASS_UNSPECIFIED:
-            self.object_class.support(meas.source, t, q)
-            self.object_class_value = meas.object_class
-        elif meas.source == header_pb2.SENSOR_SOURCE_V2V and self.object_class_value == sensors_pb2.OBJECT_CLASS_UNSPECIFIED:
-            # A CAM sender is a vehicle; the camera may refine car versus truck.
-            self.object_class.support(meas.source, t, q)
-            self.object_class_value = sensors_pb2.OBJECT_CLASS_CAR
+        support_many([self], [meas], [quality], v2v_weight)
+
+    def release(self) -> None:
+        """Give the row back to the table: the object is gone."""
+        self.table.release(self.row)
 
     def last_support_s(self) -> float:
         return self.position.last_support_s()
+
+
+def support_many(props: list[ObjectProperties], measurements: list[Measurement], qualities,
+                 v2v_weight: float = 1.0) -> None:
+    """ObjectProperties.support of reading k for props[k] (all of one table), a few array operations per source."""
+    by_source: dict[int, list[int]] = {}
+    for k, meas in enumerate(measurements):
+        by_source.setdefault(meas.source, []).append(k)
+    qualities = np.asarray(qualities, dtype=float)
+    for source, ks in by_source.items():
+        group = [measurements[k] for k in ks]
+        q = qualities[ks] * np.array([m.quality for m in group]) * (v2v_weight if source == _V2V else 1.0)
+        _support_source(source, [props[k] for k in ks], group, q)
+
+
+def _support_source(source: int, props: list[ObjectProperties], group: list[Measurement], q: np.ndarray) -> None:
+    table, derived = props[0].table, props[0].derived_quality
+    rows = np.array([p.row for p in props])
+    t = np.array([m.time_s for m in group])
+    table.support(rows, POSITION, source, t, q)
+    if source in _SPEED_SOURCES:
+        table.support(rows, SPEED, source, t, q)
+    elif source in _DERIVED_SPEED_SOURCES:
+        # The filter's velocity out of a series of positions gives the direction as well as the speed.
+        table.support(rows, SPEED, source, t, q * derived)
+        table.support(rows, HEADING, source, t, q * derived)
+    if source == _V2V:
+        table.support(rows, HEADING, source, t, q)
+        table.support(rows, ACCEL, source, t, q)
+        for k, (prop, meas) in enumerate(zip(props, group, strict=True)):
+            prop.reported_accel_mps2 = meas.accel_mps2
+            prop.v2v_time_s = max(prop.v2v_time_s, meas.time_s)
+            if meas.station_id is not None:
+                table.update(rows[k:k + 1], STATION_ID, source, t[k], float(meas.station_id), q[k])
+    elif source == header_pb2.SENSOR_SOURCE_RADAR:
+        table.support(rows, HEADING, source, t, q * derived)
+    for slot, name in ((WIDTH, "width_m"), (LENGTH, "length_m")):
+        given = [k for k, m in enumerate(group) if getattr(m, name) is not None]
+        if given:
+            table.update(rows[given], slot, source, t[given], [getattr(group[k], name) for k in given], q[given])
+    _support_class(source, props, group, rows, t, q)
+
+
+def _support_class(source, props, group, rows, t, q) -> None:
+    classed = []
+    for k, (prop, meas) in enumerate(zip(props, group, strict=True)):
+        if meas.object_class != sensors_pb2.OBJECT_CLASS_UNSPECIFIED:
+            classed.append(k)
+            prop.object_class_value = meas.object_class
+        elif source == _V2V and prop.object_class_value == sensors_pb2.OBJECT_CLASS_UNSPECIFIED:
+            # A CAM sender is a vehicle; the camera may refine car versus truck.
+            classed.append(k)
+            prop.object_class_value = sensors_pb2.OBJECT_CLASS_CAR
+    if classed:
+        props[0].table.support(rows[classed], OBJECT_CLASS, source, t[classed], q[classed])

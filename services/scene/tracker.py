@@ -20,7 +20,8 @@ from .association import match_quality, polar_cost_matrix
 from .config import SceneFusionConfig
 from .frame_association import associate
 from .measurement import Measurement
-from .properties import ObjectProperties
+from .properties import POSITION, ObjectProperties, property_table, support_many
+from .support_table import UNKNOWN_CONFIDENCE
 from .track import RANGING_SOURCES, Track, TrackStatus, filter_steps, predict_positions
 
 
@@ -58,6 +59,8 @@ class Tracker:
         sources = (header_pb2.SENSOR_SOURCE_LIDAR, header_pb2.SENSOR_SOURCE_RADAR, header_pb2.SENSOR_SOURCE_CAMERA,
                    header_pb2.SENSOR_SOURCE_SONAR, header_pb2.SENSOR_SOURCE_V2V)
         self._source_configs = {source: config.source(source) for source in sources}
+        # Every track's properties, one row each.
+        self.properties = property_table(self._source_configs.__getitem__, config.tracking)
 
     # -- sensor frames ---------------------------------------------------------------------
 
@@ -71,11 +74,13 @@ class Tracker:
         # In measurement order, as one joint assignment would fuse and start them.
         pairs = [(tracks[j], measurements[i], match_quality(cost, gate)) for i, j, cost in sorted(fused)]
         self._fuse_frame(pairs)
-        for i in sorted(unmatched):
-            if not measurements[i].ambiguous:
-                self._start(measurements[i])
-            else:
-                self.counters.ambiguous_unmatched += 1
+        starting = [measurements[i] for i in sorted(unmatched) if not measurements[i].ambiguous]
+        self.counters.ambiguous_unmatched += len(unmatched) - len(starting)
+        if starting:
+            started = [self._new_track(meas) for meas in starting]
+            support_many([track.props for track in started], starting, np.ones(len(starting)))
+            for track in started:
+                self._maybe_confirm(track)
 
     def _geometry(self, measurements: list[Measurement], tracks: list[Track]) -> tuple[np.ndarray, ...]:
         """Measurement positions, covariances and sensor origins, and the tracks' predicted positions and
@@ -203,9 +208,14 @@ class Tracker:
         if in_sequence:
             x, p = filter_steps([track for track, _, _ in in_sequence], [meas for _, meas, _ in in_sequence],
                                 self._config.tracking)
-            for (track, meas, quality), x_k, p_k in zip(in_sequence, x, p, strict=True):
+            for (track, meas, _), x_k, p_k in zip(in_sequence, x, p, strict=True):
                 track.accept(meas, x_k, p_k)
-                self._credit(track, meas, quality)
+            credited = [pair for pair in in_sequence if not pair[1].ambiguous]
+            if credited:
+                support_many([track.props for track, _, _ in credited], [meas for _, meas, _ in credited],
+                             [quality for _, _, quality in credited])
+            for track, _, _ in in_sequence:
+                self._maybe_confirm(track)
         for track, meas, quality in late:
             self._fuse(track, meas, quality)
 
@@ -215,22 +225,23 @@ class Tracker:
             self.counters.too_late += 1
             return
         self.counters.replayed += track.replays - replays_before
-        self._credit(track, meas, quality, v2v_weight)
-
-    def _credit(self, track: Track, meas: Measurement, quality: float, v2v_weight: float = 1.0) -> None:
-        """The track's properties and life cycle after a fused measurement."""
         if not meas.ambiguous:
             track.props.support(meas, quality, v2v_weight)
         self._maybe_confirm(track)
 
     def _start(self, meas: Measurement, v2v_weight: float = 1.0) -> Track:
-        props = ObjectProperties(self._source_configs.__getitem__, self._config.tracking)
+        track = self._new_track(meas)
+        track.props.support(meas, 1.0, v2v_weight)
+        self._maybe_confirm(track)
+        return track
+
+    def _new_track(self, meas: Measurement) -> Track:
+        """A tentative track whose prior is meas; its properties not yet credited with it."""
+        props = ObjectProperties(self._source_configs.__getitem__, self._config.tracking, self.properties)
         track = Track(self._next_id, meas, self._config.tracking, props)
         self._next_id += 1
         self.tracks[track.track_id] = track
         self.counters.created += 1
-        props.support(meas, 1.0, v2v_weight)
-        self._maybe_confirm(track)
         return track
 
     def _maybe_confirm(self, track: Track) -> None:
@@ -244,14 +255,14 @@ class Tracker:
     def expire(self, time_s: float) -> None:
         """Delete tentative tracks that went quiet and confirmed ones whose position faded."""
         timeout = self._config.tracking.tentative_timeout_s
-        for track_id in list(self.tracks):
-            track = self.tracks[track_id]
-            if track.status is TrackStatus.TENTATIVE:
-                dead = time_s - track.last_hit_s > timeout
-            else:
-                dead = track.props.position.faded(time_s)
-            if dead:
-                self._remove(track_id)
+        dead = [t.track_id for t in self.tracks.values()
+                if t.status is TrackStatus.TENTATIVE and time_s - t.last_hit_s > timeout]
+        confirmed = self.confirmed()
+        if confirmed:
+            position = self.properties.confidences([t.props.row for t in confirmed], time_s)[0][:, POSITION]
+            dead += [t.track_id for t, faded in zip(confirmed, position == UNKNOWN_CONFIDENCE, strict=True) if faded]
+        for track_id in dead:
+            self._remove(track_id)
 
     def merge_duplicates(self, time_s: float) -> None:
         """Confirmed tracks closer than two vehicles can be and moving alike are one vehicle whose readings
@@ -283,6 +294,7 @@ class Tracker:
     def _remove(self, track_id: int) -> None:
         track = self.tracks.pop(track_id)
         track.status = TrackStatus.DELETED
+        track.props.release()
         if track.station_id is not None and self._station_links.get(track.station_id) == track_id:
             del self._station_links[track.station_id]
         self.counters.deleted += 1

@@ -1,0 +1,152 @@
+"""Per-property confidence after the Chalmers scene service (Svensson 2017, Sect. 3.5 and 4.3.1), for many
+properties of many objects at once.
+
+The thesis gives the rules in words; the equations below are our formalisation of them:
+
+  (C1) support of source s decays between readings:  c_s(t) = c_s(t_s) * exp(-decay_s * (t - t_s)),
+       and is gone once t - t_s > fade_s ("objects and surfaces have a fade time").
+  (C2) a reading of match quality q in [0, 1] moves it towards q * max_s:
+       c_s <- c_s(t) + gain_s * (q * max_s - c_s(t))
+       ("a new matching reading increases the confidence ... according to sensor types and how well
+       the properties of the objects matches up"); readings that match poorly, or come from a V2V
+       station we trust little, cannot push one source beyond q * max_s.
+  (C3) independent sources combine as c = 1 - prod_s (1 - c_s(t)), so a second sensor seeing the same
+       thing is a boost ("detection of the same object by a new sensor gives a confidence boost").
+  (C4) values blend as v <- (c_old v_old + b c_new v_new) / (c_old + b c_new), b the bias for new data,
+       multiplied by closer_bias when a distance-like value gets smaller ("a bias for closer readings").
+
+With every source faded the confidence is -1 and the value is withheld.
+
+The table holds one row per object, one slot per property of it and one column per sensor source (the
+header_pb2.SensorSource value), so a frame's readings and a scene's confidences are a few array operations for
+every object together instead of a few Python calls per property of each.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+from .config import SourceConfig
+
+UNKNOWN_CONFIDENCE = -1.0
+# Columns: header_pb2.SensorSource values, UNSPECIFIED (0) to MAP (6); a source without settings is never used.
+SOURCE_COLUMNS = 7
+_INITIAL_ROWS = 16
+
+
+class SupportTable:
+    def __init__(self, source_config: Callable[[int], SourceConfig], slots: int, new_data_bias: float = 3.0,
+                 closer_bias: Sequence[float] | None = None) -> None:
+        """closer_bias: per slot (default 1, none); source_config(source) gives a source's settings, looked up the
+        first time it supports anything."""
+        self._source_config = source_config
+        self._new_data_bias = new_data_bias
+        self._closer_bias = np.ones(slots) if closer_bias is None else np.asarray(closer_bias, dtype=float)
+        self._fade_s = np.zeros(SOURCE_COLUMNS)
+        self._decay_per_s = np.zeros(SOURCE_COLUMNS)
+        self._max = np.zeros(SOURCE_COLUMNS)
+        self._gain = np.zeros(SOURCE_COLUMNS)
+        self._known = [False] * SOURCE_COLUMNS
+        self._conf = np.zeros((_INITIAL_ROWS, slots, SOURCE_COLUMNS))
+        # -inf: never supported, so its support has always faded and counts for no valid_until_s.
+        self._time_s = np.full((_INITIAL_ROWS, slots, SOURCE_COLUMNS), -math.inf)
+        self._value = np.full((_INITIAL_ROWS, slots), math.nan)
+        self._free = list(range(_INITIAL_ROWS - 1, -1, -1))
+
+    # -- rows ------------------------------------------------------------------------------
+
+    def allocate(self) -> int:
+        """A fresh row: no support and no value in any slot."""
+        if not self._free:
+            grown = len(self._conf)
+            self._conf = np.concatenate((self._conf, np.zeros_like(self._conf)))
+            self._time_s = np.concatenate((self._time_s, np.full_like(self._time_s, -math.inf)))
+            self._value = np.concatenate((self._value, np.full_like(self._value, math.nan)))
+            self._free = list(range(2 * grown - 1, grown - 1, -1))
+        row = self._free.pop()
+        self._conf[row], self._time_s[row], self._value[row] = 0.0, -math.inf, math.nan
+        return row
+
+    def release(self, row: int) -> None:
+        self._free.append(row)
+
+    # -- reading ---------------------------------------------------------------------------
+
+    def source_confidences(self, rows, time_s) -> np.ndarray:
+        """c_s(t) (C1) of every slot and source of the rows at time_s (scalar or one per row): (rows, slots, 7)."""
+        time_s = np.asarray(time_s, dtype=float)
+        return _decayed(self._conf[rows], self._time_s[rows], self._fade_s, self._decay_per_s,
+                        time_s[:, None, None] if time_s.ndim else time_s)
+
+    def confidences(self, rows, time_s) -> tuple[np.ndarray, np.ndarray]:
+        """Fused confidence (C3) of every slot of the rows, -1 where every source has faded: (rows, slots); and
+        which sources still support each slot: (rows, slots, 7)."""
+        c = self.source_confidences(rows, time_s)
+        supporting = c > 0.0
+        fused = np.where(supporting.any(axis=-1), 1.0 - np.prod(1.0 - c, axis=-1), UNKNOWN_CONFIDENCE)
+        return fused, supporting
+
+    def valid_until_s(self, rows) -> np.ndarray:
+        """When the last supporting source of each slot fades, -inf where none ever did: (rows, slots)."""
+        return np.max(self._time_s[rows] + self._fade_s, axis=-1)
+
+    def last_support_s(self, rows) -> np.ndarray:
+        return np.max(self._time_s[rows], axis=-1)
+
+    def values(self, rows) -> np.ndarray:
+        """Blended values (C4), NaN where none was given: (rows, slots)."""
+        return self._value[rows]
+
+    # -- readings --------------------------------------------------------------------------
+
+    def support(self, rows, slot: int, source: int, time_s, quality) -> None:
+        """One reading of slot by source for each row (C2), of match quality in [0, 1] (scalar or one per row).
+        A late reading never moves the support time backwards, and does not decay into the future; one that
+        matches not at all supports nothing and must not keep the property alive."""
+        rows = np.asarray(rows, dtype=int)
+        quality = np.clip(np.asarray(quality, dtype=float), 0.0, 1.0)
+        time_s = np.asarray(time_s, dtype=float)
+        matching = quality > 0.0
+        if not matching.all():
+            if quality.ndim == 0:
+                return
+            rows, quality = rows[matching], quality[matching]
+            time_s = time_s[matching] if time_s.ndim else time_s
+        column = self._column(source)
+        support_time_s = self._time_s[rows, slot, column]
+        at_s = np.maximum(time_s, support_time_s)
+        current = _decayed(self._conf[rows, slot, column], support_time_s, self._fade_s[column],
+                           self._decay_per_s[column], at_s)
+        self._conf[rows, slot, column] = current + self._gain[column] * (quality * self._max[column] - current)
+        self._time_s[rows, slot, column] = at_s
+
+    def update(self, rows, slot: int, source: int, time_s, value, quality) -> None:
+        """Support plus value blending (C4), for properties no filter estimates."""
+        rows = np.asarray(rows, dtype=int)
+        value, quality = np.asarray(value, dtype=float), np.asarray(quality, dtype=float)
+        old_confidence = np.maximum(0.0, self.confidences(rows, time_s)[0][:, slot])
+        old_value = self._value[rows, slot]
+        bias = self._new_data_bias * np.where(value < old_value, self._closer_bias[slot], 1.0)
+        new_weight = bias * self._max[self._column(source)] * np.maximum(quality, 1e-3)
+        blended = (old_confidence * old_value + new_weight * value) / (old_confidence + new_weight)
+        fresh = np.isnan(old_value) | (old_confidence == 0.0)
+        self._value[rows, slot] = np.where(fresh, value, blended)
+        self.support(rows, slot, source, time_s, quality)
+
+    def _column(self, source: int) -> int:
+        if not self._known[source]:
+            cfg = self._source_config(source)
+            self._fade_s[source], self._decay_per_s[source] = cfg.fade_time_s, cfg.decay_per_s
+            self._max[source], self._gain[source] = cfg.max_confidence, cfg.gain
+            self._known[source] = True
+        return source
+
+
+def _decayed(conf, support_time_s, fade_s, decay_per_s, time_s) -> np.ndarray:
+    """(C1): c_s(t) = c_s(t_s) exp(-decay_s (t - t_s)), and 0 once t - t_s > fade_s or never supported (t_s -inf)."""
+    age_s = np.maximum(0.0, time_s - support_time_s)
+    alive = age_s <= fade_s
+    return np.where(alive, conf * np.exp(-decay_per_s * np.where(alive, age_s, 0.0)), 0.0)
