@@ -123,19 +123,25 @@ def grouped_pairs(meas_xy, meas_cov, track_xy, track_cov):
     return pairs
 
 
-@settings(max_examples=60, deadline=None)
-@given(st.integers(0, 2**32 - 1), st.integers(1, 40), st.integers(0, 40))
-def test_assigning_gate_groups_one_by_one_gives_the_pairs_of_one_joint_assignment(seed, tracks, clutter):
+def traffic(seed, tracks, clutter):
+    """Cars in traffic (some close together), most seen again with noise, plus clutter readings: measurement
+    positions and covariances, track positions and covariances."""
     rng = np.random.default_rng(seed)
-    # Cars in traffic (some close together), most seen again with noise, plus clutter readings.
     track_xy = rng.uniform([-60.0, -10.0], [60.0, 10.0], (tracks, 2))
     track_cov = np.einsum("k,ij->kij", rng.uniform(0.01, 4.0, tracks), np.eye(2))
     seen = track_xy[rng.random(tracks) < 0.8]
     meas_xy = np.vstack([seen + rng.normal(0.0, 0.5, seen.shape), rng.uniform([-60.0, -10.0], [60.0, 10.0],
                                                                                (clutter, 2))])
+    meas_cov = np.einsum("k,ij->kij", rng.uniform(0.01, 1.0, len(meas_xy)), np.eye(2))
+    return meas_xy, meas_cov, track_xy, track_cov
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 40), st.integers(0, 40))
+def test_assigning_gate_groups_one_by_one_gives_the_pairs_of_one_joint_assignment(seed, tracks, clutter):
+    meas_xy, meas_cov, track_xy, track_cov = traffic(seed, tracks, clutter)
     if len(meas_xy) == 0:
         return
-    meas_cov = np.einsum("k,ij->kij", rng.uniform(0.01, 1.0, len(meas_xy)), np.eye(2))
     assert grouped_pairs(meas_xy, meas_cov, track_xy, track_cov) == joint_pairs(meas_xy, meas_cov, track_xy,
                                                                                 track_cov)
 
@@ -170,15 +176,9 @@ def test_the_costs_of_given_pairs_are_the_matching_entries_of_the_cost_matrix():
 @settings(max_examples=40, deadline=None)
 @given(st.integers(0, 2**32 - 1), st.integers(1, 40), st.integers(0, 40), st.sampled_from([0, 30, DENSE_PAIRS_MAX]))
 def test_a_frames_association_gives_the_pairs_of_one_joint_assignment(seed, tracks, clutter, dense_pairs_max):
-    rng = np.random.default_rng(seed)
-    track_xy = rng.uniform([-60.0, -10.0], [60.0, 10.0], (tracks, 2))
-    track_cov = np.einsum("k,ij->kij", rng.uniform(0.01, 4.0, tracks), np.eye(2))
-    seen = track_xy[rng.random(tracks) < 0.8]
-    meas_xy = np.vstack([seen + rng.normal(0.0, 0.5, seen.shape), rng.uniform([-60.0, -10.0], [60.0, 10.0],
-                                                                               (clutter, 2))])
+    meas_xy, meas_cov, track_xy, track_cov = traffic(seed, tracks, clutter)
     if len(meas_xy) == 0:
         return
-    meas_cov = np.einsum("k,ij->kij", rng.uniform(0.01, 1.0, len(meas_xy)), np.eye(2))
     tracking = TrackingConfig(gate_chi2=GATE, angle_emphasis=1.2)
     matches, unmatched = associate(meas_xy, meas_cov, np.zeros_like(meas_xy), track_xy, track_cov, tracking,
                                    dense_pairs_max)
