@@ -16,13 +16,17 @@ from .config import TrackingConfig
 
 # (measurement index, track index, d^2) of every match.
 Matches = list[tuple[int, int, float]]
+# Up to this many entries the gated pairs left over are solved as one matrix: on a mostly forbidden 200 x 200
+# matrix the solver takes a fraction of a millisecond, less than splitting it into its groups costs.
+ONE_MATRIX_MAX = 40_000
 
 
 def associate(meas_xy: np.ndarray, meas_cov: np.ndarray, origins_xy: np.ndarray, track_xy: np.ndarray,
-              track_cov: np.ndarray, tracking: TrackingConfig,
-              dense_pairs_max: int = DENSE_PAIRS_MAX) -> tuple[Matches, list[int]]:
-    """The matches of the joint assignment and the measurements left unmatched; up to dense_pairs_max
-    measurement-track pairs are solved as one matrix."""
+              track_cov: np.ndarray, tracking: TrackingConfig, dense_pairs_max: int = DENSE_PAIRS_MAX,
+              one_matrix_max: int = ONE_MATRIX_MAX) -> tuple[Matches, list[int]]:
+    """The matches of the joint assignment and the measurements left unmatched. Up to dense_pairs_max
+    measurement-track pairs are all costed in one matrix; beyond that, the gated pairs not matched at once are
+    solved as one matrix up to one_matrix_max entries, and group by group above."""
     n, m = len(meas_xy), len(track_xy)
     gate, emphasis = tracking.gate_chi2, tracking.angle_emphasis
     if m == 0:
@@ -39,16 +43,16 @@ def associate(meas_xy: np.ndarray, meas_cov: np.ndarray, origins_xy: np.ndarray,
     rest = ~alone
     if rest.any():
         more, left = _solve_groups(meas_of[rest], track_of[rest], d2[rest], log_det[rest], n, m, gate,
-                                   dense_pairs_max)
+                                   one_matrix_max)
         matches += more
         unmatched += left
     return matches, unmatched
 
 
 def _solve_groups(meas_of, track_of, d2, log_det, n: int, m: int, gate: float,
-                  dense_pairs_max: int) -> tuple[Matches, list[int]]:
+                  one_matrix_max: int) -> tuple[Matches, list[int]]:
     """The gated pairs' assignment: one matrix while it stays small, else one per connected group of them."""
-    if np.unique(meas_of).size * np.unique(track_of).size <= dense_pairs_max:
+    if np.unique(meas_of).size * np.unique(track_of).size <= one_matrix_max:
         return _solve_pairs(meas_of, track_of, d2, log_det, gate)
     _, labels = pair_components(meas_of, track_of, n, m)
     pair_labels = labels[meas_of]

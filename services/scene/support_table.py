@@ -84,10 +84,12 @@ class SupportTable:
     def confidences(self, rows, time_s) -> tuple[np.ndarray, np.ndarray]:
         """Fused confidence (C3) of every slot of the rows, -1 where every source has faded: (rows, slots); and
         which sources still support each slot: (rows, slots, 7)."""
-        c = self.source_confidences(rows, time_s)
-        supporting = c > 0.0
-        fused = np.where(supporting.any(axis=-1), 1.0 - np.prod(1.0 - c, axis=-1), UNKNOWN_CONFIDENCE)
-        return fused, supporting
+        return _fused(self.source_confidences(rows, time_s))
+
+    def slot_confidences(self, rows, slot: int, time_s: float) -> tuple[np.ndarray, np.ndarray]:
+        """confidences() of one slot: (rows,) and (rows, 7)."""
+        return _fused(_decayed(self._conf[rows, slot], self._time_s[rows, slot], self._fade_s, self._decay_per_s,
+                               time_s))
 
     def valid_until_s(self, rows) -> np.ndarray:
         """When the last supporting source of each slot fades, -inf where none ever did: (rows, slots)."""
@@ -143,6 +145,12 @@ class SupportTable:
             self._max[source], self._gain[source] = cfg.max_confidence, cfg.gain
             self._known[source] = True
         return source
+
+
+def _fused(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(C3) over the sources in the last axis of per-source confidences c, and which sources support."""
+    supporting = c > 0.0
+    return np.where(supporting.any(axis=-1), 1.0 - np.prod(1.0 - c, axis=-1), UNKNOWN_CONFIDENCE), supporting
 
 
 def _decayed(conf, support_time_s, fade_s, decay_per_s, time_s) -> np.ndarray:

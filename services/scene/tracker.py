@@ -259,7 +259,7 @@ class Tracker:
                 if t.status is TrackStatus.TENTATIVE and time_s - t.last_hit_s > timeout]
         confirmed = self.confirmed()
         if confirmed:
-            position = self.properties.confidences([t.props.row for t in confirmed], time_s)[0][:, POSITION]
+            position = self.properties.slot_confidences([t.props.row for t in confirmed], POSITION, time_s)[0]
             dead += [t.track_id for t, faded in zip(confirmed, position == UNKNOWN_CONFIDENCE, strict=True) if faded]
         for track_id in dead:
             self._remove(track_id)

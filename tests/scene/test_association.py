@@ -16,7 +16,7 @@ from coopdrive.services.scene.association import (
     polar_cost_pairs,
 )
 from coopdrive.services.scene.config import TrackingConfig
-from coopdrive.services.scene.frame_association import associate
+from coopdrive.services.scene.frame_association import ONE_MATRIX_MAX, associate
 
 ORIGIN = np.zeros(2)
 
@@ -174,14 +174,14 @@ def test_the_costs_of_given_pairs_are_the_matching_entries_of_the_cost_matrix():
 
 
 @settings(max_examples=40, deadline=None)
-@given(st.integers(0, 2**32 - 1), st.integers(1, 40), st.integers(0, 40), st.sampled_from([0, 30, DENSE_PAIRS_MAX]))
-def test_a_frames_association_gives_the_pairs_of_one_joint_assignment(seed, tracks, clutter, dense_pairs_max):
+@given(st.integers(0, 2**32 - 1), st.integers(1, 40), st.integers(0, 40),
+       st.sampled_from([(0, 0), (0, 30), (0, ONE_MATRIX_MAX), (DENSE_PAIRS_MAX, ONE_MATRIX_MAX)]))
+def test_a_frames_association_gives_the_pairs_of_one_joint_assignment(seed, tracks, clutter, limits):
     meas_xy, meas_cov, track_xy, track_cov = traffic(seed, tracks, clutter)
     if len(meas_xy) == 0:
         return
     tracking = TrackingConfig(gate_chi2=GATE, angle_emphasis=1.2)
-    matches, unmatched = associate(meas_xy, meas_cov, np.zeros_like(meas_xy), track_xy, track_cov, tracking,
-                                   dense_pairs_max)
+    matches, unmatched = associate(meas_xy, meas_cov, np.zeros_like(meas_xy), track_xy, track_cov, tracking, *limits)
     expected = joint_pairs(meas_xy, meas_cov, track_xy, track_cov)
     assert {(i, j) for i, j, _ in matches} == expected
     assert sorted(unmatched) == sorted(set(range(len(meas_xy))) - {i for i, _ in expected})
