@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from operator import attrgetter
 
 import numpy as np
 
@@ -34,6 +35,9 @@ ONCOMING_MIN_SPEED_MPS = 1.0
 _MAP_BIT = 1 << header_pb2.SENSOR_SOURCE_MAP
 _V2V = header_pb2.SENSOR_SOURCE_V2V
 _sources_of = TrackSnapshot.sources_of
+# The scalar properties of a SceneObject and their slots in the property table.
+_SCALARS = ((attrgetter("speed_mps"), SPEED), (attrgetter("heading_rad"), HEADING), (attrgetter("accel_mps2"), ACCEL),
+            (attrgetter("length_m"), LENGTH), (attrgetter("width_m"), WIDTH))
 
 
 @dataclass(frozen=True)
@@ -59,15 +63,6 @@ class _Kinematics:
     along_m: np.ndarray
     across_m: np.ndarray
     relative_speed_mps: np.ndarray
-
-
-def _fill_scalar(target: scene_pb2.ScalarProperty, confidence: float, value: float, code: int, valid_until_s: float):
-    target.confidence = confidence
-    if confidence == UNKNOWN_CONFIDENCE:
-        return
-    target.value = value
-    target.sources.extend(_sources_of(code))
-    target.valid_until_s = valid_until_s
 
 
 class SceneBuilder:
@@ -143,38 +138,55 @@ class SceneBuilder:
                 along_m[k], across_m[k] = obj_frenet[0] - ego_frenet[0], obj_frenet[1] - ego_frenet[1]
 
     def _objects(self, scene: scene_pb2.Scene, views: ObjectViews, kin: _Kinematics, lanes: list[int | None]):
+        """One SceneObject per track, filled property by property: a column of numbers at a time for all objects."""
         snapshot = views.snapshot
-        confidence, codes = snapshot.confidence.tolist(), snapshot.source_codes.tolist()
-        valid_until, values = snapshot.valid_until_s.tolist(), np.nan_to_num(snapshot.values).tolist()
-        position, std = kin.position_m.tolist(), kin.std_m.tolist()
-        speed, heading, accel = kin.speed_mps.tolist(), kin.heading_rad.tolist(), kin.accel_mps2.tolist()
-        gap = (kin.along_m - self._front_bumper_m()).tolist()
-        across, relative_speed = kin.across_m.tolist(), kin.relative_speed_mps.tolist()
-        ghost = views.ghost.tolist()
-        add = scene.objects.add
-        for k, track in enumerate(snapshot.tracks):
-            c, code, until, props = confidence[k], codes[k], valid_until[k], track.props
-            obj = add(object_id=track.track_id, first_seen_s=track.first_seen_s, longitudinal_gap_m=gap[k],
-                      lateral_offset_m=across[k], relative_speed_mps=relative_speed[k], v2v_trust=views.v2v_trust[k],
-                      v2v_time_s=props.v2v_time_s, ghost=ghost[k],
-                      object_class=props.object_class_value if c[OBJECT_CLASS] != UNKNOWN_CONFIDENCE else 0)
-            known = c[POSITION] != UNKNOWN_CONFIDENCE
-            obj.position.confidence = c[POSITION]
-            if known:
-                obj.position.x_m, obj.position.y_m = position[k]
-                obj.position.sources.extend(_sources_of(code[POSITION]))
-                obj.position.valid_until_s, obj.position.std_m = until[POSITION], std[k]
-            for target, slot, value in ((obj.speed_mps, SPEED, speed[k]), (obj.heading_rad, HEADING, heading[k]),
-                                        (obj.accel_mps2, ACCEL, accel[k]), (obj.length_m, LENGTH, values[k][LENGTH]),
-                                        (obj.width_m, WIDTH, values[k][WIDTH])):
-                _fill_scalar(target, c[slot], value, code[slot], until[slot])
-            obj.station_id.confidence = c[STATION_ID]
-            if track.station_id is not None and c[STATION_ID] != UNKNOWN_CONFIDENCE:
-                obj.station_id.value = track.station_id
-                obj.station_id.sources.extend(_sources_of(code[STATION_ID]))
-                obj.station_id.valid_until_s = until[STATION_ID]
+        # Length and width are 0 where no reading ever gave one, as their confidence says.
+        values = np.nan_to_num(snapshot.values)
+        values[:, SPEED], values[:, HEADING], values[:, ACCEL] = kin.speed_mps, kin.heading_rad, kin.accel_mps2
+        confidence, codes, valid_until = snapshot.confidence, snapshot.source_codes, snapshot.valid_until_s
+        objects = self._new_objects(scene, views, kin)
+        for get, slot in _SCALARS:
+            for obj, c, value, code, until in zip(objects, confidence[:, slot].tolist(), values[:, slot].tolist(),
+                                                  codes[:, slot].tolist(), valid_until[:, slot].tolist()):
+                target = get(obj)
+                target.confidence = c
+                if c != UNKNOWN_CONFIDENCE:
+                    target.value = value
+                    target.sources.extend(_sources_of(code))
+                    target.valid_until_s = until
+        position = zip(objects, confidence[:, POSITION].tolist(), kin.position_m.tolist(), kin.std_m.tolist(),
+                       codes[:, POSITION].tolist(), valid_until[:, POSITION].tolist(), lanes)
+        for obj, c, (x_m, y_m), std_m, code, until, lane in position:
+            obj.position.confidence = c
             obj.lane_index.confidence = UNKNOWN_CONFIDENCE
-            if lanes[k] is not None and known:
-                obj.lane_index.value, obj.lane_index.confidence = lanes[k], c[POSITION]
-                obj.lane_index.sources.extend(_sources_of(code[POSITION] | _MAP_BIT))
-                obj.lane_index.valid_until_s = until[POSITION]
+            if c == UNKNOWN_CONFIDENCE:
+                continue
+            obj.position.x_m, obj.position.y_m, obj.position.std_m = x_m, y_m, std_m
+            obj.position.sources.extend(_sources_of(code))
+            obj.position.valid_until_s = until
+            if lane is not None:
+                obj.lane_index.value, obj.lane_index.confidence = lane, c
+                obj.lane_index.sources.extend(_sources_of(code | _MAP_BIT))
+                obj.lane_index.valid_until_s = until
+        station = zip(objects, snapshot.tracks, confidence[:, STATION_ID].tolist(), codes[:, STATION_ID].tolist(),
+                      valid_until[:, STATION_ID].tolist())
+        for obj, track, c, code, until in station:
+            obj.station_id.confidence = c
+            if track.station_id is not None and c != UNKNOWN_CONFIDENCE:
+                obj.station_id.value = track.station_id
+                obj.station_id.sources.extend(_sources_of(code))
+                obj.station_id.valid_until_s = until
+
+    def _new_objects(self, scene: scene_pb2.Scene, views: ObjectViews, kin: _Kinematics) -> list:
+        """The scene's objects with their plain fields: ids, class, gaps, trust, V2V time, ghost."""
+        snapshot = views.snapshot
+        known_class = (snapshot.confidence[:, OBJECT_CLASS] != UNKNOWN_CONFIDENCE).tolist()
+        gap_m = (kin.along_m - self._front_bumper_m()).tolist()
+        fields = zip(snapshot.tracks, known_class, gap_m, kin.across_m.tolist(), kin.relative_speed_mps.tolist(),
+                     views.v2v_trust, views.ghost.tolist())
+        add = scene.objects.add
+        return [add(object_id=track.track_id, first_seen_s=track.first_seen_s,
+                    object_class=track.props.object_class_value if known else 0, longitudinal_gap_m=gap,
+                    lateral_offset_m=across, relative_speed_mps=relative_speed, v2v_trust=trust,
+                    v2v_time_s=track.props.v2v_time_s, ghost=ghost)
+                for track, known, gap, across, relative_speed, trust, ghost in fields]
