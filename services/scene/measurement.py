@@ -29,7 +29,7 @@ class V2vObservation:
     sample_time_s: float
 
 
-@dataclass
+@dataclass(slots=True)
 class Measurement:
     """One detection of one object by one source, ENU frame, rear-bumper reference point."""
 

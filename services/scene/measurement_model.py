@@ -36,9 +36,10 @@ def measurement_model(measurements: list[Measurement], layout: Layout, prior_xy_
     rows = 2 + radial + 2 * velocity + accel
     count = len(measurements)
     z, h, r = np.zeros((count, rows)), np.zeros((count, rows, DIM)), np.zeros((count, rows, rows))
-    z[:, :2] = [m.position_m for m in measurements]
+    positions_m = np.array([m.position_m for m in measurements])
+    z[:, :2] = positions_m
     h[:, 0, IX] = h[:, 1, IY] = 1.0
-    r[:, :2, :2] = _position_noise(measurements, prior_xy_m, closer_bias)
+    r[:, :2, :2] = _position_noise(measurements, positions_m, prior_xy_m, closer_bias)
     row = 2
     if radial:
         los = np.array([line_of_sight(m) for m in measurements])
@@ -59,14 +60,14 @@ def measurement_model(measurements: list[Measurement], layout: Layout, prior_xy_
     return z, h, r
 
 
-def _position_noise(measurements: list[Measurement], prior_xy_m: np.ndarray, closer_bias: float) -> np.ndarray:
+def _position_noise(measurements: list[Measurement], positions_m: np.ndarray, prior_xy_m: np.ndarray,
+                    closer_bias: float) -> np.ndarray:
     """The readings' position covariances, divided by closer_bias where the reading is nearer the sensor than
     the track is predicted to be (Chalmers 4.3.1: distance is updated "with a bias for closer readings")."""
     cov = np.array([m.cov_m2 for m in measurements])
     origins = np.array([m.origin_m for m in measurements])
-    positions = np.array([m.position_m for m in measurements])
     predicted_range_m = np.linalg.norm(prior_xy_m - origins, axis=1)
-    measured_range_m = np.linalg.norm(positions - origins, axis=1)
+    measured_range_m = np.linalg.norm(positions_m - origins, axis=1)
     closer = measured_range_m < predicted_range_m
     cov[closer] = cov[closer] / closer_bias
     return cov

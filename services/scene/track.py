@@ -65,14 +65,14 @@ def filter_steps(tracks: list[Track], measurements: list[Measurement],
     return x, p
 
 
-@dataclass
+@dataclass(slots=True)
 class _Logged:
     measurement: Measurement
     x: np.ndarray
     p: np.ndarray
 
 
-@dataclass
+@dataclass(slots=True)
 class RangingFix:
     """Latest LiDAR or radar position of this object, to compare V2V claims with."""
 
@@ -189,6 +189,8 @@ class Track:
 
     def _trim(self) -> None:
         horizon = self.time_s - self._config.replay_window_s
+        if self._log[0].measurement.time_s >= horizon:
+            return
         drop = 0
         while drop < len(self._log) - 1 and self._log[drop].measurement.time_s < horizon:
             drop += 1
