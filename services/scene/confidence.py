@@ -36,26 +36,29 @@ class FusedProperty:
         value = float(self._table.values(self._rows)[0, self._slot])
         return None if np.isnan(value) else value
 
+    def source_confidences(self, time_s: float) -> list[float]:
+        """c_s(t) of every source, indexed by header_pb2.SensorSource value."""
+        return self._table.source_confidences(self._rows, time_s)[0, self._slot].tolist()
+
     def source_confidence(self, source: int, time_s: float) -> float:
         """c_s(t), 0 when the source never supported this property or has faded."""
-        return float(self._table.source_confidences(self._rows, time_s)[0, self._slot, source])
+        return self.source_confidences(time_s)[source]
 
     def support(self, source: int, time_s: float, quality: float = 1.0) -> None:
         """One reading of this property by `source`, matching with quality q in [0, 1]."""
-        self._table.support(self._rows, self._slot, source, time_s, quality)
+        self._table.support(self._rows, [self._slot], source, time_s, quality)
 
     def update(self, source: int, time_s: float, value: float, quality: float = 1.0) -> None:
         """Support plus value blending, for properties no filter estimates."""
-        self._table.update(self._rows, self._slot, source, time_s, value, quality)
+        self._table.update(self._rows, [self._slot], source, time_s, value, quality)
 
     def confidence(self, time_s: float) -> float:
         """Fused confidence, or -1 once every supporting source has faded."""
-        return float(self._table.confidences(self._rows, time_s)[0][0, self._slot])
+        return float(self._table.slot_confidences(self._rows, self._slot, time_s)[0][0])
 
     def sources(self, time_s: float) -> list[int]:
         """Sources still supporting the property, in enum order."""
-        supporting = self._table.confidences(self._rows, time_s)[1][0, self._slot]
-        return np.flatnonzero(supporting).tolist()
+        return np.flatnonzero(self._table.slot_confidences(self._rows, self._slot, time_s)[1][0]).tolist()
 
     def has_source(self, source: int, time_s: float) -> bool:
         return self.source_confidence(source, time_s) > 0.0

@@ -21,8 +21,7 @@ def transition(dt_s: np.ndarray) -> np.ndarray:
     """F (K, 6, 6) for each time step dt_s (K,): constant acceleration on each axis,
     p' = p + v dt + a dt^2 / 2, v' = v + a dt, a' = a."""
     dt_s = np.asarray(dt_s, dtype=float)
-    f = np.zeros((dt_s.size, DIM, DIM))
-    f[:, range(DIM), range(DIM)] = 1.0
+    f = np.tile(np.eye(DIM), (dt_s.size, 1, 1))
     for first in _AXES:
         f[:, first, first + 1] = dt_s
         f[:, first, first + 2] = 0.5 * dt_s * dt_s
@@ -36,9 +35,8 @@ def process_noise(dt_s: np.ndarray, psd: float) -> np.ndarray:
     Q_continuous_white_noise(dim=3)), written out because scipy's block_diag there costs more than the update."""
     t = np.abs(np.asarray(dt_s, dtype=float))
     t2, t3 = t * t, t * t * t
-    block = np.stack((np.stack((t3 * t2 / 20.0, t2 * t2 / 8.0, t3 / 6.0), axis=-1),
-                      np.stack((t2 * t2 / 8.0, t3 / 3.0, t2 / 2.0), axis=-1),
-                      np.stack((t3 / 6.0, t2 / 2.0, t), axis=-1)), axis=-2)
+    block = np.stack((t3 * t2 / 20.0, t2 * t2 / 8.0, t3 / 6.0, t2 * t2 / 8.0, t3 / 3.0, t2 / 2.0, t3 / 6.0, t2 / 2.0, t),
+                     axis=-1).reshape(t.size, 3, 3)
     q = np.zeros((t.size, DIM, DIM))
     for first in _AXES:
         q[:, first:first + 3, first:first + 3] = psd * block

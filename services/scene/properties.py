@@ -77,39 +77,39 @@ def _support_source(source: int, props: list[ObjectProperties], group: list[Meas
     table, derived = props[0].table, props[0].derived_quality
     rows = np.array([p.row for p in props])
     t = np.array([m.time_s for m in group])
-    table.support(rows, POSITION, source, t, q)
+    # The slots every reading of this source supports, and the share of its quality each gets.
+    slots, shares = [POSITION, OBJECT_CLASS], [1.0, 0.0]
     if source in _SPEED_SOURCES:
-        table.support(rows, SPEED, source, t, q)
+        slots.append(SPEED), shares.append(1.0)
     elif source in _DERIVED_SPEED_SOURCES:
         # The filter's velocity out of a series of positions gives the direction as well as the speed.
-        table.support(rows, SPEED, source, t, q * derived)
-        table.support(rows, HEADING, source, t, q * derived)
+        slots += [SPEED, HEADING]
+        shares += [derived, derived]
     if source == _V2V:
-        table.support(rows, HEADING, source, t, q)
-        table.support(rows, ACCEL, source, t, q)
-        for k, (prop, meas) in enumerate(zip(props, group, strict=True)):
+        slots += [HEADING, ACCEL]
+        shares += [1.0, 1.0]
+        for prop, meas in zip(props, group, strict=True):
             prop.reported_accel_mps2 = meas.accel_mps2
             prop.v2v_time_s = max(prop.v2v_time_s, meas.time_s)
-            if meas.station_id is not None:
-                table.update(rows[k:k + 1], STATION_ID, source, t[k], float(meas.station_id), q[k])
     elif source == header_pb2.SENSOR_SOURCE_RADAR:
-        table.support(rows, HEADING, source, t, q * derived)
-    for slot, name in ((WIDTH, "width_m"), (LENGTH, "length_m")):
-        given = [k for k, m in enumerate(group) if getattr(m, name) is not None]
-        if given:
-            table.update(rows[given], slot, source, t[given], [getattr(group[k], name) for k in given], q[given])
-    _support_class(source, props, group, rows, t, q)
+        slots.append(HEADING), shares.append(derived)
+    quality = q[:, None] * np.array(shares)
+    quality[:, 1] = q * _class_readings(source, props, group)
+    table.support(rows, slots, source, t, quality)
+    # Values no filter estimates: NaN where a reading gives none.
+    values = np.array([(m.width_m, m.length_m, m.station_id if source == _V2V else None) for m in group], dtype=float)
+    table.update(rows, [WIDTH, LENGTH, STATION_ID], source, t, values, q)
 
 
-def _support_class(source, props, group, rows, t, q) -> None:
-    classed = []
+def _class_readings(source: int, props: list[ObjectProperties], group: list[Measurement]) -> np.ndarray:
+    """1 where a reading says what class the object is (and sets it), 0 elsewhere."""
+    says = np.zeros(len(group))
     for k, (prop, meas) in enumerate(zip(props, group, strict=True)):
         if meas.object_class != sensors_pb2.OBJECT_CLASS_UNSPECIFIED:
-            classed.append(k)
+            says[k] = 1.0
             prop.object_class_value = meas.object_class
         elif source == _V2V and prop.object_class_value == sensors_pb2.OBJECT_CLASS_UNSPECIFIED:
             # A CAM sender is a vehicle; the camera may refine car versus truck.
-            classed.append(k)
+            says[k] = 1.0
             prop.object_class_value = sensors_pb2.OBJECT_CLASS_CAR
-    if classed:
-        props[0].table.support(rows[classed], OBJECT_CLASS, source, t[classed], q[classed])
+    return says

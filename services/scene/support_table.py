@@ -86,10 +86,11 @@ class SupportTable:
         which sources still support each slot: (rows, slots, 7)."""
         return _fused(self.source_confidences(rows, time_s))
 
-    def slot_confidences(self, rows, slot: int, time_s: float) -> tuple[np.ndarray, np.ndarray]:
+    def slot_confidences(self, rows, slot: int, time_s) -> tuple[np.ndarray, np.ndarray]:
         """confidences() of one slot: (rows,) and (rows, 7)."""
+        time_s = np.asarray(time_s, dtype=float)
         return _fused(_decayed(self._conf[rows, slot], self._time_s[rows, slot], self._fade_s, self._decay_per_s,
-                               time_s))
+                               time_s[:, None] if time_s.ndim else time_s))
 
     def valid_until_s(self, rows) -> np.ndarray:
         """When the last supporting source of each slot fades, -inf where none ever did: (rows, slots)."""
@@ -104,39 +105,42 @@ class SupportTable:
 
     # -- readings --------------------------------------------------------------------------
 
-    def support(self, rows, slot: int, source: int, time_s, quality) -> None:
-        """One reading of slot by source for each row (C2), of match quality in [0, 1] (scalar or one per row).
-        A late reading never moves the support time backwards, and does not decay into the future; one that
-        matches not at all supports nothing and must not keep the property alive."""
-        rows = np.asarray(rows, dtype=int)
-        quality = np.clip(np.asarray(quality, dtype=float), 0.0, 1.0)
-        time_s = np.asarray(time_s, dtype=float)
-        matching = quality > 0.0
-        if not matching.all():
-            if quality.ndim == 0:
-                return
-            rows, quality = rows[matching], quality[matching]
-            time_s = time_s[matching] if time_s.ndim else time_s
-        column = self._column(source)
-        support_time_s = self._time_s[rows, slot, column]
-        at_s = np.maximum(time_s, support_time_s)
-        current = _decayed(self._conf[rows, slot, column], support_time_s, self._fade_s[column],
-                           self._decay_per_s[column], at_s)
-        self._conf[rows, slot, column] = current + self._gain[column] * (quality * self._max[column] - current)
-        self._time_s[rows, slot, column] = at_s
+    def support(self, rows, slots, source: int, time_s, quality) -> None:
+        """One reading by source of the given slots of each row (C2). quality in [0, 1]: one per row (N,), one per
+        row and slot (N, len(slots)), or one for all; time_s one per row or one for all."""
+        rows, slots = _block(rows, slots)
+        self._credit(source, rows, slots, _per_row(time_s), _per_row(quality))
 
-    def update(self, rows, slot: int, source: int, time_s, value, quality) -> None:
-        """Support plus value blending (C4), for properties no filter estimates."""
-        rows = np.asarray(rows, dtype=int)
-        value, quality = np.asarray(value, dtype=float), np.asarray(quality, dtype=float)
-        old_confidence = np.maximum(0.0, self.confidences(rows, time_s)[0][:, slot])
-        old_value = self._value[rows, slot]
-        bias = self._new_data_bias * np.where(value < old_value, self._closer_bias[slot], 1.0)
+    def update(self, rows, slots, source: int, time_s, value, quality) -> None:
+        """Support plus value blending (C4), for properties no filter estimates: value and quality shaped as
+        support()'s quality; a NaN value is no reading of that slot."""
+        rows, slots = _block(rows, slots)
+        time_s, value, quality = _per_row(time_s), _per_row(value), _per_row(quality)
+        old_confidence = _fused(_decayed(self._conf[rows, slots], self._time_s[rows, slots], self._fade_s,
+                                         self._decay_per_s, time_s[..., None]))[0]
+        old_confidence = np.maximum(0.0, old_confidence)
+        old_value = self._value[rows, slots]
+        bias = self._new_data_bias * np.where(value < old_value, self._closer_bias[slots], 1.0)
         new_weight = bias * self._max[self._column(source)] * np.maximum(quality, 1e-3)
         blended = (old_confidence * old_value + new_weight * value) / (old_confidence + new_weight)
         fresh = np.isnan(old_value) | (old_confidence == 0.0)
-        self._value[rows, slot] = np.where(fresh, value, blended)
-        self.support(rows, slot, source, time_s, quality)
+        given = ~np.isnan(value)
+        self._value[rows, slots] = np.where(given, np.where(fresh, value, blended), old_value)
+        self._credit(source, rows, slots, time_s, np.where(given, quality, 0.0))
+
+    def _credit(self, source: int, rows: np.ndarray, slots: np.ndarray, time_s, quality) -> None:
+        """(C2) for a block of rows (N, 1) and slots (1, S). A late reading never moves the support time
+        backwards, and does not decay into the future; one that matches not at all supports nothing and must not
+        keep the property alive."""
+        column = self._column(source)
+        quality = np.clip(quality, 0.0, 1.0)
+        conf, support_time_s = self._conf[rows, slots, column], self._time_s[rows, slots, column]
+        at_s = np.maximum(time_s, support_time_s)
+        current = _decayed(conf, support_time_s, self._fade_s[column], self._decay_per_s[column], at_s)
+        matching = quality > 0.0
+        self._conf[rows, slots, column] = np.where(
+            matching, current + self._gain[column] * (quality * self._max[column] - current), conf)
+        self._time_s[rows, slots, column] = np.where(matching, at_s, support_time_s)
 
     def _column(self, source: int) -> int:
         if not self._known[source]:
@@ -145,6 +149,17 @@ class SupportTable:
             self._max[source], self._gain[source] = cfg.max_confidence, cfg.gain
             self._known[source] = True
         return source
+
+
+def _block(rows, slots) -> tuple[np.ndarray, np.ndarray]:
+    """Rows (N, 1) and slots (1, S): indices of an (N, S) block of the table."""
+    return np.asarray(rows, dtype=int)[:, None], np.asarray(slots, dtype=int)[None, :]
+
+
+def _per_row(values) -> np.ndarray:
+    """One value per row (N,) as a column (N, 1) of a block; one per row and slot, or one for all, as it is."""
+    values = np.asarray(values, dtype=float)
+    return values[:, None] if values.ndim == 1 else values
 
 
 def _fused(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
