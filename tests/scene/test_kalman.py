@@ -4,6 +4,8 @@ filterpy is the reference here only: the scene service itself does not import it
 """
 
 import math
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -110,3 +112,10 @@ def reference_step(kf, meas, dt_s, closer_bias):
     r[:2, :2] = meas.cov_m2 / closer_bias if closer else meas.cov_m2
     r[2, 2] = meas.radial_speed_std_mps**2
     kf.update(np.array([*meas.position_m, meas.radial_speed_mps]), R=r, H=h)
+
+
+def test_the_scene_service_imports_neither_filterpy_nor_scipy_stats():
+    """filterpy pulls in scipy.stats, a good part of every scene process's start-up."""
+    code = "import sys, coopdrive.services.scene.service; print('filterpy' in sys.modules, 'scipy.stats' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.split() == ["False", "False"]
