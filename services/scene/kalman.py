@@ -15,6 +15,9 @@ DIM = 6
 IX, IVX, IAX, IY, IVY, IAY = range(DIM)
 # Each axis's (position, speed, acceleration) block starts here.
 _AXES = (IX, IY)
+# Q's 3x3 block row by row: which power of t (index into t^5 .. t^1) over what.
+_NOISE_POWERS = [0, 1, 2, 1, 2, 3, 2, 3, 4]
+_NOISE_DIVISORS = np.array([20.0, 8.0, 6.0, 8.0, 3.0, 2.0, 6.0, 2.0, 1.0])
 
 
 def transition(dt_s: np.ndarray) -> np.ndarray:
@@ -32,14 +35,16 @@ def transition(dt_s: np.ndarray) -> np.ndarray:
 def process_noise(dt_s: np.ndarray, psd: float) -> np.ndarray:
     """Q (K, 6, 6) for each time step: white jerk of spectral density psd on each axis, the continuous
     white-noise model discretised over dt (Bar-Shalom, Li and Kirubarajan 2001, sect. 6.2.3; filterpy's
-    Q_continuous_white_noise(dim=3)), written out because scipy's block_diag there costs more than the update."""
+    Q_continuous_white_noise(dim=3)): block [[t^5/20, t^4/8, t^3/6], [t^4/8, t^3/3, t^2/2], [t^3/6, t^2/2, t]],
+    written out because scipy's block_diag there costs more than the update."""
     t = np.abs(np.asarray(dt_s, dtype=float))
-    t2, t3 = t * t, t * t * t
-    block = np.stack((t3 * t2 / 20.0, t2 * t2 / 8.0, t3 / 6.0, t2 * t2 / 8.0, t3 / 3.0, t2 / 2.0, t3 / 6.0, t2 / 2.0, t),
-                     axis=-1).reshape(t.size, 3, 3)
+    t2 = t * t
+    t3 = t2 * t
+    powers = np.stack((t3 * t2, t2 * t2, t3, t2, t), axis=-1)  # t^5 .. t^1
+    block = psd * (powers[:, _NOISE_POWERS] / _NOISE_DIVISORS).reshape(t.size, 3, 3)
     q = np.zeros((t.size, DIM, DIM))
     for first in _AXES:
-        q[:, first:first + 3, first:first + 3] = psd * block
+        q[:, first:first + 3, first:first + 3] = block
     return q
 
 

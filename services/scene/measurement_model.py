@@ -66,8 +66,7 @@ def _position_noise(measurements: list[Measurement], positions_m: np.ndarray, pr
     the track is predicted to be (Chalmers 4.3.1: distance is updated "with a bias for closer readings")."""
     cov = np.array([m.cov_m2 for m in measurements])
     origins = np.array([m.origin_m for m in measurements])
-    predicted_range_m = np.linalg.norm(prior_xy_m - origins, axis=1)
-    measured_range_m = np.linalg.norm(positions_m - origins, axis=1)
-    closer = measured_range_m < predicted_range_m
+    # Squared ranges compare as the ranges do.
+    closer = np.sum((positions_m - origins) ** 2, axis=1) < np.sum((prior_xy_m - origins) ** 2, axis=1)
     cov[closer] = cov[closer] / closer_bias
     return cov

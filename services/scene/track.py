@@ -118,6 +118,10 @@ class Track:
                               kalman.process_noise(dt_s, self._config.jerk_psd_m2ps5))
         return x[0], p[0]
 
+    def predicted_mean(self, time_s: float) -> np.ndarray:
+        """The mean alone at time_s (predicted's first half, without the covariance)."""
+        return kalman.transition(np.array([time_s - self.time_s]))[0] @ self._x
+
     @property
     def mean(self) -> np.ndarray:
         return self._x

@@ -149,7 +149,7 @@ class Tracker:
         best, best_gap = None, self._config.trust.link_gate_m
         for track in self.tracks.values():
             if track.station_id is None and self._seen_lately(track, meas.time_s):
-                gap = float(np.linalg.norm(Track.position_of(track.predicted(meas.time_s)[0]) - meas.position_m))
+                gap = float(np.linalg.norm(Track.position_of(track.predicted_mean(meas.time_s)) - meas.position_m))
                 if gap <= best_gap:
                     best, best_gap = track, gap
         return best
@@ -172,7 +172,7 @@ class Tracker:
         fix = track.ranging_fix
         if fix is None or abs(meas.time_s - fix.time_s) > self._config.trust.max_sensor_age_s:
             return None
-        velocity = Track.velocity_of(track.predicted(fix.time_s)[0])
+        velocity = Track.velocity_of(track.predicted_mean(fix.time_s))
         at_claim = fix.position_m + velocity * (meas.time_s - fix.time_s)
         return float(np.linalg.norm(meas.position_m - at_claim))
 
