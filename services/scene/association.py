@@ -66,8 +66,8 @@ def gated_pairs(meas_xy: np.ndarray, meas_cov: np.ndarray, origins_xy: np.ndarra
     finds the pairs within a conservative plane distance of each track (its gate with the widest measurement
     covariance), and the gate itself keeps those whose range-bearing cost is inside it."""
     meas_of_pairs, tracks_of_pairs = _near_pairs(meas_xy, meas_cov, track_xy, track_cov, gate)
-    d2, log_det = _polar_costs(meas_xy[meas_of_pairs], meas_cov[meas_of_pairs], origins_xy[meas_of_pairs],
-                               track_xy[tracks_of_pairs], track_cov[tracks_of_pairs], angle_emphasis)
+    d2, log_det = polar_cost_pairs(meas_xy[meas_of_pairs], meas_cov[meas_of_pairs], origins_xy[meas_of_pairs],
+                                   track_xy[tracks_of_pairs], track_cov[tracks_of_pairs], angle_emphasis)
     inside = d2 <= gate
     return meas_of_pairs[inside], tracks_of_pairs[inside], d2[inside], log_det[inside]
 
