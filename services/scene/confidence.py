@@ -23,13 +23,16 @@ class FusedProperty:
                  closer_bias: float = 1.0) -> None:
         """A property with a table of its own; FusedProperty.in_table for one slot of a shared table."""
         table = SupportTable(source_config, 1, new_data_bias, [closer_bias])
-        self._table, self._rows, self._slot = table, np.array([table.allocate()]), 0
+        self._bind(table, table.allocate(), 0)
 
     @classmethod
     def in_table(cls, table: SupportTable, row: int, slot: int) -> FusedProperty:
         prop = cls.__new__(cls)
-        prop._table, prop._rows, prop._slot = table, np.array([row]), slot
+        prop._bind(table, row, slot)
         return prop
+
+    def _bind(self, table: SupportTable, row: int, slot: int) -> None:
+        self._table, self._row, self._rows, self._slot = table, row, np.array([row]), slot
 
     @property
     def value(self) -> float | None:
@@ -42,23 +45,23 @@ class FusedProperty:
 
     def source_confidence(self, source: int, time_s: float) -> float:
         """c_s(t), 0 when the source never supported this property or has faded."""
-        return self.source_confidences(time_s)[source]
+        return self._table.source_confidence_one(self._row, self._slot, source, time_s)
 
     def support(self, source: int, time_s: float, quality: float = 1.0) -> None:
         """One reading of this property by `source`, matching with quality q in [0, 1]."""
-        self._table.support(self._rows, [self._slot], source, time_s, quality)
+        self._table.support_one(self._row, self._slot, source, time_s, quality)
 
     def update(self, source: int, time_s: float, value: float, quality: float = 1.0) -> None:
         """Support plus value blending, for properties no filter estimates."""
-        self._table.update(self._rows, [self._slot], source, time_s, value, quality)
+        self._table.update_one(self._row, self._slot, source, time_s, value, quality)
 
     def confidence(self, time_s: float) -> float:
         """Fused confidence, or -1 once every supporting source has faded."""
-        return float(self._table.slot_confidences(self._rows, self._slot, time_s)[0][0])
+        return self._table.confidence_one(self._row, self._slot, time_s)[0]
 
     def sources(self, time_s: float) -> list[int]:
         """Sources still supporting the property, in enum order."""
-        return np.flatnonzero(self._table.slot_confidences(self._rows, self._slot, time_s)[1][0]).tolist()
+        return self._table.confidence_one(self._row, self._slot, time_s)[1]
 
     def has_source(self, source: int, time_s: float) -> bool:
         return self.source_confidence(source, time_s) > 0.0

@@ -22,9 +22,12 @@ from .support_table import SupportTable
 _SPEED_SOURCES = (header_pb2.SENSOR_SOURCE_RADAR, header_pb2.SENSOR_SOURCE_V2V)
 _DERIVED_SPEED_SOURCES = (header_pb2.SENSOR_SOURCE_LIDAR, header_pb2.SENSOR_SOURCE_CAMERA)
 _V2V = header_pb2.SENSOR_SOURCE_V2V
+# Readings of more objects than this at once credit the table in array operations; fewer, one by one.
+_ONE_BY_ONE_MAX = 4
 # The table's slot of each property.
 SLOTS = ("position", "speed", "accel", "heading", "length", "width", "object_class", "station_id")
 POSITION, SPEED, ACCEL, HEADING, LENGTH, WIDTH, OBJECT_CLASS, STATION_ID = range(len(SLOTS))
+_VALUE_SLOTS = [WIDTH, LENGTH, STATION_ID]
 
 
 def property_table(source_config: Callable[[int], SourceConfig], tracking: TrackingConfig) -> SupportTable:
@@ -74,31 +77,53 @@ def support_many(props: list[ObjectProperties], measurements: list[Measurement],
 
 
 def _support_source(source: int, props: list[ObjectProperties], group: list[Measurement], q: np.ndarray) -> None:
-    table, derived = props[0].table, props[0].derived_quality
-    rows = np.array([p.row for p in props])
-    t = np.array([m.time_s for m in group])
-    # The slots every reading of this source supports, and the share of its quality each gets.
-    slots, shares = [POSITION, OBJECT_CLASS], [1.0, 0.0]
-    if source in _SPEED_SOURCES:
-        slots.append(SPEED), shares.append(1.0)
-    elif source in _DERIVED_SPEED_SOURCES:
-        # The filter's velocity out of a series of positions gives the direction as well as the speed.
-        slots += [SPEED, HEADING]
-        shares += [derived, derived]
+    table = props[0].table
+    slots, shares = _slot_shares(source, props[0].derived_quality)
+    class_quality = q * _class_readings(source, props, group)
     if source == _V2V:
-        slots += [HEADING, ACCEL]
-        shares += [1.0, 1.0]
         for prop, meas in zip(props, group, strict=True):
             prop.reported_accel_mps2 = meas.accel_mps2
             prop.v2v_time_s = max(prop.v2v_time_s, meas.time_s)
+    if len(group) > _ONE_BY_ONE_MAX:
+        rows, t = np.array([p.row for p in props]), np.array([m.time_s for m in group])
+        table.support(rows, slots + [OBJECT_CLASS], source, t,
+                      np.column_stack((q[:, None] * np.array(shares), class_quality)))
+        # Values no filter estimates: NaN where a reading gives none.
+        values = np.array([[value for _, value in _values_of(source, m)] for m in group], dtype=float)
+        table.update(rows, _VALUE_SLOTS, source, t, values, q)
+        return
+    for prop, meas, q_k, class_k in zip(props, group, q.tolist(), class_quality.tolist(), strict=True):
+        for slot, share in zip(slots, shares, strict=True):
+            table.support_one(prop.row, slot, source, meas.time_s, q_k * share)
+        table.support_one(prop.row, OBJECT_CLASS, source, meas.time_s, class_k)
+        for slot, value in _values_of(source, meas):
+            if value is not None:
+                table.update_one(prop.row, slot, source, meas.time_s, value, q_k)
+
+
+def _slot_shares(source: int, derived_quality: float) -> tuple[list[int], list[float]]:
+    """The slots every reading of this source supports, and the share of its quality each gets."""
+    slots, shares = [POSITION], [1.0]
+    if source in _SPEED_SOURCES:
+        slots.append(SPEED)
+        shares.append(1.0)
+    elif source in _DERIVED_SPEED_SOURCES:
+        # The filter's velocity out of a series of positions gives the direction as well as the speed.
+        slots += [SPEED, HEADING]
+        shares += [derived_quality, derived_quality]
+    if source == _V2V:
+        slots += [HEADING, ACCEL]
+        shares += [1.0, 1.0]
     elif source == header_pb2.SENSOR_SOURCE_RADAR:
-        slots.append(HEADING), shares.append(derived)
-    quality = q[:, None] * np.array(shares)
-    quality[:, 1] = q * _class_readings(source, props, group)
-    table.support(rows, slots, source, t, quality)
-    # Values no filter estimates: NaN where a reading gives none.
-    values = np.array([(m.width_m, m.length_m, m.station_id if source == _V2V else None) for m in group], dtype=float)
-    table.update(rows, [WIDTH, LENGTH, STATION_ID], source, t, values, q)
+        slots.append(HEADING)
+        shares.append(derived_quality)
+    return slots, shares
+
+
+def _values_of(source: int, meas: Measurement) -> tuple[tuple[int, float | None], ...]:
+    """(slot, value or None) of the properties no filter estimates: width, length and a V2V station's id."""
+    station = float(meas.station_id) if source == _V2V and meas.station_id is not None else None
+    return (WIDTH, meas.width_m), (LENGTH, meas.length_m), (STATION_ID, station)
 
 
 def _class_readings(source: int, props: list[ObjectProperties], group: list[Measurement]) -> np.ndarray:

@@ -142,6 +142,50 @@ class SupportTable:
             matching, current + self._gain[column] * (quality * self._max[column] - current), conf)
         self._time_s[rows, slots, column] = np.where(matching, at_s, support_time_s)
 
+    # -- one entry at a time ---------------------------------------------------------------
+    # The same equations in plain floats, for a single reading (a V2V message) or a single property's read, where
+    # setting up arrays would cost more than the arithmetic.
+
+    def source_confidence_one(self, row: int, slot: int, source: int, time_s: float) -> float:
+        """(C1) of one row, slot and source."""
+        age_s = max(0.0, time_s - float(self._time_s[row, slot, source]))
+        if age_s > self._fade_s[source]:
+            return 0.0
+        return float(self._conf[row, slot, source]) * math.exp(-self._decay_per_s[source] * age_s)
+
+    def confidence_one(self, row: int, slot: int, time_s: float) -> tuple[float, list[int]]:
+        """(C3) of one row and slot, and the sources still supporting it."""
+        remaining, sources = 1.0, []
+        for source in range(SOURCE_COLUMNS):
+            c = self.source_confidence_one(row, slot, source, time_s) if self._known[source] else 0.0
+            if c > 0.0:
+                sources.append(source)
+                remaining *= 1.0 - c
+        return (1.0 - remaining if sources else UNKNOWN_CONFIDENCE), sources
+
+    def support_one(self, row: int, slot: int, source: int, time_s: float, quality: float) -> None:
+        """(C2) of one reading of one row and slot."""
+        quality = min(1.0, max(0.0, quality))
+        if quality == 0.0:
+            return
+        column = self._column(source)
+        at_s = max(time_s, float(self._time_s[row, slot, column]))
+        current = self.source_confidence_one(row, slot, column, at_s)
+        self._conf[row, slot, column] = current + self._gain[column] * (quality * self._max[column] - current)
+        self._time_s[row, slot, column] = at_s
+
+    def update_one(self, row: int, slot: int, source: int, time_s: float, value: float, quality: float) -> None:
+        """(C4) and (C2) of one reading of one row and slot."""
+        old_confidence = max(0.0, self.confidence_one(row, slot, time_s)[0])
+        old_value = float(self._value[row, slot])
+        if math.isnan(old_value) or old_confidence == 0.0:
+            self._value[row, slot] = value
+        else:
+            bias = self._new_data_bias * (self._closer_bias[slot] if value < old_value else 1.0)
+            new_weight = bias * self._max[self._column(source)] * max(quality, 1e-3)
+            self._value[row, slot] = (old_confidence * old_value + new_weight * value) / (old_confidence + new_weight)
+        self.support_one(row, slot, source, time_s, quality)
+
     def _column(self, source: int) -> int:
         if not self._known[source]:
             cfg = self._source_config(source)
