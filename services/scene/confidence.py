@@ -39,10 +39,6 @@ class FusedProperty:
         value = float(self._table.values(self._rows)[0, self._slot])
         return None if np.isnan(value) else value
 
-    def source_confidences(self, time_s: float) -> list[float]:
-        """c_s(t) of every source, indexed by header_pb2.SensorSource value."""
-        return self._table.source_confidences(self._rows, time_s)[0, self._slot].tolist()
-
     def source_confidence(self, source: int, time_s: float) -> float:
         """c_s(t), 0 when the source never supported this property or has faded."""
         return self._table.source_confidence_one(self._row, self._slot, source, time_s)

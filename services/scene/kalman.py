@@ -13,6 +13,7 @@ import numpy as np
 
 DIM = 6
 IX, IVX, IAX, IY, IVY, IAY = range(DIM)
+_IDENTITY = np.eye(DIM)
 # Each axis's (position, speed, acceleration) block starts here.
 _AXES = (IX, IY)
 # Q's 3x3 block row by row: which power of t (index into t^5 .. t^1) over what.
@@ -24,7 +25,7 @@ def transition(dt_s: np.ndarray) -> np.ndarray:
     """F (K, 6, 6) for each time step dt_s (K,): constant acceleration on each axis,
     p' = p + v dt + a dt^2 / 2, v' = v + a dt, a' = a."""
     dt_s = np.asarray(dt_s, dtype=float)
-    f = np.tile(np.eye(DIM), (dt_s.size, 1, 1))
+    f = np.tile(_IDENTITY, (dt_s.size, 1, 1))
     for first in _AXES:
         f[:, first, first + 1] = dt_s
         f[:, first, first + 2] = 0.5 * dt_s * dt_s
@@ -40,7 +41,8 @@ def process_noise(dt_s: np.ndarray, psd: float) -> np.ndarray:
     t = np.abs(np.asarray(dt_s, dtype=float))
     t2 = t * t
     t3 = t2 * t
-    powers = np.stack((t3 * t2, t2 * t2, t3, t2, t), axis=-1)  # t^5 .. t^1
+    powers = np.empty((t.size, 5))  # t^5 .. t^1
+    powers[:, 0], powers[:, 1], powers[:, 2], powers[:, 3], powers[:, 4] = t3 * t2, t2 * t2, t3, t2, t
     block = psd * (powers[:, _NOISE_POWERS] / _NOISE_DIVISORS).reshape(t.size, 3, 3)
     q = np.zeros((t.size, DIM, DIM))
     for first in _AXES:
@@ -50,7 +52,7 @@ def process_noise(dt_s: np.ndarray, psd: float) -> np.ndarray:
 
 def predict(x: np.ndarray, p: np.ndarray, f: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Prior of every row: x = F x, P = F P F^T + Q (Labbe ch. 6, "Prediction Equations")."""
-    x = np.einsum("kij,kj->ki", f, x)
+    x = _times(f, x)
     p = f @ p @ f.transpose(0, 2, 1) + q
     return x, p
 
@@ -65,14 +67,19 @@ def update(x: np.ndarray, p: np.ndarray, z: np.ndarray, h: np.ndarray, r: np.nda
         x = x + K y
         P = (I - K H) P (I - K H)^T + K R K^T     Joseph form: stays symmetric and positive definite
     """
-    y = z - np.einsum("kij,kj->ki", h, x)
+    y = z - _times(h, x)
     pht = p @ h.transpose(0, 2, 1)
     s = h @ pht + r
     gain = pht @ np.linalg.inv(s)
-    x = x + np.einsum("kij,kj->ki", gain, y)
-    i_kh = np.eye(DIM) - gain @ h
+    x = x + _times(gain, y)
+    i_kh = _IDENTITY - gain @ h
     p = i_kh @ p @ i_kh.transpose(0, 2, 1) + gain @ r @ gain.transpose(0, 2, 1)
     return x, p
+
+
+def _times(matrices: np.ndarray, vectors: np.ndarray) -> np.ndarray:
+    """Each row's matrix times its vector: (K, a, b) and (K, b) -> (K, a)."""
+    return (matrices @ vectors[..., None])[..., 0]
 
 
 def predict_position(x: np.ndarray, p: np.ndarray, dt_s: np.ndarray, psd: float) -> tuple[np.ndarray, np.ndarray]:

@@ -67,6 +67,5 @@ def _position_noise(measurements: list[Measurement], positions_m: np.ndarray, pr
     cov = np.array([m.cov_m2 for m in measurements])
     origins = np.array([m.origin_m for m in measurements])
     # Squared ranges compare as the ranges do.
-    closer = np.sum((positions_m - origins) ** 2, axis=1) < np.sum((prior_xy_m - origins) ** 2, axis=1)
-    cov[closer] = cov[closer] / closer_bias
-    return cov
+    closer = np.square(positions_m - origins).sum(axis=1) < np.square(prior_xy_m - origins).sum(axis=1)
+    return cov / np.where(closer, closer_bias, 1.0)[:, None, None]

@@ -308,8 +308,7 @@ class Tracker:
 
     @staticmethod
     def has_ranging(track: Track, time_s: float) -> bool:
-        supporting = track.props.position.source_confidences(time_s)
-        return any(supporting[source] > 0.0 for source in RANGING_SOURCES)
+        return any(track.props.position.has_source(s, time_s) for s in RANGING_SOURCES)
 
     @staticmethod
     def v2v_only(track: Track, time_s: float) -> bool:
