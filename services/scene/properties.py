@@ -17,13 +17,11 @@ from coopdrive.v1 import header_pb2, sensors_pb2
 from .config import SourceConfig, TrackingConfig
 from .confidence import FusedProperty
 from .measurement import Measurement
-from .support_table import SupportTable
+from .support_table import ONE_BY_ONE_MAX, SupportTable
 
 _SPEED_SOURCES = (header_pb2.SENSOR_SOURCE_RADAR, header_pb2.SENSOR_SOURCE_V2V)
 _DERIVED_SPEED_SOURCES = (header_pb2.SENSOR_SOURCE_LIDAR, header_pb2.SENSOR_SOURCE_CAMERA)
 _V2V = header_pb2.SENSOR_SOURCE_V2V
-# Readings of more objects than this at once credit the table in array operations; fewer, one by one.
-_ONE_BY_ONE_MAX = 4
 # The table's slot of each property.
 SLOTS = ("position", "speed", "accel", "heading", "length", "width", "object_class", "station_id")
 POSITION, SPEED, ACCEL, HEADING, LENGTH, WIDTH, OBJECT_CLASS, STATION_ID = range(len(SLOTS))
@@ -84,7 +82,7 @@ def _support_source(source: int, props: list[ObjectProperties], group: list[Meas
         for prop, meas in zip(props, group, strict=True):
             prop.reported_accel_mps2 = meas.accel_mps2
             prop.v2v_time_s = max(prop.v2v_time_s, meas.time_s)
-    if len(group) > _ONE_BY_ONE_MAX:
+    if len(group) > ONE_BY_ONE_MAX:
         rows, t = np.array([p.row for p in props]), np.array([m.time_s for m in group])
         table.support(rows, slots + [OBJECT_CLASS], source, t,
                       np.column_stack((q[:, None] * np.array(shares), class_quality)))

@@ -34,6 +34,8 @@ from .config import SourceConfig
 UNKNOWN_CONFIDENCE = -1.0
 # Columns: header_pb2.SensorSource values, UNSPECIFIED (0) to MAP (6); a source without settings is never used.
 SOURCE_COLUMNS = 7
+# Up to this many rows, one entry at a time in plain floats costs less than setting up arrays.
+ONE_BY_ONE_MAX = 4
 _INITIAL_ROWS = 16
 
 
@@ -91,6 +93,12 @@ class SupportTable:
         time_s = np.asarray(time_s, dtype=float)
         return _fused(_decayed(self._conf[rows, slot], self._time_s[rows, slot], self._fade_s, self._decay_per_s,
                                time_s[:, None] if time_s.ndim else time_s))
+
+    def faded(self, rows: list[int], slot: int, time_s: float) -> list[bool]:
+        """Whether every source of the slot has faded, per row; a few rows one by one, where that is cheaper."""
+        if len(rows) <= ONE_BY_ONE_MAX:
+            return [self.confidence_one(row, slot, time_s)[0] == UNKNOWN_CONFIDENCE for row in rows]
+        return (self.slot_confidences(rows, slot, time_s)[0] == UNKNOWN_CONFIDENCE).tolist()
 
     def valid_until_s(self, rows) -> np.ndarray:
         """When the last supporting source of each slot fades, -inf where none ever did: (rows, slots)."""

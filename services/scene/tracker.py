@@ -21,7 +21,6 @@ from .config import SceneFusionConfig
 from .frame_association import associate
 from .measurement import Measurement
 from .properties import POSITION, ObjectProperties, property_table, support_many
-from .support_table import UNKNOWN_CONFIDENCE
 from .track import RANGING_SOURCES, Track, TrackStatus, filter_steps, predict_positions
 
 
@@ -259,8 +258,8 @@ class Tracker:
                 if t.status is TrackStatus.TENTATIVE and time_s - t.last_hit_s > timeout]
         confirmed = self.confirmed()
         if confirmed:
-            position = self.properties.slot_confidences([t.props.row for t in confirmed], POSITION, time_s)[0]
-            dead += [t.track_id for t, faded in zip(confirmed, position == UNKNOWN_CONFIDENCE, strict=True) if faded]
+            faded = self.properties.faded([t.props.row for t in confirmed], POSITION, time_s)
+            dead += [t.track_id for t, gone in zip(confirmed, faded, strict=True) if gone]
         for track_id in dead:
             self._remove(track_id)
 

@@ -20,8 +20,8 @@ def table() -> SupportTable:
 def test_readings_one_by_one_and_as_arrays_give_the_same_table(seed):
     rng = np.random.default_rng(seed)
     by_arrays, one_by_one = table(), table()
-    rows = [by_arrays.allocate() for _ in range(4)]
-    assert rows == [one_by_one.allocate() for _ in range(4)]
+    rows = [by_arrays.allocate() for _ in range(6)]
+    assert rows == [one_by_one.allocate() for _ in range(6)]
     time_s = 0.0
     for _ in range(120):
         # Mostly forward in time, sometimes a late reading; qualities include none at all and out of range.
@@ -42,4 +42,8 @@ def test_readings_one_by_one_and_as_arrays_give_the_same_table(seed):
                 confidence, sources = one_by_one.confidence_one(r, s, time_s)
                 assert confidence == pytest.approx(fused[k, s], abs=1e-12)
                 assert sources == np.flatnonzero(supporting[k, s]).tolist()
+        # faded(): one by one for a few rows, as arrays for more.
+        for s in range(SLOTS):
+            assert by_arrays.faded(rows, s, time_s) == (fused[:, s] == -1.0).tolist()
+            assert by_arrays.faded(rows[:2], s, time_s) == (fused[:2, s] == -1.0).tolist()
     np.testing.assert_allclose(one_by_one.values(rows), by_arrays.values(rows), rtol=0.0, atol=1e-12)
