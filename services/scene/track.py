@@ -188,8 +188,13 @@ class Track:
             return  # refines the filter, but neither confirms the track nor fixes where it is
         self.hits += 1
         self.last_hit_s = max(self.last_hit_s, meas.time_s)
-        if meas.source in RANGING_SOURCES and (self.ranging_fix is None or meas.time_s >= self.ranging_fix.time_s):
+        if meas.source not in RANGING_SOURCES:
+            return
+        if self.ranging_fix is None:
             self.ranging_fix = RangingFix(meas.time_s, meas.position_m.copy())
+        elif meas.time_s >= self.ranging_fix.time_s:
+            # Moved on in place: a fix per track and frame would be that much more for the garbage collector.
+            self.ranging_fix.time_s, self.ranging_fix.position_m = meas.time_s, meas.position_m.copy()
 
     def _trim(self) -> None:
         horizon = self.time_s - self._config.replay_window_s
