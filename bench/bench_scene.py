@@ -119,8 +119,9 @@ def main() -> None:
           f"{'brute-force assoc ms':>21} {'growth / n log n':>17}")
     now_ms = {}
     for count in (10, 50, 200):
-        (now_ms[count], *before_ms), published = run([fusion_now] + ([before] if before else []), count)
-        before_ms = before_ms[0] if before else math.nan
+        timings_ms, published = run([fusion_now] + ([before] if before else []), count)
+        now_ms[count] = timings_ms[0]
+        before_ms = timings_ms[1] if before else math.nan
         assoc_ms, brute_force_ms = association_ms(count), association_ms(count, brute_force=True, repeats=3)
         growth = ""
         if count == 200:
