@@ -7,9 +7,11 @@ as it is today, so the old pipeline runs in the same process and on the same inp
 
 from __future__ import annotations
 
+import atexit
 import importlib
 import importlib.util
 import io
+import shutil
 import subprocess
 import sys
 import tarfile
@@ -29,6 +31,7 @@ def load(revision: str) -> ModuleType | None:
     except (OSError, subprocess.CalledProcessError):
         return None
     folder = Path(tempfile.mkdtemp(prefix="scene_before_"))
+    atexit.register(shutil.rmtree, folder, ignore_errors=True)
     with tarfile.open(fileobj=io.BytesIO(archive)) as tar:
         tar.extractall(folder, filter="data")
     name = f"scene_before_{revision[:12]}"
