@@ -1,11 +1,14 @@
-"""Scene update time at 10, 50 and 200 objects, against a brute-force association baseline.
+"""Scene update time at 10, 50 and 200 objects: today's scene service against the one before issue 27.
 
 One update = one radar frame carrying every object (front end, gating, global assignment, Kalman
-updates, life cycle) plus one scene() build. The baseline is the same pipeline with the gating cost
-computed pair by pair in Python with a general matrix inverse (association.polar_cost_loop) instead
-of the vectorised closed-form 2x2 version. Gating ms: the gate groups and their costs (ours) against
-every measurement-track pair's cost by the loop (baseline). The last column is how the update time grows
-from 50 to 200 objects against n log n's growth (at most 1 is what the scene issue asks). Seeded; run with:
+updates, life cycle) plus one scene() build. "before" is services/scene as of BEFORE_REVISION (a filterpy
+KalmanFilter per track, per-object front end and scene build), loaded from git beside today's code
+(bench/scene_before.py) and fed the same frames in the same run; without git that column is left empty.
+The scenes run turn about, frame by frame, so a load that comes and goes on the machine weighs on both alike.
+Assoc ms: one frame's association alone, ours (only the gated pairs costed and solved) against every
+measurement-track pair's cost by the pair-by-pair loop with a general inverse (association.polar_cost_loop) and
+one assignment. The last column is how the update time grows from 50 to 200 objects against n log n's growth
+(at most 1 is what the scene issue asks). Seeded; run with:
 
     .venv/bin/python bench/bench_scene.py
 """
@@ -14,23 +17,26 @@ from __future__ import annotations
 
 import math
 import time
+from types import ModuleType
 
 import numpy as np
 
-from coopdrive.services.scene.association import gate_groups, polar_cost_loop, polar_cost_matrix, polar_cost_pairs
-from coopdrive.services.scene.fusion import SceneFusion
-from coopdrive.services.scene.tracker import Tracker
+from bench import scene_before
+from coopdrive.services.scene import fusion as fusion_now
+from coopdrive.services.scene.association import assign, likelihood_cost, polar_cost_loop
+from coopdrive.services.scene.config import TrackingConfig
+from coopdrive.services.scene.frame_association import associate
 from coopdrive.v1 import ego_pb2, sensors_pb2
+
+# main just before issue 27 (scene update at 200 objects in at most 4 ms).
+BEFORE_REVISION = "d65fb12e6b01c721207f56ede5a9482dda679d1d"
 
 SEED = 20160528
 FRAME_S = 0.05
 WARMUP_FRAMES = 10
 TIMED_FRAMES = 40
-# The baseline is slow enough at 200 objects that fewer frames give the same median.
-BASELINE_TIMED_FRAMES = 10
 EGO_SPEED_MPS = 20.0
 RANGE_NOISE_M = 0.2
-GATE_CHI2 = 9.21
 BEARING_NOISE_RAD = 0.003
 
 
@@ -62,58 +68,67 @@ def frames(objects: np.ndarray, rng: np.random.Generator, count: int):
         yield t, ego, radar
 
 
-def run(count: int, cost_fn, timed_frames: int = TIMED_FRAMES) -> tuple[float, int]:
+def run(fusion_modules: list[ModuleType], count: int) -> tuple[list[float], int]:
+    """Median ms of one update with count objects for each fusion module, and how many objects the first one's last
+    scene published. The modules take turns frame by frame, so a load that comes and goes on the machine weighs
+    on both alike."""
     rng = np.random.default_rng(SEED)
     objects = layout(count, rng)
-    fusion = SceneFusion()
-    pair_cost_fn = None if cost_fn is polar_cost_loop else polar_cost_pairs
-    fusion.tracker = Tracker(fusion.config, cost_fn=cost_fn, pair_cost_fn=pair_cost_fn)
-    # A radar that sees everything: the field of view is not what is being measured here.
-    fusion.config.radar.half_fov_rad = math.pi
-    timings = []
-    scene = None
-    for k, (t, ego, radar) in enumerate(frames(objects, rng, WARMUP_FRAMES + timed_frames)):
-        start = time.perf_counter()
-        fusion.on_radar(radar, ego)
-        scene = fusion.scene(t)
-        if k >= WARMUP_FRAMES:
-            timings.append(time.perf_counter() - start)
-    return 1e3 * float(np.median(timings)), len(scene.objects)
+    fusions = [module.SceneFusion() for module in fusion_modules]
+    for fusion in fusions:
+        # A radar that sees everything: the field of view is not what is being measured here.
+        fusion.config.radar.half_fov_rad = math.pi
+    timings: list[list[float]] = [[] for _ in fusions]
+    published = 0
+    for k, (t, ego, radar) in enumerate(frames(objects, rng, WARMUP_FRAMES + TIMED_FRAMES)):
+        for index, fusion in enumerate(fusions):
+            start = time.perf_counter()
+            fusion.on_radar(radar, ego)
+            scene = fusion.scene(t)
+            if k >= WARMUP_FRAMES:
+                timings[index].append(time.perf_counter() - start)
+            if index == 0:
+                published = len(scene.objects)
+    return [1e3 * float(np.median(timing)) for timing in timings], published
 
 
-def association_only(count: int, cost_fn, repeats: int = 20, grouped: bool = False) -> float:
+def association_ms(count: int, brute_force: bool = False, repeats: int = 20) -> float:
+    """Mean ms of one frame's association of count measurements with count tracks: ours (association of the gated
+    pairs, frame_association.associate), or every pair's cost by the pair-by-pair loop and one assignment."""
     rng = np.random.default_rng(SEED)
     xy = layout(count, rng)[:, :2]
     cov = np.repeat(np.eye(2)[None] * 0.1, count, axis=0)
     origins = np.zeros_like(xy)
+    tracking = TrackingConfig()
     start = time.perf_counter()
     for _ in range(repeats):
         meas_xy = xy + rng.normal(0.0, 0.2, xy.shape)
-        if not grouped:
-            cost_fn(meas_xy, cov, origins, xy, cov, 1.2)
-            continue
-        for group_meas, group_tracks in gate_groups(meas_xy, cov, xy, cov, GATE_CHI2):
-            cost_fn(meas_xy[group_meas], cov[group_meas], origins[group_meas], xy[group_tracks], cov[group_tracks], 1.2)
+        if brute_force:
+            d2, log_det = polar_cost_loop(meas_xy, cov, origins, xy, cov, tracking.angle_emphasis, with_log_det=True)
+            assign(likelihood_cost(d2, log_det), tracking.gate_chi2, gate_cost=d2)
+        else:
+            associate(meas_xy, cov, origins, xy, cov, tracking)
     return 1e3 * (time.perf_counter() - start) / repeats
 
 
 def main() -> None:
-    print(f"scene update = radar frame with every object + scene(); median of {TIMED_FRAMES} frames ({BASELINE_TIMED_FRAMES} for the baseline), seed {SEED}")
-    print(f"{'objects':>8} {'published':>9} {'update ms':>10} {'baseline ms':>12} {'gating ms':>10} "
-          f"{'baseline gating ms':>19} {'growth / n log n':>17}")
-    update_ms = {}
+    before = scene_before.load(BEFORE_REVISION)
+    print(f"scene update = radar frame with every object + scene(); median of {TIMED_FRAMES} frames, seed {SEED}; "
+          f"before = services/scene at {BEFORE_REVISION[:12]}" + ("" if before else " (not available: no git)"))
+    print(f"{'objects':>8} {'published':>9} {'before ms':>10} {'now ms':>8} {'speed-up':>9} {'assoc ms':>9} "
+          f"{'brute-force assoc ms':>21} {'growth / n log n':>17}")
+    now_ms = {}
     for count in (10, 50, 200):
-        fast_ms, published = run(count, polar_cost_matrix)
-        update_ms[count] = fast_ms
-        slow_ms, _ = run(count, polar_cost_loop, BASELINE_TIMED_FRAMES)
-        gate_fast = association_only(count, polar_cost_matrix, grouped=True)
-        gate_slow = association_only(count, polar_cost_loop, repeats=3)
+        timings_ms, published = run([fusion_now] + ([before] if before else []), count)
+        now_ms[count] = timings_ms[0]
+        before_ms = timings_ms[1] if before else math.nan
+        assoc_ms, brute_force_ms = association_ms(count), association_ms(count, brute_force=True, repeats=3)
         growth = ""
         if count == 200:
             n_log_n = (200 * math.log(200)) / (50 * math.log(50))
-            growth = f"{update_ms[200] / update_ms[50] / n_log_n:.2f}"
-        print(f"{count:>8} {published:>9} {fast_ms:>10.2f} {slow_ms:>12.2f} {gate_fast:>10.3f} {gate_slow:>19.2f} "
-              f"{growth:>17}")
+            growth = f"{now_ms[200] / now_ms[50] / n_log_n:.2f}"
+        print(f"{count:>8} {published:>9} {before_ms:>10.2f} {now_ms[count]:>8.2f} {before_ms / now_ms[count]:>9.1f} "
+              f"{assoc_ms:>9.3f} {brute_force_ms:>21.2f} {growth:>17}")
 
 
 if __name__ == "__main__":

@@ -34,26 +34,21 @@ def _largest_eigenvalues(cov: np.ndarray) -> np.ndarray:
     return half_trace + np.sqrt(half_difference**2 + off**2)
 
 
-def gate_groups(meas_xy: np.ndarray, meas_cov: np.ndarray, track_xy: np.ndarray, track_cov: np.ndarray,
-                gate: float, dense_pairs_max: int = DENSE_PAIRS_MAX) -> list[tuple[np.ndarray, np.ndarray]]:
+def gate_groups(meas_xy: np.ndarray, meas_cov: np.ndarray, origins_xy: np.ndarray, track_xy: np.ndarray,
+                track_cov: np.ndarray, gate: float, angle_emphasis: float,
+                dense_pairs_max: int = DENSE_PAIRS_MAX) -> list[tuple[np.ndarray, np.ndarray]]:
     """Measurements and tracks split into groups that no gated pair crosses: (measurement indices, track
     indices) per group, a measurement near no track alone in its own; few pairs make one group. Assigning each
     group on its own gives the joint assignment's pairs, and the cost grows as n log n with the objects instead
-    of n^2: a kd-tree finds the pairs within a conservative plane distance of each track (its gate with the
-    widest measurement covariance), and the groups are the connected components of those pairs."""
+    of n^2 (see gated_pairs); the groups are the connected components of the gated pairs."""
     n, m = len(meas_xy), len(track_xy)
     if m == 0:
         return [(np.array([i]), np.zeros(0, dtype=int)) for i in range(n)]
     if n * m <= dense_pairs_max:
         return [(np.arange(n), np.arange(m))]
-    widest_meas = float(_largest_eigenvalues(meas_cov).max()) if n else 0.0
-    radii_m = _GROUP_RADIUS_MARGIN * np.sqrt(gate * (_largest_eigenvalues(track_cov) + widest_meas))
-    near = cKDTree(meas_xy).query_ball_point(track_xy, radii_m)
-    tracks_of_pairs = np.repeat(np.arange(m), [len(found) for found in near])
-    meas_of_pairs = np.fromiter((i for found in near for i in found), dtype=int, count=tracks_of_pairs.size)
-    # Nodes 0..n-1 are measurements, n..n+m-1 tracks.
-    graph = coo_matrix((np.ones(meas_of_pairs.size), (meas_of_pairs, n + tracks_of_pairs)), shape=(n + m, n + m))
-    count, labels = connected_components(graph, directed=False)
+    meas_of_pairs, tracks_of_pairs, _, _ = gated_pairs(meas_xy, meas_cov, origins_xy, track_xy, track_cov, gate,
+                                                       angle_emphasis)
+    count, labels = pair_components(meas_of_pairs, tracks_of_pairs, n, m)
     order = np.argsort(labels, kind="stable")
     bounds = np.searchsorted(labels[order], np.arange(count + 1))
     groups = []
@@ -63,6 +58,35 @@ def gate_groups(meas_xy: np.ndarray, meas_cov: np.ndarray, track_xy: np.ndarray,
         if measurements.size:
             groups.append((measurements, members[members >= n] - n))
     return groups
+
+
+def gated_pairs(meas_xy: np.ndarray, meas_cov: np.ndarray, origins_xy: np.ndarray, track_xy: np.ndarray,
+                track_cov: np.ndarray, gate: float, angle_emphasis: float) -> tuple[np.ndarray, ...]:
+    """Every (measurement, track) pair inside the gate, with its d^2 and innovation log-determinant: a kd-tree
+    finds the pairs within a conservative plane distance of each track (its gate with the widest measurement
+    covariance), and the gate itself keeps those whose range-bearing cost is inside it."""
+    meas_of_pairs, tracks_of_pairs = _near_pairs(meas_xy, meas_cov, track_xy, track_cov, gate)
+    d2, log_det = polar_cost_pairs(meas_xy[meas_of_pairs], meas_cov[meas_of_pairs], origins_xy[meas_of_pairs],
+                                   track_xy[tracks_of_pairs], track_cov[tracks_of_pairs], angle_emphasis)
+    inside = d2 <= gate
+    return meas_of_pairs[inside], tracks_of_pairs[inside], d2[inside], log_det[inside]
+
+
+def pair_components(meas_of_pairs: np.ndarray, tracks_of_pairs: np.ndarray, n: int, m: int) -> tuple[int, np.ndarray]:
+    """Connected components of n measurements and m tracks joined by pairs: their count and each node's label,
+    nodes 0..n-1 being the measurements and n..n+m-1 the tracks."""
+    graph = coo_matrix((np.ones(meas_of_pairs.size), (meas_of_pairs, n + tracks_of_pairs)), shape=(n + m, n + m))
+    return connected_components(graph, directed=False)
+
+
+def _near_pairs(meas_xy, meas_cov, track_xy, track_cov, gate) -> tuple[np.ndarray, np.ndarray]:
+    """(measurement, track) index pairs closer in the plane than the track's conservative gate radius."""
+    widest_meas = float(_largest_eigenvalues(meas_cov).max())
+    radii_m = _GROUP_RADIUS_MARGIN * np.sqrt(gate * (_largest_eigenvalues(track_cov) + widest_meas))
+    # Every pair within the largest radius in one call (the kd-trees' own loop), then each track's own radius.
+    near = cKDTree(meas_xy).sparse_distance_matrix(cKDTree(track_xy), float(radii_m.max()), output_type="ndarray")
+    within = near["v"] <= radii_m[near["j"]]
+    return near["i"][within].astype(int), near["j"][within].astype(int)
 
 
 def polar_cost_matrix(

@@ -14,7 +14,7 @@ import numpy as np
 from coopdrive.v1 import header_pb2, sensors_pb2
 
 from .config import CameraConfig, RadarConfig, SonarConfig, V2vConfig
-from .measurement import EgoPose, Measurement, V2vObservation, cov_to_enu, polar_cov_vehicle
+from .measurement import EgoPose, Measurement, V2vObservation, cov_to_enu, polar_covs_vehicle
 
 
 def _finite(*values: float) -> bool:
@@ -23,17 +23,6 @@ def _finite(*values: float) -> bool:
 
 # Shifted nearest points still carry this fraction of the width as lateral uncertainty (headings differ).
 _SHIFTED_CENTRE_STD_FRACTION = 0.25
-
-
-def nearest_point_to_rear_centre(x_m: float, y_m: float, width_m: float) -> tuple[np.ndarray, float]:
-    """Radar and camera report the point of a vehicle nearest to them: for a vehicle beside our axis
-    its near rear corner, for one across our axis the point straight ahead. Returns the rear-centre
-    estimate (vehicle frame) and the lateral standard deviation left over."""
-    half_width = 0.5 * width_m
-    if abs(y_m) >= half_width:
-        return np.array([x_m, y_m + math.copysign(half_width, y_m)]), _SHIFTED_CENTRE_STD_FRACTION * width_m
-    # Straddling our axis: the centre is anywhere within half a width of the reported point.
-    return np.array([x_m, y_m]), half_width
 
 
 @dataclass
@@ -46,6 +35,31 @@ class RejectCounter:
         self.counts[reason] = self.counts.get(reason, 0) + 1
 
 
+def nearest_point_to_rear_centre(x_m: float, y_m: float, width_m: float) -> tuple[np.ndarray, float]:
+    """Radar and camera report the point of a vehicle nearest to them: for a vehicle beside our axis
+    its near rear corner, for one across our axis the point straight ahead. Returns the rear-centre
+    estimate (vehicle frame) and the lateral standard deviation left over."""
+    points, lateral_std = nearest_points_to_rear_centre(np.array([x_m]), np.array([y_m]), np.array([width_m]))
+    return points[0], float(lateral_std[0])
+
+
+def nearest_points_to_rear_centre(x_m: np.ndarray, y_m: np.ndarray, width_m: np.ndarray) -> tuple[np.ndarray, ...]:
+    """nearest_point_to_rear_centre of K reported points at once: rear centres (K, 2) and lateral stds (K,)."""
+    half_width = 0.5 * width_m
+    beside = np.abs(y_m) >= half_width
+    centres = np.stack((x_m, np.where(beside, y_m + np.copysign(half_width, y_m), y_m)), axis=1)
+    # Straddling our axis: the centre is anywhere within half a width of the reported point.
+    return centres, np.where(beside, _SHIFTED_CENTRE_STD_FRACTION * width_m, half_width)
+
+
+def _valid(finite_fields: np.ndarray, range_m: np.ndarray, rejects: RejectCounter, reason: str) -> np.ndarray:
+    """Rows whose fields are numbers and whose range is positive; the others are counted as rejected."""
+    valid = np.isfinite(finite_fields).all(axis=1) & (range_m > 0.0)
+    for _ in range(int(valid.size - np.count_nonzero(valid))):
+        rejects.reject(reason)
+    return valid
+
+
 class RadarFrontEnd:
     def __init__(self, config: RadarConfig, rejects: RejectCounter) -> None:
         self._config = config
@@ -53,35 +67,30 @@ class RadarFrontEnd:
 
     def measurements(self, tracks: sensors_pb2.RadarTracks, pose: EgoPose) -> list[Measurement]:
         cfg = self._config
-        out = []
-        for track in tracks.tracks:
-            if not _finite(track.range_m, track.azimuth_rad, track.range_rate_mps) or track.range_m <= 0.0:
-                self._rejects.reject("radar track not finite or non-positive range")
-                continue
-            local = track.range_m * np.array([math.cos(track.azimuth_rad), math.sin(track.azimuth_rad)])
-            cov = polar_cov_vehicle(track.range_m, track.azimuth_rad, cfg.range_std_m, cfg.bearing_std_rad)
-            line_of_sight = (pose.to_enu(*local) - pose.position_m) / track.range_m
-            if cfg.reports_nearest_point:
-                local, lateral_std = nearest_point_to_rear_centre(*local, track.width_m or cfg.default_width_m)
-                cov[1, 1] += lateral_std**2
-            position = pose.to_enu(*local)
-            # Range rate is relative; adding our own speed along the beam makes it absolute.
-            radial = track.range_rate_mps + float(pose.velocity_mps @ line_of_sight)
-            out.append(
-                Measurement(
-                    source=header_pb2.SENSOR_SOURCE_RADAR,
-                    time_s=pose.time_s,
-                    position_m=position,
-                    cov_m2=cov_to_enu(pose, cov),
-                    origin_m=pose.position_m,
-                    radial_speed_mps=radial,
-                    radial_speed_std_mps=cfg.range_rate_std_mps,
-                    line_of_sight=line_of_sight,
-                    width_m=track.width_m if track.width_m > 0.0 else None,
-                    extras={"radar_track_id": track.track_id},
-                )
-            )
-        return out
+        fields = np.array([(t.range_m, t.azimuth_rad, t.range_rate_mps, t.width_m) for t in tracks.tracks],
+                          dtype=float).reshape(-1, 4)
+        valid = _valid(fields[:, :3], fields[:, 0], self._rejects, "radar track not finite or non-positive range")
+        ids = [t.track_id for t, ok in zip(tracks.tracks, valid.tolist(), strict=True) if ok]
+        range_m, azimuth_rad, range_rate_mps, width_m = fields[valid].T
+        local = range_m[:, None] * np.stack((np.cos(azimuth_rad), np.sin(azimuth_rad)), axis=1)
+        cov = polar_covs_vehicle(range_m, azimuth_rad, cfg.range_std_m, cfg.bearing_std_rad)
+        line_of_sight = (pose.points_to_enu(local) - pose.position_m) / range_m[:, None]
+        if cfg.reports_nearest_point:
+            local, lateral_std = nearest_points_to_rear_centre(local[:, 0], local[:, 1],
+                                                               np.where(width_m != 0.0, width_m, cfg.default_width_m))
+            cov[:, 1, 1] += lateral_std**2
+        position = pose.points_to_enu(local)
+        # Range rate is relative; adding our own speed along the beam makes it absolute.
+        radial = range_rate_mps + line_of_sight @ pose.velocity_mps
+        cov = cov_to_enu(pose, cov)
+        origin = pose.position_m
+        return [
+            Measurement(source=header_pb2.SENSOR_SOURCE_RADAR, time_s=pose.time_s, position_m=position[k],
+                        cov_m2=cov[k], origin_m=origin, radial_speed_mps=radial[k],
+                        radial_speed_std_mps=cfg.range_rate_std_mps, line_of_sight=line_of_sight[k],
+                        width_m=width if width > 0.0 else None, extras={"radar_track_id": track_id})
+            for k, (width, track_id) in enumerate(zip(width_m.tolist(), ids, strict=True))
+        ]
 
 
 @dataclass(frozen=True)
@@ -99,33 +108,28 @@ class CameraFrontEnd:
 
     def measurements(self, frame: sensors_pb2.CameraFrame, pose: EgoPose) -> list[Measurement]:
         cfg = self._config
-        out = []
-        for det in frame.detections:
-            range_m = math.hypot(det.x_m, det.y_m)
-            if not _finite(det.x_m, det.y_m) or range_m <= 0.0:
-                self._rejects.reject("camera detection not finite or at the origin")
-                continue
-            bearing = math.atan2(det.y_m, det.x_m)
-            range_std = max(cfg.min_range_std_m, cfg.range_std_fraction * range_m)
-            cov = polar_cov_vehicle(range_m, bearing, range_std, cfg.bearing_std_rad)
-            local = np.array([det.x_m, det.y_m])
-            if cfg.reports_nearest_point:
-                local, lateral_std = nearest_point_to_rear_centre(det.x_m, det.y_m, det.width_m or cfg.default_width_m)
-                cov[1, 1] += lateral_std**2
-            quality = det.confidence if 0.0 < det.confidence <= 1.0 else 1.0
-            out.append(
-                Measurement(
-                    source=header_pb2.SENSOR_SOURCE_CAMERA,
-                    time_s=pose.time_s,
-                    position_m=pose.to_enu(*local),
-                    cov_m2=cov_to_enu(pose, cov),
-                    origin_m=pose.position_m,
-                    width_m=det.width_m if det.width_m > 0.0 else None,
-                    object_class=det.object_class,
-                    quality=quality,
-                )
-            )
-        return out
+        fields = np.array([(d.x_m, d.y_m, d.width_m, d.confidence) for d in frame.detections],
+                          dtype=float).reshape(-1, 4)
+        range_m = np.hypot(fields[:, 0], fields[:, 1])
+        valid = _valid(fields[:, :2], range_m, self._rejects, "camera detection not finite or at the origin")
+        classes = [d.object_class for d, ok in zip(frame.detections, valid.tolist(), strict=True) if ok]
+        x_m, y_m, width_m, score = fields[valid].T
+        range_m = range_m[valid]
+        range_std_m = np.maximum(cfg.min_range_std_m, cfg.range_std_fraction * range_m)
+        cov = polar_covs_vehicle(range_m, np.arctan2(y_m, x_m), range_std_m, cfg.bearing_std_rad)
+        local = np.stack((x_m, y_m), axis=1)
+        if cfg.reports_nearest_point:
+            local, lateral_std = nearest_points_to_rear_centre(x_m, y_m, np.where(width_m != 0.0, width_m,
+                                                                                  cfg.default_width_m))
+            cov[:, 1, 1] += lateral_std**2
+        quality = np.where((0.0 < score) & (score <= 1.0), score, 1.0).tolist()
+        position, cov, origin = pose.points_to_enu(local), cov_to_enu(pose, cov), pose.position_m
+        return [
+            Measurement(source=header_pb2.SENSOR_SOURCE_CAMERA, time_s=pose.time_s, position_m=position[k],
+                        cov_m2=cov[k], origin_m=origin, width_m=width if width > 0.0 else None,
+                        object_class=classes[k], quality=quality[k])
+            for k, width in enumerate(width_m.tolist())
+        ]
 
     @staticmethod
     def lane_markings(frame: sensors_pb2.CameraFrame) -> LaneMarkings:

@@ -26,10 +26,15 @@ from .frontends import (
 )
 from .lidar import LidarClusterer
 from .measurement import EgoPose, Measurement, V2vObservation
-from .scene_builder import FrenetOf, LaneOf, ObjectView, SceneBuilder
-from .track import Track
+from .kalman import IX, IY
+from .properties import POSITION
+from .scene_builder import FrenetOf, LaneOf, ObjectViews, SceneBuilder
+from .track_snapshot import TrackSnapshot
 from .tracker import Tracker
 from .trust import V2vTrust
+
+LIDAR, RADAR, CAMERA = header_pb2.SENSOR_SOURCE_LIDAR, header_pb2.SENSOR_SOURCE_RADAR, header_pb2.SENSOR_SOURCE_CAMERA
+SONAR, V2V = header_pb2.SENSOR_SOURCE_SONAR, header_pb2.SENSOR_SOURCE_V2V
 
 
 class SceneFusion:
@@ -133,44 +138,46 @@ class SceneFusion:
     def scene(self, time_s: float) -> scene_pb2.Scene:
         self.tracker.expire(time_s)
         ego = self._ego.at(time_s) if self._ego is not None else EgoPose.from_state(ego_pb2.EgoState())
-        scene = self._builder.build(time_s, ego, self._views(time_s), list(self._free_ranges_m))
+        tracks = sorted(self.tracker.confirmed(), key=lambda t: t.track_id)
+        snapshot = TrackSnapshot.take(tracks, self.tracker.properties, time_s, self.config.tracking.jerk_psd_m2ps5)
+        scene = self._builder.build(time_s, ego, self._views(snapshot, time_s), list(self._free_ranges_m))
         for station_id, state in sorted(self.trust.stations().items()):
             scene.station_trust.add(station_id=station_id, trust=state.trust, trusted=self.trust.trusted(station_id),
                                     security_failing=state.security_failing, untrusted_signer=state.untrusted_signer)
         scene.ego_lane.CopyFrom(self.lanes.ego_lane(self._ego_state, self.lane_markings, time_s))
         return scene
 
-    def _views(self, time_s: float) -> list[ObjectView]:
-        views = []
-        for track in self.tracker.confirmed():
-            station = track.station_id
-            seen_by_us = self.tracker.has_ranging(track, time_s)
-            ghost = self.trust.is_ghost(station) and not seen_by_us
-            if self.tracker.v2v_only(track, time_s):
-                eligible = station is not None and self.trust.trusted(station)
-            elif self.tracker.sonar_only(track, time_s) or self.tracker.camera_only(track, time_s):
-                # Chalmers 4.3.1: sonars only tell that something is at our side, not where; such an
-                # object is reported (and narrows free space) but is no MIO or lane neighbour. A camera
-                # alone gives a bearing but a poor range: its object, often a car our radar already holds
-                # a few metres off, must not take the MIO from that car and brake us for a phantom.
-                eligible = False
-            elif self._lidar_sees_through(track, time_s):
-                # Radar clutter, or readings of a car split off into a track beside it: no MIO to brake for.
-                eligible = False
-            else:
-                eligible = not ghost
-            views.append(ObjectView(track, eligible, ghost, self.trust.trust(station)))
-        return views
+    def _views(self, snapshot: TrackSnapshot, time_s: float) -> ObjectViews:
+        seen_by_us = snapshot.has_source(POSITION, LIDAR) | snapshot.has_source(POSITION, RADAR)
+        # Chalmers 4.3.1: sonars only tell that something is at our side, not where; such an
+        # object is reported (and narrows free space) but is no MIO or lane neighbour. A camera
+        # alone gives a bearing but a poor range: its object, often a car our radar already holds
+        # a few metres off, must not take the MIO from that car and brake us for a phantom.
+        poorly_placed = snapshot.only_source(POSITION, SONAR) | snapshot.only_source(POSITION, CAMERA)
+        # Radar clutter, or readings of a car split off into a track beside it: no MIO to brake for.
+        seen_through = self._lidar_sees_through(snapshot, time_s)
+        v2v_only = snapshot.only_source(POSITION, V2V).tolist()
+        stations = [track.station_id for track in snapshot.tracks]
+        ghost = np.array([station is not None and self.trust.is_ghost(station) for station in stations], dtype=bool)
+        ghost &= ~seen_by_us
+        # Nothing of ours sees a V2V-only object: the station's trust decides whether it may be an obstacle.
+        trusted_v2v = np.array([only and station is not None and self.trust.trusted(station)
+                                for only, station in zip(v2v_only, stations, strict=True)], dtype=bool)
+        eligible = np.where(np.array(v2v_only, dtype=bool), trusted_v2v, ~(poorly_placed | seen_through | ghost))
+        return ObjectViews(snapshot, eligible, ghost, [self.trust.trust(station) for station in stations])
 
-    def _lidar_sees_through(self, track: Track, time_s: float) -> bool:
-        """Near enough for the LiDAR to see it, not seen by it, and its beams reach past where it would be."""
-        if track.props.position.has_source(header_pb2.SENSOR_SOURCE_LIDAR, time_s):
-            return False
-        position_m = Track.position_of(track.predicted(time_s)[0])
-        ego = self._ego.at(time_s) if self._ego is not None else None
-        if ego is None or np.hypot(*(position_m - ego.position_m)) > self.config.trust.lidar_veto_range_m:
-            return False
-        return self._free_space.lidar_free(position_m, time_s) is True
+    def _lidar_sees_through(self, snapshot: TrackSnapshot, time_s: float) -> np.ndarray:
+        """Per track: near enough for the LiDAR to see it, not seen by it, and its beams reach past where it would be."""
+        through = np.zeros(len(snapshot.tracks), dtype=bool)
+        if self._ego is None or not snapshot.tracks:
+            return through
+        position_m = snapshot.mean[:, [IX, IY]]
+        ego = self._ego.at(time_s)
+        near = ~snapshot.has_source(POSITION, LIDAR) & (
+            np.hypot(*(position_m - ego.position_m).T) <= self.config.trust.lidar_veto_range_m)
+        for k in np.flatnonzero(near):
+            through[k] = self._free_space.lidar_free(position_m[k], time_s) is True
+        return through
 
     def counters(self) -> dict[str, int]:
         """Diagnostics: tracker events and rejected inputs by reason."""

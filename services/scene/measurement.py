@@ -29,7 +29,7 @@ class V2vObservation:
     sample_time_s: float
 
 
-@dataclass
+@dataclass(slots=True)
 class Measurement:
     """One detection of one object by one source, ENU frame, rear-bumper reference point."""
 
@@ -136,15 +136,28 @@ class EgoPose:
     def to_enu(self, x_vehicle_m: float, y_vehicle_m: float) -> np.ndarray:
         return self.position_m + self.rotation() @ np.array([x_vehicle_m, y_vehicle_m])
 
+    def points_to_enu(self, points_vehicle_m: np.ndarray) -> np.ndarray:
+        """to_enu of K points (K, 2) at once."""
+        return self.position_m + points_vehicle_m @ self.rotation().T
+
     def to_vehicle(self, point_enu_m: np.ndarray) -> np.ndarray:
         return self.rotation().T @ (np.asarray(point_enu_m, dtype=float) - self.position_m)
 
 
 def polar_cov_vehicle(range_m: float, bearing_rad: float, range_std_m: float, bearing_std_rad: float) -> np.ndarray:
     """Covariance of a (range, bearing) reading mapped to Cartesian vehicle coordinates."""
-    c, s = math.cos(bearing_rad), math.sin(bearing_rad)
-    jac = np.array([[c, -range_m * s], [s, range_m * c]])
-    return jac @ np.diag([range_std_m**2, bearing_std_rad**2]) @ jac.T
+    return polar_covs_vehicle(np.array([range_m]), np.array([bearing_rad]), range_std_m, bearing_std_rad)[0]
+
+
+def polar_covs_vehicle(range_m: np.ndarray, bearing_rad: np.ndarray, range_std_m, bearing_std_rad) -> np.ndarray:
+    """polar_cov_vehicle of K readings at once (K, 2, 2): J diag(range_std^2, bearing_std^2) J^T with J the
+    Jacobian of (x, y) with respect to (range, bearing); the standard deviations scalars or one per reading."""
+    c, s = np.cos(bearing_rad), np.sin(bearing_rad)
+    jac = np.stack((np.stack((c, -range_m * s), axis=-1), np.stack((s, range_m * c), axis=-1)), axis=-2)
+    variances = np.zeros((len(range_m), 2, 2))
+    variances[:, 0, 0] = np.square(range_std_m)
+    variances[:, 1, 1] = np.square(bearing_std_rad)
+    return jac @ variances @ jac.transpose(0, 2, 1)
 
 
 def cov_to_enu(pose: EgoPose, cov_vehicle_m2: np.ndarray) -> np.ndarray:

@@ -9,7 +9,6 @@ than the longest fade time of the sources that saw it.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -17,11 +16,12 @@ from scipy.spatial import cKDTree
 
 from coopdrive.v1 import header_pb2
 
-from .association import assign, gate_groups, likelihood_cost, match_quality, polar_cost_matrix, polar_cost_pairs
+from .association import match_quality, polar_cost_matrix
 from .config import SceneFusionConfig
+from .frame_association import associate
 from .measurement import Measurement
-from .properties import ObjectProperties
-from .track import RANGING_SOURCES, Track, TrackStatus, predict_positions
+from .properties import POSITION, ObjectProperties, property_table, support_many
+from .track import RANGING_SOURCES, Track, TrackStatus, filter_steps, predict_positions
 
 
 @dataclass
@@ -48,13 +48,8 @@ class V2vLink:
 
 
 class Tracker:
-    def __init__(self, config: SceneFusionConfig, cost_fn: Callable = polar_cost_matrix,
-                 pair_cost_fn: Callable | None = polar_cost_pairs) -> None:
-        """cost_fn: costs of measurements x tracks; pair_cost_fn: the same costs for aligned pairs (None: cost_fn
-        one pair at a time). They must agree: the bench swaps in a brute-force cost_fn with pair_cost_fn None."""
+    def __init__(self, config: SceneFusionConfig) -> None:
         self._config = config
-        self._cost_fn = cost_fn
-        self._pair_cost_fn = pair_cost_fn
         self.tracks: dict[int, Track] = {}
         self._next_id = 1
         self._station_links: dict[int, int] = {}
@@ -63,6 +58,8 @@ class Tracker:
         sources = (header_pb2.SENSOR_SOURCE_LIDAR, header_pb2.SENSOR_SOURCE_RADAR, header_pb2.SENSOR_SOURCE_CAMERA,
                    header_pb2.SENSOR_SOURCE_SONAR, header_pb2.SENSOR_SOURCE_V2V)
         self._source_configs = {source: config.source(source) for source in sources}
+        # Every track's properties, one row each.
+        self.properties = property_table(self._source_configs.__getitem__, config.tracking)
 
     # -- sensor frames ---------------------------------------------------------------------
 
@@ -72,15 +69,17 @@ class Tracker:
             return
         tracks = list(self.tracks.values())
         gate = self._config.tracking.gate_chi2
-        fused, unmatched = self._associate(*self._geometry(measurements, tracks))
+        fused, unmatched = associate(*self._geometry(measurements, tracks), self._config.tracking)
         # In measurement order, as one joint assignment would fuse and start them.
-        for i, j, cost in sorted(fused):
-            self._fuse(tracks[j], measurements[i], match_quality(cost, gate))
-        for i in sorted(unmatched):
-            if not measurements[i].ambiguous:
-                self._start(measurements[i])
-            else:
-                self.counters.ambiguous_unmatched += 1
+        pairs = [(tracks[j], measurements[i], match_quality(cost, gate)) for i, j, cost in sorted(fused)]
+        self._fuse_frame(pairs)
+        starting = [measurements[i] for i in sorted(unmatched) if not measurements[i].ambiguous]
+        self.counters.ambiguous_unmatched += len(unmatched) - len(starting)
+        if starting:
+            started = [self._new_track(meas) for meas in starting]
+            support_many([track.props for track in started], starting, np.ones(len(starting)))
+            for track in started:
+                self._maybe_confirm(track)
 
     def _geometry(self, measurements: list[Measurement], tracks: list[Track]) -> tuple[np.ndarray, ...]:
         """Measurement positions, covariances and sensor origins, and the tracks' predicted positions and
@@ -95,47 +94,12 @@ class Tracker:
             track_xy, track_cov = np.zeros((0, 2)), np.zeros((0, 2, 2))
         return meas_xy, meas_cov, origins, track_xy, track_cov
 
-    def _associate(self, meas_xy, meas_cov, origins, track_xy, track_cov) -> tuple[list, list[int]]:
-        """(measurement, track, d^2) pairs and unmatched measurements of the joint assignment, solved per group
-        of measurements and tracks that gate with each other only."""
-        cfg = self._config.tracking
-        fused, unmatched, single_meas, single_tracks = [], [], [], []
-        for group_meas, group_tracks in gate_groups(meas_xy, meas_cov, track_xy, track_cov, cfg.gate_chi2):
-            if group_tracks.size == 0:
-                unmatched.extend(int(i) for i in group_meas)
-                continue
-            if group_meas.size == 1 and group_tracks.size == 1:
-                # Most groups are one car seen once: their costs are taken together below.
-                single_meas.append(int(group_meas[0]))
-                single_tracks.append(int(group_tracks[0]))
-                continue
-            d2, log_det = self._cost_fn(meas_xy[group_meas], meas_cov[group_meas], origins[group_meas],
-                                        track_xy[group_tracks], track_cov[group_tracks], cfg.angle_emphasis,
-                                        with_log_det=True)
-            pairs, left = assign(likelihood_cost(d2, log_det), cfg.gate_chi2, gate_cost=d2)
-            fused += [(int(group_meas[i]), int(group_tracks[j]), d2[i, j]) for i, j in pairs]
-            unmatched.extend(int(group_meas[i]) for i in left)
-        if single_meas:
-            i, j = np.array(single_meas), np.array(single_tracks)
-            d2, _ = self._pair_costs(meas_xy[i], meas_cov[i], origins[i], track_xy[j], track_cov[j])
-            fused += [(int(i[k]), int(j[k]), d2[k]) for k in np.flatnonzero(d2 <= cfg.gate_chi2)]
-            unmatched.extend(int(i[k]) for k in np.flatnonzero(d2 > cfg.gate_chi2))
-        return fused, unmatched
-
-    def _pair_costs(self, meas_xy, meas_cov, origins, track_xy, track_cov) -> tuple[np.ndarray, np.ndarray]:
-        emphasis = self._config.tracking.angle_emphasis
-        if self._pair_cost_fn is not None:
-            return self._pair_cost_fn(meas_xy, meas_cov, origins, track_xy, track_cov, emphasis)
-        costs = [self._cost_fn(meas_xy[k:k + 1], meas_cov[k:k + 1], origins[k:k + 1], track_xy[k:k + 1],
-                               track_cov[k:k + 1], emphasis, with_log_det=True) for k in range(len(meas_xy))]
-        return np.array([d2[0, 0] for d2, _ in costs]), np.array([log_det[0, 0] for _, log_det in costs])
-
     def _costs(self, measurements: list[Measurement], tracks: list[Track]) -> tuple[np.ndarray, np.ndarray]:
         """Squared Mahalanobis distances and innovation log-determinants, measurements x tracks."""
         if not tracks:
             return np.zeros((len(measurements), 0)), np.zeros((len(measurements), 0))
-        return self._cost_fn(*self._geometry(measurements, tracks), self._config.tracking.angle_emphasis,
-                             with_log_det=True)
+        return polar_cost_matrix(*self._geometry(measurements, tracks), self._config.tracking.angle_emphasis,
+                                 with_log_det=True)
 
     # -- V2V -------------------------------------------------------------------------------
 
@@ -184,7 +148,7 @@ class Tracker:
         best, best_gap = None, self._config.trust.link_gate_m
         for track in self.tracks.values():
             if track.station_id is None and self._seen_lately(track, meas.time_s):
-                gap = float(np.linalg.norm(Track.position_of(track.predicted(meas.time_s)[0]) - meas.position_m))
+                gap = float(np.linalg.norm(Track.position_of(track.predicted_mean(meas.time_s)) - meas.position_m))
                 if gap <= best_gap:
                     best, best_gap = track, gap
         return best
@@ -207,7 +171,7 @@ class Tracker:
         fix = track.ranging_fix
         if fix is None or abs(meas.time_s - fix.time_s) > self._config.trust.max_sensor_age_s:
             return None
-        velocity = Track.velocity_of(track.predicted(fix.time_s)[0])
+        velocity = Track.velocity_of(track.predicted_mean(fix.time_s))
         at_claim = fix.position_m + velocity * (meas.time_s - fix.time_s)
         return float(np.linalg.norm(meas.position_m - at_claim))
 
@@ -235,6 +199,25 @@ class Tracker:
 
     # -- life cycle ------------------------------------------------------------------------
 
+    def _fuse_frame(self, pairs: list[tuple[Track, Measurement, float]]) -> None:
+        """Fuse one frame's (track, measurement, match quality) pairs, each track at most once: the in-sequence
+        ones through one batched filter step, the late ones by their tracks' replay."""
+        in_sequence = [pair for pair in pairs if pair[1].time_s >= pair[0].time_s]
+        late = [pair for pair in pairs if pair[1].time_s < pair[0].time_s]
+        if in_sequence:
+            x, p = filter_steps([track for track, _, _ in in_sequence], [meas for _, meas, _ in in_sequence],
+                                self._config.tracking)
+            for (track, meas, _), x_k, p_k in zip(in_sequence, x, p, strict=True):
+                track.accept(meas, x_k, p_k)
+            credited = [pair for pair in in_sequence if not pair[1].ambiguous]
+            if credited:
+                support_many([track.props for track, _, _ in credited], [meas for _, meas, _ in credited],
+                             [quality for _, _, quality in credited])
+            for track, _, _ in in_sequence:
+                self._maybe_confirm(track)
+        for track, meas, quality in late:
+            self._fuse(track, meas, quality)
+
     def _fuse(self, track: Track, meas: Measurement, quality: float, v2v_weight: float = 1.0) -> None:
         replays_before = track.replays
         if not track.apply(meas):
@@ -246,13 +229,18 @@ class Tracker:
         self._maybe_confirm(track)
 
     def _start(self, meas: Measurement, v2v_weight: float = 1.0) -> Track:
-        props = ObjectProperties(self._source_configs.__getitem__, self._config.tracking)
+        track = self._new_track(meas)
+        track.props.support(meas, 1.0, v2v_weight)
+        self._maybe_confirm(track)
+        return track
+
+    def _new_track(self, meas: Measurement) -> Track:
+        """A tentative track whose prior is meas; its properties not yet credited with it."""
+        props = ObjectProperties(self._source_configs.__getitem__, self._config.tracking, self.properties)
         track = Track(self._next_id, meas, self._config.tracking, props)
         self._next_id += 1
         self.tracks[track.track_id] = track
         self.counters.created += 1
-        props.support(meas, 1.0, v2v_weight)
-        self._maybe_confirm(track)
         return track
 
     def _maybe_confirm(self, track: Track) -> None:
@@ -266,14 +254,14 @@ class Tracker:
     def expire(self, time_s: float) -> None:
         """Delete tentative tracks that went quiet and confirmed ones whose position faded."""
         timeout = self._config.tracking.tentative_timeout_s
-        for track_id in list(self.tracks):
-            track = self.tracks[track_id]
-            if track.status is TrackStatus.TENTATIVE:
-                dead = time_s - track.last_hit_s > timeout
-            else:
-                dead = track.props.position.faded(time_s)
-            if dead:
-                self._remove(track_id)
+        dead = [t.track_id for t in self.tracks.values()
+                if t.status is TrackStatus.TENTATIVE and time_s - t.last_hit_s > timeout]
+        confirmed = self.confirmed()
+        if confirmed:
+            faded = self.properties.faded([t.props.row for t in confirmed], POSITION, time_s)
+            dead += [t.track_id for t, gone in zip(confirmed, faded, strict=True) if gone]
+        for track_id in dead:
+            self._remove(track_id)
 
     def merge_duplicates(self, time_s: float) -> None:
         """Confirmed tracks closer than two vehicles can be and moving alike are one vehicle whose readings
@@ -305,6 +293,7 @@ class Tracker:
     def _remove(self, track_id: int) -> None:
         track = self.tracks.pop(track_id)
         track.status = TrackStatus.DELETED
+        track.props.release()
         if track.station_id is not None and self._station_links.get(track.station_id) == track_id:
             del self._station_links[track.station_id]
         self.counters.deleted += 1

@@ -6,6 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from coopdrive.services.scene.association import (
+    DENSE_PAIRS_MAX,
     assign,
     gate_groups,
     likelihood_cost,
@@ -14,6 +15,8 @@ from coopdrive.services.scene.association import (
     polar_cost_matrix,
     polar_cost_pairs,
 )
+from coopdrive.services.scene.config import TrackingConfig
+from coopdrive.services.scene.frame_association import ONE_MATRIX_MAX, associate
 
 ORIGIN = np.zeros(2)
 
@@ -110,7 +113,9 @@ def joint_pairs(meas_xy, meas_cov, track_xy, track_cov):
 
 def grouped_pairs(meas_xy, meas_cov, track_xy, track_cov):
     pairs = set()
-    for group_meas, group_tracks in gate_groups(meas_xy, meas_cov, track_xy, track_cov, GATE, dense_pairs_max=0):
+    origins = np.zeros_like(meas_xy)
+    for group_meas, group_tracks in gate_groups(meas_xy, meas_cov, origins, track_xy, track_cov, GATE, 1.2,
+                                                dense_pairs_max=0):
         if group_tracks.size:
             found = joint_pairs(meas_xy[group_meas], meas_cov[group_meas], track_xy[group_tracks],
                                 track_cov[group_tracks])
@@ -118,19 +123,25 @@ def grouped_pairs(meas_xy, meas_cov, track_xy, track_cov):
     return pairs
 
 
-@settings(max_examples=60, deadline=None)
-@given(st.integers(0, 2**32 - 1), st.integers(1, 40), st.integers(0, 40))
-def test_assigning_gate_groups_one_by_one_gives_the_pairs_of_one_joint_assignment(seed, tracks, clutter):
+def traffic(seed, tracks, clutter):
+    """Cars in traffic (some close together), most seen again with noise, plus clutter readings: measurement
+    positions and covariances, track positions and covariances."""
     rng = np.random.default_rng(seed)
-    # Cars in traffic (some close together), most seen again with noise, plus clutter readings.
     track_xy = rng.uniform([-60.0, -10.0], [60.0, 10.0], (tracks, 2))
     track_cov = np.einsum("k,ij->kij", rng.uniform(0.01, 4.0, tracks), np.eye(2))
     seen = track_xy[rng.random(tracks) < 0.8]
     meas_xy = np.vstack([seen + rng.normal(0.0, 0.5, seen.shape), rng.uniform([-60.0, -10.0], [60.0, 10.0],
                                                                                (clutter, 2))])
+    meas_cov = np.einsum("k,ij->kij", rng.uniform(0.01, 1.0, len(meas_xy)), np.eye(2))
+    return meas_xy, meas_cov, track_xy, track_cov
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 40), st.integers(0, 40))
+def test_assigning_gate_groups_one_by_one_gives_the_pairs_of_one_joint_assignment(seed, tracks, clutter):
+    meas_xy, meas_cov, track_xy, track_cov = traffic(seed, tracks, clutter)
     if len(meas_xy) == 0:
         return
-    meas_cov = np.einsum("k,ij->kij", rng.uniform(0.01, 1.0, len(meas_xy)), np.eye(2))
     assert grouped_pairs(meas_xy, meas_cov, track_xy, track_cov) == joint_pairs(meas_xy, meas_cov, track_xy,
                                                                                 track_cov)
 
@@ -139,14 +150,14 @@ def test_far_apart_objects_fall_into_groups_of_their_own():
     track_xy = np.array([[10.0, 0.0], [50.0, 0.0], [90.0, 3.5]])
     meas_xy = track_xy + 0.1
     cov = np.repeat(np.eye(2)[None] * 0.04, 3, axis=0)
-    groups = gate_groups(meas_xy, cov, track_xy, cov, GATE, dense_pairs_max=0)
+    groups = gate_groups(meas_xy, cov, np.zeros_like(meas_xy), track_xy, cov, GATE, 1.2, dense_pairs_max=0)
     assert sorted((g[0].tolist(), g[1].tolist()) for g in groups) == [([0], [0]), ([1], [1]), ([2], [2])]
 
 
 def test_a_few_objects_make_one_group_since_one_small_matrix_is_cheaper():
     xy = np.array([[10.0, 0.0], [50.0, 0.0]])
     cov = np.repeat(np.eye(2)[None] * 0.04, 2, axis=0)
-    [(measurements, tracks)] = gate_groups(xy, cov, xy, cov, GATE)
+    [(measurements, tracks)] = gate_groups(xy, cov, np.zeros_like(xy), xy, cov, GATE, 1.2)
     assert measurements.tolist() == [0, 1] and tracks.tolist() == [0, 1]
 
 
@@ -160,3 +171,17 @@ def test_the_costs_of_given_pairs_are_the_matching_entries_of_the_cost_matrix():
     pair_d2, pair_log_det = polar_cost_pairs(meas_xy, meas_cov, origins, track_xy, track_cov, 1.2)
     # polar_cost_matrix measures each track from the measurement's origin: the diagonal pairs are the same.
     assert pair_d2 == pytest.approx(np.diag(d2)) and pair_log_det == pytest.approx(np.diag(log_det))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 40), st.integers(0, 40),
+       st.sampled_from([(0, 0), (0, 30), (0, ONE_MATRIX_MAX), (DENSE_PAIRS_MAX, ONE_MATRIX_MAX)]))
+def test_a_frames_association_gives_the_pairs_of_one_joint_assignment(seed, tracks, clutter, limits):
+    meas_xy, meas_cov, track_xy, track_cov = traffic(seed, tracks, clutter)
+    if len(meas_xy) == 0:
+        return
+    tracking = TrackingConfig(gate_chi2=GATE, angle_emphasis=1.2)
+    matches, unmatched = associate(meas_xy, meas_cov, np.zeros_like(meas_xy), track_xy, track_cov, tracking, *limits)
+    expected = joint_pairs(meas_xy, meas_cov, track_xy, track_cov)
+    assert {(i, j) for i, j, _ in matches} == expected
+    assert sorted(unmatched) == sorted(set(range(len(meas_xy))) - {i for i, _ in expected})
