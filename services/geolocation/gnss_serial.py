@@ -64,15 +64,22 @@ class GnssSerial:
             raise GnssPortError(f"GNSS port {self.port} could not be opened: {reason}") from error
 
     def read_until(self, total_bytes: int, timeout_s: float, on_chunk: Callable[[bytes], None]) -> bool:
-        """Reads until read_total reaches total_bytes, passing each chunk on; False on timeout."""
+        """Reads until read_total reaches total_bytes, passing each chunk on; False on timeout, or when the port
+        fails (its writer gone, as a simulator that has ended): said in one line, counted as a drop."""
         deadline = time.monotonic() + timeout_s
         while self.read_total < total_bytes:
             remaining_s = deadline - time.monotonic()
             if remaining_s <= 0.0:
                 return False
-            self._serial.timeout = min(READ_TIMEOUT_S, remaining_s)
-            # Never read past the mark: the next epoch's bytes belong to the next mark's step.
-            chunk = self._serial.read(total_bytes - self.read_total)
+            try:
+                self._serial.timeout = min(READ_TIMEOUT_S, remaining_s)
+                # Never read past the mark: the next epoch's bytes belong to the next mark's step.
+                chunk = self._serial.read(total_bytes - self.read_total)
+            except PORT_ERRORS as error:
+                self.counters["gnss_port_drops"] += 1
+                self.log.warning("GNSS port %s failed while reading up to byte %d: %s", self.port, total_bytes,
+                                 str(error).splitlines()[0] if str(error) else type(error).__name__)
+                return False
             if chunk:
                 self.read_total += len(chunk)
                 on_chunk(chunk)

@@ -154,3 +154,17 @@ def test_after_bytes_lost_before_the_open_a_timed_out_mark_realigns_the_next_one
         finally:
             port.close()
     assert [fix.latitude_deg for fix in fixes] == pytest.approx([second.message.latitude_deg], abs=1e-6)
+
+
+def test_a_port_whose_writer_has_gone_ends_the_read_with_one_line_and_a_count(tmp_path, caplog):
+    pty = GnssPty(tmp_path / "gnss0")
+    port = GnssSerial(str(tmp_path / "gnss0"), open_timeout_s=1.0)
+    try:
+        mark = pty.write(_outputs(1)[0].data)
+        pty.close()  # the simulator ended before the stack read its last mark
+        assert port.read_until(mark + 100, MARK_TIMEOUT_S, lambda chunk: None) is False
+    finally:
+        port.close()
+    assert port.counters["gnss_port_drops"] == 1
+    failures = [r.getMessage() for r in caplog.records if "failed while reading" in r.getMessage()]
+    assert len(failures) == 1 and "\n" not in failures[0]
