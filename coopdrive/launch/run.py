@@ -74,6 +74,7 @@ CERTIFICATE_BACKDATE_S = 3600
 # After the simulator exits its result may still be queued behind the run's last messages, which on a loaded
 # host (an 8-stack run on two cores) can take more than a second to drain.
 RESULT_GRACE_S = 5.0
+RESULT_BACKLOG_LIMIT_S = 300.0
 # What the stacks publish in the last step reaches the recorder after the result: it waits for a quiet bus.
 RECORDING_QUIET_S = 0.2
 RECORDING_DRAIN_S = 3.0
@@ -201,7 +202,7 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         if options.gateway_port is not None:
             watched = next(spec.vehicle_id for spec in specs if spec.vehicle_id != WORLD_ID)
             processes.start(ServiceSpec("gateway", watched, {"port": options.gateway_port}))
-        _wait_for_the_end(processes, finished)
+        _wait_for_the_end(processes, finished, lambda: recorder.messages_written if recorder is not None else 0)
     finally:
         ended = time.monotonic()
         if recorder is not None:
@@ -258,13 +259,19 @@ def _drain(recorder) -> None:
         time.sleep(RECORDING_QUIET_S)
 
 
-def _wait_for_the_end(processes: ServiceProcesses, finished: threading.Event) -> None:
-    """Until the result (or a signal) comes; once the simulator has exited, a grace period for its result."""
+def _wait_for_the_end(processes: ServiceProcesses, finished: threading.Event,
+                      recorded: Callable[[], int] = lambda: 0) -> None:
+    """Until the result (or a signal) comes; once the simulator has exited, a grace period for its result, renewed
+    while the recording still takes messages: a launcher that records a big run on a loaded host can be seconds of
+    messages behind the bus, and the result comes last (at most RESULT_BACKLOG_LIMIT_S in all)."""
     while not finished.wait(0.2):
         crashed = {name: code for name, code in processes.exited().items()
                    if code != 0 and not name.endswith("/gateway")}
         if "world/sim" in processes.exited():
-            finished.wait(RESULT_GRACE_S)
+            deadline = time.monotonic() + RESULT_BACKLOG_LIMIT_S
+            seen = recorded()
+            while not finished.wait(RESULT_GRACE_S) and recorded() != seen and time.monotonic() < deadline:
+                seen = recorded()
             return
         if crashed and len(crashed) == len(processes.processes):
             raise RunAborted(f"every service exited: {crashed}")
