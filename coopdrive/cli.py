@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import json
 import logging
-import os
 import sys
 import tempfile
 import time
@@ -409,19 +408,5 @@ def _candump(args) -> int:
     return EXIT_OK
 
 
-def exit_skipping_teardown(code: int) -> None:
-    """Ends a process whose services have stopped and closed their bus: logs and output flushed, then out at
-    once. Python's own teardown of numpy, scipy and Zenoh has nothing left to save there and took 0.2-0.8 s,
-    which every run's shut-down waited for."""
-    logging.shutdown()
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(code)
-
-
 if __name__ == "__main__":
-    exit_code = main()
-    # The launcher starts services as `python -m coopdrive.cli service|group`; anything else ends as usual.
-    if sys.argv[1:2] in (["service"], ["group"]):
-        exit_skipping_teardown(exit_code)
-    sys.exit(exit_code)
+    sys.exit(main())

@@ -26,6 +26,11 @@ def launcher_environment() -> dict[str, str]:
     return {LAUNCHER_PID_VARIABLE: str(os.getpid())}
 
 
+def launched_by_a_run() -> bool:
+    """Whether a run's launcher started this process (and will stop it)."""
+    return (os.environ.get(LAUNCHER_PID_VARIABLE) or "").isdigit()
+
+
 def exit_with_launcher() -> None:
     """Starts the watch when this process was launched by a run; does nothing otherwise."""
     text = os.environ.get(LAUNCHER_PID_VARIABLE)

@@ -35,6 +35,7 @@ from coopdrive.runtime.barrier import StepBarrier
 from coopdrive.runtime.clock import SimulationClock, WallClock
 from coopdrive.runtime.clock_subscription import ClockSubscription
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
+from coopdrive.runtime.launcher_watch import launched_by_a_run
 from coopdrive.runtime.master import STALL_WARNING_S, ClockMaster
 from coopdrive.runtime.participants import ParticipantTracker
 from coopdrive.runtime.pipeline import participant_name
@@ -49,6 +50,9 @@ DIAGNOSTICS_PERIOD_S = 1.0
 MESSAGE_WAIT_LIMIT_S = 5.0
 # A periodic handler that keeps failing logs its traceback on the first and then every this many failures.
 TRIGGER_FAILURE_LOG_EVERY = 500
+# A finished clock master waits this long at most for its launcher to stop it (see _linger_for_the_launcher).
+MASTER_LINGER_S = 60.0
+LINGER_POLL_S = 0.05
 
 
 class ClockMode(Enum):
@@ -180,6 +184,7 @@ class ServiceRunner:
             with profile:
                 if self._master is not None:
                     self._master.run()
+                    self._linger_for_the_launcher()
                 else:
                     self._follow()
         finally:
@@ -188,6 +193,17 @@ class ServiceRunner:
             finally:
                 self.bus.close()
         return self._stop_reason
+
+    def _linger_for_the_launcher(self) -> None:
+        """A clock master that ended the run itself (its scenario finished) keeps its bus open until the launcher
+        that started it stops it (SIGTERM), at most MASTER_LINGER_S: what it published last, the result, may still
+        wait in its send queue behind a loaded launcher's backlog, and closing the session would drop it."""
+        if not launched_by_a_run():
+            return
+        finished_reason = self._stop_reason
+        deadline = time.monotonic() + MASTER_LINGER_S
+        while self._stop_reason == finished_reason and time.monotonic() < deadline:
+            time.sleep(LINGER_POLL_S)
 
     def _declare_runtime_entities(self) -> None:
         layout = self.bus.layout
