@@ -1,7 +1,8 @@
 """LiDAR front end: Heudiasyc geometric clustering per layer, then one measurement per object.
 
 Two consecutive points (in azimuth order) belong to the same cluster when they are closer than
-max_gap_m; clusters with fewer than min_points are noise or fragments (Heudiasyc Sect. 3.2, Fig. 12).
+max_gap_m; clusters with fewer than min_points are noise or fragments (Heudiasyc Sect. 3.2, Fig. 12),
+and are taken out before the rest is split again, so a stray echo cannot cut a vehicle in two.
 The layers see the same vehicle at slightly different heights, so surviving clusters of different
 layers that touch are merged before they become measurements.
 """
@@ -105,6 +106,19 @@ def split_consecutive(points_m: np.ndarray, max_gap_m: float) -> list[np.ndarray
     return np.split(points_m, cuts)
 
 
+def object_runs(points_m: np.ndarray, max_gap_m: float, min_points: int) -> list[np.ndarray]:
+    """Runs of at least min_points points, after the stray ones are taken out.
+
+    A beam echoing off spray between us and a car returns a lone point in front of its rear face, which
+    cuts the face in two: two half-width clusters, one of which starts a second, phantom track beside the
+    car. Runs too short to be an object are therefore removed first and the rest split again, so the
+    face's two halves, whose neighbours are within max_gap_m once the stray point is gone, join up."""
+    kept = [run for run in split_consecutive(points_m, max_gap_m) if len(run) >= min_points]
+    if len(kept) < 2:
+        return kept
+    return [run for run in split_consecutive(np.vstack(kept), max_gap_m) if len(run) >= min_points]
+
+
 class LidarClusterer:
     """Scan -> clusters -> ENU measurements."""
 
@@ -118,9 +132,8 @@ class LidarClusterer:
         for layer in scan.layers:
             if cfg.object_layers and layer.layer not in cfg.object_layers:
                 continue
-            for run in split_consecutive(layer_points(layer, scan.max_range_m), cfg.max_gap_m):
-                if len(run) >= cfg.min_points:
-                    per_layer.append(LidarCluster(layers=(layer.layer,), points_m=run))
+            for run in object_runs(layer_points(layer, scan.max_range_m), cfg.max_gap_m, cfg.min_points):
+                per_layer.append(LidarCluster(layers=(layer.layer,), points_m=run))
         merged = self._merge_layers(per_layer)
         return [c for c in merged if c.extent_m <= cfg.max_extent_m and self._near_road(c)]
 

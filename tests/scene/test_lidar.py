@@ -122,3 +122,12 @@ def test_a_flank_cut_by_the_edge_of_the_field_of_view_only_places_the_vehicle_si
     (whole,) = clusterer.measurements(scan_of_points({2: [(edge_x_m + 4.0 + 0.3 * i, 2.5) for i in range(12)]}), pose)
     assert not whole.ambiguous
     assert math.sqrt(whole.cov_m2[0, 0]) < 1.0
+
+
+def test_a_stray_echo_in_front_of_a_car_does_not_cut_it_into_two_clusters():
+    face = row(17.7, -0.9, 10)
+    echo = [(9.0, face[5][1] * 9.0 / 17.7 - 0.01)]
+    scan = scan_of_points({2: face[:5] + echo + face[5:]})
+    (cluster,) = LidarClusterer(LidarConfig()).clusters(scan)
+    assert len(cluster.points_m) == 10
+    assert cluster.rear_centre_m == pytest.approx([17.7, 0.0])
