@@ -93,3 +93,9 @@ def test_a_predecessor_braking_just_below_the_hard_braking_threshold_is_left_to_
 def test_a_stopped_predecessor_still_reporting_its_last_deceleration_is_not_hard_braking():
     eb = EmergencyBrake(CAR.limits)
     assert not eb.step(0.0, [(5, 3.5, 0.0, -5.0)]).active
+
+
+def test_standing_behind_a_standing_predecessor_whose_speeds_jitter_above_zero_is_not_hard_braking():
+    # Measured speeds of two standing cars read a few cm/s; the predecessor's CAM still says -5 m/s2.
+    eb = EmergencyBrake(CAR.limits)
+    assert not eb.step(0.04, [(5, 11.8, 0.06, -5.0)]).active

@@ -24,12 +24,12 @@ from .emergency import EmergencyBrake
 from .ploeg import PloegCacc
 from .shaper import CommandShaper
 from .stop_line import StopLineApproach
-from .types import AccLaw, CaccLaw, FollowInput, LongitudinalCommand, LongitudinalMode, Spacing, SpeedLaw, Target
+from .types import (STANDSTILL_SPEED_MPS, AccLaw, CaccLaw, FollowInput, LongitudinalCommand, LongitudinalMode, Spacing,
+                    SpeedLaw, Target)
 
 DEFAULT_DT_S = 0.02
 # A gap in the call sequence longer than this restarts the controller from the measured state.
 MAX_DT_S = 0.5
-STANDSTILL_SPEED_MPS = 0.1
 # Below this speed a target's present time gap means nothing; a new track starts at the goal.
 NEW_TARGET_MIN_SPEED_MPS = 1.0
 # A new track never starts below this time gap: the laws divide by it, and a target inside the standstill

@@ -23,6 +23,7 @@ import math
 from dataclasses import dataclass
 
 from ..profiles import LimitGains
+from .types import STANDSTILL_SPEED_MPS
 
 
 @dataclass(frozen=True)
@@ -118,7 +119,10 @@ class EmergencyBrake:
             need = self.required_accel_mps2(gap_m, ego_speed_mps, pred_speed, pred_accel)
             # A moving predecessor braking as hard as an emergency brake (EEBL) is matched at once (eq. E4):
             # by the time the horizon sees it, a driveline that needs a second to build up braking is late.
-            hard = pred_speed > 0.0 and ego_speed_mps > 0.0 and pred_accel <= -lim.hard_braking_mps2
+            # Both must be moving: a standing car's speed jitters around zero while its CAM still reports
+            # the last deceleration, and a trigger on that noise toggles the mode at standstill.
+            moving = pred_speed > STANDSTILL_SPEED_MPS and ego_speed_mps > STANDSTILL_SPEED_MPS
+            hard = moving and pred_accel <= -lim.hard_braking_mps2
             if hard:
                 need = min(need, pred_accel)
             spare_m = self.comfort_spare_m(gap_m, ego_speed_mps, pred_speed, pred_accel)

@@ -9,6 +9,9 @@ from dataclasses import dataclass, field
 from coopdrive.v1 import control_pb2, planner_pb2
 
 LongitudinalMode = control_pb2.LongitudinalMode
+
+# Below this a vehicle stands: measured speeds of a standing car jitter around zero by a few cm/s.
+STANDSTILL_SPEED_MPS = 0.1
 TargetRole = planner_pb2.TargetRole
 
 
