@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from coopdrive.services.control.longitudinal.emergency import EmergencyBrake, min_gap_within_m
+from coopdrive.services.control.longitudinal.emergency import EmergencyBrake, EmergencyTarget, min_gap_within_m
 from coopdrive.services.control.profiles import CAR
 
 # CAR: comfort decel 2 m/s2, stop margin 2 m + release margin 1 m = 3 m release gap, horizon 2.5 s.
@@ -50,25 +50,26 @@ def test_the_gap_minimum_under_constant_decelerations_is_found_where_speeds_meet
 def test_braking_starts_when_comfort_braking_cannot_keep_the_margin_and_releases_with_hysteresis():
     eb = EmergencyBrake(CAR.limits)
     # 20 m/s behind 10 m/s at 20 m: within 2.5 s at -2 the gap would fall to 1.25 m.
-    first = eb.step(20.0, [(7, 20.0, 10.0, 0.0)])
+    first = eb.step(20.0, [EmergencyTarget(7, 20.0, 10.0, 0.0)])
     assert first.active and first.object_id == 7
     assert first.accel_mps2 == pytest.approx(-100.0 / 34.0)
-    assert eb.step(20.0, [(7, 12.5, 15.0, 0.0)]).active  # TTC 2.5 s, still below the 3 s release
-    assert not eb.step(20.0, [(7, 40.0, 15.0, 0.0)]).active  # TTC 8 s, comfort braking keeps 33.75 m
+    assert eb.step(20.0, [EmergencyTarget(7, 12.5, 15.0, 0.0)]).active  # TTC 2.5 s, still below the 3 s release
+    assert not eb.step(20.0, [EmergencyTarget(7, 40.0, 15.0, 0.0)]).active  # TTC 8 s, comfort braking keeps 33.75 m
 
 
 def test_a_brief_predecessor_braking_beyond_comfort_at_a_normal_gap_stays_with_the_comfort_laws():
     # The string scenario's +-10 km/h at 0.2 Hz brakes at 3.5 m/s2; at 0.7 s x 22 m/s + 6 m the gap absorbs it.
-    decision = EmergencyBrake(CAR.limits).step(22.0, [(3, 21.5, 22.0, -3.5)])
+    decision = EmergencyBrake(CAR.limits).step(22.0, [EmergencyTarget(3, 21.5, 22.0, -3.5)])
     assert not decision.active
 
 
 def test_the_emergency_deceleration_is_never_weaker_than_comfort_nor_stronger_than_the_emergency_limit():
     eb = EmergencyBrake(CAR.limits)
     # Closing at 5 m/s inside the release gap: unbounded need, clipped to the emergency limit.
-    assert eb.step(10.0, [(1, 2.5, 5.0, 0.0)]).accel_mps2 == pytest.approx(-CAR.limits.emergency_decel_mps2)
+    clipped = eb.step(10.0, [EmergencyTarget(1, 2.5, 5.0, 0.0)])
+    assert clipped.accel_mps2 == pytest.approx(-CAR.limits.emergency_decel_mps2)
     # Held by hysteresis (TTC 2.5 s) while only -25 / 19 m/s2 is needed: braking stays at the comfort limit.
-    held = eb.step(20.0, [(1, 12.5, 15.0, 0.0)])
+    held = eb.step(20.0, [EmergencyTarget(1, 12.5, 15.0, 0.0)])
     assert held.active
     assert held.accel_mps2 == pytest.approx(-CAR.limits.max_decel_mps2)
 
@@ -76,26 +77,31 @@ def test_the_emergency_deceleration_is_never_weaker_than_comfort_nor_stronger_th
 def test_standing_close_behind_a_stopped_vehicle_is_not_an_emergency():
     eb = EmergencyBrake(CAR.limits)
     eb.active = True
-    assert not eb.step(0.0, [(1, 2.2, 0.0, 0.0)]).active
+    assert not eb.step(0.0, [EmergencyTarget(1, 2.2, 0.0, 0.0)]).active
 
 
-def test_a_predecessor_braking_as_hard_as_an_emergency_brake_is_matched_at_once():
+def test_a_predecessor_reporting_braking_as_hard_as_an_emergency_brake_is_matched_at_once():
     # 17 m at 22 m/s, both at speed: the horizon alone would wait, a 4+ m/s2 predecessor is not waited for (E4).
-    decision = EmergencyBrake(CAR.limits).step(22.0, [(5, 17.0, 22.0, -5.0)])
+    decision = EmergencyBrake(CAR.limits).step(22.0, [EmergencyTarget(5, 17.0, 22.0, -5.0, accel_reported=True)])
     assert decision.active and decision.object_id == 5
     assert decision.accel_mps2 == pytest.approx(-5.0)
 
 
 def test_a_predecessor_braking_just_below_the_hard_braking_threshold_is_left_to_the_horizon():
-    assert not EmergencyBrake(CAR.limits).step(22.0, [(5, 17.0, 22.0, -3.9)]).active
+    assert not EmergencyBrake(CAR.limits).step(22.0, [EmergencyTarget(5, 17.0, 22.0, -3.9, accel_reported=True)]).active
+
+
+def test_a_hard_deceleration_we_only_estimate_from_our_sensors_is_left_to_the_horizon():
+    # The same -5 m/s2, differentiated from a young radar track's speeds rather than reported over V2V.
+    assert not EmergencyBrake(CAR.limits).step(22.0, [EmergencyTarget(5, 17.0, 22.0, -5.0)]).active
 
 
 def test_a_stopped_predecessor_still_reporting_its_last_deceleration_is_not_hard_braking():
     eb = EmergencyBrake(CAR.limits)
-    assert not eb.step(0.0, [(5, 3.5, 0.0, -5.0)]).active
+    assert not eb.step(0.0, [EmergencyTarget(5, 3.5, 0.0, -5.0, accel_reported=True)]).active
 
 
 def test_standing_behind_a_standing_predecessor_whose_speeds_jitter_above_zero_is_not_hard_braking():
     # Measured speeds of two standing cars read a few cm/s; the predecessor's CAM still says -5 m/s2.
     eb = EmergencyBrake(CAR.limits)
-    assert not eb.step(0.04, [(5, 11.8, 0.06, -5.0)]).active
+    assert not eb.step(0.04, [EmergencyTarget(5, 11.8, 0.06, -5.0, accel_reported=True)]).active

@@ -20,7 +20,7 @@ from .contracts import CruiseLaw, FollowingLaw
 from .cruise import CruisePi
 from .dcacc import Dcacc
 from .drivertive import DrivertiveSpeed
-from .emergency import EmergencyBrake
+from .emergency import EmergencyBrake, EmergencyTarget
 from .ploeg import PloegCacc
 from .shaper import CommandShaper
 from .stop_line import StopLineApproach
@@ -240,19 +240,20 @@ class LongitudinalController:
         u, best_u = min(u, cap), min(best.accel_mps2, cap)
         return u < best_u or (u == best_u and best.mode == MODE.LONGITUDINAL_MODE_CRUISE)
 
-    def _emergency_view(self, t: Target) -> tuple[int, float, float, float]:
-        """(object_id, gap_m, speed_mps, accel_mps2) for the TTC path. A stop line's gap already ends at its
-        stopping point, so the vehicle margin is not taken off twice."""
+    def _emergency_view(self, t: Target) -> EmergencyTarget:
+        """A stop line's gap already ends at its stopping point, so the vehicle margin is not taken off twice."""
         if t.stop_line:
-            return t.object_id, t.gap_m + self.profile.limits.stop_margin_m, 0.0, 0.0
-        measured = self._pred_accel_for_ttc(t)
+            return EmergencyTarget(t.object_id, t.gap_m + self.profile.limits.stop_margin_m, 0.0)
+        measured, reported = self._pred_accel_for_ttc(t)
         # The request leads the measurement by the predecessor's driveline lag: whichever brakes harder counts.
-        pred_accel = measured if t.intended_accel_mps2 is None else min(measured, t.intended_accel_mps2)
-        return t.object_id, t.gap_m, t.speed_mps, pred_accel
+        if t.intended_accel_mps2 is not None and t.intended_accel_mps2 < measured:
+            measured, reported = t.intended_accel_mps2, True
+        return EmergencyTarget(t.object_id, t.gap_m, t.speed_mps, measured, reported)
 
-    def _pred_accel_for_ttc(self, t: Target) -> float:
+    def _pred_accel_for_ttc(self, t: Target) -> tuple[float, bool]:
+        """The predecessor's acceleration and whether it reported it over V2V (fresh) or we estimated it."""
         if t.accel_mps2 is not None and t.v2v_age_s is not None and t.v2v_age_s <= self.profile.spacing.v2v_timeout_s:
-            return t.accel_mps2
+            return t.accel_mps2, True
         track = self._tracks.get(t.object_id)
         estimate = track.dcacc.estimator.estimate_mps2() if track is not None else None
-        return 0.0 if estimate is None else estimate
+        return (0.0 if estimate is None else estimate), False

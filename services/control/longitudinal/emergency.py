@@ -12,9 +12,11 @@ brake_horizon_s (eq. E3, the gap's minimum over the horizon under both decelerat
 target has TTC > ttc_release_s and comfort braking keeps release_margin_m more than the margin, or keeps the gap
 from shrinking at all (hysteresis).
 A short horizon keeps a predecessor's brief hard braking, such as a speed oscillation, with the comfort laws.
-A moving predecessor decelerating harder than hard_braking_mps2 (the EEBL trigger) starts it at once, braking
-at least as hard as the predecessor (eq. E4): a follower whose driveline needs a second to build up braking
-cannot wait for the horizon to see a stop coming.
+A moving predecessor that reports over V2V (CAM, iCLCM) a deceleration harder than hard_braking_mps2 (the EEBL
+trigger) starts it at once, braking at least as hard as the predecessor (eq. E4): a follower whose driveline needs
+a second to build up braking cannot wait for the horizon to see a stop coming. A deceleration we only estimate
+from our own sensors' speeds goes to the horizon test: differentiated from a young track's speed it is noise, and
+as a trigger of its own it braked a platoon hard behind a phantom object.
 """
 
 from __future__ import annotations
@@ -24,6 +26,18 @@ from dataclasses import dataclass
 
 from ..profiles import LimitGains
 from .types import STANDSTILL_SPEED_MPS
+
+
+@dataclass(frozen=True)
+class EmergencyTarget:
+    """What the emergency path needs of one target; accel_mps2 <= 0 is held to standstill, and accel_reported
+    says it came over V2V from the predecessor itself rather than from our estimate."""
+
+    object_id: int
+    gap_m: float
+    speed_mps: float
+    accel_mps2: float = 0.0
+    accel_reported: bool = False
 
 
 @dataclass(frozen=True)
@@ -109,12 +123,13 @@ class EmergencyBrake:
                                   min(pred_accel_mps2, 0.0), lim.brake_horizon_s)  # (eq. E3)
         return math.inf if lowest >= gap_m else lowest - lim.stop_margin_m
 
-    def step(self, ego_speed_mps: float, targets: list[tuple[int, float, float, float]]) -> EmergencyDecision:
-        """targets: (object_id, gap_m, pred_speed_mps, pred_accel_mps2 or 0)."""
+    def step(self, ego_speed_mps: float, targets: list[EmergencyTarget]) -> EmergencyDecision:
         lim = self.limits
         trigger = release_blocked = False
         worst_need, worst_id, worst_ttc = 0.0, 0, math.inf
-        for object_id, gap_m, pred_speed, pred_accel in targets:
+        for target in targets:
+            object_id, gap_m = target.object_id, target.gap_m
+            pred_speed, pred_accel = target.speed_mps, target.accel_mps2
             ttc = self.ttc_s(gap_m, ego_speed_mps, pred_speed)
             need = self.required_accel_mps2(gap_m, ego_speed_mps, pred_speed, pred_accel)
             # A moving predecessor braking as hard as an emergency brake (EEBL) is matched at once (eq. E4):
@@ -122,7 +137,7 @@ class EmergencyBrake:
             # Both must be moving: a standing car's speed jitters around zero while its CAM still reports
             # the last deceleration, and a trigger on that noise toggles the mode at standstill.
             moving = pred_speed > STANDSTILL_SPEED_MPS and ego_speed_mps > STANDSTILL_SPEED_MPS
-            hard = moving and pred_accel <= -lim.hard_braking_mps2
+            hard = target.accel_reported and moving and pred_accel <= -lim.hard_braking_mps2
             if hard:
                 need = min(need, pred_accel)
             spare_m = self.comfort_spare_m(gap_m, ego_speed_mps, pred_speed, pred_accel)
