@@ -78,6 +78,15 @@ class RadarClutter(_Fault):
     false_alarms_per_scan: float = Field(default=5.0, ge=0)
 
 
+class LidarClutter(_Fault):
+    """The vehicle's LiDAR looks through spray or heavy rain: this fraction of its beams echoes off the droplets
+    somewhere short of what it would have hit (the world's `clutter_probability` is the dry-road rate)."""
+
+    type: Literal["lidar_clutter"]
+    vehicle_id: str
+    clutter_probability: float = Field(default=0.05, gt=0, le=1)
+
+
 class FixDowngrade(_Fault):
     type: Literal["fix_downgrade"]
     vehicle_id: str
@@ -190,6 +199,6 @@ class TicketExpired(_Fault):
     vehicle_id: str
 
 
-Fault = Annotated[Union[GnssOutage, GnssJump, GnssMultipath, RadarClutter, FixDowngrade, V2vLoss, V2vCorruption,
+Fault = Annotated[Union[GnssOutage, GnssJump, GnssMultipath, RadarClutter, LidarClutter, FixDowngrade, V2vLoss, V2vCorruption,
                         SensorDropout, CanErrorBurst, PartnerSilent, IclcmDrop, GhostVehicle, PositionOffset, ServiceCrash, TicketExpired],
                  Field(discriminator="type")]

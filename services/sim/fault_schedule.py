@@ -9,8 +9,9 @@ from dataclasses import dataclass
 from typing import Mapping, Sequence
 
 from coopdrive.services.sim.fault_config import (CanErrorBurst, Fault, FixDowngrade, GnssJump, GnssMultipath,
-                                                 GnssOutage, IclcmDrop, PartnerSilent, RadarClutter, SensorDropout,
-                                                 SensorName, ServiceCrash, TicketExpired, V2vCorruption, V2vLoss)
+                                                 GnssOutage, IclcmDrop, LidarClutter, PartnerSilent, RadarClutter,
+                                                 SensorDropout, SensorName, ServiceCrash, TicketExpired, V2vCorruption,
+                                                 V2vLoss)
 from coopdrive.services.sim.radio_channel import RadioChannel
 from coopdrive.services.sim.sensor_suite import SensorSuite
 
@@ -59,6 +60,8 @@ class FaultSchedule:
         suite.gnss.set_multipath(multipath.jump_m if multipath else None, multipath.hop_s if multipath else 1.0)
         clutter = [f.false_alarms_per_scan for f in mine if isinstance(f, RadarClutter)]
         suite.radar.set_clutter(max(clutter) if clutter else None)
+        spray = [f.clutter_probability for f in mine if isinstance(f, LidarClutter)]
+        suite.lidar.set_clutter(max(spray) if spray else None)
         downgrades = sorted((f for f in mine if isinstance(f, FixDowngrade)), key=lambda f: f.start_s)
         suite.gnss.set_fix_mode(downgrades[-1].fix_mode if downgrades else suite.gnss.config.fix_mode)
         for name in SensorName:

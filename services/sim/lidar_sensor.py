@@ -25,13 +25,19 @@ class LidarSensor(TimedSensor[sensors_pb2.LidarScan]):
         super().__init__(config.timing, rng, vehicle_id)
         steps = int(round(2.0 * config.half_fov_rad / config.azimuth_resolution_rad))
         self.beam_azimuths_rad = np.linspace(-config.half_fov_rad, config.half_fov_rad, steps + 1)
+        # Fault hook (lidar_clutter): the fraction of cluttered beams instead of the configured one.
+        self.clutter_probability: float | None = None
+
+    def set_clutter(self, clutter_probability: float | None) -> None:
+        """Fault hook (lidar_clutter): this fraction of beams echoes off spray; None goes back to the configured one."""
+        self.clutter_probability = clutter_probability
 
     def poll(self, now_s: float, world: WorldView) -> list[sensors_pb2.LidarScan]:
         return self._deliver(now_s, lambda: self._measure(world))
 
     def _with_clutter(self, ranges: np.ndarray) -> np.ndarray:
         """Beams that echo off rain, spray or dust somewhere short of what they would have hit."""
-        probability = self.config.clutter_probability
+        probability = self.config.clutter_probability if self.clutter_probability is None else self.clutter_probability
         if probability <= 0.0:
             return ranges
         cluttered = self.rng.random(ranges.size) < probability

@@ -181,3 +181,18 @@ def test_the_ideal_world_switches_off_what_a_scenario_did_not_set_and_keeps_what
 def test_a_scenario_naming_an_unknown_world_gets_a_one_line_error():
     with pytest.raises(ScenarioError, match=r"^<scenario>: world: .*'real' or 'ideal'"):
         _scenario(world="kind")
+
+
+def test_the_lidar_clutter_fault_sends_more_beams_short_of_their_target_until_it_ends():
+    world = WorldView(_truth("ego", 0.0), [_truth("lead", 30.0, length_m=4.5)])
+    config = ideal(LidarConfig(timing=TIMING, layer_elevations_rad=[0.0]))
+    sensor = LidarSensor(config, sensor_rng(5, "e", "l"), "e")
+
+    def short_returns(first_scan: int) -> int:
+        scans = [out for k in range(first_scan, first_scan + 50) for out in sensor.poll(k * 0.1, world)]
+        return sum(1 for scan in scans for r in scan.layers[0].range_m if r < 28.0)
+
+    sensor.set_clutter(0.05)
+    sprayed = short_returns(0)
+    sensor.set_clutter(None)
+    assert sprayed > 20 and short_returns(50) == 0
