@@ -144,10 +144,15 @@ class Tracker:
         return fix is not None and time_s - fix.time_s <= self._config.trust.max_sensor_age_s
 
     def _nearest_free_ranging(self, meas: Measurement) -> Track | None:
-        """The unlinked LiDAR/radar track seen lately that is nearest the claim, if within link_gate_m."""
+        """The unlinked, confirmed LiDAR/radar track seen lately that is nearest the claim, if within link_gate_m.
+
+        Confirmed only: the station's object is dropped for it, and a tentative track is not published, so a
+        car beside us that one radar reading started a track on vanished from the scene until that track was
+        confirmed (merge seed 4: for three frames, the very frames a merger checked its side and changed lane)."""
         best, best_gap = None, self._config.trust.link_gate_m
         for track in self.tracks.values():
-            if track.station_id is None and self._seen_lately(track, meas.time_s):
+            if (track.station_id is None and track.status is TrackStatus.CONFIRMED
+                    and self._seen_lately(track, meas.time_s)):
                 gap = float(np.linalg.norm(Track.position_of(track.predicted_mean(meas.time_s)) - meas.position_m))
                 if gap <= best_gap:
                     best, best_gap = track, gap

@@ -88,3 +88,23 @@ def test_with_sixty_cars_in_view_each_keeps_one_track_as_the_gating_splits_into_
     for frame in range(8):
         tracker.process([at(0.05 * frame, *(xy + rng.normal(0.0, 0.05, 2))) for xy in cars_xy])
     assert len(tracker.confirmed()) == 60 and tracker.counters.created == 60
+
+
+def v2v_claim(time_s, x_m, y_m, station_id=3011):
+    return Measurement(source=header_pb2.SENSOR_SOURCE_V2V, time_s=time_s, position_m=np.array([x_m, y_m]),
+                       cov_m2=np.eye(2) * 0.25, origin_m=np.zeros(2), velocity_mps=np.array([12.0, 0.0]),
+                       velocity_std_mps=0.3, station_id=station_id)
+
+
+def test_a_station_s_object_stays_published_until_the_ranging_track_that_takes_it_over_is_confirmed():
+    tracker = Tracker(SceneFusionConfig())
+    for k in range(3):
+        claim = v2v_claim(0.04 * k, 10.0 + 0.48 * k, -3.6)
+        v2v_id = tracker.fuse_v2v(claim, tracker.link_v2v(claim), trust=1.0, fuse_kinematics=True)
+    assert [t.track_id for t in tracker.confirmed()] == [v2v_id]
+    # One reading of ours on the car, 2 m from where its CAMs put it, starts a tentative track no scene shows yet.
+    tracker.process([at(0.1, 13.4, -3.0)])
+    claim = v2v_claim(0.12, 11.44, -3.6)
+    link = tracker.link_v2v(claim)
+    assert link.track_id == v2v_id
+    assert v2v_id in [t.track_id for t in tracker.confirmed()]
