@@ -198,11 +198,11 @@ class MergeScenario:
         return behind if front_ahead_of_our_rear_m > -m.side_margin_m else None
 
     def _room_beside_and_ahead(self) -> bool:
-        """Nobody alongside in the target lane, and whoever is ahead there at least the standstill distance
-        ahead (the lane change's predecessor opens it to a full spacing)."""
+        """Nobody alongside in the target lane (nor felt by the side sonars towards it), and whoever is ahead
+        there at least the standstill distance ahead (the lane change's predecessor opens it to a full spacing)."""
         ahead = self.sit.ahead_in_lane(self._other_offset())
         too_close = ahead is not None and ahead.longitudinal_gap_m < self.config.standstill_m
-        return not too_close and self._alongside() is None
+        return not too_close and self._alongside() is None and not self.sit.sonar_beside(self._other_offset())
 
     def _scene_gap_open(self) -> bool:
         """Without a partner: the scene shows room in the target lane behind. The vehicle behind must be a

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from coopdrive.v1 import its_pb2, scene_pb2
+from coopdrive.v1 import header_pb2, its_pb2, scene_pb2
 
 from .config import PlannerLogicConfig
 from .inputs import PlannerInputs
@@ -60,6 +60,14 @@ class Situation:
         if scene is None or not scene.has_forward_mio:
             return None
         return self.object(scene.forward_mio_id)
+
+    def sonar_beside(self, lane_offset: int) -> list[scene_pb2.SceneObject]:
+        """What our side sonars feel at our flank towards that lane (the sign of lane_offset; right is negative).
+        The scene makes no lane neighbour of a sonar echo, which says that something is there but not where
+        along; for a lane change that is the blind spot's answer, and it is the one sensor that sees a car
+        level with us when a lost CAM or a track handover leaves it out of the neighbours."""
+        return [o for o in self.objects() if header_pb2.SENSOR_SOURCE_SONAR in o.position.sources
+                and o.lateral_offset_m * lane_offset > 0]
 
     def _neighbour(self, lane_offset: int) -> scene_pb2.LaneNeighbours | None:
         if self.inputs.scene is None:

@@ -4,7 +4,7 @@ from merge_drivers import (A_PARTNER, ACKED, B_AHEAD, B_MIO, B_PARTNER, DRIVERS,
                            PAIRING, PARTNER_STATES, gap_maker, merger)
 from planner_world import ME, ROADWORKS, denm, ego, iclcm, inputs, obj, planner, rsu_start, scene
 
-from coopdrive.v1 import planner_pb2
+from coopdrive.v1 import header_pb2, planner_pb2
 
 
 def gap_maker_pairing(p):
@@ -255,4 +255,28 @@ def test_a_merger_given_stom_waits_while_a_lane_b_car_drives_beside_it_and_drops
     assert state.state == "WAIT_STOM"
     # Far enough ahead: STOM from the partner behind holds again.
     request, state = p.step(0.6, merger_beside_a_lane_b_car(0.6, alongside_gap_m=7.0))
+    assert state.state == "MERGING"
+
+
+def merger_with_only_a_sonar_echo_beside_it(t, echo_lateral_m):
+    """Head of lane A given STOM, with the lane B car beside us missing from the scene's neighbours (its track
+    being handed over, merge seed 4): only the right side sonar feels it, echo_lateral_m to our side."""
+    msgs = {900: rsu_start(t), B_PARTNER: iclcm(B_PARTNER, t, forward_id=ME, merge_safe_to_merge=True)}
+    echo = obj(56, gap_m=1.6, lane=LANE_B, y_m=echo_lateral_m)
+    echo.lateral_offset_m = echo_lateral_m
+    echo.lane_index.confidence = -1.0
+    echo.position.sources.append(header_pb2.SENSOR_SOURCE_SONAR)
+    world = scene(echo, obj(3, B_PARTNER, -30.0, LANE_B, speed_mps=11.5), ego_lane=LANE_A,
+                  neighbours={-1: (None, 3)})
+    return inputs(planner_pb2.SCENARIO_MERGE, platoon_id=1, ego=ego(LANE_A, speed_mps=11.5), scene=world,
+                  iclcms=msgs, denms={900: denm(ROADWORKS)})
+
+
+def test_a_merger_given_stom_does_not_turn_into_a_car_only_its_side_sonar_feels():
+    p = planner()
+    for i in range(4):
+        _, state = p.step(i * 0.1, merger_with_only_a_sonar_echo_beside_it(i * 0.1, echo_lateral_m=-2.0))
+    assert state.state == "WAIT_STOM"
+    # An echo on the other side (a lane A car, or the guardrail) is no reason to wait.
+    _, state = p.step(0.4, merger_with_only_a_sonar_echo_beside_it(0.4, echo_lateral_m=2.0))
     assert state.state == "MERGING"
