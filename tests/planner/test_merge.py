@@ -228,17 +228,20 @@ def test_a_merger_whose_partner_names_another_merger_lets_it_go_and_merges_on_th
 B_ALONGSIDE = 61
 
 
-def merger_beside_a_lane_b_car(t, alongside_gap_m):
-    """Head of lane A, paired and given STOM by its partner 30 m back; another lane B car (b1 of merge seed 3)
-    drives beside us: its rear bumper alongside_gap_m from our front bumper."""
+def head_of_lane_a_given_stom(t, beside, neighbours):
+    """Head of lane A, paired and given STOM by its partner 30 m back, with `beside` in its scene too."""
     msgs = {900: rsu_start(t), B_PARTNER: iclcm(B_PARTNER, t, forward_id=ME, merge_safe_to_merge=True)}
-    alongside = obj(6, B_ALONGSIDE, alongside_gap_m, LANE_B, speed_mps=11.5)
-    alongside.length_m.value, alongside.length_m.confidence = 4.5, 0.7
-    objects = [alongside, obj(3, B_PARTNER, -30.0, LANE_B, speed_mps=11.5)]
-    neighbours = {-1: (6, 3) if alongside_gap_m >= 0 else (None, 6)}
-    world = scene(*objects, ego_lane=LANE_A, neighbours=neighbours)
+    world = scene(beside, obj(3, B_PARTNER, -30.0, LANE_B, speed_mps=11.5), ego_lane=LANE_A, neighbours=neighbours)
     return inputs(planner_pb2.SCENARIO_MERGE, platoon_id=1, ego=ego(LANE_A, speed_mps=11.5), scene=world,
                   iclcms=msgs, denms={900: denm(ROADWORKS)})
+
+
+def merger_beside_a_lane_b_car(t, alongside_gap_m):
+    """Another lane B car (b1 of merge seed 3) drives beside us: its rear bumper alongside_gap_m from our front
+    bumper."""
+    alongside = obj(6, B_ALONGSIDE, alongside_gap_m, LANE_B, speed_mps=11.5)
+    alongside.length_m.value, alongside.length_m.confidence = 4.5, 0.7
+    return head_of_lane_a_given_stom(t, alongside, {-1: (6, 3) if alongside_gap_m >= 0 else (None, 6)})
 
 
 def test_a_merger_given_stom_waits_while_a_lane_b_car_drives_beside_it_and_drops_back_behind_it():
@@ -259,17 +262,13 @@ def test_a_merger_given_stom_waits_while_a_lane_b_car_drives_beside_it_and_drops
 
 
 def merger_with_only_a_sonar_echo_beside_it(t, echo_lateral_m):
-    """Head of lane A given STOM, with the lane B car beside us missing from the scene's neighbours (its track
-    being handed over, merge seed 4): only the right side sonar feels it, echo_lateral_m to our side."""
-    msgs = {900: rsu_start(t), B_PARTNER: iclcm(B_PARTNER, t, forward_id=ME, merge_safe_to_merge=True)}
+    """The lane B car beside us is missing from the scene's neighbours (its track being handed over, merge
+    seed 4): only a side sonar feels it, echo_lateral_m to our side."""
     echo = obj(56, gap_m=1.6, lane=LANE_B, y_m=echo_lateral_m)
     echo.lateral_offset_m = echo_lateral_m
     echo.lane_index.confidence = -1.0
     echo.position.sources.append(header_pb2.SENSOR_SOURCE_SONAR)
-    world = scene(echo, obj(3, B_PARTNER, -30.0, LANE_B, speed_mps=11.5), ego_lane=LANE_A,
-                  neighbours={-1: (None, 3)})
-    return inputs(planner_pb2.SCENARIO_MERGE, platoon_id=1, ego=ego(LANE_A, speed_mps=11.5), scene=world,
-                  iclcms=msgs, denms={900: denm(ROADWORKS)})
+    return head_of_lane_a_given_stom(t, echo, {-1: (None, 3)})
 
 
 def test_a_merger_given_stom_does_not_turn_into_a_car_only_its_side_sonar_feels():
