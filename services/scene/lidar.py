@@ -116,7 +116,8 @@ def object_runs(points_m: np.ndarray, max_gap_m: float, min_points: int) -> list
     kept = [run for run in split_consecutive(points_m, max_gap_m) if len(run) >= min_points]
     if len(kept) < 2:
         return kept
-    return [run for run in split_consecutive(np.vstack(kept), max_gap_m) if len(run) >= min_points]
+    # Splitting again only joins kept runs (within each the gaps stay short), so every run is still long enough.
+    return split_consecutive(np.vstack(kept), max_gap_m)
 
 
 class LidarClusterer:

@@ -199,6 +199,7 @@ class TicketExpired(_Fault):
     vehicle_id: str
 
 
-Fault = Annotated[Union[GnssOutage, GnssJump, GnssMultipath, RadarClutter, LidarClutter, FixDowngrade, V2vLoss, V2vCorruption,
-                        SensorDropout, CanErrorBurst, PartnerSilent, IclcmDrop, GhostVehicle, PositionOffset, ServiceCrash, TicketExpired],
+Fault = Annotated[Union[GnssOutage, GnssJump, GnssMultipath, RadarClutter, LidarClutter, FixDowngrade, V2vLoss,
+                        V2vCorruption, SensorDropout, CanErrorBurst, PartnerSilent, IclcmDrop, GhostVehicle,
+                        PositionOffset, ServiceCrash, TicketExpired],
                  Field(discriminator="type")]
