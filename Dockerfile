@@ -9,6 +9,7 @@ COPY coopdrive ./coopdrive
 COPY services ./services
 COPY maps ./maps
 COPY scenarios ./scenarios
+COPY proto ./proto
 RUN pip install . && useradd --system --uid 1000 coopdrive
 
 USER coopdrive
