@@ -1,7 +1,7 @@
 """Ego-state EKF after DRIVERTIVE (GCDC 2016): state (eq. 6), observations (eq. 7), yaw rate from the rear
-wheels (eq. 8), built on filterpy's ExtendedKalmanFilter through its own hooks: the motion model steps the state
-in predict_x (its input u: the step and the steering angle held over it), and angles are differenced by the
-update's residual function.
+wheels (eq. 8), on ModelDrivenEkf (filterpy's equations, held to filterpy in the tests): the motion model steps
+the state, driven by the step and the steering angle held over it, and angles are differenced by the update's
+residual function.
 
 GNSS position noise comes from the fix mode (Heudiasyc Table 1) and, when reported, the NMEA GST sigmas;
 every update passes a chi-square gate on the normalised innovation squared (NIS) first.
@@ -15,10 +15,10 @@ from collections import Counter
 from dataclasses import dataclass
 
 import numpy as np
-from filterpy.kalman import ExtendedKalmanFilter
-from scipy.stats import chi2
+from scipy.special import gammaincinv
 
 from coopdrive.services.geolocation.frames import LeverArm
+from coopdrive.services.geolocation.model_driven_ekf import ModelDrivenEkf
 from coopdrive.services.geolocation.motion_models import (
     ACCEL, HEADING, SPEED, STATE_DIM, YAW_RATE, CtraModel, E, MotionModel, N, ProcessNoise,
 )
@@ -62,14 +62,6 @@ class EkfSnapshot:
     rejected: Counter[UpdateKind]
 
 
-@dataclass(frozen=True)
-class StepInput:
-    """filterpy's control input u of one prediction step."""
-
-    dt_s: float
-    steering_angle_rad: float
-
-
 def gnss_position_std_m(fix_mode: int, gst_std_east_m: float = 0.0, gst_std_north_m: float = 0.0
                         ) -> tuple[float, float] | None:
     """(std_east_m, std_north_m) for a fix: the receiver's GST sigmas, never below the mode's table value."""
@@ -91,18 +83,9 @@ def _residual(z: np.ndarray, hx: np.ndarray, angle_rows: tuple[int, ...] = ()) -
     return y
 
 
-class _ModelDrivenFilter(ExtendedKalmanFilter):
-    """filterpy's EKF whose predict() steps a motion model instead of the linear x = F x + B u."""
-
-    def __init__(self, model: MotionModel) -> None:
-        super().__init__(dim_x=STATE_DIM, dim_z=2)
-        self.model = model
-
-    def predict_x(self, u: StepInput) -> None:
-        # filterpy then propagates P with the F and Q set here.
-        x_new, self.F, self.Q = self.model.step(self.x, u.dt_s, u.steering_angle_rad)
-        x_new[HEADING] = _wrap(x_new[HEADING])
-        self.x = x_new
+def chi2_quantile(probability: float, dof: int) -> float:
+    """The chi-square distribution's quantile, computed as scipy.stats.chi2.ppf does (without loading scipy.stats)."""
+    return float(2.0 * gammaincinv(dof / 2.0, probability))
 
 
 class GeolocationEkf:
@@ -110,8 +93,7 @@ class GeolocationEkf:
 
     def __init__(self, model: MotionModel | None = None, gate_probability: float = 0.999) -> None:
         self.model = model or CtraModel(ProcessNoise())
-        self.kf = _ModelDrivenFilter(self.model)
-        self.kf.x = np.zeros(STATE_DIM)
+        self.kf = ModelDrivenEkf(self.model)
         self.time_s: float | None = None
         # The road-wheel steering angle, held until the next odometry sample (only the bicycle model reads it).
         self.steering_angle_rad = 0.0
@@ -167,7 +149,8 @@ class GeolocationEkf:
         remaining_s = time_s - self.time_s
         while remaining_s > 1e-9:
             dt = min(remaining_s, MAX_STEP_S)
-            self.kf.predict(u=StepInput(dt, self.steering_angle_rad))
+            self.kf.predict(dt, self.steering_angle_rad)
+            self.kf.x[HEADING] = _wrap(self.kf.x[HEADING])
             remaining_s -= dt
         self.time_s = max(self.time_s, time_s)
 
@@ -182,7 +165,7 @@ class GeolocationEkf:
     # --- updates -------------------------------------------------------------------------------
     def gate(self, dim_z: int) -> float:
         if dim_z not in self._gate_cache:
-            self._gate_cache[dim_z] = float(chi2.ppf(self.gate_probability, dim_z))
+            self._gate_cache[dim_z] = chi2_quantile(self.gate_probability, dim_z)
         return self._gate_cache[dim_z]
 
     def _gated_update(self, kind: UpdateKind, z: np.ndarray, H: np.ndarray, hx: np.ndarray, R: np.ndarray,
@@ -199,8 +182,7 @@ class GeolocationEkf:
                 return False
             R = R * (self.last_nis / self.gate(len(z)))
         # H and h(x) were taken at the state the update starts from, so they need not be computed again.
-        self.kf.update(z, HJacobian=lambda _x: H, Hx=lambda _x: hx, R=R,
-                       residual=lambda z_, hx_: _residual(z_, hx_, angle_rows))
+        self.kf.update(z, H, hx, R, residual=lambda z_, hx_: _residual(z_, hx_, angle_rows))
         self.kf.x[HEADING] = _wrap(self.kf.x[HEADING])
         self.accepted[kind] += 1
         return True
