@@ -43,7 +43,8 @@ def print_summary(result: sim_pb2.RunResult, recording: Path | None = None, labe
         if key in ("scenario", "seed"):
             continue
         table.add_row(key, f"{value:.3f}" if isinstance(value, float) else str(value))
-    console = Console()
+    # No automatic highlighting: rich compiles its repr highlighter's regexes on first use, about 0.3 s of a short run.
+    console = Console(highlight=False)
     console.print(table)
     verdict = "[bold green]PASS[/]" if result.success else f"[bold red]FAIL[/]: {result.failure_reason}"
     console.print(verdict)
