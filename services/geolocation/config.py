@@ -23,6 +23,13 @@ class GeolocatorConfig(BaseModel):
     imu_yaw_rate_std_radps: float = Field(0.005, gt=0.0)
     imu_accel_std_mps2: float = Field(0.1, gt=0.0)
     use_imu_accel: bool = True
+    # The inertial unit's biases are estimated (motion_models.py). Their spread at turn-on is an engineering estimate
+    # for an uncalibrated automotive MEMS unit (about 0.3 deg/s and 10 mg; the simulator draws 0.001 rad/s and
+    # 0.03 m/s^2 by default), then a slow walk (bias instability).
+    imu_yaw_rate_bias_std_radps: float = Field(0.005, gt=0.0)
+    imu_accel_bias_std_mps2: float = Field(0.1, gt=0.0)
+    imu_yaw_rate_bias_walk_radps: float = Field(1e-4, ge=0.0)
+    imu_accel_bias_walk_mps2: float = Field(1e-3, ge=0.0)
     # Process noise spectral densities.
     jerk_std_mps3: float = Field(0.5, gt=0.0)
     yaw_accel_std_radps2: float = Field(0.02, gt=0.0)

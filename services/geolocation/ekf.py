@@ -20,7 +20,8 @@ from scipy.special import gammaincinv
 from coopdrive.services.geolocation.frames import LeverArm
 from coopdrive.services.geolocation.model_driven_ekf import ModelDrivenEkf
 from coopdrive.services.geolocation.motion_models import (
-    ACCEL, HEADING, SPEED, STATE_DIM, YAW_RATE, CtraModel, E, MotionModel, N, ProcessNoise,
+    ACCEL, ACCEL_BIAS, HEADING, SPEED, STATE_DIM, YAW_RATE, YAW_RATE_BIAS, CtraModel, E, MotionModel, N,
+    ProcessNoise,
 )
 from coopdrive.v1 import gnss_pb2
 
@@ -222,19 +223,28 @@ class GeolocationEkf:
                                   np.array([[std_rad**2]]), angle_rows=(0,), soft=soft)
 
     def update_yaw_rate(self, yaw_rate_radps: float, std_radps: float) -> bool:
-        H = np.zeros((1, STATE_DIM))
-        H[0, YAW_RATE] = 1.0
-        return self._gated_update(UpdateKind.YAW_RATE, np.array([yaw_rate_radps]), H, self.kf.x[[YAW_RATE]],
-                                  np.array([[std_radps**2]]))
+        """The inertial unit's yaw rate: the vehicle's plus the unit's bias, z = r + b_r."""
+        return self._update_inertial(UpdateKind.YAW_RATE, yaw_rate_radps, std_radps, YAW_RATE, YAW_RATE_BIAS)
 
     def update_accel(self, accel_mps2: float, std_mps2: float) -> bool:
+        """The inertial unit's longitudinal acceleration, z = a + b_a."""
+        return self._update_inertial(UpdateKind.ACCEL, accel_mps2, std_mps2, ACCEL, ACCEL_BIAS)
+
+    def _update_inertial(self, kind: UpdateKind, value: float, std: float, row: int, bias_row: int) -> bool:
         H = np.zeros((1, STATE_DIM))
-        H[0, ACCEL] = 1.0
-        return self._gated_update(UpdateKind.ACCEL, np.array([accel_mps2]), H, self.kf.x[[ACCEL]],
-                                  np.array([[std_mps2**2]]))
+        H[0, row] = H[0, bias_row] = 1.0
+        hx = np.array([self.kf.x[row] + self.kf.x[bias_row]])
+        return self._gated_update(kind, np.array([value]), H, hx, np.array([[std**2]]))
+
+    @property
+    def inertial_biases(self) -> tuple[float, float]:
+        """The estimated (yaw-rate bias rad/s, acceleration bias m/s^2) of the inertial unit."""
+        return float(self.kf.x[YAW_RATE_BIAS]), float(self.kf.x[ACCEL_BIAS])
 
     def zero_velocity_update(self, speed_std_mps: float = ZUPT_SPEED_STD_MPS) -> None:
         """The wheels stand still: speed, yaw rate and acceleration are zero, whatever the model predicted.
+        (The inertial unit's biases stay: standing still, its readings are its biases, which is how they are
+        learnt best.)
 
         An ungated pseudo-measurement (zero-velocity update). Without it a car braking to a stop keeps its
         negative acceleration state, its speed estimate runs below zero between odometry samples, and the

@@ -24,8 +24,8 @@ from coopdrive.services.geolocation.gated_fixes import GatedFixes
 from coopdrive.services.geolocation.frames import RTK_FIX_MODES, LeverArm, ModeThresholds, localisation_mode
 from coopdrive.services.geolocation.latency import Insertion, ReplayBuffer
 from coopdrive.services.geolocation.motion_models import (
-    ACCEL, HEADING, SPEED, STATE_DIM, YAW_RATE, CtraModel, E, KinematicBicycleModel, MotionModelKind, N,
-    ProcessNoise,
+    ACCEL, HEADING, SPEED, STATE_DIM, VEHICLE_STATE_DIM, YAW_RATE, CtraModel, E, KinematicBicycleModel,
+    MotionModelKind, N, ProcessNoise,
 )
 from coopdrive.services.geolocation.odometry import Odometry, OdometrySample
 from coopdrive.v1 import ego_pb2, gnss_pb2, vehicle_pb2
@@ -110,7 +110,8 @@ class Geolocator:
         self._fix_interval_s: float | None = None
         self._last_fix_input_s: float | None = None
         noise = ProcessNoise(config.jerk_std_mps3, config.yaw_accel_std_radps2, config.position_process_std_mps,
-                             config.steering_std_rad)
+                             config.steering_std_rad, config.imu_yaw_rate_bias_walk_radps,
+                             config.imu_accel_bias_walk_mps2)
         # The bicycle model turns by the steering angle: its yaw rate is not measured but follows the wheels.
         self._steered = config.motion_model is MotionModelKind.KINEMATIC_BICYCLE
         model = KinematicBicycleModel(noise, config.wheelbase_m) if self._steered else CtraModel(noise)
@@ -315,7 +316,8 @@ class Geolocator:
             arm_var = (arm_m * heading_std_rad) ** 2
         x0[SPEED] = speed_mps
         P0 = np.diag([fix.std_east_m**2 + arm_var, fix.std_north_m**2 + arm_var, heading_std_rad**2, speed_std**2,
-                      INITIAL_YAW_RATE_STD_RADPS**2, INITIAL_ACCEL_STD_MPS2**2])
+                      INITIAL_YAW_RATE_STD_RADPS**2, INITIAL_ACCEL_STD_MPS2**2,
+                      self.config.imu_yaw_rate_bias_std_radps**2, self.config.imu_accel_bias_std_mps2**2])
         self.ekf.initialise(time_s, x0, P0)
         self.counters[InputEvent.FIX_FUSED] += 1
         self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, pending_fix=None,
@@ -378,7 +380,7 @@ class Geolocator:
         x, P = self.ekf.predicted(time_s)
         state.x_m, state.y_m, state.heading_rad = x[E], x[N], x[HEADING]
         state.speed_mps, state.yaw_rate_radps, state.accel_mps2 = x[SPEED], x[YAW_RATE], x[ACCEL]
-        state.covariance.extend(P.ravel().tolist())
+        state.covariance.extend(P[:VEHICLE_STATE_DIM, :VEHICLE_STATE_DIM].ravel().tolist())
         position_std_m = float(math.sqrt(max(np.linalg.eigvalsh(P[:2, :2])[-1], 0.0)))
         state.position_std_m = position_std_m
         since_fix_s = None if self._book.last_fix_time_s is None else time_s - self._book.last_fix_time_s

@@ -1,4 +1,6 @@
-"""Motion models over the DRIVERTIVE state x = [E, N, heading, v, yaw_rate, a] (eq. 6).
+"""Motion models over the DRIVERTIVE state x = [E, N, heading, v, yaw_rate, a] (eq. 6), augmented with the
+inertial unit's yaw-rate and acceleration biases [b_r, b_a] (constant but for a slow random walk; Groves,
+"Principles of GNSS, Inertial, and Multisensor Integrated Navigation Systems", 2nd ed., sect. 14.2.6).
 
 Each model returns the propagated state, its Jacobian F and the process noise Q for one step dt, given the step's
 input (the road-wheel steering angle, held over the step; the filter owns it, see ekf.py).
@@ -16,8 +18,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-E, N, HEADING, SPEED, YAW_RATE, ACCEL = range(6)
-STATE_DIM = 6
+E, N, HEADING, SPEED, YAW_RATE, ACCEL, YAW_RATE_BIAS, ACCEL_BIAS = range(8)
+STATE_DIM = 8
+# The vehicle's own state, the part the EgoState message carries (its covariance among it).
+VEHICLE_STATE_DIM = 6
 MAX_CACHED_STEPS = 64
 
 
@@ -34,11 +38,19 @@ class ProcessNoise:
     yaw_accel_std_radps2: float = 0.02
     position_std_mps: float = 0.02  # unmodelled slip, per sqrt(s)
     steering_std_rad: float = 0.002  # bicycle model: steering angle noise
+    # Random walk of the inertial unit's biases (bias instability), per sqrt(s).
+    yaw_rate_bias_walk_radps: float = 1e-4
+    accel_bias_walk_mps2: float = 1e-3
 
 
 def _integrated_pair(q: float, dt: float) -> np.ndarray:
     """Covariance of (integral, value) of a random walk with spectral density q over dt."""
     return q * np.array([[dt**3 / 3.0, dt**2 / 2.0], [dt**2 / 2.0, dt]])
+
+
+def _add_bias_walk(Q: np.ndarray, noise: ProcessNoise, dt: float) -> None:
+    Q[YAW_RATE_BIAS, YAW_RATE_BIAS] = noise.yaw_rate_bias_walk_radps**2 * dt
+    Q[ACCEL_BIAS, ACCEL_BIAS] = noise.accel_bias_walk_mps2**2 * dt
 
 
 def _position_step(x: np.ndarray, yaw_rate: float, dt: float, F: np.ndarray, x_new: np.ndarray) -> None:
@@ -86,6 +98,7 @@ class CtraModel:
         Q[E, E] = Q[N, N] = self.noise.position_std_mps**2 * dt
         Q[np.ix_([HEADING, YAW_RATE], [HEADING, YAW_RATE])] = _integrated_pair(self.noise.yaw_accel_std_radps2**2, dt)
         Q[np.ix_([SPEED, ACCEL], [SPEED, ACCEL])] = _integrated_pair(self.noise.jerk_std_mps3**2, dt)
+        _add_bias_walk(Q, self.noise, dt)
         if len(self._q_by_dt) < MAX_CACHED_STEPS:
             self._q_by_dt[dt] = Q
         return Q
@@ -133,6 +146,7 @@ class KinematicBicycleModel:
         Q[HEADING, HEADING] = yaw_rate_var * dt * dt + self.noise.yaw_accel_std_radps2**2 * dt**3 / 3.0
         Q[YAW_RATE, YAW_RATE] = yaw_rate_var
         Q[np.ix_([SPEED, ACCEL], [SPEED, ACCEL])] = _integrated_pair(self.noise.jerk_std_mps3**2, dt)
+        _add_bias_walk(Q, self.noise, dt)
         return Q
 
 

@@ -6,15 +6,18 @@ from scipy.integrate import quad
 
 from coopdrive.services.geolocation.ekf import GeolocationEkf, UpdateKind, gnss_position_std_m
 from coopdrive.services.geolocation.frames import LeverArm
-from coopdrive.services.geolocation.motion_models import CtraModel, KinematicBicycleModel, ProcessNoise
+from coopdrive.services.geolocation.motion_models import (
+    ACCEL, ACCEL_BIAS, STATE_DIM, YAW_RATE, YAW_RATE_BIAS, CtraModel, KinematicBicycleModel, ProcessNoise,
+)
 from coopdrive.v1 import gnss_pb2
 
-STATE = np.array([10.0, 5.0, 0.3, 20.0, 0.05, 0.5])
+# [E, N, heading, v, yaw rate, a] and the inertial unit's yaw-rate and acceleration biases.
+STATE = np.array([10.0, 5.0, 0.3, 20.0, 0.05, 0.5, 0.0, 0.0])
 
 
 def started_ekf(model=None) -> GeolocationEkf:
     ekf = GeolocationEkf(model or CtraModel(ProcessNoise()))
-    ekf.initialise(0.0, STATE, np.diag([0.01, 0.01, 1e-4, 0.01, 1e-4, 0.1]))
+    ekf.initialise(0.0, STATE, np.diag([0.01, 0.01, 1e-4, 0.01, 1e-4, 0.1, 1e-4, 1e-2]))
     return ekf
 
 
@@ -38,16 +41,16 @@ def test_ctra_follows_the_exact_constant_turn_rate_and_acceleration_path():
     east = 10.0 + quad(lambda t: speed(t) * math.cos(heading(t)), 0.0, 0.1)[0]
     north = 5.0 + quad(lambda t: speed(t) * math.sin(heading(t)), 0.0, 0.1)[0]
     assert ekf.x[:2] == pytest.approx([east, north], abs=1e-5)
-    assert ekf.x[2:] == pytest.approx([0.305, 20.05, 0.05, 0.5])
+    assert ekf.x[2:] == pytest.approx([0.305, 20.05, 0.05, 0.5, 0.0, 0.0])
 
 
 @pytest.mark.parametrize("model", [CtraModel(ProcessNoise()), KinematicBicycleModel(ProcessNoise(), 2.7)])
 def test_the_model_jacobian_matches_finite_differences(model):
     steering_rad = 0.04
     _, F, _ = model.step(STATE, 0.02, steering_rad)
-    numeric = np.zeros((6, 6))
-    for j in range(6):
-        step = np.zeros(6)
+    numeric = np.zeros((STATE_DIM, STATE_DIM))
+    for j in range(STATE_DIM):
+        step = np.zeros(STATE_DIM)
         step[j] = 1e-6
         numeric[:, j] = (model.step(STATE + step, 0.02, steering_rad)[0]
                          - model.step(STATE - step, 0.02, steering_rad)[0]) / 2e-6
@@ -56,7 +59,7 @@ def test_the_model_jacobian_matches_finite_differences(model):
 
 def test_the_bicycle_model_turns_at_v_tan_delta_over_wheelbase():
     model = KinematicBicycleModel(ProcessNoise(), wheelbase_m=2.7)
-    x, _, _ = model.step(np.array([0.0, 0.0, 0.0, 10.0, 0.0, 0.0]), 0.01, math.atan(0.27))
+    x, _, _ = model.step(np.array([0.0, 0.0, 0.0, 10.0, 0.0, 0.0, 0.0, 0.0]), 0.01, math.atan(0.27))
     assert x[4] == pytest.approx(1.0)
     assert x[2] == pytest.approx(0.01)
 
@@ -93,7 +96,8 @@ def test_predicting_ahead_does_not_move_the_filter():
 
 def test_a_heading_across_the_wrap_pulls_the_estimate_the_short_way():
     ekf = GeolocationEkf()
-    ekf.initialise(0.0, np.array([0.0, 0.0, math.pi - 0.01, 20.0, 0.0, 0.0]), np.diag([0.01, 0.01, 1e-2, 0.01, 0.1, 1]))
+    ekf.initialise(0.0, np.array([0.0, 0.0, math.pi - 0.01, 20.0, 0.0, 0.0, 0.0, 0.0]),
+                   np.diag([0.01, 0.01, 1e-2, 0.01, 0.1, 1, 1e-4, 1e-2]))
     assert ekf.update_heading(-math.pi + 0.01, 0.01)
     assert abs(ekf.x[2]) > math.pi - 0.01
 
@@ -113,6 +117,21 @@ def test_a_snapshot_brings_back_the_counts_and_the_held_steering():
 def test_a_snapshot_from_before_the_start_leaves_the_filter_uninitialised():
     ekf = GeolocationEkf()
     snap = ekf.snapshot()
-    ekf.initialise(1.0, STATE, np.eye(6))
+    ekf.initialise(1.0, STATE, np.eye(STATE_DIM))
     ekf.restore(snap)
     assert not ekf.initialised
+
+
+@pytest.mark.parametrize(("update", "row", "bias_row", "bias"), [
+    ("update_yaw_rate", YAW_RATE, YAW_RATE_BIAS, -0.003), ("update_accel", ACCEL, ACCEL_BIAS, 0.05)])
+def test_an_inertial_units_constant_bias_is_learnt_while_the_wheels_tell_the_truth(update, row, bias_row, bias):
+    """The inertial unit reads the truth plus its bias; the wheels read the truth. The filter splits the two."""
+    ekf = GeolocationEkf()
+    truth = np.array([0.0, 0.0, 0.0, 20.0, 0.0, 0.0, 0.0, 0.0])
+    ekf.initialise(0.0, truth, np.diag([0.01, 0.01, 1e-4, 0.01, 1e-2, 0.1, 0.005**2, 0.1**2]))
+    for k in range(1, 3001):
+        ekf.predict_to(k * 0.01)
+        getattr(ekf, update)(bias, 0.005 if row == YAW_RATE else 0.1)
+        ekf.update_odometry(20.0, 0.0, 0.01, 0.01)
+    assert ekf.x[bias_row] == pytest.approx(bias, rel=0.1)
+    assert abs(ekf.x[row]) < abs(bias) / 5
