@@ -23,9 +23,9 @@ class GeolocatorConfig(BaseModel):
     imu_yaw_rate_std_radps: float = Field(0.005, gt=0.0)
     imu_accel_std_mps2: float = Field(0.1, gt=0.0)
     use_imu_accel: bool = True
-    # The inertial unit's biases are estimated (motion_models.py). Their spread at turn-on is an engineering estimate
-    # for an uncalibrated automotive MEMS unit (about 0.3 deg/s and 10 mg; the simulator draws 0.001 rad/s and
-    # 0.03 m/s^2 by default), then a slow walk (bias instability).
+    # The inertial unit's biases are estimated (motion_models.py): a prior spread at turn-on wide enough for an
+    # automotive MEMS unit (engineering estimate, about 0.3 deg/s and 10 mg; the simulated unit draws 0.001 rad/s
+    # and 0.03 m/s^2, docs/real-world.md), then a slow walk (bias instability).
     imu_yaw_rate_bias_std_radps: float = Field(0.005, gt=0.0)
     imu_accel_bias_std_mps2: float = Field(0.1, gt=0.0)
     imu_yaw_rate_bias_walk_radps: float = Field(1e-4, ge=0.0)
