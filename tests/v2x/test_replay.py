@@ -12,6 +12,7 @@ import pytest
 from coopdrive.services.v2x.geonet import parse_basic_header
 from coopdrive.services.v2x.replay import ReplayError, replay_capture
 from tests.shared_data import shared_file
+from tests.v2x.udp_socket import loopback_udp_socket
 
 SIGNED = "v2x/considerit_signed_testvectors.pcap"
 # The capture's four frames are stamped one second apart.
@@ -22,9 +23,7 @@ SECURED_NEXT_HEADER = 2
 
 @pytest.fixture
 def radio_port():
-    sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-    sock.bind(("127.0.0.1", 0))
-    sock.settimeout(5.0)
+    sock = loopback_udp_socket(5.0)
     yield sock
     sock.close()
 

@@ -30,6 +30,7 @@ from coopdrive.services.v2x.timebase import generation_delta_time_ms, tai_ms_fro
 from tests.shared_data import shared_file
 from tests.v2x.security.signed import CODEC, cam, denm_packet, gn_params, iclcm_packet
 from tests.v2x.test_fuzz import mutate as mutate_gn, seeds as unsigned_seeds
+from tests.v2x.udp_socket import loopback_udp_socket
 
 CAPTURES = ("v2x/considerit_signed_testvectors.pcap", "v2x/msvan3t_cam_cpm_trace.pcapng",
             "v2x/flexstack_cam_vam_beacons.pcap")
@@ -106,8 +107,7 @@ def mutate(rng: random.Random, packet: bytes) -> bytes:
 
 
 def start_service(pki_dir: Path, pcap_path: Path, now_s: float) -> tuple[V2xService, MemoryContext, socket.socket]:
-    radio = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-    radio.bind(("127.0.0.1", 0))
+    radio = loopback_udp_socket()
     ctx = MemoryContext(queue_calls=True, opens_hardware=True)
     ctx.clock.set(now_s)
     config = V2xService.Config.model_validate({

@@ -1,5 +1,4 @@
 import json
-import socket
 import subprocess
 
 import pytest
@@ -14,6 +13,7 @@ from coopdrive.v1 import its_pb2
 
 from ..test_tshark import tshark
 from .streams import REMOTE_MAC, cam_packet, remote_cam
+from tests.v2x.udp_socket import loopback_udp_socket
 
 UNIX_S = 1_700_000_000.0
 
@@ -73,9 +73,7 @@ def test_a_bad_send_file_is_an_error_naming_what_was_wrong(tmp_path, text, compl
 
 
 def test_send_from_yaml_sends_one_datagram_to_the_address_and_port(tmp_path):
-    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as receiver:
-        receiver.bind(("127.0.0.1", 0))
-        receiver.settimeout(2.0)
+    with loopback_udp_socket(2.0) as receiver:
         assert send_from_yaml(write(tmp_path, "cam.yaml", CAM_YAML), *receiver.getsockname()) == ItsMessageId.CAM
         assert decode_packet(receiver.recv(4096)).station_id == 42
 

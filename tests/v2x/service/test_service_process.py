@@ -2,7 +2,6 @@
 
 import queue
 import signal
-import socket
 import time
 
 from coopdrive.bus import Bus, BusConfig
@@ -13,6 +12,7 @@ from coopdrive.services.v2x.timebase import ItsClock
 from coopdrive.v1 import ego_pb2
 
 from .streams import REMOTE_STATION_ID, cam_packet, remote_cam
+from tests.v2x.udp_socket import loopback_udp_socket
 
 DEADLINE_S = 30.0
 STOP_TIMEOUT_S = 20.0
@@ -24,9 +24,7 @@ PERIOD_S = 0.04
 def test_the_v2x_process_exchanges_packets_with_the_radio_box_and_reports_the_remote_station(endpoint, spawn,
                                                                                            tmp_path):
     hub = Bus(BusConfig(listen=[endpoint]))
-    radio = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-    radio.bind(("127.0.0.1", 0))
-    radio.setblocking(False)
+    radio = loopback_udp_socket(0.0)
     listen_port = free_udp_port()
     cams: queue.Queue = queue.Queue()
     statuses: queue.Queue = queue.Queue()

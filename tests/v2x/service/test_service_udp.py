@@ -18,6 +18,7 @@ from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2, v2x_pb2
 
 from ..test_tshark import tshark
 from .streams import EPOCH_UNIX_S, REMOTE_STATION_ID, cam_packet, remote_cam
+from tests.v2x.udp_socket import loopback_udp_socket
 
 OWN_STATION_ID = 1001
 START_S = 10.0
@@ -26,9 +27,7 @@ WAIT_S = 2.0
 
 @pytest.fixture
 def radio():
-    box = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-    box.bind(("127.0.0.1", 0))
-    box.settimeout(WAIT_S)
+    box = loopback_udp_socket(WAIT_S)
     yield box
     box.close()
 
