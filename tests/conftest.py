@@ -16,6 +16,16 @@ def endpoint() -> str:
 
 
 @pytest.fixture
+def hub(endpoint):
+    """A Bus listening on `endpoint`, where the processes a test spawns connect; closed at the end."""
+    from coopdrive.bus import Bus, BusConfig
+
+    bus = Bus(BusConfig(listen=[endpoint]))
+    yield bus
+    bus.close()
+
+
+@pytest.fixture
 def spawn():
     """Starts `python -m coopdrive.cli ...` processes and kills any still running at the end."""
     started: list[subprocess.Popen] = []
