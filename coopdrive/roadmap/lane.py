@@ -13,6 +13,8 @@ import numpy as np
 
 # Below this squared length a segment is a duplicated vertex and is dropped.
 _MIN_SEGMENT_LENGTH_M = 1e-6
+# Projections a lane remembers (a few instants of every vehicle's points), then it starts again.
+_RECENT_PROJECTIONS = 256
 
 
 def wrap_angle_rad(angle_rad: float) -> float:
@@ -66,6 +68,9 @@ class Lane:
         self.length_m = float(self._station0[-1] + self._seg_len[-1])
         self._vertex_curvature = self._curvature_at_vertices()
         self._bbox = np.concatenate((points.min(axis=0), points.max(axis=0)))
+        # The latest projections by point: one instant's position is projected again and again (by the truth,
+        # the driver and each sensor in the simulator; by map matching and lane fusion in a stack).
+        self._recent: dict[tuple[float, float], Projection] = {}
 
     def _curvature_at_vertices(self) -> np.ndarray:
         """Heading change over the mean length of the two adjacent segments, ends copied inward."""
@@ -113,6 +118,15 @@ class Lane:
 
     def project_full(self, x_m: float, y_m: float) -> Projection:
         """Closest point on the centre line; stations run past the ends along the end segments."""
+        key = (float(x_m), float(y_m))
+        projection = self._recent.get(key)
+        if projection is None:
+            if len(self._recent) >= _RECENT_PROJECTIONS:
+                self._recent.clear()
+            projection = self._recent[key] = self._project(x_m, y_m)
+        return projection
+
+    def _project(self, x_m: float, y_m: float) -> Projection:
         rel = np.array([x_m, y_m]) - self._start
         along = np.einsum("ij,ij->i", rel, self._unit)
         clipped = np.clip(along, 0.0, self._seg_len)

@@ -94,3 +94,13 @@ def test_points_at_many_stations_are_pose_at_each():
     stations_m = np.array([-5.0, 0.0, 10.0, 123.4, lane.length_m, lane.length_m + 7.0])
     expected = [lane.pose_at(station_m, 1.5)[:2] for station_m in stations_m]
     assert np.allclose(lane.points_at(stations_m, 1.5), expected)
+
+
+def test_a_point_projected_again_gets_the_projection_remembered_and_a_fresh_lane_gives_the_same():
+    lane = l_lane()
+    rng = np.random.default_rng(3)
+    points = [tuple(p) for p in rng.uniform(-2.0, 12.0, (600, 2))]  # more than a lane remembers
+    first = [lane.project_full(x, y) for x, y in points]
+    again = [lane.project_full(x, y) for x, y in points[-10:]]
+    assert all(a is b for a, b in zip(again, first[-10:]))
+    assert [l_lane().project_full(x, y) for x, y in points] == first
