@@ -236,13 +236,20 @@ class Geolocator:
         floor_m = config.gnss_reset_consistency_m if fix.fix_mode in RTK_FIX_MODES else math.inf
         gated = GatedFixes(time_s, offset_m) if book.gated is None else book.gated.with_fix(
             time_s, offset_m, fix_std_m, floor_m)
-        if time_s - gated.since_s >= config.gnss_reset_after_s:
+        refused_s = time_s - gated.since_s
+        if refused_s >= config.gnss_reset_after_s and (
+                refused_s >= config.gnss_reset_unexplained_after_s or self._could_have_drifted(offset_m)):
             # The GNSS has disagreed for long, and smoothly: trust it over a filter that has drifted.
             self.ekf.reset_position(x, y, fix_std_m)
             self.counters[InputEvent.GNSS_RESET] += 1
             self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None)
         else:
             self._book = _replace(book, gated=gated)
+
+    def _could_have_drifted(self, offset_m: tuple[float, float]) -> bool:
+        """Whether the filter's own position uncertainty allows it to be this far off."""
+        position_var_m2 = float(np.linalg.eigvalsh(self.ekf.P[:2, :2])[-1])
+        return math.hypot(*offset_m) <= self.config.gnss_reset_sigmas * math.sqrt(max(position_var_m2, 0.0))
 
     def _fuse_gnss_motion(self, time_s: float, fix: _Fix) -> None:
         """The receiver's heading, and without odometry its speed and course (a receiver alone)."""

@@ -107,7 +107,7 @@ def test_dgps_fixes_give_a_degraded_mode_with_a_metre_level_std():
 
 def test_a_gnss_that_disagrees_for_long_resets_the_position():
     truth = drive(10.0, SPEED_80_KMH_MPS, None, CURVE_RADIUS_M)
-    geolocator = new_geolocator(gnss_reset_after_s=1.0)
+    geolocator = new_geolocator(gnss_reset_after_s=1.0, gnss_reset_unexplained_after_s=1.5)
     run = simulate(geolocator, truth, seed=4, gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M,
                    jump_at_s=6.0, jump_m=(3.0, 4.0), jump_duration_s=math.inf)
     assert geolocator.counters[InputEvent.GNSS_RESET] == 1
@@ -241,3 +241,14 @@ def test_a_car_that_brakes_to_a_stop_and_waits_is_estimated_standing_where_it_st
     assert np.max(np.hypot(*run.error_xy_m[standing].T)) < 0.2
     assert all(mode == ego_pb2.LOCALISATION_MODE_GNSS_PRECISE for mode, keep in zip(run.modes, standing) if keep)
     assert geolocator.counters[InputEvent.STANDSTILL] > 0
+
+
+def test_a_multipath_jump_the_filter_cannot_have_drifted_is_refused_for_its_whole_episode():
+    """A receiver 1.8 m off in its RTK mode for 5 s (a truck beside it): with wheels and IMU the filter knows
+    better, so it neither resets onto the jump nor leaves the truth."""
+    truth = drive(12.0, SPEED_80_KMH_MPS, None, CURVE_RADIUS_M)
+    geolocator = new_geolocator()
+    run = simulate(geolocator, truth, seed=4, gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M,
+                   jump_at_s=5.0, jump_m=(1.0, 1.5), jump_duration_s=5.0)
+    assert geolocator.counters[InputEvent.GNSS_RESET] == 0
+    assert np.max(np.hypot(*settled(run, start_s=3.0).T)) < 0.3
