@@ -47,7 +47,7 @@ class GeolocatorConfig(BaseModel):
     # ... and only when the filter could have drifted that far: the fixes are within this many of its own position
     # std. A receiver in multipath sits metres off in its claimed mode for seconds (docs/real-world.md), smoothly,
     # while wheels and IMU keep the filter within centimetres: resetting to it would move the car out of its lane.
-    gnss_reset_sigmas: float = Field(10.0, gt=0.0)
+    gnss_reset_sigmas: float = Field(5.0, gt=0.0)
     # A disagreement the filter's uncertainty cannot explain resets the position only after this long.
     gnss_reset_unexplained_after_s: float = Field(20.0, gt=0.0)
     # Latency: inputs older than the newest by up to history_s are fused at their sample time.
