@@ -236,11 +236,6 @@ class GeolocationEkf:
         hx = np.array([self.kf.x[row] + self.kf.x[bias_row]])
         return self._gated_update(kind, np.array([value]), H, hx, np.array([[std**2]]))
 
-    @property
-    def inertial_biases(self) -> tuple[float, float]:
-        """The estimated (yaw-rate bias rad/s, acceleration bias m/s^2) of the inertial unit."""
-        return float(self.kf.x[YAW_RATE_BIAS]), float(self.kf.x[ACCEL_BIAS])
-
     def zero_velocity_update(self, speed_std_mps: float = ZUPT_SPEED_STD_MPS) -> None:
         """The wheels stand still: speed, yaw rate and acceleration are zero, whatever the model predicted.
         (The inertial unit's biases stay: standing still, its readings are its biases, which is how they are
