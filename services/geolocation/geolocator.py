@@ -92,6 +92,10 @@ class _Bookkeeping:
     # (dual antenna, course over ground, a track) then re-initialises it.
     heading_known: bool = False
     last_odometry_time_s: float | None = None
+    # The reported std of the last fix fused. A DGPS or float solution's error is correlated over tens of seconds,
+    # so an estimate that followed such fixes is off by about as much, however small its covariance (which
+    # takes each fix's error as independent) has become.
+    fused_fix_std_m: float = 0.0
 
 
 class Geolocator:
@@ -221,7 +225,8 @@ class Geolocator:
         lever_arm = self.lever_arm if book.heading_known else NO_LEVER_ARM
         if self.ekf.update_gnss_position(fix.east_m, fix.north_m, fix.std_east_m, fix.std_north_m, lever_arm):
             self.counters[InputEvent.FIX_FUSED] += 1
-            self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None)
+            self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None,
+                                  fused_fix_std_m=_fix_std_m(fix))
         else:
             self._gated_fix(time_s, fix)
         self._fuse_gnss_motion(time_s, fix)
@@ -231,7 +236,7 @@ class Geolocator:
         self.counters[InputEvent.FIX_GATED] += 1
         x, y = self.lever_arm.rear_axle_position(fix.east_m, fix.north_m, self.ekf.x[HEADING])
         offset_m = (x - float(self.ekf.x[E]), y - float(self.ekf.x[N]))
-        fix_std_m = max(fix.std_east_m, fix.std_north_m)
+        fix_std_m = _fix_std_m(fix)
         # Only an RTK solution is precise enough to tell a multipath step from its own noise.
         floor_m = config.gnss_reset_consistency_m if fix.fix_mode in RTK_FIX_MODES else math.inf
         gated = GatedFixes(time_s, offset_m) if book.gated is None else book.gated.with_fix(
@@ -242,14 +247,16 @@ class Geolocator:
             # The GNSS has disagreed for long, and smoothly: trust it over a filter that has drifted.
             self.ekf.reset_position(x, y, fix_std_m)
             self.counters[InputEvent.GNSS_RESET] += 1
-            self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None)
+            self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None,
+                                  fused_fix_std_m=fix_std_m)
         else:
             self._book = _replace(book, gated=gated)
 
     def _could_have_drifted(self, offset_m: tuple[float, float]) -> bool:
-        """Whether the filter's own position uncertainty allows it to be this far off."""
-        position_var_m2 = float(np.linalg.eigvalsh(self.ekf.P[:2, :2])[-1])
-        return math.hypot(*offset_m) <= self.config.gnss_reset_sigmas * math.sqrt(max(position_var_m2, 0.0))
+        """Whether the estimate can be this far off: by its own uncertainty, or by the error of the fixes it
+        followed last (a DGPS solution's bias, which the next RTK fix shows as a step)."""
+        std_m = max(_position_std_m(self.ekf.P), self._book.fused_fix_std_m)
+        return math.hypot(*offset_m) <= self.config.gnss_reset_sigmas * std_m
 
     def _fuse_gnss_motion(self, time_s: float, fix: _Fix) -> None:
         """The receiver's heading, and without odometry its speed and course (a receiver alone)."""
@@ -328,7 +335,7 @@ class Geolocator:
         self.ekf.initialise(time_s, x0, P0)
         self.counters[InputEvent.FIX_FUSED] += 1
         self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, pending_fix=None,
-                              heading_known=heading_rad is not None, gated=None)
+                              heading_known=heading_rad is not None, gated=None, fused_fix_std_m=_fix_std_m(fix))
 
     def _apply_odometry(self, time_s: float, sample: OdometrySample) -> None:
         self._book = _replace(self._book, last_speed_mps=sample.speed_mps, last_odometry_time_s=time_s)
@@ -388,7 +395,7 @@ class Geolocator:
         state.x_m, state.y_m, state.heading_rad = x[E], x[N], x[HEADING]
         state.speed_mps, state.yaw_rate_radps, state.accel_mps2 = x[SPEED], x[YAW_RATE], x[ACCEL]
         state.covariance.extend(P[:VEHICLE_STATE_DIM, :VEHICLE_STATE_DIM].ravel().tolist())
-        position_std_m = float(math.sqrt(max(np.linalg.eigvalsh(P[:2, :2])[-1], 0.0)))
+        position_std_m = _position_std_m(P)
         state.position_std_m = position_std_m
         since_fix_s = None if self._book.last_fix_time_s is None else time_s - self._book.last_fix_time_s
         state.mode = localisation_mode(True, position_std_m, since_fix_s, self._book.last_fix_mode, self.thresholds,
@@ -418,6 +425,15 @@ class Geolocator:
             state.speed_mps = self._book.last_speed_mps or 0.0
             state.yaw_rate_radps = self._book.last_yaw_rate_radps or 0.0
         return state
+
+
+def _fix_std_m(fix: _Fix) -> float:
+    return max(fix.std_east_m, fix.std_north_m)
+
+
+def _position_std_m(P: np.ndarray) -> float:
+    """The position's std along its worst direction."""
+    return math.sqrt(max(float(np.linalg.eigvalsh(P[:2, :2])[-1]), 0.0))
 
 
 def _enu_heading_rad(course_deg: float) -> float:

@@ -91,8 +91,9 @@ def simulate(geolocator, truth: Truth, seed: int, gnss_std_m: float, lever_x_m: 
              jump_at_s: float | None = None, jump_m: tuple[float, float] = (0.0, 0.0), jump_duration_s: float = 0.01,
              imu_gyro_std_radps=None,
              estimate_every: int = 10, steering_wheelbase_m: float | None = None,
-             fix_mode: int = gnss_pb2.FIX_MODE_RTK_FIXED) -> Run:
-    """Feed the geolocator like the bus would: odometry at 100 Hz, fixes at 20 Hz arriving fix_delay_s late."""
+             fix_mode: int = gnss_pb2.FIX_MODE_RTK_FIXED, mode_change: tuple[float, int, float] | None = None) -> Run:
+    """Feed the geolocator like the bus would: odometry at 100 Hz, fixes at 20 Hz arriving fix_delay_s late.
+    mode_change: (time_s, fix mode, std_m) of the fixes from then on."""
     rng = np.random.default_rng(seed)
     pending: list[tuple[float, gnss_pb2.GnssFix]] = []
     times, errors, covs, heading_errors, modes, raw, fix_times, states = [], [], [], [], [], [], [], []
@@ -107,7 +108,10 @@ def simulate(geolocator, truth: Truth, seed: int, gnss_std_m: float, lever_x_m: 
         if i % GNSS_EVERY == 0 and not in_outage:
             jumped = jump_at_s is not None and jump_at_s - 1e-6 <= t < jump_at_s + jump_duration_s
             offset = jump_m if jumped else (0.0, 0.0)
-            fix, east, north = gnss_fix(truth, i, rng, gnss_std_m, lever_x_m, fix_mode, offset_m=offset)
+            mode, std_m = fix_mode, gnss_std_m
+            if mode_change is not None and t >= mode_change[0] - 1e-6:
+                mode, std_m = mode_change[1:]
+            fix, east, north = gnss_fix(truth, i, rng, std_m, lever_x_m, mode, offset_m=offset)
             pending.append((t + fix_delay_s, fix))
             raw.append(math.hypot(east - truth.x_m[i], north - truth.y_m[i]))
             fix_times.append(t)

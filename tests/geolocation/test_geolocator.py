@@ -115,6 +115,22 @@ def test_a_gnss_that_disagrees_for_long_resets_the_position():
     assert np.max(np.hypot(*(settled(run, start_s=8.0) - (3.0, 4.0)).T)) < 0.2
 
 
+def test_after_following_biased_dgps_fixes_the_first_rtk_fixes_reset_the_position_within_seconds():
+    """DGPS fixes 2 m north of the truth for 10 s (their error is correlated: the filter follows it and its
+    covariance shrinks to centimetres), then RTK fixed on the truth: the step is the DGPS bias the filter could not
+    see, so it resets after gnss_reset_after_s, not after the 20 s an unexplained disagreement waits."""
+    truth = drive(16.0, SPEED_80_KMH_MPS, None, CURVE_RADIUS_M)
+    geolocator = new_geolocator()
+    config = geolocator.config
+    run = simulate(geolocator, truth, seed=5, gnss_std_m=0.7, lever_x_m=LEVER_X_M,
+                   fix_mode=gnss_pb2.FIX_MODE_DGPS, jump_at_s=0.0, jump_m=(0.0, 2.0), jump_duration_s=10.0,
+                   mode_change=(10.0, gnss_pb2.FIX_MODE_RTK_FIXED, RTK_STD_M))
+    assert config.gnss_reset_after_s + 1.0 < config.gnss_reset_unexplained_after_s
+    assert geolocator.counters[InputEvent.GNSS_RESET] == 1
+    after_reset_s = 10.0 + config.gnss_reset_after_s + 0.5
+    assert np.max(np.hypot(*settled(run, start_s=after_reset_s).T)) < 0.2
+
+
 def test_latency_compensation_fuses_late_fixes_where_they_were_measured():
     truth = drive(9.0, SPEED_80_KMH_MPS, 3.0, CURVE_RADIUS_M)
     kwargs = dict(gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M, fix_delay_s=0.1)
