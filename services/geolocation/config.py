@@ -33,6 +33,10 @@ class GeolocatorConfig(BaseModel):
     # Process noise spectral densities.
     jerk_std_mps3: float = Field(0.5, gt=0.0)
     yaw_accel_std_radps2: float = Field(0.02, gt=0.0)
+    # A yaw rate refused by the gate this long, every sample of it, is taken as measured: the car turned faster
+    # than the yaw acceleration above allows (a sharp lane change at walking pace, merge seed 3), and a filter
+    # that refuses its gyro and wheels loses its heading, then every fix.
+    yaw_rate_reset_after_s: float = Field(0.1, gt=0.0)
     position_process_std_mps: float = Field(0.02, ge=0.0)
     steering_std_rad: float = Field(0.002, ge=0.0)
     # Standard deviation of a fix's latency around the configured one (serial line, scheduling): its position

@@ -254,6 +254,21 @@ class GeolocationEkf:
         self.kf.P[ACCEL, ACCEL] = (speed_std_mps / ZUPT_TIME_S) ** 2
         self.accepted[UpdateKind.ODOMETRY] += 1
 
+    def reset_yaw_rate(self, measured_radps: float, std_radps: float, refused_s: float, by_imu: bool) -> None:
+        """Take a measured yaw rate when the gate has refused it for refused_s (the car turned faster than the
+        model's yaw acceleration allows). by_imu: the measurement includes the unit's bias, z = r + b_r."""
+        x, P = self.kf.x, self.kf.P
+        bias_var = P[YAW_RATE_BIAS, YAW_RATE_BIAS] if by_imu else 0.0
+        yaw_rate = measured_radps - (x[YAW_RATE_BIAS] if by_imu else 0.0)
+        # The heading integrated the old yaw rate meanwhile: it is off by up to the difference times the time.
+        heading_var = (abs(yaw_rate - x[YAW_RATE]) * refused_s) ** 2
+        x[YAW_RATE] = yaw_rate
+        P[YAW_RATE, :] = 0.0
+        P[:, YAW_RATE] = 0.0
+        P[YAW_RATE, YAW_RATE] = std_radps**2 + bias_var
+        P[YAW_RATE, YAW_RATE_BIAS] = P[YAW_RATE_BIAS, YAW_RATE] = -bias_var
+        P[HEADING, HEADING] += heading_var
+
     def reset_position(self, east_m: float, north_m: float, std_m: float) -> None:
         """Jump to a position when the gate has refused the GNSS for too long (the filter was wrong)."""
         self.kf.x[E], self.kf.x[N] = east_m, north_m

@@ -52,6 +52,7 @@ class InputEvent(enum.Enum):
     FIX_WITHOUT_POSITION = "fix_without_position"
     FIX_INVALID = "fix_invalid"
     GNSS_RESET = "gnss_reset"
+    YAW_RATE_RESET = "yaw_rate_reset"
     ODOMETRY_INVALID = "odometry_invalid"
     IMU_INVALID = "imu_invalid"
     TOO_OLD = "too_old"
@@ -96,6 +97,8 @@ class _Bookkeeping:
     # so an estimate that followed such fixes is off by about as much, however small its covariance (which
     # takes each fix's error as independent) has become.
     fused_fix_std_m: float = 0.0
+    # Since when every yaw rate measured (gyro, wheels) has been refused by the gate (None: the last was fused).
+    yaw_rate_refused_since_s: float | None = None
 
 
 class Geolocator:
@@ -353,8 +356,9 @@ class Geolocator:
         if self._steered or sample.yaw_rate_radps is None:
             self.ekf.update_speed(sample.speed_mps, sample.speed_std_mps)
         else:
-            self.ekf.update_odometry(sample.speed_mps, sample.yaw_rate_radps, sample.speed_std_mps,
-                                     sample.yaw_rate_std_radps)
+            accepted = self.ekf.update_odometry(sample.speed_mps, sample.yaw_rate_radps, sample.speed_std_mps,
+                                                sample.yaw_rate_std_radps)
+            self._watch_yaw_rate(time_s, accepted, sample.yaw_rate_radps, sample.yaw_rate_std_radps, by_imu=False)
 
     def _apply_imu(self, time_s: float, imu: _Imu) -> None:
         self._book = _replace(self._book, last_yaw_rate_radps=imu.yaw_rate_radps)
@@ -362,9 +366,25 @@ class Geolocator:
             return
         self.ekf.predict_to(time_s)
         if not self._steered:
-            self.ekf.update_yaw_rate(imu.yaw_rate_radps, self.config.imu_yaw_rate_std_radps)
+            std_radps = self.config.imu_yaw_rate_std_radps
+            accepted = self.ekf.update_yaw_rate(imu.yaw_rate_radps, std_radps)
+            self._watch_yaw_rate(time_s, accepted, imu.yaw_rate_radps, std_radps, by_imu=True)
         if self.config.use_imu_accel and math.isfinite(imu.accel_mps2):
             self.ekf.update_accel(imu.accel_mps2, self.config.imu_accel_std_mps2)
+
+    def _watch_yaw_rate(self, time_s: float, accepted: bool, measured_radps: float, std_radps: float,
+                        by_imu: bool) -> None:
+        since_s = self._book.yaw_rate_refused_since_s
+        if accepted:
+            if since_s is not None:
+                self._book = _replace(self._book, yaw_rate_refused_since_s=None)
+            return
+        if since_s is None:
+            self._book = _replace(self._book, yaw_rate_refused_since_s=time_s)
+        elif time_s - since_s >= self.config.yaw_rate_reset_after_s:
+            self.ekf.reset_yaw_rate(measured_radps, std_radps, time_s - since_s, by_imu)
+            self.counters[InputEvent.YAW_RATE_RESET] += 1
+            self._book = _replace(self._book, yaw_rate_refused_since_s=None)
 
     # --- output --------------------------------------------------------------------------------
     @property

@@ -131,6 +131,19 @@ def test_after_following_biased_dgps_fixes_the_first_rtk_fixes_reset_the_positio
     assert np.max(np.hypot(*settled(run, start_s=after_reset_s).T)) < 0.2
 
 
+def test_a_yaw_rate_the_model_cannot_follow_is_taken_after_a_tenth_of_a_second_not_gated_for_ever():
+    """A sharp low-speed lane change (merge seed 3's a3): at 5 m/s the yaw rate rises to 0.33 rad/s in 0.2 s, far
+    beyond the motorway's yaw acceleration the model expects. Gyro and wheels both say so; the gate used to refuse
+    them all, and with them every RTK fix once the heading had gone, and the estimate left the road."""
+    truth = drive(8.0, 5.0, 4.0, 15.0, ramp_s=0.2)
+    geolocator = new_geolocator()
+    run = simulate(geolocator, truth, seed=6, gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M, imu_gyro_std_radps=0.005,
+                   estimate_every=2)
+    assert geolocator.counters[InputEvent.YAW_RATE_RESET] >= 1
+    assert np.max(np.hypot(*settled(run, start_s=3.0).T)) < 0.2
+    assert np.max(np.abs(run.heading_error_rad[run.time_s >= 3.0])) < 0.05
+
+
 def test_latency_compensation_fuses_late_fixes_where_they_were_measured():
     truth = drive(9.0, SPEED_80_KMH_MPS, 3.0, CURVE_RADIUS_M)
     kwargs = dict(gnss_std_m=RTK_STD_M, lever_x_m=LEVER_X_M, fix_delay_s=0.1)
