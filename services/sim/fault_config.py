@@ -36,6 +36,10 @@ class _Fault(BaseModel):
     def active(self, now_s: float) -> bool:
         return self.start_s <= now_s < self.end_s
 
+    def concerns(self, vehicle_id: str) -> bool:
+        """Whether the fault acts on the vehicle: the one it names, or every vehicle when it names none."""
+        return getattr(self, "vehicle_id", None) in (vehicle_id, None)
+
 
 class GnssOutage(_Fault):
     type: Literal["gnss_outage"]

@@ -71,6 +71,7 @@ class MissionJudge:
                 string_end_s=judging_config.string_end_s).items() if math.isfinite(value)}
             self._metrics["collisions"] = float(self.collisions)
             self._metrics["automation_lost"] = float(len(self.automation_lost_s))
+            self._metrics["safe_stops"] = float(sum(map(len, self.safe_stop_onsets_s.values())))
             reactions_s = self.crash_to_safe_stop_s()
             if reactions_s:
                 self._metrics["crash_to_safe_stop_s"] = max(reactions_s.values())
@@ -99,6 +100,16 @@ class MissionJudge:
                 starts[fault.vehicle_id] = min(fault.start_s, starts.get(fault.vehicle_id, math.inf))
         return starts
 
+    def _first_fault_s(self, vehicle_id: str) -> float:
+        """When the first fault of the scenario that concerns the vehicle (it or every vehicle) begins."""
+        return min((fault.start_s for fault in self.config.faults if fault.concerns(vehicle_id)), default=math.inf)
+
+    def unexpected_safe_stops_s(self) -> dict[str, float]:
+        """Per stack vehicle, its first safe stop that no fault of the scenario explains: a car halting in its
+        lane because its own stack gave up (localisation lost, a service silent) has failed its mission."""
+        return {vehicle_id: onsets[0] for vehicle_id, onsets in self.safe_stop_onsets_s.items()
+                if onsets and onsets[0] < self._first_fault_s(vehicle_id)}
+
     def crash_to_safe_stop_s(self) -> dict[str, float]:
         """Per stack vehicle whose service the scenario crashed, how long after the crash its safe stop began."""
         starts = self._crash_starts_s()
@@ -117,6 +128,10 @@ class MissionJudge:
         if unexpected:
             lost = ", ".join(f"{v} at {t:.1f} s" for v, t in sorted(unexpected.items(), key=lambda kv: kv[1]))
             return False, f"automation lost: {lost}"
+        stopped = self.unexpected_safe_stops_s()
+        if stopped:
+            return False, "safe stop: " + ", ".join(f"{v} at {t:.1f} s"
+                                                     for v, t in sorted(stopped.items(), key=lambda kv: kv[1]))
         mission = self.config.mission
         if mission is Mission.PLATOON:
             gain = self.metrics().get("string_gain")

@@ -4,7 +4,7 @@ import math
 
 from coopdrive.services.sim.mission_verdict import MissionJudge
 from coopdrive.services.sim.scenario_config import parse_scenario
-from coopdrive.v1 import sim_pb2
+from coopdrive.v1 import actuation_pb2, sim_pb2
 
 
 def config(mission, **extra):
@@ -41,6 +41,25 @@ def test_a_stack_vehicle_handed_back_to_its_driver_fails_the_run_naming_it_and_w
     judge.observe_automation("b", False, 19.2)
     assert judge.verdict() == (False, "automation lost: b at 19.1 s")
     assert judge.metrics()["automation_lost"] == 1.0
+
+
+def test_a_safe_stop_no_fault_explains_fails_the_run_naming_the_vehicle_and_when():
+    judge = MissionJudge(config("follow"), ["a", "b"])
+    judge.observe(0.0, truth({"vehicle_id": "a", "x_m": 0}, {"vehicle_id": "b", "x_m": 20}))
+    for time_s, mode in ((0.1, actuation_pb2.DRIVING_MODE_AUTONOMOUS), (32.0, actuation_pb2.DRIVING_MODE_SAFE_STOP),
+                         (32.1, actuation_pb2.DRIVING_MODE_SAFE_STOP)):
+        judge.observe_mode("a", mode, time_s)
+    assert judge.verdict() == (False, "safe stop: a at 32.0 s")
+    assert judge.metrics()["safe_stops"] == 1.0
+
+
+def test_a_safe_stop_after_a_fault_of_that_vehicle_is_its_reaction_not_a_failure():
+    faults = [{"type": "gnss_outage", "vehicle_id": "a", "start_s": 30.0}]
+    judge = MissionJudge(config("follow", faults=faults), ["a", "b"])
+    judge.observe(0.0, truth({"vehicle_id": "a", "x_m": 0}, {"vehicle_id": "b", "x_m": 20}))
+    judge.observe_mode("a", actuation_pb2.DRIVING_MODE_SAFE_STOP, 32.0)
+    judge.observe_mode("b", actuation_pb2.DRIVING_MODE_SAFE_STOP, 33.0)
+    assert judge.verdict() == (False, "safe stop: b at 33.0 s")
 
 
 ROADWORKS_AT_500_M = [{"unit_id": "rsu", "station_id": 9, "x_m": 0, "y_m": 0,
