@@ -17,10 +17,12 @@ from google.protobuf.message import Message
 
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.bus.keys import WORLD_ID
+from coopdrive.launch.lockstep_give_ups import DIAGNOSTICS_KEYS, LockstepGiveUps
 from coopdrive.launch.ports import free_tcp_port, free_udp_ports, loopback_endpoint
 from coopdrive.launch.processes import ServiceProcesses, ServiceSpec
 from coopdrive.launch.scenario_source import resolve_scenario
 from coopdrive.launch.stack_config import vehicle_overrides
+from coopdrive.runtime.barrier import MESSAGES_GIVEN_UP_COUNTER
 from coopdrive.runtime.registry import VEHICLE_STACK
 from coopdrive.services.sim.fault_config import TicketExpired
 from coopdrive.services.sim.radio_box import RadioPorts
@@ -193,6 +195,8 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)} if in_main_thread else {}
     recorder, bridge = _watch(options, hub, {spec.participant: json.dumps(spec.config) for spec in specs})
     hub.subscribe(WORLD_ID, "result", on_result)
+    give_ups = LockstepGiveUps()
+    hub.subscribe_key(DIAGNOSTICS_KEYS, give_ups.observe)
     simulator = next(spec for spec in specs if spec.service == "sim")
     processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir, clock_step_s=simulator.config["step_s"])
     # The simulator says when (service_crash faults, in simulated time); the launcher owns the processes.
@@ -220,9 +224,10 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
             signal.signal(signum, handler)
     if not results:
         reason = f"stopped by {stop_reason[0]}" if stop_reason else "the simulator ended without a result"
-        return sim_pb2.RunResult(scenario=options.scenario, seed=options.seed, success=False, failure_reason=reason,
-                                 wall_time_s=ended - started, shutdown_time_s=time.monotonic() - ended)
+        results.append(sim_pb2.RunResult(scenario=options.scenario, seed=options.seed, success=False,
+                                         failure_reason=reason, wall_time_s=ended - started))
     result = results[0]
+    result.metrics[MESSAGES_GIVEN_UP_COUNTER] = give_ups.total()
     if result.clock_started_monotonic_s > 0:
         result.startup_time_s = result.clock_started_monotonic_s - started
     result.shutdown_time_s = time.monotonic() - ended

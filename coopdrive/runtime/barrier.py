@@ -14,6 +14,12 @@ from collections.abc import Collection
 
 from coopdrive.runtime.pipeline import PIPELINE_RANK, split_participant
 
+# How long a step whose markers are all in may wait for the messages they count. Going on without them keeps a run
+# alive after a lost message, but a run that did is no longer deterministic: each time is counted under this name
+# in the service's diagnostics, and the launcher sums them into the run's result.
+MESSAGE_WAIT_LIMIT_S = 5.0
+MESSAGES_GIVEN_UP_COUNTER = "lockstep_messages_given_up"
+
 
 class StepBarrier:
     def __init__(self, own_service: str):

@@ -6,6 +6,7 @@ import time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from coopdrive.runtime.barrier import MESSAGE_WAIT_LIMIT_S, MESSAGES_GIVEN_UP_COUNTER
 from coopdrive.v1 import sim_pb2
 
 if TYPE_CHECKING:
@@ -14,8 +15,6 @@ if TYPE_CHECKING:
 # Subscriptions of freshly started peers take a moment to reach the publishers.
 SETTLE_S = 0.3
 STALL_WARNING_S = 10.0
-# How long a step whose markers are all in may wait for the messages they count (as in runner.py).
-MESSAGE_WAIT_LIMIT_S = 5.0
 # How long a crash may take to end the service's process (its liveliness token gone).
 CRASH_TIMEOUT_S = 30.0
 
@@ -185,7 +184,7 @@ class ClockMaster:
                 markers_in_at = time.monotonic()
             elif time.monotonic() - markers_in_at > MESSAGE_WAIT_LIMIT_S:
                 # Every marker is in but a message it counts never came: go on without it (see runner.py).
-                self._runner.service.count("lockstep_messages_given_up")
+                self._runner.service.count(MESSAGES_GIVEN_UP_COUNTER)
                 self._runner.log.warning("step %d: gave up waiting for messages counted by %s", step,
                                          ", ".join(barrier.missing(step + 1, running)))
                 return True

@@ -31,7 +31,7 @@ from google.protobuf.message import DecodeError, Message
 from coopdrive.bus import Bus, BusConfig, Envelope
 from coopdrive.bus.topics import stepped_topics_of, topic_named
 from coopdrive.bus.keys import WORLD_ID
-from coopdrive.runtime.barrier import StepBarrier
+from coopdrive.runtime.barrier import MESSAGE_WAIT_LIMIT_S, MESSAGES_GIVEN_UP_COUNTER, StepBarrier
 from coopdrive.runtime.clock import SimulationClock, WallClock
 from coopdrive.runtime.clock_subscription import ClockSubscription
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
@@ -46,8 +46,6 @@ from coopdrive.runtime.timers import TriggerSet
 from coopdrive.v1 import diagnostics_pb2, sim_pb2
 
 DIAGNOSTICS_PERIOD_S = 1.0
-# Lockstep: how long a step whose markers are all in may wait for the messages they count.
-MESSAGE_WAIT_LIMIT_S = 5.0
 # A periodic handler that keeps failing logs its traceback on the first and then every this many failures.
 TRIGGER_FAILURE_LOG_EVERY = 500
 # A finished clock master waits this long at most for its launcher to stop it (see _linger_for_the_launcher).
@@ -392,7 +390,7 @@ class ServiceRunner:
             self.log.warning("step %d still waits for %s", step, ", ".join(still_waiting_for_markers))
         if still_waiting_for_markers or now - self._blocked_since[1] < MESSAGE_WAIT_LIMIT_S:
             return False
-        self.service.count("lockstep_messages_given_up")
+        self.service.count(MESSAGES_GIVEN_UP_COUNTER)
         self.log.warning("step %d: gave up waiting for messages counted by %s", step,
                          ", ".join(self._barrier.missing(step, participants)) or "the simulator's clock")
         return True

@@ -46,6 +46,11 @@ def test_the_ego_follows_without_collision_and_keeps_the_standstill_distance(rec
         assert key in summary
 
 
+def test_the_summary_says_lockstep_never_went_on_without_a_promised_message(recorded_run):
+    summary, _ = recorded_run
+    assert summary["lockstep_messages_given_up"] == 0
+
+
 def test_the_same_seed_gives_identical_metrics_with_one_process_per_service_as_on_the_vehicle(recorded_run):
     first, _ = recorded_run
     second = run_follow("--processes", "service")
