@@ -24,3 +24,13 @@ def test_the_pass_table_marks_each_seed_averages_the_figures_and_names_every_fai
     assert merge_figures.split(" | ")[3] == "1.000"  # spacing error: mean of 0.5 and 1.5
     assert "- merge/none/seed-2: merge not completed: a1 still in the closed lane" in lines
     assert "- follow/lossy/seed-1: lost tcp://10.0.0.7:40111" in lines
+
+
+def test_a_run_in_which_lockstep_gave_up_waiting_is_named_as_not_deterministic():
+    summary = BatchSummary([
+        RunOutcome("merge", 11, False, "safe stop: b3 at 81.8 s", metrics={"lockstep_messages_given_up": 3.0}),
+        RunOutcome("merge", 12, True, "", metrics={"lockstep_messages_given_up": 0.0}),
+    ])
+    lines = pass_table_markdown(summary).splitlines()
+    assert "- merge/none/seed-11: 3 times" in lines
+    assert not any(line.startswith("- merge/none/seed-12: ") and "times" in line for line in lines)

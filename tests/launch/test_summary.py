@@ -1,6 +1,6 @@
 import json
 
-from coopdrive.launch.summary import summary_dict
+from coopdrive.launch.summary import print_summary, summary_dict
 from coopdrive.v1 import sim_pb2
 
 
@@ -23,3 +23,13 @@ def test_the_summary_says_start_up_and_shut_down_apart_from_the_stepping():
     summary = summary_dict(result)
     assert (summary["wall_time_s"], summary["startup_time_s"], summary["shutdown_time_s"]) == (3.0, 1.234, 0.25)
     assert summary["realtime_factor"] == 20.0
+
+
+def test_a_run_in_which_lockstep_gave_up_waiting_is_printed_as_not_deterministic(capsys):
+    result = sim_pb2.RunResult(scenario="merge", seed=11, success=True, sim_time_s=90.0, wall_time_s=150.0)
+    result.metrics["lockstep_messages_given_up"] = 3.0
+    print_summary(result)
+    assert "not deterministic: 3 times lockstep went on" in capsys.readouterr().out
+    result.metrics["lockstep_messages_given_up"] = 0.0
+    print_summary(result)
+    assert "not deterministic" not in capsys.readouterr().out
