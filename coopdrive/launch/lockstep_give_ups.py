@@ -7,11 +7,13 @@ from __future__ import annotations
 
 import threading
 
-from coopdrive.runtime.barrier import MESSAGES_GIVEN_UP_COUNTER
+from coopdrive.runtime.barrier import MESSAGE_WAIT_LIMIT_S, MESSAGES_GIVEN_UP_COUNTER
 from coopdrive.v1 import diagnostics_pb2
 
 # Every service's diagnostics, whatever its vehicle.
 DIAGNOSTICS_KEYS = "coopdrive/*/diagnostics/*"
+# What a give-up is, as the printed summary and the sweep's pass table say it.
+GIVE_UP_MEANING = f"lockstep went on without a message it waited {MESSAGE_WAIT_LIMIT_S:g} s for"
 
 
 class LockstepGiveUps:

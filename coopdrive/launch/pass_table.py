@@ -6,7 +6,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Iterable
 
-from coopdrive.runtime.barrier import MESSAGE_WAIT_LIMIT_S, MESSAGES_GIVEN_UP_COUNTER
+from coopdrive.launch.lockstep_give_ups import GIVE_UP_MEANING
+from coopdrive.runtime.barrier import MESSAGES_GIVEN_UP_COUNTER
 
 if TYPE_CHECKING:
     from coopdrive.launch.batch import BatchSummary, RunOutcome
@@ -40,8 +41,7 @@ def pass_table_markdown(summary: BatchSummary) -> str:
         lines += ["", "Failures:", ""] + [f"- {o.label}: {o.failure_reason}" for o in failures]
     unsteady = [o for o in ordered if o.metrics.get(MESSAGES_GIVEN_UP_COUNTER, 0) > 0]
     if unsteady:
-        lines += ["", f"Not deterministic (lockstep went on without a message it waited {MESSAGE_WAIT_LIMIT_S:g} s "
-                      "for: an overloaded host; run it again alone):", ""] + [
+        lines += ["", f"Not deterministic ({GIVE_UP_MEANING}: an overloaded host; run it again alone):", ""] + [
             f"- {o.label}: {int(o.metrics[MESSAGES_GIVEN_UP_COUNTER])} times" for o in unsteady]
     retried = [o for o in ordered if o.retried]
     if retried:

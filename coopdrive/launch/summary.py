@@ -8,7 +8,8 @@ from rich.console import Console
 from rich.table import Table
 
 from coopdrive.judging.counts import COUNT_METRICS
-from coopdrive.runtime.barrier import MESSAGE_WAIT_LIMIT_S, MESSAGES_GIVEN_UP_COUNTER
+from coopdrive.launch.lockstep_give_ups import GIVE_UP_MEANING
+from coopdrive.runtime.barrier import MESSAGES_GIVEN_UP_COUNTER
 from coopdrive.v1 import sim_pb2
 
 # The summary's keys read off the wall clock: they differ between two runs of one seed, the others may not.
@@ -51,7 +52,6 @@ def print_summary(result: sim_pb2.RunResult, recording: Path | None = None, labe
     console.print(verdict)
     give_ups = summary.get(MESSAGES_GIVEN_UP_COUNTER, 0)
     if give_ups:
-        console.print(f"[bold yellow]not deterministic[/]: {give_ups} times lockstep went on without a message it "
-                      f"waited {MESSAGE_WAIT_LIMIT_S:g} s for (an overloaded host?)")
+        console.print(f"[bold yellow]not deterministic[/]: {give_ups} times {GIVE_UP_MEANING} (an overloaded host?)")
     if recording is not None:
         console.print(f"recording: {recording}")

@@ -49,8 +49,9 @@ class GeolocatorConfig(BaseModel):
     # jumps, a drifted filter sees the fixes move smoothly.
     gnss_reset_consistency_m: float = Field(0.5, gt=0.0)
     # ... and only when the filter could have drifted that far: the fixes are within this many of its own position
-    # std or of the std of the fix it last fused (a DGPS bias it followed). A receiver in multipath sits metres off in its claimed mode for seconds (docs/real-world.md), smoothly,
-    # while wheels and IMU keep the filter within centimetres: resetting to it would move the car out of its lane.
+    # std or of the std of the fix it last fused (a DGPS bias it followed). A receiver in multipath sits metres off
+    # in its claimed mode for seconds (docs/real-world.md), smoothly, while wheels and IMU keep the filter within
+    # centimetres: resetting to it would move the car out of its lane.
     gnss_reset_sigmas: float = Field(5.0, gt=0.0)
     # A disagreement the filter's uncertainty cannot explain resets the position only after this long.
     gnss_reset_unexplained_after_s: float = Field(20.0, gt=0.0)
