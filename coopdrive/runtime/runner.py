@@ -13,6 +13,7 @@ covers, so a follower also waits for any still on their way.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import logging
 import math
@@ -22,6 +23,7 @@ import signal
 import threading
 import time
 from collections import defaultdict, deque
+from contextlib import AbstractContextManager
 from dataclasses import dataclass
 from enum import Enum, auto
 from typing import Callable
@@ -84,9 +86,11 @@ class ServiceRunner:
 
     def __init__(self, service_cls: type[Service], config: ServiceConfig, vehicle_id: str,
                  bus_config: BusConfig | None, clock_mode: ClockMode = ClockMode.WALL, bus: Bus | None = None,
-                 clock_step_s: float | None = None):
+                 clock_step_s: float | None = None, turn: AbstractContextManager | None = None):
         """`bus`: an existing (shared) Bus to run on instead of opening one from `bus_config`.
-        `clock_step_s`: the simulator's step, when known before the run (see ClockSubscription)."""
+        `clock_step_s`: the simulator's step, when known before the run (see ClockSubscription).
+        `turn`: held while this service handles events, shared by the services of one process (ServiceGroup)."""
+        self._turn = turn if turn is not None else contextlib.nullcontext()
         self.vehicle_id = vehicle_id
         self.log = logging.getLogger(f"coopdrive.{service_cls.name}")
         self._service_name = service_cls.name
@@ -260,16 +264,17 @@ class ServiceRunner:
             else:
                 timeout = 0.1
             event = self.next_event(timeout)
-            if event is not None:
-                self._handle_follower_event(*event)
-                # What was queued behind it first: the barrier is asked once per burst, not per message, and a
-                # flood arriving meanwhile still leaves the triggers their turn.
-                for _ in range(self._events.qsize()):
-                    self._handle_follower_event(*self._events.get_nowait())
-            if self._clock_mode is ClockMode.WALL:
-                self._triggers.run_due(self._clock.now_s())
-            else:
-                self._run_ready_steps()
+            with self._turn:
+                if event is not None:
+                    self._handle_follower_event(*event)
+                    # What was queued behind it first: the barrier is asked once per burst, not per message, and a
+                    # flood arriving meanwhile still leaves the triggers their turn.
+                    for _ in range(self._events.qsize()):
+                        self._handle_follower_event(*self._events.get_nowait())
+                if self._clock_mode is ClockMode.WALL:
+                    self._triggers.run_due(self._clock.now_s())
+                else:
+                    self._run_ready_steps()
 
     def _handle_follower_event(self, kind: _Event, payload) -> None:
         if kind is _Event.DATA:
@@ -488,6 +493,11 @@ class ServiceRunner:
     @property
     def barrier(self) -> StepBarrier:
         return self._barrier
+
+    @property
+    def turn(self) -> AbstractContextManager:
+        """What this service holds while it handles events: a lock its process's other services share, or nothing."""
+        return self._turn
 
     @property
     def stopping(self) -> bool:
