@@ -1,15 +1,13 @@
-"""ServiceGroup: several services in one process, each on its own worker thread, sharing one Zenoh session.
+"""ServiceGroup: several services in one process sharing one Zenoh session.
 
 On the vehicle every service is its own process; in simulation a vehicle's whole stack can run as one
 process (`coopdrive group`), which saves a Python interpreter per service and lets the vehicle's services
 reach each other through the shared session without a socket. Each service keeps its own runner, so its
 life cycle, triggers, liveliness token and lockstep barrier are exactly those of a lone process.
 
-The services of a group share one interpreter lock, so only one of them runs Python at a time anyway. Left to the
-interpreter, they would trade that lock at every call into native code (each Zenoh put, each small numpy product),
-and each trade wakes a thread that then waits for the lock. In simulated time they take turns instead: a service
-holds the group's `turn` while it handles what it has received and its ready steps, and lets go only to wait for
-more (follow 30 s: real-time factor 3.2-3.5 without, 4.2-4.3 with).
+In simulated time one SharedWorker thread handles every service's events (see shared_worker.py); on the wall
+clock each service has its own worker thread, so that a long handler in one delays another no more than the
+interpreter's lock would.
 """
 
 from __future__ import annotations
@@ -22,6 +20,7 @@ from dataclasses import dataclass
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.runtime.runner import ClockMode, ServiceRunner
 from coopdrive.runtime.service import Service, ServiceConfig
+from coopdrive.runtime.shared_worker import SharedWorker
 
 log = logging.getLogger("coopdrive.group")
 
@@ -43,20 +42,26 @@ class ServiceGroup:
         if not members:
             raise ValueError("a service group needs at least one service")
         self._bus = Bus(bus_config)
-        # In simulated time the services take turns at whole events (see the module's docstring); on the wall clock
-        # they run side by side, so that a long handler in one delays another no more than the interpreter would.
-        self.turn = threading.Lock() if clock_mode is ClockMode.SIM else None
-        self.runners = [ServiceRunner(m.service_cls, m.config, m.vehicle_id, None, clock_mode, bus=self._bus.sharing(),
-                                      clock_step_s=clock_step_s, turn=self.turn)
-                        for m in members]
         self._members = members
-        self.failed: dict[str, str] = {}
+        self.worker = SharedWorker(f"{members[0].vehicle_id}-group") if clock_mode is ClockMode.SIM else None
+        self.runners = []
+        for member in members:
+            runner = ServiceRunner(member.service_cls, member.config, member.vehicle_id, None, clock_mode,
+                                   bus=self._bus.sharing(), clock_step_s=clock_step_s,
+                                   inbox=self.worker.inbox() if self.worker else None)
+            if self.worker:
+                self.worker.add(member.participant, runner)
+            self.runners.append(runner)
+        self.failed: dict[str, str] = self.worker.failed if self.worker else {}
 
     def run(self) -> dict[str, str]:
         """Runs every service until SIGINT/SIGTERM or until all have stopped; returns participant -> stop reason."""
-        reasons: dict[str, str] = {}
-        threads = [threading.Thread(target=self._run_one, args=(member, runner, reasons), name=member.participant)
-                   for member, runner in zip(self._members, self.runners)]
+        reasons: dict[str, str] = self.worker.reasons if self.worker else {}
+        if self.worker:
+            threads = [threading.Thread(target=self.worker.run, name=f"{self._members[0].vehicle_id}/group")]
+        else:
+            threads = [threading.Thread(target=self._run_one, args=(member, runner, reasons), name=member.participant)
+                       for member, runner in zip(self._members, self.runners)]
         previous = {}
         if threading.current_thread() is threading.main_thread():
             previous = {s: signal.signal(s, lambda sig, _frame: self.request_stop(signal.Signals(sig).name))

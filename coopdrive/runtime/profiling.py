@@ -1,7 +1,8 @@
 """WorkerProfile: a service worker's own cProfile, for finding where a run's time goes (docs/performance.md).
 
 Set COOPDRIVE_PROFILE_DIR and every service worker, in every process of a run, writes
-<dir>/<vehicle>-<service>.prof when it stops (read it with `python -m pstats` or snakeviz). Only the worker's
+<dir>/<vehicle>-<service>.prof when it stops (read it with `python -m pstats` or snakeviz); a group in simulated
+time, whose services share one worker (shared_worker.py), writes <dir>/<vehicle>-group.prof. Only the worker's
 thread is profiled (handlers, triggers, lockstep), not Zenoh's threads, and start-up is left out.
 """
 

@@ -13,7 +13,6 @@ covers, so a follower also waits for any still on their way.
 
 from __future__ import annotations
 
-import contextlib
 import functools
 import logging
 import math
@@ -23,10 +22,9 @@ import signal
 import threading
 import time
 from collections import defaultdict, deque
-from contextlib import AbstractContextManager
 from dataclasses import dataclass
 from enum import Enum, auto
-from typing import Callable
+from typing import Callable, Protocol
 
 from google.protobuf.message import DecodeError, Message
 
@@ -60,6 +58,12 @@ class ClockMode(Enum):
     SIM = "sim"
 
 
+class EventInbox(Protocol):
+    """Where a service's events are put: its own queue, or its entry in a SharedWorker's."""
+
+    def put(self, item) -> None: ...
+
+
 class _Event(Enum):
     DATA = auto()
     CLOCK = auto()
@@ -86,17 +90,18 @@ class ServiceRunner:
 
     def __init__(self, service_cls: type[Service], config: ServiceConfig, vehicle_id: str,
                  bus_config: BusConfig | None, clock_mode: ClockMode = ClockMode.WALL, bus: Bus | None = None,
-                 clock_step_s: float | None = None, turn: AbstractContextManager | None = None):
+                 clock_step_s: float | None = None, inbox: EventInbox | None = None):
         """`bus`: an existing (shared) Bus to run on instead of opening one from `bus_config`.
         `clock_step_s`: the simulator's step, when known before the run (see ClockSubscription).
-        `turn`: held while this service handles events, shared by the services of one process (ServiceGroup)."""
-        self._turn = turn if turn is not None else contextlib.nullcontext()
+        `inbox`: where this service's events go when a SharedWorker handles them instead of its own loop."""
         self.vehicle_id = vehicle_id
         self.log = logging.getLogger(f"coopdrive.{service_cls.name}")
         self._service_name = service_cls.name
         self._clock_mode = clock_mode
         self._clock = WallClock() if clock_mode is ClockMode.WALL else SimulationClock()
-        self._events: queue.SimpleQueue = queue.SimpleQueue()
+        self._events: EventInbox = inbox if inbox is not None else queue.SimpleQueue()
+        # CPU of this service's handling, kept by a SharedWorker; None: the worker thread's own CPU time.
+        self.worker_cpu_s: float | None = None
         self._handlers: dict[str, list[tuple[str, Callable[[Envelope], None]]]] = defaultdict(list)
         self._bus_subscriptions: set[tuple[str, str]] = set()
         self._liveliness_handlers: list[Callable[[str, bool], None]] = []
@@ -180,9 +185,7 @@ class ServiceRunner:
                 signal.signal(signum, lambda sig, _frame: self.request_stop(signal.Signals(sig).name))
         profile = WorkerProfile.from_environment(f"{self.vehicle_id}-{self._service_name}")
         try:
-            self.service.start()
-            self._triggers.add(DIAGNOSTICS_PERIOD_S, self._publish_diagnostics)
-            self._declare_runtime_entities()
+            self.begin()
             with profile:
                 if self._master is not None:
                     self._master.run()
@@ -190,10 +193,23 @@ class ServiceRunner:
                 else:
                     self._follow()
         finally:
-            try:
-                self.service.stop()
-            finally:
-                self.bus.close()
+            self.end()
+        return self._stop_reason
+
+    def begin(self) -> None:
+        """Starts the service and declares what the runtime needs on the bus; the last before events flow."""
+        self.service.start()
+        self._triggers.add(DIAGNOSTICS_PERIOD_S, self._publish_diagnostics)
+        self._declare_runtime_entities()
+
+    def end(self) -> None:
+        try:
+            self.service.stop()
+        finally:
+            self.bus.close()
+
+    @property
+    def stop_reason(self) -> str:
         return self._stop_reason
 
     def _linger_for_the_launcher(self) -> None:
@@ -264,17 +280,23 @@ class ServiceRunner:
             else:
                 timeout = 0.1
             event = self.next_event(timeout)
-            with self._turn:
-                if event is not None:
-                    self._handle_follower_event(*event)
-                    # What was queued behind it first: the barrier is asked once per burst, not per message, and a
-                    # flood arriving meanwhile still leaves the triggers their turn.
-                    for _ in range(self._events.qsize()):
-                        self._handle_follower_event(*self._events.get_nowait())
-                if self._clock_mode is ClockMode.WALL:
-                    self._triggers.run_due(self._clock.now_s())
-                else:
-                    self._run_ready_steps()
+            if event is not None:
+                self.handle_event(event)
+                # What was queued behind it first: the barrier is asked once per burst, not per message, and a
+                # flood arriving meanwhile still leaves the triggers their turn.
+                for _ in range(self._events.qsize()):
+                    self.handle_event(self._events.get_nowait())
+            self.run_what_is_due()
+
+    def handle_event(self, event: tuple[_Event, object]) -> None:
+        self._handle_follower_event(*event)
+
+    def run_what_is_due(self) -> None:
+        """On the wall clock the triggers that are due; in simulated time the steps the barrier releases."""
+        if self._clock_mode is ClockMode.WALL:
+            self._triggers.run_due(self._clock.now_s())
+        else:
+            self._run_ready_steps()
 
     def _handle_follower_event(self, kind: _Event, payload) -> None:
         if kind is _Event.DATA:
@@ -495,9 +517,8 @@ class ServiceRunner:
         return self._barrier
 
     @property
-    def turn(self) -> AbstractContextManager:
-        """What this service holds while it handles events: a lock its process's other services share, or nothing."""
-        return self._turn
+    def clock_master(self) -> ClockMaster | None:
+        return self._master
 
     @property
     def stopping(self) -> bool:
@@ -511,7 +532,7 @@ class ServiceRunner:
         for name, overruns in self._triggers.overruns().items():
             message.counters[f"overruns_{name}"] = overruns
         # CPU the service's own worker thread has used (handlers and triggers): where a run's time goes.
-        message.counters["worker_cpu_s"] = time.thread_time()
+        message.counters["worker_cpu_s"] = time.thread_time() if self.worker_cpu_s is None else self.worker_cpu_s
         self.publish(f"diagnostics/{self._service_name}", message)
 
     def _service_info(self) -> Message:
