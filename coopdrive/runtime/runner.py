@@ -281,15 +281,22 @@ class ServiceRunner:
                 timeout = 0.1
             event = self.next_event(timeout)
             if event is not None:
-                self.handle_event(event)
+                self._handle_follower_event(*event)
                 # What was queued behind it first: the barrier is asked once per burst, not per message, and a
                 # flood arriving meanwhile still leaves the triggers their turn.
                 for _ in range(self._events.qsize()):
-                    self.handle_event(self._events.get_nowait())
+                    self._handle_follower_event(*self._events.get_nowait())
             self.run_what_is_due()
 
-    def handle_event(self, event: tuple[_Event, object]) -> None:
-        self._handle_follower_event(*event)
+    def handle_events(self, events: list[tuple[_Event, object]]) -> None:
+        for kind, payload in events:
+            self._handle_follower_event(kind, payload)
+
+    @property
+    def steps_pending(self) -> bool:
+        """Whether run_what_is_due has anything to look at: lockstep clocks not yet handled (wall-clock triggers
+        are always worth a look)."""
+        return self._clock_mode is ClockMode.WALL or bool(self._pending_clocks)
 
     def run_what_is_due(self) -> None:
         """On the wall clock the triggers that are due; in simulated time the steps the barrier releases."""

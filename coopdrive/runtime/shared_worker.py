@@ -17,6 +17,7 @@ from __future__ import annotations
 import logging
 import queue
 import time
+from collections import defaultdict
 from dataclasses import dataclass
 
 from coopdrive.runtime.profiling import WorkerProfile
@@ -69,25 +70,27 @@ class SharedWorker:
                 self._handle_queued(set(active))
                 active = [index for index in active if self._still_running(index)]
                 for index in active:
-                    self._guarded(index, ServiceRunner.run_what_is_due)
+                    if self._runners[index].steps_pending:
+                        self._guarded(index, ServiceRunner.run_what_is_due)
         for index, runner in enumerate(self._runners):
             self._guarded(index, ServiceRunner.end)
             self.reasons.setdefault(self._participants[index], runner.stop_reason)
 
     def _handle_queued(self, active: set[int]) -> None:
-        """Waits for an event (at most IDLE_WAIT_S), then handles it and whatever queued behind it."""
+        """Waits for an event (at most IDLE_WAIT_S), then hands it and whatever queued behind it to their services:
+        each service's in the order they came, one service after the other."""
         try:
             first = self._events.get(timeout=IDLE_WAIT_S)
         except queue.Empty:
             return
-        self._hand_on(first, active)
+        burst: dict[int, list] = defaultdict(list)
+        burst[first[0]].append(first[1])
         for _ in range(self._events.qsize()):
-            self._hand_on(self._events.get_nowait(), active)
-
-    def _hand_on(self, item: tuple[int, object], active: set[int]) -> None:
-        index, event = item
-        if index in active:
-            self._guarded(index, ServiceRunner.handle_event, event)
+            index, event = self._events.get_nowait()
+            burst[index].append(event)
+        for index, events in burst.items():
+            if index in active:
+                self._guarded(index, ServiceRunner.handle_events, events)
 
     def _still_running(self, index: int) -> bool:
         return self._participants[index] not in self.failed and not self._runners[index].stopping
