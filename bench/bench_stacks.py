@@ -1,7 +1,9 @@
 """Real-time factor of 1, 4 and 8 full stacks in lockstep (the string scenario), and where the time goes.
 
-Each stack runs as one process (`coopdrive group`); the per-service figures are the CPU seconds of each
-service's worker thread (its handlers and triggers), from the last diagnostics every service published.
+Each stack runs as one process (`coopdrive group`), its services on one shared worker thread; the last row runs
+8 stacks with a thread per service, as before the shared worker, in the same bench. The per-service figures are
+the CPU seconds of each service's own handling (its handlers and triggers), from the last diagnostics every
+service published.
 BENCH_STACKS_DURATION_S sets the simulated seconds per run (default 10).
 """
 
@@ -14,13 +16,15 @@ from rich.console import Console
 from rich.table import Table
 
 from coopdrive.launch.run import RunOptions, run_scenario
+from coopdrive.runtime.group import THREAD_PER_SERVICE_VARIABLE
 
 SCENARIO = "string"
 STACK_COUNTS = (1, 4, 8)
 DURATION_S = float(os.environ.get("BENCH_STACKS_DURATION_S", "10"))
 
 
-def run(stacks: int) -> tuple[float, dict[str, dict[str, float]]]:
+def run(stacks: int, thread_per_service: bool = False) -> tuple[float, dict[str, dict[str, float]]]:
+    """`thread_per_service`: each stack's group gives each service its own thread, as before the shared worker."""
     worker_cpu_s: dict[str, dict[str, float]] = defaultdict(dict)
 
     def observe(key: str, message) -> None:
@@ -28,7 +32,11 @@ def run(stacks: int) -> tuple[float, dict[str, dict[str, float]]]:
         if len(parts) == 4 and parts[2] == "diagnostics" and "worker_cpu_s" in message.counters:
             worker_cpu_s[parts[1]][parts[3]] = message.counters["worker_cpu_s"]
 
-    result = run_scenario(RunOptions(scenario=SCENARIO, stacks=stacks, duration_s=DURATION_S, observer=observe))
+    os.environ[THREAD_PER_SERVICE_VARIABLE] = "1" if thread_per_service else "0"
+    try:
+        result = run_scenario(RunOptions(scenario=SCENARIO, stacks=stacks, duration_s=DURATION_S, observer=observe))
+    finally:
+        del os.environ[THREAD_PER_SERVICE_VARIABLE]
     return result.sim_time_s / max(result.wall_time_s, 1e-9), worker_cpu_s
 
 
@@ -45,6 +53,9 @@ def main() -> None:
         stack_cpu_s = sum(sum(services.values()) for vehicle, services in cpu.items() if vehicle != "world")
         summary.add_row(str(stacks), f"{factor:.2f}", f"{factor / baseline:.2f}", f"{stack_cpu_s / DURATION_S:.2f} s")
         breakdown = cpu
+    factor, _ = run(STACK_COUNTS[-1], thread_per_service=True)
+    summary.add_row(f"{STACK_COUNTS[-1]}, a thread per service (before)", f"{factor:.2f}", f"{factor / baseline:.2f}",
+                    "")
     console.print(summary)
     if breakdown:
         services = sorted({s for per_vehicle in breakdown.values() for s in per_vehicle})

@@ -7,12 +7,14 @@ life cycle, triggers, liveliness token and lockstep barrier are exactly those of
 
 In simulated time one SharedWorker thread handles every service's events (see shared_worker.py); on the wall
 clock each service has its own worker thread, so that a long handler in one delays another no more than the
-interpreter's lock would.
+interpreter's lock would. Setting COOPDRIVE_GROUP_THREAD_PER_SERVICE=1 gives every service its own thread in
+simulated time too, as before the shared worker: the benchmarks' baseline (docs/performance.md).
 """
 
 from __future__ import annotations
 
 import logging
+import os
 import signal
 import threading
 from dataclasses import dataclass
@@ -23,6 +25,8 @@ from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.runtime.shared_worker import SharedWorker
 
 log = logging.getLogger("coopdrive.group")
+
+THREAD_PER_SERVICE_VARIABLE = "COOPDRIVE_GROUP_THREAD_PER_SERVICE"
 
 
 @dataclass
@@ -43,7 +47,8 @@ class ServiceGroup:
             raise ValueError("a service group needs at least one service")
         self._bus = Bus(bus_config)
         self._members = members
-        self.worker = SharedWorker(f"{members[0].vehicle_id}-group") if clock_mode is ClockMode.SIM else None
+        shared = clock_mode is ClockMode.SIM and os.environ.get(THREAD_PER_SERVICE_VARIABLE) != "1"
+        self.worker = SharedWorker(f"{members[0].vehicle_id}-group") if shared else None
         self.runners = []
         for member in members:
             runner = ServiceRunner(member.service_cls, member.config, member.vehicle_id, None, clock_mode,

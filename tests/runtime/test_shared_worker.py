@@ -6,7 +6,7 @@ import time
 import pytest
 
 from coopdrive.bus import BusConfig
-from coopdrive.runtime.group import GroupMember, ServiceGroup
+from coopdrive.runtime.group import THREAD_PER_SERVICE_VARIABLE, GroupMember, ServiceGroup
 from coopdrive.runtime.runner import ClockMode
 from coopdrive.runtime.service import Service
 
@@ -106,6 +106,20 @@ def test_in_simulated_time_one_thread_handles_every_service_one_call_at_a_time()
     assert len(planner.threads | control.threads) == 1
     assert threading.get_ident() not in planner.threads
     assert overlaps(group.runners) == 0
+
+
+def test_the_benchmarks_baseline_gives_each_service_of_a_group_in_simulated_time_its_own_thread(monkeypatch):
+    monkeypatch.setenv(THREAD_PER_SERVICE_VARIABLE, "1")
+    group, worker = started_group(ClockMode.SIM, Planner, Control)
+    try:
+        for runner in group.runners:
+            runner.call_soon(runner.service.sleep_busy)
+        wait_until(lambda: all(len(runner.service.busy) == 1 for runner in group.runners))
+    finally:
+        stopped(group, worker)
+    planner, control = (runner.service for runner in group.runners)
+    assert group.worker is None
+    assert planner.threads.isdisjoint(control.threads)
 
 
 def test_each_service_s_worker_cpu_is_what_its_own_handling_used():
