@@ -43,9 +43,12 @@ class ProcessNoise:
     accel_bias_walk_mps2: float = 1e-3
 
 
-def _integrated_pair(q: float, dt: float) -> np.ndarray:
-    """Covariance of (integral, value) of a random walk with spectral density q over dt."""
-    return q * np.array([[dt**3 / 3.0, dt**2 / 2.0], [dt**2 / 2.0, dt]])
+def _set_integrated_pair(Q: np.ndarray, integral: int, value: int, q: float, dt: float) -> None:
+    """Writes the covariance of (integral, value) of a random walk with spectral density q over dt into Q:
+    q [[dt^3/3, dt^2/2], [dt^2/2, dt]]. Element by element, as cheap for one step as a cached matrix."""
+    Q[integral, integral] = q * (dt**3 / 3.0)
+    Q[integral, value] = Q[value, integral] = q * (dt**2 / 2.0)
+    Q[value, value] = q * dt
 
 
 def _add_bias_walk(Q: np.ndarray, noise: ProcessNoise, dt: float) -> None:
@@ -96,8 +99,8 @@ class CtraModel:
             return cached
         Q = np.zeros((STATE_DIM, STATE_DIM))
         Q[E, E] = Q[N, N] = self.noise.position_std_mps**2 * dt
-        Q[np.ix_([HEADING, YAW_RATE], [HEADING, YAW_RATE])] = _integrated_pair(self.noise.yaw_accel_std_radps2**2, dt)
-        Q[np.ix_([SPEED, ACCEL], [SPEED, ACCEL])] = _integrated_pair(self.noise.jerk_std_mps3**2, dt)
+        _set_integrated_pair(Q, HEADING, YAW_RATE, self.noise.yaw_accel_std_radps2**2, dt)
+        _set_integrated_pair(Q, SPEED, ACCEL, self.noise.jerk_std_mps3**2, dt)
         _add_bias_walk(Q, self.noise, dt)
         if len(self._q_by_dt) < MAX_CACHED_STEPS:
             self._q_by_dt[dt] = Q
@@ -145,7 +148,7 @@ class KinematicBicycleModel:
         yaw_rate_var = (gain * self.noise.steering_std_rad) ** 2
         Q[HEADING, HEADING] = yaw_rate_var * dt * dt + self.noise.yaw_accel_std_radps2**2 * dt**3 / 3.0
         Q[YAW_RATE, YAW_RATE] = yaw_rate_var
-        Q[np.ix_([SPEED, ACCEL], [SPEED, ACCEL])] = _integrated_pair(self.noise.jerk_std_mps3**2, dt)
+        _set_integrated_pair(Q, SPEED, ACCEL, self.noise.jerk_std_mps3**2, dt)
         _add_bias_walk(Q, self.noise, dt)
         return Q
 
