@@ -50,7 +50,6 @@ DIAGNOSTICS_PERIOD_S = 1.0
 TRIGGER_FAILURE_LOG_EVERY = 500
 # A finished clock master waits this long at most for its launcher to stop it (see _linger_for_the_launcher).
 MASTER_LINGER_S = 60.0
-LINGER_POLL_S = 0.05
 
 
 class ClockMode(Enum):
@@ -110,6 +109,8 @@ class ServiceRunner:
         self._trigger_failures: dict[str, int] = {}
         self._sequence = SequenceCounter(service_cls.name)
         self._stop = threading.Event()
+        # Set by SIGINT/SIGTERM: the process is asked to end, by its launcher or its user.
+        self._signalled = threading.Event()
         self._stop_reason = ""
         self._started_monotonic = time.monotonic()
         self._dispatcher = StepDispatcher(service_cls.name, vehicle_id)
@@ -182,7 +183,7 @@ class ServiceRunner:
         """Runs until SIGINT/SIGTERM or request_stop; returns the stop reason."""
         if threading.current_thread() is threading.main_thread():
             for signum in (signal.SIGINT, signal.SIGTERM):
-                signal.signal(signum, lambda sig, _frame: self.request_stop(signal.Signals(sig).name))
+                signal.signal(signum, lambda sig, _frame: self._on_signal(signal.Signals(sig).name))
         profile = WorkerProfile.from_environment(f"{self.vehicle_id}-{self._service_name}")
         try:
             self.begin()
@@ -212,16 +213,19 @@ class ServiceRunner:
     def stop_reason(self) -> str:
         return self._stop_reason
 
+    def _on_signal(self, name: str) -> None:
+        self._signalled.set()
+        self.request_stop(name)
+
     def _linger_for_the_launcher(self) -> None:
         """A clock master that ended the run itself (its scenario finished) keeps its bus open until the launcher
         that started it stops it (SIGTERM), at most MASTER_LINGER_S: what it published last, the result, may still
-        wait in its send queue behind a loaded launcher's backlog, and closing the session would drop it."""
-        if not launched_by_a_run():
-            return
-        finished_reason = self._stop_reason
-        deadline = time.monotonic() + MASTER_LINGER_S
-        while self._stop_reason == finished_reason and time.monotonic() < deadline:
-            time.sleep(LINGER_POLL_S)
+        wait in its send queue behind a loaded launcher's backlog, and closing the session would drop it.
+
+        The launcher's SIGTERM may come before the master has finished its last step (the result is out, the
+        step is not): it still counts."""
+        if launched_by_a_run():
+            self._signalled.wait(MASTER_LINGER_S)
 
     def _declare_runtime_entities(self) -> None:
         layout = self.bus.layout

@@ -8,19 +8,37 @@ from types import SimpleNamespace
 from coopdrive.runtime.launcher_watch import LAUNCHER_PID_VARIABLE
 from coopdrive.runtime.runner import ServiceRunner
 
+SIGTERM_AFTER_S = 0.3
+AT_ONCE_S = 0.1
+
+
+def finished_master():
+    """What _linger_for_the_launcher and _on_signal read of a runner whose scenario has finished."""
+    return SimpleNamespace(_signalled=threading.Event(), _stop_reason="scenario finished",
+                           request_stop=lambda reason: None)
+
 
 def test_a_finished_master_started_by_a_launcher_waits_for_its_sigterm(monkeypatch):
     monkeypatch.setenv(LAUNCHER_PID_VARIABLE, "12345")
-    runner = SimpleNamespace(_stop_reason="scenario finished")
-    threading.Timer(0.3, lambda: setattr(runner, "_stop_reason", "SIGTERM")).start()
+    runner = finished_master()
+    threading.Timer(SIGTERM_AFTER_S, lambda: ServiceRunner._on_signal(runner, "SIGTERM")).start()
     started = time.monotonic()
     ServiceRunner._linger_for_the_launcher(runner)
-    assert runner._stop_reason == "SIGTERM" and time.monotonic() - started >= 0.3
+    assert runner._signalled.is_set() and time.monotonic() - started >= SIGTERM_AFTER_S
+
+
+def test_a_sigterm_that_came_before_the_master_finished_ends_its_wait_at_once(monkeypatch):
+    monkeypatch.setenv(LAUNCHER_PID_VARIABLE, "12345")
+    runner = finished_master()
+    ServiceRunner._on_signal(runner, "SIGTERM")
+    started = time.monotonic()
+    ServiceRunner._linger_for_the_launcher(runner)
+    assert time.monotonic() - started < AT_ONCE_S
 
 
 def test_a_master_run_by_hand_ends_at_once(monkeypatch):
     monkeypatch.delenv(LAUNCHER_PID_VARIABLE, raising=False)
-    runner = SimpleNamespace(_stop_reason="scenario finished")
+    runner = finished_master()
     started = time.monotonic()
     ServiceRunner._linger_for_the_launcher(runner)
-    assert time.monotonic() - started < 0.1
+    assert time.monotonic() - started < AT_ONCE_S
