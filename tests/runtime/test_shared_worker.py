@@ -93,15 +93,21 @@ def test_on_the_wall_clock_the_services_of_a_group_run_side_by_side_on_their_own
     assert overlaps(group.runners) > 0
 
 
-def test_in_simulated_time_one_thread_handles_every_service_one_call_at_a_time():
+def after_calls(calls_each: int) -> ServiceGroup:
+    """A simulated-time group of Planner and Control, stopped after each has handled calls_each sleep_busy calls."""
     group, worker = started_group(ClockMode.SIM, Planner, Control)
     try:
-        for _ in range(5):
+        for _ in range(calls_each):
             for runner in group.runners:
                 runner.call_soon(runner.service.sleep_busy)
-        wait_until(lambda: all(len(runner.service.busy) == 5 for runner in group.runners))
+        wait_until(lambda: all(len(runner.service.busy) == calls_each for runner in group.runners))
     finally:
         stopped(group, worker)
+    return group
+
+
+def test_in_simulated_time_one_thread_handles_every_service_one_call_at_a_time():
+    group = after_calls(5)
     planner, control = (runner.service for runner in group.runners)
     assert len(planner.threads | control.threads) == 1
     assert threading.get_ident() not in planner.threads
@@ -110,13 +116,7 @@ def test_in_simulated_time_one_thread_handles_every_service_one_call_at_a_time()
 
 def test_the_benchmarks_baseline_gives_each_service_of_a_group_in_simulated_time_its_own_thread(monkeypatch):
     monkeypatch.setenv(THREAD_PER_SERVICE_VARIABLE, "1")
-    group, worker = started_group(ClockMode.SIM, Planner, Control)
-    try:
-        for runner in group.runners:
-            runner.call_soon(runner.service.sleep_busy)
-        wait_until(lambda: all(len(runner.service.busy) == 1 for runner in group.runners))
-    finally:
-        stopped(group, worker)
+    group = after_calls(1)
     planner, control = (runner.service for runner in group.runners)
     assert group.worker is None
     assert planner.threads.isdisjoint(control.threads)
