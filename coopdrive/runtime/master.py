@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from coopdrive.runtime.barrier import MESSAGE_WAIT_LIMIT_S, MESSAGES_GIVEN_UP_COUNTER
+from coopdrive.runtime.events import RuntimeEvent
 from coopdrive.v1 import sim_pb2
 
 if TYPE_CHECKING:
@@ -212,17 +213,15 @@ class ClockMaster:
     def _handle(self, event) -> None:
         if event is None:
             return
-        from coopdrive.runtime.runner import _Event
-
         kind, payload = event
-        if kind is _Event.DATA:
+        if kind is RuntimeEvent.DATA:
             self._runner.note_received(payload)
             self._runner.dispatcher.add(payload)
-        elif kind is _Event.DONE:
+        elif kind is RuntimeEvent.DONE:
             self._runner.barrier.mark_done(*payload)
-        elif kind is _Event.CALL:
-            self._runner._call(payload)
-        elif kind is _Event.ALIVE:
+        elif kind is RuntimeEvent.CALL:
+            self._runner.call(payload)
+        elif kind is RuntimeEvent.ALIVE:
             participant, alive = payload
             if alive:
                 self._alive.add(participant)

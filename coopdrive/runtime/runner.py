@@ -23,7 +23,7 @@ import threading
 import time
 from collections import defaultdict, deque
 from dataclasses import dataclass
-from enum import Enum, auto
+from enum import Enum
 from typing import Callable, Protocol
 
 from google.protobuf.message import DecodeError, Message
@@ -35,6 +35,7 @@ from coopdrive.runtime.barrier import MESSAGE_WAIT_LIMIT_S, MESSAGES_GIVEN_UP_CO
 from coopdrive.runtime.clock import SimulationClock, WallClock
 from coopdrive.runtime.clock_subscription import ClockSubscription
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
+from coopdrive.runtime.events import RuntimeEvent
 from coopdrive.runtime.launcher_watch import launched_by_a_run
 from coopdrive.runtime.master import STALL_WARNING_S, ClockMaster
 from coopdrive.runtime.participants import ParticipantTracker
@@ -61,15 +62,6 @@ class EventInbox(Protocol):
     """Where a service's events are put: its own queue, or its entry in a SharedWorker's."""
 
     def put(self, item) -> None: ...
-
-
-class _Event(Enum):
-    DATA = auto()
-    CLOCK = auto()
-    DONE = auto()
-    ALIVE = auto()
-    STOP = auto()
-    CALL = auto()
 
 
 @dataclass(slots=True)
@@ -131,7 +123,7 @@ class ServiceRunner:
         self._lockstep: bool | None = None
         self.bus = bus if bus is not None else Bus(bus_config)
         self._clock_subscription = ClockSubscription(
-            self.bus, lambda clock: self._events.put((_Event.CLOCK, clock)), clock_step_s)
+            self.bus, lambda clock: self._events.put((RuntimeEvent.CLOCK, clock)), clock_step_s)
         self.service = service_cls(config, self)
         self._master = ClockMaster(self) if isinstance(self.service, ClockMaster.Driven) else None
 
@@ -171,12 +163,12 @@ class ServiceRunner:
         self._liveliness_handlers.append(handler)
 
     def call_soon(self, function: Callable[[], None]) -> None:
-        self._events.put((_Event.CALL, function))
+        self._events.put((RuntimeEvent.CALL, function))
 
     def request_stop(self, reason: str) -> None:
         self._stop_reason = reason
         self._stop.set()
-        self._events.put((_Event.STOP, None))
+        self._events.put((RuntimeEvent.STOP, None))
 
     # ----- life cycle -----------------------------------------------------------------------
     def run(self) -> str:
@@ -250,7 +242,7 @@ class ServiceRunner:
         return participant if spec.stepped and self._barrier.depends_on(participant) else None
 
     def _on_data(self, envelope: Envelope) -> None:
-        self._events.put((_Event.DATA, envelope))
+        self._events.put((RuntimeEvent.DATA, envelope))
         if envelope.attachment is None:
             return
         participant = self._awaited_publisher(envelope.vehicle_id, envelope.topic)
@@ -269,12 +261,12 @@ class ServiceRunner:
         self._on_step_marker(participant, marker)
 
     def _on_step_marker(self, participant: str, marker: sim_pb2.StepDone) -> None:
-        self._events.put((_Event.DONE, (participant, marker.step, marker.next_step, dict(marker.sequences))))
+        self._events.put((RuntimeEvent.DONE, (participant, marker.step, marker.next_step, dict(marker.sequences))))
 
     def _on_liveliness(self, key: str, alive: bool) -> None:
         parts = key.split("/")
         if len(parts) == 4:
-            self._events.put((_Event.ALIVE, (participant_name(parts[1], parts[3]), alive)))
+            self._events.put((RuntimeEvent.ALIVE, (participant_name(parts[1], parts[3]), alive)))
 
     # ----- followers ------------------------------------------------------------------------
     def _follow(self) -> None:
@@ -292,7 +284,7 @@ class ServiceRunner:
                     self._handle_follower_event(*self._events.get_nowait())
             self.run_what_is_due()
 
-    def handle_events(self, events: list[tuple[_Event, object]]) -> None:
+    def handle_events(self, events: list[tuple[RuntimeEvent, object]]) -> None:
         for kind, payload in events:
             self._handle_follower_event(kind, payload)
 
@@ -309,15 +301,15 @@ class ServiceRunner:
         else:
             self._run_ready_steps()
 
-    def _handle_follower_event(self, kind: _Event, payload) -> None:
-        if kind is _Event.DATA:
+    def _handle_follower_event(self, kind: RuntimeEvent, payload) -> None:
+        if kind is RuntimeEvent.DATA:
             self.note_received(payload)
             if self._clock_mode is ClockMode.SIM and self._lockstep is not False:
                 # Lockstep (or not known yet): handled in step order, never in arrival order.
                 self._dispatcher.add(payload)
             else:
                 self.dispatch(payload)
-        elif kind is _Event.CLOCK:
+        elif kind is RuntimeEvent.CLOCK:
             self._clock_subscription.check_step(payload.step_s)
             self._lockstep = payload.lockstep
             if payload.lockstep:
@@ -328,20 +320,21 @@ class ServiceRunner:
                 for envelope in self._dispatcher.eligible(payload.time_s):
                     self.dispatch(envelope)
                 self._triggers.run_due(payload.time_s)
-        elif kind is _Event.DONE:
+        elif kind is RuntimeEvent.DONE:
             self._join.on_marker(*payload)
-        elif kind is _Event.ALIVE:
+        elif kind is RuntimeEvent.ALIVE:
             for handler in self._liveliness_handlers:
                 handler(*payload)
-        elif kind is _Event.CALL:
-            self._call(payload)
+        elif kind is RuntimeEvent.CALL:
+            self.call(payload)
 
     def _track_participants(self, participants) -> None:
         for participant, alive in self._participant_tracker.update(participants):
             for handler in self._liveliness_handlers:
                 handler(participant, alive)
 
-    def _call(self, function: Callable[[], None]) -> None:
+    def call(self, function: Callable[[], None]) -> None:
+        """Runs a function handed over by call_soon, on this service's worker."""
         try:
             function()
         except Exception:  # an input callback must not take the service down

@@ -8,7 +8,7 @@ from coopdrive.bus.keys import KeyLayout
 from coopdrive.runtime.barrier import StepBarrier
 from coopdrive.runtime.dispatcher import StepDispatcher
 from coopdrive.runtime.master import ClockMaster, ClockSettings, Outage
-from coopdrive.runtime.runner import _Event
+from coopdrive.runtime.events import RuntimeEvent
 
 PARTICIPANTS = ["v/control", "v/actuation"]
 STEPS = 12
@@ -28,7 +28,7 @@ class Launcher(ClockMaster.Driven):
 
     def on_outage(self, participant, restart):
         self.announced.append((self.runner.steps_run, participant, restart))
-        self.runner.events.append((_Event.ALIVE, (participant, restart)))  # token gone, or back
+        self.runner.events.append((RuntimeEvent.ALIVE, (participant, restart)))  # token gone, or back
 
     def count(self, counter):
         self.counters[counter] += 1
@@ -38,7 +38,7 @@ class SteppedRunner:
     """What ClockMaster needs of a ServiceRunner, with the events a run would bring."""
 
     def __init__(self):
-        self.events = deque((_Event.ALIVE, (p, True)) for p in PARTICIPANTS)
+        self.events = deque((RuntimeEvent.ALIVE, (p, True)) for p in PARTICIPANTS)
         self.clocks = []
         self.steps_run = 0
         self.barrier = StepBarrier("sim")
