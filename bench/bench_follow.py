@@ -11,15 +11,13 @@ the default layout as it was before a vehicle's services shared one worker threa
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 from rich.console import Console
 from rich.table import Table
 
+from bench import group_threads
 from bench.step_latency import StepLatency
 from coopdrive.launch.run import RunOptions, run_scenario
-from coopdrive.runtime.group import THREAD_PER_SERVICE_VARIABLE
 
 DURATION_S = 60.0
 # A realtime run waits for the wall clock, so its latency is that of a loop with time to spare, as on the car.
@@ -31,13 +29,10 @@ STEP_S = 0.02
 def run(group_per_vehicle: bool, realtime: bool = False, thread_per_service: bool = False):
     """`thread_per_service`: a vehicle's group gives each service its own thread, as before the shared worker."""
     latency = StepLatency()
-    os.environ[THREAD_PER_SERVICE_VARIABLE] = "1" if thread_per_service else "0"
-    try:
+    with group_threads.thread_per_service(thread_per_service):
         result = run_scenario(RunOptions(duration_s=REALTIME_DURATION_S if realtime else DURATION_S,
                                          realtime=realtime, observer=latency.observe,
                                          group_per_vehicle=group_per_vehicle))
-    finally:
-        del os.environ[THREAD_PER_SERVICE_VARIABLE]
     return result, latency.latencies_ms()
 
 

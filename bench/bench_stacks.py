@@ -15,8 +15,8 @@ from collections import defaultdict
 from rich.console import Console
 from rich.table import Table
 
+from bench import group_threads
 from coopdrive.launch.run import RunOptions, run_scenario
-from coopdrive.runtime.group import THREAD_PER_SERVICE_VARIABLE
 
 SCENARIO = "string"
 STACK_COUNTS = (1, 4, 8)
@@ -32,11 +32,8 @@ def run(stacks: int, thread_per_service: bool = False) -> tuple[float, dict[str,
         if len(parts) == 4 and parts[2] == "diagnostics" and "worker_cpu_s" in message.counters:
             worker_cpu_s[parts[1]][parts[3]] = message.counters["worker_cpu_s"]
 
-    os.environ[THREAD_PER_SERVICE_VARIABLE] = "1" if thread_per_service else "0"
-    try:
+    with group_threads.thread_per_service(thread_per_service):
         result = run_scenario(RunOptions(scenario=SCENARIO, stacks=stacks, duration_s=DURATION_S, observer=observe))
-    finally:
-        del os.environ[THREAD_PER_SERVICE_VARIABLE]
     return result.sim_time_s / max(result.wall_time_s, 1e-9), worker_cpu_s
 
 

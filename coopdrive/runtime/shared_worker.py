@@ -67,8 +67,9 @@ class SharedWorker:
         active = [index for index in range(len(self._runners)) if self._guarded(index, ServiceRunner.begin)]
         with WorkerProfile.from_environment(self._name):
             while active:
-                self._handle_queued(set(active))
-                active = [index for index in active if self._still_running(index)]
+                self._handle_queued(active)
+                # A service that failed was asked to stop (see _guarded).
+                active = [index for index in active if not self._runners[index].stopping]
                 for index in active:
                     if self._runners[index].steps_pending:
                         self._guarded(index, ServiceRunner.run_what_is_due)
@@ -76,7 +77,7 @@ class SharedWorker:
             self._guarded(index, ServiceRunner.end)
             self.reasons.setdefault(self._participants[index], runner.stop_reason)
 
-    def _handle_queued(self, active: set[int]) -> None:
+    def _handle_queued(self, active: list[int]) -> None:
         """Waits for an event (at most IDLE_WAIT_S), then hands it and whatever queued behind it to their services:
         each service's in the order they came, one service after the other."""
         try:
@@ -91,9 +92,6 @@ class SharedWorker:
         for index, events in burst.items():
             if index in active:
                 self._guarded(index, ServiceRunner.handle_events, events)
-
-    def _still_running(self, index: int) -> bool:
-        return self._participants[index] not in self.failed and not self._runners[index].stopping
 
     def _guarded(self, index: int, action, *args) -> bool:
         """Runs one service's part, charging its CPU to that service; an error stops that service only."""
