@@ -2,7 +2,8 @@ import math
 
 import pytest
 from drivers import fired
-from intersection_drivers import COMPETITOR, DRIVERS, HOLD_SAFE, ORGANISER, cross_planner, world
+from intersection_drivers import (
+    APPROACH, COMPETITOR, CROSSING, DRIVERS, GIVE_WAY, HOLD_SAFE, ORGANISER, cross_planner, world)
 from planner_world import iclcm, obj
 
 from coopdrive.services.planner.speed_profile import QuinticArrival
@@ -42,15 +43,13 @@ def test_the_vehicle_approaches_on_the_arrival_profile_gives_way_to_the_organise
 
 
 def test_a_clear_competition_zone_is_crossed_without_stopping():
-    p = cross_planner()
-    p.step(0.0, world(0.0, -300.0))
+    p, _ = APPROACH.run()
     _, state = p.step(0.1, world(0.1, -95.0))
     assert state.state == "CROSSING"
 
 
 def test_a_competitor_further_into_the_zone_has_priority():
-    p = cross_planner()
-    p.step(0.0, world(0.0, -300.0))
+    p, _ = APPROACH.run()
     rival = obj(8, COMPETITOR, gap_m=90.0, x_m=0.0, y_m=-20.0, heading_rad=NORTH)
     msgs = {COMPETITOR: iclcm(COMPETITOR, 0.1, distance_travelled_cz_m=80.0)}
     _, state = p.step(0.1, world(0.1, -95.0, extra=[rival], msgs=msgs))
@@ -58,17 +57,14 @@ def test_a_competitor_further_into_the_zone_has_priority():
 
 
 def test_giving_way_escapes_to_hold_after_its_timeout_and_holds_at_the_stop_line():
-    p = cross_planner()
-    p.step(0.0, world(0.0, -300.0))
-    p.step(0.1, world(0.1, -90.0, organiser_y_m=-50.0))
+    p, _ = GIVE_WAY.run()
     request, state = p.step(30.1, world(30.1, -20.0, organiser_y_m=-40.0))
     assert state.state == "HOLD_SAFE" and state.recent_transitions[-1].event == "TIMEOUT"
     assert request.has_stop_line and request.stop_line_distance_m == pytest.approx(5.0)
 
 
 def test_an_organiser_heard_but_never_seen_is_a_contradiction_and_the_scene_decides():
-    p = cross_planner()
-    p.step(0.0, world(0.0, -300.0))
+    p, _ = APPROACH.run()
     _, state = p.step(0.1, world(0.1, -90.0, organiser_heard=True))
     assert state.state == "GIVE_WAY"
     _, state = p.step(2.1, world(2.1, -80.0, organiser_heard=True))
@@ -79,16 +75,13 @@ def test_an_organiser_heard_but_never_seen_is_a_contradiction_and_the_scene_deci
 
 
 def test_an_approach_that_never_reaches_the_zone_escapes_to_hold():
-    p = cross_planner()
-    p.step(0.0, world(0.0, -300.0))
+    p, _ = APPROACH.run()
     _, state = p.step(120.0, world(120.0, -300.0))
     assert state.state == "HOLD_SAFE"
 
 
 def test_crossing_keeps_the_safety_circle_and_escapes_to_hold_when_it_never_ends():
-    p = cross_planner()
-    p.step(0.0, world(0.0, -300.0))
-    p.step(0.1, world(0.1, -95.0))
+    p, _ = CROSSING.run()
     close = obj(6, 0, gap_m=5.0, x_m=-5.0, y_m=0.0, speed_mps=0.0)
     request, state = p.step(0.2, world(0.2, -10.0, extra=[close]))
     assert state.state == "CROSSING" and request.desired_speed_mps == 0.0
@@ -98,9 +91,7 @@ def test_crossing_keeps_the_safety_circle_and_escapes_to_hold_when_it_never_ends
 
 
 def test_a_priority_vehicle_appearing_before_the_stop_line_makes_a_crossing_vehicle_hold_at_the_line():
-    p = cross_planner()
-    p.step(0.0, world(0.0, -300.0))
-    p.step(0.1, world(0.1, -95.0))
+    p, _ = CROSSING.run()
     request, state = p.step(0.2, world(0.2, -60.0, organiser_y_m=-40.0))
     assert state.state == "HOLD_SAFE" and request.has_stop_line
 
@@ -123,9 +114,7 @@ def test_an_organiser_standing_at_its_stop_line_outside_the_safety_circle_lets_t
 
 
 def test_a_car_passing_the_other_way_in_its_own_lane_is_no_reason_to_stop_while_crossing():
-    p = cross_planner()
-    p.step(0.0, world(0.0, -300.0))
-    p.step(0.1, world(0.1, -95.0))
+    p, _ = CROSSING.run()
     oncoming = obj(6, 0, gap_m=3.0, x_m=-7.0, y_m=3.5, speed_mps=8.0, heading_rad=math.pi)
     request, state = p.step(0.2, world(0.2, -10.0, extra=[oncoming]))
     assert state.state == "CROSSING" and request.desired_speed_mps == pytest.approx(50 / 3.6)
@@ -135,9 +124,7 @@ def test_a_car_passing_the_other_way_in_its_own_lane_is_no_reason_to_stop_while_
 def test_a_competitor_further_into_the_zone_on_our_own_road_is_no_conflict_when_going_straight():
     competitor = obj(6, COMPETITOR, gap_m=40.0, x_m=40.0, y_m=3.5, speed_mps=8.0, heading_rad=math.pi)
     ahead_in_zone = {COMPETITOR: iclcm(COMPETITOR, 0.2, distance_travelled_cz_m=80.0)}
-    p = cross_planner()
-    p.step(0.0, world(0.0, -300.0))
-    p.step(0.1, world(0.1, -95.0))
+    p, _ = CROSSING.run()
     _, state = p.step(0.2, world(0.2, -90.0, extra=[competitor], msgs=ahead_in_zone))
     assert state.state == "CROSSING"
 
