@@ -1,6 +1,6 @@
 import pytest
 from drivers import fired
-from platoon_drivers import CLOSE_GAP_M, CUT_IN, DRIVERS, PARTNER, PLATOONING, platoon_world
+from platoon_drivers import CLOSE_GAP_M, CUT_IN, DRIVERS, JOINING, PARTNER, PLATOONING, platoon_world
 from planner_world import DT_S, ego, inputs, planner, rsu_start, scene, transitions
 
 from coopdrive.v1 import planner_pb2
@@ -10,6 +10,10 @@ LEAVE_TIME_GAP_S = 2.5
 
 def step(p, t, **world):
     return p.step(t, platoon_world(t, **world))
+
+
+def joining(p):
+    return JOINING.run(p)[1]
 
 
 def joined(p):
@@ -30,8 +34,7 @@ def test_the_platoon_waits_for_the_rsu_then_joins_behind_the_partner_and_platoon
 
 def test_a_member_may_go_a_little_faster_than_its_cruise_speed_to_keep_up_with_its_partner():
     p = planner()
-    step(p, 0.0, start=False)
-    request, _ = step(p, 0.1)
+    request, _ = joining(p)
     config = p.config
     assert request.desired_speed_mps == pytest.approx(config.cruise_speed_mps + config.platoon.member_speed_headroom_mps)
     assert request.desired_speed_mps > 60 / 3.6
@@ -59,8 +62,7 @@ def test_a_silent_partner_degrades_the_platoon_to_acc_and_its_return_rejoins():
 
 def test_joining_that_never_closes_the_gap_escapes_to_follow_safe_after_its_timeout():
     p = planner()
-    step(p, 0.0, start=False)
-    step(p, 0.1)
+    joining(p)
     _, state = step(p, 30.2)
     assert state.state == "FOLLOW_SAFE"
     assert state.recent_transitions[-1].event == "TIMEOUT"
@@ -68,8 +70,7 @@ def test_joining_that_never_closes_the_gap_escapes_to_follow_safe_after_its_time
 
 def test_a_partner_silent_while_joining_ends_in_follow_safe_and_rejoins_when_heard():
     p = planner()
-    step(p, 0.0, start=False)
-    step(p, 0.1)
+    joining(p)
     _, state = step(p, 0.7, heard_at=0.1)
     assert state.state == "FOLLOW_SAFE"
     _, state = step(p, 0.8)
@@ -120,8 +121,7 @@ def test_a_vehicle_cutting_in_while_joining_makes_the_joiner_follow_it_with_the_
 
 def test_the_operator_can_force_the_platoon_out_of_joining():
     p = planner()
-    step(p, 0.0, start=False)
-    step(p, 0.1)
+    joining(p)
     p.force("FOLLOW_SAFE", 0.15, who="operator HMI")
     _, state = step(p, 0.15, start=False)
     last = [t for t in state.recent_transitions if t.forced][-1]
