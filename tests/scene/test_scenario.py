@@ -6,9 +6,8 @@ import numpy as np
 import pytest
 
 from coopdrive.services.scene.fusion import SceneFusion
-from coopdrive.v1 import sensors_pb2
 
-from .helpers import ego_state, lidar_scan, nearest_face_y, v2v
+from .helpers import ego_state, lidar_scan, radar_tracks, v2v
 
 SEED = 2016
 TICK_S = 0.05
@@ -48,15 +47,11 @@ def drive():
         ego = ego_state(t, x_m=ego_x, speed_mps=EGO_SPEED_MPS)
         fusion.on_ego(ego)
         cars = [lead(t), left(t)]
-        radar = sensors_pb2.RadarTracks()
-        radar.header.sample_time_s = t
-        for index, (x, centre_y, speed) in enumerate(cars, start=1):
-            y = nearest_face_y(centre_y)
-            dx = x - ego_x
-            rng_m = math.hypot(dx, y)
-            radar.tracks.add(track_id=index, range_m=rng_m + rng.normal(0.0, 0.2),
-                             azimuth_rad=math.atan2(y, dx) + rng.normal(0.0, 0.004),
-                             range_rate_mps=(speed - EGO_SPEED_MPS) * dx / rng_m + rng.normal(0.0, 0.1), width_m=1.8)
+        radar = radar_tracks(t, cars, ego_x_m=ego_x, ego_speed_mps=EGO_SPEED_MPS)
+        for track in radar.tracks:
+            track.range_m += rng.normal(0.0, 0.2)
+            track.azimuth_rad += rng.normal(0.0, 0.004)
+            track.range_rate_mps += rng.normal(0.0, 0.1)
         if rng.random() < RADAR_FALSE_ALARM_PROBABILITY:
             radar.tracks.add(track_id=99, range_m=rng.uniform(8.0, 60.0), azimuth_rad=rng.uniform(-0.3, 0.3))
         fusion.on_radar(radar, ego)
