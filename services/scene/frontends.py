@@ -52,6 +52,14 @@ def nearest_points_to_rear_centre(x_m: np.ndarray, y_m: np.ndarray, width_m: np.
     return centres, np.where(beside, _SHIFTED_CENTRE_STD_FRACTION * width_m, half_width)
 
 
+def _rear_centres(local: np.ndarray, width_m: np.ndarray, default_width_m: float) -> tuple[np.ndarray, np.ndarray]:
+    """Reported nearest points (K, 2) moved to their rear centres, and the lateral variance (K,) that leaves.
+    A width of 0 was not reported: the default width stands in."""
+    centres, lateral_std = nearest_points_to_rear_centre(local[:, 0], local[:, 1],
+                                                         np.where(width_m != 0.0, width_m, default_width_m))
+    return centres, lateral_std**2
+
+
 def _valid(finite_fields: np.ndarray, range_m: np.ndarray, rejects: RejectCounter, reason: str) -> np.ndarray:
     """Rows whose fields are numbers and whose range is positive; the others are counted as rejected."""
     valid = np.isfinite(finite_fields).all(axis=1) & (range_m > 0.0)
@@ -76,9 +84,8 @@ class RadarFrontEnd:
         cov = polar_covs_vehicle(range_m, azimuth_rad, cfg.range_std_m, cfg.bearing_std_rad)
         line_of_sight = (pose.points_to_enu(local) - pose.position_m) / range_m[:, None]
         if cfg.reports_nearest_point:
-            local, lateral_std = nearest_points_to_rear_centre(local[:, 0], local[:, 1],
-                                                               np.where(width_m != 0.0, width_m, cfg.default_width_m))
-            cov[:, 1, 1] += lateral_std**2
+            local, lateral_var = _rear_centres(local, width_m, cfg.default_width_m)
+            cov[:, 1, 1] += lateral_var
         position = pose.points_to_enu(local)
         # Range rate is relative; adding our own speed along the beam makes it absolute.
         radial = range_rate_mps + line_of_sight @ pose.velocity_mps
@@ -119,9 +126,8 @@ class CameraFrontEnd:
         cov = polar_covs_vehicle(range_m, np.arctan2(y_m, x_m), range_std_m, cfg.bearing_std_rad)
         local = np.stack((x_m, y_m), axis=1)
         if cfg.reports_nearest_point:
-            local, lateral_std = nearest_points_to_rear_centre(x_m, y_m, np.where(width_m != 0.0, width_m,
-                                                                                  cfg.default_width_m))
-            cov[:, 1, 1] += lateral_std**2
+            local, lateral_var = _rear_centres(local, width_m, cfg.default_width_m)
+            cov[:, 1, 1] += lateral_var
         quality = np.where((0.0 < score) & (score <= 1.0), score, 1.0).tolist()
         position, cov, origin = pose.points_to_enu(local), cov_to_enu(pose, cov), pose.position_m
         return [
