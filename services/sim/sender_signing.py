@@ -11,7 +11,7 @@ import datetime as dt
 from pathlib import Path
 
 from coopdrive.services.sim.intent_encoder import station_mac
-from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE, BasicNextHeader
+from coopdrive.services.v2x.geonet import is_secured
 from coopdrive.services.sim.participants import MessageIntent
 from coopdrive.services.v2x.security.pki import load_test_pki
 from coopdrive.services.v2x.security.signer import SecuredPacketSigner
@@ -19,7 +19,6 @@ from coopdrive.services.v2x.security.verifier import SecurityVerifier
 from coopdrive.services.v2x.timebase import ItsClock
 
 US_PER_MS = 1000
-NEXT_HEADER_MASK = 0x0F
 
 
 class SenderSigning:
@@ -44,6 +43,6 @@ class SenderSigning:
 
     def unsecured(self, packet: bytes) -> bytes | None:
         """The GN packet inside a secured one (what a radio fault looks into); unsecured ones as they are."""
-        if len(packet) < BASIC_HEADER_SIZE or packet[0] & NEXT_HEADER_MASK != BasicNextHeader.SECURED_PACKET:
+        if not is_secured(packet):
             return packet
         return self._reader.unwrap(packet, count=False).unsecured_packet

@@ -244,6 +244,11 @@ def parse_basic_header(data: bytes, accepted_versions: tuple[int, ...] = SUPPORT
     return BasicHeader(version, next_header, lifetime >> 2, lifetime & 0x03, hop_limit)
 
 
+def is_secured(packet: bytes) -> bool:
+    """Whether the basic header says a security envelope follows, read from its first octet alone."""
+    return len(packet) >= BASIC_HEADER_SIZE and packet[0] & 0x0F == BasicNextHeader.SECURED_PACKET
+
+
 def with_basic_next_header(packet: bytes, next_header: BasicNextHeader, rest: bytes) -> bytes:
     """packet's basic header with next_header, followed by rest (to wrap or unwrap a security envelope)."""
     first = (packet[0] & 0xF0) | int(next_header)

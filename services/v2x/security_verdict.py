@@ -15,11 +15,10 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from coopdrive.services.v2x.btp import parse_btp_b
-from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE, BasicNextHeader, parse_gn
+from coopdrive.services.v2x.geonet import is_secured, parse_gn
 from coopdrive.services.v2x.its_pdu import peek_its_header
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 
-_NEXT_HEADER_MASK = 0x0F
 # Refusals that say the signature itself is wrong; that the signer's chain does not reach a root we trust; and,
 # among those, that nobody we trust issued it. An unknown signer (digest never heard in full) or a stale
 # generation time is neither: it says nothing against the station.
@@ -48,10 +47,6 @@ UNSIGNED = SecurityVerdict(False)
 class Sender:
     mac: bytes | None
     station_id: int | None
-
-
-def is_secured(packet: bytes) -> bool:
-    return len(packet) >= BASIC_HEADER_SIZE and packet[0] & _NEXT_HEADER_MASK == BasicNextHeader.SECURED_PACKET
 
 
 def verdict_of_opened(opened) -> SecurityVerdict:

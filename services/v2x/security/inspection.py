@@ -28,7 +28,8 @@ from dataclasses import dataclass
 
 from coopdrive.services.v2x.btp import parse_btp_b
 from coopdrive.services.v2x.geonet import (
-    BASIC_HEADER_SIZE, BasicNextHeader, CommonNextHeader, parse_basic_header, parse_gn, with_basic_next_header)
+    BASIC_HEADER_SIZE, BasicNextHeader, CommonNextHeader, is_secured, parse_basic_header, parse_gn,
+    with_basic_next_header)
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.services.v2x.security.certificate import Certificate, CertificateError
 from coopdrive.services.v2x.security.crypto import data_digest, hashed_id8, verify_digest
@@ -36,8 +37,6 @@ from coopdrive.services.v2x.security.envelope import SignedEnvelope, parse_signe
 from coopdrive.services.v2x.security.profile import (
     MAX_CLOCK_AHEAD_S, MAX_MESSAGE_AGE_S, PSID_OF_PORT, US_PER_S, SecurityMode)
 from coopdrive.services.v2x.security.store import CertificateStore
-
-_NEXT_HEADER_MASK = 0x0F
 
 
 @dataclass(frozen=True, slots=True)
@@ -72,10 +71,6 @@ class InspectedPacket:
     security: SecurityResult
     # The GN packet without its envelope (the packet itself when unsigned); None when it cannot be unwrapped.
     unsecured_packet: bytes | None
-
-
-def is_secured(packet: bytes) -> bool:
-    return len(packet) >= BASIC_HEADER_SIZE and packet[0] & _NEXT_HEADER_MASK == BasicNextHeader.SECURED_PACKET
 
 
 # A valid signature whose certificate chains to no configured root: verify_required drops it as `untrusted`
