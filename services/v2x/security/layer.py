@@ -18,9 +18,9 @@ import time
 from collections import OrderedDict
 from collections.abc import Callable
 
+from coopdrive.services.v2x.geonet import is_secured
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
-from coopdrive.services.v2x.security.inspection import (
-    UNSIGNED, PacketInspector, SecurityResult, is_secured, mode_drop_reason)
+from coopdrive.services.v2x.security.inspection import UNSIGNED, PacketInspector, SecurityResult, mode_drop_reason
 from coopdrive.services.v2x.security.profile import US_PER_S, SecurityMode
 from coopdrive.services.v2x.security.signer import SecuredPacketSigner
 from coopdrive.services.v2x.security.verifier import SecurityVerifier

@@ -24,7 +24,7 @@ from coopdrive.services.v2x.reasons import V2xDecodeError
 from coopdrive.recording.capture import read_gn_packets
 from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.v2x.security.pki import create_test_pki, tamper_packet
-from coopdrive.services.v2x.security_verdict import is_secured
+from coopdrive.services.v2x.geonet import is_secured
 from coopdrive.services.v2x.service import V2xService
 from coopdrive.services.v2x.timebase import generation_delta_time_ms, tai_ms_from_unix_s
 from tests.shared_data import shared_file
