@@ -1,0 +1,60 @@
+"""What recording costs a multi-stack run: `string --stacks 8` in lockstep with `--record` against the same run
+without, turn about (unrecorded, recorded, twice), so a load that comes and goes weighs on both alike.
+
+The launcher (this process) is the recorder: every message of the run comes to it over Zenoh, is written to MCAP and
+drawn into the Foxglove channels. Its CPU is this process's (every thread, Zenoh's too) while the run steps and
+stops; the ratio column is the recorded run's real-time factor over the unrecorded one's (below 1: the cost).
+BENCH_RECORD_STACKS and BENCH_RECORD_DURATION_S set the stacks (default 8) and the simulated seconds (default 10).
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import tempfile
+import time
+from pathlib import Path
+
+from rich.console import Console
+from rich.table import Table
+
+from coopdrive.launch.run import RunOptions, run_scenario
+
+SCENARIO = "string"
+STACKS = int(os.environ.get("BENCH_RECORD_STACKS", "8"))
+DURATION_S = float(os.environ.get("BENCH_RECORD_DURATION_S", "10"))
+ROUNDS = 2
+
+
+def run(record: Path | None) -> tuple[float, float]:
+    """(real-time factor, the launcher's CPU seconds per simulated second) of one run."""
+    cpu_before_s = time.process_time()
+    result = run_scenario(RunOptions(scenario=SCENARIO, stacks=STACKS, duration_s=DURATION_S, record=record))
+    launcher_cpu_s = time.process_time() - cpu_before_s
+    return result.sim_time_s / max(result.wall_time_s, 1e-9), launcher_cpu_s / DURATION_S
+
+
+def main() -> None:
+    factors: dict[bool, list[float]] = {False: [], True: []}
+    launcher_cpu: dict[bool, list[float]] = {False: [], True: []}
+    with tempfile.TemporaryDirectory() as folder:
+        for round_index in range(ROUNDS):
+            for recorded in (False, True):
+                record = Path(folder) / f"run-{round_index}.mcap" if recorded else None
+                factor, cpu = run(record)
+                factors[recorded].append(factor)
+                launcher_cpu[recorded].append(cpu)
+    table = Table(title=f"{SCENARIO} --stacks {STACKS}, {DURATION_S:.0f} s simulated, lockstep: what --record costs "
+                        f"(mean of {ROUNDS} runs each, turn about)")
+    for column in ("run", "sim_time_s / wall_time_s", "ratio to unrecorded", "launcher CPU per simulated s"):
+        table.add_column(column, justify="right")
+    unrecorded = statistics.mean(factors[False])
+    for recorded, name in ((False, "unrecorded"), (True, "--record")):
+        factor = statistics.mean(factors[recorded])
+        table.add_row(name, f"{factor:.2f}", f"{factor / unrecorded:.2f}",
+                      f"{1e3 * statistics.mean(launcher_cpu[recorded]):.0f} ms")
+    Console().print(table)
+
+
+if __name__ == "__main__":
+    main()
