@@ -22,6 +22,11 @@ from coopdrive.bus.type_registry import message_class
 
 log = logging.getLogger(__name__)
 
+# Samples a queued subscription holds before Zenoh's receive threads wait for it (they wait, they do not drop).
+QUEUED_SUBSCRIPTION_CAPACITY = 10_000
+# How long close() waits for a queued subscription's thread to hand on what it had taken.
+QUEUED_THREAD_JOIN_S = 2.0
+
 
 @dataclass
 class BusConfig:
@@ -59,6 +64,7 @@ class Bus:
         self._owns_session = True
         self._publishers: dict[str, zenoh.Publisher] = {}
         self._declared: list = []
+        self._queue_threads: list[threading.Thread] = []
         self._lock = threading.Lock()
         self.decode_errors = 0
 
@@ -71,6 +77,7 @@ class Bus:
         shared._owns_session = False
         shared._publishers = {}
         shared._declared = []
+        shared._queue_threads = []
         shared._lock = threading.Lock()
         shared.decode_errors = 0
         return shared
@@ -128,6 +135,33 @@ class Bus:
 
     def subscribe_key(self, key_expr: str, callback: Callable[[str, Message], None]):
         """Subscribes to any key; the message type comes from the sample's encoding schema."""
+        return self._declare(self._session.declare_subscriber(key_expr, _direct(self._typed(callback))))
+
+    def subscribe_key_queued(self, key_expr: str, callback: Callable[[str, Message], None]):
+        """subscribe_key for one that takes many messages, such as a run's recorder of every key: Zenoh's receive
+        threads only queue the samples, and one thread of ours decodes them and calls back in the order they
+        came. A callback from a receive thread takes the interpreter's lock for each message, against every other
+        thread of the process; a queue read from Python does not (measured in docs/performance.md). A full queue
+        holds the senders back (QUEUED_SUBSCRIPTION_CAPACITY), as a slow callback would; close() ends the thread."""
+        subscriber = self._declare(self._session.declare_subscriber(
+            key_expr, zenoh.handlers.FifoChannel(QUEUED_SUBSCRIPTION_CAPACITY)))
+        thread = threading.Thread(target=self._hand_on_queued, args=(subscriber, self._typed(callback)),
+                                  name=f"queued {key_expr}", daemon=True)
+        thread.start()
+        self._queue_threads.append(thread)
+        return subscriber
+
+    @staticmethod
+    def _hand_on_queued(subscriber, on_sample: Callable[[zenoh.Sample], None]) -> None:
+        """Until the subscriber is undeclared (close()): a failing callback costs its message, not the rest."""
+        for sample in subscriber:
+            try:
+                on_sample(sample)
+            except Exception:
+                log.exception("a queued subscriber's callback failed on %s", sample.key_expr)
+
+    def _typed(self, callback: Callable[[str, Message], None]) -> Callable[[zenoh.Sample], None]:
+        """A sample handler that decodes by the sample's encoding schema and calls callback(key, message)."""
 
         def on_sample(sample: zenoh.Sample) -> None:
             key = str(sample.key_expr)
@@ -138,7 +172,7 @@ class Bus:
             if envelope is not None:
                 callback(key, envelope.message)
 
-        return self._declare(self._session.declare_subscriber(key_expr, _direct(on_sample)))
+        return on_sample
 
     def _decode(self, key: str, cls: type[Message], payload: bytes, attachment: bytes | None = None) -> Envelope | None:
         message = cls()
@@ -202,6 +236,9 @@ class Bus:
             except Exception:  # already gone with a closing session
                 pass
         self._declared.clear()
+        for thread in self._queue_threads:
+            thread.join(QUEUED_THREAD_JOIN_S)
+        self._queue_threads.clear()
         for publisher in self._publishers.values():
             try:
                 publisher.undeclare()

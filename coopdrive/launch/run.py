@@ -244,7 +244,8 @@ def _watch(options: RunOptions, hub: Bus, configs: dict[str, dict]):
 
         # The configs go in at the end, as the services ran them (effective_configs); the map is needed now.
         recorder = McapRecorder(options.record, road_map=recorded_road_map(configs))
-        hub.subscribe_key("coopdrive/**", lambda key, message: None if "/_" in key else recorder.write(key, message))
+        hub.subscribe_key_queued("coopdrive/**",
+                                 lambda key, message: None if "/_" in key else recorder.write(key, message))
     if options.foxglove_port is not None:
         from coopdrive.visual.live_bridge import FoxgloveBridge
 

@@ -78,17 +78,19 @@ class McapRecorder:
                 return
             self._writer.write_message(topic, message, log_time=log_time_ns, publish_time=time_ns)
             self.messages_written += 1
-        if self._visuals is not None:
+        if self._visuals is not None and self._visuals.draws(topic):
             self._to_derive.put((topic, message, log_time_ns))
 
     def _derive(self) -> None:
+        # Only this thread feeds the visual channels, so they need no lock; the file does, for each write alone: a
+        # scene drawn while holding it would keep the bus's messages waiting.
         while (item := self._to_derive.get()) is not None:
-            with self._lock:
-                self._visuals.on_message(*item)
+            self._visuals.on_message(*item)
 
     def _write_visual(self, topic: str, message: Message, time_ns: int) -> None:
-        """Called under the lock by the visual channels, at the log time of the message they came from."""
-        self._writer.write_message(topic, message, log_time=time_ns, publish_time=time_ns)
+        """Called by the visual channels on the deriving thread, at the log time of the message they came from."""
+        with self._lock:
+            self._writer.write_message(topic, message, log_time=time_ns, publish_time=time_ns)
 
     def close(self) -> None:
         if self._deriver.is_alive():

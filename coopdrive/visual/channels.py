@@ -68,6 +68,19 @@ class VisualChannels:
             "ego/state": self._on_ego, "gnss/nmea": self._on_nmea, "gnss/fix": self._on_gnss, "v2x/cam": self._on_cam,
             "scene": self._on_scene, "planner/behaviour": self._on_behaviour, "ground_truth": self._on_truth,
         }
+        self._draws_key: dict[str, bool] = {}
+
+    def draws(self, key: str) -> bool:
+        """Whether on_message makes anything of the messages on this key: a recorder asks for every message it
+        writes and hands on only those, so it is answered once per key."""
+        known = self._draws_key.get(key)
+        if known is None:
+            try:
+                _, topic = self.layout.split(key)
+            except ValueError:
+                topic = None
+            known = self._draws_key[key] = topic in self._handlers
+        return known
 
     def on_message(self, key: str, message: Message, time_ns: int) -> None:
         try:
