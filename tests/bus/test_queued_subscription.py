@@ -39,47 +39,42 @@ def wait_until(condition) -> None:
         time.sleep(0.05)
 
 
-def test_every_message_arrives_in_order_on_the_subscription_s_own_thread(hub, sender):
-    received: list[tuple[int, str]] = []
+def sequences_through_the_queue(hub: Bus, sender: Bus, count: int, expected: int, on_message) -> list[int]:
+    """Subscribes queued to every key, sends `count` numbered messages and returns, once `expected` have come
+    through, the sequences the callback took: on_message(message) runs first, and one that raises takes none."""
+    received: list[int] = []
 
-    def note(_key, message) -> None:
-        received.append((message.header.sequence, threading.current_thread().name))
+    def take(_key, message) -> None:
+        on_message(message)
+        received.append(message.header.sequence)
 
-    hub.subscribe_key_queued("coopdrive/**", note)
+    hub.subscribe_key_queued("coopdrive/**", take)
     time.sleep(0.3)  # the subscription reaches the sender
-    send_numbered(sender)
-    wait_until(lambda: len(received) >= MESSAGES)
-    assert [sequence for sequence, _ in received] == list(range(1, MESSAGES + 1))
-    assert {thread for _, thread in received} == {"queued coopdrive/**"}
+    send_numbered(sender, count)
+    wait_until(lambda: len(received) >= expected)
+    return received
+
+
+def test_every_message_arrives_in_order_on_the_subscription_s_own_thread(hub, sender):
+    threads: set[str] = set()
+    received = sequences_through_the_queue(hub, sender, MESSAGES, MESSAGES,
+                                           lambda _message: threads.add(threading.current_thread().name))
+    assert received == list(range(1, MESSAGES + 1))
+    assert threads == {"queued coopdrive/**"}
 
 
 def test_a_full_queue_holds_the_sender_back_instead_of_dropping(hub, sender, monkeypatch):
     monkeypatch.setattr(session, "QUEUED_SUBSCRIPTION_CAPACITY", 10)
-    received: list[int] = []
-
-    def slow(_key, message) -> None:
-        time.sleep(0.001)
-        received.append(message.header.sequence)
-
-    hub.subscribe_key_queued("coopdrive/**", slow)
-    time.sleep(0.3)
-    send_numbered(sender, 500)
-    wait_until(lambda: len(received) >= 500)
+    received = sequences_through_the_queue(hub, sender, 500, 500, lambda _message: time.sleep(0.001))
     assert received == list(range(1, 501))
 
 
 def test_a_failing_callback_costs_its_message_only_and_close_ends_the_thread(hub, sender, caplog):
-    received: list[int] = []
-
-    def fails_on_the_first(_key, message) -> None:
+    def fails_on_the_first(message) -> None:
         if message.header.sequence == 1:
             raise RuntimeError("broken handler")
-        received.append(message.header.sequence)
 
-    hub.subscribe_key_queued("coopdrive/**", fails_on_the_first)
-    time.sleep(0.3)
-    send_numbered(sender, 100)
-    wait_until(lambda: len(received) >= 99)
+    received = sequences_through_the_queue(hub, sender, 100, 99, fails_on_the_first)
     assert received == list(range(2, 101))
     assert "a queued subscriber's callback failed on coopdrive/ego/ego/state" in caplog.text
     hub.close()
