@@ -33,24 +33,34 @@ def run(group_per_vehicle: bool, realtime: bool = False, thread_per_service: boo
         result = run_scenario(RunOptions(duration_s=REALTIME_DURATION_S if realtime else DURATION_S,
                                          realtime=realtime, observer=latency.observe,
                                          group_per_vehicle=group_per_vehicle))
-    return result, latency.latencies_ms()
+    return result, latency
+
+
+def percentiles(latencies_ms: np.ndarray) -> tuple[str, str]:
+    """p50 and p99 in ms, or dashes when no step was measured."""
+    if not latencies_ms.size:
+        return "-", "-"
+    return tuple(f"{np.percentile(latencies_ms, q):.2f}" for q in (50, 99))
 
 
 def main() -> None:
     table = Table(title=f"follow scenario, lockstep, {DURATION_S:.0f} s simulated, and {REALTIME_DURATION_S:.0f} s "
                         f"paced to the wall clock (required sim_time_s / wall_time_s >= {REQUIRED_REALTIME_FACTOR})")
     for column in ("processes", "success", "sim_time_s / wall_time_s", "steps per wall second",
-                   "sensor -> command p50 (ms)", "p99 (ms)"):
+                   "sensor -> command p50 (ms)", "p99 (ms)", "p50 / p99, steps with the scene's update",
+                   "p50 / p99, the other steps"):
         table.add_column(column, justify="right")
     layouts = (("one per service", False, False, False),
                ("one per vehicle, a thread per service (before)", True, False, True),
                ("one per vehicle", True, False, False),
                ("one per service, realtime", False, True, False), ("one per vehicle, realtime", True, True, False))
     for label, grouped, realtime, thread_per_service in layouts:
-        result, latencies_ms = run(grouped, realtime, thread_per_service)
-        p50, p99 = (f"{np.percentile(latencies_ms, q):.2f}" for q in (50, 99)) if latencies_ms.size else ("-", "-")
+        result, latency = run(grouped, realtime, thread_per_service)
+        p50, p99 = percentiles(latency.latencies_ms())
         table.add_row(label, str(result.success), f"{result.sim_time_s / result.wall_time_s:.2f}",
-                      f"{result.sim_time_s / STEP_S / result.wall_time_s:.0f}", p50, p99)
+                      f"{result.sim_time_s / STEP_S / result.wall_time_s:.0f}", p50, p99,
+                      " / ".join(percentiles(latency.latencies_ms(scene_steps=True))),
+                      " / ".join(percentiles(latency.latencies_ms(scene_steps=False))))
     Console().print(table)
 
 
