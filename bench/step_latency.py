@@ -30,18 +30,15 @@ class StepLatency:
             elif key.endswith("ego/scene"):
                 self._scene_steps.add(round(message.header.sent_time_s, 6))
 
-    def samples(self) -> np.ndarray:
-        """Per step whose clock and command both arrived: [clock arrival (perf_counter s), latency (ms)]."""
+    def samples(self, scene_steps: bool | None = None) -> np.ndarray:
+        """Per step whose clock and command both arrived: [clock arrival (perf_counter s), latency (ms)].
+        scene_steps True: only the steps in which the scene published, False: only the others, None: all."""
         with self._lock:
-            clock, command = dict(self._clock_arrivals), dict(self._command_arrivals)
-        rows = [(clock[t], 1e3 * (command[t] - clock[t])) for t in command if t in clock and command[t] >= clock[t]]
+            clock, command, scene = dict(self._clock_arrivals), dict(self._command_arrivals), set(self._scene_steps)
+        rows = [(clock[t], 1e3 * (command[t] - clock[t])) for t in command
+                if t in clock and command[t] >= clock[t] and (scene_steps is None or (t in scene) == scene_steps)]
         return np.array(rows).reshape(-1, 2)
 
     def latencies_ms(self, scene_steps: bool | None = None) -> np.ndarray:
-        """Per step whose clock and command both arrived, the command's delay after the clock (ms); scene_steps
-        True: only the steps in which the scene published, False: only the others, None: all."""
-        with self._lock:
-            clock, command, scene = dict(self._clock_arrivals), dict(self._command_arrivals), set(self._scene_steps)
-        wanted = [t for t in command if t in clock and command[t] >= clock[t]
-                  and (scene_steps is None or (t in scene) == scene_steps)]
-        return np.array([1e3 * (command[t] - clock[t]) for t in wanted])
+        """The latency column of samples(scene_steps): the command's delay after the clock (ms)."""
+        return self.samples(scene_steps)[:, 1]
