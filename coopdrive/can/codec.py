@@ -117,12 +117,12 @@ def _apply_feedback_frame(state: vehicle_pb2.VehicleCanState, frame: VehicleFram
         state.wheel_speed_rear_right_mps = s["WheelSpeedRearRight"]
 
 
-def clamp_to_signal_ranges(definition: Message, signals: Mapping[str, float]) -> dict[str, float]:
+def clamp_to_signal_ranges(frame: VehicleFrame, signals: Mapping[str, float]) -> dict[str, float]:
     """Saturates simulated values at what the wire can carry (NaN becomes the range minimum)."""
+    ranges = frames.signal_ranges(frame)
     clamped = {}
     for name, value in signals.items():
-        signal = definition.get_signal_by_name(name)
-        low, high = signal.minimum, signal.maximum
+        low, high = ranges[name]
         if math.isnan(value):
             value = low if low is not None else 0.0
         if low is not None:
@@ -190,7 +190,7 @@ class VehicleCanCodec:
                              timestamp_s: float = 0.0) -> list[can.Message]:
         """Simulator side: the VEH_ frames of one cycle, closing frame last; values saturate at the DBC ranges."""
         signals = _feedback_signals(state, driver_steering_torque_nm)
-        return [self.encode_command(frame, clamp_to_signal_ranges(frames.message(frame), signals[frame]),
+        return [self.encode_command(frame, clamp_to_signal_ranges(frame, signals[frame]),
                                     timestamp_s, checked=False) for frame in frames.FEEDBACK_FRAMES]
 
     def encode_imu_sample(self, sample: vehicle_pb2.ImuSample, timestamp_s: float = 0.0) -> can.Message:
@@ -198,7 +198,7 @@ class VehicleCanCodec:
         frame = VehicleFrame.INERTIAL
         signals = {"AccelLongitudinal": sample.accel_longitudinal_mps2, "AccelLateral": sample.accel_lateral_mps2,
                    "YawRate": sample.yaw_rate_radps}
-        return self.encode_command(frame, clamp_to_signal_ranges(frames.message(frame), signals), timestamp_s,
+        return self.encode_command(frame, clamp_to_signal_ranges(frame, signals), timestamp_s,
                                    checked=False)
 
     def encode_radar_tracks(self, tracks: sensors_pb2.RadarTracks, timestamp_s: float = 0.0) -> list[can.Message]:
@@ -206,7 +206,7 @@ class VehicleCanCodec:
         self._radar_measurement_counter = (self._radar_measurement_counter + 1) % RADAR_MEASUREMENT_COUNTER_MODULO
         messages = []
         for frame, signals in encode_radar_frames(tracks, self._radar_measurement_counter):
-            signals = clamp_to_signal_ranges(frames.message(frame), signals)
+            signals = clamp_to_signal_ranges(frame, signals)
             messages.append(self.encode_command(frame, signals, timestamp_s, checked=False))
         return messages
 

@@ -84,9 +84,16 @@ def frame_by_id(arbitration_id: int) -> VehicleFrame | None:
     return _frames_by_id().get(arbitration_id)
 
 
+@cache
 def has_integrity_signals(frame: VehicleFrame) -> bool:
     names = {signal.name for signal in message(frame).signals}
     return COUNTER_SIGNAL in names and CHECKSUM_SIGNAL in names
+
+
+@cache
+def signal_ranges(frame: VehicleFrame) -> dict[str, tuple[float | None, float | None]]:
+    """Each signal's DBC (minimum, maximum), None where the DBC gives none: looked up once, not per frame sent."""
+    return {signal.name: (signal.minimum, signal.maximum) for signal in message(frame).signals}
 
 
 @cache

@@ -47,8 +47,8 @@ class CameraSensor(TimedSensor[sensors_pb2.CameraFrame]):
         cfg = self.config
         mount = np.array([cfg.mount_x_m, cfg.mount_y_m])
         outlines = world.outlines()
-        for index, (other, corners, edges) in enumerate(zip(world.others, outlines.corners, outlines.edges)):
-            point = geometry.closest_point_on_polygon(tuple(mount), corners, edges)
+        nearest = outlines.closest_points(tuple(mount))
+        for index, (other, corners, point) in enumerate(zip(world.others, outlines.corners, nearest)):
             rel = point - mount
             distance_m = float(np.hypot(*rel))
             bearing_rad = math.atan2(rel[1], rel[0])

@@ -72,6 +72,10 @@ class Outlines:
     def __len__(self) -> int:
         return len(self.corners)
 
+    def closest_points(self, point_xy: tuple[float, float]) -> np.ndarray:
+        """Each outline's point nearest to point_xy, (polygons, 2)."""
+        return closest_points_on_outlines(point_xy, self.corners, self.edges)
+
 
 def ray_polygon_ranges(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,
                        polygons: Sequence[np.ndarray] | Outlines) -> np.ndarray:
@@ -114,11 +118,19 @@ def closest_point_on_polygon(point_xy: tuple[float, float], corners: np.ndarray,
                              edges: np.ndarray | None = None) -> np.ndarray:
     """The point of the polygon's outline nearest to point_xy; `edges` (corner to next corner), when the caller
     has them already (Outlines)."""
-    point = np.asarray(point_xy, dtype=float)
-    starts = corners
     if edges is None:
         edges = np.roll(corners, -1, axis=0) - corners
-    lengths_sq = np.maximum((edges ** 2).sum(axis=1), 1e-12)
-    u = np.clip(((point - starts) * edges).sum(axis=1) / lengths_sq, 0.0, 1.0)
-    candidates = starts + u[:, None] * edges
-    return candidates[np.argmin(((candidates - point) ** 2).sum(axis=1))]
+    return closest_points_on_outlines(point_xy, corners[None], edges[None])[0]
+
+
+def closest_points_on_outlines(point_xy: tuple[float, float], corners: np.ndarray, edges: np.ndarray) -> np.ndarray:
+    """For each polygon of a stack (polygon, corner, xy) with its edges, the point of its outline nearest to
+    point_xy: (polygons, 2), every polygon in one numpy pass."""
+    if not len(corners):
+        return np.empty((0, 2))
+    point = np.asarray(point_xy, dtype=float)
+    lengths_sq = np.maximum((edges ** 2).sum(axis=2), 1e-12)
+    u = np.clip(((point - corners) * edges).sum(axis=2) / lengths_sq, 0.0, 1.0)
+    candidates = corners + u[..., None] * edges
+    nearest = np.argmin(((candidates - point) ** 2).sum(axis=2), axis=1)
+    return candidates[np.arange(len(candidates)), nearest]

@@ -5,6 +5,7 @@ import datetime as dt
 import enum
 from dataclasses import dataclass, replace
 from functools import reduce
+from operator import xor
 
 from coopdrive.v1 import gnss_pb2
 
@@ -55,7 +56,7 @@ def gga_quality(fix_mode: int) -> GgaQuality:
 
 def checksum(body: str) -> str:
     """XOR of the characters between '$' and '*', as two upper-case hex digits."""
-    return f"{reduce(lambda acc, ch: acc ^ ord(ch), body, 0):02X}"
+    return f"{reduce(xor, body.encode('ascii'), 0):02X}"
 
 
 def sentence(body: str) -> bytes:

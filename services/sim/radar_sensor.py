@@ -68,8 +68,7 @@ class RadarSensor(TimedSensor[sensors_pb2.RadarTracks]):
         mount = np.array([cfg.mount_x_m, cfg.mount_y_m])
         candidates = []
         outlines = world.outlines()
-        for other, corners, edges in zip(world.others, outlines.corners, outlines.edges):
-            point = geometry.closest_point_on_polygon(tuple(mount), corners, edges)
+        for other, point in zip(world.others, outlines.closest_points(tuple(mount))):
             rel = point - mount
             distance_m = float(np.hypot(*rel))
             if rel[0] <= 0.0 or distance_m > cfg.max_range_m or abs(math.atan2(rel[1], rel[0])) > cfg.half_fov_rad:

@@ -48,8 +48,13 @@ class WorldView:
         """Corners (4 x 2) of every other vehicle in the ego frame, in the order of `others`."""
         if self._in_ego_frame is None:
             ego = self.ego
-            self._in_ego_frame = [geometry.to_ego_frame(self._corners_enu(o), ego.x_m, ego.y_m, ego.heading_rad)
-                                  for o in self.others]
+            corners = [self._corners_enu(other) for other in self.others]
+            if not corners:
+                self._in_ego_frame = []
+                return self._in_ego_frame
+            # All of them in one transform: the same arithmetic per point, one numpy pass instead of one per vehicle.
+            local = geometry.to_ego_frame(np.concatenate(corners), ego.x_m, ego.y_m, ego.heading_rad)
+            self._in_ego_frame = np.split(local, np.cumsum([len(c) for c in corners])[:-1])
         return self._in_ego_frame
 
     def outlines(self) -> geometry.Outlines:

@@ -46,6 +46,36 @@ def test_outlines_built_once_give_exactly_the_ranges_and_closest_points_of_the_p
     azimuths = np.linspace(-1.5, 1.5, 181)
     assert np.array_equal(geometry.ray_polygon_ranges((1.0, 0.2), azimuths, outlines),
                           geometry.ray_polygon_ranges((1.0, 0.2), azimuths, polygons))
-    for corners, edges in zip(outlines.corners, outlines.edges):
-        assert np.array_equal(geometry.closest_point_on_polygon((1.0, 0.2), corners, edges),
-                              geometry.closest_point_on_polygon((1.0, 0.2), corners))
+    nearest = outlines.closest_points((1.0, 0.2))
+    for corners, edges, point in zip(outlines.corners, outlines.edges, nearest):
+        assert np.array_equal(geometry.closest_point_on_polygon((1.0, 0.2), corners, edges), point)
+        assert np.array_equal(geometry.closest_point_on_polygon((1.0, 0.2), corners), point)
+
+
+def _nearest_on_outline_by_hand(point: tuple[float, float], corners: np.ndarray) -> tuple[float, float]:
+    """Each edge's nearest point by the textbook projection, in plain floats; the nearest of them."""
+    best = None
+    for k in range(len(corners)):
+        (ax, ay), (bx, by) = corners[k], corners[(k + 1) % len(corners)]
+        ex, ey = bx - ax, by - ay
+        u = min(max(((point[0] - ax) * ex + (point[1] - ay) * ey) / (ex * ex + ey * ey), 0.0), 1.0)
+        candidate = (ax + u * ex, ay + u * ey)
+        distance = math.hypot(candidate[0] - point[0], candidate[1] - point[1])
+        if best is None or distance < best[0]:
+            best = (distance, candidate)
+    return best[1]
+
+
+def test_the_closest_points_of_many_outlines_at_once_are_each_outlines_nearest_point_worked_out_by_hand():
+    rng = np.random.default_rng(11)
+    polygons = [geometry.footprint_corners(*rng.uniform(-40.0, 40.0, 2), rng.uniform(-3.2, 3.2), 4.5, 1.8)
+                for _ in range(12)]
+    for point in [tuple(rng.uniform(-40.0, 40.0, 2)) for _ in range(20)]:
+        nearest = geometry.Outlines.of(polygons).closest_points(point)
+        assert nearest.shape == (12, 2)
+        for corners, found in zip(polygons, nearest):
+            assert tuple(found) == pytest.approx(_nearest_on_outline_by_hand(point, corners), abs=1e-9)
+
+
+def test_no_outlines_have_no_closest_points():
+    assert geometry.Outlines.of([]).closest_points((0.0, 0.0)).shape == (0, 2)
