@@ -47,17 +47,23 @@ class CameraSensor(TimedSensor[sensors_pb2.CameraFrame]):
         cfg = self.config
         mount = np.array([cfg.mount_x_m, cfg.mount_y_m])
         outlines = world.outlines()
-        nearest = outlines.closest_points(tuple(mount))
-        for index, (other, corners, point) in enumerate(zip(world.others, outlines.corners, nearest)):
+        in_view = []
+        for index, (other, corners, point) in enumerate(zip(world.others, outlines.corners,
+                                                            outlines.closest_points(tuple(mount)))):
             rel = point - mount
             distance_m = float(np.hypot(*rel))
             bearing_rad = math.atan2(rel[1], rel[0])
             if rel[0] <= 0.0 or distance_m > cfg.max_range_m or abs(bearing_rad) > cfg.half_fov_rad:
                 continue
             centre = corners.mean(axis=0) - mount
-            _, hit = geometry.cast_rays(tuple(mount), np.array([math.atan2(centre[1], centre[0]), bearing_rad]),
-                                        outlines, cfg.max_range_m)
-            if index not in hit or self.rng.random() < cfg.miss_probability:
+            in_view.append((index, other, point, distance_m, (math.atan2(centre[1], centre[0]), bearing_rad)))
+        if not in_view:
+            return
+        # Seen only if a ray to its centre or to its nearest point meets it first: all the rays cast at once.
+        _, hit = geometry.cast_rays(tuple(mount), np.array([rays for *_, rays in in_view]).ravel(), outlines,
+                                    cfg.max_range_m)
+        for (index, other, point, distance_m, _), first_hits in zip(in_view, hit.reshape(-1, 2).tolist()):
+            if index not in first_hits or self.rng.random() < cfg.miss_probability:
                 continue
             x_m, y_m = point + cfg.position_sigma_m * self.rng.standard_normal(2)
             frame.detections.add(

@@ -77,9 +77,10 @@ class Outlines:
         return closest_points_on_outlines(point_xy, self.corners, self.edges)
 
 
-def ray_polygon_ranges(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,
+def ray_polygon_ranges(origin_xy: tuple[float, float] | np.ndarray, azimuths_rad: np.ndarray,
                        polygons: Sequence[np.ndarray] | Outlines) -> np.ndarray:
-    """Distance along each ray (rows) to the first crossing of each polygon's outline (columns); inf on a miss."""
+    """Distance along each ray (rows) to the first crossing of each polygon's outline (columns); inf on a miss.
+    The rays start at origin_xy, or each at its own row of origin_xy (rays, 2)."""
     azimuths = np.atleast_1d(np.asarray(azimuths_rad, dtype=float))
     if not len(polygons):
         return np.full((azimuths.size, 0), np.inf)
@@ -87,7 +88,8 @@ def ray_polygon_ranges(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,
         if len({len(corners) for corners in polygons}) > 1:
             return np.column_stack([ray_polygon_ranges(origin_xy, azimuths, [corners]) for corners in polygons])
         polygons = Outlines.of(polygons)
-    rel = polygons.corners - np.asarray(origin_xy, dtype=float)
+    origin = np.asarray(origin_xy, dtype=float)
+    rel = polygons.corners - (origin[:, None, None, :] if origin.ndim == 2 else origin)
     edge_x, edge_y, rel_x, rel_y = polygons.edges[..., 0], polygons.edges[..., 1], rel[..., 0], rel[..., 1]
     # Every ray (axis 0) against every edge (axes 1, 2): solve origin + t d = start + u e.
     dir_x, dir_y = np.cos(azimuths)[:, None, None], np.sin(azimuths)[:, None, None]
@@ -99,9 +101,10 @@ def ray_polygon_ranges(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,
     return t.min(axis=2)
 
 
-def cast_rays(origin_xy: tuple[float, float], azimuths_rad: np.ndarray,
+def cast_rays(origin_xy: tuple[float, float] | np.ndarray, azimuths_rad: np.ndarray,
               polygons: Sequence[np.ndarray] | Outlines, max_range_m: float) -> tuple[np.ndarray, np.ndarray]:
-    """Nearest hit of each ray on the polygons: (range_m, index of the polygon hit or -1); inf on a miss."""
+    """Nearest hit of each ray on the polygons: (range_m, index of the polygon hit or -1); inf on a miss. The rays
+    start at origin_xy, or each at its own row of origin_xy (rays, 2)."""
     azimuths = np.atleast_1d(np.asarray(azimuths_rad, dtype=float))
     if not len(polygons):
         return np.full(azimuths.shape, np.inf), np.full(azimuths.shape, -1, dtype=int)

@@ -17,7 +17,11 @@ class SonarSensor(TimedSensor[sensors_pb2.SonarRanges]):
         # Mounts left out of the configuration sit where they would on this vehicle.
         self.config = config = config.placed(profile)
         super().__init__(config.timing, rng, vehicle_id)
-        self._cone_rad = np.linspace(-config.half_beam_rad, config.half_beam_rad, config.rays_per_beam)
+        cone_rad = np.linspace(-config.half_beam_rad, config.half_beam_rad, config.rays_per_beam)
+        # Every mount's cone of rays, cast together: rays (mount, ray) flattened, each from its own mount.
+        self._ray_origins = np.array([(mount.x_m, mount.y_m) for mount in config.mounts for _ in cone_rad])
+        self._ray_azimuths_rad = np.concatenate([mount.yaw_rad + cone_rad for mount in config.mounts]) \
+            if config.mounts else np.empty(0)
 
     def poll(self, now_s: float, world: WorldView) -> list[sensors_pb2.SonarRanges]:
         return self._deliver(now_s, lambda: self._measure(world))
@@ -26,9 +30,11 @@ class SonarSensor(TimedSensor[sensors_pb2.SonarRanges]):
         cfg = self.config
         outlines = world.outlines()
         message = sensors_pb2.SonarRanges()
-        for index, mount in enumerate(cfg.mounts):
-            ranges, _ = geometry.cast_rays((mount.x_m, mount.y_m), mount.yaw_rad + self._cone_rad, outlines,
+        if not cfg.mounts:
+            return message
+        all_ranges, _ = geometry.cast_rays(self._ray_origins.reshape(-1, 2), self._ray_azimuths_rad, outlines,
                                            cfg.max_range_m)
+        for index, (mount, ranges) in enumerate(zip(cfg.mounts, all_ranges.reshape(len(cfg.mounts), -1))):
             nearest_m = float(ranges.min()) if ranges.size else np.inf
             echo = bool(np.isfinite(nearest_m))
             range_m = min(max(nearest_m + cfg.range_sigma_m * self.rng.standard_normal(), 0.0), cfg.max_range_m) \
