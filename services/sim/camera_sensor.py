@@ -97,7 +97,7 @@ class CameraSensor(TimedSensor[sensors_pb2.CameraFrame]):
         heading_noise = cfg.lane_heading_sigma_rad * self.rng.standard_normal()
         for side, sign, noise_m in ((sensors_pb2.LANE_SIDE_LEFT, 1.0, offset_noise_m[0]),
                                     (sensors_pb2.LANE_SIDE_RIGHT, -1.0, offset_noise_m[1])):
-            points = np.array([lane.pose_at(float(s), sign * lane.width_m / 2.0)[:2] for s in stations])
+            points = lane.points_at(stations, sign * lane.width_m / 2.0)
             local = geometry.to_ego_frame(points, ego.x_m, ego.y_m, ego.heading_rad)
             c3, c2, c1, c0 = np.polyfit(local[:, 0], local[:, 1], CUBIC)
             frame.lane_markings.add(side=side, c0_m=c0 + noise_m, c1=c1 + heading_noise, c2_1pm=c2, c3_1pm2=c3,

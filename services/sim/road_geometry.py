@@ -8,6 +8,8 @@ import math
 from dataclasses import dataclass
 from typing import Protocol, Sequence, runtime_checkable
 
+import numpy as np
+
 
 @runtime_checkable
 class LaneGeometry(Protocol):
@@ -17,6 +19,10 @@ class LaneGeometry(Protocol):
     width_m: float
 
     def pose_at(self, station_m: float, lateral_offset_m: float = 0.0) -> tuple[float, float, float]:
+        ...
+
+    def points_at(self, stations_m: np.ndarray, lateral_offset_m: float = 0.0) -> np.ndarray:
+        """pose_at's points (N x 2) for many stations at once."""
         ...
 
     def project(self, x_m: float, y_m: float) -> tuple[float, float, float, float]:
@@ -40,6 +46,9 @@ class StraightLane:
         x_m = self.x0_m + station_m * cos_h - lateral_offset_m * sin_h
         y_m = self.y0_m + station_m * sin_h + lateral_offset_m * cos_h
         return x_m, y_m, self.heading_rad
+
+    def points_at(self, stations_m: np.ndarray, lateral_offset_m: float = 0.0) -> np.ndarray:
+        return np.array([self.pose_at(float(station_m), lateral_offset_m)[:2] for station_m in stations_m])
 
     def project(self, x_m: float, y_m: float) -> tuple[float, float, float, float]:
         cos_h, sin_h = math.cos(self.heading_rad), math.sin(self.heading_rad)
