@@ -47,11 +47,8 @@ class BadSentence(enum.Enum):
 
 
 def nmea_checksum(body: str) -> int:
-    """XOR of the characters between '$' and '*'."""
-    value = 0
-    for char in body:
-        value ^= ord(char)
-    return value
+    """XOR of the characters between '$' and '*' (NMEA 0183), as pynmea2 computes it."""
+    return pynmea2.NMEASentence.checksum(body)
 
 
 def with_checksum(body: str) -> str:

@@ -4,8 +4,8 @@ from __future__ import annotations
 import datetime as dt
 import enum
 from dataclasses import dataclass, replace
-from functools import reduce
-from operator import xor
+
+import pynmea2
 
 from coopdrive.v1 import gnss_pb2
 
@@ -55,8 +55,8 @@ def gga_quality(fix_mode: int) -> GgaQuality:
 
 
 def checksum(body: str) -> str:
-    """XOR of the characters between '$' and '*', as two upper-case hex digits."""
-    return f"{reduce(xor, body.encode('ascii'), 0):02X}"
+    """XOR of the characters between '$' and '*' (pynmea2's), as two upper-case hex digits."""
+    return f"{pynmea2.NMEASentence.checksum(body):02X}"
 
 
 def sentence(body: str) -> bytes:
