@@ -79,3 +79,15 @@ def test_the_closest_points_of_many_outlines_at_once_are_each_outlines_nearest_p
 
 def test_no_outlines_have_no_closest_points():
     assert geometry.Outlines.of([]).closest_points((0.0, 0.0)).shape == (0, 2)
+
+
+def test_rays_cast_each_from_its_own_origin_meet_what_each_alone_meets():
+    squares = [square(5.0, 0.0), square(0.0, 6.0), square(-4.0, -1.0)]
+    origins = np.array([(0.0, 0.0), (0.0, 1.0), (-1.0, 2.0), (0.5, -0.5)])
+    azimuths = np.array([0.0, math.pi / 2.0, -2.9, 0.3])
+    together = ray_polygon_ranges(origins, azimuths, squares)
+    for k, (origin, azimuth) in enumerate(zip(origins, azimuths)):
+        assert np.array_equal(together[k], ray_polygon_ranges(tuple(origin), np.array([azimuth]), squares)[0])
+    ranges, hit = cast_rays(origins, azimuths, squares, max_range_m=100.0)
+    assert ranges[0] == pytest.approx(4.5) and hit[0] == 0
+    assert ranges[1] == pytest.approx(4.5) and hit[1] == 1
