@@ -30,6 +30,8 @@ class FaultSchedule:
     def __init__(self, faults: Sequence[Fault]) -> None:
         self.faults = list(faults)
         self._active: set[int] = set()
+        # The vehicles the models were last brought to the active faults for; None before the first update.
+        self._applied_to: frozenset[str] | None = None
 
     def active(self, now_s: float) -> list[Fault]:
         return [f for f in self.faults if f.active(now_s)]
@@ -41,10 +43,15 @@ class FaultSchedule:
         active_now = {i for i, f in enumerate(self.faults) if f.active(now_s)}
         transitions = [FaultTransition(self.faults[i], i in active_now, now_s)
                        for i in sorted(active_now ^ self._active)]
+        unchanged = active_now == self._active and self._applied_to == frozenset(suites)
         self._active = active_now
         active = [self.faults[i] for i in sorted(active_now)]
-        for vehicle_id, suite in suites.items():
-            self._apply_to_suite(vehicle_id, suite, active, now_s)
+        # The hooks only take values, so the same faults set them to the same values again: the work is skipped
+        # unless a fault started or ended, or one active moves with time (a GNSS jump's offset).
+        if not unchanged or any(isinstance(fault, GnssJump) for fault in active):
+            for vehicle_id, suite in suites.items():
+                self._apply_to_suite(vehicle_id, suite, active, now_s)
+            self._applied_to = frozenset(suites)
         if channel is not None:
             self._apply_to_channel(channel, active)
         return transitions

@@ -78,7 +78,10 @@ class RadioChannel:
         return self._link(sender_id, receiver_id).stats
 
     def _link(self, sender_id: str, receiver_id: str) -> _Link:
-        return self._links.setdefault((sender_id, receiver_id), _Link())
+        link = self._links.get((sender_id, receiver_id))
+        if link is None:
+            link = self._links[sender_id, receiver_id] = _Link()
+        return link
 
     def _burst_lost(self, link: _Link) -> bool:
         ge = self.config.burst

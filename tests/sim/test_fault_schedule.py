@@ -89,3 +89,15 @@ def test_a_gnss_jump_moves_the_reported_antenna_position_by_its_offset_while_it_
     assert all(abs(x - 5.0) < 0.1 and abs(y + 2.0) < 0.1 for x, y in during)
     assert all(abs(x) < 0.1 and abs(y) < 0.1 for x, y in outside)
     assert suite.gnss.effective_fix_mode == gnss_pb2.FIX_MODE_RTK_FIXED
+
+
+def test_a_ramped_gnss_jump_moves_on_at_every_update_though_no_fault_starts_or_ends():
+    suite = _suite()
+    jump = GnssJump(type="gnss_jump", vehicle_id="ego", east_m=4.0, start_s=1.0, end_s=5.0, ramp_s=1.0)
+    schedule = FaultSchedule([jump])
+    offsets = []
+    for t in (1.25, 1.5, 1.75, 2.5):
+        schedule.update(t, {"ego": suite})
+        offsets.append(suite.gnss.offset_east_m)
+    assert offsets == [jump.offset_at(t)[0] for t in (1.25, 1.5, 1.75, 2.5)]
+    assert offsets[0] < offsets[1] < offsets[2] < offsets[3] == 4.0
