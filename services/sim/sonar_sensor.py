@@ -19,7 +19,8 @@ class SonarSensor(TimedSensor[sensors_pb2.SonarRanges]):
         super().__init__(config.timing, rng, vehicle_id)
         cone_rad = np.linspace(-config.half_beam_rad, config.half_beam_rad, config.rays_per_beam)
         # Every mount's cone of rays, cast together: rays (mount, ray) flattened, each from its own mount.
-        self._ray_origins = np.array([(mount.x_m, mount.y_m) for mount in config.mounts for _ in cone_rad])
+        self._ray_origins = np.array([(mount.x_m, mount.y_m) for mount in config.mounts for _ in cone_rad],
+                                     dtype=float).reshape(-1, 2)
         self._ray_azimuths_rad = np.concatenate([mount.yaw_rad + cone_rad for mount in config.mounts]) \
             if config.mounts else np.empty(0)
 
@@ -32,7 +33,7 @@ class SonarSensor(TimedSensor[sensors_pb2.SonarRanges]):
         message = sensors_pb2.SonarRanges()
         if not cfg.mounts:
             return message
-        all_ranges, _ = geometry.cast_rays(self._ray_origins.reshape(-1, 2), self._ray_azimuths_rad, outlines,
+        all_ranges, _ = geometry.cast_rays(self._ray_origins, self._ray_azimuths_rad, outlines,
                                            cfg.max_range_m)
         for index, (mount, ranges) in enumerate(zip(cfg.mounts, all_ranges.reshape(len(cfg.mounts), -1))):
             nearest_m = float(ranges.min()) if ranges.size else np.inf

@@ -49,12 +49,11 @@ class WorldView:
         if self._in_ego_frame is None:
             ego = self.ego
             corners = [self._corners_enu(other) for other in self.others]
-            if not corners:
-                self._in_ego_frame = []
-                return self._in_ego_frame
-            # All of them in one transform: the same arithmetic per point, one numpy pass instead of one per vehicle.
-            local = geometry.to_ego_frame(np.concatenate(corners), ego.x_m, ego.y_m, ego.heading_rad)
-            self._in_ego_frame = np.split(local, np.cumsum([len(c) for c in corners])[:-1])
+            self._in_ego_frame = []
+            if corners:
+                # All in one transform: the same arithmetic per point, one numpy pass instead of one per vehicle.
+                local = geometry.to_ego_frame(np.concatenate(corners), ego.x_m, ego.y_m, ego.heading_rad)
+                self._in_ego_frame = np.split(local, np.cumsum([len(c) for c in corners])[:-1])
         return self._in_ego_frame
 
     def outlines(self) -> geometry.Outlines:

@@ -28,6 +28,8 @@ _ADDRESS_FLAGS_SIZE = 2  # M, ST and reserved bits ahead of the 6-octet MID
 _GBC_HEAD = struct.Struct(">HH")
 _GBC_AREA = struct.Struct(">iiHHHH")
 BASIC_HEADER_SIZE = _BASIC.size
+# The basic header's first octet: the GN version in the high nibble, the next header in the low one.
+_BASIC_VERSION_BITS, _BASIC_NEXT_HEADER_BITS = 0xF0, 0x0F
 COMMON_HEADER_SIZE = _COMMON.size
 SHB_HEADER_SIZE = _LONG_POSITION_VECTOR.size + _SHB_TAIL.size
 GBC_HEADER_SIZE = _GBC_HEAD.size + _LONG_POSITION_VECTOR.size + _GBC_AREA.size
@@ -235,7 +237,7 @@ def parse_basic_header(data: bytes, accepted_versions: tuple[int, ...] = SUPPORT
     if len(data) < BASIC_HEADER_SIZE:
         raise GnParseError(RejectReason.TRUNCATED_BASIC_HEADER, f"{len(data)} bytes")
     version_next, _, lifetime, hop_limit = _BASIC.unpack_from(data, 0)
-    version, basic_next = version_next >> 4, version_next & 0x0F
+    version, basic_next = version_next >> 4, version_next & _BASIC_NEXT_HEADER_BITS
     if version not in accepted_versions:
         raise GnParseError(RejectReason.UNSUPPORTED_GN_VERSION, f"version {version}")
     next_header = _BASIC_NEXT_BY_NUMBER.get(basic_next)
@@ -246,12 +248,12 @@ def parse_basic_header(data: bytes, accepted_versions: tuple[int, ...] = SUPPORT
 
 def is_secured(packet: bytes) -> bool:
     """Whether the basic header says a security envelope follows, read from its first octet alone."""
-    return len(packet) >= BASIC_HEADER_SIZE and packet[0] & 0x0F == BasicNextHeader.SECURED_PACKET
+    return len(packet) >= BASIC_HEADER_SIZE and packet[0] & _BASIC_NEXT_HEADER_BITS == BasicNextHeader.SECURED_PACKET
 
 
 def with_basic_next_header(packet: bytes, next_header: BasicNextHeader, rest: bytes) -> bytes:
     """packet's basic header with next_header, followed by rest (to wrap or unwrap a security envelope)."""
-    first = (packet[0] & 0xF0) | int(next_header)
+    first = (packet[0] & _BASIC_VERSION_BITS) | int(next_header)
     return bytes([first]) + bytes(packet[1:BASIC_HEADER_SIZE]) + rest
 
 
