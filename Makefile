@@ -22,9 +22,9 @@ run: $(STAMP)
 desk: $(STAMP)
 	$(BIN)/python -m coopdrive.launch.compose_processes --profile desk
 
-## test: the whole test suite
+## test: the whole test suite, a test file at a time on each core (pytest-xdist: a file's module fixtures run once)
 test: $(STAMP)
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n auto --dist loadfile
 
 ## bench: benchmarks, each against a baseline measured in the same run
 bench: $(STAMP)

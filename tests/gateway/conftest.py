@@ -97,9 +97,10 @@ RUN_STOP_TIMEOUT_S = 10.0
 
 
 class Run:
-    def __init__(self, process: subprocess.Popen, port: int):
+    def __init__(self, process: subprocess.Popen, port: int, log_path):
         self.process = process
         self.port = port
+        self.log_path = log_path
         self.http = httpx.Client(base_url=f"http://127.0.0.1:{port}", timeout=RUN_REQUEST_TIMEOUT_S)
 
     def poll_json(self, path: str, until, deadline_s: float, what: str) -> dict:
@@ -108,7 +109,9 @@ class Run:
         last: object = "no answer yet"
         while time.monotonic() < deadline:
             if self.process.poll() is not None:
-                pytest.fail(f"the run exited with {self.process.returncode} while waiting for {what}")
+                log_tail = self.log_path.read_text().strip().splitlines()[-5:]
+                pytest.fail(f"the run exited with {self.process.returncode} while waiting for {what}; "
+                            f"its log ends: {log_tail}")
             try:
                 body = self.http.get(path).json()
             except httpx.TransportError as error:  # the gateway is not listening yet
@@ -121,22 +124,38 @@ class Run:
         pytest.fail(f"no {what} within {deadline_s} s; last answer: {last}")
 
 
+def start_follow_run(log_path) -> Run:
+    """`coopdrive run follow --realtime --gateway PORT` on a free port, its output in `log_path`."""
+    port = free_tcp_port()
+    with open(log_path, "w") as output:
+        process = subprocess.Popen(
+            [sys.executable, "-m", "coopdrive.cli", "run", "follow", "--realtime", "--gateway", str(port),
+             "--duration", str(RUN_DURATION_S)],
+            stdin=subprocess.DEVNULL, stdout=output, stderr=subprocess.STDOUT, start_new_session=True)
+    return Run(process, port, log_path)
+
+
+def stop_follow_run(live: Run) -> None:
+    live.http.close()
+    if live.process.poll() is None:
+        live.process.send_signal(signal.SIGTERM)
+        try:
+            live.process.wait(timeout=RUN_STOP_TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            live.process.kill()
+            live.process.wait()
+
+
 @pytest.fixture(scope="session")
 def follow_run(tmp_path_factory):
-    port = free_tcp_port()
-    output = open(tmp_path_factory.mktemp("run") / "run.log", "w")
-    process = subprocess.Popen(
-        [sys.executable, "-m", "coopdrive.cli", "run", "follow", "--realtime", "--gateway", str(port),
-         "--duration", str(RUN_DURATION_S)],
-        stdin=subprocess.DEVNULL, stdout=output, stderr=subprocess.STDOUT, start_new_session=True)
-    live = Run(process, port)
+    """One run read by every test that only watches it; a test that stops a run starts its own."""
+    live = start_follow_run(tmp_path_factory.mktemp("run") / "run.log")
     yield live
-    live.http.close()
-    if process.poll() is None:
-        process.send_signal(signal.SIGTERM)
-        try:
-            process.wait(timeout=RUN_STOP_TIMEOUT_S)
-        except subprocess.TimeoutExpired:
-            process.kill()
-            process.wait()
-    output.close()
+    stop_follow_run(live)
+
+
+@pytest.fixture
+def own_follow_run(tmp_path):
+    live = start_follow_run(tmp_path / "run.log")
+    yield live
+    stop_follow_run(live)

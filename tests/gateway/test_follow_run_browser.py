@@ -1,8 +1,8 @@
 """During a real `coopdrive run follow --realtime --gateway PORT`: the /ws stream and the HMI in Chromium.
 
-Shares the session's run (conftest.follow_run) with test_follow_run_gateway.py, which sorts after this file
-and stops the run. Polling with generous deadlines: a loaded 2-core machine runs seven Python processes and
-a browser here. The browser test saves docs/hmi-screenshot.png.
+Shares the session's run (conftest.follow_run) with test_follow_run_gateway.py, in any order. Polling with
+generous deadlines: a loaded 2-core machine runs the run's processes and a browser here. The browser test
+saves docs/hmi-screenshot.png.
 """
 
 import json

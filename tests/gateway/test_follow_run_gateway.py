@@ -1,9 +1,8 @@
 """Over real HTTP: `coopdrive run follow --realtime --gateway PORT` serves the live stack, and stops on SIGTERM.
 
-One run is shared by the session (conftest.follow_run, also read by test_follow_run_browser.py, which sorts
-before this file); the tests read it in file order and the last one stops it.
-Deadlines for polling are generous (a loaded 2-core machine starts seven Python processes);
-the only timed assertion is the issue's: the run exits within 3 s of SIGTERM.
+The tests that only watch share one run with test_follow_run_browser.py (conftest.follow_run), in any order or
+worker; the one that stops a run starts its own. Deadlines for polling are generous (a loaded 2-core machine
+starts the run's processes); the only timed assertion is the issue's: the run exits within 3 s of SIGTERM.
 """
 
 import signal
@@ -15,8 +14,7 @@ from coopdrive.runtime.registry import VEHICLE_STACK
 
 STARTUP_DEADLINE_S = 90.0
 DATA_DEADLINE_S = 60.0
-# Generous: the 3 s target is measured, not asserted (shared machines are noisy); this catches hangs.
-SHUTDOWN_LIMIT_S = 30.0
+SHUTDOWN_LIMIT_S = 3.0
 
 
 @pytest.fixture(scope="module")
@@ -68,9 +66,9 @@ def test_the_openapi_document_lists_the_read_endpoints(run):
     assert {"/health", "/state"} <= set(document["paths"])
 
 
-def test_the_run_with_its_gateway_exits_within_3_s_of_sigterm(run):
-    assert run.process.poll() is None, "the run ended before it could be stopped"
-    run.process.send_signal(signal.SIGTERM)
-    run.process.wait(timeout=SHUTDOWN_LIMIT_S)
+def test_the_run_with_its_gateway_exits_within_3_s_of_sigterm(own_follow_run):
+    own_follow_run.poll_json("/health", stack_alive, STARTUP_DEADLINE_S, "live stack in /health")
+    own_follow_run.process.send_signal(signal.SIGTERM)
+    own_follow_run.process.wait(timeout=SHUTDOWN_LIMIT_S)
     with pytest.raises(httpx.TransportError):
-        run.http.get("/health")
+        own_follow_run.http.get("/health")
