@@ -89,7 +89,7 @@ def feed():
     return feed_a_following_vehicle
 
 
-# ----- one real `coopdrive run follow --realtime --gateway PORT` for the session ------------------
+# ----- a real `coopdrive run follow --realtime --gateway PORT` per test file ------------------
 RUN_DURATION_S = 90
 RUN_POLL_PERIOD_S = 0.5
 RUN_REQUEST_TIMEOUT_S = 10.0
@@ -146,9 +146,10 @@ def stop_follow_run(live: Run) -> None:
             live.process.wait()
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def follow_run(tmp_path_factory):
-    """One run read by every test that only watches it; a test that stops a run starts its own."""
+    """One run for a test file's tests that only watch it (a file's tests run together, on one worker, within
+    the run's duration); a test that stops a run starts its own."""
     live = start_follow_run(tmp_path_factory.mktemp("run") / "run.log")
     yield live
     stop_follow_run(live)

@@ -1,8 +1,7 @@
 """During a real `coopdrive run follow --realtime --gateway PORT`: the /ws stream and the HMI in Chromium.
 
-Shares the session's run (conftest.follow_run) with test_follow_run_gateway.py, in any order. Polling with
-generous deadlines: a loaded 2-core machine runs the run's processes and a browser here. The browser test
-saves docs/hmi-screenshot.png.
+The file's tests share one run (conftest.follow_run). Polling with generous deadlines: a loaded 2-core machine
+runs the run's processes and a browser here. The browser test saves docs/hmi-screenshot.png.
 """
 
 import json

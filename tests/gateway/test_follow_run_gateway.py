@@ -1,8 +1,8 @@
 """Over real HTTP: `coopdrive run follow --realtime --gateway PORT` serves the live stack, and stops on SIGTERM.
 
-The tests that only watch share one run with test_follow_run_browser.py (conftest.follow_run), in any order or
-worker; the one that stops a run starts its own. Deadlines for polling are generous (a loaded 2-core machine
-starts the run's processes); the only timed assertion is the issue's: the run exits within 3 s of SIGTERM.
+The tests that only watch share the file's run (conftest.follow_run); the one that stops a run starts its own.
+Deadlines for polling are generous (a loaded 2-core machine starts the run's processes); the only timed
+assertion is the issue's: the run exits within 3 s of SIGTERM.
 """
 
 import signal
