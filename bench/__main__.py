@@ -16,11 +16,14 @@ def main(selected: list[str]) -> int:
     for name in names:
         started = time.monotonic()
         print(f"\n=== {name}", flush=True)
+        runner_argv, sys.argv = sys.argv, [f"bench.{name}"]  # the names selected are not the benchmark's options
         try:
             importlib.import_module(f"bench.{name}").main()
-        except Exception as error:  # one broken benchmark must not hide the others
+        except (Exception, SystemExit) as error:  # one broken benchmark must not hide the others
             failures += 1
             print(f"{name} failed: {error!r}")
+        finally:
+            sys.argv = runner_argv
         print(f"({name}: {time.monotonic() - started:.1f} s)", flush=True)
     return 1 if failures else 0
 

@@ -25,16 +25,18 @@ from coopdrive.services.geolocation.config import GeolocatorConfig  # noqa: E402
 from coopdrive.services.geolocation.ekf import GeolocationEkf  # noqa: E402
 from coopdrive.services.geolocation.frames import LeverArm  # noqa: E402
 from coopdrive.services.geolocation.geolocator import Geolocator  # noqa: E402
+from coopdrive.services.geolocation.motion_models import SPEED, STATE_DIM  # noqa: E402
 
 SPEED_MPS = 80.0 / 3.6
 
 
 def bare_filterpy(n_updates: int) -> float:
-    kf = ExtendedKalmanFilter(dim_x=6, dim_z=2)
-    kf.x = np.zeros(6)
-    kf.F = np.eye(6) + np.eye(6, k=1) * 0.01
-    kf.Q = np.eye(6) * 1e-4
-    H = np.zeros((2, 6))
+    """The same state size as ours, so that the matrices cost alike."""
+    kf = ExtendedKalmanFilter(dim_x=STATE_DIM, dim_z=2)
+    kf.x = np.zeros(STATE_DIM)
+    kf.F = np.eye(STATE_DIM) + np.eye(STATE_DIM, k=1) * 0.01
+    kf.Q = np.eye(STATE_DIM) * 1e-4
+    H = np.zeros((2, STATE_DIM))
     H[0, 0] = H[1, 1] = 1.0
     R = np.eye(2) * 0.01
     z = np.array([0.1, 0.1])
@@ -47,7 +49,9 @@ def bare_filterpy(n_updates: int) -> float:
 
 def our_ekf(n_updates: int) -> float:
     ekf = GeolocationEkf()
-    ekf.initialise(0.0, np.array([0.0, 0.0, 0.0, SPEED_MPS, 0.0, 0.0]), np.eye(6) * 0.01)
+    x0 = np.zeros(STATE_DIM)
+    x0[SPEED] = SPEED_MPS
+    ekf.initialise(0.0, x0, np.eye(STATE_DIM) * 0.01)
     start = time.perf_counter()
     for i in range(1, n_updates + 1):
         t = i * 0.01
@@ -93,10 +97,10 @@ def map_match(n_calls: int) -> float:
     return time.perf_counter() - start
 
 
-def main() -> None:
+def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--seconds", type=float, default=30.0, help="simulated drive length")
-    args = parser.parse_args()
+    args = parser.parse_args(argv or [])
     n = int(args.seconds * 100)
     rows = []
     elapsed = bare_filterpy(n)
@@ -121,4 +125,4 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:])
