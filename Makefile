@@ -22,9 +22,11 @@ run: $(STAMP)
 desk: $(STAMP)
 	$(BIN)/python -m coopdrive.launch.compose_processes --profile desk
 
-## test: the whole test suite, a test file at a time on each core (pytest-xdist: a file's module fixtures run once)
+## test: the whole test suite, a test file at a time on each core (pytest-xdist: a file's module fixtures run once);
+## TEST_WORKERS=N runs N files at a time (default: one per core)
+TEST_WORKERS ?= auto
 test: $(STAMP)
-	$(BIN)/python -m pytest -n auto --dist loadfile
+	$(BIN)/python -m pytest -n $(TEST_WORKERS) --dist loadfile
 
 ## bench: benchmarks, each against a baseline measured in the same run
 bench: $(STAMP)
