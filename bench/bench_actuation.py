@@ -10,6 +10,7 @@ import statistics
 import sys
 import time
 
+from bench.sizes import sized
 from coopdrive.can.codec import VehicleCanCodec, VehicleCommand
 from coopdrive.services.actuation.actuator import Actuator
 from coopdrive.services.actuation.config import STACK_UPSTREAM
@@ -18,7 +19,7 @@ from coopdrive.v1 import actuation_pb2, control_pb2, ego_pb2, vehicle_pb2
 SERVICES = STACK_UPSTREAM
 STEP_S = 0.01
 NS_PER_US = 1000.0
-DEFAULT_ITERATIONS = 5000
+DEFAULT_ITERATIONS = sized(5000, 50)
 
 
 def percentile(values: list[float], fraction: float) -> float:

@@ -12,15 +12,15 @@ import queue
 import time
 
 import numpy as np
-import zenoh
 from rich.console import Console
 from rich.table import Table
 
+from bench.sizes import sized
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
 
-ROUND_TRIPS = 2000
-WARMUP = 100
+ROUND_TRIPS = sized(2000, 20)
+WARMUP = sized(100, 5)
 
 
 def _config(listen, connect) -> BusConfig:

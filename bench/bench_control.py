@@ -8,6 +8,7 @@ import os
 import statistics
 import time
 
+from bench.sizes import sized
 from coopdrive.services.control.lateral import LateralController, LateralLaw
 from coopdrive.services.control.longitudinal import CaccLaw, LongitudinalController, Spacing, Target
 from coopdrive.services.control.longitudinal.cacc import LagCompensatedCacc
@@ -17,7 +18,7 @@ from coopdrive.services.control.profiles import CAR
 
 DT_S = 0.02
 NS_PER_US = 1000.0
-DEFAULT_ITERATIONS = 20000
+DEFAULT_ITERATIONS = sized(20000, 50)
 FOLLOW = FollowInput(gap_m=17.0, ego_speed_mps=22.0, ego_accel_mps2=0.1, pred_speed_mps=22.3,
                      pred_accel_mps2=0.2, standstill_m=6.0, time_gap_s=0.5)
 

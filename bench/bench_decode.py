@@ -24,6 +24,7 @@ from cryptography.hazmat.primitives.asymmetric import ec
 from cryptography.hazmat.primitives.asymmetric.utils import Prehashed, encode_dss_signature
 
 from bench.bench_v2x import GN, typical_cam
+from bench.sizes import sized
 from coopdrive.services.v2x.btp import parse_btp_b
 from coopdrive.recording.capture import read_capture
 from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE, BasicNextHeader, parse_gn, with_basic_next_header
@@ -33,8 +34,8 @@ from coopdrive.services.v2x.security.certificate import Certificate
 from coopdrive.services.v2x.security.envelope import TBS_OFFSET_IN_ENVELOPE, parse_signed_data
 from tests.shared_data import shared_file
 
-ROUNDS = 40
-BATCH = 20
+ROUNDS = sized(40, 1)
+BATCH = sized(20, 2)
 TARGET_RATIO = 1.3
 PREHASHED = ec.ECDSA(Prehashed(hashes.SHA256()))
 
@@ -132,7 +133,7 @@ def measure(seconds: float) -> list[tuple[str, int, float]]:
 
 
 def main() -> None:
-    seconds = float(os.environ.get("BENCH_DECODE_SECONDS", 2.0))
+    seconds = float(os.environ.get("BENCH_DECODE_SECONDS", sized(2.0, 0.05)))
     rows = measure(seconds)
     print(f"{'path':46} {'bytes':>5} {'decode/s':>9} {'x bare':>7}")
     bare_signed, bare_uper, bare_like = rows[0][2], rows[3][2], rows[4][2]

@@ -16,12 +16,13 @@ from rich.console import Console
 from rich.table import Table
 
 from bench import group_threads
+from bench.sizes import sized
 from bench.step_latency import StepLatency
 from coopdrive.launch.run import RunOptions, run_scenario
 
-DURATION_S = 60.0
+DURATION_S = sized(60.0, 1.0)
 # A realtime run waits for the wall clock, so its latency is that of a loop with time to spare, as on the car.
-REALTIME_DURATION_S = 20.0
+REALTIME_DURATION_S = sized(20.0, 1.0)
 REQUIRED_REALTIME_FACTOR = 20.0
 STEP_S = 0.02
 

@@ -24,16 +24,17 @@ import websockets
 from rich.console import Console
 from rich.table import Table
 
+from bench.sizes import sized
 from bench.step_latency import StepLatency
 from coopdrive.launch.ports import free_tcp_port
 from coopdrive.launch.run import RunOptions, run_scenario
 
 DURATION_ENV = "COOPDRIVE_BENCH_GATEWAY_S"
-DEFAULT_DURATION_S = 20.0
-CLIENTS = 50
-WINDOW_S = 5.0
+DEFAULT_DURATION_S = sized(20.0, 2.0)
+CLIENTS = sized(50, 2)
+WINDOW_S = sized(5.0, 1.0)
 # Latencies this soon after a window starts are left out: the clients are still (dis)connecting.
-SETTLE_S = 1.0
+SETTLE_S = sized(1.0, 0.2)
 CONNECT_RETRY_S = 0.2
 GATEWAY_START_TIMEOUT_S = 30.0
 

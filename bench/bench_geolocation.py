@@ -20,6 +20,7 @@ from filterpy.kalman import ExtendedKalmanFilter
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "geolocation"))
 from geolocation_drive import GNSS_EVERY, ORIGIN, can_state, drive, gnss_fix  # noqa: E402
 
+from bench.sizes import sized  # noqa: E402
 from coopdrive.roadmap import RoadMap  # noqa: E402
 from coopdrive.services.geolocation.config import GeolocatorConfig  # noqa: E402
 from coopdrive.services.geolocation.ekf import GeolocationEkf  # noqa: E402
@@ -99,7 +100,7 @@ def map_match(n_calls: int) -> float:
 
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--seconds", type=float, default=30.0, help="simulated drive length")
+    parser.add_argument("--seconds", type=float, default=sized(30.0, 1.0), help="simulated drive length")
     args = parser.parse_args(argv or [])
     n = int(args.seconds * 100)
     rows = []

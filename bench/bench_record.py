@@ -18,12 +18,13 @@ from pathlib import Path
 from rich.console import Console
 from rich.table import Table
 
+from bench.sizes import sized
 from coopdrive.launch.run import RunOptions, run_scenario
 
 SCENARIO = "string"
-STACKS = int(os.environ.get("BENCH_RECORD_STACKS", "8"))
-DURATION_S = float(os.environ.get("BENCH_RECORD_DURATION_S", "10"))
-ROUNDS = 2
+STACKS = int(os.environ.get("BENCH_RECORD_STACKS", sized(8, 2)))
+DURATION_S = float(os.environ.get("BENCH_RECORD_DURATION_S", sized(10.0, 1.0)))
+ROUNDS = sized(2, 1)
 
 
 def run(record: Path | None) -> tuple[float, float]:

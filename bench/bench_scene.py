@@ -22,6 +22,7 @@ from types import ModuleType
 import numpy as np
 
 from bench import scene_before
+from bench.sizes import sized
 from coopdrive.services.scene import fusion as fusion_now
 from coopdrive.services.scene.association import assign, likelihood_cost, polar_cost_loop
 from coopdrive.services.scene.config import TrackingConfig
@@ -33,8 +34,8 @@ BEFORE_REVISION = "d65fb12e6b01c721207f56ede5a9482dda679d1d"
 
 SEED = 20160528
 FRAME_S = 0.05
-WARMUP_FRAMES = 10
-TIMED_FRAMES = 40
+WARMUP_FRAMES = sized(10, 1)
+TIMED_FRAMES = sized(40, 2)
 EGO_SPEED_MPS = 20.0
 RANGE_NOISE_M = 0.2
 BEARING_NOISE_RAD = 0.003

@@ -17,6 +17,7 @@ from collections.abc import Callable
 from cryptography.hazmat.primitives import hashes
 from cryptography.hazmat.primitives.asymmetric import ec
 
+from bench.sizes import sized
 from coopdrive.services.v2x.packet import GnParams, SourcePosition, V2xPacketCodec
 from coopdrive.services.v2x.security.crypto import Curve
 from coopdrive.services.v2x.security.pki import create_test_pki
@@ -30,8 +31,8 @@ TARGET_PER_S = STATIONS * CAM_RATE_HZ
 FULL_CERTIFICATE_SHARE = 1 / CAM_RATE_HZ
 US_PER_MS = 1000
 CAM_PERIOD_US = 100_000
-ROUNDS = 3
-BATCH = 50
+ROUNDS = sized(3, 1)
+BATCH = sized(50, 2)
 
 
 def rate_per_s(operation: Callable[[], object], seconds: float) -> float:
@@ -70,7 +71,7 @@ def signed_cams(curve: Curve, directory: str) -> tuple[SecurityVerifier, int, by
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--seconds", type=float, default=1.0, help="time per measurement")
+    parser.add_argument("--seconds", type=float, default=sized(1.0, 0.05), help="time per measurement")
     seconds = parser.parse_known_args()[0].seconds
     print(f"{'curve':18} {'path':34} {'bytes':>6} {'verify/s':>10}")
     verdicts = []

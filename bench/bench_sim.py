@@ -26,6 +26,7 @@ import time
 from rich.console import Console
 from rich.table import Table
 
+from bench.sizes import sized
 from coopdrive.launch.ports import free_udp_ports
 from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.sim.config import SimConfig
@@ -34,7 +35,7 @@ from coopdrive.services.sim.service import SimService
 
 SCENARIO = "string"
 STACK_COUNTS = (1, 4, 8)
-DURATION_S = 10.0
+DURATION_S = sized(10.0, 0.5)
 TARGET_MS_PER_SIMULATED_S = 150.0
 # Issue 27's figure before the work: the simulator's process in a whole 8-stack run (not the simulator alone).
 BEFORE_ISSUE_MS_PER_SIMULATED_S = 1645.0

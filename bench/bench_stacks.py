@@ -16,11 +16,12 @@ from rich.console import Console
 from rich.table import Table
 
 from bench import group_threads
+from bench.sizes import sized
 from coopdrive.launch.run import RunOptions, run_scenario
 
 SCENARIO = "string"
-STACK_COUNTS = (1, 4, 8)
-DURATION_S = float(os.environ.get("BENCH_STACKS_DURATION_S", "10"))
+STACK_COUNTS = sized((1, 4, 8), (1, 2))
+DURATION_S = float(os.environ.get("BENCH_STACKS_DURATION_S", sized(10.0, 1.0)))
 
 
 def run(stacks: int, thread_per_service: bool = False) -> tuple[float, dict[str, dict[str, float]]]:

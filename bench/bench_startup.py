@@ -16,8 +16,10 @@ import time
 from rich.console import Console
 from rich.table import Table
 
+from bench.sizes import sized
+
 LAYOUTS = ("service", "vehicle")
-DURATIONS_S = (5.0, 60.0)
+DURATIONS_S = sized((5.0, 60.0), (1.0, 2.0))
 
 
 def command_time(duration_s: float, layout: str) -> tuple[float, dict]:

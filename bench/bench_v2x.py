@@ -12,6 +12,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from bench.sizes import sized
 from coopdrive.services.v2x.its_pdu import ItsCodec, ItsMessageId, PDU_TYPE_NAMES
 from coopdrive.services.v2x.mapping.cam import cam_to_asn
 from coopdrive.services.v2x.mapping.iclcm import iclcm_to_asn
@@ -105,7 +106,7 @@ def main(argv: list[str] | None = None) -> None:
     """argv None: the time per measurement comes from BENCH_V2X_SECONDS, since `python -m bench NAME` puts
     the bench's name on the command line."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--seconds", type=float, default=float(os.environ.get("BENCH_V2X_SECONDS", 1.0)),
+    parser.add_argument("--seconds", type=float, default=float(os.environ.get("BENCH_V2X_SECONDS", sized(1.0, 0.05))),
                         help="time per measurement")
     seconds = parser.parse_args(argv if argv is not None else []).seconds
     rows = measure(seconds)

@@ -1,21 +1,42 @@
 """`make bench` is `python -m bench`: every benchmark in bench/ in turn, or those named. These tests check that it
 runs and reports, not how fast anything is (speed is the benchmarks' own business, never a test's)."""
 
+import os
+import pkgutil
 import subprocess
 import sys
 from pathlib import Path
 from types import SimpleNamespace
 
+import bench
 from bench import __main__ as bench_runner
+from bench.sizes import QUICK_VARIABLE
 
 REPO = Path(__file__).resolve().parents[2]
-RUN_TIMEOUT_S = 240
+# Every benchmark at its quick size takes about a minute on this project's 2-core machine.
+RUN_TIMEOUT_S = 600
+
+
+def python_m_bench(*names: str) -> subprocess.CompletedProcess:
+    result = subprocess.run([sys.executable, "-m", "bench", *names], cwd=REPO, capture_output=True, text=True,
+                            timeout=RUN_TIMEOUT_S, env={**os.environ, QUICK_VARIABLE: "1"})
+    assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
+    return result
+
+
+def test_every_benchmark_of_make_bench_runs_to_the_end_and_prints_its_table():
+    names = sorted(m.name for m in pkgutil.iter_modules(bench.__path__) if m.name.startswith("bench_"))
+    assert len(names) >= 14
+    out = python_m_bench().stdout
+    assert "failed" not in out
+    for name in names:
+        assert f"=== {name}" in out and f"({name}: " in out
+        table = out.split(f"=== {name}", 1)[1].split(f"({name}: ", 1)[0]
+        assert len(table.strip().splitlines()) >= 3, f"{name} printed no table: {table!r}"
 
 
 def test_python_m_bench_with_names_runs_only_those_benchmarks_and_exits_0():
-    result = subprocess.run([sys.executable, "-m", "bench", "geolocation", "sim"], cwd=REPO, capture_output=True,
-                            text=True, timeout=RUN_TIMEOUT_S)
-    assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
+    result = python_m_bench("geolocation", "sim")
     assert "=== bench_geolocation" in result.stdout and "=== bench_sim" in result.stdout
     assert "failed" not in result.stdout
     assert "=== bench_follow" not in result.stdout
