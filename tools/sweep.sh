@@ -2,12 +2,19 @@
 # The sweep of issue 26: every scenario on seeds 1-20 (or SEEDS), real-world defaults, two runs at a time
 # (WORKERS), results in OUT (default out/sweep): summary.json, summary.csv and the pass table pass_table.md.
 # FAULTS=FILE sweeps its fault variants too (docs/sweep-faults.yaml); CLUSTER=tcp://host:8786 runs on that Dask
-# scheduler's workers instead of a local cluster (README, Sweeps).
+# scheduler's workers instead of a local cluster (README, Sweeps); SCENARIO=NAME sweeps that scenario alone.
 # On two cores this takes hours; `SEEDS=1-2 tools/sweep.sh` is the quick check.
-set -euo pipefail
+# Prints the pass table and exits non-zero when any run failed (or the sweep could not start).
+# PYTHON: the interpreter with coopdrive installed (default .venv/bin/python, as `make` sets it up).
+set -uo pipefail
 cd "$(dirname "$0")/.."
 seeds=${SEEDS:-1-20}
 out=${OUT:-out/sweep}
-.venv/bin/coopdrive run all --seeds "$seeds" --workers "${WORKERS:-2}" --out "$out" \
-  ${FAULTS:+--faults "$FAULTS"} ${CLUSTER:+--cluster "$CLUSTER"} || true
-cat "$out/pass_table.md"
+rm -f "$out/pass_table.md"  # a table printed below is this sweep's, never an earlier one's
+"${PYTHON:-.venv/bin/python}" -m coopdrive.cli run "${SCENARIO:-all}" --seeds "$seeds" --workers "${WORKERS:-2}" \
+  --out "$out" ${FAULTS:+--faults "$FAULTS"} ${CLUSTER:+--cluster "$CLUSTER"}
+status=$?
+if [ -f "$out/pass_table.md" ]; then
+  cat "$out/pass_table.md"
+fi
+exit $status
