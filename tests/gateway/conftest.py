@@ -5,6 +5,7 @@ import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import httpx
 import pytest
@@ -97,7 +98,7 @@ RUN_STOP_TIMEOUT_S = 10.0
 
 
 class Run:
-    def __init__(self, process: subprocess.Popen, port: int, log_path):
+    def __init__(self, process: subprocess.Popen, port: int, log_path: Path):
         self.process = process
         self.port = port
         self.log_path = log_path
@@ -124,7 +125,7 @@ class Run:
         pytest.fail(f"no {what} within {deadline_s} s; last answer: {last}")
 
 
-def start_follow_run(log_path) -> Run:
+def start_follow_run(log_path: Path) -> Run:
     """`coopdrive run follow --realtime --gateway PORT` on a free port, its output in `log_path`."""
     port = free_tcp_port()
     with open(log_path, "w") as output:
