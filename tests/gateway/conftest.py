@@ -91,7 +91,8 @@ def feed():
 
 
 # ----- a real `coopdrive run follow --realtime --gateway PORT` per test file ------------------
-RUN_DURATION_S = 90
+# Longer than any file's tests take on a loaded machine: the fixture stops the run when the file is done.
+RUN_DURATION_S = 600
 RUN_POLL_PERIOD_S = 0.5
 RUN_REQUEST_TIMEOUT_S = 10.0
 RUN_STOP_TIMEOUT_S = 10.0
