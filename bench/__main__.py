@@ -8,8 +8,13 @@ import time
 import bench
 
 
+def benchmark_names() -> list[str]:
+    """Every benchmark module of bench/, in the order `make bench` runs them."""
+    return sorted(m.name for m in pkgutil.iter_modules(bench.__path__) if m.name.startswith("bench_"))
+
+
 def main(selected: list[str]) -> int:
-    names = sorted(m.name for m in pkgutil.iter_modules(bench.__path__) if m.name.startswith("bench_"))
+    names = benchmark_names()
     if selected:
         names = [n for n in names if any(s in n for s in selected)]
     failures = 0
