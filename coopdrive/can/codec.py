@@ -117,22 +117,6 @@ def _apply_feedback_frame(state: vehicle_pb2.VehicleCanState, frame: VehicleFram
         state.wheel_speed_rear_right_mps = s["WheelSpeedRearRight"]
 
 
-def clamp_to_signal_ranges(frame: VehicleFrame, signals: Mapping[str, float]) -> dict[str, float]:
-    """Saturates simulated values at what the wire can carry (NaN becomes the range minimum)."""
-    ranges = frames.signal_ranges(frame)
-    clamped = {}
-    for name, value in signals.items():
-        low, high = ranges[name]
-        if math.isnan(value):
-            value = low if low is not None else 0.0
-        if low is not None:
-            value = max(low, value)
-        if high is not None:
-            value = min(high, value)
-        clamped[name] = value
-    return clamped
-
-
 class VehicleCanCodec:
     """Encodes and decodes vehicle.dbc frames; keeps per-id rolling counters and counts rejections.
 
@@ -154,29 +138,46 @@ class VehicleCanCodec:
 
     # ---- sending -------------------------------------------------------------------------------------------
 
-    def encode_command(self, frame: VehicleFrame, signals: Mapping[str, float], timestamp_s: float = 0.0,
-                       checked: bool = True) -> can.Message:
-        """Encodes one frame, filling Counter and Checksum when it has them; out-of-range values raise ValueError
-        (checked=False: the caller clamped them to the DBC ranges already)."""
+    def encode_command(self, frame: VehicleFrame, signals: Mapping[str, float], timestamp_s: float = 0.0) -> can.Message:
+        """Encodes one command frame, filling Counter and Checksum when it has them; out-of-range values raise
+        ValueError."""
         definition = frames.message(frame)
         values = dict(signals)
         integrity = frames.has_integrity_signals(frame)
-        counter = (self._tx_counter.get(frame, -1) + 1) % frames.COUNTER_MODULO
         if integrity:
-            values[frames.COUNTER_SIGNAL] = counter
+            values[frames.COUNTER_SIGNAL] = self._next_counter(frame)
             values[frames.CHECKSUM_SIGNAL] = 0
         for name, value in values.items():
             if isinstance(value, float) and not math.isfinite(value):
                 raise ValueError(f"{frame}.{name} is not finite: {value}")
         try:
-            data = bytearray(definition.encode(values, strict=checked))
+            data = bytearray(definition.encode(values, strict=True))
         except Exception as error:  # cantools raises several types for range and missing-signal errors
             raise ValueError(f"{frame}: {error}") from error
-        if integrity:
+        return self._sealed(frame, data, timestamp_s)
+
+    def encode_saturated(self, frame: VehicleFrame, signals: Mapping[str, float],
+                         timestamp_s: float = 0.0) -> can.Message:
+        """Simulator side: one frame with every value saturated at its DBC range (NaN at the minimum), Counter and
+        Checksum filled when it has them."""
+        values = signals
+        if frames.has_integrity_signals(frame):
+            values = {**signals, frames.COUNTER_SIGNAL: self._next_counter(frame), frames.CHECKSUM_SIGNAL: 0}
+        return self._sealed(frame, frames.packer(frame).pack(values), timestamp_s)
+
+    def _next_counter(self, frame: VehicleFrame) -> int:
+        """The counter the frame carries next; taken (advanced) only when the frame is sealed, so a frame that
+        fails to encode leaves no gap a receiver would reject."""
+        return (self._tx_counter.get(frame, -1) + 1) % frames.COUNTER_MODULO
+
+    def _sealed(self, frame: VehicleFrame, data: bytearray, timestamp_s: float) -> can.Message:
+        """The frame with its checksum written over the payload, as a python-can message."""
+        frame_id = frames.frame_id(frame)
+        if frames.has_integrity_signals(frame):
             index = frames.checksum_byte_index(frame)
-            data[index] = frames.checksum(definition.frame_id, bytes(data), index)
-            self._tx_counter[frame] = counter
-        return can.Message(arbitration_id=definition.frame_id, data=bytes(data), is_extended_id=False,
+            data[index] = frames.checksum(frame_id, bytes(data), index)
+            self._tx_counter[frame] = self._next_counter(frame)
+        return can.Message(arbitration_id=frame_id, data=bytes(data), is_extended_id=False,
                            timestamp=timestamp_s, channel=self.channel, is_rx=False)
 
     def encode_vehicle_command(self, command: VehicleCommand, timestamp_s: float = 0.0,
@@ -190,25 +191,20 @@ class VehicleCanCodec:
                              timestamp_s: float = 0.0) -> list[can.Message]:
         """Simulator side: the VEH_ frames of one cycle, closing frame last; values saturate at the DBC ranges."""
         signals = _feedback_signals(state, driver_steering_torque_nm)
-        return [self.encode_command(frame, clamp_to_signal_ranges(frame, signals[frame]),
-                                    timestamp_s, checked=False) for frame in frames.FEEDBACK_FRAMES]
+        return [self.encode_saturated(frame, signals[frame], timestamp_s) for frame in frames.FEEDBACK_FRAMES]
 
     def encode_imu_sample(self, sample: vehicle_pb2.ImuSample, timestamp_s: float = 0.0) -> can.Message:
         """Simulator side: one VEH_Inertial frame; values saturate at the DBC ranges."""
         frame = VehicleFrame.INERTIAL
         signals = {"AccelLongitudinal": sample.accel_longitudinal_mps2, "AccelLateral": sample.accel_lateral_mps2,
                    "YawRate": sample.yaw_rate_radps}
-        return self.encode_command(frame, clamp_to_signal_ranges(frame, signals), timestamp_s,
-                                   checked=False)
+        return self.encode_saturated(frame, signals, timestamp_s)
 
     def encode_radar_tracks(self, tracks: sensors_pb2.RadarTracks, timestamp_s: float = 0.0) -> list[can.Message]:
         """Simulator side: header then one RDR_Object per track (nearest MAX_RADAR_OBJECTS only)."""
         self._radar_measurement_counter = (self._radar_measurement_counter + 1) % RADAR_MEASUREMENT_COUNTER_MODULO
-        messages = []
-        for frame, signals in encode_radar_frames(tracks, self._radar_measurement_counter):
-            signals = clamp_to_signal_ranges(frame, signals)
-            messages.append(self.encode_command(frame, signals, timestamp_s, checked=False))
-        return messages
+        return [self.encode_saturated(frame, signals, timestamp_s)
+                for frame, signals in encode_radar_frames(tracks, self._radar_measurement_counter)]
 
     # ---- receiving -----------------------------------------------------------------------------------------
 

@@ -10,6 +10,8 @@ from importlib import resources
 import cantools
 from cantools.database.can import Database, Message
 
+from coopdrive.can.saturating_packer import SaturatingPacker
+
 DBC_FILE = "vehicle.dbc"
 COUNTER_SIGNAL = "Counter"
 CHECKSUM_SIGNAL = "Checksum"
@@ -91,9 +93,9 @@ def has_integrity_signals(frame: VehicleFrame) -> bool:
 
 
 @cache
-def signal_ranges(frame: VehicleFrame) -> dict[str, tuple[float | None, float | None]]:
-    """Each signal's DBC (minimum, maximum), None where the DBC gives none: looked up once, not per frame sent."""
-    return {signal.name: (signal.minimum, signal.maximum) for signal in message(frame).signals}
+def packer(frame: VehicleFrame) -> SaturatingPacker:
+    """The frame's payload packer for simulated values (saturating at the DBC ranges), made once."""
+    return SaturatingPacker(message(frame))
 
 
 @cache

@@ -18,7 +18,7 @@ from coopdrive.services.sim.scenario_builder import RoadMapLike, ScenarioObjects
 from coopdrive.services.sim.scenario_config import ScenarioConfig, VehicleRole
 from coopdrive.services.sim.sensor_suite import SensorOutputs
 from coopdrive.services.sim.station_faults import StationFaults
-from coopdrive.services.sim.vehicle_model import VehicleModel
+from coopdrive.services.sim.vehicle_model import VehicleModel, VehicleState
 from coopdrive.services.sim.vehicle_truth import vehicle_truth
 from coopdrive.services.sim.world_view import WorldView, footprints_enu
 from coopdrive.v1 import sim_pb2
@@ -66,6 +66,9 @@ class ScenarioSim:
         self.time_s = 0.0
         # Sensors, radio and judge all look at the world between two steps: match lanes once per step.
         self._truths: list[sim_pb2.VehicleTruth] | None = None
+        # A modelled vehicle's truth with the state it was made from: the scripted participants step after the
+        # models, and the world's truths are taken again then, while most models have not moved since.
+        self._model_truths: dict[str, tuple[VehicleState, sim_pb2.VehicleTruth]] = {}
 
     # ----- stepping ---------------------------------------------------------------------------
     def apply_command(self, vehicle_id: str, command: StackCommand) -> None:
@@ -104,8 +107,12 @@ class ScenarioSim:
             vehicle_id = vehicle.vehicle_id
             if vehicle_id in self.objects.models:
                 model = self.objects.models[vehicle_id]
-                truths.append(vehicle_truth(vehicle_id, vehicle.station_id, model.state, model.profile,
-                                            self.objects.lanes[vehicle_id], automated=True))
+                made = self._model_truths.get(vehicle_id)
+                if made is None or made[0] is not model.state:
+                    made = model.state, vehicle_truth(vehicle_id, vehicle.station_id, model.state, model.profile,
+                                                      self.objects.lanes[vehicle_id], automated=True)
+                    self._model_truths[vehicle_id] = made
+                truths.append(made[1])
             else:
                 truths.append(self.objects.participants[vehicle_id].truth())
         return truths
