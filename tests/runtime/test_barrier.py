@@ -66,3 +66,19 @@ def test_a_marker_whose_counted_message_never_came_still_blocks_but_not_when_ask
     barrier.mark_received("ego/ego/state", 6)
     assert barrier.missing(4, PARTICIPANTS) == ["ego/geolocation"]
     assert barrier.missing(4, PARTICIPANTS, markers_only=True) == []
+
+
+def test_waits_says_what_missing_says_as_the_markers_come_in_whichever_it_found_waiting_last():
+    barrier = control_barrier()
+    barrier.subscribed.add("ego/ego/state")
+    answers = [(barrier.waits(4, PARTICIPANTS), barrier.missing(4, PARTICIPANTS))]
+    barrier.mark_done("ego/geolocation", 4, sequences={"ego/ego/state": 9})  # its message 9 still on its way
+    answers.append((barrier.waits(4, PARTICIPANTS), barrier.missing(4, PARTICIPANTS)))
+    barrier.mark_done("ego/scene", 4)
+    answers.append((barrier.waits(4, PARTICIPANTS), barrier.missing(4, PARTICIPANTS)))
+    answers.append((barrier.waits(4, PARTICIPANTS, markers_only=True), barrier.missing(4, PARTICIPANTS, True)))
+    barrier.mark_received("ego/ego/state", 9)
+    answers.append((barrier.waits(4, PARTICIPANTS), barrier.missing(4, PARTICIPANTS)))
+    answers.append((barrier.waits(4, ["ego/scene"]), barrier.missing(4, ["ego/scene"])))
+    assert answers == [(True, ["ego/geolocation", "ego/scene"]), (True, ["ego/geolocation", "ego/scene"]),
+                       (True, ["ego/geolocation"]), (False, []), (False, []), (False, [])]
