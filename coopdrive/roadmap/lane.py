@@ -6,10 +6,13 @@ vectorised pass over the segments (no Python loop per segment).
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
+
+from coopdrive.roadmap.near_segments import NearSegments
 
 # Below this squared length a segment is a duplicated vertex and is dropped.
 _MIN_SEGMENT_LENGTH_M = 1e-6
@@ -68,6 +71,11 @@ class Lane:
         self.length_m = float(self._station0[-1] + self._seg_len[-1])
         self._vertex_curvature = self._curvature_at_vertices()
         self._bbox = np.concatenate((points.min(axis=0), points.max(axis=0)))
+        self._near = NearSegments(self._start, self._unit, self._seg_len)
+        # The same numbers as Python floats, for projections that look at a few segments only.
+        self._start_list, self._unit_list = self._start.tolist(), self._unit.tolist()
+        self._seg_len_list, self._station0_list = self._seg_len.tolist(), self._station0.tolist()
+        self._vertex_curvature_list = self._vertex_curvature.tolist()
         # The latest projections by point: one instant's position is projected again and again (by the truth,
         # the driver and each sensor in the simulator; by map matching and lane fusion in a stack).
         self._recent: dict[tuple[float, float], Projection] = {}
@@ -89,8 +97,8 @@ class Lane:
         return x_min - margin_m <= x_m <= x_max + margin_m and y_min - margin_m <= y_m <= y_max + margin_m
 
     def _segment_at(self, station_m: float) -> int:
-        index = int(np.searchsorted(self._station0, station_m, side="right")) - 1
-        return min(max(index, 0), len(self._seg_len) - 1)
+        index = bisect.bisect_right(self._station0_list, station_m) - 1
+        return min(max(index, 0), len(self._seg_len_list) - 1)
 
     def pose_at(self, station_m: float, lateral_offset_m: float = 0.0) -> tuple[float, float, float]:
         """Point at a station (extrapolated straight beyond the ends) and lateral offset: (x_m, y_m, heading_rad)."""
@@ -113,8 +121,8 @@ class Lane:
     def curvature_at(self, station_m: float) -> float:
         """Curvature interpolated between vertices, positive to the left, 1/m."""
         i = self._segment_at(station_m)
-        fraction = min(max((station_m - self._station0[i]) / self._seg_len[i], 0.0), 1.0)
-        return float((1.0 - fraction) * self._vertex_curvature[i] + fraction * self._vertex_curvature[i + 1])
+        fraction = min(max((station_m - self._station0_list[i]) / self._seg_len_list[i], 0.0), 1.0)
+        return (1.0 - fraction) * self._vertex_curvature_list[i] + fraction * self._vertex_curvature_list[i + 1]
 
     def project_full(self, x_m: float, y_m: float) -> Projection:
         """Closest point on the centre line; stations run past the ends along the end segments."""
@@ -127,26 +135,20 @@ class Lane:
         return projection
 
     def _project(self, x_m: float, y_m: float) -> Projection:
-        rel = np.array([x_m, y_m]) - self._start
-        along = np.einsum("ij,ij->i", rel, self._unit)
-        clipped = np.clip(along, 0.0, self._seg_len)
-        closest = self._start + self._unit * clipped[:, None]
-        dist_sq = np.sum((np.array([x_m, y_m]) - closest) ** 2, axis=1)
-        i = int(np.argmin(dist_sq))
-        last = len(self._seg_len) - 1
-        along_i = float(along[i])
-        if (i == 0 and along_i < 0.0) or (i == last and along_i > self._seg_len[i]):
+        candidates = self._near.candidates(x_m, y_m)
+        if candidates is None:
+            i, along_i, clipped_i, dist_sq_i, rx, ry = self._nearest_of_all(x_m, y_m)
+        else:
+            i, along_i, clipped_i, dist_sq_i, rx, ry = self._nearest_of(candidates, x_m, y_m)
+        last = len(self._seg_len_list) - 1
+        if (i == 0 and along_i < 0.0) or (i == last and along_i > self._seg_len_list[i]):
             along_used = along_i
         else:
-            along_used = float(clipped[i])
-        ux, uy = self._unit[i]
-        rx, ry = rel[i]
+            along_used = clipped_i
+        ux, uy = self._unit_list[i]
         cross = ux * ry - uy * rx
-        if along_used == along_i:
-            lateral_m = float(cross)
-        else:
-            lateral_m = math.copysign(math.sqrt(float(dist_sq[i])), cross)
-        station_m = float(self._station0[i] + along_used)
+        lateral_m = cross if along_used == along_i else math.copysign(math.sqrt(dist_sq_i), cross)
+        station_m = self._station0_list[i] + along_used
         return Projection(
             station_m=station_m,
             lateral_offset_m=lateral_m,
@@ -154,6 +156,35 @@ class Lane:
             curvature_1pm=self.curvature_at(station_m),
             distance_m=abs(lateral_m),
         )
+
+    def _nearest_of_all(self, x_m: float, y_m: float) -> tuple[int, float, float, float, float, float]:
+        """The nearest segment in one vectorised pass over all: (index, distance along it unclipped and clipped to
+        it, squared distance, and the point relative to its start)."""
+        rel = np.array([x_m, y_m]) - self._start
+        along = np.einsum("ij,ij->i", rel, self._unit)
+        clipped = np.clip(along, 0.0, self._seg_len)
+        closest = self._start + self._unit * clipped[:, None]
+        dist_sq = np.sum((np.array([x_m, y_m]) - closest) ** 2, axis=1)
+        i = int(np.argmin(dist_sq))
+        rx, ry = rel[i].tolist()
+        return i, float(along[i]), float(clipped[i]), float(dist_sq[i]), rx, ry
+
+    def _nearest_of(self, candidates: tuple[int, ...], x_m: float,
+                    y_m: float) -> tuple[int, float, float, float, float, float]:
+        """_nearest_of_all among the candidates only (NearSegments), the same arithmetic per segment in floats;
+        the first of equals wins, as with argmin."""
+        best = None
+        for i in candidates:
+            sx, sy = self._start_list[i]
+            ux, uy = self._unit_list[i]
+            rx, ry = x_m - sx, y_m - sy
+            along = rx * ux + ry * uy
+            clipped = min(max(along, 0.0), self._seg_len_list[i])
+            dx, dy = x_m - (sx + ux * clipped), y_m - (sy + uy * clipped)
+            dist_sq = dx * dx + dy * dy
+            if best is None or dist_sq < best[3]:
+                best = (i, along, clipped, dist_sq, rx, ry)
+        return best
 
     def project(self, x_m: float, y_m: float) -> tuple[float, float, float, float]:
         """(station_m, lateral_offset_m, heading_rad, curvature_1pm) of the closest centre-line point."""
