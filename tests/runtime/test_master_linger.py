@@ -21,8 +21,9 @@ def finished_master():
 def test_a_finished_master_started_by_a_launcher_waits_for_its_sigterm(monkeypatch):
     monkeypatch.setenv(LAUNCHER_PID_VARIABLE, "12345")
     runner = finished_master()
-    threading.Timer(SIGTERM_AFTER_S, lambda: ServiceRunner._on_signal(runner, "SIGTERM")).start()
+    # Read before the timer starts: the signal comes SIGTERM_AFTER_S after the timer's start, not after this.
     started = time.monotonic()
+    threading.Timer(SIGTERM_AFTER_S, lambda: ServiceRunner._on_signal(runner, "SIGTERM")).start()
     ServiceRunner._linger_for_the_launcher(runner)
     assert runner._signalled.is_set() and time.monotonic() - started >= SIGTERM_AFTER_S
 
