@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import heapq
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from coopdrive.bus import Envelope
 from coopdrive.runtime.pipeline import PIPELINE_RANK
@@ -17,10 +17,14 @@ from coopdrive.runtime.pipeline import PIPELINE_RANK
 TIME_EPSILON_S = 1e-9
 
 
-@dataclass(order=True)
+@dataclass(slots=True)
 class _Pending:
     sort_key: tuple
-    envelope: Envelope = field(compare=False)
+    envelope: Envelope
+
+    def __lt__(self, other: _Pending) -> bool:
+        # The heap's only comparison; the generated one wrapped each key in a tuple first. Keys are unique.
+        return self.sort_key < other.sort_key
 
 
 class StepDispatcher:
