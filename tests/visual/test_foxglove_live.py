@@ -23,18 +23,23 @@ TOPICS = ["foxglove/ego/ego", "coopdrive/ego/ego/state", "foxglove/ego/scene", "
 
 
 @pytest.fixture(scope="module")
-def live_run():
-    """A realtime follow run serving Foxglove itself, with its bus open for a separate `coopdrive foxglove`."""
+def live_run(tmp_path_factory):
+    """A realtime follow run serving Foxglove itself, with its bus open for a separate `coopdrive foxglove`. The
+    bridge's log goes to a file a failing test can quote, the run's to one beside it (a pipe nobody reads could
+    fill and stall the process writing to it)."""
+    bridge_log = tmp_path_factory.mktemp("bridge") / "stderr.log"
     endpoint = loopback_endpoint(free_tcp_port())
     run_port, bridge_port = free_tcp_port(), free_tcp_port()
     cli = [sys.executable, "-m", "coopdrive.cli"]
-    run = subprocess.Popen([*cli, "run", "follow", "--realtime", "--duration", "60", "--listen", endpoint,
-                            "--foxglove", str(run_port)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                           start_new_session=True)
-    bridge = subprocess.Popen([*cli, "foxglove", "--connect", endpoint, "--port", str(bridge_port),
-                               "--host", "127.0.0.1"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                              start_new_session=True)
-    yield {"run": run, "bridge": bridge, "run_port": run_port, "bridge_port": bridge_port}
+    with (bridge_log.parent / "run.log").open("w") as log:
+        run = subprocess.Popen([*cli, "run", "follow", "--realtime", "--duration", "60", "--listen", endpoint,
+                                "--foxglove", str(run_port)], stdout=subprocess.DEVNULL, stderr=log,
+                               start_new_session=True)
+    with bridge_log.open("w") as log:
+        bridge = subprocess.Popen([*cli, "foxglove", "--connect", endpoint, "--port", str(bridge_port),
+                                   "--host", "127.0.0.1"], stdout=subprocess.DEVNULL, stderr=log,
+                                  start_new_session=True)
+    yield {"run": run, "bridge": bridge, "run_port": run_port, "bridge_port": bridge_port, "bridge_log": bridge_log}
     for process in (bridge, run):
         if process.poll() is None:
             process.send_signal(signal.SIGINT)
@@ -61,7 +66,9 @@ def test_coopdrive_foxglove_advertises_foxglove_s_channels_and_sends_them_at_the
     assert len(located) > 10 and abs(len(fixes) - len(located)) <= RATE_SLACK, (
         f"{len(fixes)} fixes for {len(located)} located estimates of {len(estimates)} "
         f"(sample times {estimates[0].header.sample_time_s}-{estimates[-1].header.sample_time_s} s); "
-        f"foxglove/ego/ego advertised as channel ids {advertised}")
+        f"foxglove/ego/ego advertised as channel ids {advertised}; messages per topic "
+        f"{ {topic: len(messages) for topic, messages in received.messages.items()} }; the bridge's log ends: "
+        f"{live_run['bridge_log'].read_text()[-2000:]!r}")
     assert {round(f.latitude, 6) for f in fixes[-3:]} <= {round(e.latitude_deg, 6) for e in estimates}
     updates = [SceneUpdate.FromString(p) for _, p in received.messages["foxglove/ego/scene"]]
     scenes = [scene_pb2.Scene.FromString(p) for _, p in received.messages["coopdrive/ego/scene"]]
@@ -78,10 +85,10 @@ def test_a_run_with_foxglove_serves_the_same_channels_itself(live_run):
 
 def test_the_bridge_ends_cleanly_on_sigterm(live_run):
     bridge = live_run["bridge"]
-    assert bridge.poll() is None, bridge.stderr.read()
+    assert bridge.poll() is None, live_run["bridge_log"].read_text()
     bridge.send_signal(signal.SIGTERM)
     assert bridge.wait(timeout=10) == 0
-    assert "Traceback" not in bridge.stderr.read()
+    assert "Traceback" not in live_run["bridge_log"].read_text()
 
 
 def test_foxglove_names_a_bad_lane_map_in_one_line():
