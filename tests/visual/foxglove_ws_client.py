@@ -2,11 +2,17 @@
 some and decodes binary message frames (opcode 0x01, subscription id u32, log time u64, payload; little-endian).
 
 The protocol is foxglove.websocket.v1; the Foxglove SDK's server (0.30) names it foxglove.sdk.v1 in the
-WebSocket handshake and refuses a connection offering only the old name, so the client offers both."""
+WebSocket handshake and refuses a connection offering only the old name, so the client offers both.
+
+The SDK's server (0.30.3) can advertise a new channel to a client a moment before it knows the channel itself: a
+subscription sent in that moment is answered with the status "Unknown channel ID: N" and never served (seen under
+load, about one subscription in fifty made within milliseconds of the channel's creation, in a loop of our own
+against a bare server). The client subscribes to such a channel again, as a Foxglove app would have to."""
 
 from __future__ import annotations
 
 import json
+import re
 import struct
 import time
 from dataclasses import dataclass, field
@@ -16,12 +22,18 @@ from websockets.sync.client import connect
 SUBPROTOCOLS = ["foxglove.sdk.v1", "foxglove.websocket.v1"]
 MESSAGE_DATA = 0x01
 MESSAGE_HEADER = struct.Struct("<BIQ")
+UNKNOWN_CHANNEL = re.compile(r"Unknown channel ID: (\d+)")
+# How long to wait before subscribing again to a channel the server said it did not know.
+RESUBSCRIBE_AFTER_S = 0.1
 
 
 @dataclass
 class Received:
     channels: dict[int, dict] = field(default_factory=dict)  # channel id -> its advertisement
     messages: dict[str, list[tuple[int, bytes]]] = field(default_factory=dict)  # topic -> [(log time ns, payload)]
+    # Channel ids the server answered a subscription to with "Unknown channel ID", not yet subscribed again.
+    refused: set[int] = field(default_factory=set)
+    resubscribed: int = 0
 
     def channel_by_topic(self, topic: str) -> dict | None:
         return next((c for c in self.channels.values() if c["topic"] == topic), None)
@@ -38,13 +50,25 @@ def watch(url: str, wanted_topics: list[str], advertise_timeout_s: float, listen
         for number, topic in enumerate(t for t in wanted_topics if received.channel_by_topic(t)):
             subscriptions[number + 1] = topic
             received.messages[topic] = []
-        socket.send(json.dumps({"op": "subscribe", "subscriptions": [
-            {"id": number, "channelId": received.channel_by_topic(topic)["id"]}
-            for number, topic in subscriptions.items()]}))
+        _subscribe(socket, received, subscriptions)
         end = time.monotonic() + listen_s
         while time.monotonic() < end:
             _read(socket, received, subscriptions, max(0.0, end - time.monotonic()))
+            if received.refused:
+                time.sleep(RESUBSCRIBE_AFTER_S)
+                again = {number: topic for number, topic in subscriptions.items()
+                         if (received.channel_by_topic(topic) or {}).get("id") in received.refused}
+                received.refused.clear()
+                received.resubscribed += len(again)
+                _subscribe(socket, received, again)
     return received
+
+
+def _subscribe(socket, received: Received, subscriptions: dict[int, str]) -> None:
+    if subscriptions:
+        socket.send(json.dumps({"op": "subscribe", "subscriptions": [
+            {"id": number, "channelId": received.channel_by_topic(topic)["id"]}
+            for number, topic in subscriptions.items()]}))
 
 
 def _read(socket, received: Received, subscriptions: dict[int, str], timeout_s: float) -> None:
@@ -59,6 +83,10 @@ def _read(socket, received: Received, subscriptions: dict[int, str], timeout_s: 
         elif message.get("op") == "unadvertise":
             for channel_id in message["channelIds"]:
                 received.channels.pop(channel_id, None)
+        elif message.get("op") == "status":
+            unknown = UNKNOWN_CHANNEL.search(message.get("message", ""))
+            if unknown and int(unknown.group(1)) in received.channels:
+                received.refused.add(int(unknown.group(1)))
         return
     opcode, subscription, log_time_ns = MESSAGE_HEADER.unpack_from(frame)
     if opcode == MESSAGE_DATA and subscription in subscriptions:
