@@ -32,7 +32,7 @@ class StepBarrier:
         # "<vehicle>/<topic>" this service subscribes to; only their sequences are awaited.
         self.subscribed: set[str] = set()
         # The dependency waits() last found holding the step up: asked first next time, since the simulator's
-        # clock asks after every burst of its ~50 participants' markers and that one is most often still out.
+        # clock asks after every burst of events while it waits for a step, and that one is most often still out.
         self._last_waited_for: str | None = None
 
     def depend_on(self, participant: str) -> None:
