@@ -138,7 +138,8 @@ class VehicleCanCodec:
 
     # ---- sending -------------------------------------------------------------------------------------------
 
-    def encode_command(self, frame: VehicleFrame, signals: Mapping[str, float], timestamp_s: float = 0.0) -> can.Message:
+    def encode_command(self, frame: VehicleFrame, signals: Mapping[str, float],
+                       timestamp_s: float = 0.0) -> can.Message:
         """Encodes one command frame, filling Counter and Checksum when it has them; out-of-range values raise
         ValueError."""
         definition = frames.message(frame)
