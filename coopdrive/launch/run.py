@@ -209,10 +209,16 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         _wait_for_the_end(processes, finished, lambda: recorder.messages_written if recorder is not None else 0)
     finally:
         ended = time.monotonic()
+        # After the result the stacks publish their last step and fall quiet; stopped by a signal they would go on
+        # publishing, so the recording takes what is on its way once they have been stopped.
+        drain_after_stop = bool(stop_reason) and not results
         if recorder is not None:
-            _drain(recorder)
+            if not drain_after_stop:
+                _drain(recorder)
             recorder.add_configs(effective_configs(hub, specs))
         processes.stop_all()
+        if recorder is not None and drain_after_stop:
+            _drain(recorder)
         shutil.rmtree(run_dir, ignore_errors=True)
         if recorder is not None:
             time.sleep(0.1)

@@ -11,6 +11,9 @@ import zenoh
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.v1 import diagnostics_pb2
 
+# A service ends within this long of SIGTERM (measured: 0.06-0.07 s).
+SIGTERM_STOP_S = 3.0
+
 DEADLINE_S = 30.0
 
 
@@ -73,7 +76,7 @@ def test_sigterm_stops_a_service_promptly_and_cleanly(hub, endpoint, spawn):
     stopped_at = time.monotonic()
     process.send_signal(signal.SIGTERM)
     assert process.wait(timeout=10) == 0
-    assert time.monotonic() - stopped_at < 30.0  # a hang, not a slow machine (3 s is the measured target)
+    assert time.monotonic() - stopped_at < SIGTERM_STOP_S
 
 
 def nice_values_of_threads(pid: int) -> list[int]:

@@ -19,6 +19,9 @@ from coopdrive.launch.summary import WALL_CLOCK_KEYS
 from coopdrive.recording.reader import read_messages
 from coopdrive.recording.replay import replay_service
 
+# A run ends within this long of SIGTERM, its recording complete (measured: 0.62-0.72 s).
+SIGTERM_STOP_S = 3.0
+
 STANDSTILL_M = 6.0
 DURATION = "25"
 
@@ -167,7 +170,7 @@ def test_sigterm_ends_a_realtime_run_without_hanging_and_leaves_a_complete_recor
     stopped_at = time.monotonic()
     process.send_signal(signal.SIGTERM)
     process.wait(timeout=30)
-    assert time.monotonic() - stopped_at < 30.0  # a hang, not a slow machine (3 s is the measured target)
+    assert time.monotonic() - stopped_at < SIGTERM_STOP_S
     topics = Counter(message.topic for message in read_messages(recording))
     assert topics["coopdrive/ego/actuation/command"] > 0
     assert topics["coopdrive/world/clock"] > 0
