@@ -12,7 +12,6 @@
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Callable
 
@@ -23,7 +22,7 @@ from rich.table import Table
 from bench.sizes import sized
 from coopdrive.can import frames
 from coopdrive.can.frames import VehicleFrame
-from coopdrive.can.saturating_packer import SaturatingPacker
+from coopdrive.can.saturating_packer import SaturatingPacker, saturated_values
 from coopdrive.roadmap import RoadMap
 
 MAPS = ("a270", "intersection")
@@ -63,17 +62,6 @@ def projection_rows(rng: np.random.Generator) -> list[tuple[str, float, float]]:
     return rows
 
 
-def saturated(definition, values: dict[str, float]) -> dict[str, float]:
-    """What the simulator did before the packer: NaN to the minimum, then the DBC range's ends."""
-    out = {}
-    for signal in definition.signals:
-        value = values[signal.name]
-        if math.isnan(value):
-            value = signal.minimum if signal.minimum is not None else 0.0
-        out[signal.name] = min(max(value, signal.minimum), signal.maximum)
-    return out
-
-
 def frame_rows(rng: np.random.Generator) -> list[tuple[str, float, float]]:
     rows = []
     for frame in SIMULATED_FRAMES:
@@ -81,7 +69,7 @@ def frame_rows(rng: np.random.Generator) -> list[tuple[str, float, float]]:
         packer = SaturatingPacker(definition)
         samples = [{s.name: float(rng.uniform(s.minimum, s.maximum)) for s in definition.signals}
                    for _ in range(FRAMES_REPEATED)]
-        cantools = [lambda v=v: definition.encode(saturated(definition, v), strict=False) for v in samples]
+        cantools = [lambda v=v: definition.encode(saturated_values(definition, v), strict=False) for v in samples]
         ours = [lambda v=v: packer.pack(v) for v in samples]
         rows.append((f"{frame.value} payload", per_call_us(cantools), per_call_us(ours)))
     return rows

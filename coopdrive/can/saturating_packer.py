@@ -43,3 +43,18 @@ class SaturatingPacker:
             payload |= (to_raw(value) & mask) << start
         return bytearray(payload.to_bytes(self.length, "little"))
 
+
+def saturated_values(definition: Message, values: Mapping[str, float]) -> dict[str, float]:
+    """What SaturatingPacker.pack means, in plain terms: each value at its DBC range's end if beyond it, NaN at the
+    minimum (0 where the DBC gives none). The packer's payload is cantools' encoding of these values."""
+    out = {}
+    for signal in definition.signals:
+        value = values[signal.name]
+        if value != value:  # NaN
+            value = signal.minimum if signal.minimum is not None else 0.0
+        if signal.minimum is not None:
+            value = max(value, signal.minimum)
+        if signal.maximum is not None:
+            value = min(value, signal.maximum)
+        out[signal.name] = value
+    return out

@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 from coopdrive.can import frames
 from coopdrive.can.frames import VehicleFrame
-from coopdrive.can.saturating_packer import SaturatingPacker
+from coopdrive.can.saturating_packer import SaturatingPacker, saturated_values
 
 # Values well beyond every range of the DBC, and the ones a simulated sensor can produce by accident.
 values = st.one_of(st.floats(min_value=-5000.0, max_value=5000.0), st.just(math.nan), st.just(math.inf),
@@ -22,23 +22,13 @@ BO_ 100 Motorola: 8 NODE
 """
 
 
-def saturated(definition, signals):
-    out = {}
-    for signal in definition.signals:
-        value = signals[signal.name]
-        if math.isnan(value):
-            value = signal.minimum if signal.minimum is not None else 0.0
-        out[signal.name] = min(max(value, signal.minimum), signal.maximum)
-    return out
-
-
 @pytest.mark.parametrize("frame", list(VehicleFrame))
 @settings(max_examples=200, deadline=None)
 @given(data=st.data())
 def test_every_frame_packs_to_the_bytes_cantools_encodes_from_the_saturated_values(frame, data):
     definition = frames.message(frame)
     signals = {signal.name: data.draw(values, label=signal.name) for signal in definition.signals}
-    expected = definition.encode(saturated(definition, signals), strict=False)
+    expected = definition.encode(saturated_values(definition, signals), strict=False)
     assert bytes(SaturatingPacker(definition).pack(signals)) == expected
 
 
