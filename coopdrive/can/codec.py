@@ -142,42 +142,48 @@ class VehicleCanCodec:
                        timestamp_s: float = 0.0) -> can.Message:
         """Encodes one command frame, filling Counter and Checksum when it has them; out-of-range values raise
         ValueError."""
-        definition = frames.message(frame)
-        values = dict(signals)
-        integrity = frames.has_integrity_signals(frame)
-        if integrity:
-            values[frames.COUNTER_SIGNAL] = self._next_counter(frame)
-            values[frames.CHECKSUM_SIGNAL] = 0
+        counter = self._next_counter(frame)
+        values = self._with_integrity(frame, signals, counter)
         for name, value in values.items():
             if isinstance(value, float) and not math.isfinite(value):
                 raise ValueError(f"{frame}.{name} is not finite: {value}")
         try:
-            data = bytearray(definition.encode(values, strict=True))
+            data = bytearray(frames.message(frame).encode(values, strict=True))
         except Exception as error:  # cantools raises several types for range and missing-signal errors
             raise ValueError(f"{frame}: {error}") from error
-        return self._sealed(frame, data, timestamp_s)
+        return self._sealed(frame, data, timestamp_s, counter)
 
     def encode_saturated(self, frame: VehicleFrame, signals: Mapping[str, float],
                          timestamp_s: float = 0.0) -> can.Message:
         """Simulator side: one frame with every value saturated at its DBC range (NaN at the minimum), Counter and
         Checksum filled when it has them."""
-        values = signals
-        if frames.has_integrity_signals(frame):
-            values = {**signals, frames.COUNTER_SIGNAL: self._next_counter(frame), frames.CHECKSUM_SIGNAL: 0}
-        return self._sealed(frame, frames.packer(frame).pack(values), timestamp_s)
+        counter = self._next_counter(frame)
+        data = frames.packer(frame).pack(self._with_integrity(frame, signals, counter))
+        return self._sealed(frame, data, timestamp_s, counter)
 
-    def _next_counter(self, frame: VehicleFrame) -> int:
-        """The counter the frame carries next; taken (advanced) only when the frame is sealed, so a frame that
-        fails to encode leaves no gap a receiver would reject."""
+    def _next_counter(self, frame: VehicleFrame) -> int | None:
+        """The counter the frame carries next (None: it has no integrity signals); taken only when the frame is
+        sealed, so a frame that fails to encode leaves no gap a receiver would reject."""
+        if not frames.has_integrity_signals(frame):
+            return None
         return (self._tx_counter.get(frame, -1) + 1) % frames.COUNTER_MODULO
 
-    def _sealed(self, frame: VehicleFrame, data: bytearray, timestamp_s: float) -> can.Message:
-        """The frame with its checksum written over the payload, as a python-can message."""
+    @staticmethod
+    def _with_integrity(frame: VehicleFrame, signals: Mapping[str, float],
+                        counter: int | None) -> Mapping[str, float]:
+        """The values to encode: the signals, and Counter and a zero Checksum (written over once the payload is
+        known) where the frame has them."""
+        if counter is None:
+            return signals
+        return {**signals, frames.COUNTER_SIGNAL: counter, frames.CHECKSUM_SIGNAL: 0}
+
+    def _sealed(self, frame: VehicleFrame, data: bytearray, timestamp_s: float, counter: int | None) -> can.Message:
+        """The frame with its checksum written over the payload and its counter taken, as a python-can message."""
         frame_id = frames.frame_id(frame)
-        if frames.has_integrity_signals(frame):
+        if counter is not None:
             index = frames.checksum_byte_index(frame)
             data[index] = frames.checksum(frame_id, bytes(data), index)
-            self._tx_counter[frame] = self._next_counter(frame)
+            self._tx_counter[frame] = counter
         return can.Message(arbitration_id=frame_id, data=bytes(data), is_extended_id=False,
                            timestamp=timestamp_s, channel=self.channel, is_rx=False)
 
