@@ -34,6 +34,13 @@ def lag_alpha(dt_s: float, time_constant_s: float) -> float:
     return dt_s / (time_constant_s + dt_s)
 
 
+def driving_resistance_mps2(profile: VehicleProfile, grade_mps2: float, speed_mps: float) -> float:
+    """Rolling and aerodynamic resistance while moving, plus the grade's share of gravity (grade_mps2)."""
+    if speed_mps <= 0.0:
+        return grade_mps2
+    return profile.rolling_resistance_mps2 + profile.drag_1pm * speed_mps * speed_mps + grade_mps2
+
+
 def _clip(value: float, low: float, high: float) -> float:
     return min(max(value, low), high)
 
@@ -70,12 +77,7 @@ class VehicleModel:
         self.steer_request_rad = self.state.steer_rad
 
     def resistance_mps2(self, speed_mps: float) -> float:
-        """Driving resistance: rolling and aerodynamic while moving, and the grade's share of gravity."""
-        p = self.profile
-        grade_mps2 = STANDARD_GRAVITY_MPS2 * math.sin(self.grade_rad)
-        if speed_mps <= 0.0:
-            return grade_mps2
-        return p.rolling_resistance_mps2 + p.drag_1pm * speed_mps * speed_mps + grade_mps2
+        return driving_resistance_mps2(self.profile, STANDARD_GRAVITY_MPS2 * math.sin(self.grade_rad), speed_mps)
 
     def clip_accel_request(self, accel_mps2: float) -> float:
         return _clip(accel_mps2, -self.profile.max_decel_mps2, self.profile.max_accel_mps2)
@@ -132,9 +134,7 @@ class VehicleModel:
             lagged = accel_alpha * accel_queue.popleft() + (1.0 - accel_alpha) * actuator
             lagged = min(max(lagged, actuator - max_jerk_h), actuator + max_jerk_h)
             actuator = min(max(lagged, -p.max_decel_mps2), p.max_accel_mps2)
-            resistance = grade_mps2 if speed <= 0.0 else \
-                p.rolling_resistance_mps2 + p.drag_1pm * speed * speed + grade_mps2
-            accel = actuator - resistance
+            accel = actuator - driving_resistance_mps2(p, grade_mps2, speed)
             steer_queue.append(steer_request)
             lagged_steer = steer_alpha * steer_queue.popleft() + (1.0 - steer_alpha) * steer
             lagged_steer = min(max(lagged_steer, steer - max_steer_rate_h), steer + max_steer_rate_h)
