@@ -69,13 +69,12 @@ class Lane:
         self._seg_heading = np.arctan2(self._unit[:, 1], self._unit[:, 0])
         self._station0 = np.concatenate(([0.0], np.cumsum(self._seg_len)[:-1]))
         self.length_m = float(self._station0[-1] + self._seg_len[-1])
-        self._vertex_curvature = self._curvature_at_vertices()
         self._bbox = np.concatenate((points.min(axis=0), points.max(axis=0)))
         self._near = NearSegments(self._start, self._unit, self._seg_len)
         # The same numbers as Python floats, for projections that look at a few segments only.
         self._start_list, self._unit_list = self._start.tolist(), self._unit.tolist()
         self._seg_len_list, self._station0_list = self._seg_len.tolist(), self._station0.tolist()
-        self._vertex_curvature_list = self._vertex_curvature.tolist()
+        self._vertex_curvature_list = self._curvature_at_vertices().tolist()
         # The latest projections by point: one instant's position is projected again and again (by the truth,
         # the driver and each sensor in the simulator; by map matching and lane fusion in a stack).
         self._recent: dict[tuple[float, float], Projection] = {}
