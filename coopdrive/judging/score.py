@@ -51,25 +51,6 @@ def truth_series(messages: RunMessages) -> TruthSeries:
     return TruthSeries.from_ground_truth(truth)
 
 
-def default_platoon(series: TruthSeries) -> list[str]:
-    """Vehicles in the first vehicle's lane at the first sample, front to back."""
-    _, vehicles = series.frames[0]
-    if not vehicles:
-        return []
-    lane = vehicles[0].lane_index
-    in_lane = [v for v in vehicles if v.lane_index == lane]
-    return [v.vehicle_id for v in sorted(in_lane, key=lambda v: v.station_m, reverse=True)]
-
-
-def _predecessor_references(series: TruthSeries, platoon: list[str]) -> dict[str, judge_metrics.SpeedReference]:
-    """Each automated follower's reference speed is its predecessor's (what the live follow judge uses)."""
-    references = {}
-    for leader, follower in zip(platoon, platoon[1:]):
-        if follower in series.automated:
-            references[follower] = lambda _t, speeds=series.get(leader, "speed_mps"): speeds
-    return references
-
-
 def _position_estimates(series: TruthSeries, messages: RunMessages) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     estimates = {}
     for vehicle_id, states in messages.ego_states.items():
@@ -152,9 +133,9 @@ def score_series(series: TruthSeries, parameters: JudgingParameters = JudgingPar
     position_rmse_m, and their scenes the tracking figures of coopdrive.judging.tracking."""
     messages = messages if messages is not None else RunMessages()
     # A run of fewer stacks than the scenario has leaves the platoon's tail out of the world.
-    platoon = [v for v in parameters.platoon if v in series.values] or default_platoon(series)
+    platoon = [v for v in parameters.platoon if v in series.values] or judge_metrics.leading_lane_platoon(series)
     scored = judge_metrics.judge(
-        series, platoon=platoon, reference_speed_mps=_predecessor_references(series, platoon),
+        series, platoon=platoon,
         safety_radius_m=parameters.safety_radius_m, standstill_m=parameters.standstill_m,
         headway_s=parameters.headway_s, string_start_s=parameters.string_start_s,
         string_frequency_hz=parameters.string_frequency_hz, string_end_s=parameters.string_end_s,

@@ -153,6 +153,27 @@ def comfort(truth: TruthSeries, vehicle_ids: Sequence[str]) -> dict[str, float]:
 SpeedReference = Callable[[np.ndarray], np.ndarray]
 
 
+def leading_lane_platoon(truth: TruthSeries) -> list[str]:
+    """The platoon of a run whose scenario names none: the vehicles in the first vehicle's lane at the first
+    sample, front to back."""
+    _, vehicles = truth.frames[0]
+    if not vehicles:
+        return []
+    lane = vehicles[0].lane_index
+    in_lane = [v for v in vehicles if v.lane_index == lane]
+    return [v.vehicle_id for v in sorted(in_lane, key=lambda v: v.station_m, reverse=True)]
+
+
+def predecessor_speed_references(truth: TruthSeries, platoon: Sequence[str],
+                                 followers: Sequence[str]) -> dict[str, SpeedReference]:
+    """Each listed follower's reference speed is its predecessor's in the platoon (leader first)."""
+    references: dict[str, SpeedReference] = {}
+    for leader, follower in zip(platoon, platoon[1:]):
+        if follower in followers:
+            references[follower] = lambda _t, speeds=truth.get(leader, "speed_mps"): speeds
+    return references
+
+
 def speed_error(truth: TruthSeries, reference_mps: Mapping[str, SpeedReference]) -> dict[str, float]:
     """Actual minus reference speed in km/h, over the vehicles given a reference (a function of time)."""
     errors = [truth.get(vid, "speed_mps") - ref(truth.time_s) for vid, ref in reference_mps.items()]
@@ -239,7 +260,8 @@ def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[s
           headway_s: float = DEFAULT_HEADWAY_S, string_start_s: float = 0.0,
           string_frequency_hz: float | None = None, string_end_s: float = math.inf,
           position_estimates: Mapping[str, tuple[np.ndarray, np.ndarray]] | None = None) -> dict[str, float]:
-    """The run's metrics; `platoon` lists vehicle ids leader first for the string gain;
+    """The run's metrics; `platoon` lists vehicle ids leader first for the string gain and, unless
+    `reference_speed_mps` says otherwise, for the speed error (each judged follower against its predecessor);
     `position_estimates` maps a vehicle id to (time_s (N,), xy_m (N, 2)) of the stack's own estimate."""
     judged = list(automated) if automated is not None else sorted(truth.automated) or truth.vehicle_ids
     metrics: dict[str, float] = {
@@ -250,6 +272,8 @@ def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[s
     metrics.update(comfort(truth, judged))
     metrics.update(spacing_error(truth, judged, standstill_m, headway_s))
     metrics.update(lateral_error(truth, judged))
+    if reference_speed_mps is None:
+        reference_speed_mps = predecessor_speed_references(truth, platoon, judged)
     if reference_speed_mps:
         metrics.update(speed_error(truth, reference_speed_mps))
     if len(platoon) >= 2:

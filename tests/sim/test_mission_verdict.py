@@ -230,3 +230,22 @@ def test_the_corridor_closes_once_the_vehicles_are_back_on_their_lane_centres_an
     corridor(judge, [(0.0, 100, 0.0, 0), (5.0, 150, 0.8, 140), (10.0, 200, 0.8, 240), (13.0, 230, 0.1, 300)])
     assert judge.verdict() == (True, "")
     assert judge.metrics()["corridor_close_time_s"] == 3.0
+
+
+def test_the_live_verdict_reports_every_error_figure_as_coopdrive_score_does_on_the_same_truth():
+    from coopdrive.judging.run_messages import RunMessages
+    from coopdrive.judging.score import score_messages
+    from tests.judging.synthetic import truth_at, two_car_frames
+
+    frames = [truth_at(time_s, vehicles) for time_s, vehicles in two_car_frames()]
+    judge = MissionJudge(config("follow"), ["follower"])
+    for frame in frames:
+        judge.observe(frame.header.sample_time_s, frame)
+    live = judge.metrics()
+    scored = score_messages(RunMessages(truth=frames))
+    for figure in ("speed_error", "spacing_error", "lateral_error"):
+        keys = [key for key in scored if key.startswith(figure)]
+        assert len(keys) == 6, keys
+        for key in keys:
+            assert live[key] == scored[key], key
+    assert live["speed_error_kmh"] == 7.2
