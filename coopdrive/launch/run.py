@@ -211,18 +211,9 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         ended = time.monotonic()
         # After the result the stacks publish their last step and fall quiet; stopped by a signal they would go on
         # publishing, so the recording takes what is on its way once they have been stopped.
-        drain_after_stop = bool(stop_reason) and not results
-        if recorder is not None:
-            if not drain_after_stop:
-                _drain(recorder)
-            recorder.add_configs(effective_configs(hub, specs))
-        processes.stop_all()
-        if recorder is not None and drain_after_stop:
-            _drain(recorder)
+        _tear_down(processes, recorder, lambda: effective_configs(hub, specs),
+                   drain_after_stop=bool(stop_reason) and not results)
         shutil.rmtree(run_dir, ignore_errors=True)
-        if recorder is not None:
-            time.sleep(0.1)
-            recorder.close()
         if bridge is not None:
             bridge.close()
         hub.close()
@@ -238,6 +229,22 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         result.startup_time_s = result.clock_started_monotonic_s - started
     result.shutdown_time_s = time.monotonic() - ended
     return result
+
+
+def _tear_down(processes: ServiceProcesses, recorder, configs: Callable[[], dict[str, str]],
+               drain_after_stop: bool) -> None:
+    """Stops the services and closes the recording with what they sent on the way: drained before they stop at
+    the end of a run, after they stopped when a signal ended it (so a stopped run leaves a whole recording)."""
+    if recorder is not None and not drain_after_stop:
+        _drain(recorder)
+    if recorder is not None:
+        recorder.add_configs(configs())
+    processes.stop_all()
+    if recorder is not None:
+        if drain_after_stop:
+            _drain(recorder)
+        time.sleep(0.1)
+        recorder.close()
 
 
 def _watch(options: RunOptions, hub: Bus, configs: dict[str, dict]):
