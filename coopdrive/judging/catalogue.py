@@ -4,11 +4,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from importlib import resources
+from pathlib import Path
 
 import yaml
 
 from coopdrive.judging.score import JudgingParameters
-from coopdrive.services.sim.scenario_config import SCENARIO_PACKAGE, ScenarioConfig, ScenarioError, parse_scenario
+from coopdrive.services.sim.scenario_config import (SCENARIO_PACKAGE, ScenarioConfig, ScenarioError, load_scenario,
+                                                    parse_scenario)
 
 
 @dataclass(frozen=True)
@@ -47,13 +49,25 @@ def list_scenarios() -> list[ScenarioEntry]:
 
 
 def judging_parameters(name: str) -> JudgingParameters:
-    """The judging section of the scenario file called `name`, or the judge's defaults."""
+    """The judging section of the scenario called `name` (a packaged one, or a scenario file's path), or the
+    judge's defaults for a recording of no known scenario."""
+    scenario = _scenario_called(name)
+    if scenario is None:
+        return JudgingParameters()
+    judging = scenario.judging
+    return JudgingParameters(safety_radius_m=judging.safety_radius_m, standstill_m=judging.standstill_m,
+                             headway_s=judging.headway_s, string_start_s=judging.string_start_s,
+                             string_frequency_hz=judging.string_frequency_hz, string_end_s=judging.string_end_s,
+                             platoon=tuple(judging.platoon))
+
+
+def _scenario_called(name: str) -> ScenarioConfig | None:
     for scenario in scenario_files().values():
         if isinstance(scenario, ScenarioConfig) and scenario.name == name:
-            judging = scenario.judging
-            return JudgingParameters(safety_radius_m=judging.safety_radius_m, standstill_m=judging.standstill_m,
-                                     headway_s=judging.headway_s, string_start_s=judging.string_start_s,
-                                     string_frequency_hz=judging.string_frequency_hz,
-                                     string_end_s=judging.string_end_s,
-                                     platoon=tuple(judging.platoon))
-    return JudgingParameters()
+            return scenario
+    if name and Path(name).is_file():
+        try:
+            return load_scenario(Path(name))
+        except ScenarioError:
+            return None
+    return None

@@ -40,8 +40,9 @@ class JudgingParameters:
     string_start_s: float = 0.0
     string_frequency_hz: float | None = None
     string_end_s: float = math.inf
-    # Leader first; empty: the vehicles of the leading lane ordered along it at the first sample.
-    platoon: tuple[str, ...] = ()
+    # Leader first, as the scenario declares it (empty: it declares none, and no platoon is judged); None, for a
+    # recording of no known scenario: the vehicles of the leading lane ordered along it at the first sample.
+    platoon: tuple[str, ...] | None = None
 
 
 def truth_series(messages: RunMessages) -> TruthSeries:
@@ -133,7 +134,8 @@ def score_series(series: TruthSeries, parameters: JudgingParameters = JudgingPar
     position_rmse_m, and their scenes the tracking figures of coopdrive.judging.tracking."""
     messages = messages if messages is not None else RunMessages()
     # A run of fewer stacks than the scenario has leaves the platoon's tail out of the world.
-    platoon = [v for v in parameters.platoon if v in series.values] or judge_metrics.leading_lane_platoon(series)
+    platoon = (judge_metrics.leading_lane_platoon(series) if parameters.platoon is None
+               else [v for v in parameters.platoon if v in series.values])
     scored = judge_metrics.judge(
         series, platoon=platoon,
         safety_radius_m=parameters.safety_radius_m, standstill_m=parameters.standstill_m,

@@ -180,13 +180,20 @@ def speed_error(truth: TruthSeries, reference_mps: Mapping[str, SpeedReference])
     return error_stats(np.concatenate(errors) * KMH_PER_MPS, "speed_error", "kmh") if errors else {}
 
 
-def spacing_error(truth: TruthSeries, vehicle_ids: Sequence[str], standstill_m: float = DEFAULT_STANDSTILL_M,
-                  headway_s: float = DEFAULT_HEADWAY_S) -> dict[str, float]:
-    """Gap minus the desired d = r + h v (eq. 4 Heudiasyc) of the listed followers."""
+def spacing_error(truth: TruthSeries, platoon: Sequence[str], vehicle_ids: Sequence[str],
+                  standstill_m: float = DEFAULT_STANDSTILL_M, headway_s: float = DEFAULT_HEADWAY_S) -> dict[str, float]:
+    """Gap minus the desired d = r + h v (eq. 4 Heudiasyc) of each listed follower to its predecessor in the
+    platoon (leader first), over the samples that hold both: the policy a platoon follows, so a vehicle that is
+    in no platoon (a car behind an ambulance driving away, platoon leaders before a merge) is not judged on it."""
     wanted = set(vehicle_ids)
-    errors = [bumper_gap_m(leader, follower) - (standstill_m + headway_s * follower.speed_mps)
-              for _, vehicles in truth.frames for leader, follower in following_pairs(vehicles)
-              if follower.vehicle_id in wanted]
+    pairs = [(leader, follower) for leader, follower in zip(platoon, platoon[1:]) if follower in wanted]
+    errors = []
+    for _, vehicles in truth.frames:
+        by_id = {v.vehicle_id: v for v in vehicles}
+        for leader_id, follower_id in pairs:
+            leader, follower = by_id.get(leader_id), by_id.get(follower_id)
+            if leader is not None and follower is not None:
+                errors.append(bumper_gap_m(leader, follower) - (standstill_m + headway_s * follower.speed_mps))
     return error_stats(np.array(errors), "spacing_error", "m")
 
 
@@ -260,8 +267,9 @@ def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[s
           headway_s: float = DEFAULT_HEADWAY_S, string_start_s: float = 0.0,
           string_frequency_hz: float | None = None, string_end_s: float = math.inf,
           position_estimates: Mapping[str, tuple[np.ndarray, np.ndarray]] | None = None) -> dict[str, float]:
-    """The run's metrics; `platoon` lists vehicle ids leader first for the string gain and, unless
-    `reference_speed_mps` says otherwise, for the speed error (each judged follower against its predecessor);
+    """The run's metrics; `platoon` lists vehicle ids leader first for the string gain, the spacing error and,
+    unless `reference_speed_mps` says otherwise, the speed error (each judged follower against its predecessor;
+    without a platoon neither error is reported);
     `position_estimates` maps a vehicle id to (time_s (N,), xy_m (N, 2)) of the stack's own estimate."""
     judged = list(automated) if automated is not None else sorted(truth.automated) or truth.vehicle_ids
     metrics: dict[str, float] = {
@@ -270,7 +278,7 @@ def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[s
         "crossing_circle_violations": float(crossing_circle_violations(truth, safety_radius_m))}
     metrics.update(gaps(truth))
     metrics.update(comfort(truth, judged))
-    metrics.update(spacing_error(truth, judged, standstill_m, headway_s))
+    metrics.update(spacing_error(truth, platoon, judged, standstill_m, headway_s))
     metrics.update(lateral_error(truth, judged))
     if reference_speed_mps is None:
         reference_speed_mps = predecessor_speed_references(truth, platoon, judged)

@@ -62,9 +62,7 @@ class MissionJudge:
             series = TruthSeries.from_frames(self.frames) if self.frames else None
             if series is None:
                 return {"collisions": 0.0}
-            # The platoon as `coopdrive score` takes it, so both give the same figures (speed error, string gain).
-            platoon = ([v for v in judging_config.platoon if v in series.vehicle_ids]
-                       or judging.leading_lane_platoon(series))
+            platoon = [v for v in judging_config.platoon if v in series.vehicle_ids]
             self._metrics = {key: value for key, value in judging.judge(
                 series, platoon=platoon, automated=self.stack_ids, safety_radius_m=judging_config.safety_radius_m,
                 standstill_m=judging_config.standstill_m, headway_s=judging_config.headway_s,

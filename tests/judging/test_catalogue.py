@@ -39,3 +39,15 @@ def test_the_shipped_follow_file_judges_leader_then_ego_at_six_metres_and_one_an
     parameters = catalogue.judging_parameters("follow")
     assert parameters.platoon == ("leader", "ego")
     assert (parameters.standstill_m, parameters.headway_s) == (6.0, 1.5)
+
+
+def test_a_scenario_that_declares_no_platoon_is_judged_on_none_and_an_unknown_recording_on_the_leading_lane():
+    assert catalogue.judging_parameters("merge").platoon == ()
+    assert catalogue.judging_parameters("unknown").platoon is None
+
+
+def test_a_scenario_run_from_its_file_is_judged_with_that_files_judging_section(tmp_path):
+    path = tmp_path / "mine.yaml"
+    path.write_text(GOOD)
+    assert catalogue.judging_parameters(str(path)).headway_s == 1.0
+    assert catalogue.judging_parameters(str(tmp_path / "missing.yaml")) == JudgingParameters()

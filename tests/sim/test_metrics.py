@@ -66,7 +66,7 @@ def test_min_time_gap_spacing_and_lateral_errors_follow_their_definitions():
               for k in range(10)]
     truth = TruthSeries.from_frames(frames)
     gap = 30.0 - 0.9 - 3.6
-    result = metrics.judge(truth, automated=["f"], standstill_m=6.0, headway_s=1.0)
+    result = metrics.judge(truth, platoon=["lead", "f"], automated=["f"], standstill_m=6.0, headway_s=1.0)
     assert result["min_time_gap_s"] == pytest.approx(gap / 20.0)
     assert result["spacing_error_m"] == pytest.approx(abs(gap - 26.0))  # mean absolute
     assert result["spacing_error_bias_m"] == pytest.approx(gap - 26.0)  # signed mean

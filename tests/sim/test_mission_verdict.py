@@ -234,18 +234,30 @@ def test_the_corridor_closes_once_the_vehicles_are_back_on_their_lane_centres_an
 
 def test_the_live_verdict_reports_every_error_figure_as_coopdrive_score_does_on_the_same_truth():
     from coopdrive.judging.run_messages import RunMessages
-    from coopdrive.judging.score import score_messages
+    from coopdrive.judging.score import JudgingParameters, score_messages
     from tests.judging.synthetic import truth_at, two_car_frames
 
     frames = [truth_at(time_s, vehicles) for time_s, vehicles in two_car_frames()]
-    judge = MissionJudge(config("follow"), ["follower"])
+    cars = [{"vehicle_id": "leader", "station_id": 2, "lane": 0, "station_m": 30, "speed_mps": 10},
+            {"vehicle_id": "follower", "station_id": 3, "lane": 0, "station_m": 0, "speed_mps": 12}]
+    judge = MissionJudge(config("follow", vehicles=cars, judging={"platoon": ["leader", "follower"]}), ["follower"])
     for frame in frames:
         judge.observe(frame.header.sample_time_s, frame)
     live = judge.metrics()
-    scored = score_messages(RunMessages(truth=frames))
+    scored = score_messages(RunMessages(truth=frames), JudgingParameters(platoon=("leader", "follower")))
     for figure in ("speed_error", "spacing_error", "lateral_error"):
         keys = [key for key in scored if key.startswith(figure)]
         assert len(keys) == 6, keys
         for key in keys:
             assert live[key] == scored[key], key
     assert live["speed_error_kmh"] == 7.2
+
+
+def test_a_scenario_that_declares_no_platoon_reports_no_spacing_or_speed_error():
+    judge = MissionJudge(config("follow"), ["a", "b"])
+    for time_s in range(5):
+        judge.observe(float(time_s), truth({"vehicle_id": "a", "x_m": 0, "station_m": 0, "lane_index": 0},
+                                           {"vehicle_id": "b", "x_m": 60, "station_m": 60, "lane_index": 0}))
+    figures = judge.metrics()
+    assert not [key for key in figures if key.startswith(("spacing_error", "speed_error"))]
+    assert "lateral_error_m" in figures
