@@ -137,14 +137,14 @@ class Bus:
         """Subscribes to any key; the message type comes from the sample's encoding schema."""
         return self._declare(self._session.declare_subscriber(key_expr, _direct(self._typed(callback))))
 
-    def subscribe_key_queued(self, key_expr: str, callback: Callable[[str, Message], None]):
+    def subscribe_key_queued(self, key_expr: str, callback: Callable[[str, Message], None],
+                             capacity: int = QUEUED_SUBSCRIPTION_CAPACITY):
         """subscribe_key for one that takes many messages, such as a run's recorder of every key: Zenoh's receive
         threads only queue the samples, and one thread of ours decodes them and calls back in the order they
         came. A callback from a receive thread takes the interpreter's lock for each message, against every other
         thread of the process; a queue read from Python does not (measured in docs/performance.md). A full queue
-        holds the senders back (QUEUED_SUBSCRIPTION_CAPACITY), as a slow callback would; close() ends the thread."""
-        subscriber = self._declare(self._session.declare_subscriber(
-            key_expr, zenoh.handlers.FifoChannel(QUEUED_SUBSCRIPTION_CAPACITY)))
+        holds the senders back (`capacity` samples), as a slow callback would; close() ends the thread."""
+        subscriber = self._declare(self._session.declare_subscriber(key_expr, zenoh.handlers.FifoChannel(capacity)))
         thread = threading.Thread(target=self._hand_on_queued, args=(subscriber, self._typed(callback)),
                                   name=f"queued {key_expr}", daemon=True)
         thread.start()

@@ -23,22 +23,17 @@ EXIT_OK, EXIT_USAGE = 0, 2
 def run_with_report(options, report_dir: Path) -> sim_pb2.RunResult:
     """Runs with a recording (report_dir/run.mcap unless options.record says where) and writes the report.
 
-    The report is scored from the ground truth seen on the bus during the run, the same samples the recording
-    holds; the run's own RunResult (and so its success) is returned unchanged.
+    The report is scored from the messages the recording takes, as they are written (so it is what scoring the
+    recording afterwards gives); the run's own RunResult (and so its success) is returned unchanged.
     """
     from coopdrive.launch.run import run_scenario
 
     report_dir = Path(report_dir)
     report_dir.mkdir(parents=True, exist_ok=True)
     messages = RunMessages()
-    previous = options.observer
-
-    def observe(key, message) -> None:
-        messages.add(key, message)
-        if previous is not None:
-            previous(key, message)
-
-    options = dataclasses.replace(options, record=options.record or report_dir / RECORDING_FILE, observer=observe)
+    # From the recording's thread, not Zenoh's: a report of a big run on a loaded host must not hold the stacks back.
+    options = dataclasses.replace(options, record=options.record or report_dir / RECORDING_FILE,
+                                  on_recorded=messages.add)
     result = run_scenario(options)
     try:
         write_report(report_dir, messages, result, judging_parameters(options.scenario))

@@ -63,8 +63,12 @@ class RunOptions:
     extra_faults: tuple[dict, ...] = ()
     # Extra config per service name, merged over the defaults (e.g. {"control": {...}}).
     service_overrides: dict[str, dict] = field(default_factory=dict)
-    # Called as observer(key, message) for every message on the bus (benchmarks, live tools).
+    # Called as observer(key, message) for every message on the bus, on Zenoh's thread as it arrives (benchmarks,
+    # live tools): a slow one holds the senders back.
     observer: Callable[[str, Message], None] | None = None
+    # Called as on_recorded(key, message) for every message the recording takes, from the recording's own thread
+    # in its order (a report built from what the recording holds); needs `record`.
+    on_recorded: Callable[[str, Message], None] | None = None
     # When the command started (time.monotonic()), for the summary's startup_time_s; None: when run_scenario is
     # called.
     started_monotonic_s: float | None = None
@@ -77,9 +81,15 @@ CERTIFICATE_BACKDATE_S = 3600
 # host (an 8-stack run on two cores) can take more than a second to drain.
 RESULT_GRACE_S = 5.0
 RESULT_BACKLOG_LIMIT_S = 300.0
-# What the stacks publish in the last step reaches the recorder after the result: it waits for a quiet bus.
+# What the stacks publish in the last step reaches the recorder after the result: it waits for a quiet bus, and
+# on a loaded host for the backlog it has queued (at most RECORDING_BACKLOG_LIMIT_S).
 RECORDING_QUIET_S = 0.2
-RECORDING_DRAIN_S = 3.0
+RECORDING_BACKLOG_LIMIT_S = 120.0
+# Samples the recording may hold queued before Zenoh's receive threads wait for it. It must never make them wait:
+# held for 5 s, Zenoh closes the links to the launcher and about ten seconds of every stack's messages never reach
+# the recording (two 8-stack runs side by side with reports, as a sweep runs them: 206 of 301 truth samples).
+# An 8-stack run sends about 10,000 messages per simulated second; queued samples take their payload's memory.
+RECORDING_QUEUE_CAPACITY = 2_000_000
 
 
 class RunAborted(RuntimeError):
@@ -257,8 +267,16 @@ def _watch(options: RunOptions, hub: Bus, configs: dict[str, dict]):
 
         # The configs go in at the end, as the services ran them (effective_configs); the map is needed now.
         recorder = McapRecorder(options.record, road_map=recorded_road_map(configs))
-        hub.subscribe_key_queued("coopdrive/**",
-                                 lambda key, message: None if "/_" in key else recorder.write(key, message))
+        on_recorded = options.on_recorded
+
+        def record(key: str, message: Message) -> None:
+            if "/_" in key:
+                return
+            recorder.write(key, message)
+            if on_recorded is not None:
+                on_recorded(key, message)
+
+        hub.subscribe_key_queued("coopdrive/**", record, capacity=RECORDING_QUEUE_CAPACITY)
     if options.foxglove_port is not None:
         from coopdrive.visual.live_bridge import FoxgloveBridge
 
@@ -270,8 +288,9 @@ def _watch(options: RunOptions, hub: Bus, configs: dict[str, dict]):
 
 def _drain(recorder) -> None:
     """The simulator's result comes in its last step, while the stacks still publish theirs: the recording
-    takes what is on its way until the bus has been quiet for RECORDING_QUIET_S (at most RECORDING_DRAIN_S)."""
-    deadline = time.monotonic() + RECORDING_DRAIN_S
+    takes what is on its way, and what it has queued, until it has taken nothing for RECORDING_QUIET_S (at most
+    RECORDING_BACKLOG_LIMIT_S)."""
+    deadline = time.monotonic() + RECORDING_BACKLOG_LIMIT_S
     written = -1
     while recorder.messages_written != written and time.monotonic() < deadline:
         written = recorder.messages_written
