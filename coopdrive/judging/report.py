@@ -53,6 +53,11 @@ def _index_html(metrics: dict, figures: list[str]) -> str:
         verdict_html = f'<p class="{"pass" if metrics["success"] else "fail"}">{html.escape(verdict)}</p>'
     else:
         verdict_html = ""
+    missing = metrics.get("truth_missing_samples") or 0
+    if missing:
+        verdict_html += (f'<p class="fail">The recording lacks {int(missing)} ground-truth samples (the longest gap '
+                         f'{metrics.get("truth_longest_gap_s", 0.0):.1f} s): the figures scored from it are not to '
+                         "be trusted; the live judge's are.</p>")
     figures_html = "\n".join(
         f'<figure><img src="{name}" alt="{html.escape(FIGURES[name])}"><figcaption>{html.escape(FIGURES[name])}'
         f"</figcaption></figure>" for name in figures)

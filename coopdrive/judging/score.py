@@ -149,7 +149,21 @@ def score_series(series: TruthSeries, parameters: JudgingParameters = JudgingPar
     scored.update(v2x_metrics(messages))
     scored["truth_samples"] = float(series.time_s.size)
     scored["truth_duration_s"] = float(series.time_s[-1] - series.time_s[0])
+    scored.update(truth_coverage(series.time_s))
     return _clean(scored)
+
+
+def truth_coverage(time_s: np.ndarray) -> dict[str, float]:
+    """How much of the truth the recording holds: samples missing between the first and the last at the truth's
+    own period (the median interval), and the longest interval. Every other figure is only as good as this: the
+    judge interpolates across a gap as if the vehicles had moved in a straight line at constant speed."""
+    if time_s.size < 2:
+        return {}
+    intervals = np.diff(time_s)
+    period_s = float(np.median(intervals))
+    expected = int(round((time_s[-1] - time_s[0]) / period_s)) + 1 if period_s > 0 else time_s.size
+    return {"truth_missing_samples": float(max(0, expected - time_s.size)),
+            "truth_longest_gap_s": float(intervals.max())}
 
 
 def score_messages(messages: RunMessages, parameters: JudgingParameters = JudgingParameters()) -> dict:

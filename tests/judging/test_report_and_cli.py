@@ -74,7 +74,7 @@ def test_run_follow_with_a_report_writes_metrics_figures_and_index(follow_report
     for key in ("min_gap_m", "collisions", "position_rmse_m", "string_gain", "max_abs_accel_mps2"):
         assert metrics[key] is not None, key
     assert metrics["position_rmse_m"] < 1.0
-    assert metrics["truth_samples"] >= 200
+    assert metrics["truth_samples"] >= 200 and metrics["truth_missing_samples"] == 0
     for name in [*FIGURES, "index.html", "run.mcap"]:
         assert (folder / name).stat().st_size > 0, name
     assert metrics["success"] == summary["success"]
@@ -104,3 +104,15 @@ def test_the_live_judge_sees_every_step_so_its_minimum_gap_is_at_most_the_sample
     assert metrics["live_judge"]["min_gap_m"] <= metrics["min_gap_m"] + 1e-9
     assert metrics["min_gap_m"] - metrics["live_judge"]["min_gap_m"] < 0.1
     assert metrics["live_judge"]["collisions"] == metrics["collisions"]
+
+
+def test_the_report_page_warns_that_figures_from_a_recording_with_lost_ground_truth_are_not_to_be_trusted(tmp_path):
+    from coopdrive.judging.run_messages import RunMessages
+    from tests.judging.synthetic import truth_at, two_car_frames
+
+    frames = [truth_at(t, vehicles) for t, vehicles in two_car_frames(steps=60)]
+    gapped = RunMessages(truth=[frame for frame in frames if not 1.05 < frame.header.sample_time_s < 4.95])
+    write_report(tmp_path / "gapped", gapped)
+    write_report(tmp_path / "whole", RunMessages(truth=frames))
+    assert "lacks 39 ground-truth samples" in (tmp_path / "gapped" / "index.html").read_text()
+    assert "ground-truth samples" not in (tmp_path / "whole" / "index.html").read_text()

@@ -4,7 +4,7 @@ import pytest
 
 from coopdrive.judging.run_messages import RunMessages
 from coopdrive.judging.score import JudgingParameters, ScoreError, score_messages, score_recording
-from tests.judging.synthetic import sinusoid_chain_frames, truth_at, write_two_car_recording
+from tests.judging.synthetic import sinusoid_chain_frames, truth_at, two_car_frames, write_two_car_recording
 
 
 @pytest.fixture(scope="module")
@@ -55,6 +55,8 @@ def test_an_object_id_change_for_the_same_true_vehicle_is_one_identity_switch(tw
 
 def test_counts_are_integers_and_the_truth_samples_are_reported(two_car_metrics):
     assert two_car_metrics["truth_samples"] == 11
+    assert two_car_metrics["truth_missing_samples"] == 0
+    assert two_car_metrics["truth_longest_gap_s"] == pytest.approx(0.1)
     assert two_car_metrics["truth_duration_s"] == pytest.approx(1.0)
     assert all(isinstance(two_car_metrics[key], int) for key in ("collisions", "safety_circle_violations",
                                                                  "id_switches"))
@@ -207,3 +209,11 @@ def test_a_pair_s_reception_ratio_counts_only_while_its_sender_sends_so_a_roadsi
     assert metrics["v2x_reception_ratio_min"] == pytest.approx(0.95)
     assert metrics["v2x_reception_ratio_mean"] == pytest.approx(0.975)
     assert metrics["v2x_reception_pairs"] == 2
+
+
+def test_a_recording_that_lost_ground_truth_says_how_many_samples_and_the_longest_gap():
+    frames = [truth_at(t, vehicles) for t, vehicles in two_car_frames(steps=60)]
+    kept = [frame for frame in frames if not 1.05 < frame.header.sample_time_s < 4.95]
+    metrics = score_messages(RunMessages(truth=kept))
+    assert metrics["truth_samples"] == 22 and metrics["truth_missing_samples"] == 39
+    assert metrics["truth_longest_gap_s"] == pytest.approx(4.0)
