@@ -85,9 +85,8 @@ RESULT_BACKLOG_LIMIT_S = 300.0
 # on a loaded host for the backlog it has queued (at most RECORDING_BACKLOG_LIMIT_S).
 RECORDING_QUIET_S = 0.2
 RECORDING_BACKLOG_LIMIT_S = 120.0
-# Samples the recording may hold queued before Zenoh's receive threads wait for it. It must never make them wait:
-# held for 5 s, Zenoh closes the links to the launcher and about ten seconds of every stack's messages never reach
-# the recording (two 8-stack runs side by side with reports, as a sweep runs them: 206 of 301 truth samples).
+# Samples the recording may hold queued before Zenoh's receive threads wait for it. It should never make them
+# wait: a sender held back for 5 s closes its link (BLOCK congestion control), and what it sends meanwhile is lost.
 # An 8-stack run sends about 10,000 messages per simulated second; queued samples take their payload's memory.
 RECORDING_QUEUE_CAPACITY = 2_000_000
 
