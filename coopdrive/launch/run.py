@@ -244,16 +244,17 @@ def _tear_down(processes: ServiceProcesses, recorder, configs: Callable[[], dict
                drain_after_stop: bool) -> None:
     """Stops the services and closes the recording with what they sent on the way: drained before they stop at
     the end of a run, after they stopped when a signal ended it (so a stopped run leaves a whole recording)."""
-    if recorder is not None and not drain_after_stop:
+    if recorder is None:
+        processes.stop_all()
+        return
+    if not drain_after_stop:
         _drain(recorder)
-    if recorder is not None:
-        recorder.add_configs(configs())
+    recorder.add_configs(configs())
     processes.stop_all()
-    if recorder is not None:
-        if drain_after_stop:
-            _drain(recorder)
-        time.sleep(0.1)
-        recorder.close()
+    if drain_after_stop:
+        _drain(recorder)
+    time.sleep(0.1)
+    recorder.close()
 
 
 def _watch(options: RunOptions, hub: Bus, configs: dict[str, dict]):

@@ -164,14 +164,16 @@ def leading_lane_platoon(truth: TruthSeries) -> list[str]:
     return [v.vehicle_id for v in sorted(in_lane, key=lambda v: v.station_m, reverse=True)]
 
 
+def judged_pairs(platoon: Sequence[str], followers: Sequence[str]) -> list[tuple[str, str]]:
+    """(predecessor, follower) for each listed follower in the platoon (leader first)."""
+    return [(leader, follower) for leader, follower in zip(platoon, platoon[1:]) if follower in followers]
+
+
 def predecessor_speed_references(truth: TruthSeries, platoon: Sequence[str],
                                  followers: Sequence[str]) -> dict[str, SpeedReference]:
-    """Each listed follower's reference speed is its predecessor's in the platoon (leader first)."""
-    references: dict[str, SpeedReference] = {}
-    for leader, follower in zip(platoon, platoon[1:]):
-        if follower in followers:
-            references[follower] = lambda _t, speeds=truth.get(leader, "speed_mps"): speeds
-    return references
+    """Each listed follower's reference speed is its predecessor's in the platoon."""
+    return {follower: (lambda _t, speeds=truth.get(leader, "speed_mps"): speeds)
+            for leader, follower in judged_pairs(platoon, followers)}
 
 
 def speed_error(truth: TruthSeries, reference_mps: Mapping[str, SpeedReference]) -> dict[str, float]:
@@ -185,8 +187,7 @@ def spacing_error(truth: TruthSeries, platoon: Sequence[str], vehicle_ids: Seque
     """Gap minus the desired d = r + h v (eq. 4 Heudiasyc) of each listed follower to its predecessor in the
     platoon (leader first), over the samples that hold both: the policy a platoon follows, so a vehicle that is
     in no platoon (a car behind an ambulance driving away, platoon leaders before a merge) is not judged on it."""
-    wanted = set(vehicle_ids)
-    pairs = [(leader, follower) for leader, follower in zip(platoon, platoon[1:]) if follower in wanted]
+    pairs = judged_pairs(platoon, set(vehicle_ids))
     errors = []
     for _, vehicles in truth.frames:
         by_id = {v.vehicle_id: v for v in vehicles}
