@@ -1,9 +1,10 @@
 """What recording costs a multi-stack run: `string --stacks 8` in lockstep with `--record` against the same run
 without, turn about (unrecorded, recorded, twice), so a load that comes and goes weighs on both alike.
 
-The launcher (this process) is the recorder: every message of the run comes to it over Zenoh, is written to MCAP and
-drawn into the Foxglove channels. Its CPU is this process's (every thread, Zenoh's too) while the run steps and
-stops; the ratio column is the recorded run's real-time factor over the unrecorded one's (below 1: the cost).
+Each process of a recorded run spools what it publishes, and the launcher (this process) merges the spools into the
+MCAP after the run, drawing the Foxglove channels as it writes. Its CPU is this process's (every thread, Zenoh's
+too) from the command to its return, the merge included; the ratio column is the recorded run's real-time factor
+over the unrecorded one's (below 1: the cost), and the command's wall time shows what the merge adds after it.
 BENCH_RECORD_STACKS and BENCH_RECORD_DURATION_S set the stacks (default 8) and the simulated seconds (default 10).
 """
 
@@ -27,33 +28,37 @@ DURATION_S = float(os.environ.get("BENCH_RECORD_DURATION_S", sized(10.0, 1.0)))
 ROUNDS = sized(2, 1)
 
 
-def run(record: Path | None) -> tuple[float, float]:
-    """(real-time factor, the launcher's CPU seconds per simulated second) of one run."""
-    cpu_before_s = time.process_time()
+def run(record: Path | None) -> tuple[float, float, float]:
+    """(real-time factor, the launcher's CPU seconds per simulated second, the command's wall seconds) of one run."""
+    cpu_before_s, started_s = time.process_time(), time.monotonic()
     result = run_scenario(RunOptions(scenario=SCENARIO, stacks=STACKS, duration_s=DURATION_S, record=record))
     launcher_cpu_s = time.process_time() - cpu_before_s
-    return result.sim_time_s / max(result.wall_time_s, 1e-9), launcher_cpu_s / DURATION_S
+    return result.sim_time_s / max(result.wall_time_s, 1e-9), launcher_cpu_s / DURATION_S, time.monotonic() - started_s
 
 
 def main() -> None:
     factors: dict[bool, list[float]] = {False: [], True: []}
     launcher_cpu: dict[bool, list[float]] = {False: [], True: []}
+    command_s: dict[bool, list[float]] = {False: [], True: []}
     with tempfile.TemporaryDirectory() as folder:
         for round_index in range(ROUNDS):
             for recorded in (False, True):
                 record = Path(folder) / f"run-{round_index}.mcap" if recorded else None
-                factor, cpu = run(record)
+                factor, cpu, wall_s = run(record)
                 factors[recorded].append(factor)
                 launcher_cpu[recorded].append(cpu)
+                command_s[recorded].append(wall_s)
     table = Table(title=f"{SCENARIO} --stacks {STACKS}, {DURATION_S:.0f} s simulated, lockstep: what --record costs "
                         f"(mean of {ROUNDS} runs each, turn about)")
-    for column in ("run", "sim_time_s / wall_time_s", "ratio to unrecorded", "launcher CPU per simulated s"):
+    for column in ("run", "sim_time_s / wall_time_s", "ratio to unrecorded", "launcher CPU per simulated s",
+                   "command wall s"):
         table.add_column(column, justify="right")
     unrecorded = statistics.mean(factors[False])
     for recorded, name in ((False, "unrecorded"), (True, "--record")):
         factor = statistics.mean(factors[recorded])
         table.add_row(name, f"{factor:.2f}", f"{factor / unrecorded:.2f}",
-                      f"{1e3 * statistics.mean(launcher_cpu[recorded]):.0f} ms")
+                      f"{1e3 * statistics.mean(launcher_cpu[recorded]):.0f} ms",
+                      f"{statistics.mean(command_s[recorded]):.1f}")
     Console().print(table)
 
 

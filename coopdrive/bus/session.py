@@ -19,13 +19,9 @@ from google.protobuf.message import DecodeError, Message
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.bus.topics import Topic, topic_named
 from coopdrive.bus.type_registry import message_class
+from coopdrive.recording.publish_spool import process_spool
 
 log = logging.getLogger(__name__)
-
-# Samples a queued subscription holds before Zenoh's receive threads wait for it (they wait, they do not drop).
-QUEUED_SUBSCRIPTION_CAPACITY = 10_000
-# How long close() waits for a queued subscription's thread to hand on what it had taken.
-QUEUED_THREAD_JOIN_S = 2.0
 
 
 @dataclass
@@ -64,7 +60,6 @@ class Bus:
         self._owns_session = True
         self._publishers: dict[str, zenoh.Publisher] = {}
         self._declared: list = []
-        self._queue_threads: list[threading.Thread] = []
         self._lock = threading.Lock()
         self.decode_errors = 0
 
@@ -77,7 +72,6 @@ class Bus:
         shared._owns_session = False
         shared._publishers = {}
         shared._declared = []
-        shared._queue_threads = []
         shared._lock = threading.Lock()
         shared.decode_errors = 0
         return shared
@@ -90,11 +84,20 @@ class Bus:
         return len(list(self._session.info.peers_zid())) + len(list(self._session.info.routers_zid()))
 
     def put(self, key: str, message: Message, *, reliable_block: bool = True, attachment: bytes | None = None) -> None:
-        self._publisher(key, message, reliable_block).put(message.SerializeToString(), attachment=attachment)
+        """Sends a message; in a recorded run's process (publish_spool.py) it is spooled for the recording first."""
+        payload = message.SerializeToString()
+        spool = process_spool()
+        if spool is not None:
+            spool.write(key, message, payload)
+        self._publisher(key, message, reliable_block).put(payload, attachment=attachment)
 
     def put_if_subscribed(self, key: str, message: Message) -> bool:
         """Puts only when some subscriber matches `key` (Zenoh's matching status, kept up to date by Zenoh):
-        for messages such as step markers that are worth nothing unheard. True when it was sent."""
+        for messages such as step markers that are worth nothing unheard, and the recording, which takes every
+        message from its spool. True when it was sent."""
+        spool = process_spool()
+        if spool is not None:
+            spool.write(key, message, message.SerializeToString())
         publisher = self._publisher(key, message, reliable_block=True)
         if not publisher.matching_status.matching:
             return False
@@ -136,29 +139,6 @@ class Bus:
     def subscribe_key(self, key_expr: str, callback: Callable[[str, Message], None]):
         """Subscribes to any key; the message type comes from the sample's encoding schema."""
         return self._declare(self._session.declare_subscriber(key_expr, _direct(self._typed(callback))))
-
-    def subscribe_key_queued(self, key_expr: str, callback: Callable[[str, Message], None],
-                             capacity: int = QUEUED_SUBSCRIPTION_CAPACITY):
-        """subscribe_key for one that takes many messages, such as a run's recorder of every key: Zenoh's receive
-        threads only queue the samples, and one thread of ours decodes them and calls back in the order they
-        came. A callback from a receive thread takes the interpreter's lock for each message, against every other
-        thread of the process; a queue read from Python does not (measured in docs/performance.md). A full queue
-        holds the senders back (`capacity` samples), as a slow callback would; close() ends the thread."""
-        subscriber = self._declare(self._session.declare_subscriber(key_expr, zenoh.handlers.FifoChannel(capacity)))
-        thread = threading.Thread(target=self._hand_on_queued, args=(subscriber, self._typed(callback)),
-                                  name=f"queued {key_expr}", daemon=True)
-        thread.start()
-        self._queue_threads.append(thread)
-        return subscriber
-
-    @staticmethod
-    def _hand_on_queued(subscriber, on_sample: Callable[[zenoh.Sample], None]) -> None:
-        """Until the subscriber is undeclared (close()): a failing callback costs its message, not the rest."""
-        for sample in subscriber:
-            try:
-                on_sample(sample)
-            except Exception:
-                log.exception("a queued subscriber's callback failed on %s", sample.key_expr)
 
     def _typed(self, callback: Callable[[str, Message], None]) -> Callable[[zenoh.Sample], None]:
         """A sample handler that decodes by the sample's encoding schema and calls callback(key, message)."""
@@ -236,9 +216,6 @@ class Bus:
             except Exception:  # already gone with a closing session
                 pass
         self._declared.clear()
-        for thread in self._queue_threads:
-            thread.join(QUEUED_THREAD_JOIN_S)
-        self._queue_threads.clear()
         for publisher in self._publishers.values():
             try:
                 publisher.undeclare()

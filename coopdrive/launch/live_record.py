@@ -15,6 +15,7 @@ from pathlib import Path
 
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.recording.live_configs import ServiceConfigCollector
+from coopdrive.recording.publish_spool import is_recorded
 from coopdrive.recording.writer import McapRecorder, config_metadata
 
 
@@ -39,7 +40,7 @@ def record_live(path: str | Path, connect: list[str], key_expr: str = "coopdrive
     configs = ServiceConfigCollector(bus, recorder.learn_config)
 
     def on_message(key: str, message) -> None:
-        if "/_" not in key:  # liveliness tokens and _info answers are not traffic
+        if is_recorded(key):
             recorder.write(key, message, log_time_ns=time.time_ns())
 
     bus.subscribe_key(key_expr, on_message)

@@ -14,6 +14,8 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from coopdrive.recording.publish_spool import SPOOL_PATH_ENV
+from coopdrive.recording.spool_merge import SPOOL_SUFFIX
 from coopdrive.runtime.launcher_watch import launcher_environment
 
 TERMINATE_GRACE_S = 1.5
@@ -37,8 +39,9 @@ class ServiceSpec:
 
 class ServiceProcesses:
     def __init__(self, connect_endpoint: str, clock: str = "sim", log_dir: Path | None = None,
-                 clock_step_s: float | None = None):
-        """`clock_step_s`: the simulator's step, told to every service (`--clock-step`)."""
+                 clock_step_s: float | None = None, spool_dir: Path | None = None):
+        """`clock_step_s`: the simulator's step, told to every service (`--clock-step`). `spool_dir`: where each
+        process writes what it publishes for the run's recording (publish_spool.py), one file per process start."""
         self._connect = connect_endpoint
         self._clock = clock
         self._clock_step = [] if clock_step_s is None else ["--clock-step", repr(clock_step_s)]
@@ -50,6 +53,8 @@ class ServiceProcesses:
         self.process_of: dict[str, str] = {}
         # Process name -> what it was started with, to start it again.
         self._started_with: dict[str, tuple[list[ServiceSpec], list[str]]] = {}
+        self._spool_dir = spool_dir
+        self._starts: dict[str, int] = {}
 
     def start(self, spec: ServiceSpec) -> None:
         config_path = self._config_dir / f"{spec.vehicle_id}-{spec.service}.json"
@@ -75,7 +80,7 @@ class ServiceProcesses:
             output = open(self._log_dir / f"{name.replace('/', '-')}.log", log_mode)
         self.processes[name] = subprocess.Popen(
             command, stdin=subprocess.DEVNULL, stdout=output, stderr=subprocess.STDOUT if output else None,
-            start_new_session=True, env=self.environment())
+            start_new_session=True, env=self._environment_of(name))
         self._started_with[name] = (specs, arguments)
         for spec in specs:
             self.process_of[spec.participant] = name
@@ -85,6 +90,16 @@ class ServiceProcesses:
         """A service's environment: ours (a ZENOH_RUNTIME set by the user wins over the simulation's), and this
         process as its launcher, so that the service ends with it."""
         return {"ZENOH_RUNTIME": SIMULATION_ZENOH_RUNTIME, **os.environ, **launcher_environment()}
+
+    def _environment_of(self, name: str) -> dict[str, str]:
+        """With a spool directory, the spool file of this start of process `name`: named after the process and
+        numbered from 0 by its starts, so that a recording's order is the same in every run."""
+        environment = self.environment()
+        environment.pop(SPOOL_PATH_ENV, None)
+        if self._spool_dir is not None:
+            start = self._starts[name] = self._starts.get(name, -1) + 1
+            environment[SPOOL_PATH_ENV] = str(self._spool_dir / f"{name.replace('/', '-')}-{start}{SPOOL_SUFFIX}")
+        return environment
 
     def exited(self) -> dict[str, int]:
         """Processes that have ended, with their exit codes."""

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import logging
 import math
 import shutil
 import signal
@@ -11,7 +12,7 @@ import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
 from google.protobuf.message import Message
 
@@ -22,6 +23,7 @@ from coopdrive.launch.ports import free_tcp_port, free_udp_ports, loopback_endpo
 from coopdrive.launch.processes import ServiceProcesses, ServiceSpec
 from coopdrive.launch.scenario_source import resolve_scenario
 from coopdrive.launch.stack_config import vehicle_overrides
+from coopdrive.recording.spool_merge import merge_spools, spool_paths
 from coopdrive.runtime.barrier import MESSAGES_GIVEN_UP_COUNTER
 from coopdrive.runtime.registry import VEHICLE_STACK
 from coopdrive.services.sim.fault_config import TicketExpired
@@ -32,6 +34,11 @@ from coopdrive.services.sim.config import SimConfig
 from coopdrive.services.sim.service_crashes import crashed_participants
 from coopdrive.services.v2x.security.profile import SecurityMode
 from coopdrive.v1 import sim_pb2
+
+if TYPE_CHECKING:
+    from coopdrive.recording.writer import McapRecorder
+
+log = logging.getLogger(__name__)
 
 
 @dataclass
@@ -77,18 +84,12 @@ class RunOptions:
 MS_PER_S = 1000
 # Certificates of a secured run are valid from a while before the scenario's clock starts.
 CERTIFICATE_BACKDATE_S = 3600
-# After the simulator exits its result may still be queued behind the run's last messages, which on a loaded
-# host (an 8-stack run on two cores) can take more than a second to drain.
+# How long the launcher waits for the simulator's result once the simulator has exited.
 RESULT_GRACE_S = 5.0
-RESULT_BACKLOG_LIMIT_S = 300.0
-# What the stacks publish in the last step reaches the recorder after the result: it waits for a quiet bus, and
-# on a loaded host for the backlog it has queued (at most RECORDING_BACKLOG_LIMIT_S).
+# What the stacks publish in the last step is spooled after the result: the recording is merged once the spools
+# have taken nothing for RECORDING_QUIET_S (at most RECORDING_SETTLE_LIMIT_S).
 RECORDING_QUIET_S = 0.2
-RECORDING_BACKLOG_LIMIT_S = 120.0
-# Samples the recording may hold queued before Zenoh's receive threads wait for it. It should never make them
-# wait: a sender held back for 5 s closes its link (BLOCK congestion control), and what it sends meanwhile is lost.
-# An 8-stack run sends about 10,000 messages per simulated second; queued samples take their payload's memory.
-RECORDING_QUEUE_CAPACITY = 2_000_000
+RECORDING_SETTLE_LIMIT_S = 10.0
 
 
 class RunAborted(RuntimeError):
@@ -202,12 +203,14 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     # Signals reach only the main thread; a run in a sweep worker's thread is stopped by its worker instead.
     in_main_thread = threading.current_thread() is threading.main_thread()
     previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)} if in_main_thread else {}
-    recorder, bridge = _watch(options, hub, {spec.participant: json.dumps(spec.config) for spec in specs})
+    recording, bridge = _watch(options, hub, {spec.participant: json.dumps(spec.config) for spec in specs})
     hub.subscribe(WORLD_ID, "result", on_result)
     give_ups = LockstepGiveUps()
     hub.subscribe_key(DIAGNOSTICS_KEYS, give_ups.observe)
     simulator = next(spec for spec in specs if spec.service == "sim")
-    processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir, clock_step_s=simulator.config["step_s"])
+    spool_dir = run_dir / "spools" if recording is not None else None
+    processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir, clock_step_s=simulator.config["step_s"],
+                                 spool_dir=spool_dir)
     # The simulator says when (service_crash faults, in simulated time); the launcher owns the processes.
     hub.subscribe(WORLD_ID, "service_fault", lambda envelope: carry_out(processes, envelope.message))
     try:
@@ -215,13 +218,11 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         if options.gateway_port is not None:
             watched = next(spec.vehicle_id for spec in specs if spec.vehicle_id != WORLD_ID)
             processes.start(ServiceSpec("gateway", watched, {"port": options.gateway_port}))
-        _wait_for_the_end(processes, finished, lambda: recorder.messages_written if recorder is not None else 0)
+        _wait_for_the_end(processes, finished)
     finally:
         ended = time.monotonic()
-        # After the result the stacks publish their last step and fall quiet; stopped by a signal they would go on
-        # publishing, so the recording takes what is on its way once they have been stopped.
-        _tear_down(processes, recorder, lambda: effective_configs(hub, specs),
-                   drain_after_stop=bool(stop_reason) and not results)
+        _tear_down(processes, recording, spool_dir, lambda: effective_configs(hub, specs),
+                   settle_before_stop=not (stop_reason and not results))
         shutil.rmtree(run_dir, ignore_errors=True)
         if bridge is not None:
             bridge.close()
@@ -240,76 +241,76 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     return result
 
 
-def _tear_down(processes: ServiceProcesses, recorder, configs: Callable[[], dict[str, str]],
-               drain_after_stop: bool) -> None:
-    """Stops the services and closes the recording with what they sent on the way: drained before they stop at
-    the end of a run, after they stopped when a signal ended it (so a stopped run leaves a whole recording)."""
-    if recorder is None:
+def _tear_down(processes: ServiceProcesses, recording: Recording | None, spool_dir: Path | None,
+               configs: Callable[[], dict[str, str]], settle_before_stop: bool) -> None:
+    """Stops the services and closes the recording with all they published. At the end of a run the stacks
+    publish their last step after the result, so the spools settle before the services stop; stopped by a signal
+    the services would go on publishing, so they stop first. A stopped run leaves a whole recording either way."""
+    if recording is None:
         processes.stop_all()
         return
-    if not drain_after_stop:
-        _drain(recorder)
-    recorder.add_configs(configs())
+    if settle_before_stop:
+        _settle(spool_dir)
+    recording.recorder.add_configs(configs())
     processes.stop_all()
-    if drain_after_stop:
-        _drain(recorder)
-    time.sleep(0.1)
-    recorder.close()
+    stats = merge_spools(spool_dir, recording.write)
+    if stats.cut_spools or stats.unreadable:
+        log.warning("recording: %d spooled messages left out, cut spools: %s", stats.unreadable,
+                    ", ".join(stats.cut_spools) or "none")
+    recording.recorder.close()
+
+
+@dataclass
+class Recording:
+    """The run's recorder and what is told of each message it takes (RunOptions.on_recorded)."""
+    recorder: McapRecorder
+    on_recorded: Callable[[str, Message], None] | None
+
+    def write(self, key: str, message: Message) -> None:
+        self.recorder.write(key, message)
+        if self.on_recorded is not None:
+            self.on_recorded(key, message)
 
 
 def _watch(options: RunOptions, hub: Bus, configs: dict[str, dict]):
-    """What watches the run's bus besides the launcher: the recorder, the Foxglove bridge, the caller's observer."""
-    recorder = bridge = None
+    """What takes the run's messages besides the launcher: the recording (written from the processes' spools
+    after the run), the Foxglove bridge and the caller's observer (both live on the bus)."""
+    recording = bridge = None
     if options.record is not None or options.foxglove_port is not None:
         from coopdrive.visual import recorded_road_map
     if options.record is not None:
         from coopdrive.recording.writer import McapRecorder
 
         # The configs go in at the end, as the services ran them (effective_configs); the map is needed now.
-        recorder = McapRecorder(options.record, road_map=recorded_road_map(configs))
-        on_recorded = options.on_recorded
-
-        def record(key: str, message: Message) -> None:
-            if "/_" in key:
-                return
-            recorder.write(key, message)
-            if on_recorded is not None:
-                on_recorded(key, message)
-
-        hub.subscribe_key_queued("coopdrive/**", record, capacity=RECORDING_QUEUE_CAPACITY)
+        recording = Recording(McapRecorder(options.record, road_map=recorded_road_map(configs)), options.on_recorded)
     if options.foxglove_port is not None:
         from coopdrive.visual.live_bridge import FoxgloveBridge
 
         bridge = FoxgloveBridge(hub, options.foxglove_port, road_map=recorded_road_map(configs))
     if options.observer is not None:
         hub.subscribe_key("coopdrive/**", options.observer)
-    return recorder, bridge
+    return recording, bridge
 
 
-def _drain(recorder) -> None:
-    """The simulator's result comes in its last step, while the stacks still publish theirs: the recording
-    takes what is on its way, and what it has queued, until it has taken nothing for RECORDING_QUIET_S (at most
-    RECORDING_BACKLOG_LIMIT_S)."""
-    deadline = time.monotonic() + RECORDING_BACKLOG_LIMIT_S
-    written = -1
-    while recorder.messages_written != written and time.monotonic() < deadline:
-        written = recorder.messages_written
+def _settle(spool_dir: Path) -> None:
+    """Until the spools have grown by nothing for RECORDING_QUIET_S (at most RECORDING_SETTLE_LIMIT_S)."""
+    deadline = time.monotonic() + RECORDING_SETTLE_LIMIT_S
+    size = -1
+    while time.monotonic() < deadline:
+        grown = sum(path.stat().st_size for path in spool_paths(spool_dir))
+        if grown == size:
+            return
+        size = grown
         time.sleep(RECORDING_QUIET_S)
 
 
-def _wait_for_the_end(processes: ServiceProcesses, finished: threading.Event,
-                      recorded: Callable[[], int] = lambda: 0) -> None:
-    """Until the result (or a signal) comes; once the simulator has exited, a grace period for its result, renewed
-    while the recording still takes messages: a launcher that records a big run on a loaded host can be seconds of
-    messages behind the bus, and the result comes last (at most RESULT_BACKLOG_LIMIT_S in all)."""
+def _wait_for_the_end(processes: ServiceProcesses, finished: threading.Event) -> None:
+    """Until the result (or a signal) comes; once the simulator has exited, RESULT_GRACE_S for its result."""
     while not finished.wait(0.2):
         crashed = {name: code for name, code in processes.exited().items()
                    if code != 0 and not name.endswith("/gateway")}
         if "world/sim" in processes.exited():
-            deadline = time.monotonic() + RESULT_BACKLOG_LIMIT_S
-            seen = recorded()
-            while not finished.wait(RESULT_GRACE_S) and recorded() != seen and time.monotonic() < deadline:
-                seen = recorded()
+            finished.wait(RESULT_GRACE_S)
             return
         if crashed and len(crashed) == len(processes.processes):
             raise RunAborted(f"every service exited: {crashed}")

@@ -14,18 +14,11 @@ from pathlib import Path
 from google.protobuf.message import Message
 from mcap_protobuf.writer import Writer
 
+from coopdrive.recording.publish_spool import NANOSECONDS, message_time_ns
 from coopdrive.roadmap import RoadMap
 from coopdrive.visual import VisualChannels, recorded_road_map
 
-NANOSECONDS = 1_000_000_000
 CONFIG_METADATA = "coopdrive.config"
-
-
-def message_time_ns(message: Message) -> int:
-    header = getattr(message, "header", None)
-    if header is None:
-        return 0
-    return max(0, int(round(header.sent_time_s * NANOSECONDS)))
 
 
 class McapRecorder:

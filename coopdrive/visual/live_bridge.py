@@ -16,6 +16,7 @@ from mcap_protobuf.schema import build_file_descriptor_set
 
 from coopdrive.bus import Bus
 from coopdrive.recording.live_configs import ServiceConfigCollector
+from coopdrive.recording.publish_spool import is_recorded
 from coopdrive.roadmap import RoadMap
 from coopdrive.visual.channels import VisualChannels, recorded_road_map
 
@@ -41,7 +42,7 @@ class FoxgloveBridge:
         return self._server.port
 
     def _on_bus(self, key: str, message: Message) -> None:
-        if "/_" in key:  # liveliness tokens and _info answers are not traffic
+        if not is_recorded(key):
             return
         now_ns = time.time_ns()
         with self._lock:
