@@ -103,3 +103,10 @@ def test_traffic_is_spooled_and_step_markers_lockstep_clocks_and_liveliness_are_
     spool_truth(spool, key, [0.0])
     taken, _ = merged(tmp_path)
     assert len(taken) == int(recorded)
+
+
+def test_an_empty_spool_of_a_process_killed_before_it_wrote_is_merged_as_nothing(tmp_path):
+    (tmp_path / f"v1-control-1{SPOOL_SUFFIX}").write_bytes(b"")
+    spool_truth(spool_in(tmp_path, "v1-control-0"), "coopdrive/v1/x", [0.0])
+    taken, stats = merged(tmp_path)
+    assert len(taken) == 1 and (stats.spools, stats.cut_spools) == (2, [])
