@@ -4,6 +4,7 @@ group of services (`coopdrive group SPEC`, a vehicle's whole stack in simulation
 from __future__ import annotations
 
 import json
+import multiprocessing
 import os
 import shutil
 import signal
@@ -14,6 +15,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from coopdrive.launch.forked_process import ForkedProcess
 from coopdrive.recording.publish_spool import SPOOL_PATH_ENV
 from coopdrive.recording.spool_merge import SPOOL_SUFFIX
 from coopdrive.runtime.launcher_watch import launcher_environment
@@ -48,7 +50,7 @@ class ServiceProcesses:
         self._config_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-"))
         self._log_dir = log_dir
         # Process name ("<vehicle>/<service>" or "<vehicle>/group") -> process.
-        self.processes: dict[str, subprocess.Popen] = {}
+        self.processes: dict[str, ForkedProcess | subprocess.Popen] = {}
         # Participant -> the name of the process it runs in.
         self.process_of: dict[str, str] = {}
         # Process name -> what it was started with, to start it again.
@@ -70,17 +72,19 @@ class ServiceProcesses:
         self._spawn(name, specs, ["group", str(spec_path)])
 
     def _spawn(self, name: str, specs: list[ServiceSpec], arguments: list[str], log_mode: str = "wb") -> None:
-        command = [sys.executable, "-m", "coopdrive.cli", *arguments, "--connect", self._connect,
-                   "--clock", self._clock, *self._clock_step]
-        output = None
+        command = [*arguments, "--connect", self._connect, "--clock", self._clock, *self._clock_step]
+        log_path = None
         if self._log_dir is not None:
             # A user who asks for the logs gets what the services tell at INFO, such as the planner's transitions.
             command.append("--verbose")
             self._log_dir.mkdir(parents=True, exist_ok=True)
-            output = open(self._log_dir / f"{name.replace('/', '-')}.log", log_mode)
-        self.processes[name] = subprocess.Popen(
-            command, stdin=subprocess.DEVNULL, stdout=output, stderr=subprocess.STDOUT if output else None,
-            start_new_session=True, env=self._environment_of(name))
+            log_path = self._log_dir / f"{name.replace('/', '-')}.log"
+        environment = self._environment_of(name)
+        if multiprocessing.current_process().daemon:
+            # A daemonic process (a Dask worker's, by default) may not fork children of its own: a new interpreter.
+            self.processes[name] = _new_interpreter(command, environment, log_path, log_mode)
+        else:
+            self.processes[name] = ForkedProcess(command, environment, log_path, log_mode)
         self._started_with[name] = (specs, arguments)
         for spec in specs:
             self.process_of[spec.participant] = name
@@ -134,3 +138,15 @@ class ServiceProcesses:
                     pass  # it ended between the timeout and the kill
                 process.wait()
         shutil.rmtree(self._config_dir, ignore_errors=True)
+
+
+def _new_interpreter(command: list[str], environment: dict[str, str], log_path: Path | None,
+                     log_mode: str) -> subprocess.Popen:
+    output = open(log_path, log_mode) if log_path is not None else None
+    try:
+        return subprocess.Popen([sys.executable, "-m", "coopdrive.cli", *command], stdin=subprocess.DEVNULL,
+                                stdout=output, stderr=subprocess.STDOUT if output else None,
+                                start_new_session=True, env=environment)
+    finally:
+        if output is not None:
+            output.close()  # the child has its own descriptor

@@ -44,8 +44,11 @@ def sweep_client(cluster: str | None, workers: int) -> Iterator:
         with client:
             yield client
         return
-    # The scheduler reads this when it starts; a remote scheduler has its own setting.
-    with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES}), _quiet_distributed():
+    # The scheduler reads allowed-failures when it starts; a remote scheduler has its own setting. Workers that are
+    # not daemonic processes may fork a run's services from their preloaded server (forked_process.py), which they
+    # keep from run to run; a daemonic one starts each service as a new interpreter.
+    settings = {"distributed.scheduler.allowed-failures": ALLOWED_FAILURES, "distributed.worker.daemon": False}
+    with dask.config.set(settings), _quiet_distributed():
         # No dashboard (bokeh is not installed); the scheduler's HTTP routes on a free loopback port, not on 8787.
         local = LocalCluster(n_workers=max(1, workers), threads_per_worker=1, processes=True,
                              dashboard_address="127.0.0.1:0", scheduler_kwargs={"dashboard": False},

@@ -4,12 +4,14 @@ The launcher starts each service in a session of its own (so a Ctrl-C reaches th
 them in order). When the launcher itself is killed outright (a sweep's worker killed by a test, the OOM killer
 or a lost host), nothing else would stop them: a stack waiting for its simulator's clock would wait forever and
 its processes would keep their CPU and ports. The launcher names itself in LAUNCHER_PID_VARIABLE; a service told
-so watches its parent and stops the ordinary way (SIGTERM) once the parent is another process.
+so watches it and stops the ordinary way (SIGTERM) once it has ended: as its parent, or (a service forked by the
+launcher's preloaded server, whose parent is that server) through a process descriptor of the launcher.
 """
 
 from __future__ import annotations
 
 import os
+import select
 import signal
 import threading
 import time
@@ -40,9 +42,26 @@ def exit_with_launcher() -> None:
 
 
 def _watch(launcher_pid: int) -> None:
-    # The parent changes only when it dies: the orphan is re-parented to init or a subreaper.
-    while os.getppid() == launcher_pid:
-        time.sleep(POLL_S)
+    if os.getppid() == launcher_pid:
+        # The parent changes only when it dies: the orphan is re-parented to init or a subreaper.
+        while os.getppid() == launcher_pid:
+            time.sleep(POLL_S)
+    else:
+        _wait_for_exit(launcher_pid)
     os.kill(os.getpid(), signal.SIGTERM)
     time.sleep(STOP_GRACE_S)
     os._exit(EXIT_ORPHANED)
+
+
+def _wait_for_exit(launcher_pid: int) -> None:
+    """A launcher that is not our parent (it had the preloaded server fork us): its process descriptor, which
+    names that process and no later one with its number, becomes readable when it ends."""
+    try:
+        descriptor = os.pidfd_open(launcher_pid)
+    except ProcessLookupError:
+        return  # it has already ended
+    with select.epoll() as ended:
+        ended.register(descriptor, select.EPOLLIN)
+        while not ended.poll():
+            pass
+    os.close(descriptor)

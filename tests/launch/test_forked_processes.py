@@ -1,0 +1,48 @@
+"""A run's services are forked from a server that imported their modules once; a daemonic process, which may not
+fork children, starts them as new interpreters instead (a test of a forked service's log and restart:
+test_crash_processes.py)."""
+
+import json
+import multiprocessing
+import os
+import subprocess
+
+from coopdrive.launch.forked_process import ForkedProcess
+from coopdrive.launch.processes import ServiceProcesses
+
+ANSWER_WAIT_S = 60.0
+
+
+def start_a_waiting_group(folder) -> tuple[str, int, int | None]:
+    """Starts a stack's planner as a group on an endpoint where nobody listens (it waits for a clock that never
+    comes) and stops it; (the kind of process, its parent's pid, its exit code once stopped)."""
+    spec = folder / "group.json"
+    spec.write_text(json.dumps([{"service": "planner", "vehicle": "v", "config": {}}]))
+    processes = ServiceProcesses("tcp/127.0.0.1:1")
+    try:
+        processes._spawn("v/group", [], ["group", str(spec)])
+        process = processes.processes["v/group"]
+        with open(f"/proc/{process.pid}/stat") as stat:
+            parent_pid = int(stat.read().rsplit(")", 1)[1].split()[1])
+    finally:
+        processes.stop_all()
+    return type(process).__name__, parent_pid, process.poll()
+
+
+def test_a_service_is_forked_from_the_preloaded_server_and_stops_when_told(tmp_path):
+    kind, parent_pid, exit_code = start_a_waiting_group(tmp_path)
+    assert kind == ForkedProcess.__name__ and parent_pid != os.getpid() and exit_code is not None
+
+
+def _start_in_a_daemon(folder, answers) -> None:
+    answers.put(start_a_waiting_group(folder))
+
+
+def test_a_daemonic_process_starts_its_services_as_new_interpreters(tmp_path):
+    context = multiprocessing.get_context("spawn")
+    answers = context.Queue()
+    daemon = context.Process(target=_start_in_a_daemon, args=(tmp_path, answers), daemon=True)
+    daemon.start()
+    kind, parent_pid, exit_code = answers.get(timeout=ANSWER_WAIT_S)
+    daemon.join(ANSWER_WAIT_S)
+    assert kind == subprocess.Popen.__name__ and parent_pid == daemon.pid and exit_code is not None
