@@ -1,5 +1,7 @@
 """The whole `coopdrive run follow` command as its user waits for it, start to prompt, in each process layout:
-5 and 60 simulated seconds, with the summary's own start-up, stepping and shut-down times.
+5 and 60 simulated seconds, with the summary's own start-up, stepping and shut-down times. Then an 8-stack string
+run's command with its services forked from the preloaded server (the default) against the same run with each
+service a new interpreter (COOPDRIVE_NEW_INTERPRETERS=1, as before), turn about.
 
 One process per service (`--processes service`) is the layout every single-stack run had before issue 27; the
 default is one process per vehicle. Issue 27 asks for `run follow --duration 5` under 3 s and the 60 s run
@@ -9,6 +11,8 @@ under 5 s; before it, the 60 s run took 30 s on a quiet 2-core machine.
 from __future__ import annotations
 
 import json
+import os
+import statistics
 import subprocess
 import sys
 import time
@@ -18,15 +22,39 @@ from rich.table import Table
 
 from bench.sizes import sized
 
+from coopdrive.launch.processes import NEW_INTERPRETERS_VARIABLE
+
 LAYOUTS = ("service", "vehicle")
 DURATIONS_S = sized((5.0, 60.0), (1.0, 2.0))
+STACKS = sized(8, 2)
+STACKS_DURATION_S = sized(5.0, 0.5)
+ROUNDS = sized(2, 1)
 
 
-def command_time(duration_s: float, layout: str) -> tuple[float, dict]:
+def command_time(arguments: list[str], new_interpreters: bool = False) -> tuple[float, dict]:
+    environment = {**os.environ, NEW_INTERPRETERS_VARIABLE: "1" if new_interpreters else "0"}
     started = time.monotonic()
-    completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--json", "--duration",
-                                str(duration_s), "--processes", layout], capture_output=True, text=True, check=True)
+    completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", *arguments, "--json"],
+                               capture_output=True, text=True, check=True, env=environment)
     return time.monotonic() - started, json.loads(completed.stdout)
+
+
+def forked_against_new_interpreters() -> None:
+    arguments = ["string", "--stacks", str(STACKS), "--duration", str(STACKS_DURATION_S)]
+    times: dict[bool, list[tuple[float, float, float]]] = {False: [], True: []}
+    for _ in range(ROUNDS):
+        for new_interpreters in (True, False):
+            total_s, summary = command_time(arguments, new_interpreters)
+            times[new_interpreters].append((total_s, summary["startup_time_s"], summary["shutdown_time_s"]))
+    table = Table(title=f"coopdrive run {' '.join(arguments)}: services forked or started as new interpreters "
+                        f"(mean of {ROUNDS}, turn about; s)")
+    for column in ("services", "command", "start-up", "shut-down", "command / new interpreters'"):
+        table.add_column(column, justify="right")
+    baseline_s = statistics.mean(total for total, _, _ in times[True])
+    for new_interpreters, name in ((True, "new interpreters"), (False, "forked")):
+        total_s, startup_s, shutdown_s = (statistics.mean(column) for column in zip(*times[new_interpreters]))
+        table.add_row(name, f"{total_s:.2f}", f"{startup_s:.2f}", f"{shutdown_s:.2f}", f"{total_s / baseline_s:.2f}")
+    Console().print(table)
 
 
 def main() -> None:
@@ -35,11 +63,12 @@ def main() -> None:
         table.add_column(column, justify="right")
     for duration_s in DURATIONS_S:
         for layout in LAYOUTS:
-            total_s, summary = command_time(duration_s, layout)
+            total_s, summary = command_time(["follow", "--duration", str(duration_s), "--processes", layout])
             table.add_row(f"{duration_s:.0f}", f"one per {layout}", f"{total_s:.2f}",
                           f"{summary['startup_time_s']:.2f}", f"{summary['wall_time_s']:.2f}",
                           f"{summary['shutdown_time_s']:.2f}", f"{summary['realtime_factor']:.1f}")
     Console().print(table)
+    forked_against_new_interpreters()
 
 
 if __name__ == "__main__":

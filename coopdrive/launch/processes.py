@@ -27,6 +27,10 @@ TERMINATE_GRACE_S = 1.5
 SIMULATION_ZENOH_RUNTIME = ("(rx: (worker_threads: 1), tx: (worker_threads: 1), net: (worker_threads: 1), "
                             "acc: (worker_threads: 1), app: (worker_threads: 1))")
 
+# Set to "1", every service starts as a new interpreter instead of a fork of the preloaded server (forked_process.py):
+# for a native library that misbehaves after a fork, and as bench_startup's baseline.
+NEW_INTERPRETERS_VARIABLE = "COOPDRIVE_NEW_INTERPRETERS"
+
 
 @dataclass
 class ServiceSpec:
@@ -80,7 +84,7 @@ class ServiceProcesses:
             self._log_dir.mkdir(parents=True, exist_ok=True)
             log_path = self._log_dir / f"{name.replace('/', '-')}.log"
         environment = self._environment_of(name)
-        if multiprocessing.current_process().daemon:
+        if multiprocessing.current_process().daemon or os.environ.get(NEW_INTERPRETERS_VARIABLE) == "1":
             # A daemonic process (a Dask worker's, by default) may not fork children of its own: a new interpreter.
             self.processes[name] = _new_interpreter(command, environment, log_path, log_mode)
         else:

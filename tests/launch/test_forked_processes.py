@@ -8,7 +8,7 @@ import os
 import subprocess
 
 from coopdrive.launch.forked_process import ForkedProcess
-from coopdrive.launch.processes import ServiceProcesses
+from coopdrive.launch.processes import NEW_INTERPRETERS_VARIABLE, ServiceProcesses
 
 ANSWER_WAIT_S = 60.0
 
@@ -46,3 +46,9 @@ def test_a_daemonic_process_starts_its_services_as_new_interpreters(tmp_path):
     kind, parent_pid, exit_code = answers.get(timeout=ANSWER_WAIT_S)
     daemon.join(ANSWER_WAIT_S)
     assert kind == subprocess.Popen.__name__ and parent_pid == daemon.pid and exit_code is not None
+
+
+def test_the_new_interpreters_variable_starts_services_as_new_interpreters(tmp_path, monkeypatch):
+    monkeypatch.setenv(NEW_INTERPRETERS_VARIABLE, "1")
+    kind, parent_pid, exit_code = start_a_waiting_group(tmp_path)
+    assert kind == subprocess.Popen.__name__ and parent_pid == os.getpid() and exit_code is not None
