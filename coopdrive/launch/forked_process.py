@@ -27,7 +27,8 @@ FRAMEWORK_MODULES = ("coopdrive.cli", "coopdrive.runtime.group", "coopdrive.runt
 
 def preloaded_modules() -> list[str]:
     """The simulator's and the vehicle stack's modules (the gateway, started only with --gateway, is left out)."""
-    services = [entry.implementation.split(":")[0] for entry in SERVICES if entry.in_vehicle_stack or entry.name == "sim"]
+    services = [entry.implementation.split(":")[0] for entry in SERVICES
+                if entry.in_vehicle_stack or entry.name == "sim"]
     return [*FRAMEWORK_MODULES, *services]
 
 

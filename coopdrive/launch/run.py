@@ -209,8 +209,8 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     hub.subscribe_key(DIAGNOSTICS_KEYS, give_ups.observe)
     simulator = next(spec for spec in specs if spec.service == "sim")
     spool_dir = run_dir / "spools" if recording is not None else None
-    processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir, clock_step_s=simulator.config["step_s"],
-                                 spool_dir=spool_dir)
+    processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir,
+                                 clock_step_s=simulator.config["step_s"], spool_dir=spool_dir)
     # The simulator says when (service_crash faults, in simulated time); the launcher owns the processes.
     hub.subscribe(WORLD_ID, "service_fault", lambda envelope: carry_out(processes, envelope.message))
     try:
