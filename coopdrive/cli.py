@@ -12,6 +12,7 @@ from pathlib import Path
 
 from coopdrive.cli_deploy import add_commands as add_deploy_commands
 from coopdrive.cli_recording import add_commands as add_recording_commands
+from coopdrive.launch.run_aborted import RunAborted
 from coopdrive.services.v2x.cli import add_commands as add_v2x_commands
 from coopdrive.runtime.config import ConfigError
 from coopdrive.runtime.service import HardwareUnavailable
@@ -31,7 +32,7 @@ def main(argv: list[str] | None = None) -> int:
     except ConfigError as error:
         print(f"coopdrive: {error}", file=sys.stderr)
         return EXIT_USAGE
-    except HardwareUnavailable as error:
+    except (HardwareUnavailable, RunAborted) as error:
         print(f"coopdrive: {error}", file=sys.stderr)
         return EXIT_FAILED
     except KeyboardInterrupt:

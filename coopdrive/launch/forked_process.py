@@ -20,6 +20,7 @@ from importlib import import_module
 from pathlib import Path
 
 from coopdrive.bus.services import SERVICES
+from coopdrive.launch.run_aborted import RunAborted
 
 # What every forked service needs besides its service's own module: the command line and the group runtime.
 FRAMEWORK_MODULES = ("coopdrive.cli", "coopdrive.runtime.group", "coopdrive.runtime.runner")
@@ -46,7 +47,11 @@ class ForkedProcess:
         self.args = arguments
         self._process = _forkserver().Process(target=run_command, args=(arguments, environment, log_path, log_mode),
                                               name=" ".join(arguments[:2]))
-        self._process.start()
+        try:
+            self._process.start()
+        except (EOFError, ConnectionError) as error:
+            raise RunAborted(f"the server that forks the services failed ({error}): the traceback above says which "
+                             "module did not import") from None
         self.pid = self._process.pid
 
     @property

@@ -21,6 +21,7 @@ from coopdrive.bus.keys import WORLD_ID
 from coopdrive.launch.lockstep_give_ups import DIAGNOSTICS_KEYS, LockstepGiveUps
 from coopdrive.launch.ports import free_tcp_port, free_udp_ports, loopback_endpoint
 from coopdrive.launch.processes import ServiceProcesses, ServiceSpec
+from coopdrive.launch.run_aborted import RunAborted
 from coopdrive.launch.scenario_source import resolve_scenario
 from coopdrive.launch.stack_config import vehicle_overrides
 from coopdrive.recording.spool_merge import merge_spools, spool_paths
@@ -90,10 +91,6 @@ RESULT_GRACE_S = 5.0
 # have taken nothing for RECORDING_QUIET_S (at most RECORDING_SETTLE_LIMIT_S).
 RECORDING_QUIET_S = 0.2
 RECORDING_SETTLE_LIMIT_S = 10.0
-
-
-class RunAborted(RuntimeError):
-    pass
 
 
 def merged(base: dict, override: dict) -> dict:

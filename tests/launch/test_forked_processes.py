@@ -6,6 +6,7 @@ import json
 import multiprocessing
 import os
 import subprocess
+import sys
 
 from coopdrive.launch.forked_process import ForkedProcess
 from coopdrive.launch.processes import NEW_INTERPRETERS_VARIABLE, ServiceProcesses
@@ -52,3 +53,25 @@ def test_the_new_interpreters_variable_starts_services_as_new_interpreters(tmp_p
     monkeypatch.setenv(NEW_INTERPRETERS_VARIABLE, "1")
     kind, parent_pid, exit_code = start_a_waiting_group(tmp_path)
     assert kind == subprocess.Popen.__name__ and parent_pid == os.getpid() and exit_code is not None
+
+
+# A launcher whose fork server is to preload a module that fails as it is imported (as a service with a typo would).
+BROKEN_PRELOAD_LAUNCHER = """
+import coopdrive.launch.forked_process as forked
+from coopdrive.launch.processes import ServiceProcesses
+from coopdrive.launch.run_aborted import RunAborted
+forked.FRAMEWORK_MODULES = (*forked.FRAMEWORK_MODULES, "broken_service_module")
+try:
+    ServiceProcesses("tcp/127.0.0.1:1")._spawn("v/group", [], ["group", "unused.json"])
+except RunAborted as error:
+    print(error)
+"""
+
+
+def test_a_module_that_fails_to_import_in_the_fork_server_aborts_the_run_with_one_line_naming_it(tmp_path):
+    (tmp_path / "broken_service_module.py").write_text("name_that_is_not_defined\n")
+    environment = {**os.environ, "PYTHONPATH": str(tmp_path)}  # where the server finds the module
+    finished = subprocess.run([sys.executable, "-c", BROKEN_PRELOAD_LAUNCHER], capture_output=True, text=True,
+                              timeout=ANSWER_WAIT_S, env=environment)
+    assert finished.stdout.startswith("the server that forks the services failed"), finished.stdout
+    assert "broken_service_module" in finished.stderr and "NameError" in finished.stderr
