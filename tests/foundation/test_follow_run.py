@@ -2,6 +2,7 @@
 
 import json
 import math
+import os
 import signal
 import subprocess
 import sys
@@ -18,9 +19,12 @@ from coopdrive.launch.run import RunOptions, run_scenario
 from coopdrive.launch.summary import WALL_CLOCK_KEYS
 from coopdrive.recording.reader import read_messages
 from coopdrive.recording.replay import replay_service
+from coopdrive.recording.spool_merge import SPOOL_SUFFIX
 
 # A run ends within this long of SIGTERM, its recording complete (measured: 0.62-0.72 s).
 SIGTERM_STOP_S = 3.0
+# A few seconds of a realtime follow run's messages (about 4 s on a quiet 2-core machine).
+SPOOLED_BEFORE_THE_SIGNAL_BYTES = 1_000_000
 
 STANDSTILL_M = 6.0
 DURATION = "25"
@@ -160,12 +164,18 @@ def test_the_replay_command_reports_identical_outputs(recorded_run, tmp_path):
     assert "identical to the recorded outputs" in result.stdout
 
 
+def spooled_bytes(folder: Path) -> int:
+    return sum(path.stat().st_size for path in folder.glob(f"coopdrive-run-*/spools/*{SPOOL_SUFFIX}"))
+
+
 def test_sigterm_ends_a_realtime_run_without_hanging_and_leaves_a_complete_recording(tmp_path):
     recording = tmp_path / "stopped.mcap"
+    # The run's processes spool what they publish in its folder under TMPDIR; stopped once they have spooled some.
     process = subprocess.Popen([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--realtime",
-                                "--record", str(recording)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                                "--record", str(recording)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               env={**os.environ, "TMPDIR": str(tmp_path)})
     deadline = time.monotonic() + 60
-    while (not recording.exists() or recording.stat().st_size < 50_000) and time.monotonic() < deadline:
+    while spooled_bytes(tmp_path) < SPOOLED_BEFORE_THE_SIGNAL_BYTES and time.monotonic() < deadline:
         time.sleep(0.5)
     stopped_at = time.monotonic()
     process.send_signal(signal.SIGTERM)
