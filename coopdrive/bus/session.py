@@ -19,7 +19,7 @@ from google.protobuf.message import DecodeError, Message
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.bus.topics import Topic, topic_named
 from coopdrive.bus.type_registry import message_class
-from coopdrive.recording.publish_spool import process_spool
+from coopdrive.recording.publish_spool import is_recorded, process_spool
 
 log = logging.getLogger(__name__)
 
@@ -96,7 +96,7 @@ class Bus:
         for messages such as step markers that are worth nothing unheard, and the recording, which takes every
         message from its spool. True when it was sent."""
         spool = process_spool()
-        if spool is not None:
+        if spool is not None and is_recorded(key):  # not the step markers, which are many
             spool.write(key, message, message.SerializeToString())
         publisher = self._publisher(key, message, reliable_block=True)
         if not publisher.matching_status.matching:
