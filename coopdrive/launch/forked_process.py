@@ -16,7 +16,6 @@ import multiprocessing
 import os
 import subprocess
 import sys
-from importlib import import_module
 from pathlib import Path
 
 from coopdrive.bus.services import SERVICES
@@ -82,7 +81,9 @@ def run_command(arguments: list[str], environment: dict[str, str], log_path: Pat
     os.environ.clear()
     os.environ.update(environment)
     _redirect_output(log_path, log_mode)
-    sys.exit(import_module("coopdrive.cli").main(arguments))
+    from coopdrive.cli import main  # preloaded in the server; at module level it would load the CLI into the launcher
+
+    sys.exit(main(arguments))
 
 
 def _redirect_output(log_path: Path | None, log_mode: str) -> None:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import logging
 import math
 import shutil
 import signal
@@ -38,8 +37,6 @@ from coopdrive.v1 import sim_pb2
 
 if TYPE_CHECKING:
     from coopdrive.recording.writer import McapRecorder
-
-log = logging.getLogger(__name__)
 
 
 @dataclass
@@ -250,10 +247,7 @@ def _tear_down(processes: ServiceProcesses, recording: Recording | None, spool_d
         _settle(spool_dir)
     recording.recorder.add_configs(configs())
     processes.stop_all()
-    stats = merge_spools(spool_dir, recording.write)
-    if stats.cut_spools or stats.unreadable:
-        log.warning("recording: %d spooled messages left out, cut spools: %s", stats.unreadable,
-                    ", ".join(stats.cut_spools) or "none")
+    merge_spools(spool_dir, recording.write)  # which warns of each cut spool and each message it leaves out
     recording.recorder.close()
 
 
