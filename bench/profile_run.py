@@ -3,7 +3,7 @@
     .venv/bin/python -m bench.profile_run follow --duration 30
     .venv/bin/python -m bench.profile_run string --stacks 8 --duration 10
 
-The children's CPU is read from /proc (user + system time, every thread, Zenoh's native ones too) every
+The CPU of the launcher's descendants is read from /proc (user + system time, every thread, Zenoh's native ones too) every
 POLL_S until the run ends, so the last POLL_S of each process is not counted. docs/performance.md says how the
 figures there were made; for where inside a process the time goes, run the same command under
 `py-spy record --gil --subprocesses`.
@@ -31,26 +31,33 @@ def _stat_fields(pid: int) -> list[str]:
     return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
 
 
-def _children_cpu_s(parent_pid: int) -> dict[int, tuple[str, float]]:
-    """pid -> (command line, CPU seconds) of every living child of parent_pid."""
-    found = {}
+def _descendants_cpu_s(root_pid: int) -> dict[int, tuple[str, float]]:
+    """pid -> (command line, CPU seconds) of every living descendant of root_pid: the services are children of
+    the fork server (forked_process.py), itself a child of the launcher."""
+    found: dict[int, tuple[int, str, float]] = {}  # pid -> (parent, command line, CPU s)
     for entry in Path("/proc").iterdir():
         if not entry.name.isdigit():
             continue
         try:
             fields = _stat_fields(int(entry.name))
-            if int(fields[1]) != parent_pid:
-                continue
             command = (entry / "cmdline").read_bytes().replace(b"\0", b" ").decode(errors="replace")
         except (OSError, IndexError, ValueError):
             continue  # it ended while we looked
-        found[int(entry.name)] = (command, (int(fields[11]) + int(fields[12])) / CLOCK_TICKS_PER_S)
-    return found
+        found[int(entry.name)] = (int(fields[1]), command, (int(fields[11]) + int(fields[12])) / CLOCK_TICKS_PER_S)
+    descendants: dict[int, tuple[str, float]] = {}
+    parents = {root_pid}
+    while parents:
+        children = {pid for pid, (parent, _, _) in found.items() if parent in parents and pid not in descendants}
+        descendants.update({pid: found[pid][1:] for pid in children})
+        parents = children
+    return descendants
 
 
 def process_label(command: str) -> str:
     """"coopdrive.cli service scene --vehicle ego ..." -> "ego/scene"; a group -> "<spec file> group"."""
     words = command.split()
+    if "from multiprocessing." in command:  # the fork server or its resource tracker
+        return "multiprocessing " + command.split("from multiprocessing.", 1)[1].split()[0]
     if "service" in words:
         name = words[words.index("service") + 1]
         vehicle = words[words.index("--vehicle") + 1] if "--vehicle" in words else "?"
@@ -70,10 +77,11 @@ def profile(options: RunOptions) -> tuple[object, dict[str, tuple[float, float]]
 
     def poll() -> None:
         while not done.wait(POLL_S):
-            seen = _children_cpu_s(os.getpid())
+            seen = _descendants_cpu_s(os.getpid())
             for pid, (command, cpu_s) in seen.items():
-                # An ended process not yet reaped still tells its CPU, but no longer its command line.
-                last[pid] = (last[pid][0] if pid in last else command, cpu_s)
+                # A forked service retitles itself once it runs (forked_process.py); an ended process not yet
+                # reaped still tells its CPU, but no longer its command line.
+                last[pid] = (command if command or pid not in last else last[pid][0], cpu_s)
             looks.append((time.monotonic(), {pid: cpu_s for pid, (_, cpu_s) in seen.items()}))
 
     poller = threading.Thread(target=poll, daemon=True)

@@ -18,6 +18,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+from setproctitle import setproctitle
+
 from coopdrive.bus.services import SERVICES
 from coopdrive.launch.run_aborted import RunAborted
 
@@ -78,6 +80,7 @@ def run_command(arguments: list[str], environment: dict[str, str], log_path: Pat
     """In the forked process: what a new `python -m coopdrive.cli ARGUMENTS` would be, started in a session of its
     own with `environment` and its output in `log_path`."""
     os.setsid()
+    setproctitle(" ".join(["coopdrive", *arguments]))  # else ps shows every service as the fork server
     os.environ.clear()
     os.environ.update(environment)
     _redirect_output(log_path, log_mode)

@@ -7,6 +7,7 @@ import multiprocessing
 import os
 import subprocess
 import sys
+import time
 
 from coopdrive.launch.forked_process import ForkedProcess
 from coopdrive.launch.processes import NEW_INTERPRETERS_VARIABLE, ServiceProcesses
@@ -33,6 +34,23 @@ def start_a_waiting_group(folder) -> tuple[str, int, int | None]:
 def test_a_service_is_forked_from_the_preloaded_server_and_stops_when_told(tmp_path):
     kind, parent_pid, exit_code = start_a_waiting_group(tmp_path)
     assert kind == ForkedProcess.__name__ and parent_pid != os.getpid() and exit_code is not None
+
+
+def test_a_forked_service_shows_its_command_in_its_process_title_as_a_new_interpreter_would(tmp_path):
+    spec = tmp_path / "group.json"
+    spec.write_text(json.dumps([{"service": "planner", "vehicle": "v", "config": {}}]))
+    processes = ServiceProcesses("tcp/127.0.0.1:1")
+    title = ""
+    try:
+        processes._spawn("v/group", [], ["group", str(spec)])
+        deadline = time.monotonic() + ANSWER_WAIT_S
+        while not title.startswith("coopdrive group") and time.monotonic() < deadline:
+            with open(f"/proc/{processes.processes['v/group'].pid}/cmdline", "rb") as cmdline:
+                title = cmdline.read().replace(b"\0", b" ").decode().strip()
+            time.sleep(0.05)
+    finally:
+        processes.stop_all()
+    assert title.startswith(f"coopdrive group {spec} --connect tcp/127.0.0.1:1"), title
 
 
 def _start_in_a_daemon(folder, answers) -> None:
