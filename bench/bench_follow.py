@@ -18,6 +18,7 @@ from rich.table import Table
 from bench import group_threads
 from bench.sizes import sized
 from bench.step_latency import StepLatency
+from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.run import RunOptions, run_scenario
 
 DURATION_S = sized(60.0, 1.0)
@@ -27,13 +28,13 @@ REQUIRED_REALTIME_FACTOR = 20.0
 STEP_S = 0.02
 
 
-def run(group_per_vehicle: bool, realtime: bool = False, thread_per_service: bool = False):
+def run(processes: ProcessLayout, realtime: bool = False, thread_per_service: bool = False):
     """`thread_per_service`: a vehicle's group gives each service its own thread, as before the shared worker."""
     latency = StepLatency()
     with group_threads.thread_per_service(thread_per_service):
         result = run_scenario(RunOptions(duration_s=REALTIME_DURATION_S if realtime else DURATION_S,
                                          realtime=realtime, observer=latency.observe,
-                                         group_per_vehicle=group_per_vehicle))
+                                         processes=processes))
     return result, latency
 
 
@@ -51,12 +52,14 @@ def main() -> None:
                    "sensor -> command p50 (ms)", "p99 (ms)", "p50 / p99, steps with the scene's update",
                    "p50 / p99, the other steps"):
         table.add_column(column, justify="right")
-    layouts = (("one per service", False, False, False),
-               ("one per vehicle, a thread per service (before)", True, False, True),
-               ("one per vehicle", True, False, False),
-               ("one per service, realtime", False, True, False), ("one per vehicle, realtime", True, True, False))
-    for label, grouped, realtime, thread_per_service in layouts:
-        result, latency = run(grouped, realtime, thread_per_service)
+    service, vehicle, one = ProcessLayout.SERVICE, ProcessLayout.VEHICLE, ProcessLayout.ONE
+    layouts = (("one per service", service, False, False),
+               ("one per vehicle, a thread per service (before)", vehicle, False, True),
+               ("one per vehicle", vehicle, False, False), ("one for the run", one, False, False),
+               ("one per service, realtime", service, True, False), ("one per vehicle, realtime", vehicle, True, False),
+               ("one for the run, realtime", one, True, False))
+    for label, processes, realtime, thread_per_service in layouts:
+        result, latency = run(processes, realtime, thread_per_service)
         p50, p99 = percentiles(latency.latencies_ms())
         table.add_row(label, str(result.success), f"{result.sim_time_s / result.wall_time_s:.2f}",
                       f"{result.sim_time_s / STEP_S / result.wall_time_s:.0f}", p50, p99,

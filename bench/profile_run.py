@@ -20,6 +20,7 @@ from pathlib import Path
 from rich.console import Console
 from rich.table import Table
 
+from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.run import RunOptions, run_scenario
 
 POLL_S = 0.2
@@ -108,11 +109,11 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("scenario")
     parser.add_argument("--stacks", type=int)
     parser.add_argument("--duration", type=float, default=30.0)
-    parser.add_argument("--processes", choices=["service", "vehicle"], default="vehicle")
+    parser.add_argument("--processes", choices=[layout.value for layout in ProcessLayout], default="vehicle")
     args = parser.parse_args(argv)
-    grouped = args.processes == "vehicle"
     result, per_process, launcher_cpu_s = profile(RunOptions(scenario=args.scenario, stacks=args.stacks,
-                                                             duration_s=args.duration, group_per_vehicle=grouped))
+                                                             duration_s=args.duration,
+                                                             processes=ProcessLayout(args.processes)))
     sim_s = max(result.sim_time_s, 1e-9)
     table = Table(title=f"{args.scenario}: {sim_s:.0f} s simulated in {result.wall_time_s:.2f} s "
                         f"(real-time factor {sim_s / max(result.wall_time_s, 1e-9):.2f}); start-up "

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from coopdrive.cli_deploy import add_commands as add_deploy_commands
 from coopdrive.cli_recording import add_commands as add_recording_commands
+from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.run_aborted import RunAborted
 from coopdrive.services.v2x.cli import add_commands as add_v2x_commands
 from coopdrive.runtime.config import ConfigError
@@ -95,8 +96,9 @@ def _add_run_command(commands) -> None:
                      help="sweep these fault variants too (YAML: name -> faults, as docs/sweep-faults.yaml)")
     run.add_argument("--out", type=Path, metavar="DIR",
                      help="batch runs: metrics.json and the report per run, and summary files")
-    run.add_argument("--processes", choices=["service", "vehicle"], default="vehicle",
-                     help="one process per vehicle's stack (the default) or one per service, as on the vehicle")
+    run.add_argument("--processes", choices=[layout.value for layout in ProcessLayout], default="vehicle",
+                     help="one process per vehicle's stack (the default), one per service as on the vehicle, or one "
+                          "for the simulator and every stack")
     run.add_argument("--security", choices=[m.value for m in _security_modes()],
                      help="V2X security of every stack (ETSI TS 103 097): each gets tickets from a test PKI")
     run.add_argument("--untrusted", action="append", default=[], metavar="VEHICLE",
@@ -218,7 +220,7 @@ def _run(args) -> int:
                          gateway_port=args.gateway, foxglove_port=args.foxglove, listen=tuple(args.listen),
                          duration_s=args.duration,
                          log_dir=args.logs, stacks=args.stacks,
-                         group_per_vehicle=args.processes == "vehicle",
+                         processes=ProcessLayout(args.processes),
                          security=args.security, untrusted=tuple(args.untrusted), extra_faults=_extra_faults(args),
                          world=args.world, started_monotonic_s=COMMAND_STARTED_MONOTONIC_S)
     if args.untrusted and args.security is None:

@@ -19,12 +19,14 @@ from coopdrive.bus import Bus, BusConfig
 from coopdrive.bus.keys import WORLD_ID
 from coopdrive.launch.lockstep_give_ups import DIAGNOSTICS_KEYS, LockstepGiveUps
 from coopdrive.launch.ports import free_tcp_port, free_udp_ports, loopback_endpoint
+from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.processes import ServiceProcesses, ServiceSpec
 from coopdrive.launch.run_aborted import RunAborted
 from coopdrive.launch.scenario_source import resolve_scenario
 from coopdrive.launch.stack_config import vehicle_overrides
 from coopdrive.recording.spool_merge import merge_spools, spool_paths
 from coopdrive.runtime.barrier import MESSAGES_GIVEN_UP_COUNTER
+from coopdrive.runtime.participants import SIMULATOR
 from coopdrive.runtime.registry import VEHICLE_STACK
 from coopdrive.services.sim.fault_config import TicketExpired
 from coopdrive.services.sim.radio_box import RadioPorts
@@ -54,9 +56,8 @@ class RunOptions:
     duration_s: float | None = None
     # Scenario files: how many of the file's stack vehicles run a stack (None: all of them); the others are scripted.
     stacks: int | None = None
-    # Each vehicle's services in one process (`coopdrive group`, the default) or one process per service, as on
-    # the vehicle (False).
-    group_per_vehicle: bool = True
+    # How the services are spread over processes (`--processes`).
+    processes: ProcessLayout = ProcessLayout.VEHICLE
     log_dir: Path | None = None
     # V2X security of every stack (a SecurityMode value; None: the v2x default, off), and the stack vehicles
     # holding a ticket from a root nobody else trusts.
@@ -84,6 +85,8 @@ MS_PER_S = 1000
 CERTIFICATE_BACKDATE_S = 3600
 # How long the launcher waits for the simulator's result once the simulator has exited.
 RESULT_GRACE_S = 5.0
+# The process of a run laid out as ProcessLayout.ONE.
+ONE_PROCESS_NAME = "run/group"
 # What the stacks publish in the last step is spooled after the result: the recording is merged once the spools
 # have taken nothing for RECORDING_QUIET_S (at most RECORDING_SETTLE_LIMIT_S).
 RECORDING_QUIET_S = 0.2
@@ -300,7 +303,7 @@ def _wait_for_the_end(processes: ServiceProcesses, finished: threading.Event) ->
     while not finished.wait(0.2):
         crashed = {name: code for name, code in processes.exited().items()
                    if code != 0 and not name.endswith("/gateway")}
-        if "world/sim" in processes.exited():
+        if processes.process_of[SIMULATOR] in processes.exited():
             finished.wait(RESULT_GRACE_S)
             return
         if crashed and len(crashed) == len(processes.processes):
@@ -324,21 +327,22 @@ def crashing_participants(specs: list[ServiceSpec]) -> set[str]:
 
 
 def start_processes(processes: ServiceProcesses, specs: list[ServiceSpec], options: RunOptions) -> None:
-    """The simulator alone; each stack as one process (`coopdrive group`), or one process per service when asked
-    (`--processes service`, as on the vehicle). One process per vehicle starts one interpreter instead of six and
-    spends about a third less CPU per step (docs/performance.md), with the same metrics (a test holds it). A
-    service a service_crash kills runs on its own, so that only it dies."""
+    """The services in the processes of options.processes: the simulator alone and each stack as one process
+    (`coopdrive group`, the default), one process per service (as on the vehicle), or the simulator and every
+    stack in one process. One process per vehicle starts one interpreter instead of six and spends about a third
+    less CPU per step than one per service (docs/performance.md); every layout gives the same metrics (a test holds
+    it). A service a service_crash kills runs on its own, so that only it dies."""
     crashing = crashing_participants(specs)
-    by_vehicle: dict[str, list[ServiceSpec]] = {}
-    for spec in specs:
-        by_vehicle.setdefault(spec.vehicle_id, []).append(spec)
-    grouped = options.group_per_vehicle
-    for vehicle_id, vehicle_specs in by_vehicle.items():
-        alone = [spec for spec in vehicle_specs if not grouped or vehicle_id == WORLD_ID or spec.participant in crashing]
-        if len(alone) < len(vehicle_specs):
-            processes.start_group(f"{vehicle_id}/group", [spec for spec in vehicle_specs if spec not in alone])
-        for spec in alone:
-            processes.start(spec)
+    alone = [spec for spec in specs if spec.participant in crashing or options.processes is ProcessLayout.SERVICE
+             or (options.processes is ProcessLayout.VEHICLE and spec.vehicle_id == WORLD_ID)]
+    grouped = [spec for spec in specs if spec not in alone]
+    if options.processes is ProcessLayout.ONE and grouped:
+        processes.start_group(ONE_PROCESS_NAME, grouped)
+    else:
+        for vehicle_id in dict.fromkeys(spec.vehicle_id for spec in grouped):
+            processes.start_group(f"{vehicle_id}/group", [spec for spec in grouped if spec.vehicle_id == vehicle_id])
+    for spec in alone:
+        processes.start(spec)
 
 
 def effective_configs(hub: Bus, specs: list[ServiceSpec]) -> dict[str, str]:

@@ -9,6 +9,9 @@ In simulated time one SharedWorker thread handles every service's events (see sh
 clock each service has its own worker thread, so that a long handler in one delays another no more than the
 interpreter's lock would. Setting COOPDRIVE_GROUP_THREAD_PER_SERVICE=1 gives every service its own thread in
 simulated time too, as before the shared worker: the benchmarks' baseline (docs/performance.md).
+
+The simulator, which owns the clock, may join a group too (`coopdrive run --processes one`): its runner keeps a
+thread of its own, which steps the world and waits for the services' step markers, as in a process of its own.
 """
 
 from __future__ import annotations
@@ -20,6 +23,7 @@ import threading
 from dataclasses import dataclass
 
 from coopdrive.bus import Bus, BusConfig
+from coopdrive.runtime.master import ClockMaster
 from coopdrive.runtime.runner import ClockMode, ServiceRunner
 from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.runtime.shared_worker import SharedWorker
@@ -48,28 +52,33 @@ class ServiceGroup:
         self._bus = Bus(bus_config)
         self._members = members
         shared = clock_mode is ClockMode.SIM and os.environ.get(THREAD_PER_SERVICE_VARIABLE) != "1"
-        self.worker = SharedWorker(f"{members[0].vehicle_id}-group") if shared else None
+        followers = [member for member in members if not issubclass(member.service_cls, ClockMaster.Driven)]
+        self.worker = SharedWorker(f"{members[0].vehicle_id}-group") if shared and followers else None
         self.runners = []
+        # The members that run on a thread of their own: every member without a shared worker, else the clock's.
+        self._own_threads: list[tuple[GroupMember, ServiceRunner]] = []
         for member in members:
+            on_worker = self.worker is not None and member in followers
             runner = ServiceRunner(member.service_cls, member.config, member.vehicle_id, None, clock_mode,
                                    bus=self._bus.sharing(), clock_step_s=clock_step_s,
-                                   inbox=self.worker.inbox() if self.worker else None)
-            if self.worker:
+                                   inbox=self.worker.inbox() if on_worker else None)
+            if on_worker:
                 self.worker.add(member.participant, runner)
+            else:
+                self._own_threads.append((member, runner))
             self.runners.append(runner)
         self.failed: dict[str, str] = self.worker.failed if self.worker else {}
 
     def run(self) -> dict[str, str]:
         """Runs every service until SIGINT/SIGTERM or until all have stopped; returns participant -> stop reason."""
         reasons: dict[str, str] = self.worker.reasons if self.worker else {}
+        threads = [threading.Thread(target=self._run_one, args=(member, runner, reasons), name=member.participant)
+                   for member, runner in self._own_threads]
         if self.worker:
-            threads = [threading.Thread(target=self.worker.run, name=f"{self._members[0].vehicle_id}/group")]
-        else:
-            threads = [threading.Thread(target=self._run_one, args=(member, runner, reasons), name=member.participant)
-                       for member, runner in zip(self._members, self.runners)]
+            threads.append(threading.Thread(target=self.worker.run, name=f"{self._members[0].vehicle_id}/group"))
         previous = {}
         if threading.current_thread() is threading.main_thread():
-            previous = {s: signal.signal(s, lambda sig, _frame: self.request_stop(signal.Signals(sig).name))
+            previous = {s: signal.signal(s, lambda sig, _frame: self._on_signal(signal.Signals(sig).name))
                         for s in (signal.SIGINT, signal.SIGTERM)}
         try:
             for thread in threads:
@@ -86,6 +95,11 @@ class ServiceGroup:
     def request_stop(self, reason: str) -> None:
         for runner in self.runners:
             runner.request_stop(reason)
+
+    def _on_signal(self, name: str) -> None:
+        """As each service's runner takes the signal in a process of its own (the clock's ends its linger)."""
+        for runner in self.runners:
+            runner.on_signal(name)
 
     def _run_one(self, member: GroupMember, runner: ServiceRunner, reasons: dict[str, str]) -> None:
         try:

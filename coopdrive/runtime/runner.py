@@ -175,7 +175,7 @@ class ServiceRunner:
         """Runs until SIGINT/SIGTERM or request_stop; returns the stop reason."""
         if threading.current_thread() is threading.main_thread():
             for signum in (signal.SIGINT, signal.SIGTERM):
-                signal.signal(signum, lambda sig, _frame: self._on_signal(signal.Signals(sig).name))
+                signal.signal(signum, lambda sig, _frame: self.on_signal(signal.Signals(sig).name))
         profile = WorkerProfile.from_environment(f"{self.vehicle_id}-{self._service_name}")
         try:
             self.begin()
@@ -205,7 +205,8 @@ class ServiceRunner:
     def stop_reason(self) -> str:
         return self._stop_reason
 
-    def _on_signal(self, name: str) -> None:
+    def on_signal(self, name: str) -> None:
+        """SIGINT or SIGTERM (`name`) reached the process: its launcher or its user asks it to end."""
         self._signalled.set()
         self.request_stop(name)
 

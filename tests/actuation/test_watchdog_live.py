@@ -15,6 +15,7 @@ import pytest
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.bus.keys import WORLD_ID
 from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
+from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.processes import ServiceProcesses
 from coopdrive.launch.run import RunOptions, build_specs, start_processes
 from coopdrive.services.actuation.config import WatchdogConfig
@@ -63,7 +64,7 @@ class LiveRun:
 
 def run_with_control_killed(tmp_path) -> LiveRun:
     # Each service its own process, as on the vehicle: only control dies.
-    options = RunOptions(duration_s=RUN_DURATION_S, group_per_vehicle=False)
+    options = RunOptions(duration_s=RUN_DURATION_S, processes=ProcessLayout.SERVICE)
     specs = build_specs(options)
     endpoint = loopback_endpoint(free_tcp_port())
     hub = Bus(BusConfig(listen=[endpoint]))

@@ -1,26 +1,46 @@
-"""Every process layout of a run gives the metrics of one process per service (the vehicle's layout), and services
-forked from the preloaded server give the metrics of services started as new interpreters."""
+"""Every process layout of a run gives the metrics of one process per service (the vehicle's layout), services
+forked from the preloaded server give the metrics of services started as new interpreters, and a run in one
+process stops as cleanly as one in many."""
 
-from coopdrive.launch.processes import NEW_INTERPRETERS_VARIABLE
-from coopdrive.launch.run import RunOptions, run_scenario
+from coopdrive.launch.process_layout import ProcessLayout
+from coopdrive.launch.processes import NEW_INTERPRETERS_VARIABLE, ServiceProcesses
+from coopdrive.launch.run import ONE_PROCESS_NAME, RunOptions, run_scenario
 
 SCENARIO = "platoon40"
 STACKS = 2
 DURATION_S = 8.0
 
 
-def metrics_with(group_per_vehicle: bool) -> dict[str, float]:
+def metrics_with(processes: ProcessLayout) -> dict[str, float]:
     result = run_scenario(RunOptions(scenario=SCENARIO, seed=3, stacks=STACKS, duration_s=DURATION_S,
-                                     group_per_vehicle=group_per_vehicle))
+                                     processes=processes))
     assert result.success, result.failure_reason
     return dict(result.metrics)
 
 
 def test_two_stacks_each_in_one_process_give_the_metrics_of_one_process_per_service():
-    assert metrics_with(group_per_vehicle=True) == metrics_with(group_per_vehicle=False)
+    assert metrics_with(ProcessLayout.VEHICLE) == metrics_with(ProcessLayout.SERVICE)
+
+
+def test_the_simulator_and_two_stacks_in_one_process_give_the_metrics_of_one_process_per_service():
+    assert metrics_with(ProcessLayout.ONE) == metrics_with(ProcessLayout.SERVICE)
 
 
 def test_services_forked_from_the_preloaded_server_give_the_metrics_of_new_interpreters(monkeypatch):
-    forked = metrics_with(group_per_vehicle=True)
+    forked = metrics_with(ProcessLayout.VEHICLE)
     monkeypatch.setenv(NEW_INTERPRETERS_VARIABLE, "1")
-    assert metrics_with(group_per_vehicle=True) == forked
+    assert metrics_with(ProcessLayout.VEHICLE) == forked
+
+
+def test_the_one_process_of_a_run_ends_by_itself_on_the_launchers_sigterm(monkeypatch):
+    """Its clock's runner takes the signal too, and stops waiting for it (a SIGKILL after the grace: -9)."""
+    exit_codes = {}
+    stop_all = ServiceProcesses.stop_all
+
+    def stop_and_keep_exit_codes(processes):
+        stop_all(processes)
+        exit_codes.update({name: process.returncode for name, process in processes.processes.items()})
+
+    monkeypatch.setattr(ServiceProcesses, "stop_all", stop_and_keep_exit_codes)
+    result = run_scenario(RunOptions(duration_s=2.0, processes=ProcessLayout.ONE))
+    assert result.success and exit_codes == {ONE_PROCESS_NAME: 0}, (result.failure_reason, exit_codes)

@@ -10,6 +10,7 @@ GRACE_S = 0.5
 
 class SimulatorExited:
     processes = {"world/sim": None, "ego/group": None}
+    process_of = {"world/sim": "world/sim", "ego/control": "ego/group"}
 
     def exited(self) -> dict[str, int]:
         return {"world/sim": 0}

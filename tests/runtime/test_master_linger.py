@@ -13,7 +13,7 @@ AT_ONCE_S = 0.1
 
 
 def finished_master():
-    """What _linger_for_the_launcher and _on_signal read of a runner whose scenario has finished."""
+    """What _linger_for_the_launcher and on_signal read of a runner whose scenario has finished."""
     return SimpleNamespace(_signalled=threading.Event(), _stop_reason="scenario finished",
                            request_stop=lambda reason: None)
 
@@ -23,7 +23,7 @@ def test_a_finished_master_started_by_a_launcher_waits_for_its_sigterm(monkeypat
     runner = finished_master()
     # Read before the timer starts: the signal comes SIGTERM_AFTER_S after the timer's start, not after this.
     started = time.monotonic()
-    threading.Timer(SIGTERM_AFTER_S, lambda: ServiceRunner._on_signal(runner, "SIGTERM")).start()
+    threading.Timer(SIGTERM_AFTER_S, lambda: ServiceRunner.on_signal(runner, "SIGTERM")).start()
     ServiceRunner._linger_for_the_launcher(runner)
     assert runner._signalled.is_set() and time.monotonic() - started >= SIGTERM_AFTER_S
 
@@ -31,7 +31,7 @@ def test_a_finished_master_started_by_a_launcher_waits_for_its_sigterm(monkeypat
 def test_a_sigterm_that_came_before_the_master_finished_ends_its_wait_at_once(monkeypatch):
     monkeypatch.setenv(LAUNCHER_PID_VARIABLE, "12345")
     runner = finished_master()
-    ServiceRunner._on_signal(runner, "SIGTERM")
+    ServiceRunner.on_signal(runner, "SIGTERM")
     started = time.monotonic()
     ServiceRunner._linger_for_the_launcher(runner)
     assert time.monotonic() - started < AT_ONCE_S
