@@ -318,6 +318,16 @@ def _compare_with_baseline(args, options, result, recorded_to) -> int:
     return EXIT_OK if passed else EXIT_FAILED
 
 
+# What `coopdrive run` does for one run only, by whether it was given: a sweep would otherwise run without it.
+SINGLE_RUN_FLAGS = {
+    "--realtime": lambda args: args.realtime, "--record": lambda args: args.record is not None,
+    "--gateway": lambda args: args.gateway is not None, "--foxglove": lambda args: args.foxglove is not None,
+    "--listen": lambda args: bool(args.listen), "--logs": lambda args: args.logs is not None,
+    "--json": lambda args: args.json, "--report": lambda args: args.report is not None,
+    "--baseline": lambda args: args.baseline is not None,
+}
+
+
 def _batch(args) -> int:
     from coopdrive.launch.batch import BatchOptions, parse_seeds, run_batch, scenario_names
     from coopdrive.launch.sweep_cluster import SweepError
@@ -337,9 +347,15 @@ def _batch(args) -> int:
     if args.untrusted:
         print("coopdrive: --untrusted is for single runs (name the vehicle of one scenario)", file=sys.stderr)
         return EXIT_USAGE
+    single_run_flags = [flag for flag, given in SINGLE_RUN_FLAGS.items() if given(args)]
+    if single_run_flags:
+        print(f"coopdrive: {', '.join(single_run_flags)}: for a single run, not a sweep (--out DIR keeps each run's "
+              "report and recording)", file=sys.stderr)
+        return EXIT_USAGE
     added = _extra_faults(args)  # --fault and --v2v-*: in every run, before each variant's own
     options = BatchOptions(scenarios=scenarios, seeds=seeds, stacks=args.stacks, workers=args.workers,
                            out_dir=args.out, duration_s=args.duration, security=args.security, world=args.world,
+                           processes=ProcessLayout(args.processes), cacc_law=args.cacc_law,
                            fault_variants={name: added + faults for name, faults in variants.items()},
                            cluster=args.cluster)
     try:

@@ -19,6 +19,7 @@ from rich.console import Console, Group
 from rich.live import Live
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
+from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.sweep_faults import NO_FAULTS
 from coopdrive.services.sim.scenario_config import SCENARIO_PACKAGE, ScenarioError
 
@@ -38,6 +39,10 @@ class BatchOptions:
     security: str | None = None
     # The world every run is in, as `coopdrive run --world`.
     world: str = "real"
+    # How each run's services are spread over processes, as `coopdrive run --processes`.
+    processes: ProcessLayout = ProcessLayout.VEHICLE
+    # Every stack's cooperative law in every run (a CaccLaw value), as `coopdrive run --cacc-law`; None: ours.
+    cacc_law: str | None = None
     # Fault variant name -> the faults it adds to every scenario (sweep_faults.py); each is a sweep dimension.
     fault_variants: dict[str, tuple[dict, ...]] = field(default_factory=lambda: {NO_FAULTS: ()})
     # A running Dask scheduler's address (tcp://host:8786); None: a local cluster of `workers` processes.
@@ -118,7 +123,7 @@ def sweep_jobs(options: BatchOptions) -> list[SweepJob]:
     from coopdrive.launch.sweep_task import SweepJob  # it imports this module's RunOutcome
 
     return [SweepJob(scenario, fault, seed, faults, options.stacks, options.duration_s, options.security,
-                     options.world, report=options.out_dir is not None)
+                     options.world, options.processes, options.cacc_law, report=options.out_dir is not None)
             for scenario in dict.fromkeys(options.scenarios)
             for fault, faults in options.fault_variants.items()
             for seed in dict.fromkeys(options.seeds)]

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from coopdrive.launch.batch import RunOutcome, run_label
+from coopdrive.launch.process_layout import ProcessLayout
 
 
 @dataclass(frozen=True)
@@ -25,6 +26,8 @@ class SweepJob:
     duration_s: float | None = None
     security: str | None = None
     world: str = "real"
+    processes: ProcessLayout = ProcessLayout.VEHICLE
+    cacc_law: str | None = None
     # Write the run's report (metrics, plots, index.html, recording) and send it back.
     report: bool = False
 
@@ -55,7 +58,12 @@ def run_one(job: SweepJob, report_dir: Path | None) -> RunOutcome:
     from coopdrive.launch.run import RunOptions, run_scenario
 
     options = RunOptions(scenario=job.scenario, seed=job.seed, stacks=job.stacks, duration_s=job.duration_s,
-                         security=job.security, world=job.world, extra_faults=job.faults)
+                         security=job.security, world=job.world, extra_faults=job.faults, processes=job.processes)
+    if job.cacc_law is not None:
+        from coopdrive.launch.baseline import with_cacc_law
+        from coopdrive.services.control.longitudinal import CaccLaw
+
+        options = with_cacc_law(options, CaccLaw(job.cacc_law))
     try:
         if report_dir is None:
             result = run_scenario(options)

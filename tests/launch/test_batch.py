@@ -12,9 +12,14 @@ from rich.console import Console
 
 from coopdrive.launch.batch import (BatchOptions, BatchSummary, RunOutcome, check_runs, parse_seeds, scenario_names,
                                     sweep_jobs)
+from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.sweep_output import retried_lines, summary_table, write_run, write_summary
+from coopdrive.launch.sweep_task import run_one
+from coopdrive.services.control.longitudinal import CaccLaw
 from coopdrive.services.sim.scenario_config import ScenarioError
+from coopdrive.v1 import sim_pb2
 
+RUN_RESULT = sim_pb2.RunResult(scenario="follow", seed=1, success=True)
 LOSSY = ({"type": "v2v_loss", "start_s": 0.0, "loss_probability": 0.3},)
 
 
@@ -43,6 +48,24 @@ def test_a_sweep_runs_every_scenario_fault_variant_and_seed_once():
         "merge/none/seed-1", "merge/none/seed-2", "merge/lossy/seed-1", "merge/lossy/seed-2"]
     assert jobs[2].faults == LOSSY and jobs[0].faults == () and jobs[0].duration_s == 3.0
     assert not jobs[0].report  # a report only where there is an --out to write it to
+
+
+def test_each_run_of_a_sweep_gets_the_process_layout_and_the_cooperative_law_the_sweep_was_given(monkeypatch):
+    given = []
+    monkeypatch.setattr("coopdrive.launch.run.run_scenario", lambda options: given.append(options) or RUN_RESULT)
+    jobs = sweep_jobs(BatchOptions(scenarios=["follow"], seeds=[1], processes=ProcessLayout.SERVICE,
+                                   cacc_law=CaccLaw.PLOEG.value))
+    run_one(jobs[0], None)
+    assert given[0].processes is ProcessLayout.SERVICE
+    assert given[0].service_overrides == {"control": {"cacc_law": CaccLaw.PLOEG.value}}
+
+
+def test_flags_that_only_a_single_run_can_take_stop_a_sweep_in_one_line_naming_them(tmp_path):
+    completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--seeds", "1-2", "--realtime",
+                                "--record", str(tmp_path / "run.mcap")], capture_output=True, text=True, timeout=60)
+    assert completed.returncode == 2
+    assert completed.stderr == ("coopdrive: --realtime, --record: for a single run, not a sweep (--out DIR keeps "
+                                "each run's report and recording)\n")
 
 
 def test_a_fault_variant_naming_a_vehicle_the_scenario_lacks_stops_the_sweep_before_anything_runs():
