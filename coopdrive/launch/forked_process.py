@@ -16,6 +16,8 @@ import multiprocessing
 import os
 import subprocess
 import sys
+import types
+from contextlib import contextmanager
 from pathlib import Path
 
 from setproctitle import setproctitle
@@ -49,7 +51,8 @@ class ForkedProcess:
         self._process = _forkserver().Process(target=run_command, args=(arguments, environment, log_path, log_mode),
                                               name=" ".join(arguments[:2]))
         try:
-            self._process.start()
+            with _launchers_main_left_out():
+                self._process.start()
         except (EOFError, ConnectionError) as error:
             raise RunAborted(f"the server that forks the services failed ({error}): the traceback above says which "
                              "module did not import") from None
@@ -74,6 +77,19 @@ class ForkedProcess:
 
     def kill(self) -> None:
         self._process.kill()
+
+
+@contextmanager
+def _launchers_main_left_out():
+    """While a fork is asked for, __main__ is a module without a file: multiprocessing would otherwise import the
+    launcher's main script again in the service (as `__mp_main__`), which costs its imports, starts the run again
+    in every service if the script has no `if __name__ == "__main__":` guard, and fails if it came from stdin."""
+    launchers_main = sys.modules["__main__"]
+    sys.modules["__main__"] = types.ModuleType("__main__")
+    try:
+        yield
+    finally:
+        sys.modules["__main__"] = launchers_main
 
 
 def run_command(arguments: list[str], environment: dict[str, str], log_path: Path | None, log_mode: str) -> None:

@@ -1,6 +1,6 @@
 """A run's services are forked from a server that imported their modules once; a daemonic process, which may not
-fork children, starts them as new interpreters instead (a test of a forked service's log and restart:
-test_crash_processes.py)."""
+fork children, starts them as new interpreters instead; a launching script is not run again in its services (a
+test of a forked service's log and restart: test_crash_processes.py)."""
 
 import json
 import multiprocessing
@@ -9,10 +9,14 @@ import subprocess
 import sys
 import time
 
+import pytest
+
 from coopdrive.launch.forked_process import ForkedProcess
 from coopdrive.launch.processes import NEW_INTERPRETERS_VARIABLE, ServiceProcesses
 
 ANSWER_WAIT_S = 60.0
+# Without the fix a script without a guard starts a run in each service, which starts runs... until this ends it.
+RUN_WAIT_S = 120.0
 
 
 def start_a_waiting_group(folder) -> tuple[str, int, int | None]:
@@ -93,3 +97,22 @@ def test_a_module_that_fails_to_import_in_the_fork_server_aborts_the_run_with_on
                               timeout=ANSWER_WAIT_S, env=environment)
     assert finished.stdout.startswith("the server that forks the services failed"), finished.stdout
     assert "broken_service_module" in finished.stderr and "NameError" in finished.stderr
+
+
+# A user's script without an `if __name__ == "__main__":` guard: multiprocessing would run it again in each service.
+UNGUARDED_SCRIPT = """
+import os
+print("the script runs in", os.getpid(), flush=True)
+from coopdrive.launch.run import RunOptions, run_scenario
+print("success:", run_scenario(RunOptions(duration_s=0.5)).success, flush=True)
+"""
+
+
+@pytest.mark.parametrize("from_stdin", [False, True], ids=["a file", "stdin"])
+def test_a_run_started_by_a_script_without_a_main_guard_runs_the_script_once(tmp_path, from_stdin):
+    script = tmp_path / "unguarded.py"
+    script.write_text(UNGUARDED_SCRIPT)
+    finished = subprocess.run([sys.executable, "-" if from_stdin else str(script)], capture_output=True, text=True,
+                              timeout=RUN_WAIT_S, input=UNGUARDED_SCRIPT if from_stdin else None, cwd=tmp_path)
+    assert finished.stdout.count("the script runs in") == 1, finished.stdout + finished.stderr[-2000:]
+    assert "success: True" in finished.stdout, finished.stderr[-2000:]
