@@ -1,14 +1,26 @@
 """Every process layout of a run gives the metrics of one process per service (the vehicle's layout), services
 forked from the preloaded server give the metrics of services started as new interpreters, and a run in one
-process stops as cleanly as one in many."""
+process stops as cleanly as one in many and records a run each service's replay reproduces."""
+
+import pytest
 
 from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.processes import NEW_INTERPRETERS_VARIABLE, ServiceProcesses
 from coopdrive.launch.run import ONE_PROCESS_NAME, RunOptions, run_scenario
+from coopdrive.recording.replay import replay_service
+from coopdrive.runtime.registry import VEHICLE_STACK
 
 SCENARIO = "platoon40"
 STACKS = 2
 DURATION_S = 8.0
+
+
+@pytest.fixture(scope="module")
+def one_process_recording(tmp_path_factory):
+    recording = tmp_path_factory.mktemp("one") / "follow.mcap"
+    result = run_scenario(RunOptions(duration_s=DURATION_S, processes=ProcessLayout.ONE, record=recording))
+    assert result.success, result.failure_reason
+    return recording
 
 
 def metrics_with(processes: ProcessLayout) -> dict[str, float]:
@@ -44,3 +56,10 @@ def test_the_one_process_of_a_run_ends_by_itself_on_the_launchers_sigterm(monkey
     monkeypatch.setattr(ServiceProcesses, "stop_all", stop_and_keep_exit_codes)
     result = run_scenario(RunOptions(duration_s=2.0, processes=ProcessLayout.ONE))
     assert result.success and exit_codes == {ONE_PROCESS_NAME: 0}, (result.failure_reason, exit_codes)
+
+
+@pytest.mark.parametrize("service", VEHICLE_STACK)
+def test_replaying_a_service_of_a_run_in_one_process_reproduces_its_recorded_outputs_exactly(one_process_recording,
+                                                                                            service, tmp_path):
+    result = replay_service(one_process_recording, service, out=tmp_path / f"{service}.mcap")
+    assert result.recorded_outputs and result.mismatches() == []
