@@ -9,6 +9,8 @@ prints deploy/desk/stack.json, and a test checks the file is what this gives.
 from __future__ import annotations
 
 import json
+import tempfile
+from pathlib import Path
 
 from coopdrive.launch.run import RunOptions, build_specs
 
@@ -23,7 +25,9 @@ LOCKSTEP_GEOLOCATION_KEYS = ("gnss_port", "serial_sync")
 
 def desk_stack() -> list[dict]:
     stack = []
-    for spec in build_specs(RunOptions(DESK_SCENARIO, service_overrides=DESK_OVERRIDES)):
+    with tempfile.TemporaryDirectory(prefix="coopdrive-desk-") as run_dir:  # the lockstep run's files: not kept
+        specs = build_specs(RunOptions(DESK_SCENARIO, service_overrides=DESK_OVERRIDES), Path(run_dir))
+    for spec in specs:
         if spec.service in NOT_AT_THE_DESK:
             continue
         config = spec.config

@@ -65,7 +65,7 @@ class LiveRun:
 def run_with_control_killed(tmp_path) -> LiveRun:
     # Each service its own process, as on the vehicle: only control dies.
     options = RunOptions(duration_s=RUN_DURATION_S, processes=ProcessLayout.SERVICE)
-    specs = build_specs(options)
+    specs = build_specs(options, tmp_path)
     endpoint = loopback_endpoint(free_tcp_port())
     hub = Bus(BusConfig(listen=[endpoint]))
     live = LiveRun()

@@ -11,7 +11,7 @@ RESULT_TIMEOUT_S = 60.0
 
 
 def test_the_simulator_publishes_a_failed_result_naming_the_services_that_never_came_up(tmp_path):
-    specs = build_specs(RunOptions(duration_s=5.0))
+    specs = build_specs(RunOptions(duration_s=5.0), tmp_path)
     sim = next(spec for spec in specs if spec.participant == "world/sim")
     sim.config["startup_timeout_s"] = 1.0
     endpoint = loopback_endpoint(free_tcp_port())
