@@ -10,6 +10,7 @@ the sweep writes summary.json, summary.csv and pass_table.md. sweep_cluster.py i
 from __future__ import annotations
 
 import tempfile
+from contextlib import nullcontext
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -153,7 +154,8 @@ def run_batch(options: BatchOptions, console: Console | None = None) -> BatchSum
     SweepError, before anything runs, for a sweep that cannot start."""
     # Both import this module's data classes.
     from coopdrive.launch.sweep_cluster import stream_runs, sweep_client
-    from coopdrive.launch.sweep_output import retried_lines, summary_table, write_run, write_summary
+    from coopdrive.launch.sweep_output import (print_whole, retried_lines, run_line, summary_table, write_run,
+                                               write_summary)
 
     console = console or Console()
     check_runs(options)
@@ -162,19 +164,24 @@ def run_batch(options: BatchOptions, console: Console | None = None) -> BatchSum
     columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn())
     progress = Progress(*columns, console=console)
     bar = progress.add_task("runs", total=len(jobs))
-    with Live(progress, console=console, refresh_per_second=4) as live:
+    # On a terminal a live bar and table; in a log a line per run as it finishes, and the table at the end.
+    live = Live(progress, console=console, refresh_per_second=4) if console.is_terminal else None
+    with live or nullcontext():
         def finished(outcome: RunOutcome, files: dict[str, bytes]) -> None:
             outcomes.append(outcome)
             if options.out_dir is not None:
                 write_run(options.out_dir, outcome, files)
+            if live is None:
+                console.print(run_line(outcome, len(outcomes), len(jobs)))
+                return
             retried = sum(o.retried for o in outcomes)
             progress.update(bar, advance=1, description=f"runs ({retried} retried)" if retried else "runs")
             live.update(Group(progress, summary_table(BatchSummary(outcomes))))
 
         with sweep_client(options.cluster, options.workers) as client:
             unfinished = stream_runs(client, jobs, finished)
-    if not console.is_terminal:
-        console.line()  # a live display ends its last line itself only on a terminal
+    if live is None:
+        print_whole(console, summary_table(BatchSummary(outcomes)))
     if unfinished:
         console.print(f"[yellow]interrupted: {len(unfinished)} run(s) not finished[/]")
     summary = BatchSummary(outcomes, unfinished=len(unfinished))

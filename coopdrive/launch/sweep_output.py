@@ -6,7 +6,9 @@ import csv
 import json
 from pathlib import Path
 
+from rich.console import Console, RenderableType
 from rich.markup import escape
+from rich.measure import Measurement
 from rich.table import Table
 
 from coopdrive.launch.batch import BatchSummary, RunOutcome
@@ -16,6 +18,8 @@ from coopdrive.launch.pass_table import mean_cell, pass_table_markdown
 TABLE_METRICS = ("collisions", "min_gap_m", "spacing_error_m", "string_gain", "rms_jerk_mps3")
 REPORT_FOLDER = "report"
 LEFT_ALIGNED = ("scenario", "fault", "first failure")
+# Columns a table may take when printed to a file.
+UNLIMITED_WIDTH = 10_000
 
 
 def summary_table(summary: BatchSummary) -> Table:
@@ -29,6 +33,28 @@ def summary_table(summary: BatchSummary) -> Table:
         table.add_row(escape(scenario), escape(fault), str(len(outcomes)), f"{passed / len(outcomes):.0%}",
                       str(sum(o.retried for o in outcomes)), *means, escape(failure))
     return table
+
+
+def run_line(outcome: RunOutcome, done: int, total: int) -> str:
+    """A finished run in one line, where the sweep's output is not a terminal (a log, CI): a live table shows
+    nothing there until the sweep ends."""
+    verdict = "pass" if outcome.success else f"[red]FAIL[/] {escape(outcome.failure_reason)}"
+    retried = ", retried" if outcome.retried else ""
+    return f"{done}/{total} {escape(outcome.label)}: {verdict} ({outcome.wall_time_s:.0f} s{retried})"
+
+
+def print_whole(console: Console, renderable: RenderableType) -> None:
+    """As wide as it needs where the output is not a terminal, whose 80 columns would cut every cell short."""
+    if console.is_terminal:
+        console.print(renderable)
+        return
+    terminal_width = console.width
+    console.width = max(terminal_width, Measurement.get(console, console.options.update(max_width=UNLIMITED_WIDTH),
+                                                        renderable).maximum)
+    try:
+        console.print(renderable)
+    finally:
+        console.width = terminal_width
 
 
 def retried_lines(summary: BatchSummary) -> list[str]:

@@ -3,7 +3,7 @@ refused before anything runs, and the summary files with each run's folder."""
 
 import csv
 import json
-import os
+import re
 import subprocess
 import sys
 
@@ -119,9 +119,13 @@ def test_the_command_sweeps_on_a_local_cluster_and_writes_the_summaries_and_each
     out = tmp_path / "sweep"
     completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--seeds", "1-2",
                                 "--workers", "2", "--duration", "3", "--faults", str(faults), "--out", str(out)],
-                               capture_output=True, text=True, timeout=240, env={**os.environ, "COLUMNS": "200"})
+                               capture_output=True, text=True, timeout=240)
     assert completed.returncode == 0, completed.stderr[-2000:]
-    assert "coopdrive batch" in completed.stdout and "lossy" in completed.stdout
+    # Not a terminal: a line per run as it finishes, then the table as wide as it needs, not cut at 80 columns.
+    for seed in (1, 2):
+        assert re.search(rf"^[12]/2 follow/lossy/seed-{seed}: pass \(\d+ s\)$", completed.stdout, re.MULTILINE)
+    assert "coopdrive batch" in completed.stdout and "│ follow   │ lossy │" in completed.stdout
+    assert "rms_jerk_mps3 ┃ first failure ┃" in completed.stdout
     rows = json.loads((out / "summary.json").read_text())
     assert [(row["scenario"], row["fault"], row["seed"], row["success"], row["retried"]) for row in rows] == [
         ("follow", "lossy", 1, True, False), ("follow", "lossy", 2, True, False)]
