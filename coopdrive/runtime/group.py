@@ -68,24 +68,33 @@ class ServiceGroup:
                 self._own_threads.append((member, runner))
             self.runners.append(runner)
         self.failed: dict[str, str] = self.worker.failed if self.worker else {}
+        # The clock's service stops after the others, as the world outlives a vehicle: they may still read what it
+        # writes (a GNSS pty) in their last step.
+        self._clock_runners = [runner for runner in self.runners if runner.clock_master is not None]
+        self._signal: str | None = None
+        self._followers_done = False
 
     def run(self) -> dict[str, str]:
         """Runs every service until SIGINT/SIGTERM or until all have stopped; returns participant -> stop reason."""
         reasons: dict[str, str] = self.worker.reasons if self.worker else {}
-        threads = [threading.Thread(target=self._run_one, args=(member, runner, reasons), name=member.participant)
-                   for member, runner in self._own_threads]
+        threads = {runner: threading.Thread(target=self._run_one, args=(member, runner, reasons),
+                                            name=member.participant) for member, runner in self._own_threads}
+        followers = [thread for runner, thread in threads.items() if runner not in self._clock_runners]
         if self.worker:
-            threads.append(threading.Thread(target=self.worker.run, name=f"{self._members[0].vehicle_id}/group"))
+            followers.append(threading.Thread(target=self.worker.run, name=f"{self._members[0].vehicle_id}/group"))
+        clocks = [threads[runner] for runner in self._clock_runners]
         previous = {}
         if threading.current_thread() is threading.main_thread():
             previous = {s: signal.signal(s, lambda sig, _frame: self._on_signal(signal.Signals(sig).name))
                         for s in (signal.SIGINT, signal.SIGTERM)}
         try:
-            for thread in threads:
+            for thread in clocks + followers:
                 thread.start()
-            for thread in threads:
-                while thread.is_alive():
-                    thread.join(0.2)  # short joins keep the main thread responsive to signals
+            _join(followers)
+            self._followers_done = True
+            if self._signal is not None:
+                self._signal_clocks()
+            _join(clocks)
         finally:
             for signum, handler in previous.items():
                 signal.signal(signum, handler)
@@ -97,9 +106,18 @@ class ServiceGroup:
             runner.request_stop(reason)
 
     def _on_signal(self, name: str) -> None:
-        """As each service's runner takes the signal in a process of its own (the clock's ends its linger)."""
+        """As each service's runner takes the signal in a process of its own; the clock's (which then ends its
+        linger) once the others have stopped."""
+        self._signal = name
         for runner in self.runners:
-            runner.on_signal(name)
+            if runner not in self._clock_runners:
+                runner.on_signal(name)
+        if self._followers_done:
+            self._signal_clocks()
+
+    def _signal_clocks(self) -> None:
+        for runner in self._clock_runners:
+            runner.on_signal(self._signal)
 
     def _run_one(self, member: GroupMember, runner: ServiceRunner, reasons: dict[str, str]) -> None:
         try:
@@ -108,3 +126,9 @@ class ServiceGroup:
             log.exception("%s stopped with an error", member.participant)
             self.failed[member.participant] = f"{type(error).__name__}: {error}"
             reasons[member.participant] = self.failed[member.participant]
+
+
+def _join(threads: list[threading.Thread]) -> None:
+    for thread in threads:
+        while thread.is_alive():
+            thread.join(0.2)  # short joins keep the main thread responsive to signals
