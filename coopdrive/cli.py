@@ -82,7 +82,7 @@ def _add_service_commands(commands) -> None:
 def _add_run_command(commands) -> None:
     run = commands.add_parser("run", help="run a scenario with the full stack")
     run.add_argument("scenario", help="a scenario name (see `coopdrive scenarios`), a YAML file, or `all`")
-    run.add_argument("--seed", type=int, default=1)
+    run.add_argument("--seed", type=int, help="the run's random seed (for several, --seeds)")
     run.add_argument("--seeds", metavar="A-B", help="run every seed of a range (e.g. 1-20 or 1,4,7-9) in parallel")
     run.add_argument("--stacks", type=int, metavar="N", help="run the stack on the first N stack vehicles only")
     run.add_argument("--world", choices=["real", "ideal"], default="real",
@@ -216,7 +216,7 @@ def _run(args) -> int:
 
     if args.scenario == "all" or args.seeds or args.faults or args.cluster:
         return _batch(args)
-    options = RunOptions(scenario=args.scenario, seed=args.seed, realtime=args.realtime, record=args.record,
+    options = RunOptions(scenario=args.scenario, seed=_seed(args), realtime=args.realtime, record=args.record,
                          gateway_port=args.gateway, foxglove_port=args.foxglove, listen=tuple(args.listen),
                          duration_s=args.duration,
                          log_dir=args.logs, stacks=args.stacks,
@@ -318,6 +318,13 @@ def _compare_with_baseline(args, options, result, recorded_to) -> int:
     return EXIT_OK if passed else EXIT_FAILED
 
 
+def _seed(args) -> int:
+    """--seed, or a run's default seed."""
+    from coopdrive.launch.run import RunOptions
+
+    return RunOptions.seed if args.seed is None else args.seed
+
+
 # What `coopdrive run` does for one run only, by whether it was given: a sweep would otherwise run without it.
 SINGLE_RUN_FLAGS = {
     "--realtime": lambda args: args.realtime, "--record": lambda args: args.record is not None,
@@ -335,7 +342,10 @@ def _batch(args) -> int:
     from coopdrive.services.sim.scenario_config import ScenarioError
 
     try:
-        seeds = parse_seeds(args.seeds) if args.seeds else [args.seed]
+        if args.seeds and args.seed is not None:
+            print(f"coopdrive: --seed {args.seed} and --seeds {args.seeds}: give one of them", file=sys.stderr)
+            return EXIT_USAGE
+        seeds = parse_seeds(args.seeds) if args.seeds else [_seed(args)]
         variants = load_fault_variants(args.faults) if args.faults else {NO_FAULTS: ()}
     except FaultsFileError as error:
         print(f"coopdrive: --faults {error}", file=sys.stderr)

@@ -68,6 +68,13 @@ def test_flags_that_only_a_single_run_can_take_stop_a_sweep_in_one_line_naming_t
                                 "each run's report and recording)\n")
 
 
+def test_a_seed_and_a_range_of_seeds_together_stop_the_command_in_one_line():
+    completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--seed", "3", "--seeds", "1-2"],
+                               capture_output=True, text=True, timeout=60)
+    assert completed.returncode == 2
+    assert completed.stderr == "coopdrive: --seed 3 and --seeds 1-2: give one of them\n"
+
+
 def test_a_fault_variant_naming_a_vehicle_the_scenario_lacks_stops_the_sweep_before_anything_runs():
     outage = ({"type": "gnss_outage", "vehicle_id": "a9", "start_s": 5},)
     with pytest.raises(ScenarioError) as raised:
