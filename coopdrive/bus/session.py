@@ -96,13 +96,17 @@ class Bus:
         for messages such as step markers that are worth nothing unheard, and the recording, which takes every
         message from its spool. True when it was sent."""
         spool = process_spool()
-        if spool is not None and is_recorded(key):  # not the step markers, which are many
-            spool.write(key, message, message.SerializeToString())
+        recorded = spool is not None and is_recorded(key)  # not the step markers, which are many
         publisher = self._publisher(key, message, reliable_block=True)
-        if not publisher.matching_status.matching:
+        heard = publisher.matching_status.matching
+        if not (recorded or heard):
             return False
-        publisher.put(message.SerializeToString())
-        return True
+        payload = message.SerializeToString()  # once, for the spool and the bus
+        if recorded:
+            spool.write(key, message, payload)
+        if heard:
+            publisher.put(payload)
+        return heard
 
     def _publisher(self, key: str, message: Message, reliable_block: bool) -> zenoh.Publisher:
         publisher = self._publishers.get(key)

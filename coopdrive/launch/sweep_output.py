@@ -44,10 +44,8 @@ def run_line(outcome: RunOutcome, done: int, total: int) -> str:
 
 
 def print_whole(console: Console, renderable: RenderableType) -> None:
-    """As wide as it needs where the output is not a terminal, whose 80 columns would cut every cell short."""
-    if console.is_terminal:
-        console.print(renderable)
-        return
+    """To output that is not a terminal, as wide as it needs: a console's 80 columns there would cut every cell
+    short."""
     terminal_width = console.width
     console.width = max(terminal_width, Measurement.get(console, console.options.update(max_width=UNLIMITED_WIDTH),
                                                         renderable).maximum)
