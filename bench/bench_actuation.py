@@ -1,6 +1,6 @@
 """Command-to-frame latency inside the Actuator: on_control_command + step (maps, supervision, CAN encode).
 
-Run: .venv/bin/python bench/bench_actuation.py [iterations]
+Run: .venv/bin/python -m bench.bench_actuation [iterations]
 Prints p50 / p99 / max in microseconds for each stage, as a table.
 """
 

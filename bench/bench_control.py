@@ -1,6 +1,6 @@
 """Control step time: our CACC against Ploeg's, alone and inside the LongitudinalController, plus lateral laws.
 
-Run: .venv/bin/python bench/bench_control.py [iterations]
+Run: .venv/bin/python -m bench.bench_control [iterations]
 Prints p50 / p99 / max in microseconds per call, as a table. The control period is 20 ms (50 Hz).
 """
 

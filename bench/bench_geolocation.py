@@ -1,6 +1,6 @@
 """Filter updates per second: the Geolocator at 100 Hz odometry + 20 Hz GNSS against filterpy's bare EKF.
 
-    python bench/bench_geolocation.py [--seconds 30]
+    python -m bench.bench_geolocation [--seconds 30]
 
 Rows: filterpy ExtendedKalmanFilter predict+update with a constant F (the floor any filterpy-based filter
 pays); our GeolocationEkf alone (CTRA step + gated update); the Geolocator (odometry, replay history,

@@ -10,7 +10,7 @@ measurement-track pair's cost by the pair-by-pair loop with a general inverse (a
 one assignment. The last column is how the update time grows from 50 to 200 objects against n log n's growth
 (at most 1 is what the scene issue asks). Seeded; run with:
 
-    .venv/bin/python bench/bench_scene.py
+    .venv/bin/python -m bench.bench_scene
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Signed-CAM verification rate on one core: our full path against a bare `cryptography` ECDSA verify.
 
-    python bench/bench_security.py [--seconds 1.0]
+    python -m bench.bench_security [--seconds 1.0]
 
 "full path" = basic header, OER decode of EtsiTs103097Data (signature and certificate spans checked
 canonical), PSID/port, freshness, chain (cached after the first full certificate) and the ECDSA verify. The realistic mix is a 10 Hz CAM
