@@ -42,7 +42,8 @@ def print_summary(result: sim_pb2.RunResult, recording: Path | None = None, labe
     table.add_column("metric")
     table.add_column("value", justify="right")
     for key, value in summary.items():
-        if key in ("scenario", "seed"):
+        # The title names the run and the verdict line says why it failed.
+        if key in ("scenario", "seed", "failure_reason"):
             continue
         table.add_row(key, f"{value:.3f}" if isinstance(value, float) else str(value))
     # No automatic highlighting: rich compiles its repr highlighter's regexes on first use, about 0.3 s of a short run.

@@ -237,6 +237,16 @@ def string_gain(speeds_mps: Sequence[np.ndarray], time_s: np.ndarray | None = No
     return max(ratios) if ratios else math.nan
 
 
+def _covers(time_s: np.ndarray, end_s: float) -> bool:
+    """Whether the truth reaches end_s to within its own sample period. A run cut short (`--duration`) inside the
+    judged oscillation has seen only its onset, where a follower's transient can outswing its predecessor: its
+    ratio is not the string gain (string 20 s of 60: 1.075, where the whole window gives below 1)."""
+    if not math.isfinite(end_s):
+        return True
+    period_s = float(time_s[-1] - time_s[-2]) if len(time_s) >= 2 else 0.0
+    return len(time_s) > 0 and time_s[-1] + period_s >= end_s
+
+
 def position_rmse_m(estimate_time_s: np.ndarray, estimate_xy_m: np.ndarray, true_time_s: np.ndarray,
                     true_xy_m: np.ndarray) -> float:
     """RMS horizontal error of the estimates against the truth interpolated at the estimates' times."""
@@ -285,7 +295,7 @@ def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[s
         reference_speed_mps = predecessor_speed_references(truth, platoon, judged)
     if reference_speed_mps:
         metrics.update(speed_error(truth, reference_speed_mps))
-    if len(platoon) >= 2:
+    if len(platoon) >= 2 and _covers(truth.time_s, string_end_s):
         window = (truth.time_s >= string_start_s) & (truth.time_s < string_end_s)
         metrics["string_gain"] = string_gain([truth.get(vid, "speed_mps")[window] for vid in platoon],
                                              truth.time_s[window], string_frequency_hz)

@@ -140,6 +140,20 @@ def test_the_judge_measures_the_string_gain_only_inside_its_window():
     assert to_the_end["string_gain"] > 1.0
 
 
+def test_a_run_cut_short_inside_the_string_window_has_no_string_gain():
+    """Stopped at 20 s of a 10-40 s window, the run saw the wave's onset only: no gain reported, none judged."""
+    frames = []
+    for k in range(2001):
+        t = k * 0.01
+        wave = math.sin(2.0 * math.pi * 0.2 * (t - 10.0)) if t >= 10.0 else 0.0
+        frames.append((t, [_truth("lead", 100.0 + 20.0 * t, 20.0 + wave),
+                           _truth("f", 60.0 + 20.0 * t, 20.0 + 2.0 * wave)]))
+    truth = TruthSeries.from_frames(frames)
+    judged = dict(platoon=["lead", "f"], string_start_s=10.0, string_frequency_hz=0.2)
+    assert "string_gain" not in metrics.judge(truth, string_end_s=40.0, **judged)
+    assert metrics.judge(truth, string_end_s=20.0, **judged)["string_gain"] == pytest.approx(2.0, abs=0.05)
+
+
 @settings(max_examples=300, deadline=None)
 @given(dx=st.floats(-12.0, 12.0), dy=st.floats(-6.0, 6.0), heading_a=st.floats(-math.pi, math.pi),
        heading_b=st.floats(-math.pi, math.pi), length_m=st.floats(1.0, 18.0), width_m=st.floats(0.5, 2.6))
