@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterator
+from typing import Iterable, Iterator
 
 from google.protobuf.message import Message
 from mcap.reader import make_reader
@@ -20,11 +20,13 @@ class RecordedMessage:
     message: Message
 
 
-def read_messages(path: str | Path) -> Iterator[RecordedMessage]:
-    """Messages decoded into coopdrive's own generated classes (so they compare equal to live ones)."""
+def read_messages(path: str | Path, topics: Iterable[str] | None = None) -> Iterator[RecordedMessage]:
+    """Messages decoded into coopdrive's own generated classes (so they compare equal to live ones); topics: only
+    those channels' (the others are neither decoded nor put in time order, which is most of a reading's cost)."""
     with open(path, "rb") as stream:
         reader = make_reader(stream, decoder_factories=[DecoderFactory()])
-        for schema, channel, message in reader.iter_messages(log_time_order=True):
+        wanted = None if topics is None else list(topics)
+        for schema, channel, message in reader.iter_messages(topics=wanted, log_time_order=True):
             cls = message_class(schema.name if schema else None)
             if cls is None:
                 continue
@@ -37,3 +39,12 @@ def read_metadata(path: str | Path) -> dict[str, dict[str, str]]:
     with open(path, "rb") as stream:
         reader = make_reader(stream)
         return {record.name: dict(record.metadata) for record in reader.iter_metadata()}
+
+
+def recorded_topics(path: str | Path) -> list[str]:
+    """The topics of the recording's channels, from its summary (or, without one, from reading it through)."""
+    with open(path, "rb") as stream:
+        summary = make_reader(stream).get_summary()
+    if summary is None:
+        return sorted({recorded.topic for recorded in read_messages(path)})
+    return sorted({channel.topic for channel in summary.channels.values()})

@@ -12,6 +12,7 @@ path of replay_wall.py instead; replay_diff.py says how the outputs differ from 
 from __future__ import annotations
 
 import logging
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -19,7 +20,7 @@ from google.protobuf.message import Message
 
 from coopdrive.bus import Envelope, KeyLayout
 from coopdrive.bus.keys import WORLD_ID
-from coopdrive.recording.reader import RecordedMessage, read_messages, read_metadata
+from coopdrive.recording.reader import RecordedMessage, read_messages, read_metadata, recorded_topics
 from coopdrive.recording.replay_config import ReplayError, missing_inputs_text, replay_config
 from coopdrive.recording.replay_wall import run_wall_clock
 from coopdrive.recording.writer import McapRecorder, config_metadata
@@ -74,7 +75,6 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
     replay_wall.py). config_file replaces the recorded config, overrides (KEY=VALUE) change either."""
     cls = service_class(service_name)
     layout = KeyLayout()
-    messages = list(read_messages(recording))
     metadata = read_metadata(recording)
     configs = metadata.get("coopdrive.config", {})
     vehicle_id = vehicle_id or _only_vehicle_of(configs, service_name, recording)
@@ -87,10 +87,12 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
     except Exception as error:  # e.g. a service that still opens its hardware under replay: one line, not a trace
         raise ReplayError(f"{service_name} did not start for the replay: {error}") from error
 
+    topics = recorded_topics(recording)
+    messages = read_messages(recording, [t for t in topics if _may_concern(t, layout, ctx, service_name, vehicle_id)])
     inputs, recorded_outputs, clocks = _split(messages, layout, ctx, service_name, vehicle_id)
     if not inputs:
         service.stop()
-        raise ReplayError(missing_inputs_text(recording, service_name, vehicle_id, ctx, messages, layout))
+        raise ReplayError(missing_inputs_text(recording, service_name, vehicle_id, ctx, topics, layout))
     if clocks:
         steps = _run_lockstep(ctx, inputs, clocks, layout, service_name, vehicle_id)
     else:
@@ -114,7 +116,18 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
     return result
 
 
-def _split(messages: list[RecordedMessage], layout: KeyLayout, ctx: ReplayContext, service_name: str,
+def _may_concern(key: str, layout: KeyLayout, ctx: ReplayContext, service_name: str, vehicle_id: str) -> bool:
+    """Whether a recorded topic can hold something _split keeps: the clock, an input, the vehicle's own outputs.
+    An 8-vehicle recording's other channels are most of it."""
+    try:
+        vehicle, topic = layout.split(key)
+    except ValueError:
+        return False
+    sources = {source for source, _ in ctx.handlers.get(topic, ())}
+    return (vehicle == WORLD_ID and topic == "clock") or vehicle == vehicle_id or vehicle in sources or "*" in sources
+
+
+def _split(messages: Iterable[RecordedMessage], layout: KeyLayout, ctx: ReplayContext, service_name: str,
            vehicle_id: str) -> tuple[list[RecordedMessage], list[tuple[str, Message, int]], list[Message]]:
     """(inputs: what the service subscribed to, recorded outputs with their log times, lockstep clocks)."""
     inputs, recorded_outputs, clocks = [], [], []

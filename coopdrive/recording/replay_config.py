@@ -40,13 +40,14 @@ def replay_config(cls: type[Service], recording: str | Path, config_key: str, co
     return validate_config(cls.Config, data, source + (" with --set" if overrides else "")), notes
 
 
-def missing_inputs_text(recording, service_name: str, vehicle_id: str, ctx, messages, layout: KeyLayout) -> str:
+def missing_inputs_text(recording, service_name: str, vehicle_id: str, ctx, recorded_topics: list[str],
+                        layout: KeyLayout) -> str:
     wanted = sorted({f"{source}/{topic}"
                      for topic, handlers in ctx.handlers.items() for source, _ in handlers})
     present = set()
-    for item in messages:
+    for key in recorded_topics:
         try:
-            present.add("/".join(layout.split(item.topic)))
+            present.add("/".join(layout.split(key)))
         except ValueError:
             continue
     return (f"{recording} holds no input of {service_name} on vehicle {vehicle_id}: missing topics "

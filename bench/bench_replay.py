@@ -1,0 +1,70 @@
+"""Replaying one service of one vehicle from a multi-stack recording: reading only the channels that concern it
+against reading every channel, turn about, on the same recording.
+
+A team debugging a vehicle replays its scene (or any service) out of a run of eight stacks. `coopdrive replay`
+reads the channels that can hold the service's inputs, the clock and the vehicle's own outputs (the others are
+neither decoded nor put in time order); "every channel" is the same replay with that choice switched off, as
+every replay read before. Both compare the outputs as the command does. BENCH_REPLAY_STACKS and
+BENCH_REPLAY_DURATION_S set the recorded run (default 8 stacks, 10 simulated s).
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import tempfile
+import time
+from pathlib import Path
+from unittest import mock
+
+from rich.console import Console
+from rich.table import Table
+
+from bench.sizes import sized
+from coopdrive.launch.run import RunOptions, run_scenario
+from coopdrive.recording import replay
+from coopdrive.recording.replay_diff import compare_outputs
+
+SCENARIO = "string"
+STACKS = int(os.environ.get("BENCH_REPLAY_STACKS", sized(8, 2)))
+DURATION_S = float(os.environ.get("BENCH_REPLAY_DURATION_S", sized(10.0, 1.0)))
+SERVICES = ("scene", "control")
+VEHICLE = "v1"
+ROUNDS = sized(3, 1)
+
+
+def replay_s(recording: Path, service: str, every_channel: bool) -> float:
+    """Wall seconds of one replay and its comparison, as `coopdrive replay` makes them."""
+    started_s = time.perf_counter()
+    if every_channel:
+        with mock.patch.object(replay, "_may_concern", lambda *_: True):
+            result = replay.replay_service(recording, service, VEHICLE)
+    else:
+        result = replay.replay_service(recording, service, VEHICLE)
+    compare_outputs(result.outputs, result.recorded_outputs)
+    if result.mismatches():
+        raise RuntimeError(f"{service} replayed unlike its recording: {result.mismatches()[:2]}")
+    return time.perf_counter() - started_s
+
+
+def main() -> None:
+    with tempfile.TemporaryDirectory(prefix="bench-replay-") as folder:
+        recording = Path(folder) / "run.mcap"
+        run_scenario(RunOptions(scenario=SCENARIO, stacks=STACKS, duration_s=DURATION_S, record=recording))
+        size_mb = recording.stat().st_size / 1e6
+        table = Table(title=f"replay of {VEHICLE}'s service from {SCENARIO} --stacks {STACKS} --duration "
+                            f"{DURATION_S:g} ({size_mb:.1f} MB), median of {ROUNDS} turn about")
+        for column in ("service", "every channel s", "its channels s", "ratio"):
+            table.add_column(column, justify="right")
+        for service in SERVICES:
+            timings: dict[bool, list[float]] = {True: [], False: []}
+            for _ in range(ROUNDS):
+                for every_channel in (True, False):
+                    timings[every_channel].append(replay_s(recording, service, every_channel))
+            before_s, now_s = statistics.median(timings[True]), statistics.median(timings[False])
+            table.add_row(service, f"{before_s:.2f}", f"{now_s:.2f}", f"{now_s / before_s:.2f}")
+        Console(highlight=False).print(table)
+
+
+if __name__ == "__main__":
+    main()
