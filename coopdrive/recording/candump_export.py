@@ -8,7 +8,7 @@ from pathlib import Path
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.can.candump import CandumpLogger
 from coopdrive.can.wire import COMMAND_TOPIC, VEHICLE_BUS_TOPIC, to_python_can
-from coopdrive.recording.reader import read_messages
+from coopdrive.recording.reader import read_messages, recorded_topics
 from coopdrive.v1 import vehicle_pb2
 
 BUS_TOPICS = (VEHICLE_BUS_TOPIC, COMMAND_TOPIC)
@@ -23,14 +23,15 @@ def export_candump(recording: str | Path, vehicle_id: str, out: str | Path) -> i
     """Writes the vehicle's frames to `out` (a .log file); returns how many."""
     layout = KeyLayout()
     keys = {layout.topic(vehicle_id, topic) for topic in BUS_TOPICS}
-    frames, vehicles_with_frames = [], set()
-    for recorded in read_messages(recording):
+    topics = recorded_topics(recording)
+    vehicles_with_frames = {layout.split(key)[0] for key in topics if _is_bus_topic(layout, key)}
+    frames = []
+    for recorded in read_messages(recording, [key for key in topics if key in keys]):
         message = recorded.message
-        if not isinstance(message, (vehicle_pb2.CanFrames, vehicle_pb2.CanFrame)):
-            continue
-        vehicles_with_frames.add(recorded.topic.split("/")[1])
-        if recorded.topic in keys:
-            frames += list(message.frames) if isinstance(message, vehicle_pb2.CanFrames) else [message]
+        if isinstance(message, vehicle_pb2.CanFrames):
+            frames += message.frames
+        elif isinstance(message, vehicle_pb2.CanFrame):
+            frames.append(message)
     if not frames:
         found = ", ".join(sorted(vehicles_with_frames)) or "none"
         raise CandumpExportError(
@@ -42,3 +43,10 @@ def export_candump(recording: str | Path, vehicle_id: str, out: str | Path) -> i
             message.channel = CHANNEL
             logger.write(message)
     return len(frames)
+
+
+def _is_bus_topic(layout: KeyLayout, key: str) -> bool:
+    try:
+        return layout.split(key)[1] in BUS_TOPICS
+    except ValueError:
+        return False

@@ -13,7 +13,7 @@ from typing import Any, TextIO
 
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.recording.flatten import flatten
-from coopdrive.recording.reader import read_messages
+from coopdrive.recording.reader import read_messages, recorded_topics
 from coopdrive.recording.writer import NANOSECONDS
 
 FORMATS = ("csv", "jsonl")
@@ -25,16 +25,17 @@ class ExportError(ValueError):
 
 def export_rows(recording: str | Path, topic: str, vehicle_id: str | None = None) -> list[dict[str, Any]]:
     layout = KeyLayout()
-    rows, topics_seen = [], set()
-    for recorded in read_messages(recording):
+    topics_seen, wanted = set(), []
+    for key in recorded_topics(recording):
         try:
-            vehicle, name = layout.split(recorded.topic)
+            vehicle, name = layout.split(key)
         except ValueError:
             continue
         topics_seen.add(f"{vehicle}/{name}")
         if name == topic and vehicle_id in (None, vehicle):
-            rows.append({"log_time_s": recorded.log_time_ns / NANOSECONDS, "vehicle": vehicle,
-                         **flatten(recorded.message)})
+            wanted.append(key)
+    rows = [{"log_time_s": recorded.log_time_ns / NANOSECONDS, "vehicle": layout.split(recorded.topic)[0],
+             **flatten(recorded.message)} for recorded in read_messages(recording, wanted)] if wanted else []
     if not rows:
         which = f"vehicle {vehicle_id!r}, topic {topic!r}" if vehicle_id else f"topic {topic!r}"
         raise ExportError(f"{recording}: no messages of {which}; recorded: {', '.join(sorted(topics_seen)) or 'none'}")
