@@ -96,9 +96,10 @@ def _add_run_command(commands) -> None:
                      help="sweep these fault variants too (YAML: name -> faults, as docs/sweep-faults.yaml)")
     run.add_argument("--out", type=Path, metavar="DIR",
                      help="batch runs: metrics.json and the report per run, and summary files")
-    run.add_argument("--processes", choices=[layout.value for layout in ProcessLayout], default="vehicle",
-                     help="one process per vehicle's stack (the default), one per service as on the vehicle, or one "
-                          "for the simulator and every stack")
+    run.add_argument("--processes", choices=[layout.value for layout in ProcessLayout],
+                     help="one process per vehicle's stack (a single run's default), one per service as on the "
+                          "vehicle, or one for the simulator and every stack (a sweep's default: its runs fill the "
+                          "cores already)")
     run.add_argument("--security", choices=[m.value for m in _security_modes()],
                      help="V2X security of every stack (ETSI TS 103 097): each gets tickets from a test PKI")
     run.add_argument("--untrusted", action="append", default=[], metavar="VEHICLE",
@@ -220,7 +221,7 @@ def _run(args) -> int:
                          gateway_port=args.gateway, foxglove_port=args.foxglove, listen=tuple(args.listen),
                          duration_s=args.duration,
                          log_dir=args.logs, stacks=args.stacks,
-                         processes=ProcessLayout(args.processes),
+                         processes=ProcessLayout(args.processes or ProcessLayout.VEHICLE.value),
                          security=args.security, untrusted=tuple(args.untrusted), extra_faults=_extra_faults(args),
                          world=args.world, started_monotonic_s=COMMAND_STARTED_MONOTONIC_S)
     if args.untrusted and args.security is None:
@@ -365,7 +366,7 @@ def _batch(args) -> int:
     added = _extra_faults(args)  # --fault and --v2v-*: in every run, before each variant's own
     options = BatchOptions(scenarios=scenarios, seeds=seeds, stacks=args.stacks, workers=args.workers,
                            out_dir=args.out, duration_s=args.duration, security=args.security, world=args.world,
-                           processes=ProcessLayout(args.processes), cacc_law=args.cacc_law,
+                           processes=ProcessLayout(args.processes or ProcessLayout.ONE.value), cacc_law=args.cacc_law,
                            fault_variants={name: added + faults for name, faults in variants.items()},
                            cluster=args.cluster)
     try:

@@ -40,8 +40,10 @@ class BatchOptions:
     security: str | None = None
     # The world every run is in, as `coopdrive run --world`.
     world: str = "real"
-    # How each run's services are spread over processes, as `coopdrive run --processes`.
-    processes: ProcessLayout = ProcessLayout.VEHICLE
+    # How each run's services are spread over processes, as `coopdrive run --processes`. One process per run:
+    # the sweep's runs already fill the cores, and a run in one process spends 20-30 % less CPU than one spread
+    # over a process per vehicle (docs/performance.md).
+    processes: ProcessLayout = ProcessLayout.ONE
     # Every stack's cooperative law in every run (a CaccLaw value), as `coopdrive run --cacc-law`; None: ours.
     cacc_law: str | None = None
     # Fault variant name -> the faults it adds to every scenario (sweep_faults.py); each is a sweep dimension.

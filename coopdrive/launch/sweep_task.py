@@ -26,7 +26,7 @@ class SweepJob:
     duration_s: float | None = None
     security: str | None = None
     world: str = "real"
-    processes: ProcessLayout = ProcessLayout.VEHICLE
+    processes: ProcessLayout = ProcessLayout.ONE
     cacc_law: str | None = None
     # Write the run's report (metrics, plots, index.html, recording) and send it back.
     report: bool = False

@@ -60,6 +60,22 @@ def test_each_run_of_a_sweep_gets_the_process_layout_and_the_cooperative_law_the
     assert given[0].service_overrides == {"control": {"cacc_law": CaccLaw.PLOEG.value}}
 
 
+def test_a_sweep_runs_each_run_in_one_process_unless_told_and_a_single_run_in_one_per_vehicle(monkeypatch):
+    """A sweep's runs already fill the cores: one process per run spends less CPU on the same metrics."""
+    from coopdrive import cli
+    from coopdrive.launch import batch, run
+
+    swept, single = [], []
+    monkeypatch.setattr(batch, "run_batch", lambda options: swept.append(options.processes) or BatchSummary([]))
+    monkeypatch.setattr(run, "run_scenario", lambda options: single.append(options.processes) or RUN_RESULT)
+    monkeypatch.setattr("coopdrive.launch.summary.print_summary", lambda *args, **kwargs: None)
+    cli.main(["run", "follow", "--seeds", "1-2"])
+    cli.main(["run", "follow", "--seeds", "1-2", "--processes", "vehicle"])
+    cli.main(["run", "follow"])
+    assert swept == [ProcessLayout.ONE, ProcessLayout.VEHICLE] and single == [ProcessLayout.VEHICLE]
+    assert sweep_jobs(BatchOptions(scenarios=["follow"], seeds=[1]))[0].processes is ProcessLayout.ONE
+
+
 def test_flags_that_only_a_single_run_can_take_stop_a_sweep_in_one_line_naming_them(tmp_path):
     completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--seeds", "1-2", "--realtime",
                                 "--record", str(tmp_path / "run.mcap")], capture_output=True, text=True, timeout=60)
