@@ -8,7 +8,7 @@ from pathlib import Path
 
 from google.protobuf.message import Message
 
-from coopdrive.recording.reader import read_messages
+from coopdrive.recording.reader import read_messages, recorded_topics
 from coopdrive.v1 import ego_pb2, gnss_pb2, scene_pb2, sim_pb2, v2x_pb2
 
 TRUTH_SUFFIX = "/ground_truth"
@@ -17,6 +17,9 @@ EGO_STATE_SUFFIX = "/ego/state"
 GNSS_FIX_SUFFIXES = ("/gnss/fix", "/ego/gnss")
 SCENE_SUFFIX = "/scene"
 V2X_STATUS_SUFFIX = "/v2x/status"
+RESULT_SUFFIX = "/result"
+# The channels add() takes messages from: a recording's others (CAN, sensors, V2X packets) are not read at all.
+SCORED_SUFFIXES = (TRUTH_SUFFIX, EGO_STATE_SUFFIX, *GNSS_FIX_SUFFIXES, SCENE_SUFFIX, V2X_STATUS_SUFFIX, RESULT_SUFFIX)
 
 
 def vehicle_of(topic: str) -> str:
@@ -60,7 +63,8 @@ class RunMessages:
     @classmethod
     def from_recording(cls, path: str | Path) -> RunMessages:
         messages = cls()
-        for recorded in read_messages(path):
+        scored = [topic for topic in recorded_topics(path) if topic.endswith(SCORED_SUFFIXES)]
+        for recorded in read_messages(path, scored):
             messages.add(recorded.topic, recorded.message)
         return messages
 

@@ -88,7 +88,7 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
         raise ReplayError(f"{service_name} did not start for the replay: {error}") from error
 
     topics = recorded_topics(recording)
-    messages = read_messages(recording, [t for t in topics if _may_concern(t, layout, ctx, service_name, vehicle_id)])
+    messages = read_messages(recording, [t for t in topics if _may_concern(t, layout, ctx, vehicle_id)])
     inputs, recorded_outputs, clocks = _split(messages, layout, ctx, service_name, vehicle_id)
     if not inputs:
         service.stop()
@@ -116,14 +116,14 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
     return result
 
 
-def _may_concern(key: str, layout: KeyLayout, ctx: ReplayContext, service_name: str, vehicle_id: str) -> bool:
+def _may_concern(key: str, layout: KeyLayout, ctx: ReplayContext, vehicle_id: str) -> bool:
     """Whether a recorded topic can hold something _split keeps: the clock, an input, the vehicle's own outputs.
     An 8-vehicle recording's other channels are most of it."""
     try:
         vehicle, topic = layout.split(key)
     except ValueError:
         return False
-    sources = {source for source, _ in ctx.handlers.get(topic, ())}
+    sources = _sources(ctx, topic)
     return (vehicle == WORLD_ID and topic == "clock") or vehicle == vehicle_id or vehicle in sources or "*" in sources
 
 
@@ -150,9 +150,14 @@ def _is_input(ctx: ReplayContext, vehicle: str, topic: str, header, service_name
     """A topic the service subscribed to for this vehicle, even one it publishes itself (its driver side puts
     the GNSS bytes on gnss/nmea, its estimator reads them); through a subscription to every vehicle ("*"),
     only what others sent."""
-    sources = {source for source, _ in ctx.handlers.get(topic, ())}
+    sources = _sources(ctx, topic)
     own = header is not None and header.sender == service_name
     return vehicle in sources or ("*" in sources and not own)
+
+
+def _sources(ctx: ReplayContext, topic: str) -> set[str]:
+    """The vehicles (or "*") whose `topic` the service subscribed to."""
+    return {source for source, _ in ctx.handlers.get(topic, ())}
 
 
 def _run_lockstep(ctx: ReplayContext, inputs: list[RecordedMessage], clocks: list[Message], layout: KeyLayout,

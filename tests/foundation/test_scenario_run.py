@@ -102,3 +102,26 @@ def test_a_stack_service_replayed_over_the_run_reproduces_its_outputs_exactly(tw
     _, recording = two_stacks
     result = coopdrive("replay", str(recording), "--service", service, "--vehicle", "f2")
     assert "identical to the recorded outputs" in result.stdout, result.stdout[-2000:]
+
+
+def test_a_replay_reads_only_the_channels_that_can_concern_its_service(two_stacks, monkeypatch):
+    """ego's own channels that f2's scene does not subscribe to are neither decoded nor put in time order, and the
+    replay still reproduces every output."""
+    from coopdrive.bus import KeyLayout
+    from coopdrive.recording import replay
+    from coopdrive.recording.reader import recorded_topics
+
+    _, recording = two_stacks
+    asked, read_all = [], replay.read_messages
+
+    def read_and_note(path, topics=None):
+        asked.append(topics)
+        return read_all(path, topics)
+
+    monkeypatch.setattr(replay, "read_messages", read_and_note)
+    result = replay.replay_service(recording, "scene", "f2")
+    assert result.outputs and not result.mismatches()
+    layout = KeyLayout()
+    left_out = {layout.split(key) for key in set(recorded_topics(recording)) - set(asked[0])
+                if key.startswith(layout.root)}
+    assert ("ego", "scene") in left_out and not any(vehicle == "f2" for vehicle, _ in left_out)
