@@ -116,11 +116,15 @@ def add_replay_command(commands) -> None:
 def _replay(args) -> int:
     from mcap.exceptions import McapError
 
+    from coopdrive.recording.reader import RecordingError
     from coopdrive.recording.replay import ReplayError, replay_service
     from coopdrive.recording.replay_diff import compare_outputs
 
     try:
         result = replay_service(args.file, args.service, args.vehicle, args.out, args.config, args.set)
+    except RecordingError as error:
+        print(f"coopdrive: replay: {error}", file=sys.stderr)
+        return EXIT_USAGE
     except (ReplayError, KeyError) as error:
         print(f"coopdrive: {error.args[0] if error.args else error}", file=sys.stderr)
         return EXIT_USAGE
@@ -179,6 +183,7 @@ def _export(args) -> int:
     from mcap.exceptions import McapError
 
     from coopdrive.recording.exporter import ExportError, export_rows, write_rows
+    from coopdrive.recording.reader import RecordingError
 
     if (args.topic is None) == (args.foxglove is None):
         print("coopdrive: export: give either --topic TOPIC or --foxglove OUT.mcap", file=sys.stderr)
@@ -187,7 +192,7 @@ def _export(args) -> int:
         return _export_foxglove(args)
     try:
         rows = export_rows(args.file, args.topic, args.vehicle)
-    except (ExportError, OSError, McapError, struct.error) as error:
+    except (ExportError, RecordingError, OSError, McapError, struct.error) as error:
         print(f"coopdrive: export: {error}", file=sys.stderr)
         return EXIT_USAGE
     if args.out is None:
@@ -203,6 +208,7 @@ def _export_foxglove(args) -> int:
     from mcap.exceptions import McapError
 
     from coopdrive.recording.foxglove_export import export_foxglove
+    from coopdrive.recording.reader import RecordingError
 
     if args.foxglove.resolve() == args.file.resolve():
         print(f"coopdrive: export: --foxglove {args.foxglove}: write to another file than the recording read",
@@ -210,6 +216,9 @@ def _export_foxglove(args) -> int:
         return EXIT_USAGE
     try:
         count = export_foxglove(args.file, args.foxglove)
+    except RecordingError as error:
+        print(f"coopdrive: export: {error}", file=sys.stderr)
+        return EXIT_USAGE
     except (OSError, McapError, struct.error) as error:
         print(f"coopdrive: export: {args.file}: not a readable MCAP recording ({_one_line(error)})", file=sys.stderr)
         return EXIT_USAGE

@@ -14,6 +14,7 @@ from coopdrive.judging.catalogue import judging_parameters, list_scenarios
 from coopdrive.judging.report import INDEX_FILE, write_report
 from coopdrive.judging.run_messages import RunMessages
 from coopdrive.judging.score import ScoreError, score_messages
+from coopdrive.recording.reader import RecordingError
 from coopdrive.v1 import sim_pb2
 
 RECORDING_FILE = "run.mcap"
@@ -55,6 +56,9 @@ def score_command(path: Path, as_json: bool, scenario: str | None = None) -> int
         metrics = score_messages(messages, judging_parameters(name))
     except (ScoreError, OSError) as error:
         print(f"coopdrive: {path}: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    except RecordingError as error:
+        print(f"coopdrive: {error}", file=sys.stderr)
         return EXIT_USAGE
     except Exception as error:  # a damaged or foreign file: one line, not a traceback
         print(f"coopdrive: {path}: cannot read the recording: {error}", file=sys.stderr)

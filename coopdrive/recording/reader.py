@@ -1,16 +1,39 @@
-"""Reads an MCAP recording back into (topic, message) pairs in log-time order."""
+"""Reads an MCAP recording back into (topic, message) pairs in log-time order, its metadata and its topics.
+
+A recording cut while it was written (a recorder killed, a vehicle's power gone) has no index at its end. Such a
+file is read from the start up to its last whole record instead, with one warning saying how much was read:
+everything before the cut is there, whatever came after the writer's last whole chunk is lost.
+"""
 
 from __future__ import annotations
 
+import logging
+import struct
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterable, Iterator
 
 from google.protobuf.message import Message
+from mcap.exceptions import McapError
 from mcap.reader import make_reader
-from mcap_protobuf.decoder import DecoderFactory
+from mcap.records import Channel, Metadata, Schema
+from mcap.records import Message as McapMessage
+from mcap.stream_reader import StreamReader
+from mcap.writer import MCAP0_MAGIC
 
 from coopdrive.bus.type_registry import message_class
+from coopdrive.recording.publish_spool import NANOSECONDS
+
+_log = logging.getLogger(__name__)
+# What a file cut inside a record, or not MCAP at all, raises while it is read.
+_UNREADABLE = (McapError, struct.error, ValueError)
+
+
+class RecordingError(ValueError):
+    """The file is not an MCAP recording at all (or cannot be opened)."""
+
+    def __init__(self, path: str | Path, reason: object) -> None:
+        super().__init__(f"{path}: not a readable MCAP recording ({' '.join(str(reason).split())})")
 
 
 @dataclass(frozen=True)
@@ -23,28 +46,110 @@ class RecordedMessage:
 def read_messages(path: str | Path, topics: Iterable[str] | None = None) -> Iterator[RecordedMessage]:
     """Messages decoded into coopdrive's own generated classes (so they compare equal to live ones); topics: only
     those channels' (the others are neither decoded nor put in time order, which is most of a reading's cost)."""
-    with open(path, "rb") as stream:
-        reader = make_reader(stream, decoder_factories=[DecoderFactory()])
-        wanted = None if topics is None else list(topics)
-        for schema, channel, message in reader.iter_messages(topics=wanted, log_time_order=True):
-            cls = message_class(schema.name if schema else None)
-            if cls is None:
-                continue
-            decoded = cls()
-            decoded.ParseFromString(message.data)
-            yield RecordedMessage(channel.topic, message.log_time, decoded)
+    wanted = None if topics is None else list(topics)
+    records = _messages_of_cut(path, wanted) if _is_cut(path) else _indexed_messages(path, wanted)
+    for channel, message in records:
+        cls = message_class(channel.schema_name)
+        if cls is None:
+            continue
+        decoded = cls()
+        decoded.ParseFromString(message.data)
+        yield RecordedMessage(channel.topic, message.log_time, decoded)
 
 
 def read_metadata(path: str | Path) -> dict[str, dict[str, str]]:
-    with open(path, "rb") as stream:
-        reader = make_reader(stream)
-        return {record.name: dict(record.metadata) for record in reader.iter_metadata()}
+    """Metadata by name; records of one name are merged in file order (a live recorder writes each service's
+    config as it learns it, so that a recording cut short still has the configs learned before the cut)."""
+    merged: dict[str, dict[str, str]] = {}
+    for record in _read_cut(path).metadata if _is_cut(path) else _indexed_metadata(path):
+        merged.setdefault(record.name, {}).update(record.metadata)
+    return merged
 
 
 def recorded_topics(path: str | Path) -> list[str]:
-    """The topics of the recording's channels, from its summary (or, without one, from reading it through)."""
+    """The topics of the recording's channels."""
+    if _is_cut(path):
+        return sorted({channel.topic for channel in _read_cut(path).channels.values()})
     with open(path, "rb") as stream:
         summary = make_reader(stream).get_summary()
     if summary is None:
         return sorted({recorded.topic for recorded in read_messages(path)})
     return sorted({channel.topic for channel in summary.channels.values()})
+
+
+@dataclass(frozen=True)
+class _Channel:
+    topic: str
+    schema_name: str | None
+
+
+@dataclass
+class _CutFile:
+    """A cut file's whole records, read in one pass from its start."""
+
+    channels: dict[int, _Channel]
+    messages: list[McapMessage]
+    metadata: list[Metadata]
+
+
+def _is_cut(path: str | Path) -> bool:
+    """Whether an MCAP file lacks its end (footer and index); RecordingError if it is no MCAP file at all."""
+    try:
+        with open(path, "rb") as stream:
+            magic = stream.read(len(MCAP0_MAGIC))
+            if magic != MCAP0_MAGIC:
+                raise RecordingError(path, "no MCAP magic at its start")
+            stream.seek(0)
+            try:
+                make_reader(stream).get_summary()
+            except _UNREADABLE:
+                return True
+    except OSError as error:
+        raise RecordingError(path, error) from error
+    return False
+
+
+def _indexed_messages(path: str | Path, topics: list[str] | None) -> Iterator[tuple[_Channel, McapMessage]]:
+    with open(path, "rb") as stream:
+        for schema, channel, message in make_reader(stream).iter_messages(topics=topics, log_time_order=True):
+            yield _Channel(channel.topic, schema.name if schema else None), message
+
+
+def _indexed_metadata(path: str | Path) -> Iterator[Metadata]:
+    with open(path, "rb") as stream:
+        yield from make_reader(stream).iter_metadata()
+
+
+def _read_cut(path: str | Path) -> _CutFile:
+    """Every whole record from the start of the file up to the cut, which ends the reading instead of raising."""
+    schemas: dict[int, str] = {}
+    cut = _CutFile({}, [], [])
+    with open(path, "rb") as stream:
+        records = StreamReader(stream, skip_magic=False).records
+        while True:
+            try:
+                record = next(records)
+            except (StopIteration, *_UNREADABLE):
+                return cut
+            if isinstance(record, Schema):
+                schemas[record.id] = record.name
+            elif isinstance(record, Channel):
+                cut.channels[record.id] = _Channel(record.topic, schemas.get(record.schema_id))
+            elif isinstance(record, McapMessage):
+                cut.messages.append(record)
+            elif isinstance(record, Metadata):
+                cut.metadata.append(record)
+
+
+def _messages_of_cut(path: str | Path, topics: list[str] | None) -> Iterator[tuple[_Channel, McapMessage]]:
+    cut = _read_cut(path)
+    messages = sorted(cut.messages, key=lambda m: m.log_time)  # stable: one instant's keep the file's order
+    span_s = (messages[-1].log_time - messages[0].log_time) / NANOSECONDS if messages else 0.0
+    _log.warning("%s: cut short while it was written (no index at its end, as a recorder killed or without power "
+                 "leaves it): read %d messages over %.1f s; whatever came after its last whole chunk is lost",
+                 path, len(messages), span_s)
+    wanted = None if topics is None else set(topics)
+    for message in messages:
+        channel = cut.channels[message.channel_id]
+        if wanted is None or channel.topic in wanted:
+            yield channel, message

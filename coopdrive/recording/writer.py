@@ -19,17 +19,20 @@ from coopdrive.roadmap import RoadMap
 from coopdrive.visual import VisualChannels, recorded_road_map
 
 CONFIG_METADATA = "coopdrive.config"
+# mcap's own: a chunk is written to the file when it holds this much.
+DEFAULT_CHUNK_BYTES = 1024 * 1024
 
 
 class McapRecorder:
     def __init__(self, path: str | Path, metadata: dict[str, dict[str, str]] | None = None,
-                 road_map: RoadMap | None = None, visuals: bool = True):
+                 road_map: RoadMap | None = None, visuals: bool = True, chunk_bytes: int = DEFAULT_CHUNK_BYTES):
         """road_map: the lane map the Foxglove channels draw (default: the one the configs in `metadata` name).
-        visuals: False writes the messages alone."""
+        visuals: False writes the messages alone. chunk_bytes: how much a chunk holds before it goes to the file,
+        which is also what a recording cut short (killed, without power) loses at most."""
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self._file = open(self.path, "wb")
-        self._writer = Writer(self._file)
+        self._writer = Writer(self._file, chunk_size=chunk_bytes)
         self._lock = threading.Lock()
         self._closed = False
         self.messages_written = 0
@@ -46,7 +49,10 @@ class McapRecorder:
             self._deriver.start()
 
     def learn_config(self, participant: str, config_json: str) -> None:
-        """A live service's config (ServiceConfigCollector): geolocation's names the lane map to draw."""
+        """A live service's config (ServiceConfigCollector), written at once: a recording cut short (a recorder
+        killed, the power gone) keeps the configs learned before the cut, and replay reads them. Geolocation's
+        names the lane map to draw."""
+        self.add_configs({participant: config_json})
         if self._visuals is not None and participant.endswith("/geolocation"):
             road_map = recorded_road_map({participant: config_json})
             with self._lock:
@@ -58,8 +64,12 @@ class McapRecorder:
             self.add_metadata(name, values)
 
     def add_metadata(self, name: str, values: dict[str, str]) -> None:
+        """Written to the file at once (outside the chunk being filled), not kept to the end."""
         with self._lock:
+            if self._closed:
+                return
             self._writer.add_metadata(name, values)
+            self._file.flush()
 
     def write(self, topic: str, message: Message, log_time_ns: int | None = None) -> None:
         """log_time_ns: when the message arrived (a live recorder's clock); publish time is its header's sent time.

@@ -34,6 +34,7 @@ START_TIMEOUT_S = 60.0  # a loaded machine starts a Python service slowly; this 
 POSITION_TOLERANCE_M = 0.5
 SPEED_TOLERANCE_MPS = 0.2
 PAIRED_SHARE = 0.9
+KILLED_RECORDING = "killed.mcap"
 
 
 def drive_schedule() -> list[tuple[float, str, object]]:
@@ -69,9 +70,9 @@ def wait_alive(hub: Bus, service: str) -> None:
         assert time.monotonic() < deadline, f"{service} did not start"
 
 
-def wait_recording(hub: Bus) -> None:
+def wait_recording(hub: Bus, probe_key: str = "coopdrive/probe/nothing") -> None:
     """Until the recorder's subscription to everything reaches the hub (Zenoh's matching status says so)."""
-    probe = hub.session.declare_publisher("coopdrive/probe/nothing")
+    probe = hub.session.declare_publisher(probe_key)
     deadline = time.monotonic() + START_TIMEOUT_S
     try:
         while not probe.matching_status.matching:
@@ -90,16 +91,22 @@ def live_drive(tmp_path_factory):
     run = [sys.executable, "-m", "coopdrive.cli"]
     service = subprocess.Popen([*run, "service", "geolocation", "--clock", "wall", "--connect", endpoint,
                                 "--set", f"gnss_port={os.ttyname(slave)}"], stderr=subprocess.PIPE, text=True)
-    recorder = subprocess.Popen([*run, "record", str(folder) + "/", "--connect", endpoint],
-                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    # A second recorder of the vehicle's own topics, killed at the end as a power loss would stop it.
+    killed = subprocess.Popen([*run, "record", str(folder / KILLED_RECORDING), "--connect", endpoint, "--key",
+                               "coopdrive/ego/**"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     can_bus = can.Bus(interface="coopdrive", channel="ego", connect=endpoint)
+    recorder = None
     try:
+        wait_recording(hub, "coopdrive/ego/probe")  # the only subscriber yet
+        recorder = subprocess.Popen([*run, "record", str(folder) + "/", "--connect", endpoint],
+                                    stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         wait_alive(hub, "geolocation")
-        wait_recording(hub)
+        wait_recording(hub)  # outside coopdrive/ego/**: the recorder of everything
         player = threading.Thread(target=play, args=(drive_schedule(), master, can_bus))
         player.start()
         player.join()
         time.sleep(0.5)  # the last estimates on their way
+        killed.kill()
         recorder.send_signal(signal.SIGINT)
         out, err = recorder.communicate(timeout=60)
         assert recorder.returncode == 0, err
@@ -107,8 +114,8 @@ def live_drive(tmp_path_factory):
         can_bus.shutdown()
         service.terminate()
         service.wait(timeout=30)
-        for process in (service, recorder):
-            if process.poll() is None:
+        for process in (service, recorder, killed):
+            if process is not None and process.poll() is None:
                 process.kill()
         os.close(master)
         os.close(slave)
@@ -175,3 +182,18 @@ def test_a_changed_filter_setting_shows_in_the_difference_report_as_the_fields_t
     changed = ego_state(replay_json(live_drive[0], "--set", "geolocator.jerk_std_mps3=20"))["moved"]
     assert {"x_m", "y_m"} <= set(changed)
     assert changed["x_m"]["rms"] > baseline.get("x_m", {"rms": 0.0})["rms"]
+
+
+def test_a_recorder_killed_mid_drive_leaves_a_recording_read_up_to_its_last_whole_chunk(live_drive, caplog):
+    """No index at its end: read from the start, with one warning; the configs went in as they were learned."""
+    complete, killed = live_drive[0], live_drive[0].parent / KILLED_RECORDING
+    assert json.loads(read_metadata(killed)["coopdrive.config"]["ego/geolocation"])["gnss_port"].startswith("/dev/")
+    with caplog.at_level("WARNING", logger="coopdrive.recording.reader"):
+        frames = [m for m in read_messages(killed) if m.topic == "coopdrive/ego/can/vehicle"]
+    assert [r.getMessage() for r in caplog.records if "cut short while it was written" in r.getMessage()]
+    recorded = [m for m in read_messages(complete) if m.topic == "coopdrive/ego/can/vehicle"]
+    # What is lost is the tail in the chunk being filled (LIVE_CHUNK_BYTES: about a second of this drive's bus).
+    assert 0.75 * len(recorded) < len(frames) < len(recorded)
+    assert [m.message for m in frames] == [m.message for m in recorded[:len(frames)]]
+    report = replay_json(killed)
+    assert report["mode"] == "wall" and ego_state(report)["paired"] > 0

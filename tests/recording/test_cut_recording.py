@@ -1,0 +1,83 @@
+"""A recording cut while it was written (its recorder killed, the power gone) is read up to its last whole chunk;
+a file that is no recording at all is one clear error naming it."""
+
+import json
+import shutil
+
+import pytest
+
+from coopdrive.recording.reader import RecordingError, read_messages, read_metadata, recorded_topics
+from coopdrive.recording.writer import McapRecorder
+from coopdrive.v1 import ego_pb2
+
+TOPIC = "coopdrive/ego/ego/state"
+CHUNK_BYTES = 16 * 1024
+MESSAGES = 3000
+CUT_WARNING = "cut short while it was written"
+
+
+def state(k: int) -> ego_pb2.EgoState:
+    message = ego_pb2.EgoState(x_m=float(k), speed_mps=20.0)
+    message.header.sample_time_s = message.header.sent_time_s = 0.01 * k
+    return message
+
+
+@pytest.fixture
+def cut_recording(tmp_path):
+    """The file as a kill leaves it: what the recorder had handed to the system, without its end."""
+    recorder = McapRecorder(tmp_path / "live.mcap", visuals=False, chunk_bytes=CHUNK_BYTES)
+    recorder.learn_config("ego/geolocation", json.dumps({"gnss_port": "/dev/ttyACM0"}))
+    for k in range(MESSAGES):
+        recorder.write(TOPIC, state(k))
+    cut = tmp_path / "cut.mcap"
+    shutil.copy(recorder.path, cut)
+    recorder.close()
+    return cut
+
+
+def test_a_cut_recording_gives_every_message_before_its_last_whole_chunk_and_loses_at_most_one_chunk(
+        cut_recording, caplog):
+    with caplog.at_level("WARNING", logger="coopdrive.recording.reader"):
+        read = list(read_messages(cut_recording))
+    assert 0 < len(read) < MESSAGES
+    assert [m.message for m in read] == [state(k) for k in range(len(read))]
+    lost_bytes = sum(len(state(k).SerializeToString()) for k in range(len(read), MESSAGES))
+    assert lost_bytes <= CHUNK_BYTES
+    assert sum(CUT_WARNING in record.getMessage() and str(cut_recording) in record.getMessage()
+               for record in caplog.records) == 1
+
+
+def test_a_cut_recording_keeps_the_configs_its_recorder_learned_before_the_cut(cut_recording):
+    config = read_metadata(cut_recording)["coopdrive.config"]["ego/geolocation"]
+    assert json.loads(config) == {"gnss_port": "/dev/ttyACM0"}
+    assert recorded_topics(cut_recording) == [TOPIC]
+
+
+def test_configs_written_one_by_one_are_read_back_together(tmp_path):
+    recorder = McapRecorder(tmp_path / "run.mcap", visuals=False)
+    recorder.learn_config("ego/geolocation", "{}")
+    recorder.learn_config("ego/scene", "{}")
+    recorder.learn_config("ego/geolocation", '{"changed": true}')
+    recorder.close()
+    assert read_metadata(recorder.path)["coopdrive.config"] == {"ego/geolocation": '{"changed": true}',
+                                                                "ego/scene": "{}"}
+
+
+def test_a_whole_recording_is_read_through_its_index_without_a_warning(tmp_path, caplog):
+    recorder = McapRecorder(tmp_path / "run.mcap", visuals=False, chunk_bytes=CHUNK_BYTES)
+    for k in range(MESSAGES):
+        recorder.write(TOPIC, state(k))
+    recorder.close()
+    with caplog.at_level("WARNING", logger="coopdrive.recording.reader"):
+        assert len(list(read_messages(recorder.path))) == MESSAGES
+    assert not caplog.records
+
+
+@pytest.mark.parametrize("content, reason", [(b"not a recording\n", "no MCAP magic at its start"),
+                                             (None, "No such file or directory")])
+def test_a_file_that_is_no_recording_is_one_error_naming_it(tmp_path, content, reason):
+    path = tmp_path / "drive.mcap"
+    if content is not None:
+        path.write_bytes(content)
+    with pytest.raises(RecordingError, match=f"{path}: not a readable MCAP recording .*{reason}"):
+        list(read_messages(path))
