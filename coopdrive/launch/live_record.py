@@ -17,12 +17,7 @@ from pathlib import Path
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.recording.live_configs import ServiceConfigCollector
 from coopdrive.recording.publish_spool import is_recorded
-from coopdrive.recording.writer import McapRecorder
-
-# A vehicle's recorder may die with the power: what it loses is the chunk it was filling, here about half a second
-# of a vehicle's bus (a stack's 20 s of an 8-stack run: 3.9 MB) where mcap's 1 MiB chunks lose five; the file grows
-# by 3 % (4.01 against 3.89 MB for those 20 s).
-LIVE_CHUNK_BYTES = 128 * 1024
+from coopdrive.recording.writer import LIVE_CHUNK_BYTES, McapRecorder
 
 
 def recording_path(text: str | Path) -> Path:

@@ -21,6 +21,10 @@ from coopdrive.visual import VisualChannels, recorded_road_map
 CONFIG_METADATA = "coopdrive.config"
 # mcap's own: a chunk is written to the file when it holds this much.
 DEFAULT_CHUNK_BYTES = 1024 * 1024
+# A recorder on a vehicle may die with the power: what it loses is the chunk it was filling, here about half a
+# second of a vehicle's bus (a stack's 20 s of an 8-stack run: 3.9 MB) where 1 MiB chunks lose five; the file grows
+# by 3 % (4.01 against 3.89 MB for those 20 s).
+LIVE_CHUNK_BYTES = 128 * 1024
 
 
 class McapRecorder:

@@ -12,7 +12,7 @@ from pathlib import Path
 from google.protobuf.message import Message
 
 from coopdrive.bus.keys import KeyLayout
-from coopdrive.recording.writer import McapRecorder
+from coopdrive.recording.writer import LIVE_CHUNK_BYTES, McapRecorder
 
 
 class GatewayRecording:
@@ -28,7 +28,7 @@ class GatewayRecording:
             return self._recorder.path if self._recorder is not None else None
 
     def start(self, path: Path) -> None:
-        recorder = McapRecorder(path)
+        recorder = McapRecorder(path, chunk_bytes=LIVE_CHUNK_BYTES)
         with self._lock:
             previous, self._recorder = self._recorder, recorder
         if previous is not None:
