@@ -7,6 +7,7 @@ everything before the cut is there, whatever came after the writer's last whole 
 
 from __future__ import annotations
 
+import functools
 import logging
 import struct
 from dataclasses import dataclass
@@ -121,7 +122,14 @@ def _indexed_metadata(path: str | Path) -> Iterator[Metadata]:
 
 
 def _read_cut(path: str | Path) -> _CutFile:
-    """Every whole record from the start of the file up to the cut, which ends the reading instead of raising."""
+    """Every whole record from the start of the file up to the cut, which ends the reading instead of raising.
+    A replay asks for the metadata, the topics and the messages: the file is read once for the three."""
+    status = Path(path).stat()
+    return _read_cut_once(str(path), status.st_size, status.st_mtime_ns)
+
+
+@functools.lru_cache(maxsize=1)
+def _read_cut_once(path: str, _size: int, _mtime_ns: int) -> _CutFile:
     schemas: dict[int, str] = {}
     cut = _CutFile({}, [], [])
     with open(path, "rb") as stream:
@@ -145,8 +153,8 @@ def _messages_of_cut(path: str | Path, topics: list[str] | None) -> Iterator[tup
     cut = _read_cut(path)
     messages = sorted(cut.messages, key=lambda m: m.log_time)  # stable: one instant's keep the file's order
     span_s = (messages[-1].log_time - messages[0].log_time) / NANOSECONDS if messages else 0.0
-    _log.warning("%s: cut short while it was written (no index at its end, as a recorder killed or without power "
-                 "leaves it): read %d messages over %.1f s; whatever came after its last whole chunk is lost",
+    _log.warning("%s: cut short while it was written (no readable index at its end, as a recorder killed or without "
+                 "power leaves it): read %d messages over %.1f s; whatever came after its last whole chunk is lost",
                  path, len(messages), span_s)
     wanted = None if topics is None else set(topics)
     for message in messages:
