@@ -44,11 +44,16 @@ class RecordedMessage:
     message: Message
 
 
-def read_messages(path: str | Path, topics: Iterable[str] | None = None) -> Iterator[RecordedMessage]:
+def read_messages(path: str | Path, topics: Iterable[str] | None = None, start_ns: int | None = None,
+                  end_ns: int | None = None) -> Iterator[RecordedMessage]:
     """Messages decoded into coopdrive's own generated classes (so they compare equal to live ones); topics: only
-    those channels' (the others are neither decoded nor put in time order, which is most of a reading's cost)."""
+    those channels' (the others are neither decoded nor put in time order, which is most of a reading's cost);
+    start_ns, end_ns: only log times from start_ns and before end_ns (the index skips the chunks outside)."""
     wanted = None if topics is None else list(topics)
-    records = _messages_of_cut(path, wanted) if _is_cut(path) else _indexed_messages(path, wanted)
+    if _is_cut(path):
+        records = _messages_of_cut(path, wanted, start_ns, end_ns)
+    else:
+        records = _indexed_messages(path, wanted, start_ns, end_ns)
     for channel, message in records:
         cls = message_class(channel.schema_name)
         if cls is None:
@@ -65,6 +70,16 @@ def read_metadata(path: str | Path) -> dict[str, dict[str, str]]:
     for record in _read_cut(path).metadata if _is_cut(path) else _indexed_metadata(path):
         merged.setdefault(record.name, {}).update(record.metadata)
     return merged
+
+
+def recording_start_ns(path: str | Path) -> int | None:
+    """The log time of the recording's first message (None: it holds none)."""
+    if not _is_cut(path):
+        with open(path, "rb") as stream:
+            summary = make_reader(stream).get_summary()
+        if summary is not None and summary.statistics is not None:
+            return summary.statistics.message_start_time if summary.statistics.message_count else None
+    return min((recorded.log_time_ns for recorded in read_messages(path)), default=None)
 
 
 def recorded_topics(path: str | Path) -> list[str]:
@@ -110,9 +125,12 @@ def _is_cut(path: str | Path) -> bool:
     return False
 
 
-def _indexed_messages(path: str | Path, topics: list[str] | None) -> Iterator[tuple[_Channel, McapMessage]]:
+def _indexed_messages(path: str | Path, topics: list[str] | None, start_ns: int | None,
+                      end_ns: int | None) -> Iterator[tuple[_Channel, McapMessage]]:
     with open(path, "rb") as stream:
-        for schema, channel, message in make_reader(stream).iter_messages(topics=topics, log_time_order=True):
+        reader = make_reader(stream)
+        for schema, channel, message in reader.iter_messages(topics=topics, starting_at=start_ns, ending_before=end_ns,
+                                                             log_time_order=True):
             yield _Channel(channel.topic, schema.name if schema else None), message
 
 
@@ -149,7 +167,8 @@ def _read_cut_once(path: str, _size: int, _mtime_ns: int) -> _CutFile:
                 cut.metadata.append(record)
 
 
-def _messages_of_cut(path: str | Path, topics: list[str] | None) -> Iterator[tuple[_Channel, McapMessage]]:
+def _messages_of_cut(path: str | Path, topics: list[str] | None, start_ns: int | None,
+                     end_ns: int | None) -> Iterator[tuple[_Channel, McapMessage]]:
     cut = _read_cut(path)
     messages = sorted(cut.messages, key=lambda m: m.log_time)  # stable: one instant's keep the file's order
     span_s = (messages[-1].log_time - messages[0].log_time) / NANOSECONDS if messages else 0.0
@@ -159,5 +178,6 @@ def _messages_of_cut(path: str | Path, topics: list[str] | None) -> Iterator[tup
     wanted = None if topics is None else set(topics)
     for message in messages:
         channel = cut.channels[message.channel_id]
-        if wanted is None or channel.topic in wanted:
+        in_window = (start_ns is None or message.log_time >= start_ns) and (end_ns is None or message.log_time < end_ns)
+        if in_window and (wanted is None or channel.topic in wanted):
             yield channel, message

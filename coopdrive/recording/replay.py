@@ -20,17 +20,18 @@ from google.protobuf.message import Message
 
 from coopdrive.bus import Envelope, KeyLayout
 from coopdrive.bus.keys import WORLD_ID
-from coopdrive.recording.reader import RecordedMessage, read_messages, read_metadata, recorded_topics
+from coopdrive.recording.reader import (RecordedMessage, read_messages, read_metadata, recorded_topics,
+                                        recording_start_ns)
 from coopdrive.recording.replay_config import ReplayError, missing_inputs_text, replay_config
 from coopdrive.recording.replay_wall import run_wall_clock
-from coopdrive.recording.writer import McapRecorder, config_metadata
+from coopdrive.recording.writer import NANOSECONDS, McapRecorder, config_metadata
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
 from coopdrive.runtime.participants import ParticipantTracker
 from coopdrive.runtime.pipeline import WORLD_SERVICE
 from coopdrive.runtime.registry import service_class
 from coopdrive.runtime.testing import MemoryContext
 
-__all__ = ["ReplayContext", "ReplayError", "ReplayResult", "replay_service"]
+__all__ = ["ReplayContext", "ReplayError", "ReplayResult", "TimeWindow", "replay_service"]
 
 
 class ReplayContext(MemoryContext):
@@ -42,6 +43,29 @@ class ReplayContext(MemoryContext):
         self.skipped_s = 0.0  # wall-clock replay: time without inputs the triggers did not run through
 
 
+@dataclass(frozen=True)
+class TimeWindow:
+    """Part of a recording, in seconds from its first message: the service starts at from_s (as if started then)
+    and its outputs are compared up to to_s (None: the end)."""
+
+    from_s: float = 0.0
+    to_s: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.from_s < 0.0:
+            raise ReplayError(f"--from {self.from_s:g}: a window starts at 0 s or later")
+        if self.to_s is not None and self.to_s <= self.from_s:
+            raise ReplayError(f"--to {self.to_s:g}: a window ends after it starts (--from {self.from_s:g})")
+
+    def log_times_ns(self, recording_start_ns: int) -> tuple[int, int | None]:
+        """[start, end) in the recording's log time."""
+        end_ns = None if self.to_s is None else recording_start_ns + round(self.to_s * NANOSECONDS)
+        return recording_start_ns + round(self.from_s * NANOSECONDS), end_ns
+
+    def describe(self) -> str:
+        return f"{self.from_s:g} s to {'the end' if self.to_s is None else f'{self.to_s:g} s'}"
+
+
 @dataclass
 class ReplayResult:
     outputs: list[tuple[str, Message]]
@@ -50,6 +74,13 @@ class ReplayResult:
     mode: str = "lockstep"  # or "wall": inputs in arrival order, triggers on a clock driven by their times
     config_changed: bool = False  # --config or --set: differences are the point, not a failure
     notes: list[str] = field(default_factory=list)
+    # A part of the recording only: the service starts within it, its state not the recorded one.
+    window: TimeWindow | None = None
+
+    @property
+    def exact(self) -> bool:
+        """Whether the outputs must be the recorded ones: a lockstep replay of the whole run with its own config."""
+        return self.mode == "lockstep" and not self.config_changed and self.window is None
 
     def mismatches(self, skip_topics: tuple[str, ...] = ("diagnostics/",)) -> list[str]:
         """Differences between replayed and recorded outputs, in words (empty when equal)."""
@@ -69,10 +100,11 @@ class ReplayResult:
 
 def replay_service(recording: str | Path, service_name: str, vehicle_id: str | None = None,
                    out: str | Path | None = None, config_file: str | Path | None = None,
-                   overrides: list[str] | tuple[str, ...] = ()) -> ReplayResult:
+                   overrides: list[str] | tuple[str, ...] = (), window: TimeWindow | None = None) -> ReplayResult:
     """Lockstep recordings (with world/clock) replay step by step as the run did; any other recording (a
     vehicle's, an import) replays its inputs in arrival order on a clock driven by their log times (see
-    replay_wall.py). config_file replaces the recorded config, overrides (KEY=VALUE) change either."""
+    replay_wall.py). config_file replaces the recorded config, overrides (KEY=VALUE) change either; window: only
+    that part of the recording is read and replayed (a long drive's minute in question)."""
     cls = service_class(service_name)
     layout = KeyLayout()
     metadata = read_metadata(recording)
@@ -88,10 +120,16 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
         raise ReplayError(f"{service_name} did not start for the replay: {error}") from error
 
     topics = recorded_topics(recording)
-    messages = read_messages(recording, [t for t in topics if _may_concern(t, layout, ctx, vehicle_id)])
+    start_ns = recording_start_ns(recording)
+    log_times_ns = window.log_times_ns(start_ns) if window is not None and start_ns is not None else (None, None)
+    messages = read_messages(recording, [t for t in topics if _may_concern(t, layout, ctx, vehicle_id)],
+                             *log_times_ns)
     inputs, recorded_outputs, clocks = _split(messages, layout, ctx, service_name, vehicle_id)
     if not inputs:
         service.stop()
+        if window is not None:
+            raise ReplayError(f"{recording}: no input of {service_name} on vehicle {vehicle_id} from "
+                              f"{window.describe()} of the recording")
         raise ReplayError(missing_inputs_text(recording, service_name, vehicle_id, ctx, topics, layout))
     if clocks:
         steps = _run_lockstep(ctx, inputs, clocks, layout, service_name, vehicle_id)
@@ -109,8 +147,11 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
     last_time = max((m.header.sent_time_s for _, m, _ in recorded_outputs), default=None)
     outputs = ctx.outputs if last_time is None or not clocks else [
         (t, m) for t, m in ctx.outputs if m.header.sent_time_s <= last_time + TIME_EPSILON_S]
+    if window is not None:
+        notes.append(f"replayed {window.describe()} of the recording: {service_name} started at {window.from_s:g} s "
+                     f"with none of its recorded state, so its first outputs may differ while its estimates settle")
     result = ReplayResult(outputs, [(t, m) for t, m, _ in recorded_outputs], steps,
-                          "lockstep" if clocks else "wall", bool(config_file or overrides), notes)
+                          "lockstep" if clocks else "wall", bool(config_file or overrides), notes, window)
     if out is not None:
         _write_replay(out, inputs, outputs, {config_key: config.model_dump_json()}, metadata)
     return result

@@ -114,9 +114,9 @@ def test_a_replay_reads_only_the_channels_that_can_concern_its_service(two_stack
     _, recording = two_stacks
     asked, read_all = [], replay.read_messages
 
-    def read_and_note(path, topics=None):
+    def read_and_note(path, topics=None, *window_ns):
         asked.append(topics)
-        return read_all(path, topics)
+        return read_all(path, topics, *window_ns)
 
     monkeypatch.setattr(replay, "read_messages", read_and_note)
     result = replay.replay_service(recording, "scene", "f2")
@@ -125,3 +125,17 @@ def test_a_replay_reads_only_the_channels_that_can_concern_its_service(two_stack
     left_out = {layout.split(key) for key in set(recorded_topics(recording)) - set(asked[0])
                 if key.startswith(layout.root)}
     assert ("ego", "scene") in left_out and not any(vehicle == "f2" for vehicle, _ in left_out)
+
+
+def test_a_window_of_the_run_replays_only_its_steps_and_compares_only_its_outputs(two_stacks):
+    """The service starts at --from with none of its recorded state: differences are reported, not a failure."""
+    _, recording = two_stacks
+    result = coopdrive("replay", str(recording), "--service", "scene", "--vehicle", "f2", "--from", "4", "--to", "7",
+                       "--json")
+    assert result.returncode == 0, result.stderr
+    report = json.loads(result.stdout)
+    assert report["window_s"] == [4.0, 7.0] and report["mode"] == "lockstep"
+    assert 145 <= report["steps"] <= 151  # 3 s of 20 ms steps
+    scene = next(topic for topic in report["topics"] if topic["topic"] == "f2/scene")
+    assert scene["paired"] == scene["recorded"] > 0
+    assert any("started at 4 s" in note for note in report["notes"])

@@ -81,3 +81,21 @@ def test_a_file_that_is_no_recording_is_one_error_naming_it(tmp_path, content, r
         path.write_bytes(content)
     with pytest.raises(RecordingError, match=f"{path}: not a readable MCAP recording .*{reason}"):
         list(read_messages(path))
+
+
+@pytest.mark.parametrize("from_s, to_s, named", [(-1.0, None, "--from -1"), (5.0, 3.0, "--to 3")])
+def test_a_replay_window_that_is_no_window_is_one_error_naming_the_option(from_s, to_s, named):
+    from coopdrive.recording.replay import ReplayError, TimeWindow
+
+    with pytest.raises(ReplayError, match=named):
+        TimeWindow(from_s, to_s)
+
+
+def test_a_window_reads_only_the_messages_logged_inside_it_whole_or_cut(tmp_path, cut_recording):
+    recorder = McapRecorder(tmp_path / "run.mcap", visuals=False, chunk_bytes=CHUNK_BYTES)
+    for k in range(MESSAGES):
+        recorder.write(TOPIC, state(k))
+    recorder.close()
+    for path in (recorder.path, cut_recording):
+        window = [m.message.x_m for m in read_messages(path, start_ns=int(1e9), end_ns=int(2e9))]
+        assert window == [float(k) for k in range(100, 200)]

@@ -197,3 +197,10 @@ def test_a_recorder_killed_mid_drive_leaves_a_recording_read_up_to_its_last_whol
     assert [m.message for m in frames] == [m.message for m in recorded[:len(frames)]]
     report = replay_json(killed)
     assert report["mode"] == "wall" and ego_state(report)["paired"] > 0
+
+
+def test_a_window_of_the_drive_replays_its_inputs_and_pairs_its_estimates(live_drive):
+    whole, window = ego_state(replay_json(live_drive[0])), ego_state(replay_json(live_drive[0], "--from", "3",
+                                                                                 "--to", "6"))
+    assert 0.25 * whole["recorded"] < window["recorded"] < 0.5 * whole["recorded"]
+    assert window["paired"] >= PAIRED_SHARE * window["recorded"]
