@@ -30,8 +30,12 @@ def add_record_command(commands) -> None:
 def _record(args) -> int:
     from coopdrive.launch.live_record import record_live
 
-    path, count, services = record_live(args.file, args.connect, args.key, args.duration)
-    print(f"recorded {count} messages to {path}; configs of: {', '.join(services) or 'no service'}")
+    recording = record_live(args.file, args.connect, args.key, args.duration)
+    print(f"recorded {recording.messages} messages to {recording.path}; configs of: "
+          f"{', '.join(recording.services) or 'no service'}")
+    if recording.failure is not None:
+        print(f"coopdrive: record: {recording.path}: stopped early: {recording.failure}", file=sys.stderr)
+        return EXIT_FAILED
     return EXIT_OK
 
 

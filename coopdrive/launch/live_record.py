@@ -12,6 +12,7 @@ import datetime as dt
 import signal
 import threading
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 from coopdrive.bus import Bus, BusConfig
@@ -28,16 +29,24 @@ def recording_path(text: str | Path) -> Path:
     return path
 
 
+@dataclass(frozen=True)
+class LiveRecording:
+    path: Path
+    messages: int
+    services: list[str]  # whose configs it stored
+    failure: OSError | None = None  # the file could not be written (a full disk): the recording stopped there
+
+
 def record_live(path: str | Path, connect: list[str], key_expr: str = "coopdrive/**",
-                duration_s: float | None = None) -> tuple[Path, int, list[str]]:
-    """Returns where it recorded, how many messages, and the services whose configs it stored."""
+                duration_s: float | None = None) -> LiveRecording:
+    """Records until a signal, the duration, or a file that cannot be written any more."""
     stop = threading.Event()
     if threading.current_thread() is threading.main_thread():
         for signum in (signal.SIGINT, signal.SIGTERM):
             signal.signal(signum, lambda *_: stop.set())
     path = recording_path(path)
     bus = Bus(BusConfig(connect=connect))
-    recorder = McapRecorder(path, chunk_bytes=LIVE_CHUNK_BYTES)
+    recorder = McapRecorder(path, chunk_bytes=LIVE_CHUNK_BYTES, on_failure=lambda _: stop.set())
     configs = ServiceConfigCollector(bus, recorder.learn_config)
 
     def on_message(key: str, message) -> None:
@@ -52,4 +61,4 @@ def record_live(path: str | Path, connect: list[str], key_expr: str = "coopdrive
         found = configs.stop()  # asks once more: a config first seen or changed now is written too
         bus.close()
         recorder.close()
-    return path, recorder.messages_written, sorted(found)
+    return LiveRecording(path, recorder.messages_written, sorted(found), recorder.failure)

@@ -7,9 +7,11 @@ are written, so any MCAP the stack writes opens in Foxglove with its map, 3D vie
 from __future__ import annotations
 
 import json
+import logging
 import queue
 import threading
 from pathlib import Path
+from typing import Callable
 
 from google.protobuf.message import Message
 from mcap_protobuf.writer import Writer
@@ -18,6 +20,7 @@ from coopdrive.recording.publish_spool import NANOSECONDS, message_time_ns
 from coopdrive.roadmap import RoadMap
 from coopdrive.visual import VisualChannels, recorded_road_map
 
+log = logging.getLogger(__name__)
 CONFIG_METADATA = "coopdrive.config"
 # mcap's own: a chunk is written to the file when it holds this much.
 DEFAULT_CHUNK_BYTES = 1024 * 1024
@@ -29,16 +32,21 @@ LIVE_CHUNK_BYTES = 128 * 1024
 
 class McapRecorder:
     def __init__(self, path: str | Path, metadata: dict[str, dict[str, str]] | None = None,
-                 road_map: RoadMap | None = None, visuals: bool = True, chunk_bytes: int = DEFAULT_CHUNK_BYTES):
+                 road_map: RoadMap | None = None, visuals: bool = True, chunk_bytes: int = DEFAULT_CHUNK_BYTES,
+                 on_failure: Callable[[OSError], None] | None = None):
         """road_map: the lane map the Foxglove channels draw (default: the one the configs in `metadata` name).
         visuals: False writes the messages alone. chunk_bytes: how much a chunk holds before it goes to the file,
-        which is also what a recording cut short (killed, without power) loses at most."""
+        which is also what a recording cut short (killed, without power) loses at most. on_failure(error): the
+        file could not be written (a full disk): the recorder has stopped, said so in one line, and writes no
+        more; what it wrote before reads back as a cut recording."""
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self._file = open(self.path, "wb")
         self._writer = Writer(self._file, chunk_size=chunk_bytes)
         self._lock = threading.Lock()
         self._closed = False
+        self._on_failure = on_failure
+        self.failure: OSError | None = None
         self.messages_written = 0
         for name, values in (metadata or {}).items():
             self.add_metadata(name, values)
@@ -70,10 +78,13 @@ class McapRecorder:
     def add_metadata(self, name: str, values: dict[str, str]) -> None:
         """Written to the file at once (outside the chunk being filled), not kept to the end."""
         with self._lock:
-            if self._closed:
+            if self._closed or self.failure is not None:
                 return
-            self._writer.add_metadata(name, values)
-            self._file.flush()
+            try:
+                self._writer.add_metadata(name, values)
+                self._file.flush()
+            except OSError as error:
+                self._fail(error)
 
     def write(self, topic: str, message: Message, log_time_ns: int | None = None) -> None:
         """log_time_ns: when the message arrived (a live recorder's clock); publish time is its header's sent time.
@@ -81,9 +92,13 @@ class McapRecorder:
         time_ns = message_time_ns(message)
         log_time_ns = time_ns if log_time_ns is None else log_time_ns
         with self._lock:
-            if self._closed:
+            if self._closed or self.failure is not None:
                 return
-            self._writer.write_message(topic, message, log_time=log_time_ns, publish_time=time_ns)
+            try:
+                self._writer.write_message(topic, message, log_time=log_time_ns, publish_time=time_ns)
+            except OSError as error:
+                self._fail(error)
+                return
             self.messages_written += 1
         if self._visuals is not None and self._visuals.draws(topic):
             self._to_derive.put((topic, message, log_time_ns))
@@ -97,7 +112,12 @@ class McapRecorder:
     def _write_visual(self, topic: str, message: Message, time_ns: int) -> None:
         """Called by the visual channels on the deriving thread, at the log time of the message they came from."""
         with self._lock:
-            self._writer.write_message(topic, message, log_time=time_ns, publish_time=time_ns)
+            if self.failure is not None:
+                return
+            try:
+                self._writer.write_message(topic, message, log_time=time_ns, publish_time=time_ns)
+            except OSError as error:
+                self._fail(error)
 
     def close(self) -> None:
         if self._deriver.is_alive():
@@ -107,8 +127,22 @@ class McapRecorder:
             if self._closed:
                 return
             self._closed = True
-            self._writer.finish()
-            self._file.close()
+            try:
+                if self.failure is None:
+                    self._writer.finish()
+                self._file.close()
+            except OSError as error:
+                if self.failure is None:
+                    self._fail(error)
+
+    def _fail(self, error: OSError) -> None:
+        """Called holding the lock: once, and the recorder writes nothing more (a full disk would otherwise fail
+        every message of the bus, each with its own traceback)."""
+        self.failure = error
+        log.error("%s: recording stopped: %s; what was written before reads back as a cut recording", self.path,
+                  " ".join(str(error).split()))
+        if self._on_failure is not None:
+            self._on_failure(error)
 
 
 def config_metadata(configs: dict[str, str]) -> dict[str, dict[str, str]]:

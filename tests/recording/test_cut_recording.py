@@ -99,3 +99,47 @@ def test_a_window_reads_only_the_messages_logged_inside_it_whole_or_cut(tmp_path
     for path in (recorder.path, cut_recording):
         window = [m.message.x_m for m in read_messages(path, start_ns=int(1e9), end_ns=int(2e9))]
         assert window == [float(k) for k in range(100, 200)]
+
+
+def test_a_recorder_whose_disk_fills_stops_in_one_line_and_leaves_what_it_wrote_readable(tmp_path):
+    """The recorder's file may grow to FILE_LIMIT_BYTES only (a write past it fails, as on a full disk): it stops
+    by itself with exit code 1, says so once (not once per message), and the file reads back as a cut one."""
+    import resource
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    from coopdrive.bus import Bus, BusConfig
+    from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
+    from tests.recording.live_bus import wait_recording
+
+    file_limit_bytes = 512 * 1024
+
+    def as_on_a_full_disk():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # the write fails (EFBIG) instead of killing the process
+        resource.setrlimit(resource.RLIMIT_FSIZE, (file_limit_bytes, file_limit_bytes))
+
+    endpoint = loopback_endpoint(free_tcp_port())
+    hub = Bus(BusConfig(listen=[endpoint]))
+    path = tmp_path / "drive.mcap"
+    recorder = subprocess.Popen([sys.executable, "-m", "coopdrive.cli", "record", str(path), "--connect", endpoint,
+                                 "--duration", "120"], preexec_fn=as_on_a_full_disk, stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, text=True)
+    try:
+        wait_recording(hub)
+        sent = 0
+        while recorder.poll() is None and sent < 200_000:
+            hub.publish("ego", "ego/state", state(sent))
+            sent += 1
+            if sent % 500 == 0:
+                time.sleep(0.01)
+        _, err = recorder.communicate(timeout=60)
+    finally:
+        if recorder.poll() is None:
+            recorder.kill()
+        hub.close()
+    assert recorder.returncode == 1, err
+    assert err.count("recording stopped") == 1 and f"coopdrive: record: {path}: stopped early" in err, err
+    read = [m.message.x_m for m in read_messages(path)]
+    assert read and read == sorted(read) and path.stat().st_size <= file_limit_bytes

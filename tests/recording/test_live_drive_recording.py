@@ -24,13 +24,13 @@ from coopdrive.bus import Bus, BusConfig
 from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
 from coopdrive.recording.nmea_import import read_nmea_log
 from coopdrive.recording.reader import read_messages, read_metadata
+from tests.recording.live_bus import START_TIMEOUT_S, wait_recording
 from tests.shared_data import shared_file
 
 DRIVE_S = 8.0
 NMEA_LOG = "gnss/gpsd_bundg_zeus_9.log"
 CAN_LOG = "can/comma2k19_rav4_bus0_first20s.candump.log"
 CAN_IDS = (0x0AA, 0x024, 0x025)  # wheel speeds, kinematics (yaw rate), steering angle: 300 frames/s
-START_TIMEOUT_S = 60.0  # a loaded machine starts a Python service slowly; this catches a service that never comes
 POSITION_TOLERANCE_M = 0.5
 SPEED_TOLERANCE_MPS = 0.2
 PAIRED_SHARE = 0.9
@@ -69,18 +69,6 @@ def wait_alive(hub: Bus, service: str) -> None:
     deadline = time.monotonic() + START_TIMEOUT_S
     while key not in hub.alive_tokens(key, timeout_s=0.5):
         assert time.monotonic() < deadline, f"{service} did not start"
-
-
-def wait_recording(hub: Bus, probe_key: str = "coopdrive/probe/nothing") -> None:
-    """Until the recorder's subscription to everything reaches the hub (Zenoh's matching status says so)."""
-    probe = hub.session.declare_publisher(probe_key)
-    deadline = time.monotonic() + START_TIMEOUT_S
-    try:
-        while not probe.matching_status.matching:
-            assert time.monotonic() < deadline, "the recorder did not subscribe"
-            time.sleep(0.1)
-    finally:
-        probe.undeclare()
 
 
 @pytest.fixture(scope="module")
