@@ -24,10 +24,12 @@ def add_commands(commands) -> None:
 
 def wait_for_stop_signal() -> None:
     """Blocks until SIGINT or SIGTERM (the main thread's handlers are replaced for good: the caller ends)."""
+    from coopdrive.runtime.signal_wait import wait_hearing_signals
+
     stop = threading.Event()
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, lambda *_: stop.set())
-    stop.wait()
+    wait_hearing_signals(stop)
 
 
 def add_health_command(commands) -> None:

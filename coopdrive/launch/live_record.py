@@ -19,6 +19,7 @@ from coopdrive.bus import Bus, BusConfig
 from coopdrive.recording.live_configs import ServiceConfigCollector
 from coopdrive.recording.publish_spool import is_recorded
 from coopdrive.recording.writer import LIVE_CHUNK_BYTES, McapRecorder
+from coopdrive.runtime.signal_wait import wait_hearing_signals
 
 
 def recording_path(text: str | Path) -> Path:
@@ -56,7 +57,7 @@ def record_live(path: str | Path, connect: list[str], key_expr: str = "coopdrive
     bus.subscribe_key(key_expr, on_message)
     configs.start()
     try:
-        stop.wait(duration_s)
+        wait_hearing_signals(stop, duration_s)
     finally:
         found = configs.stop()  # asks once more: a config first seen or changed now is written too
         bus.close()

@@ -41,6 +41,7 @@ from coopdrive.runtime.master import STALL_WARNING_S, ClockMaster
 from coopdrive.runtime.participants import ParticipantTracker
 from coopdrive.runtime.pipeline import participant_name
 from coopdrive.runtime.profiling import WorkerProfile
+from coopdrive.runtime.signal_wait import wait_hearing_signals
 from coopdrive.runtime.rejoin import MidRunJoin
 from coopdrive.runtime.service import SequenceCounter, Service, ServiceConfig
 from coopdrive.runtime.timers import TriggerSet
@@ -218,7 +219,7 @@ class ServiceRunner:
         The launcher's SIGTERM may come before the master has finished its last step (the result is out, the
         step is not): it still counts."""
         if launched_by_a_run():
-            self._signalled.wait(MASTER_LINGER_S)
+            wait_hearing_signals(self._signalled, MASTER_LINGER_S)
 
     def _declare_runtime_entities(self) -> None:
         layout = self.bus.layout
