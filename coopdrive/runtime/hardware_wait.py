@@ -13,6 +13,7 @@ import threading
 from typing import Callable, Protocol
 
 from coopdrive.runtime.service import HardwareUnavailable
+from coopdrive.runtime.signal_wait import wait_hearing_signals
 
 
 class Runner(Protocol):
@@ -43,7 +44,7 @@ def run_waiting_for_hardware(make_runner: Callable[[], Runner], retry_s: float |
                 announced = str(error)
                 print(f"coopdrive: {name}: {error}; trying again every {retry_s:g} s", file=sys.stderr, flush=True)
         _stop_on_signals(stop)
-        if stop.wait(retry_s):
+        if wait_hearing_signals(stop, retry_s):
             return
 
 
