@@ -16,7 +16,7 @@ from typing import Iterable, Iterator
 
 from google.protobuf.message import Message
 from mcap.exceptions import McapError
-from mcap.reader import make_reader
+from mcap.reader import Summary, make_reader
 from mcap.records import Channel, Metadata, Schema
 from mcap.records import Message as McapMessage
 from mcap.stream_reader import StreamReader
@@ -74,23 +74,20 @@ def read_metadata(path: str | Path) -> dict[str, dict[str, str]]:
 
 def recording_start_ns(path: str | Path) -> int | None:
     """The log time of the recording's first message (None: it holds none)."""
-    if not _is_cut(path):
-        with open(path, "rb") as stream:
-            summary = make_reader(stream).get_summary()
-        if summary is not None and summary.statistics is not None:
-            return summary.statistics.message_start_time if summary.statistics.message_count else None
-    return min((recorded.log_time_ns for recorded in read_messages(path)), default=None)
+    summary = _summary(path)
+    if summary is not None and summary.statistics is not None:
+        return summary.statistics.message_start_time if summary.statistics.message_count else None
+    return min((message.log_time for _, message in _raw_messages(path)), default=None)
 
 
 def recorded_topics(path: str | Path) -> list[str]:
     """The topics of the recording's channels."""
+    summary = _summary(path)
+    if summary is not None:
+        return sorted({channel.topic for channel in summary.channels.values()})
     if _is_cut(path):
         return sorted({channel.topic for channel in _read_cut(path).channels.values()})
-    with open(path, "rb") as stream:
-        summary = make_reader(stream).get_summary()
-    if summary is None:
-        return sorted({recorded.topic for recorded in read_messages(path)})
-    return sorted({channel.topic for channel in summary.channels.values()})
+    return sorted({channel.topic for channel, _ in _raw_messages(path)})
 
 
 @dataclass(frozen=True)
@@ -108,21 +105,53 @@ class _CutFile:
     metadata: list[Metadata]
 
 
+@dataclass(frozen=True)
+class _End:
+    """What the end of an MCAP file holds: its summary (None where the writer wrote none), or nothing readable."""
+
+    cut: bool
+    summary: Summary | None = None
+
+
 def _is_cut(path: str | Path) -> bool:
     """Whether an MCAP file lacks its end (footer and index); RecordingError if it is no MCAP file at all."""
+    return _end(path).cut
+
+
+def _summary(path: str | Path) -> Summary | None:
+    return _end(path).summary
+
+
+def _end(path: str | Path) -> _End:
+    """A replay asks for the metadata, the topics, the first time and the messages: the end is read once."""
+    try:
+        status = Path(path).stat()
+    except OSError as error:
+        raise RecordingError(path, error) from error
+    return _read_end(str(path), status.st_size, status.st_mtime_ns)
+
+
+@functools.lru_cache(maxsize=4)
+def _read_end(path: str, _size: int, _mtime_ns: int) -> _End:
     try:
         with open(path, "rb") as stream:
-            magic = stream.read(len(MCAP0_MAGIC))
-            if magic != MCAP0_MAGIC:
+            if stream.read(len(MCAP0_MAGIC)) != MCAP0_MAGIC:
                 raise RecordingError(path, "no MCAP magic at its start")
             stream.seek(0)
             try:
-                make_reader(stream).get_summary()
+                return _End(cut=False, summary=make_reader(stream).get_summary())
             except _UNREADABLE:
-                return True
+                return _End(cut=True)
     except OSError as error:
         raise RecordingError(path, error) from error
-    return False
+
+
+def _raw_messages(path: str | Path) -> Iterator[tuple[_Channel, McapMessage]]:
+    """Every message, undecoded."""
+    if _is_cut(path):
+        cut = _read_cut(path)
+        return ((cut.channels[message.channel_id], message) for message in cut.messages)
+    return _indexed_messages(path, None, None, None)
 
 
 def _indexed_messages(path: str | Path, topics: list[str] | None, start_ns: int | None,
