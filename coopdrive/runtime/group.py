@@ -27,6 +27,7 @@ from coopdrive.runtime.master import ClockMaster
 from coopdrive.runtime.runner import ClockMode, ServiceRunner
 from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.runtime.shared_worker import SharedWorker
+from coopdrive.runtime.signal_wait import join_hearing_signals
 
 log = logging.getLogger("coopdrive.group")
 
@@ -90,11 +91,11 @@ class ServiceGroup:
         try:
             for thread in clocks + followers:
                 thread.start()
-            _join(followers)
+            join_hearing_signals(followers)
             self._followers_done = True
             if self._signal is not None:
                 self._signal_clocks()
-            _join(clocks)
+            join_hearing_signals(clocks)
         finally:
             for signum, handler in previous.items():
                 signal.signal(signum, handler)
@@ -126,9 +127,3 @@ class ServiceGroup:
             log.exception("%s stopped with an error", member.participant)
             self.failed[member.participant] = f"{type(error).__name__}: {error}"
             reasons[member.participant] = self.failed[member.participant]
-
-
-def _join(threads: list[threading.Thread]) -> None:
-    for thread in threads:
-        while thread.is_alive():
-            thread.join(0.2)  # short joins keep the main thread responsive to signals

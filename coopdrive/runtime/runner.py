@@ -41,9 +41,9 @@ from coopdrive.runtime.master import STALL_WARNING_S, ClockMaster
 from coopdrive.runtime.participants import ParticipantTracker
 from coopdrive.runtime.pipeline import participant_name
 from coopdrive.runtime.profiling import WorkerProfile
-from coopdrive.runtime.signal_wait import wait_hearing_signals
 from coopdrive.runtime.rejoin import MidRunJoin
 from coopdrive.runtime.service import SequenceCounter, Service, ServiceConfig
+from coopdrive.runtime.signal_wait import wait_hearing_signals
 from coopdrive.runtime.timers import TriggerSet
 from coopdrive.v1 import diagnostics_pb2, sim_pb2
 

@@ -25,3 +25,10 @@ def wait_hearing_signals(event: threading.Event, timeout_s: float | None = None)
             return event.is_set()
         if event.wait(slice_s):
             return True
+
+
+def join_hearing_signals(threads: list[threading.Thread]) -> None:
+    """Each thread's join, with the main thread free to run signal handlers every SIGNAL_POLL_S."""
+    for thread in threads:
+        while thread.is_alive():
+            thread.join(SIGNAL_POLL_S)
