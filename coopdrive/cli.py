@@ -221,7 +221,7 @@ def _run(args) -> int:
                          gateway_port=args.gateway, foxglove_port=args.foxglove, listen=tuple(args.listen),
                          duration_s=args.duration,
                          log_dir=args.logs, stacks=args.stacks,
-                         processes=ProcessLayout(args.processes or ProcessLayout.VEHICLE.value),
+                         processes=_layout(args, RunOptions.processes),
                          security=args.security, untrusted=tuple(args.untrusted), extra_faults=_extra_faults(args),
                          world=args.world, started_monotonic_s=COMMAND_STARTED_MONOTONIC_S)
     if args.untrusted and args.security is None:
@@ -326,6 +326,11 @@ def _seed(args) -> int:
     return RunOptions.seed if args.seed is None else args.seed
 
 
+def _layout(args, default: ProcessLayout) -> ProcessLayout:
+    """--processes, or the default of a single run or a sweep (RunOptions', BatchOptions')."""
+    return default if args.processes is None else ProcessLayout(args.processes)
+
+
 # What `coopdrive run` does for one run only, by whether it was given: a sweep would otherwise run without it.
 SINGLE_RUN_FLAGS = {
     "--realtime": lambda args: args.realtime, "--record": lambda args: args.record is not None,
@@ -366,7 +371,7 @@ def _batch(args) -> int:
     added = _extra_faults(args)  # --fault and --v2v-*: in every run, before each variant's own
     options = BatchOptions(scenarios=scenarios, seeds=seeds, stacks=args.stacks, workers=args.workers,
                            out_dir=args.out, duration_s=args.duration, security=args.security, world=args.world,
-                           processes=ProcessLayout(args.processes or ProcessLayout.ONE.value), cacc_law=args.cacc_law,
+                           processes=_layout(args, BatchOptions.processes), cacc_law=args.cacc_law,
                            fault_variants={name: added + faults for name, faults in variants.items()},
                            cluster=args.cluster)
     try:
