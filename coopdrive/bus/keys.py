@@ -62,9 +62,17 @@ class KeyLayout:
     def service_info(self, vehicle_id: str, service: str) -> str:
         return f"{self.root}/{vehicle_id}/_info/{service}"
 
-    def split(self, key: str) -> tuple[str, str]:
-        """Returns (vehicle_id, topic) of a key under the root."""
+    def parse(self, key: str) -> tuple[str, str] | None:
+        """(vehicle_id, topic) of a key under the root; None for any other key, which a reader of a recording or
+        of the bus meets and passes over (another program's keys)."""
         parts = key.split("/", 2)
         if len(parts) < 3 or parts[0] != self.root:
-            raise ValueError(f"key {key!r} is not under {self.root}/<vehicle>/<topic>")
+            return None
         return parts[1], parts[2]
+
+    def split(self, key: str) -> tuple[str, str]:
+        """(vehicle_id, topic) of a key that must be under the root; ValueError naming it otherwise."""
+        parsed = self.parse(key)
+        if parsed is None:
+            raise ValueError(f"key {key!r} is not under {self.root}/<vehicle>/<topic>")
+        return parsed

@@ -166,10 +166,7 @@ class Bus:
             self.decode_errors += 1
             log.warning("dropped malformed %s on %s: %s", cls.DESCRIPTOR.full_name, key, error)
             return None
-        try:
-            vehicle_id, topic = self.layout.split(key)
-        except ValueError:
-            vehicle_id, topic = "", key
+        vehicle_id, topic = self.layout.parse(key) or ("", key)
         return Envelope(vehicle_id, topic, message, attachment)
 
     def declare_token(self, key: str):

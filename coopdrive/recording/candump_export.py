@@ -46,7 +46,5 @@ def export_candump(recording: str | Path, vehicle_id: str, out: str | Path) -> i
 
 
 def _is_bus_topic(layout: KeyLayout, key: str) -> bool:
-    try:
-        return layout.split(key)[1] in BUS_TOPICS
-    except ValueError:
-        return False
+    parsed = layout.parse(key)
+    return parsed is not None and parsed[1] in BUS_TOPICS

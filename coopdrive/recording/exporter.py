@@ -27,10 +27,10 @@ def export_rows(recording: str | Path, topic: str, vehicle_id: str | None = None
     layout = KeyLayout()
     topics_seen, wanted = set(), []
     for key in recorded_topics(recording):
-        try:
-            vehicle, name = layout.split(key)
-        except ValueError:
+        parsed = layout.parse(key)
+        if parsed is None:
             continue
+        vehicle, name = parsed
         topics_seen.add(f"{vehicle}/{name}")
         if name == topic and vehicle_id in (None, vehicle):
             wanted.append(key)

@@ -160,10 +160,10 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
 def _may_concern(key: str, layout: KeyLayout, ctx: ReplayContext, vehicle_id: str) -> bool:
     """Whether a recorded topic can hold something _split keeps: the clock, an input, the vehicle's own outputs.
     An 8-vehicle recording's other channels are most of it."""
-    try:
-        vehicle, topic = layout.split(key)
-    except ValueError:
+    parsed = layout.parse(key)
+    if parsed is None:
         return False
+    vehicle, topic = parsed
     sources = _sources(ctx, topic)
     return (vehicle == WORLD_ID and topic == "clock") or vehicle == vehicle_id or vehicle in sources or "*" in sources
 
@@ -173,10 +173,10 @@ def _split(messages: Iterable[RecordedMessage], layout: KeyLayout, ctx: ReplayCo
     """(inputs: what the service subscribed to, recorded outputs with their log times, lockstep clocks)."""
     inputs, recorded_outputs, clocks = [], [], []
     for item in messages:
-        try:
-            vehicle, topic = layout.split(item.topic)
-        except ValueError:
+        parsed = layout.parse(item.topic)
+        if parsed is None:
             continue
+        vehicle, topic = parsed
         header = getattr(item.message, "header", None)
         if vehicle == WORLD_ID and topic == "clock":
             clocks.append(item.message)

@@ -44,12 +44,7 @@ def missing_inputs_text(recording, service_name: str, vehicle_id: str, ctx, reco
                         layout: KeyLayout) -> str:
     wanted = sorted({f"{source}/{topic}"
                      for topic, handlers in ctx.handlers.items() for source, _ in handlers})
-    present = set()
-    for key in recorded_topics:
-        try:
-            present.add("/".join(layout.split(key)))
-        except ValueError:
-            continue
+    present = {"/".join(parsed) for parsed in map(layout.parse, recorded_topics) if parsed is not None}
     return (f"{recording} holds no input of {service_name} on vehicle {vehicle_id}: missing topics "
             f"{', '.join(wanted) or '(the service subscribes to none)'}; the recording has "
             f"{', '.join(sorted(present)) or 'no messages'}")

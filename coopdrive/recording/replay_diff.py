@@ -84,10 +84,7 @@ def _by_topic(items: list[tuple[str, Message]]) -> dict[str, list[Message]]:
     for key, message in items:
         if any(part in key for part in SKIPPED_TOPIC_PARTS):
             continue
-        try:
-            vehicle, topic = layout.split(key)
-        except ValueError:
-            vehicle, topic = "", key
+        vehicle, topic = layout.parse(key) or ("", key)
         grouped.setdefault(f"{vehicle}/{topic}", []).append(message)
     for messages in grouped.values():
         messages.sort(key=lambda m: m.header.sample_time_s)

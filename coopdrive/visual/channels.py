@@ -75,18 +75,15 @@ class VisualChannels:
         writes and hands on only those, so it is answered once per key."""
         known = self._draws_key.get(key)
         if known is None:
-            try:
-                _, topic = self.layout.split(key)
-            except ValueError:
-                topic = None
-            known = self._draws_key[key] = topic in self._handlers
+            parsed = self.layout.parse(key)
+            known = self._draws_key[key] = parsed is not None and parsed[1] in self._handlers
         return known
 
     def on_message(self, key: str, message: Message, time_ns: int) -> None:
-        try:
-            vehicle_id, topic = self.layout.split(key)
-        except ValueError:
+        parsed = self.layout.parse(key)
+        if parsed is None:
             return
+        vehicle_id, topic = parsed
         handler = self._handlers.get(topic)
         if handler is None:
             return
