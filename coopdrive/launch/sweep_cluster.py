@@ -78,8 +78,12 @@ def stream_runs(client, jobs: list[SweepJob],
     from distributed import as_completed
 
     topic = f"coopdrive-sweep-{uuid.uuid4().hex}"
-    futures = {client.submit(run_job, job, topic, key=f"coopdrive-run-{job.label}-{topic[-8:]}"): job
-               for job in jobs}
+    # The costliest runs first (longest processing time first): a sweep's last runs are then its short ones, and
+    # its workers end close together instead of one running a long run while the others are idle.
+    costed = sorted(((job.stack_seconds(), job) for job in jobs), key=lambda pair: pair[0], reverse=True)
+    futures = {client.submit(run_job, job, topic, key=f"coopdrive-run-{job.label}-{topic[-8:]}",
+                             priority=round(cost)): job
+               for cost, job in costed}
     try:
         for future in as_completed(list(futures), loop=client.loop):
             job = futures.pop(future)

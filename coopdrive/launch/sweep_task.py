@@ -35,6 +35,19 @@ class SweepJob:
     def label(self) -> str:
         return run_label(self.scenario, self.fault, self.seed)
 
+    def stack_seconds(self) -> float:
+        """What the run will cost, to start the costliest runs first: its stack vehicles times its simulated seconds
+        (a run's CPU grows with both); 0 for a scenario that does not load, whose run says why itself."""
+        from coopdrive.launch.scenario_source import resolve_scenario
+        from coopdrive.services.sim.scenario_config import ScenarioError
+
+        try:
+            source = resolve_scenario(self.scenario)
+            stacks = len(source.stack_vehicles(self.stacks))
+        except ScenarioError:
+            return 0.0
+        return stacks * (self.duration_s if self.duration_s is not None else source.config.duration_s)
+
 
 def run_job(job: SweepJob, topic: str) -> tuple[RunOutcome, dict[str, bytes]]:
     """The task: tells the scheduler this attempt started (topic), runs, returns the outcome and the report's

@@ -103,6 +103,17 @@ def test_a_worker_killed_mid_run_loses_no_run_and_its_run_is_run_again_and_marke
     assert not any(running(process) for process in killed["services"])
 
 
+def test_a_sweep_starts_its_costliest_runs_first_wherever_the_scenarios_list_them(cluster):
+    """platoon40 runs three stacks where follow runs one: listed last, its runs still take both workers first."""
+    address, client = cluster
+    summary = run_batch(BatchOptions(scenarios=["follow", "platoon40"], seeds=[1, 2], duration_s=1.0,
+                                     cluster=address), Console(record=True, width=200))
+    assert len(summary.outcomes) == 4
+    [starts] = [sorted(events, key=lambda timed: timed[0]) for topic, events in client.get_events().items()
+                if topic.startswith("coopdrive-sweep-") and any("platoon40" in e["run"] for _t, e in events)]
+    assert [event["run"].split("/")[0] for _time, event in starts] == ["platoon40"] * 2 + ["follow"] * 2
+
+
 def test_a_cluster_address_where_no_scheduler_answers_is_one_line(monkeypatch):
     monkeypatch.setattr("coopdrive.launch.sweep_cluster.CONNECT_TIMEOUT_S", 1)
     with pytest.raises(SweepError, match=r"^--cluster tcp://127.0.0.1:9: no Dask scheduler answered \(.*\)$"):
