@@ -15,7 +15,7 @@ import numpy as np
 from rich.console import Console
 from rich.table import Table
 
-from bench import group_threads
+from bench import baselines
 from bench.sizes import sized
 from bench.step_latency import StepLatency
 from coopdrive.launch.process_layout import ProcessLayout
@@ -31,7 +31,7 @@ STEP_S = 0.02
 def run(processes: ProcessLayout, realtime: bool = False, thread_per_service: bool = False):
     """`thread_per_service`: a vehicle's group gives each service its own thread, as before the shared worker."""
     latency = StepLatency()
-    with group_threads.thread_per_service(thread_per_service):
+    with baselines.thread_per_service(thread_per_service):
         result = run_scenario(RunOptions(duration_s=REALTIME_DURATION_S if realtime else DURATION_S,
                                          realtime=realtime, observer=latency.observe,
                                          processes=processes))

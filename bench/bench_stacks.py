@@ -1,8 +1,9 @@
 """Real-time factor of 1, 4 and 8 full stacks in lockstep (the string scenario), and where the time goes.
 
-Each stack runs as one process (`coopdrive group`), its services on one shared worker thread; the last two rows run
+Each stack runs as one process (`coopdrive group`), its services on one shared worker thread; the last rows run
 8 stacks with a thread per service, as before the shared worker, and the simulator and 8 stacks in one process
-(`--processes one`), in the same bench. The per-service figures are the CPU seconds of each service's own handling
+(`--processes one`), its messages to itself handed over by the bus (coopdrive/bus/local_delivery.py) and, turn
+about, through Zenoh as before, in the same bench. The per-service figures are the CPU seconds of each service's own handling
 (its handlers and triggers), from the last diagnostics every service published.
 BENCH_STACKS_DURATION_S sets the simulated seconds per run (default 10).
 """
@@ -15,7 +16,7 @@ from collections import defaultdict
 from rich.console import Console
 from rich.table import Table
 
-from bench import group_threads
+from bench import baselines
 from bench.sizes import sized
 from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.run import RunOptions, run_scenario
@@ -25,9 +26,10 @@ STACK_COUNTS = sized((1, 4, 8), (1, 2))
 DURATION_S = float(os.environ.get("BENCH_STACKS_DURATION_S", sized(10.0, 1.0)))
 
 
-def run(stacks: int, thread_per_service: bool = False,
-        processes: ProcessLayout = ProcessLayout.VEHICLE) -> tuple[float, dict[str, dict[str, float]]]:
-    """`thread_per_service`: each stack's group gives each service its own thread, as before the shared worker."""
+def run(stacks: int, thread_per_service: bool = False, processes: ProcessLayout = ProcessLayout.VEHICLE,
+        local_by_zenoh: bool = False) -> tuple[float, dict[str, dict[str, float]]]:
+    """`thread_per_service`: each stack's group gives each service its own thread, as before the shared worker;
+    `local_by_zenoh`: a process's messages to its own services go through Zenoh, as before the bus's own delivery."""
     worker_cpu_s: dict[str, dict[str, float]] = defaultdict(dict)
 
     def observe(key: str, message) -> None:
@@ -35,7 +37,7 @@ def run(stacks: int, thread_per_service: bool = False,
         if len(parts) == 4 and parts[2] == "diagnostics" and "worker_cpu_s" in message.counters:
             worker_cpu_s[parts[1]][parts[3]] = message.counters["worker_cpu_s"]
 
-    with group_threads.thread_per_service(thread_per_service):
+    with baselines.thread_per_service(thread_per_service), baselines.local_by_zenoh(local_by_zenoh):
         result = run_scenario(RunOptions(scenario=SCENARIO, stacks=stacks, duration_s=DURATION_S, observer=observe,
                                          processes=processes))
     return result.sim_time_s / max(result.wall_time_s, 1e-9), worker_cpu_s
@@ -57,9 +59,12 @@ def main() -> None:
     factor, _ = run(STACK_COUNTS[-1], thread_per_service=True)
     summary.add_row(f"{STACK_COUNTS[-1]}, a thread per service (before)", f"{factor:.2f}", f"{factor / baseline:.2f}",
                     "")
-    factor, _ = run(STACK_COUNTS[-1], processes=ProcessLayout.ONE)
-    summary.add_row(f"{STACK_COUNTS[-1]}, the simulator and every stack in one process", f"{factor:.2f}",
-                    f"{factor / baseline:.2f}", "")
+    # Turn about, so a load that comes and goes weighs on both.
+    for local_by_zenoh in (True, False):
+        factor, _ = run(STACK_COUNTS[-1], processes=ProcessLayout.ONE, local_by_zenoh=local_by_zenoh)
+        delivered = "through Zenoh (before)" if local_by_zenoh else "by the bus itself"
+        summary.add_row(f"{STACK_COUNTS[-1]}, the simulator and every stack in one process, messages within it "
+                        f"{delivered}", f"{factor:.2f}", f"{factor / baseline:.2f}", "")
     console.print(summary)
     if breakdown:
         services = sorted({s for per_vehicle in breakdown.values() for s in per_vehicle})

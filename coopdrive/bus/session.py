@@ -2,13 +2,15 @@
 
 Scouting by multicast is off: peers find each other through explicit endpoints (and Zenoh's
 gossip completes the mesh). Callbacks run on Zenoh's threads, so they must be short; the
-service runtime only enqueues there.
+service runtime only enqueues there. Puts reach the session's own subscribers (the other services of a
+process) through LocalDelivery, on the putting thread, and other sessions' through Zenoh.
 """
 
 from __future__ import annotations
 
 import json
 import logging
+import os
 import threading
 from dataclasses import dataclass, field
 from typing import Callable, NamedTuple
@@ -17,11 +19,16 @@ import zenoh
 from google.protobuf.message import DecodeError, Message
 
 from coopdrive.bus.keys import KeyLayout
+from coopdrive.bus.local_delivery import LocalDelivery
 from coopdrive.bus.topics import Topic, topic_named
 from coopdrive.bus.type_registry import message_class
 from coopdrive.recording.publish_spool import is_recorded, process_spool
 
 log = logging.getLogger(__name__)
+
+# Set to 1, a session's own subscribers get its puts through Zenoh, as before LocalDelivery: the benchmarks'
+# baseline (bench/bench_stacks.py). Read when a Bus opens, since services are forked from a preloaded server.
+LOCAL_BY_ZENOH_VARIABLE = "COOPDRIVE_BUS_LOCAL_BY_ZENOH"
 
 
 @dataclass
@@ -58,6 +65,11 @@ class Bus:
         self.layout = layout or KeyLayout()
         self._session = zenoh.open(config.to_zenoh())
         self._owns_session = True
+        self._local = LocalDelivery()
+        self._local_tokens: list[int] = []
+        # Where Zenoh takes a put and brings a sample: other sessions only, unless the baseline asks for Zenoh here too.
+        self._zenoh_reach = (zenoh.Locality.ANY if os.environ.get(LOCAL_BY_ZENOH_VARIABLE) == "1"
+                             else zenoh.Locality.REMOTE)
         self._publishers: dict[str, zenoh.Publisher] = {}
         self._declared: list = []
         self._lock = threading.Lock()
@@ -70,6 +82,9 @@ class Bus:
         shared.layout = self.layout
         shared._session = self._session
         shared._owns_session = False
+        shared._local = self._local
+        shared._local_tokens = []
+        shared._zenoh_reach = self._zenoh_reach
         shared._publishers = {}
         shared._declared = []
         shared._lock = threading.Lock()
@@ -90,23 +105,27 @@ class Bus:
         if spool is not None:
             spool.write(key, message, payload)
         self._publisher(key, message, reliable_block).put(payload, attachment=attachment)
+        self._local.deliver(key, payload, attachment, message.DESCRIPTOR.full_name)
 
     def put_if_subscribed(self, key: str, message: Message) -> bool:
-        """Puts only when some subscriber matches `key` (Zenoh's matching status, kept up to date by Zenoh):
-        for messages such as step markers that are worth nothing unheard, and the recording, which takes every
-        message from its spool. True when it was sent."""
+        """Puts only when some subscriber matches `key` (this session's own, or another session's by Zenoh's
+        matching status, kept up to date by Zenoh): for messages such as step markers that are worth nothing
+        unheard, and the recording, which takes every message from its spool. True when it was sent."""
         spool = process_spool()
         recorded = spool is not None and is_recorded(key)  # not the step markers, which are many
         publisher = self._publisher(key, message, reliable_block=True)
-        heard = publisher.matching_status.matching
-        if not (recorded or heard):
+        heard_here = bool(self._local.matching(key))
+        heard_elsewhere = publisher.matching_status.matching
+        if not (recorded or heard_here or heard_elsewhere):
             return False
         payload = message.SerializeToString()  # once, for the spool and the bus
         if recorded:
             spool.write(key, message, payload)
-        if heard:
+        if heard_elsewhere:
             publisher.put(payload)
-        return heard
+        if heard_here:
+            self._local.deliver(key, payload, None, message.DESCRIPTOR.full_name)
+        return heard_here or heard_elsewhere
 
     def _publisher(self, key: str, message: Message, reliable_block: bool) -> zenoh.Publisher:
         publisher = self._publishers.get(key)
@@ -122,41 +141,49 @@ class Bus:
     def _declare_publisher(self, key: str, message: Message, reliable_block: bool) -> zenoh.Publisher:
         encoding = zenoh.Encoding.APPLICATION_PROTOBUF.with_schema(message.DESCRIPTOR.full_name)
         congestion = zenoh.CongestionControl.BLOCK if reliable_block else zenoh.CongestionControl.DROP
-        publisher = self._session.declare_publisher(key, encoding=encoding, congestion_control=congestion)
+        publisher = self._session.declare_publisher(key, encoding=encoding, congestion_control=congestion,
+                                                    allowed_destination=self._zenoh_reach)
         self._publishers[key] = publisher
         return publisher
 
     def subscribe(self, vehicle_id: str, topic: str, callback: Callable[[Envelope], None]):
         """Subscribes to one registered topic of one vehicle ("*" for all vehicles)."""
         spec = topic_named(topic)
-        key = self.layout.topic(vehicle_id, topic)
 
-        def on_sample(sample: zenoh.Sample) -> None:
-            attachment = sample.attachment
-            envelope = self._decode(str(sample.key_expr), spec.message_type, sample.payload.to_bytes(),
-                                    None if attachment is None else attachment.to_bytes())
+        def deliver(key: str, payload: bytes, attachment: bytes | None, _schema: str | None) -> None:
+            envelope = self._decode(key, spec.message_type, payload, attachment)
             if envelope is not None:
                 callback(envelope)
 
-        return self._declare(self._session.declare_subscriber(key, _direct(on_sample)))
+        return self._subscribe_both(self.layout.topic(vehicle_id, topic), deliver, typed_by_schema=False)
 
     def subscribe_key(self, key_expr: str, callback: Callable[[str, Message], None]):
         """Subscribes to any key; the message type comes from the sample's encoding schema."""
-        return self._declare(self._session.declare_subscriber(key_expr, _direct(self._typed(callback))))
 
-    def _typed(self, callback: Callable[[str, Message], None]) -> Callable[[zenoh.Sample], None]:
-        """A sample handler that decodes by the sample's encoding schema and calls callback(key, message)."""
-
-        def on_sample(sample: zenoh.Sample) -> None:
-            key = str(sample.key_expr)
-            cls = message_class(_schema_of(sample.encoding))
+        def deliver(key: str, payload: bytes, _attachment: bytes | None, schema: str | None) -> None:
+            cls = message_class(schema)
             if cls is None:
                 return
-            envelope = self._decode(key, cls, sample.payload.to_bytes())
+            envelope = self._decode(key, cls, payload)
             if envelope is not None:
                 callback(key, envelope.message)
 
-        return on_sample
+        return self._subscribe_both(key_expr, deliver, typed_by_schema=True)
+
+    def _subscribe_both(self, key_expr: str, deliver: Callable[[str, bytes, bytes | None, str | None], None],
+                        typed_by_schema: bool):
+        """deliver() gets what this session's own buses put (LocalDelivery) and, through Zenoh, what other
+        sessions put; the schema is read off a sample's encoding only where the subscriber types by it."""
+
+        def on_sample(sample: zenoh.Sample) -> None:
+            attachment = sample.attachment
+            deliver(str(sample.key_expr), sample.payload.to_bytes(), None if attachment is None else attachment.to_bytes(),
+                    _schema_of(sample.encoding) if typed_by_schema else None)
+
+        if self._zenoh_reach is zenoh.Locality.REMOTE:
+            self._local_tokens.append(self._local.subscribe(key_expr, deliver))
+        return self._declare(self._session.declare_subscriber(key_expr, _direct(on_sample),
+                                                              allowed_origin=self._zenoh_reach))
 
     def _decode(self, key: str, cls: type[Message], payload: bytes, attachment: bytes | None = None) -> Envelope | None:
         message = cls()
@@ -211,6 +238,9 @@ class Bus:
         return entity
 
     def close(self) -> None:
+        for token in self._local_tokens:
+            self._local.unsubscribe(token)
+        self._local_tokens.clear()
         for entity in reversed(self._declared):
             try:
                 entity.undeclare()

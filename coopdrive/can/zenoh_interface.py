@@ -40,11 +40,12 @@ class CoopdriveBus(can.BusABC):
         self._received: queue.SimpleQueue[can.Message] = queue.SimpleQueue()
         self._bus.subscribe(channel, VEHICLE_BUS_TOPIC, self._on_frames)
         self._bus.subscribe(channel, COMMAND_TOPIC, self._on_frame)
+        self._receive_own_messages = receive_own_messages
+        self._key = self._bus.layout.topic(channel, VEHICLE_BUS_TOPIC)
         schema = vehicle_pb2.CanFrames.DESCRIPTOR.full_name
         self._publisher = self._bus.session.declare_publisher(
-            self._bus.layout.topic(channel, VEHICLE_BUS_TOPIC),
-            encoding=zenoh.Encoding.APPLICATION_PROTOBUF.with_schema(schema),
-            allowed_destination=zenoh.Locality.ANY if receive_own_messages else zenoh.Locality.REMOTE)
+            self._key, encoding=zenoh.Encoding.APPLICATION_PROTOBUF.with_schema(schema),
+            allowed_destination=zenoh.Locality.REMOTE)
         super().__init__(channel=channel, can_filters=can_filters, **kwargs)
 
     def _on_frames(self, envelope: Envelope) -> None:
@@ -61,7 +62,11 @@ class CoopdriveBus(can.BusABC):
             return None, False
 
     def send(self, msg: can.Message, timeout: float | None = None) -> None:
-        self._publisher.put(vehicle_pb2.CanFrames(frames=[to_protobuf(msg)]).SerializeToString())
+        frames = vehicle_pb2.CanFrames(frames=[to_protobuf(msg)])
+        if self._receive_own_messages:
+            self._bus.put(self._key, frames)  # to the others and, through the bus's own delivery, to ourselves
+        else:
+            self._publisher.put(frames.SerializeToString())
 
     def shutdown(self) -> None:
         super().shutdown()

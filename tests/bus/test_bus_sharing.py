@@ -1,6 +1,7 @@
 """Services composed in one process share a Zenoh session through Bus.sharing()."""
 
 import threading
+import time
 
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.v1 import control_pb2
@@ -29,3 +30,74 @@ def test_closing_a_shared_bus_leaves_the_session_open_for_the_others(endpoint):
     assert not owner.session.is_closed()
     owner.close()
     assert owner.session.is_closed()
+
+
+class Heard:
+    """What one subscriber got, each message once with its attachment."""
+
+    def __init__(self):
+        self.messages: list = []
+        self.changed = threading.Condition()
+
+    def __call__(self, envelope) -> None:
+        with self.changed:
+            self.messages.append((envelope.vehicle_id, envelope.message.accel_request_mps2, envelope.attachment))
+            self.changed.notify_all()
+
+    def wait_for(self, count: int, timeout_s: float = 5.0) -> list:
+        with self.changed:
+            self.changed.wait_for(lambda: len(self.messages) >= count, timeout_s)
+            return list(self.messages)
+
+
+def command(accel_mps2: float) -> control_pb2.ControlCommand:
+    return control_pb2.ControlCommand(accel_request_mps2=accel_mps2)
+
+
+def connected(bus: Bus, timeout_s: float = 5.0) -> None:
+    end = time.monotonic() + timeout_s
+    while bus.peer_count() == 0:
+        assert time.monotonic() < end, "the sessions never connected"
+        time.sleep(0.05)
+
+
+def test_a_put_reaches_the_session_s_own_and_another_session_s_subscribers_each_exactly_once(endpoint):
+    owner = Bus(BusConfig(listen=[endpoint]))
+    here, elsewhere = owner.sharing(), Bus(BusConfig(connect=[endpoint], listen=[]))
+    heard_here, heard_elsewhere, heard_all_vehicles = Heard(), Heard(), Heard()
+    try:
+        here.subscribe("v1", "control/command", heard_here)
+        here.subscribe("*", "control/command", heard_all_vehicles)
+        elsewhere.subscribe("v1", "control/command", heard_elsewhere)
+        connected(elsewhere)
+        time.sleep(0.5)  # the other session's subscription known to this one
+        owner.put(owner.layout.topic("v1", "control/command"), command(-1.5), attachment=b"marker")
+        elsewhere.publish("v1", "control/command", command(0.5))
+        both = [("v1", -1.5, b"marker"), ("v1", 0.5, None)]
+        assert sorted(heard_here.wait_for(2)) == sorted(both)
+        assert sorted(heard_all_vehicles.wait_for(2)) == sorted(both)
+        assert sorted(heard_elsewhere.wait_for(2)) == sorted(both)
+        time.sleep(0.3)  # nothing more comes: no second delivery through Zenoh
+        assert len(heard_here.messages) == len(heard_all_vehicles.messages) == len(heard_elsewhere.messages) == 2
+    finally:
+        elsewhere.close()
+        here.close()
+        owner.close()
+
+
+def test_a_closed_sibling_hears_nothing_more_and_a_marker_only_it_wanted_is_not_sent(endpoint):
+    owner = Bus(BusConfig(listen=[endpoint]))
+    subscriber = owner.sharing()
+    heard = Heard()
+    key = owner.layout.topic("v1", "control/command")
+    try:
+        subscriber.subscribe("v1", "control/command", heard)
+        assert owner.put_if_subscribed(key, command(-1.0)), "a subscriber in the same session hears it"
+        assert heard.wait_for(1) == [("v1", -1.0, None)]
+        subscriber.close()
+        assert not owner.put_if_subscribed(key, command(-2.0)), "sent with nobody listening"
+        owner.put(key, command(-3.0))
+        time.sleep(0.3)
+        assert heard.messages == [("v1", -1.0, None)]
+    finally:
+        owner.close()
