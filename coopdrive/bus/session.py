@@ -95,6 +95,11 @@ class Bus:
     def session(self) -> zenoh.Session:
         return self._session
 
+    @property
+    def local_delivery_failures(self) -> int:
+        """Puts of this session whose subscriber in this session raised (LocalDelivery logs the first per key)."""
+        return self._local.failures
+
     def peer_count(self) -> int:
         return len(list(self._session.info.peers_zid())) + len(list(self._session.info.routers_zid()))
 

@@ -101,3 +101,28 @@ def test_a_closed_sibling_hears_nothing_more_and_a_marker_only_it_wanted_is_not_
         assert heard.messages == [("v1", -1.0, None)]
     finally:
         owner.close()
+
+
+def test_a_subscriber_that_raises_costs_neither_the_publisher_nor_the_other_subscribers_their_message(endpoint,
+                                                                                                        caplog):
+    owner = Bus(BusConfig(listen=[endpoint]))
+    failing, sound = owner.sharing(), owner.sharing()
+    heard = Heard()
+
+    def broken(_envelope):
+        raise RuntimeError("broken subscriber")
+
+    try:
+        failing.subscribe("v1", "control/command", broken)
+        sound.subscribe("v1", "control/command", heard)
+        for accel_mps2 in (-1.0, -2.0):
+            owner.put(owner.layout.topic("v1", "control/command"), command(accel_mps2))
+        assert heard.wait_for(2) == [("v1", -1.0, None), ("v1", -2.0, None)]
+        assert owner.local_delivery_failures == 2
+        assert [r.message for r in caplog.records if r.levelname == "ERROR"] == [
+            "a subscriber to coopdrive/v1/control/command failed on a message from its own session (later "
+            "failures on this key are only counted)"]
+    finally:
+        failing.close()
+        sound.close()
+        owner.close()
