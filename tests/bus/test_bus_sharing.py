@@ -3,6 +3,8 @@
 import threading
 import time
 
+import zenoh
+
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.v1 import control_pb2
 
@@ -54,11 +56,16 @@ def command(accel_mps2: float) -> control_pb2.ControlCommand:
     return control_pb2.ControlCommand(accel_request_mps2=accel_mps2)
 
 
-def connected(bus: Bus, timeout_s: float = 5.0) -> None:
+def heard_from(bus: Bus, key: str, timeout_s: float = 10.0) -> None:
+    """Waits until a subscriber in another session matches what `bus` puts on `key`."""
+    probe = bus.session.declare_publisher(key, allowed_destination=zenoh.Locality.REMOTE)
     end = time.monotonic() + timeout_s
-    while bus.peer_count() == 0:
-        assert time.monotonic() < end, "the sessions never connected"
-        time.sleep(0.05)
+    try:
+        while not probe.matching_status.matching:
+            assert time.monotonic() < end, f"no other session's subscriber matched {key}"
+            time.sleep(0.05)
+    finally:
+        probe.undeclare()
 
 
 def test_a_put_reaches_the_session_s_own_and_another_session_s_subscribers_each_exactly_once(endpoint):
@@ -69,9 +76,10 @@ def test_a_put_reaches_the_session_s_own_and_another_session_s_subscribers_each_
         here.subscribe("v1", "control/command", heard_here)
         here.subscribe("*", "control/command", heard_all_vehicles)
         elsewhere.subscribe("v1", "control/command", heard_elsewhere)
-        connected(elsewhere)
-        time.sleep(0.5)  # the other session's subscription known to this one
-        owner.put(owner.layout.topic("v1", "control/command"), command(-1.5), attachment=b"marker")
+        key = owner.layout.topic("v1", "control/command")
+        heard_from(owner, key)
+        heard_from(elsewhere, key)
+        owner.put(key, command(-1.5), attachment=b"marker")
         elsewhere.publish("v1", "control/command", command(0.5))
         both = [("v1", -1.5, b"marker"), ("v1", 0.5, None)]
         assert sorted(heard_here.wait_for(2)) == sorted(both)
