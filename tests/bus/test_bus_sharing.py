@@ -1,28 +1,38 @@
-"""Services composed in one process share a Zenoh session through Bus.sharing()."""
+"""Services composed in one process share a Zenoh session through Bus.sharing(); the bus hands a put to the
+session's own subscribers itself and Zenoh carries it to other sessions'."""
 
 import threading
 import time
 
+import pytest
 import zenoh
 
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.v1 import control_pb2
 
 
-def test_a_message_put_on_a_shared_bus_reaches_a_subscriber_on_its_sibling(endpoint):
-    owner = Bus(BusConfig(listen=[endpoint]))
-    publisher, subscriber = owner.sharing(), owner.sharing()
+@pytest.fixture
+def siblings(hub):
+    """sibling(): another Bus on the session of `hub` (conftest: the session's first Bus); each closed at the end."""
+    made = []
+
+    def sibling() -> Bus:
+        made.append(hub.sharing())
+        return made[-1]
+
+    yield sibling
+    for bus in made:
+        bus.close()
+
+
+def test_a_message_put_on_a_shared_bus_reaches_a_subscriber_on_its_sibling(siblings):
+    publisher, subscriber = siblings(), siblings()
     received, arrived = [], threading.Event()
-    try:
-        subscriber.subscribe("v1", "control/command", lambda envelope: (received.append(envelope), arrived.set()))
-        publisher.publish("v1", "control/command", control_pb2.ControlCommand(accel_request_mps2=-1.5))
-        assert arrived.wait(5.0)
-        assert received[0].vehicle_id == "v1"
-        assert received[0].message.accel_request_mps2 == -1.5
-    finally:
-        publisher.close()
-        subscriber.close()
-        owner.close()
+    subscriber.subscribe("v1", "control/command", lambda envelope: (received.append(envelope), arrived.set()))
+    publisher.publish("v1", "control/command", control_pb2.ControlCommand(accel_request_mps2=-1.5))
+    assert arrived.wait(5.0)
+    assert received[0].vehicle_id == "v1"
+    assert received[0].message.accel_request_mps2 == -1.5
 
 
 def test_closing_a_shared_bus_leaves_the_session_open_for_the_others(endpoint):
@@ -68,18 +78,18 @@ def heard_from(bus: Bus, key: str, timeout_s: float = 10.0) -> None:
         probe.undeclare()
 
 
-def test_a_put_reaches_the_session_s_own_and_another_session_s_subscribers_each_exactly_once(endpoint):
-    owner = Bus(BusConfig(listen=[endpoint]))
-    here, elsewhere = owner.sharing(), Bus(BusConfig(connect=[endpoint], listen=[]))
+def test_a_put_reaches_the_session_s_own_and_another_session_s_subscribers_each_exactly_once(endpoint, hub,
+                                                                                          siblings):
+    here, elsewhere = siblings(), Bus(BusConfig(connect=[endpoint], listen=[]))
     heard_here, heard_elsewhere, heard_all_vehicles = Heard(), Heard(), Heard()
     try:
         here.subscribe("v1", "control/command", heard_here)
         here.subscribe("*", "control/command", heard_all_vehicles)
         elsewhere.subscribe("v1", "control/command", heard_elsewhere)
-        key = owner.layout.topic("v1", "control/command")
-        heard_from(owner, key)
+        key = hub.layout.topic("v1", "control/command")
+        heard_from(hub, key)
         heard_from(elsewhere, key)
-        owner.put(key, command(-1.5), attachment=b"marker")
+        hub.put(key, command(-1.5), attachment=b"marker")
         elsewhere.publish("v1", "control/command", command(0.5))
         both = [("v1", -1.5, b"marker"), ("v1", 0.5, None)]
         assert sorted(heard_here.wait_for(2)) == sorted(both)
@@ -89,48 +99,35 @@ def test_a_put_reaches_the_session_s_own_and_another_session_s_subscribers_each_
         assert len(heard_here.messages) == len(heard_all_vehicles.messages) == len(heard_elsewhere.messages) == 2
     finally:
         elsewhere.close()
-        here.close()
-        owner.close()
 
 
-def test_a_closed_sibling_hears_nothing_more_and_a_marker_only_it_wanted_is_not_sent(endpoint):
-    owner = Bus(BusConfig(listen=[endpoint]))
-    subscriber = owner.sharing()
+def test_a_closed_sibling_hears_nothing_more_and_a_marker_only_it_wanted_is_not_sent(hub, siblings):
+    subscriber = siblings()
     heard = Heard()
-    key = owner.layout.topic("v1", "control/command")
-    try:
-        subscriber.subscribe("v1", "control/command", heard)
-        assert owner.put_if_subscribed(key, command(-1.0)), "a subscriber in the same session hears it"
-        assert heard.wait_for(1) == [("v1", -1.0, None)]
-        subscriber.close()
-        assert not owner.put_if_subscribed(key, command(-2.0)), "sent with nobody listening"
-        owner.put(key, command(-3.0))
-        time.sleep(0.3)
-        assert heard.messages == [("v1", -1.0, None)]
-    finally:
-        owner.close()
+    key = hub.layout.topic("v1", "control/command")
+    subscriber.subscribe("v1", "control/command", heard)
+    assert hub.put_if_subscribed(key, command(-1.0)), "a subscriber in the same session hears it"
+    assert heard.wait_for(1) == [("v1", -1.0, None)]
+    subscriber.close()
+    assert not hub.put_if_subscribed(key, command(-2.0)), "sent with nobody listening"
+    hub.put(key, command(-3.0))
+    time.sleep(0.3)
+    assert heard.messages == [("v1", -1.0, None)]
 
 
-def test_a_subscriber_that_raises_costs_neither_the_publisher_nor_the_other_subscribers_their_message(endpoint,
-                                                                                                        caplog):
-    owner = Bus(BusConfig(listen=[endpoint]))
-    failing, sound = owner.sharing(), owner.sharing()
+def test_a_subscriber_that_raises_costs_neither_the_publisher_nor_the_other_subscribers_their_message(
+        hub, siblings, caplog):
     heard = Heard()
 
     def broken(_envelope):
         raise RuntimeError("broken subscriber")
 
-    try:
-        failing.subscribe("v1", "control/command", broken)
-        sound.subscribe("v1", "control/command", heard)
-        for accel_mps2 in (-1.0, -2.0):
-            owner.put(owner.layout.topic("v1", "control/command"), command(accel_mps2))
-        assert heard.wait_for(2) == [("v1", -1.0, None), ("v1", -2.0, None)]
-        assert owner.local_delivery_failures == 2
-        assert [r.message for r in caplog.records if r.levelname == "ERROR"] == [
-            "a subscriber to coopdrive/v1/control/command failed on a message from its own session (later "
-            "failures on this key are only counted)"]
-    finally:
-        failing.close()
-        sound.close()
-        owner.close()
+    siblings().subscribe("v1", "control/command", broken)
+    siblings().subscribe("v1", "control/command", heard)
+    for accel_mps2 in (-1.0, -2.0):
+        hub.put(hub.layout.topic("v1", "control/command"), command(accel_mps2))
+    assert heard.wait_for(2) == [("v1", -1.0, None), ("v1", -2.0, None)]
+    assert hub.local_delivery_failures == 2
+    assert [r.message for r in caplog.records if r.levelname == "ERROR"] == [
+        "a subscriber to coopdrive/v1/control/command failed on a message from its own session (later "
+        "failures on this key are only counted)"]
