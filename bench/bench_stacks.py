@@ -44,7 +44,7 @@ def run(stacks: int, thread_per_service: bool = False, processes: ProcessLayout 
 
 
 def main() -> None:
-    console = Console()
+    console = Console(width=max(Console().width, 110))
     summary = Table(title=f"{SCENARIO}: lockstep, one process per stack, {DURATION_S:.0f} s simulated")
     for column in ("stacks", "sim_time_s / wall_time_s", "ratio to 1 stack", "stack CPU per simulated s"):
         summary.add_column(column, justify="right")
@@ -62,9 +62,9 @@ def main() -> None:
     # Turn about, so a load that comes and goes weighs on both.
     for local_by_zenoh in (True, False):
         factor, _ = run(STACK_COUNTS[-1], processes=ProcessLayout.ONE, local_by_zenoh=local_by_zenoh)
-        delivered = "through Zenoh (before)" if local_by_zenoh else "by the bus itself"
-        summary.add_row(f"{STACK_COUNTS[-1]}, the simulator and every stack in one process, messages within it "
-                        f"{delivered}", f"{factor:.2f}", f"{factor / baseline:.2f}", "")
+        delivered = "its messages through Zenoh (before)" if local_by_zenoh else "handed over by the bus"
+        summary.add_row(f"{STACK_COUNTS[-1]}, all in one process, {delivered}", f"{factor:.2f}",
+                        f"{factor / baseline:.2f}", "")
     console.print(summary)
     if breakdown:
         services = sorted({s for per_vehicle in breakdown.values() for s in per_vehicle})
