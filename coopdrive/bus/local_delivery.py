@@ -11,13 +11,10 @@ puts, as Zenoh's local delivery gave them. Each subscriber still parses its own 
 
 from __future__ import annotations
 
-import logging
 import threading
 from typing import Callable
 
 import zenoh
-
-log = logging.getLogger(__name__)
 
 # deliver(key, payload, attachment, schema): schema is the message's full protobuf name.
 Deliver = Callable[[str, bytes, "bytes | None", str], None]
@@ -30,9 +27,6 @@ class LocalDelivery:
         # key -> the deliveries whose key expression it matches; emptied whenever a subscription comes or goes.
         self._by_key: dict[str, tuple[Deliver, ...]] = {}
         self._lock = threading.Lock()
-        # Deliveries whose subscriber raised, and the keys they raised on.
-        self.failures = 0
-        self._failed_keys: set[str] = set()
 
     def subscribe(self, key_expr: str, deliver: Deliver) -> int:
         """Registers a subscriber; returns the token that unsubscribes it."""
@@ -58,18 +52,9 @@ class LocalDelivery:
         return found
 
     def deliver(self, key: str, payload: bytes, attachment: bytes | None, schema: str) -> bool:
-        """Hands the put to every local subscriber whose key expression matches; True if there was one. A
-        subscriber that raises is passed over, as Zenoh passed over a failing callback: neither the publisher nor
-        the other subscribers see its error. Its first failure on a key is logged with the traceback, the rest
-        counted in `failures`."""
+        """Hands the put to every local subscriber whose key expression matches; True if there was one. Each
+        delivery must not raise (Bus guards its subscribers' callbacks), or the publisher would see the error."""
         deliveries = self.matching(key)
         for deliver in deliveries:
-            try:
-                deliver(key, payload, attachment, schema)
-            except Exception:  # the subscriber's fault, not the publisher's
-                self.failures += 1
-                if key not in self._failed_keys:
-                    self._failed_keys.add(key)
-                    log.exception("a subscriber to %s failed on a message from its own session (later failures "
-                                  "on this key are only counted)", key)
+            deliver(key, payload, attachment, schema)
         return bool(deliveries)

@@ -74,6 +74,9 @@ class Bus:
         self._declared: list = []
         self._lock = threading.Lock()
         self.decode_errors = 0
+        # Messages a subscriber's callback raised on, by either path (the first per key is logged with its traceback).
+        self.callback_errors = 0
+        self._failed_keys: set[str] = set()
 
     def sharing(self) -> Bus:
         """Another Bus on this one's session: services composed in one process reach each other without
@@ -89,16 +92,13 @@ class Bus:
         shared._declared = []
         shared._lock = threading.Lock()
         shared.decode_errors = 0
+        shared.callback_errors = 0
+        shared._failed_keys = set()
         return shared
 
     @property
     def session(self) -> zenoh.Session:
         return self._session
-
-    @property
-    def local_delivery_failures(self) -> int:
-        """Puts of this session whose subscriber in this session raised (LocalDelivery logs the first per key)."""
-        return self._local.failures
 
     def peer_count(self) -> int:
         return len(list(self._session.info.peers_zid())) + len(list(self._session.info.routers_zid()))
@@ -180,13 +180,22 @@ class Bus:
         """deliver() gets what this session's own buses put (LocalDelivery) and, through Zenoh, what other
         sessions put; the schema is read off a sample's encoding only where the subscriber types by it."""
 
+        def guarded(key: str, payload: bytes, attachment: bytes | None, schema: str | None) -> None:
+            try:
+                deliver(key, payload, attachment, schema)
+            except Exception:  # the subscriber's own fault: neither the publisher nor other subscribers pay for it
+                self.callback_errors += 1
+                if key not in self._failed_keys:
+                    self._failed_keys.add(key)
+                    log.exception("a subscriber to %s failed (later failures on this key are only counted)", key)
+
         def on_sample(sample: zenoh.Sample) -> None:
             attachment = sample.attachment
-            deliver(str(sample.key_expr), sample.payload.to_bytes(), None if attachment is None else attachment.to_bytes(),
+            guarded(str(sample.key_expr), sample.payload.to_bytes(), None if attachment is None else attachment.to_bytes(),
                     _schema_of(sample.encoding) if typed_by_schema else None)
 
         if self._zenoh_reach is zenoh.Locality.REMOTE:
-            self._local_tokens.append(self._local.subscribe(key_expr, deliver))
+            self._local_tokens.append(self._local.subscribe(key_expr, guarded))
         return self._declare(self._session.declare_subscriber(key_expr, _direct(on_sample),
                                                               allowed_origin=self._zenoh_reach))
 

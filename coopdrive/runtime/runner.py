@@ -535,6 +535,7 @@ class ServiceRunner:
         for name, value in self.service.counters.items():
             message.counters[name] = value
         message.counters["bus_decode_errors"] = self.bus.decode_errors
+        message.counters["bus_callback_errors"] = self.bus.callback_errors
         for name, overruns in self._triggers.overruns().items():
             message.counters[f"overruns_{name}"] = overruns
         # CPU the service's own worker thread has used (handlers and triggers): where a run's time goes.
