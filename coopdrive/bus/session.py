@@ -66,10 +66,14 @@ class Bus:
         self._session = zenoh.open(config.to_zenoh())
         self._owns_session = True
         self._local = LocalDelivery()
-        self._local_tokens: list[int] = []
         # Where Zenoh takes a put and brings a sample: other sessions only, unless the baseline asks for Zenoh here too.
         self._zenoh_reach = (zenoh.Locality.ANY if os.environ.get(LOCAL_BY_ZENOH_VARIABLE) == "1"
                              else zenoh.Locality.REMOTE)
+        self._start_own_state()
+
+    def _start_own_state(self) -> None:
+        """What each Bus on a session has of its own: its publishers, declarations, local subscriptions, counts."""
+        self._local_tokens: list[int] = []
         self._publishers: dict[str, zenoh.Publisher] = {}
         self._declared: list = []
         self._lock = threading.Lock()
@@ -86,14 +90,8 @@ class Bus:
         shared._session = self._session
         shared._owns_session = False
         shared._local = self._local
-        shared._local_tokens = []
         shared._zenoh_reach = self._zenoh_reach
-        shared._publishers = {}
-        shared._declared = []
-        shared._lock = threading.Lock()
-        shared.decode_errors = 0
-        shared.callback_errors = 0
-        shared._failed_keys = set()
+        shared._start_own_state()
         return shared
 
     @property

@@ -7,6 +7,7 @@ run's report comes back with its outcome as file contents, so workers on other h
 
 from __future__ import annotations
 
+import functools
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -38,15 +39,21 @@ class SweepJob:
     def stack_seconds(self) -> float:
         """What the run will cost, to start the costliest runs first: its stack vehicles times its simulated seconds
         (a run's CPU grows with both); 0 for a scenario that does not load, whose run says why itself."""
-        from coopdrive.launch.scenario_source import resolve_scenario
-        from coopdrive.services.sim.scenario_config import ScenarioError
+        return _stack_seconds(self.scenario, self.stacks, self.duration_s)
 
-        try:
-            source = resolve_scenario(self.scenario)
-            stacks = len(source.stack_vehicles(self.stacks))
-        except ScenarioError:
-            return 0.0
-        return stacks * (self.duration_s if self.duration_s is not None else source.config.duration_s)
+
+@functools.cache
+def _stack_seconds(scenario: str, stacks: int | None, duration_s: float | None) -> float:
+    """SweepJob.stack_seconds, the scenario file read once for all of a sweep's seeds and fault variants."""
+    from coopdrive.launch.scenario_source import resolve_scenario
+    from coopdrive.services.sim.scenario_config import ScenarioError
+
+    try:
+        source = resolve_scenario(scenario)
+        stack_count = len(source.stack_vehicles(stacks))
+    except ScenarioError:
+        return 0.0
+    return stack_count * (duration_s if duration_s is not None else source.config.duration_s)
 
 
 def run_job(job: SweepJob, topic: str) -> tuple[RunOutcome, dict[str, bytes]]:
