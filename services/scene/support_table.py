@@ -37,6 +37,8 @@ SOURCE_COLUMNS = 7
 # Up to this many rows, one entry at a time in plain floats costs less than setting up arrays.
 ONE_BY_ONE_MAX = 4
 _INITIAL_ROWS = 16
+# Bit s of a code of supporting sources: source s.
+_BITS = 1 << np.arange(SOURCE_COLUMNS)
 
 
 class SupportTable:
@@ -52,6 +54,11 @@ class SupportTable:
         self._max = np.zeros(SOURCE_COLUMNS)
         self._gain = np.zeros(SOURCE_COLUMNS)
         self._known = [False] * SOURCE_COLUMNS
+        # The known sources' columns in enum order, and the span from the first to the last of them: the other
+        # columns hold no support, and numpy reduces a short last axis element by element (a max over 7 columns of
+        # 200 x 8 slots cost 90 us), so the reductions over sources leave them out.
+        self._columns: list[int] = []
+        self._span = slice(0, 0)
         self._conf = np.zeros((_INITIAL_ROWS, slots, SOURCE_COLUMNS))
         # -inf: never supported, so its support has always faded and counts for no valid_until_s.
         self._time_s = np.full((_INITIAL_ROWS, slots, SOURCE_COLUMNS), -math.inf)
@@ -77,22 +84,16 @@ class SupportTable:
 
     # -- reading ---------------------------------------------------------------------------
 
-    def source_confidences(self, rows, time_s) -> np.ndarray:
-        """c_s(t) (C1) of every slot and source of the rows at time_s (scalar or one per row): (rows, slots, 7)."""
-        time_s = np.asarray(time_s, dtype=float)
-        return _decayed(self._conf[rows], self._time_s[rows], self._fade_s, self._decay_per_s,
-                        time_s[:, None, None] if time_s.ndim else time_s)
-
     def confidences(self, rows, time_s) -> tuple[np.ndarray, np.ndarray]:
         """Fused confidence (C3) of every slot of the rows, -1 where every source has faded: (rows, slots); and
-        which sources still support each slot: (rows, slots, 7)."""
-        return _fused(self.source_confidences(rows, time_s))
+        which sources still support each slot as a bit code (bit s: source s): (rows, slots)."""
+        time_s = np.asarray(time_s, dtype=float)
+        return self._fused(self._conf[rows], self._time_s[rows], time_s[:, None] if time_s.ndim else time_s)
 
     def slot_confidences(self, rows, slot: int, time_s) -> tuple[np.ndarray, np.ndarray]:
-        """confidences() of one slot: (rows,) and (rows, 7)."""
+        """confidences() of one slot: (rows,) and (rows,)."""
         time_s = np.asarray(time_s, dtype=float)
-        return _fused(_decayed(self._conf[rows, slot], self._time_s[rows, slot], self._fade_s, self._decay_per_s,
-                               time_s[:, None] if time_s.ndim else time_s))
+        return self._fused(self._conf[rows, slot], self._time_s[rows, slot], time_s)
 
     def faded(self, rows: list[int], slot: int, time_s: float) -> list[bool]:
         """Whether every source of the slot has faded, per row; a few rows one by one, where that is cheaper."""
@@ -102,10 +103,18 @@ class SupportTable:
 
     def valid_until_s(self, rows) -> np.ndarray:
         """When the last supporting source of each slot fades, -inf where none ever did: (rows, slots)."""
-        return np.max(self._time_s[rows] + self._fade_s, axis=-1)
+        support_time_s = self._time_s[rows]
+        latest = np.full(support_time_s.shape[:-1], -math.inf)
+        for column in self._columns:
+            np.maximum(latest, support_time_s[..., column] + self._fade_s[column], out=latest)
+        return latest
 
     def last_support_s(self, rows) -> np.ndarray:
-        return np.max(self._time_s[rows], axis=-1)
+        support_time_s = self._time_s[rows]
+        latest = np.full(support_time_s.shape[:-1], -math.inf)
+        for column in self._columns:
+            np.maximum(latest, support_time_s[..., column], out=latest)
+        return latest
 
     def values(self, rows) -> np.ndarray:
         """Blended values (C4), NaN where none was given: (rows, slots)."""
@@ -124,8 +133,7 @@ class SupportTable:
         support()'s quality; a NaN value is no reading of that slot."""
         rows, slots = _block(rows, slots)
         time_s, value, quality = _per_row(time_s), _per_row(value), _per_row(quality)
-        old_confidence = _fused(_decayed(self._conf[rows, slots], self._time_s[rows, slots], self._fade_s,
-                                         self._decay_per_s, time_s[..., None]))[0]
+        old_confidence = self._fused(self._conf[rows, slots], self._time_s[rows, slots], time_s)[0]
         old_confidence = np.maximum(0.0, old_confidence)
         old_value = self._value[rows, slots]
         bias = self._new_data_bias * np.where(value < old_value, self._closer_bias[slots], 1.0)
@@ -194,12 +202,23 @@ class SupportTable:
             self._value[row, slot] = (old_confidence * old_value + new_weight * value) / (old_confidence + new_weight)
         self.support_one(row, slot, source, time_s, quality)
 
+    def _fused(self, conf: np.ndarray, support_time_s: np.ndarray, time_s) -> tuple[np.ndarray, np.ndarray]:
+        """(C1) and (C3) over the sources in the last axis of conf and support_time_s at time_s (broadcast against
+        the other axes): the fused confidence, -1 where no source supports, and the supporting sources' bit codes."""
+        span = self._span
+        c = _decayed(conf[..., span], support_time_s[..., span], self._fade_s[span], self._decay_per_s[span],
+                     np.asarray(time_s, dtype=float)[..., None])
+        codes = (c > 0.0).astype(int) @ _BITS[span]
+        return np.where(codes != 0, 1.0 - np.prod(1.0 - c, axis=-1), UNKNOWN_CONFIDENCE), codes
+
     def _column(self, source: int) -> int:
         if not self._known[source]:
             cfg = self._source_config(source)
             self._fade_s[source], self._decay_per_s[source] = cfg.fade_time_s, cfg.decay_per_s
             self._max[source], self._gain[source] = cfg.max_confidence, cfg.gain
             self._known[source] = True
+            self._columns = sorted(self._columns + [source])
+            self._span = slice(self._columns[0], self._columns[-1] + 1)
         return source
 
 
@@ -212,12 +231,6 @@ def _per_row(values) -> np.ndarray:
     """One value per row (N,) as a column (N, 1) of a block; one per row and slot, or one for all, as it is."""
     values = np.asarray(values, dtype=float)
     return values[:, None] if values.ndim == 1 else values
-
-
-def _fused(c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(C3) over the sources in the last axis of per-source confidences c, and which sources support."""
-    supporting = c > 0.0
-    return np.where(supporting.any(axis=-1), 1.0 - np.prod(1.0 - c, axis=-1), UNKNOWN_CONFIDENCE), supporting
 
 
 def _decayed(conf, support_time_s, fade_s, decay_per_s, time_s) -> np.ndarray:

@@ -11,8 +11,7 @@ from . import kalman
 from .support_table import SOURCE_COLUMNS, SupportTable
 from .track import Track, stacked_states
 
-# Each set of supporting sources as a bit code (bit s: source s), and the sources of every code in enum order.
-_BITS = 1 << np.arange(SOURCE_COLUMNS)
+# The sources of every bit code of supporting sources (bit s: source s), in enum order.
 _SOURCES_OF_CODE = tuple(tuple(s for s in range(SOURCE_COLUMNS) if code >> s & 1) for code in range(1 << SOURCE_COLUMNS))
 
 
@@ -32,8 +31,8 @@ class TrackSnapshot:
         dt_s = time_s - np.array([t.time_s for t in tracks], dtype=float)
         x, p = kalman.predict(x, p, kalman.transition(dt_s), kalman.process_noise(dt_s, psd))
         rows = np.array([t.props.row for t in tracks], dtype=int)
-        confidence, supporting = table.confidences(rows, time_s)
-        return cls(tracks, x, p, confidence, supporting @ _BITS, table.valid_until_s(rows), table.values(rows))
+        confidence, source_codes = table.confidences(rows, time_s)
+        return cls(tracks, x, p, confidence, source_codes, table.valid_until_s(rows), table.values(rows))
 
     def has_source(self, slot: int, source: int) -> np.ndarray:
         """Whether source supports the slot's property, per track."""

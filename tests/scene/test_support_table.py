@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from coopdrive.services.scene.config import SceneFusionConfig
-from coopdrive.services.scene.support_table import SupportTable
+from coopdrive.services.scene.support_table import SOURCE_COLUMNS, SupportTable
 
 CONFIG = SceneFusionConfig()
 SOURCES = (1, 2, 3, 4, 5)
@@ -36,12 +36,12 @@ def test_readings_one_by_one_and_as_arrays_give_the_same_table(seed):
             value = float(rng.uniform(1.0, 5.0))
             by_arrays.update([row], [slot], source, reading_s, value, quality)
             one_by_one.update_one(row, slot, source, reading_s, value, quality)
-        fused, supporting = by_arrays.confidences(rows, time_s)
+        fused, source_codes = by_arrays.confidences(rows, time_s)
         for k, r in enumerate(rows):
             for s in range(SLOTS):
                 confidence, sources = one_by_one.confidence_one(r, s, time_s)
                 assert confidence == pytest.approx(fused[k, s], abs=1e-12)
-                assert sources == np.flatnonzero(supporting[k, s]).tolist()
+                assert sources == [b for b in range(SOURCE_COLUMNS) if source_codes[k, s] >> b & 1]
         # faded(): one by one for a few rows, as arrays for more.
         for s in range(SLOTS):
             assert by_arrays.faded(rows, s, time_s) == (fused[:, s] == -1.0).tolist()
