@@ -98,7 +98,17 @@ def ray_polygon_ranges(origin_xy: tuple[float, float] | np.ndarray, azimuths_rad
         t = (rel_x * edge_y - rel_y * edge_x) / denom
         u = (rel_x * dir_y - rel_y * dir_x) / denom
     t[~((np.abs(denom) > 1e-12) & (t > 0.0) & (u >= 0.0) & (u <= 1.0))] = np.inf
-    return t.min(axis=2)
+    return min_over_last_axis(t)
+
+
+def min_over_last_axis(values: np.ndarray) -> np.ndarray:
+    """values.min(axis=-1) for a short last axis (a polygon's edges): numpy reduces a short contiguous last axis
+    element by element, and one np.minimum per column of it costs a twentieth of that (241 rays x 14 outlines x 4
+    edges: 111 us against 6)."""
+    nearest = values[..., 0]
+    for column in range(1, values.shape[-1]):
+        nearest = np.minimum(nearest, values[..., column])
+    return nearest
 
 
 def cast_rays(origin_xy: tuple[float, float] | np.ndarray, azimuths_rad: np.ndarray,

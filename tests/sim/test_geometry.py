@@ -4,6 +4,9 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import array_shapes, arrays
 
 from coopdrive.services.sim import geometry
 from coopdrive.services.sim.geometry import cast_rays, ray_polygon_ranges
@@ -91,3 +94,9 @@ def test_rays_cast_each_from_its_own_origin_meet_what_each_alone_meets():
     ranges, hit = cast_rays(origins, azimuths, squares, max_range_m=100.0)
     assert ranges[0] == pytest.approx(4.5) and hit[0] == 0
     assert ranges[1] == pytest.approx(4.5) and hit[1] == 1
+
+
+@given(arrays(np.float64, array_shapes(min_dims=1, max_dims=3, max_side=6),
+              elements=st.floats(allow_nan=False) | st.just(np.inf)))
+def test_the_minimum_over_a_short_last_axis_is_numpys_minimum_to_the_bit(values):
+    np.testing.assert_array_equal(geometry.min_over_last_axis(values), values.min(axis=-1))
