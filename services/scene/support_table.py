@@ -53,9 +53,8 @@ class SupportTable:
         self._decay_per_s = np.zeros(SOURCE_COLUMNS)
         self._max = np.zeros(SOURCE_COLUMNS)
         self._gain = np.zeros(SOURCE_COLUMNS)
-        self._known = [False] * SOURCE_COLUMNS
-        # The known sources' columns in enum order, and the span from the first to the last of them: the other
-        # columns hold no support, and numpy reduces a short last axis element by element (a max over 7 columns of
+        # The columns of the sources that have given support (their settings looked up) in enum order, and the span
+        # from the first to the last of them: the other columns hold no support, and numpy reduces a short last axis element by element (a max over 7 columns of
         # 200 x 8 slots cost 90 us), so the reductions over sources leave them out.
         self._columns: list[int] = []
         self._span = slice(0, 0)
@@ -172,8 +171,8 @@ class SupportTable:
     def confidence_one(self, row: int, slot: int, time_s: float) -> tuple[float, list[int]]:
         """(C3) of one row and slot, and the sources still supporting it."""
         remaining, sources = 1.0, []
-        for source in range(SOURCE_COLUMNS):
-            c = self.source_confidence_one(row, slot, source, time_s) if self._known[source] else 0.0
+        for source in self._columns:
+            c = self.source_confidence_one(row, slot, source, time_s)
             if c > 0.0:
                 sources.append(source)
                 remaining *= 1.0 - c
@@ -212,11 +211,10 @@ class SupportTable:
         return np.where(codes != 0, 1.0 - np.prod(1.0 - c, axis=-1), UNKNOWN_CONFIDENCE), codes
 
     def _column(self, source: int) -> int:
-        if not self._known[source]:
+        if source not in self._columns:
             cfg = self._source_config(source)
             self._fade_s[source], self._decay_per_s[source] = cfg.fade_time_s, cfg.decay_per_s
             self._max[source], self._gain[source] = cfg.max_confidence, cfg.gain
-            self._known[source] = True
             self._columns = sorted(self._columns + [source])
             self._span = slice(self._columns[0], self._columns[-1] + 1)
         return source
