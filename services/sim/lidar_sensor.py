@@ -46,27 +46,45 @@ class LidarSensor(TimedSensor[sensors_pb2.LidarScan]):
 
     def _measure(self, world: WorldView) -> sensors_pb2.LidarScan:
         cfg = self.config
-        mount = (cfg.mount_x_m, cfg.mount_y_m)
-        outlines = world.outlines()
-        heights = np.array([world.height_m(o) for o in world.others])
-        table = geometry.ray_polygon_ranges(mount, self.beam_azimuths_rad, outlines) if len(outlines) else \
-            np.full((self.beam_azimuths_rad.size, 0), np.inf)
         scan = sensors_pb2.LidarScan(max_range_m=cfg.max_range_m)
-        for layer_index, elevation_rad in enumerate(cfg.layer_elevations_rad):
-            with np.errstate(invalid="ignore"):  # inf * 0 for the level layer is a miss either way
-                beam_height = cfg.mount_height_m + table * math.tan(elevation_rad)
-                # A beam hits a vehicle only where it passes between the ground and the roof.
-                hits = np.where((beam_height >= 0.0) & (beam_height <= heights[None, :]), table, np.inf)
-            ranges = hits.min(axis=1) if hits.shape[1] else np.full(self.beam_azimuths_rad.size, np.inf)
+        nearest_by_layer = self._nearest_hits_m(world)
+        layer_ranges, layer_azimuths = [], []
+        for elevation_rad, ranges in zip(cfg.layer_elevations_rad, nearest_by_layer):
             if elevation_rad < 0.0:
                 ground_m = cfg.mount_height_m / math.tan(-elevation_rad)
                 ranges = np.minimum(ranges, ground_m)
             ranges = self._with_clutter(ranges)
             keep = (ranges <= cfg.max_range_m) & (self.rng.random(ranges.size) >= cfg.point_dropout_probability)
-            ranges = ranges[keep] + cfg.range_sigma_m * self.rng.standard_normal(int(keep.sum()))
-            azimuths = self.beam_azimuths_rad[keep]
-            x_m = cfg.mount_x_m + ranges * np.cos(azimuths)
-            y_m = cfg.mount_y_m + ranges * np.sin(azimuths)
-            scan.layers.add(layer=layer_index, elevation_rad=elevation_rad,
-                            azimuth_rad=np.arctan2(y_m, x_m).tolist(), range_m=np.hypot(x_m, y_m).tolist())
+            layer_ranges.append(ranges[keep] + cfg.range_sigma_m * self.rng.standard_normal(int(keep.sum())))
+            layer_azimuths.append(self.beam_azimuths_rad[keep])
+        # Every layer's returns from the mount to the rear axle at once: the same arithmetic on each point.
+        ranges, azimuths = np.concatenate(layer_ranges), np.concatenate(layer_azimuths)
+        x_m = cfg.mount_x_m + ranges * np.cos(azimuths)
+        y_m = cfg.mount_y_m + ranges * np.sin(azimuths)
+        bounds = np.cumsum([len(r) for r in layer_ranges])[:-1]
+        for layer_index, (elevation_rad, azimuth_rad, range_m) in enumerate(zip(
+                cfg.layer_elevations_rad, np.split(np.arctan2(y_m, x_m), bounds), np.split(np.hypot(x_m, y_m), bounds))):
+            scan.layers.add(layer=layer_index, elevation_rad=elevation_rad, azimuth_rad=azimuth_rad.tolist(),
+                            range_m=range_m.tolist())
         return scan
+
+    def _nearest_hits_m(self, world: WorldView) -> np.ndarray:
+        """Per layer (rows) and beam (columns), the range to the nearest vehicle the beam meets between the
+        ground and the roof; inf where it meets none."""
+        cfg = self.config
+        beams = self.beam_azimuths_rad.size
+        layers = len(cfg.layer_elevations_rad)
+        outlines = world.outlines()
+        if not len(outlines):
+            return np.full((layers, beams), np.inf)
+        heights = np.array([world.height_m(o) for o in world.others])
+        # (vehicle, beam): a reduction over the vehicles is then one np.minimum per vehicle, not numpy's element by
+        # element pass over a short last axis.
+        table = np.ascontiguousarray(
+            geometry.ray_polygon_ranges((cfg.mount_x_m, cfg.mount_y_m), self.beam_azimuths_rad, outlines).T)
+        slopes = np.array([math.tan(elevation_rad) for elevation_rad in cfg.layer_elevations_rad])[:, None, None]
+        with np.errstate(invalid="ignore"):  # inf * 0 for a level layer is a miss either way
+            beam_height = cfg.mount_height_m + table * slopes
+            # A beam hits a vehicle only where it passes between the ground and the roof.
+            hits = np.where((beam_height >= 0.0) & (beam_height <= heights[:, None]), table, np.inf)
+        return np.minimum.reduce(hits, axis=1)
