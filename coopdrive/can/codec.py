@@ -6,7 +6,7 @@ encodes feedback and radar frames and decodes commands. Wire units stay inside t
 
 import math
 from collections import Counter as Tally
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 
 import can
@@ -16,8 +16,11 @@ from coopdrive.can import frames
 from coopdrive.can.frames import CanDecodeError, DecodeFailure, VehicleFrame
 from coopdrive.can.radar import RadarFrameAssembler, encode_radar_frames
 from coopdrive.can.send_schedule import CyclicSendSchedule
+from coopdrive.can.wire import python_can_data_frame
 from coopdrive.v1 import actuation_pb2, sensors_pb2, vehicle_pb2
 
+# What the encoders give: python-can's Message unless the codec was made with another data_frame.
+EncodedFrame = can.Message | vehicle_pb2.CanFrame
 # A decoded value may sit half a resolution step beyond the DBC range through float rounding.
 RANGE_TOLERANCE_STEPS = 0.5
 # RDR_ObjectListStatus.MeasurementCounter is 16 bits wide.
@@ -123,9 +126,14 @@ class VehicleCanCodec:
     One instance per receiving or sending endpoint: counters are state.
     """
 
-    def __init__(self, check_counter: bool = True, channel: str | None = None):
+    def __init__(self, check_counter: bool = True, channel: str | None = None,
+                 data_frame: Callable[[int, bytes, float, str | None], EncodedFrame] =
+                 python_can_data_frame):
+        """data_frame makes each frame encoded (arbitration id, payload, timestamp, channel): python-can's Message,
+        or wire.protobuf_data_frame where frames go straight onto the Zenoh bus (the simulator's buses)."""
         self.check_counter = check_counter
         self.channel = channel
+        self._data_frame = data_frame
         self.rejected: Tally[DecodeFailure] = Tally()
         self._tx_counter: dict[VehicleFrame, int] = {}
         self._rx_counter: dict[int, int] = {}
@@ -139,7 +147,7 @@ class VehicleCanCodec:
     # ---- sending -------------------------------------------------------------------------------------------
 
     def encode_command(self, frame: VehicleFrame, signals: Mapping[str, float],
-                       timestamp_s: float = 0.0) -> can.Message:
+                       timestamp_s: float = 0.0) -> EncodedFrame:
         """Encodes one command frame, filling Counter and Checksum when it has them; out-of-range values raise
         ValueError."""
         counter = self._next_counter(frame)
@@ -154,7 +162,7 @@ class VehicleCanCodec:
         return self._sealed(frame, data, timestamp_s, counter)
 
     def encode_saturated(self, frame: VehicleFrame, signals: Mapping[str, float],
-                         timestamp_s: float = 0.0) -> can.Message:
+                         timestamp_s: float = 0.0) -> EncodedFrame:
         """Simulator side: one frame with every value saturated at its DBC range (NaN at the minimum), Counter and
         Checksum filled when it has them."""
         counter = self._next_counter(frame)
@@ -177,37 +185,36 @@ class VehicleCanCodec:
             return signals
         return {**signals, frames.COUNTER_SIGNAL: counter, frames.CHECKSUM_SIGNAL: 0}
 
-    def _sealed(self, frame: VehicleFrame, data: bytearray, timestamp_s: float, counter: int | None) -> can.Message:
+    def _sealed(self, frame: VehicleFrame, data: bytearray, timestamp_s: float, counter: int | None) -> EncodedFrame:
         """The frame with its checksum written over the payload and its counter taken, as a python-can message."""
         frame_id = frames.frame_id(frame)
         if counter is not None:
             index = frames.checksum_byte_index(frame)
             data[index] = frames.checksum(frame_id, bytes(data), index)
             self._tx_counter[frame] = counter
-        return can.Message(arbitration_id=frame_id, data=bytes(data), is_extended_id=False,
-                           timestamp=timestamp_s, channel=self.channel, is_rx=False)
+        return self._data_frame(frame_id, bytes(data), timestamp_s, self.channel)
 
     def encode_vehicle_command(self, command: VehicleCommand, timestamp_s: float = 0.0,
-                               schedule: CyclicSendSchedule | None = None) -> list[can.Message]:
+                               schedule: CyclicSendSchedule | None = None) -> list[EncodedFrame]:
         """The ACT_ frames of one actuation cycle: all three, or those `schedule` says are due."""
         signals = _command_signals(command)
         due = schedule.due(signals, timestamp_s) if schedule is not None else list(signals)
         return [self.encode_command(frame, signals[frame], timestamp_s) for frame in due]
 
     def encode_vehicle_state(self, state: vehicle_pb2.VehicleCanState, driver_steering_torque_nm: float = 0.0,
-                             timestamp_s: float = 0.0) -> list[can.Message]:
+                             timestamp_s: float = 0.0) -> list[EncodedFrame]:
         """Simulator side: the VEH_ frames of one cycle, closing frame last; values saturate at the DBC ranges."""
         signals = _feedback_signals(state, driver_steering_torque_nm)
         return [self.encode_saturated(frame, signals[frame], timestamp_s) for frame in frames.FEEDBACK_FRAMES]
 
-    def encode_imu_sample(self, sample: vehicle_pb2.ImuSample, timestamp_s: float = 0.0) -> can.Message:
+    def encode_imu_sample(self, sample: vehicle_pb2.ImuSample, timestamp_s: float = 0.0) -> EncodedFrame:
         """Simulator side: one VEH_Inertial frame; values saturate at the DBC ranges."""
         frame = VehicleFrame.INERTIAL
         signals = {"AccelLongitudinal": sample.accel_longitudinal_mps2, "AccelLateral": sample.accel_lateral_mps2,
                    "YawRate": sample.yaw_rate_radps}
         return self.encode_saturated(frame, signals, timestamp_s)
 
-    def encode_radar_tracks(self, tracks: sensors_pb2.RadarTracks, timestamp_s: float = 0.0) -> list[can.Message]:
+    def encode_radar_tracks(self, tracks: sensors_pb2.RadarTracks, timestamp_s: float = 0.0) -> list[EncodedFrame]:
         """Simulator side: header then one RDR_Object per track (nearest MAX_RADAR_OBJECTS only)."""
         self._radar_measurement_counter = (self._radar_measurement_counter + 1) % RADAR_MEASUREMENT_COUNTER_MODULO
         return [self.encode_saturated(frame, signals, timestamp_s)

@@ -10,6 +10,18 @@ VEHICLE_BUS_TOPIC = "can/vehicle"
 COMMAND_TOPIC = "can/command"
 
 
+def python_can_data_frame(arbitration_id: int, data: bytes, timestamp_s: float, channel: str | None) -> can.Message:
+    """A standard-id data frame we send, as python-can's Message."""
+    return can.Message(arbitration_id=arbitration_id, data=data, is_extended_id=False, timestamp=timestamp_s,
+                       channel=channel, is_rx=False)
+
+
+def protobuf_data_frame(arbitration_id: int, data: bytes, timestamp_s: float, channel: str | None) -> vehicle_pb2.CanFrame:
+    """The same frame as it travels on the Zenoh bus: to_protobuf(python_can_data_frame(...)) without the Message."""
+    return vehicle_pb2.CanFrame(channel=channel or "", arbitration_id=arbitration_id, data=data,
+                                timestamp_s=timestamp_s)
+
+
 def to_protobuf(message: can.Message) -> vehicle_pb2.CanFrame:
     return vehicle_pb2.CanFrame(channel=message.channel or "", arbitration_id=message.arbitration_id,
                                 is_extended_id=message.is_extended_id, data=bytes(message.data),

@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from coopdrive.can.codec import VehicleCanCodec
-from coopdrive.can.wire import to_protobuf
+from coopdrive.can.wire import protobuf_data_frame
 from coopdrive.v1 import sensors_pb2, vehicle_pb2
 
 CHANNEL = "can0"
@@ -19,7 +19,7 @@ CHANNEL = "can0"
 
 class VehicleBusWriter:
     def __init__(self, channel: str = CHANNEL) -> None:
-        self._codec = VehicleCanCodec(channel=channel)
+        self._codec = VehicleCanCodec(channel=channel, data_frame=protobuf_data_frame)
         self.channel = channel
         # Error frames owed to the bus: a rate times a step is rarely a whole number.
         self._error_frames_due = 0.0
@@ -31,13 +31,13 @@ class VehicleBusWriter:
         timed: list[tuple[float, vehicle_pb2.CanFrame]] = []
         for state in can_states:
             on_bus_s = state.header.sent_time_s
-            timed += [(on_bus_s, to_protobuf(m)) for m in self._codec.encode_vehicle_state(state, timestamp_s=on_bus_s)]
+            timed += [(on_bus_s, frame) for frame in self._codec.encode_vehicle_state(state, timestamp_s=on_bus_s)]
         for tracks in radar_tracks:
             on_bus_s = tracks.header.sent_time_s
-            timed += [(on_bus_s, to_protobuf(m)) for m in self._codec.encode_radar_tracks(tracks, on_bus_s)]
+            timed += [(on_bus_s, frame) for frame in self._codec.encode_radar_tracks(tracks, on_bus_s)]
         for sample in imu_samples:
             on_bus_s = sample.header.sent_time_s
-            timed.append((on_bus_s, to_protobuf(self._codec.encode_imu_sample(sample, on_bus_s))))
+            timed.append((on_bus_s, self._codec.encode_imu_sample(sample, on_bus_s)))
         timed += [(now_s, frame) for frame in self._error_frames(now_s, step_s, error_frames_per_s)]
         if not timed:
             return None

@@ -5,7 +5,7 @@ import pytest
 
 from coopdrive.can import frames
 from coopdrive.can.codec import VehicleCanCodec
-from coopdrive.can.wire import to_python_can
+from coopdrive.can.wire import to_protobuf, to_python_can
 from coopdrive.services.sim.vehicle_bus_writer import VehicleBusWriter
 from coopdrive.v1 import sensors_pb2, vehicle_pb2
 
@@ -57,3 +57,15 @@ def test_an_error_burst_puts_its_rate_of_error_frames_on_the_bus_and_a_quiet_ste
     assert sum(len(b.frames) for b in bursts if b) == 333
     assert all(f.is_error_frame for b in bursts if b for f in b.frames)
     assert writer.frames(1.0, STEP_S) is None
+
+
+def test_the_frames_made_straight_as_bus_frames_are_python_can_s_messages_converted_field_for_field():
+    imu = vehicle_pb2.ImuSample(accel_longitudinal_mps2=-1.5, yaw_rate_radps=0.05)
+    imu.header.sent_time_s = 2.0
+    writer, reference = VehicleBusWriter(), VehicleCanCodec(channel="can0")
+    for k in range(3):
+        batch = writer.frames(2.0, STEP_S, [can_state(15.0 + k, 1.995)], [radar(40.0 - k, 1.99)], [imu])
+        messages = [*reference.encode_radar_tracks(radar(40.0 - k, 1.99), 1.99),
+                    *reference.encode_vehicle_state(can_state(15.0 + k, 1.995), timestamp_s=1.995),
+                    reference.encode_imu_sample(imu, 2.0)]
+        assert list(batch.frames) == [to_protobuf(m) for m in messages]
