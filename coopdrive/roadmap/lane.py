@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import bisect
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -110,12 +111,16 @@ class Lane:
 
     def points_at(self, stations_m: np.ndarray, lateral_offset_m: float = 0.0) -> np.ndarray:
         """pose_at's points (N x 2) for many stations at once, in one vectorised pass."""
+        return self.points_at_offsets(stations_m, (lateral_offset_m,))[0]
+
+    def points_at_offsets(self, stations_m: np.ndarray, lateral_offsets_m: Sequence[float]) -> np.ndarray:
+        """points_at for each of several lateral offsets (offsets x N x 2): both edges of a lane at one lookup."""
         stations_m = np.asarray(stations_m, dtype=float)
         i = np.clip(np.searchsorted(self._station0, stations_m, side="right") - 1, 0, len(self._seg_len) - 1)
         along_m = stations_m - self._station0[i]
         unit = self._unit[i]
         left = np.column_stack((-unit[:, 1], unit[:, 0]))
-        return self._start[i] + unit * along_m[:, None] + left * lateral_offset_m
+        return self._start[i] + unit * along_m[:, None] + left * np.asarray(lateral_offsets_m, dtype=float)[:, None, None]
 
     def curvature_at(self, station_m: float) -> float:
         """Curvature interpolated between vertices, positive to the left, 1/m."""

@@ -47,25 +47,28 @@ class CameraSensor(TimedSensor[sensors_pb2.CameraFrame]):
         cfg = self.config
         mount = np.array([cfg.mount_x_m, cfg.mount_y_m])
         outlines = world.outlines()
+        points = outlines.closest_points(tuple(mount))
+        rel = points - mount
+        distances_m = np.hypot(rel[:, 0], rel[:, 1])
+        centres = outlines.corners.mean(axis=1) - mount
         in_view = []
-        for index, (other, corners, point) in enumerate(zip(world.others, outlines.corners,
-                                                            outlines.closest_points(tuple(mount)))):
-            rel = point - mount
-            distance_m = float(np.hypot(*rel))
-            bearing_rad = math.atan2(rel[1], rel[0])
-            if rel[0] <= 0.0 or distance_m > cfg.max_range_m or abs(bearing_rad) > cfg.half_fov_rad:
+        for index, ((rel_x, rel_y), distance_m, (centre_x, centre_y)) in enumerate(zip(
+                rel.tolist(), distances_m.tolist(), centres.tolist())):
+            if rel_x <= 0.0 or distance_m > cfg.max_range_m:
                 continue
-            centre = corners.mean(axis=0) - mount
-            in_view.append((index, other, point, distance_m, (math.atan2(centre[1], centre[0]), bearing_rad)))
+            bearing_rad = math.atan2(rel_y, rel_x)
+            if abs(bearing_rad) <= cfg.half_fov_rad:
+                in_view.append((index, distance_m, (math.atan2(centre_y, centre_x), bearing_rad)))
         if not in_view:
             return
         # Seen only if a ray to its centre or to its nearest point meets it first: all the rays cast at once.
         _, hit = geometry.cast_rays(tuple(mount), np.array([rays for *_, rays in in_view]).ravel(), outlines,
                                     cfg.max_range_m)
-        for (index, other, point, distance_m, _), first_hits in zip(in_view, hit.reshape(-1, 2).tolist()):
+        for (index, distance_m, _), first_hits in zip(in_view, hit.reshape(-1, 2).tolist()):
             if index not in first_hits or self.rng.random() < cfg.miss_probability:
                 continue
-            x_m, y_m = point + cfg.position_sigma_m * self.rng.standard_normal(2)
+            other = world.others[index]
+            x_m, y_m = points[index] + cfg.position_sigma_m * self.rng.standard_normal(2)
             frame.detections.add(
                 detection_id=self._detection_ids.setdefault(other.vehicle_id, len(self._detection_ids) + 1),
                 object_class=self._classify(world.object_class(other)), x_m=x_m, y_m=y_m,
@@ -95,10 +98,11 @@ class CameraSensor(TimedSensor[sensors_pb2.CameraFrame]):
         stations = station_m + cfg.mount_x_m + np.linspace(0.0, cfg.lane_view_range_m, LANE_SAMPLES)
         offset_noise_m = cfg.lane_offset_sigma_m * self.rng.standard_normal(2)
         heading_noise = cfg.lane_heading_sigma_rad * self.rng.standard_normal()
-        for side, sign, noise_m in ((sensors_pb2.LANE_SIDE_LEFT, 1.0, offset_noise_m[0]),
-                                    (sensors_pb2.LANE_SIDE_RIGHT, -1.0, offset_noise_m[1])):
-            points = lane.points_at(stations, sign * lane.width_m / 2.0)
-            local = geometry.to_ego_frame(points, ego.x_m, ego.y_m, ego.heading_rad)
-            c3, c2, c1, c0 = np.polyfit(local[:, 0], local[:, 1], CUBIC)
+        half_width_m = lane.width_m / 2.0
+        edges = lane.points_at_offsets(stations, (half_width_m, -half_width_m))
+        local = geometry.to_ego_frame(edges.reshape(-1, 2), ego.x_m, ego.y_m, ego.heading_rad).reshape(edges.shape)
+        for side, points, noise_m in zip((sensors_pb2.LANE_SIDE_LEFT, sensors_pb2.LANE_SIDE_RIGHT), local,
+                                         offset_noise_m):
+            c3, c2, c1, c0 = np.polyfit(points[:, 0], points[:, 1], CUBIC)
             frame.lane_markings.add(side=side, c0_m=c0 + noise_m, c1=c1 + heading_noise, c2_1pm=c2, c3_1pm2=c3,
                                     view_range_m=cfg.lane_view_range_m, quality=1.0)

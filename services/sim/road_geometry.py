@@ -21,8 +21,8 @@ class LaneGeometry(Protocol):
     def pose_at(self, station_m: float, lateral_offset_m: float = 0.0) -> tuple[float, float, float]:
         ...
 
-    def points_at(self, stations_m: np.ndarray, lateral_offset_m: float = 0.0) -> np.ndarray:
-        """pose_at's points (N x 2) for many stations at once."""
+    def points_at_offsets(self, stations_m: np.ndarray, lateral_offsets_m: Sequence[float]) -> np.ndarray:
+        """pose_at's points for many stations at each of several lateral offsets (offsets x N x 2)."""
         ...
 
     def project(self, x_m: float, y_m: float) -> tuple[float, float, float, float]:
@@ -47,8 +47,9 @@ class StraightLane:
         y_m = self.y0_m + station_m * sin_h + lateral_offset_m * cos_h
         return x_m, y_m, self.heading_rad
 
-    def points_at(self, stations_m: np.ndarray, lateral_offset_m: float = 0.0) -> np.ndarray:
-        return np.array([self.pose_at(float(station_m), lateral_offset_m)[:2] for station_m in stations_m])
+    def points_at_offsets(self, stations_m: np.ndarray, lateral_offsets_m: Sequence[float]) -> np.ndarray:
+        return np.array([[self.pose_at(float(station_m), offset_m)[:2] for station_m in stations_m]
+                         for offset_m in lateral_offsets_m])
 
     def project(self, x_m: float, y_m: float) -> tuple[float, float, float, float]:
         cos_h, sin_h = math.cos(self.heading_rad), math.sin(self.heading_rad)

@@ -85,7 +85,7 @@ def test_projecting_a_pose_on_the_a270_gives_back_its_station_and_offset(station
     assert lane.project(x, y)[:3] == pytest.approx((station_m, lateral_m, heading), abs=0.01)
 
 
-def test_points_at_many_stations_are_pose_at_each():
+def test_points_at_many_stations_are_pose_at_each_and_both_edges_at_one_lookup_are_each_edge_alone():
     import numpy as np
 
     from coopdrive.roadmap import RoadMap
@@ -94,6 +94,8 @@ def test_points_at_many_stations_are_pose_at_each():
     stations_m = np.array([-5.0, 0.0, 10.0, 123.4, lane.length_m, lane.length_m + 7.0])
     expected = [lane.pose_at(station_m, 1.5)[:2] for station_m in stations_m]
     assert np.allclose(lane.points_at(stations_m, 1.5), expected)
+    both_edges = lane.points_at_offsets(stations_m, (1.75, -1.75))
+    assert np.array_equal(both_edges, [lane.points_at(stations_m, 1.75), lane.points_at(stations_m, -1.75)])
 
 
 def test_a_point_projected_again_gets_the_projection_remembered_and_a_fresh_lane_gives_the_same():
