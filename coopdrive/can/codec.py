@@ -186,7 +186,7 @@ class VehicleCanCodec:
         return {**signals, frames.COUNTER_SIGNAL: counter, frames.CHECKSUM_SIGNAL: 0}
 
     def _sealed(self, frame: VehicleFrame, data: bytearray, timestamp_s: float, counter: int | None) -> EncodedFrame:
-        """The frame with its checksum written over the payload and its counter taken, as a python-can message."""
+        """The frame with its checksum written over the payload and its counter taken, made by data_frame."""
         frame_id = frames.frame_id(frame)
         if counter is not None:
             index = frames.checksum_byte_index(frame)
