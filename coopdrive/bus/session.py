@@ -20,6 +20,7 @@ from google.protobuf.message import DecodeError, Message
 
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.bus.local_delivery import LocalDelivery
+from coopdrive.bus.remote_matching import RemoteMatching
 from coopdrive.bus.topics import Topic, topic_named
 from coopdrive.bus.type_registry import message_class
 from coopdrive.recording.publish_spool import is_recorded, process_spool
@@ -75,6 +76,8 @@ class Bus:
         """What each Bus on a session has of its own: its publishers, declarations, local subscriptions, counts."""
         self._local_tokens: list[int] = []
         self._publishers: dict[str, zenoh.Publisher] = {}
+        # The keys put_if_subscribed has put: whether another session hears each.
+        self._remote_matching: dict[str, RemoteMatching] = {}
         self._declared: list = []
         self._lock = threading.Lock()
         self.decode_errors = 0
@@ -112,13 +115,14 @@ class Bus:
 
     def put_if_subscribed(self, key: str, message: Message) -> bool:
         """Puts only when some subscriber matches `key` (this session's own, or another session's by Zenoh's
-        matching status, kept up to date by Zenoh): for messages such as step markers that are worth nothing
-        unheard, and the recording, which takes every message from its spool. True when it was sent."""
+        matching status, asked again only after Zenoh reports a change: remote_matching.py): for messages such as
+        step markers that are worth nothing unheard, and the recording, which takes every message from its spool.
+        True when it was sent."""
         spool = process_spool()
         recorded = spool is not None and is_recorded(key)  # not the step markers, which are many
         publisher = self._publisher(key, message, reliable_block=True)
         heard_here = bool(self._local.matching(key))
-        heard_elsewhere = publisher.matching_status.matching
+        heard_elsewhere = self._matching_elsewhere(key, publisher).matching()
         if not (recorded or heard_here or heard_elsewhere):
             return False
         payload = message.SerializeToString()  # once, for the spool and the bus
@@ -129,6 +133,16 @@ class Bus:
         if heard_here:
             self._local.deliver(key, payload, None, message.DESCRIPTOR.full_name)
         return heard_here or heard_elsewhere
+
+    def _matching_elsewhere(self, key: str, publisher: zenoh.Publisher) -> RemoteMatching:
+        matching = self._remote_matching.get(key)
+        if matching is None:
+            with self._lock:
+                matching = self._remote_matching.get(key)
+                if matching is None:
+                    matching = self._remote_matching[key] = RemoteMatching(publisher, _direct)
+                    self._declare(matching.listener)
+        return matching
 
     def _publisher(self, key: str, message: Message, reliable_block: bool) -> zenoh.Publisher:
         publisher = self._publishers.get(key)

@@ -145,3 +145,27 @@ def test_a_quiet_topic_marker_is_sent_only_while_some_service_waits_for_it(endpo
     finally:
         waiter.close()
         sender.close()
+
+
+def _until(condition, what: str) -> None:
+    end = time.monotonic() + DEADLINE_S
+    while not condition():
+        assert time.monotonic() < end, what
+        time.sleep(0.05)
+
+
+def test_the_marker_stops_when_its_waiting_subscriber_leaves_and_starts_again_when_one_comes_back(endpoint):
+    sender = Bus(BusConfig(listen=[endpoint]))
+    key = KeyLayout().step_done("ego", "actuation/status")
+    try:
+        for step in range(3):  # the matching status is kept between puts: each change must reach it
+            waiter = Bus(BusConfig(connect=[endpoint]))
+            markers: queue.Queue = queue.Queue()
+            waiter.subscribe_key(key, lambda _key, marker: markers.put(marker))
+            _until(lambda: sender.put_if_subscribed(key, sim_pb2.StepDone(step=step)), "the waiter never matched")
+            assert received(markers).step == step
+            waiter.close()
+            _until(lambda: not sender.put_if_subscribed(key, sim_pb2.StepDone(step=step)),
+                   "still sent after the waiter left")
+    finally:
+        sender.close()
