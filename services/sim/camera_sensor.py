@@ -47,6 +47,8 @@ class CameraSensor(TimedSensor[sensors_pb2.CameraFrame]):
         cfg = self.config
         mount = np.array([cfg.mount_x_m, cfg.mount_y_m])
         outlines = world.outlines()
+        if not len(outlines):
+            return
         points = outlines.closest_points(tuple(mount))
         rel = points - mount
         distances_m = np.hypot(rel[:, 0], rel[:, 1])
