@@ -142,3 +142,24 @@ def test_a_subscriber_that_raises_is_counted_and_logged_once_and_costs_no_one_el
                             "counted)"] * 2
     finally:
         elsewhere.close()
+
+
+def test_a_session_that_subscribes_after_puts_nobody_else_heard_gets_the_puts_from_then_on(endpoint):
+    # Puts go into Zenoh only while another session hears their key: the first puts here go nowhere, and the
+    # subscriber that comes later must still be found and get what follows.
+    publisher = Bus(BusConfig(listen=[endpoint]))
+    try:
+        for accel_mps2 in (-0.5, -1.0):
+            publisher.publish("v1", "control/command", control_pb2.ControlCommand(accel_request_mps2=accel_mps2))
+        listener = Bus(BusConfig(connect=[endpoint]))
+        received, arrived = [], threading.Event()
+        listener.subscribe("v1", "control/command", lambda envelope: (received.append(envelope), arrived.set()))
+        end = time.monotonic() + 5.0
+        while not arrived.is_set():
+            assert time.monotonic() < end, "the later subscriber never got a put"
+            publisher.publish("v1", "control/command", control_pb2.ControlCommand(accel_request_mps2=-2.0))
+            arrived.wait(0.05)
+        assert all(envelope.message.accel_request_mps2 == -2.0 for envelope in received)
+        listener.close()
+    finally:
+        publisher.close()
