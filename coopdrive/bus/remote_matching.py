@@ -3,10 +3,9 @@ have changed.
 
 Zenoh's matching status cost 48-120 us of CPU per ask in a busy process (the call gives the interpreter's lock up
 and takes it back). Bus asks it before every put (a put nobody else hears stays out of Zenoh) and every quiet
-topic's step marker (put_if_subscribed). The answer changes only
-when subscribers come or go, which Zenoh's matching listener reports: the status is asked again only after such a
-report. A report that comes while the status is being asked discards that answer, so an answer kept is never older
-than the last change reported.
+topic's step marker (put_if_subscribed). The answer changes only when subscribers come or go, which Zenoh's
+matching listener reports: the status is asked again only after such a report. A report that comes while the
+status is being asked discards that answer, so an answer kept is never older than the last change reported.
 """
 
 from __future__ import annotations

@@ -13,7 +13,7 @@ import logging
 import os
 import threading
 from dataclasses import dataclass, field
-from typing import Callable, NamedTuple
+from typing import Any, Callable, NamedTuple
 
 import zenoh
 from google.protobuf.message import DecodeError, Message
@@ -76,7 +76,7 @@ class Bus:
         """What each Bus on a session has of its own: its publishers, declarations, local subscriptions, counts."""
         self._local_tokens: list[int] = []
         self._publishers: dict[str, zenoh.Publisher] = {}
-        # The keys put_if_subscribed has put: whether another session hears each.
+        # Each key this Bus has put: whether another session hears it (put and put_if_subscribed ask).
         self._remote_matching: dict[str, RemoteMatching] = {}
         self._declared: list = []
         self._lock = threading.Lock()
@@ -288,8 +288,9 @@ class Bus:
             self._session.close()
 
 
-def _direct(callback: Callable[[zenoh.Sample], None]) -> zenoh.handlers.Callback:
-    """Runs the callback on Zenoh's receive thread instead of handing it to a Python thread first.
+def _direct(callback: Callable[[Any], None]) -> zenoh.handlers.Callback:
+    """Runs the callback (of a subscriber's samples, or of a matching listener's reports) on Zenoh's thread instead
+    of handing it to a Python thread first.
 
     Saves a thread switch per message and keeps the wire order across subscribers of one link.
     Our callbacks only decode and enqueue, so they never hold the receive thread up.
