@@ -96,6 +96,9 @@ def _add_run_command(commands) -> None:
                      help="sweep these fault variants too (YAML: name -> faults, as docs/sweep-faults.yaml)")
     run.add_argument("--out", type=Path, metavar="DIR",
                      help="batch runs: metrics.json and the report per run, and summary files")
+    run.add_argument("--no-reports", dest="reports", action="store_false",
+                     help="batch runs with --out: metrics.json per run and the summary files only, no recording or "
+                          "plots (a run spends a tenth less; CI's sweep)")
     run.add_argument("--processes", choices=[layout.value for layout in ProcessLayout],
                      help="one process per vehicle's stack (a single run's default), one per service as on the "
                           "vehicle, or one for the simulator and every stack (a sweep's default: its runs fill the "
@@ -217,6 +220,11 @@ def _run(args) -> int:
 
     if args.scenario == "all" or args.seeds or args.faults or args.cluster:
         return _batch(args)
+    sweep_flags = [flag for flag, given in SWEEP_FLAGS.items() if given(args)]
+    if sweep_flags:
+        print(f"coopdrive: {', '.join(sweep_flags)}: for a sweep (--seeds or all), not a single run (--report DIR "
+              "writes one run's report)", file=sys.stderr)
+        return EXIT_USAGE
     options = RunOptions(scenario=args.scenario, seed=_seed(args), realtime=args.realtime, record=args.record,
                          gateway_port=args.gateway, foxglove_port=args.foxglove, listen=tuple(args.listen),
                          duration_s=args.duration,
@@ -332,6 +340,7 @@ def _layout(args, default: ProcessLayout) -> ProcessLayout:
 
 
 # What `coopdrive run` does for one run only, by whether it was given: a sweep would otherwise run without it.
+# (SWEEP_FLAGS: the other way round.)
 SINGLE_RUN_FLAGS = {
     "--realtime": lambda args: args.realtime, "--record": lambda args: args.record is not None,
     "--gateway": lambda args: args.gateway is not None, "--foxglove": lambda args: args.foxglove is not None,
@@ -339,6 +348,7 @@ SINGLE_RUN_FLAGS = {
     "--json": lambda args: args.json, "--report": lambda args: args.report is not None,
     "--baseline": lambda args: args.baseline is not None,
 }
+SWEEP_FLAGS = {"--out": lambda args: args.out is not None, "--no-reports": lambda args: not args.reports}
 
 
 def _batch(args) -> int:
@@ -373,7 +383,7 @@ def _batch(args) -> int:
                            out_dir=args.out, duration_s=args.duration, security=args.security, world=args.world,
                            processes=_layout(args, BatchOptions.processes), cacc_law=args.cacc_law,
                            fault_variants={name: added + faults for name, faults in variants.items()},
-                           cluster=args.cluster)
+                           cluster=args.cluster, reports=args.reports)
     try:
         summary = run_batch(options)
     except (ScenarioError, SweepError) as error:

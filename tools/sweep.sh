@@ -3,6 +3,7 @@
 # (WORKERS), results in OUT (default out/sweep): summary.json, summary.csv and the pass table pass_table.md.
 # FAULTS=FILE sweeps its fault variants too (docs/sweep-faults.yaml); CLUSTER=tcp://host:8786 runs on that Dask
 # scheduler's workers instead of a local cluster (README, Sweeps); SCENARIO=NAME sweeps that scenario alone.
+# REPORTS=0 keeps each run's metrics.json and the summaries only, no recording or plots (CI's sweep, .ci/run).
 # On two cores this takes hours; `SEEDS=1-2 tools/sweep.sh` is the quick check.
 # Prints the pass table and exits non-zero when any run failed (or the sweep could not start).
 # PYTHON: the interpreter with coopdrive installed (default .venv/bin/python, as `make` sets it up).
@@ -12,7 +13,7 @@ seeds=${SEEDS:-1-20}
 out=${OUT:-out/sweep}
 rm -f "$out/pass_table.md"  # a table printed below is this sweep's, never an earlier one's
 "${PYTHON:-.venv/bin/python}" -m coopdrive.cli run "${SCENARIO:-all}" --seeds "$seeds" --workers "${WORKERS:-2}" \
-  --out "$out" ${FAULTS:+--faults "$FAULTS"} ${CLUSTER:+--cluster "$CLUSTER"}
+  --out "$out" ${FAULTS:+--faults "$FAULTS"} $([ "${REPORTS:-1}" = 0 ] && echo --no-reports) ${CLUSTER:+--cluster "$CLUSTER"}
 status=$?
 if [ -f "$out/pass_table.md" ]; then
   cat "$out/pass_table.md"

@@ -35,6 +35,9 @@ class BatchOptions:
     stacks: int | None = None
     workers: int = 2
     out_dir: Path | None = None
+    # With out_dir: each run's report (plots, index.html and its recording) beside its metrics.json. False: the
+    # metrics and summaries only, for a sweep that is judged by its pass table alone (CI's).
+    reports: bool = True
     duration_s: float | None = None
     # V2X security of every stack in every run (a SecurityMode value), as `coopdrive run --security`.
     security: str | None = None
@@ -125,8 +128,9 @@ def sweep_jobs(options: BatchOptions) -> list[SweepJob]:
     """Every (scenario, fault variant, seed) once, in that order."""
     from coopdrive.launch.sweep_task import SweepJob  # it imports this module's RunOutcome
 
+    reports = options.out_dir is not None and options.reports
     return [SweepJob(scenario, fault, seed, faults, options.stacks, options.duration_s, options.security,
-                     options.world, options.processes, options.cacc_law, report=options.out_dir is not None)
+                     options.world, options.processes, options.cacc_law, report=reports)
             for scenario in dict.fromkeys(options.scenarios)
             for fault, faults in options.fault_variants.items()
             for seed in dict.fromkeys(options.seeds)]

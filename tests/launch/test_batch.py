@@ -48,6 +48,9 @@ def test_a_sweep_runs_every_scenario_fault_variant_and_seed_once():
         "merge/none/seed-1", "merge/none/seed-2", "merge/lossy/seed-1", "merge/lossy/seed-2"]
     assert jobs[2].faults == LOSSY and jobs[0].faults == () and jobs[0].duration_s == 3.0
     assert not jobs[0].report  # a report only where there is an --out to write it to
+    with_out = dict(scenarios=["follow"], seeds=[1], out_dir="out")
+    assert sweep_jobs(BatchOptions(**with_out))[0].report
+    assert not sweep_jobs(BatchOptions(**with_out, reports=False))[0].report
 
 
 def test_each_run_of_a_sweep_gets_the_process_layout_and_the_cooperative_law_the_sweep_was_given(monkeypatch):
@@ -82,6 +85,14 @@ def test_flags_that_only_a_single_run_can_take_stop_a_sweep_in_one_line_naming_t
     assert completed.returncode == 2
     assert completed.stderr == ("coopdrive: --realtime, --record: for a single run, not a sweep (--out DIR keeps "
                                 "each run's report and recording)\n")
+
+
+def test_flags_that_only_a_sweep_can_take_stop_a_single_run_in_one_line_naming_them(tmp_path):
+    completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--out", str(tmp_path),
+                                "--no-reports"], capture_output=True, text=True, timeout=60)
+    assert completed.returncode == 2
+    assert completed.stderr == ("coopdrive: --out, --no-reports: for a sweep (--seeds or all), not a single run "
+                                "(--report DIR writes one run's report)\n")
 
 
 def test_a_seed_and_a_range_of_seeds_together_stop_the_command_in_one_line():
