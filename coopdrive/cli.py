@@ -19,6 +19,8 @@ from coopdrive.runtime.config import ConfigError
 from coopdrive.runtime.service import HardwareUnavailable
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+# A sweep stopped by its --time-limit with every run that finished passed: not a failure, not a whole sweep.
+EXIT_INCOMPLETE = 3
 # A run's start-up time is counted from here: the command as its user waits for it, less the interpreter's start.
 COMMAND_STARTED_MONOTONIC_S = time.monotonic()
 
@@ -96,6 +98,9 @@ def _add_run_command(commands) -> None:
                      help="sweep these fault variants too (YAML: name -> faults, as docs/sweep-faults.yaml)")
     run.add_argument("--out", type=Path, metavar="DIR",
                      help="batch runs: metrics.json and the report per run, and summary files")
+    run.add_argument("--time-limit", type=float, metavar="SECONDS",
+                     help="batch runs: stop this long after the runs are handed out, cancel the runs not finished and "
+                          "list them; exit status 3 when every run that finished passed")
     run.add_argument("--no-reports", dest="reports", action="store_false",
                      help="batch runs with --out: metrics.json per run and the summary files only, no recording or "
                           "plots (a run spends a tenth less; CI's sweep)")
@@ -348,7 +353,8 @@ SINGLE_RUN_FLAGS = {
     "--json": lambda args: args.json, "--report": lambda args: args.report is not None,
     "--baseline": lambda args: args.baseline is not None,
 }
-SWEEP_FLAGS = {"--out": lambda args: args.out is not None, "--no-reports": lambda args: not args.reports}
+SWEEP_FLAGS = {"--out": lambda args: args.out is not None, "--no-reports": lambda args: not args.reports,
+               "--time-limit": lambda args: args.time_limit is not None}
 
 
 def _batch(args) -> int:
@@ -369,6 +375,10 @@ def _batch(args) -> int:
     except ValueError as error:
         print(f"coopdrive: --seeds: {error}", file=sys.stderr)
         return EXIT_USAGE
+    if args.time_limit is not None and not args.time_limit > 0:
+        print(f"coopdrive: --time-limit {args.time_limit:g}: give the seconds the sweep may take (above 0)",
+              file=sys.stderr)
+        return EXIT_USAGE
     scenarios = scenario_names() if args.scenario == "all" else [args.scenario]
     if args.untrusted:
         print("coopdrive: --untrusted is for single runs (name the vehicle of one scenario)", file=sys.stderr)
@@ -383,13 +393,25 @@ def _batch(args) -> int:
                            out_dir=args.out, duration_s=args.duration, security=args.security, world=args.world,
                            processes=_layout(args, BatchOptions.processes), cacc_law=args.cacc_law,
                            fault_variants={name: added + faults for name, faults in variants.items()},
-                           cluster=args.cluster, reports=args.reports)
+                           cluster=args.cluster, reports=args.reports, time_limit_s=args.time_limit)
     try:
         summary = run_batch(options)
     except (ScenarioError, SweepError) as error:
         print(f"coopdrive: {error}", file=sys.stderr)
         return EXIT_USAGE
-    return EXIT_OK if summary.all_passed else EXIT_FAILED
+    return sweep_exit_status(summary)
+
+
+def sweep_exit_status(summary) -> int:
+    """0 every run finished and passed; 3 the time limit stopped the sweep and every run that finished passed;
+    1 a run failed, or Ctrl-C stopped the sweep."""
+    from coopdrive.launch.batch import SweepEnd
+
+    if summary.all_passed:
+        return EXIT_OK
+    if summary.end is SweepEnd.TIME_LIMIT and all(o.success for o in summary.outcomes):
+        return EXIT_INCOMPLETE
+    return EXIT_FAILED
 
 
 def _cacc_laws():

@@ -9,6 +9,7 @@ the sweep writes summary.json, summary.csv and pass_table.md. sweep_cluster.py i
 
 from __future__ import annotations
 
+import enum
 import tempfile
 from contextlib import nullcontext
 from dataclasses import dataclass, field
@@ -53,6 +54,9 @@ class BatchOptions:
     fault_variants: dict[str, tuple[dict, ...]] = field(default_factory=lambda: {NO_FAULTS: ()})
     # A running Dask scheduler's address (tcp://host:8786); None: a local cluster of `workers` processes.
     cluster: str | None = None
+    # The sweep stops this many seconds after its runs were handed out (--time-limit): runs not finished by then are
+    # cancelled and listed as not finished. None: no limit.
+    time_limit_s: float | None = None
 
 
 @dataclass
@@ -73,16 +77,31 @@ class RunOutcome:
         return run_label(self.scenario, self.fault, self.seed)
 
 
+def unfinished_line(summary: BatchSummary, time_limit_s: float | None) -> str:
+    """Why the sweep stopped early and which runs it left, in one line."""
+    why = f"time limit of {time_limit_s:g} s" if summary.end is SweepEnd.TIME_LIMIT else summary.end.value
+    return f"{why}: {len(summary.unfinished)} run(s) not finished: {', '.join(summary.unfinished)}"
+
+
 def run_label(scenario: str, fault: str, seed: int) -> str:
     """How a sweep names one of its runs, in its task keys and in what it prints."""
     return f"{scenario}/{fault}/seed-{seed}"
 
 
+class SweepEnd(enum.Enum):
+    """How a sweep ended: every run finished, or it was stopped with runs not finished."""
+
+    COMPLETE = "complete"
+    INTERRUPTED = "interrupted"  # Ctrl-C
+    TIME_LIMIT = "time limit"  # BatchOptions.time_limit_s
+
+
 @dataclass
 class BatchSummary:
     outcomes: list[RunOutcome]
-    # Runs that never ended (the sweep was interrupted).
-    unfinished: int = 0
+    # The labels of runs that never ended, and why the sweep stopped before they did.
+    unfinished: list[str] = field(default_factory=list)
+    end: SweepEnd = SweepEnd.COMPLETE
 
     @property
     def all_passed(self) -> bool:
@@ -185,12 +204,12 @@ def run_batch(options: BatchOptions, console: Console | None = None) -> BatchSum
             live.update(Group(progress, summary_table(BatchSummary(outcomes))))
 
         with sweep_client(options.cluster, options.workers) as client:
-            unfinished = stream_runs(client, jobs, finished)
+            unfinished, end = stream_runs(client, jobs, finished, options.time_limit_s)
     if live is None:
         print_whole(console, summary_table(BatchSummary(outcomes)))
+    summary = BatchSummary(outcomes, sorted(job.label for job in unfinished), end)
     if unfinished:
-        console.print(f"[yellow]interrupted: {len(unfinished)} run(s) not finished[/]")
-    summary = BatchSummary(outcomes, unfinished=len(unfinished))
+        console.print(f"[yellow]{unfinished_line(summary, options.time_limit_s)}[/]")
     for line in retried_lines(summary):
         console.print(line)
     if options.out_dir is not None:

@@ -25,7 +25,7 @@ def mean_cell(outcomes: Iterable[RunOutcome], key: str) -> str:
 def pass_table_markdown(summary: BatchSummary) -> str:
     grouped = summary.by_case()
     seeds = sorted({o.seed for o in summary.outcomes})
-    lines = ["| scenario | fault | passed | " + " | ".join(f"seed {seed}" for seed in seeds) + " |",
+    lines = ["| " + " | ".join(["scenario", "fault", "passed"] + [f"seed {seed}" for seed in seeds]) + " |",
              "|---|---|---|" + "---|" * len(seeds)]
     for (scenario, fault), outcomes in grouped.items():
         by_seed = {o.seed: o for o in outcomes}
@@ -47,4 +47,7 @@ def pass_table_markdown(summary: BatchSummary) -> str:
     if retried:
         lines += ["", "Retried (a worker died under them):", ""] + [
             f"- {o.label}: lost {', '.join(o.lost_workers)}" for o in retried]
+    if summary.unfinished:
+        lines += ["", f"Not finished (the sweep's {summary.end.value}):", ""] + [
+            f"- {label}" for label in summary.unfinished]
     return "\n".join(lines) + "\n"

@@ -13,11 +13,12 @@ so this holds for workers on any host.
 from __future__ import annotations
 
 import logging
+import time
 import uuid
 from contextlib import contextmanager
 from typing import Callable, Iterator
 
-from coopdrive.launch.batch import RunOutcome
+from coopdrive.launch.batch import RunOutcome, SweepEnd
 from coopdrive.launch.sweep_task import SweepJob, run_job
 
 # How many times a run's worker may die under it before the run counts as failed (Dask's default, said here).
@@ -71,10 +72,11 @@ def _quiet_distributed() -> Iterator[None]:
         logger.setLevel(level)
 
 
-def stream_runs(client, jobs: list[SweepJob],
-                on_outcome: Callable[[RunOutcome, dict[str, bytes]], None]) -> list[SweepJob]:
+def stream_runs(client, jobs: list[SweepJob], on_outcome: Callable[[RunOutcome, dict[str, bytes]], None],
+                time_limit_s: float | None = None) -> tuple[list[SweepJob], SweepEnd]:
     """Submits every job and calls on_outcome(outcome, report files) as each run ends, in the order they end.
-    Returns the jobs left unfinished when interrupted (Ctrl-C), which are cancelled."""
+    Returns the jobs left unfinished, which are cancelled, when interrupted (Ctrl-C) or time_limit_s after the jobs
+    were submitted, and how the sweep ended."""
     from distributed import as_completed
 
     topic = f"coopdrive-sweep-{uuid.uuid4().hex}"
@@ -84,15 +86,23 @@ def stream_runs(client, jobs: list[SweepJob],
     futures = {client.submit(run_job, job, topic, key=f"coopdrive-run-{job.label}-{topic[-8:]}",
                              priority=round(cost)): job
                for cost, job in costed}
+    end = SweepEnd.COMPLETE
+    submitted_s = time.monotonic()
     try:
-        for future in as_completed(list(futures), loop=client.loop):
+        for future in as_completed(list(futures), loop=client.loop, timeout=time_limit_s):
             job = futures.pop(future)
             outcome, files = finished_run(future, job, run_starts(client, topic).get(job.label, []))
             future.release()
             on_outcome(outcome, files)
     except KeyboardInterrupt:
+        end = SweepEnd.INTERRUPTED
+    except TimeoutError:
+        if time_limit_s is None or time.monotonic() - submitted_s < time_limit_s:
+            raise  # not the limit's: the scheduler did not answer
+        end = SweepEnd.TIME_LIMIT
+    if futures:
         client.cancel(list(futures))
-    return list(futures.values())
+    return list(futures.values()), end
 
 
 def run_starts(client, topic: str) -> dict[str, list[str]]:

@@ -10,8 +10,9 @@ import sys
 import pytest
 from rich.console import Console
 
-from coopdrive.launch.batch import (BatchOptions, BatchSummary, RunOutcome, check_runs, parse_seeds, scenario_names,
-                                    sweep_jobs)
+from coopdrive.cli import EXIT_FAILED, EXIT_INCOMPLETE, EXIT_OK, sweep_exit_status
+from coopdrive.launch.batch import (BatchOptions, BatchSummary, RunOutcome, SweepEnd, check_runs, parse_seeds,
+                                    scenario_names, sweep_jobs)
 from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.sweep_output import retried_lines, summary_table, write_run, write_summary
 from coopdrive.launch.sweep_task import run_one
@@ -89,10 +90,41 @@ def test_flags_that_only_a_single_run_can_take_stop_a_sweep_in_one_line_naming_t
 
 def test_flags_that_only_a_sweep_can_take_stop_a_single_run_in_one_line_naming_them(tmp_path):
     completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--out", str(tmp_path),
-                                "--no-reports"], capture_output=True, text=True, timeout=60)
+                                "--no-reports", "--time-limit", "60"], capture_output=True, text=True, timeout=60)
     assert completed.returncode == 2
-    assert completed.stderr == ("coopdrive: --out, --no-reports: for a sweep (--seeds or all), not a single run "
+    assert completed.stderr == ("coopdrive: --out, --no-reports, --time-limit: for a sweep (--seeds or all), not a single run "
                                 "(--report DIR writes one run's report)\n")
+
+
+def test_a_time_limit_that_is_not_above_0_stops_the_sweep_in_one_line():
+    completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--seeds", "1-2",
+                                "--time-limit", "0"], capture_output=True, text=True, timeout=60)
+    assert completed.returncode == 2
+    assert completed.stderr == "coopdrive: --time-limit 0: give the seconds the sweep may take (above 0)\n"
+
+
+def test_a_sweep_s_exit_status_is_3_only_when_its_time_limit_stopped_it_and_no_finished_run_failed():
+    passed, failed = RunOutcome("follow", 1, True, ""), RunOutcome("follow", 2, False, "collision")
+    left = ["merge/none/seed-1"]
+    assert sweep_exit_status(BatchSummary([passed])) == EXIT_OK
+    assert sweep_exit_status(BatchSummary([passed], left, SweepEnd.TIME_LIMIT)) == EXIT_INCOMPLETE
+    assert sweep_exit_status(BatchSummary([passed, failed], left, SweepEnd.TIME_LIMIT)) == EXIT_FAILED
+    assert sweep_exit_status(BatchSummary([passed], left, SweepEnd.INTERRUPTED)) == EXIT_FAILED
+    assert sweep_exit_status(BatchSummary([passed, failed])) == EXIT_FAILED
+
+
+def test_a_sweep_past_its_time_limit_cancels_the_runs_not_finished_names_them_and_exits_3(tmp_path):
+    """A minute of follow takes a run over 10 s; the limit is 4 s after the runs are handed out."""
+    out = tmp_path / "sweep"
+    completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--seeds", "1-2",
+                                "--workers", "1", "--time-limit", "4", "--out", str(out), "--no-reports"],
+                               capture_output=True, text=True, timeout=120)
+    assert completed.returncode == EXIT_INCOMPLETE, completed.stderr[-2000:]
+    assert "time limit of 4 s: 2 run(s) not finished: follow/none/seed-1, follow/none/seed-2" in completed.stdout
+    assert json.loads((out / "summary.json").read_text()) == []
+    table = (out / "pass_table.md").read_text().splitlines()
+    assert table[table.index("Not finished (the sweep's time limit):") + 2:][:2] == [
+        "- follow/none/seed-1", "- follow/none/seed-2"]
 
 
 def test_a_seed_and_a_range_of_seeds_together_stop_the_command_in_one_line():

@@ -1,7 +1,7 @@
-"""The sweep's pass table: a row per (scenario, fault variant), a column per seed, figures averaged, every failure
-and every retried run named."""
+"""The sweep's pass table: a row per (scenario, fault variant), a column per seed, figures averaged, every failure,
+every retried run and every run left unfinished named."""
 
-from coopdrive.launch.batch import BatchSummary, RunOutcome
+from coopdrive.launch.batch import BatchSummary, RunOutcome, SweepEnd
 from coopdrive.launch.pass_table import pass_table_markdown
 
 
@@ -34,3 +34,16 @@ def test_a_run_in_which_lockstep_gave_up_waiting_is_named_as_not_deterministic()
     lines = pass_table_markdown(summary).splitlines()
     assert "- merge/none/seed-11: 3 times" in lines
     assert not any(line.startswith("- merge/none/seed-12: ") and "times" in line for line in lines)
+
+
+def test_runs_a_time_limit_left_unfinished_are_named_under_why_the_sweep_stopped():
+    summary = BatchSummary([RunOutcome("string", 1, True, "")], unfinished=["follow/none/seed-1"],
+                           end=SweepEnd.TIME_LIMIT)
+    lines = pass_table_markdown(summary).splitlines()
+    assert "| string | none | 1/1 | pass |" in lines
+    assert lines[lines.index("Not finished (the sweep's time limit):") + 2] == "- follow/none/seed-1"
+
+
+def test_a_sweep_that_finished_no_run_still_has_a_well_formed_header():
+    lines = pass_table_markdown(BatchSummary([], unfinished=["follow/none/seed-1"], end=SweepEnd.TIME_LIMIT))
+    assert lines.splitlines()[:2] == ["| scenario | fault | passed |", "|---|---|---|"]

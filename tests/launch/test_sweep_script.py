@@ -1,5 +1,6 @@
 """tools/sweep.sh, the committed script that runs issue 26's sweep: it prints the pass table it wrote and its exit
-status says whether every run passed, so a script or CI calling it cannot miss a failure."""
+status says whether every run passed, so a script or CI calling it cannot miss a failure; and tools/ci_sweep.sh,
+CI's call of it in the time CI has left."""
 
 import os
 import subprocess
@@ -18,7 +19,7 @@ def sweep(out: Path, **settings: str) -> subprocess.CompletedProcess:
 
 
 def test_the_script_sweeps_a_scenario_s_seeds_prints_the_pass_table_and_exits_0(tmp_path):
-    """As CI calls it (.ci/run): REPORTS=0, each run's metrics and the summaries without a report."""
+    """As CI calls it (tools/ci_sweep.sh): REPORTS=0, each run's metrics and the summaries without a report."""
     result = sweep(tmp_path / "sweep", SCENARIO="follow", SEEDS="1", WORKERS="1", REPORTS="0")
     assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
     assert "| follow | none | 1/1 | pass |" in result.stdout
@@ -36,3 +37,40 @@ def test_a_sweep_that_cannot_start_exits_non_zero_and_prints_no_earlier_table(tm
     assert result.returncode != 0
     assert "no_such_scenario" in result.stderr
     assert "an earlier sweep's table" not in result.stdout
+
+
+CI_SCRIPT = REPO / "tools" / "ci_sweep.sh"
+
+
+def ci_sweep(tmp_path: Path, seconds_left: int, sweep_status: int) -> tuple[subprocess.CompletedProcess, str]:
+    """tools/ci_sweep.sh with a stand-in for the sweep's interpreter that records its arguments and exits with
+    sweep_status, as `coopdrive run all` would."""
+    arguments = tmp_path / "arguments"
+    stand_in = tmp_path / "python"
+    stand_in.write_text(f'#!/bin/sh\necho "$@" > {arguments}\nexit {sweep_status}\n')
+    stand_in.chmod(0o755)
+    env = {**os.environ, "PYTHON": str(stand_in), "OUT": str(tmp_path / "sweep")}
+    result = subprocess.run(["bash", str(CI_SCRIPT), str(seconds_left)], capture_output=True, text=True, env=env,
+                            timeout=60)
+    return result, arguments.read_text() if arguments.exists() else ""
+
+
+def test_ci_sweeps_seeds_1_and_2_of_every_scenario_without_reports_in_the_seconds_it_has_left(tmp_path):
+    result, arguments = ci_sweep(tmp_path, 480, 0)
+    assert result.returncode == 0
+    assert arguments.split()[:7] == ["-m", "coopdrive.cli", "run", "all", "--seeds", "1-2", "--workers"]
+    assert "--no-reports" in arguments and "--time-limit 480" in arguments
+
+
+def test_a_failed_run_fails_ci_and_runs_the_time_did_not_reach_do_not(tmp_path):
+    failed, _ = ci_sweep(tmp_path, 480, 1)
+    assert failed.returncode == 1
+    stopped, _ = ci_sweep(tmp_path, 480, 3)
+    assert stopped.returncode == 0
+    assert "CI sweep: stopped after 480 s with runs not finished" in stopped.stdout
+
+
+def test_with_under_a_minute_left_ci_skips_the_sweep_and_says_so(tmp_path):
+    result, arguments = ci_sweep(tmp_path, 40, 0)
+    assert result.returncode == 0 and arguments == ""
+    assert result.stdout == "CI sweep skipped: 40 s of CI's time left\n"
