@@ -12,15 +12,13 @@ from pathlib import Path
 
 from coopdrive.cli_deploy import add_commands as add_deploy_commands
 from coopdrive.cli_recording import add_commands as add_recording_commands
+from coopdrive.exit_status import EXIT_FAILED, EXIT_INCOMPLETE, EXIT_OK, EXIT_USAGE
 from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.run_aborted import RunAborted
 from coopdrive.services.v2x.cli import add_commands as add_v2x_commands
 from coopdrive.runtime.config import ConfigError
 from coopdrive.runtime.service import HardwareUnavailable
 
-EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
-# A sweep stopped by its --time-limit with every run that finished passed: not a failure, not a whole sweep.
-EXIT_INCOMPLETE = 3
 # A run's start-up time is counted from here: the command as its user waits for it, less the interpreter's start.
 COMMAND_STARTED_MONOTONIC_S = time.monotonic()
 
@@ -100,7 +98,7 @@ def _add_run_command(commands) -> None:
                      help="batch runs: metrics.json and the report per run, and summary files")
     run.add_argument("--time-limit", type=float, metavar="SECONDS",
                      help="batch runs: stop this long after the runs are handed out, cancel the runs not finished and "
-                          "list them; exit status 3 when every run that finished passed")
+                          "list them; exit status 4 when every run that finished passed")
     run.add_argument("--no-reports", dest="reports", action="store_false",
                      help="batch runs with --out: metrics.json per run and the summary files only, no recording or "
                           "plots (a run spends a tenth less; CI's sweep)")

@@ -11,7 +11,8 @@ import threading
 import time
 from pathlib import Path
 
-EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+from coopdrive.exit_status import EXIT_FAILED, EXIT_OK, EXIT_USAGE
+
 DEFAULT_FOXGLOVE_PORT = 8765
 HEALTH_RETRY_S = 0.1
 

@@ -8,7 +8,7 @@ import struct
 import sys
 from pathlib import Path
 
-EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+from coopdrive.exit_status import EXIT_FAILED, EXIT_OK, EXIT_USAGE
 
 
 def add_commands(commands) -> None:

@@ -5,7 +5,7 @@
 # scheduler's workers instead of a local cluster (README, Sweeps); SCENARIO=NAME sweeps that scenario alone.
 # REPORTS=0 keeps each run's metrics.json and the summaries only, no recording or plots (CI's sweep, .ci/run).
 # TIME_LIMIT=SECONDS stops the sweep that long after its runs are handed out and lists the runs it left: exit
-# status 3 when every run that finished passed.
+# status 4 when every run that finished passed.
 # On two cores this takes hours; `SEEDS=1-2 tools/sweep.sh` is the quick check.
 # Prints the pass table and exits non-zero when any run failed (or the sweep could not start).
 # PYTHON: the interpreter with coopdrive installed (default .venv/bin/python, as `make` sets it up).

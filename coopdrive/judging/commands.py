@@ -10,6 +10,7 @@ from pathlib import Path
 from rich.console import Console
 from rich.table import Table
 
+from coopdrive.exit_status import EXIT_OK, EXIT_USAGE
 from coopdrive.judging.catalogue import judging_parameters, list_scenarios
 from coopdrive.judging.report import INDEX_FILE, write_report
 from coopdrive.judging.run_messages import RunMessages
@@ -18,7 +19,6 @@ from coopdrive.recording.reader import RecordingError
 from coopdrive.v1 import sim_pb2
 
 RECORDING_FILE = "run.mcap"
-EXIT_OK, EXIT_USAGE = 0, 2
 
 
 def run_with_report(options, report_dir: Path) -> sim_pb2.RunResult:

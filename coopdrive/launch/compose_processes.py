@@ -24,6 +24,8 @@ from typing import Any
 
 import yaml
 
+from coopdrive.exit_status import EXIT_FAILED, EXIT_OK
+
 COMPOSE_FILE = Path(__file__).resolve().parents[2] / "docker-compose.yml"
 ZENOH_IMAGE = "eclipse/zenoh"
 COOPDRIVE_IMAGE = "coopdrive"
@@ -203,8 +205,8 @@ def main(argv: list[str] | None = None) -> int:
     ended = {name: p.returncode for name, p in running.items() if p.returncode}
     if ended and not stopping.is_set():
         print(f"stopped because these ended: {ended} (see their logs)", file=sys.stderr)
-        return 1
-    return 0
+        return EXIT_FAILED
+    return EXIT_OK
 
 
 if __name__ == "__main__":

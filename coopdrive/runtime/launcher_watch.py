@@ -16,11 +16,12 @@ import signal
 import threading
 import time
 
+from coopdrive.exit_status import EXIT_ORPHANED
+
 LAUNCHER_PID_VARIABLE = "COOPDRIVE_LAUNCHER_PID"
 POLL_S = 0.5
 # After the SIGTERM a service normally stops within a step; past this it is ended without cleanup.
 STOP_GRACE_S = 5.0
-EXIT_ORPHANED = 3
 
 
 def launcher_environment() -> dict[str, str]:

@@ -12,6 +12,8 @@ import os
 import sys
 from pathlib import Path
 
+from coopdrive.exit_status import EXIT_FAILED, EXIT_OK, EXIT_USAGE
+
 
 def add_commands(commands) -> None:
     v2x = commands.add_parser("v2x", help="V2X tools: decode captures, inject messages")
@@ -56,11 +58,11 @@ def _decode(args: argparse.Namespace) -> int:
             print(line)
     except BrokenPipeError:  # `coopdrive v2x decode F | head`: the reader has seen enough
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        return 0
+        return EXIT_OK
     except (OSError, CaptureFormatError, TrustFileError) as error:
         print(f"coopdrive: {args.file}: {error}", file=sys.stderr)
-        return 2
-    return 0
+        return EXIT_USAGE
+    return EXIT_OK
 
 
 def _send(args: argparse.Namespace) -> int:
@@ -68,7 +70,7 @@ def _send(args: argparse.Namespace) -> int:
 
     message_id = send_from_yaml(args.file, args.address, args.port)
     print(f"sent {message_id.name} to {args.address}:{args.port}")
-    return 0
+    return EXIT_OK
 
 
 def _replay(args: argparse.Namespace) -> int:
@@ -78,12 +80,12 @@ def _replay(args: argparse.Namespace) -> int:
         summary = replay_capture(args.file, (args.address, args.port), args.rate)
     except (OSError, ReplayError) as error:
         print(f"coopdrive: {error}", file=sys.stderr)
-        return 2
+        return EXIT_USAGE
     skipped = ", ".join(f"{count} {why}" for why, count in sorted(summary.skipped.items()))
     print(f"sent {summary.sent} GN packets to {args.address}:{args.port} in {summary.duration_s:.2f} s"
           + (f"; skipped frames: {skipped}" if skipped else "")
           + (f"; {summary.send_errors} send errors" if summary.send_errors else ""))
-    return 0 if summary.send_errors == 0 else 1
+    return EXIT_OK if summary.send_errors == 0 else EXIT_FAILED
 
 
 def _pki_init(args: argparse.Namespace) -> int:

@@ -10,7 +10,8 @@ import sys
 import pytest
 from rich.console import Console
 
-from coopdrive.cli import EXIT_FAILED, EXIT_INCOMPLETE, EXIT_OK, sweep_exit_status
+from coopdrive.cli import sweep_exit_status
+from coopdrive.exit_status import EXIT_FAILED, EXIT_INCOMPLETE, EXIT_OK
 from coopdrive.launch.batch import (BatchOptions, BatchSummary, RunOutcome, SweepEnd, check_runs, parse_seeds,
                                     scenario_names, sweep_jobs)
 from coopdrive.launch.process_layout import ProcessLayout
@@ -103,7 +104,7 @@ def test_a_time_limit_that_is_not_above_0_stops_the_sweep_in_one_line():
     assert completed.stderr == "coopdrive: --time-limit 0: give the seconds the sweep may take (above 0)\n"
 
 
-def test_a_sweep_s_exit_status_is_3_only_when_its_time_limit_stopped_it_and_no_finished_run_failed():
+def test_a_sweep_s_exit_status_is_4_only_when_its_time_limit_stopped_it_and_no_finished_run_failed():
     passed, failed = RunOutcome("follow", 1, True, ""), RunOutcome("follow", 2, False, "collision")
     left = ["merge/none/seed-1"]
     assert sweep_exit_status(BatchSummary([passed])) == EXIT_OK
@@ -113,7 +114,7 @@ def test_a_sweep_s_exit_status_is_3_only_when_its_time_limit_stopped_it_and_no_f
     assert sweep_exit_status(BatchSummary([passed, failed])) == EXIT_FAILED
 
 
-def test_a_sweep_past_its_time_limit_cancels_the_runs_not_finished_names_them_and_exits_3(tmp_path):
+def test_a_sweep_past_its_time_limit_cancels_the_runs_not_finished_names_them_and_exits_4(tmp_path):
     """A minute of follow takes a run over 10 s; the limit is 4 s after the runs are handed out."""
     out = tmp_path / "sweep"
     completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--seeds", "1-2",

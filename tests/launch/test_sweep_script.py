@@ -65,7 +65,7 @@ def test_ci_sweeps_seeds_1_and_2_of_every_scenario_without_reports_in_the_second
 def test_a_failed_run_fails_ci_and_runs_the_time_did_not_reach_do_not(tmp_path):
     failed, _ = ci_sweep(tmp_path, 480, 1)
     assert failed.returncode == 1
-    stopped, _ = ci_sweep(tmp_path, 480, 3)
+    stopped, _ = ci_sweep(tmp_path, 480, 4)
     assert stopped.returncode == 0
     assert "CI sweep: stopped after 480 s with runs not finished" in stopped.stdout
 

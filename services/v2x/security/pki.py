@@ -17,6 +17,7 @@ from pathlib import Path
 
 from cryptography.hazmat.primitives.asymmetric import ec
 
+from coopdrive.exit_status import EXIT_FAILED, EXIT_OK
 from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE
 from coopdrive.services.v2x.security.certificate import (
     AUTHORITY_MIN_CHAIN_LENGTH, ROOT_MIN_CHAIN_LENGTH, Certificate, CircularArea, issue_certificate)
@@ -115,12 +116,12 @@ def pki_init(directory: str | Path, vehicles: Sequence[str], curve: Curve = Curv
     directory = Path(directory)
     if (directory / f"{ROOT_NAME}.cert").exists():
         print(f"{directory} already holds a PKI (root.cert); not overwriting", file=sys.stderr)
-        return 1
+        return EXIT_FAILED
     pki = create_test_pki(directory, vehicles, curve)
     print(f"root {pki.root.digest.hex()}  authority {pki.authority.digest.hex()}  ({curve.value})")
     for vehicle, tickets in pki.tickets.items():
         print(f"{vehicle}: " + " ".join(ticket.digest.hex() for ticket, _ in tickets))
-    return 0
+    return EXIT_OK
 
 
 def create_untrusted_pki(directory: str | Path, vehicles: Sequence[str] = ("rogue",),
