@@ -401,8 +401,8 @@ def _batch(args) -> int:
 
 
 def sweep_exit_status(summary) -> int:
-    """0 every run finished and passed; 3 the time limit stopped the sweep and every run that finished passed;
-    1 a run failed, or Ctrl-C stopped the sweep."""
+    """EXIT_OK: every run finished and passed; EXIT_INCOMPLETE: the time limit stopped the sweep and every run that
+    finished passed; EXIT_FAILED: a run failed, or Ctrl-C stopped the sweep."""
     from coopdrive.launch.batch import SweepEnd
 
     if summary.all_passed:

@@ -77,12 +77,6 @@ class RunOutcome:
         return run_label(self.scenario, self.fault, self.seed)
 
 
-def unfinished_line(summary: BatchSummary, time_limit_s: float | None) -> str:
-    """Why the sweep stopped early and which runs it left, in one line."""
-    why = f"time limit of {time_limit_s:g} s" if summary.end is SweepEnd.TIME_LIMIT else summary.end.value
-    return f"{why}: {len(summary.unfinished)} run(s) not finished: {', '.join(summary.unfinished)}"
-
-
 def run_label(scenario: str, fault: str, seed: int) -> str:
     """How a sweep names one of its runs, in its task keys and in what it prints."""
     return f"{scenario}/{fault}/seed-{seed}"
@@ -116,6 +110,12 @@ class BatchSummary:
         for outcome in self.in_order():
             grouped.setdefault((outcome.scenario, outcome.fault), []).append(outcome)
         return grouped
+
+
+def unfinished_line(summary: BatchSummary, time_limit_s: float | None) -> str:
+    """Why the sweep stopped early and which runs it left, in one line."""
+    why = f"time limit of {time_limit_s:g} s" if summary.end is SweepEnd.TIME_LIMIT else summary.end.value
+    return f"{why}: {len(summary.unfinished)} run(s) not finished: {', '.join(summary.unfinished)}"
 
 
 def parse_seeds(text: str) -> list[int]:
