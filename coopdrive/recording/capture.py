@@ -29,10 +29,10 @@ from typing import BinaryIO
 
 import dpkt
 
-ETHERTYPE_GEONETWORKING = 0x8947
-LINK_TYPE_NAMES = {1: "ethernet", 105: "ieee802_11", 127: "radiotap", 113: "linux_sll", 276: "linux_sll2",
-                   147: "bare_gn"}
-LINK_TYPE_OF_NAME = {name: number for number, name in LINK_TYPE_NAMES.items()}
+from coopdrive.recording.link_types import (ETHERTYPE_GEONETWORKING, LINK_TYPE_NAMES, LINKTYPE_ETHERNET,
+                                            LINKTYPE_IEEE802_11, LINKTYPE_LINUX_SLL, LINKTYPE_LINUX_SLL2,
+                                            LINKTYPE_RADIOTAP, LINKTYPE_USER0_BARE_GN)
+
 _PCAPNG_MAGIC = b"\x0a\x0d\x0d\x0a"
 _LLC_SNAP = b"\xaa\xaa\x03"
 _SNAP_HEADER = struct.Struct(">3sH")  # OUI, ethertype after the 3-byte LLC header
@@ -186,4 +186,5 @@ def _linux_sll2(data: bytes) -> Parsed:
     return _cooked(dpkt.sll2.SLL2(data))
 
 
-_PARSERS = {1: _ethernet, 105: _ieee80211, 127: _radiotap, 113: _linux_sll, 276: _linux_sll2, 147: _bare_gn}
+_PARSERS = {LINKTYPE_ETHERNET: _ethernet, LINKTYPE_IEEE802_11: _ieee80211, LINKTYPE_RADIOTAP: _radiotap,
+            LINKTYPE_LINUX_SLL: _linux_sll, LINKTYPE_LINUX_SLL2: _linux_sll2, LINKTYPE_USER0_BARE_GN: _bare_gn}

@@ -35,10 +35,9 @@ from coopdrive.services.v2x.release2 import TOP_TYPE_OF_MESSAGE, release2_conten
 from coopdrive.services.v2x.security.inspection import PacketInspector
 from coopdrive.services.v2x.security.store import CertificateStore
 from coopdrive.services.v2x.security.trust import trust_store
-from coopdrive.services.v2x.timebase import tai_ms_from_unix_s
+from coopdrive.services.v2x.timebase import US_PER_MS, tai_ms_from_unix_s
+from coopdrive.services.v2x.units import TENTH_MICRODEG_PER_DEG
 
-US_PER_MS = 1000
-TENTH_MICRODEG_PER_DEG = 1e7
 MAPPED_MESSAGES = ("cam", "denm", "iclcm")
 HEADER_TYPE_NAMES = {HeaderType.BEACON: "beacon", HeaderType.TOPOLOGICALLY_SCOPED_BROADCAST: "tsb_single_hop",
                      HeaderType.GEOBROADCAST: "geobroadcast"}

@@ -13,8 +13,8 @@ from dataclasses import dataclass
 from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.services.v2x.config import GCDC_RATE_HZ, CamMode, VehicleDimensions
-from coopdrive.services.v2x.plausibility import EARTH_RADIUS_M
 from coopdrive.services.v2x.timebase import generation_delta_time_ms
+from coopdrive.services.v2x.units import EARTH_RADIUS_M
 from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2
 
 TIME_EPSILON_S = 1e-6

@@ -13,7 +13,9 @@ import threading
 import time
 from typing import BinaryIO, Callable
 
-from coopdrive.services.v2x.pcap import BROADCAST_MAC, ETHERTYPE_GEONETWORKING, US_PER_S, PcapWriter
+from coopdrive.recording.link_types import ETHERTYPE_GEONETWORKING
+from coopdrive.services.v2x.pcap import BROADCAST_MAC, PcapWriter
+from coopdrive.services.v2x.timebase import US_PER_S
 
 RECEIVE_POLL_S = 0.1
 

@@ -9,14 +9,12 @@ from __future__ import annotations
 import struct
 from typing import BinaryIO
 
-ETHERTYPE_GEONETWORKING = 0x8947
-LINKTYPE_ETHERNET = 1
-# Captures of GeoNetworking carried bare (e.g. from a UDP radio bridge) use the first user link type.
-LINKTYPE_USER0_BARE_GN = 147
+from coopdrive.recording.link_types import ETHERTYPE_GEONETWORKING, LINKTYPE_ETHERNET
+from coopdrive.services.v2x.timebase import US_PER_S
+
 BROADCAST_MAC = b"\xff" * 6
 ETHERNET_HEADER_SIZE = 14
 SNAPLEN_BYTES = 65_535
-US_PER_S = 1_000_000
 
 _PCAP_MAGIC_US = 0xA1B2C3D4
 

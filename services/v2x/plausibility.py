@@ -14,8 +14,8 @@ from dataclasses import dataclass
 from coopdrive.services.v2x.config import PlausibilityLimits
 from coopdrive.services.v2x.its_pdu import ItsMessageId
 from coopdrive.services.v2x.timebase import MS_PER_S
+from coopdrive.services.v2x.units import EARTH_RADIUS_M
 
-EARTH_RADIUS_M = 6_371_008.8
 
 
 class PlausibilityReason(enum.Enum):

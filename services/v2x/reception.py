@@ -21,11 +21,11 @@ from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.services.v2x.security_verdict import sender_of, verdict_of_opened, verdict_of_refusal
 from coopdrive.services.v2x.station_stats import StationStats
 from coopdrive.services.v2x.timebase import ItsClock, tai_ms_from_delta
+from coopdrive.services.v2x.units import TENTH_MICRODEG_PER_DEG
 from coopdrive.v1 import v2x_pb2
 
 # A station silent this long leaves the status (it stays LOST in it until then).
 FORGET_AFTER_S = 60.0
-TENTH_MICRODEG_PER_DEG = 1e7
 
 
 @dataclass(frozen=True)

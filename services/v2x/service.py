@@ -23,14 +23,13 @@ from coopdrive.services.v2x.security.profile import SecurityMode
 from coopdrive.services.v2x.security.signer import SecuredPacketSigner
 from coopdrive.services.v2x.security.store import CertificateStore
 from coopdrive.services.v2x.security.verifier import SecurityVerifier
-from coopdrive.services.v2x.timebase import ItsClock
+from coopdrive.services.v2x.timebase import US_PER_MS, ItsClock
 from coopdrive.services.v2x.transmission import Transmitter
 from coopdrive.v1 import its_pb2, v2x_pb2
 
 # Source MAC in the pcap for a received packet whose GN header cannot be parsed.
 UNKNOWN_MAC = bytes(6)
 TOPIC_OF_MESSAGE = {ItsMessageId.CAM: "v2x/cam", ItsMessageId.DENM: "v2x/denm", ItsMessageId.ICLCM: "v2x/iclcm"}
-US_PER_MS = 1000
 
 
 @dataclass

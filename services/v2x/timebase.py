@@ -13,6 +13,8 @@ from dataclasses import dataclass
 from datetime import datetime, timezone
 
 MS_PER_S = 1000
+US_PER_MS = 1000
+US_PER_S = 1_000_000
 GENERATION_DELTA_TIME_MODULUS = 65_536
 UNIX_S_AT_ITS_EPOCH = calendar.timegm((2004, 1, 1, 0, 0, 0))
 TAI_MINUS_UTC_AT_ITS_EPOCH_S = 32

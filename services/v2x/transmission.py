@@ -14,7 +14,7 @@ from coopdrive.services.v2x.generation import CamGenerator, IclcmGenerator
 from coopdrive.services.v2x.its_pdu import ItsMessageId
 from coopdrive.services.v2x.packet import DestinationArea, GnParams, SourcePosition, V2xPacketCodec, default_codec
 from coopdrive.services.v2x.security.layer import ModeSecurityLayer
-from coopdrive.services.v2x.timebase import ItsClock
+from coopdrive.services.v2x.timebase import US_PER_MS, ItsClock
 from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2
 
 log = logging.getLogger(__name__)
@@ -31,7 +31,6 @@ RADIUS_OF_RELEVANCE_M = {
     its_pb2.RELEVANCE_DISTANCE_OVER_10KM: 65535.0,
 }
 DEFAULT_DENM_RADIUS_M = 1000.0
-US_PER_MS = 1000
 
 
 @dataclass(frozen=True)

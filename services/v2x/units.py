@@ -15,6 +15,10 @@ from dataclasses import dataclass
 from coopdrive.services.v2x.reasons import V2xEncodeError
 
 KPH_PER_MPS = 3.6
+# Latitudes and longitudes on the wire (ETSI, IEEE 1609.2) count tenths of a microdegree.
+TENTH_MICRODEG_PER_DEG = 10_000_000
+# The mean Earth radius (IUGG), for distances between nearby positions on a sphere.
+EARTH_RADIUS_M = 6_371_008.8
 _LARGEST_COUNT = 2.0**53
 
 

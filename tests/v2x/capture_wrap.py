@@ -10,7 +10,8 @@ from pathlib import Path
 
 import dpkt
 
-from coopdrive.recording.capture import ETHERTYPE_GEONETWORKING, LINK_TYPE_OF_NAME, read_capture
+from coopdrive.recording.capture import read_capture
+from coopdrive.recording.link_types import ETHERTYPE_GEONETWORKING, LINK_TYPE_OF_NAME
 
 BROADCAST = b"\xff" * 6
 UNKNOWN_MAC = b"\x02\x00\x00\x00\x00\x00"

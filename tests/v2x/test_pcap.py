@@ -3,7 +3,8 @@ import io
 import pytest
 
 from coopdrive.recording.capture import read_capture
-from coopdrive.services.v2x.pcap import ETHERTYPE_GEONETWORKING, PcapWriter
+from coopdrive.recording.link_types import ETHERTYPE_GEONETWORKING
+from coopdrive.services.v2x.pcap import PcapWriter
 
 SOURCE_MAC = bytes.fromhex("02000000002a")
 

@@ -10,6 +10,7 @@ from coopdrive.services.v2x.mapping.common import (
 from coopdrive.services.v2x.its_pdu import PROTOCOL_VERSION_CURRENT, PROTOCOL_VERSION_GCDC, ItsMessageId
 from coopdrive.v1 import its_pb2
 
+# ETSI EN 302 637-3: a DENM without a validity duration is valid for 600 s.
 DEFAULT_VALIDITY_DURATION_S = 600.0
 TERMINATION = EnumTable([("isCancellation", its_pb2.DENM_TERMINATION_CANCELLATION),
                          ("isNegation", its_pb2.DENM_TERMINATION_NEGATION)])

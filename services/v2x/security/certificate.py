@@ -14,6 +14,7 @@ from coopdrive.services.v2x.reasons import RejectReason
 from coopdrive.services.v2x.security import asn
 from coopdrive.services.v2x.security.crypto import (
     data_digest, hashed_id8, public_key_choice, public_key_from_choice, sign_digest, verify_digest)
+from coopdrive.services.v2x.units import EARTH_RADIUS_M, TENTH_MICRODEG_PER_DEG
 
 CERTIFICATE_VERSION = 3
 NO_CRACA_ID = bytes(3)
@@ -21,8 +22,6 @@ NO_CRL_SERIES = 0
 # IEEE 1609.2 6.4.15: a "year" of Duration is 31 556 952 s.
 DURATION_UNIT_S = {"microseconds": 1e-6, "milliseconds": 1e-3, "seconds": 1, "minutes": 60, "hours": 3600,
                    "sixtyHours": 216_000, "years": 31_556_952}
-EARTH_RADIUS_M = 6_371_008.8
-TENTH_MICRODEG_PER_DEG = 10_000_000
 # eeType bits: app (authorisation tickets) and enrol (enrolment credentials).
 EE_TYPE_APP_AND_ENROL = (b"\xc0", 8)
 # A root issues authorities which issue tickets: chains root -> AA -> AT.

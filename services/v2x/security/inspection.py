@@ -34,9 +34,9 @@ from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.services.v2x.security.certificate import Certificate, CertificateError
 from coopdrive.services.v2x.security.crypto import data_digest, hashed_id8, verify_digest
 from coopdrive.services.v2x.security.envelope import SignedEnvelope, parse_signed_data
-from coopdrive.services.v2x.security.profile import (
-    MAX_CLOCK_AHEAD_S, MAX_MESSAGE_AGE_S, PSID_OF_PORT, US_PER_S, SecurityMode)
+from coopdrive.services.v2x.security.profile import MAX_CLOCK_AHEAD_S, MAX_MESSAGE_AGE_S, PSID_OF_PORT, SecurityMode
 from coopdrive.services.v2x.security.store import CertificateStore
+from coopdrive.services.v2x.timebase import US_PER_S
 
 
 @dataclass(frozen=True, slots=True)

@@ -21,10 +21,10 @@ from collections.abc import Callable
 from coopdrive.services.v2x.geonet import is_secured
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.services.v2x.security.inspection import UNSIGNED, PacketInspector, SecurityResult, mode_drop_reason
-from coopdrive.services.v2x.security.profile import US_PER_S, SecurityMode
+from coopdrive.services.v2x.security.profile import SecurityMode
 from coopdrive.services.v2x.security.signer import SecuredPacketSigner
 from coopdrive.services.v2x.security.verifier import SecurityVerifier
-from coopdrive.services.v2x.timebase import tai_ms_from_unix_s
+from coopdrive.services.v2x.timebase import US_PER_S, tai_ms_from_unix_s
 
 # Signers remembered to notice a new station (then our next packet carries the full certificate).
 HEARD_SIGNERS_REMEMBERED = 4096

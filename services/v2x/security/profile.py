@@ -22,7 +22,6 @@ PSID_OF_PORT = {int(BtpPort.CAM): PSID_CAM, int(BtpPort.DENM): PSID_DENM, int(Bt
                 int(BtpPort.CPM): PSID_CPM}
 TICKET_PSIDS = (PSID_CAM, PSID_DENM, PSID_ICLCM)
 
-US_PER_S = 1_000_000
 # Accept messages generated at most this long ago / ahead of our clock (GNSS-disciplined on both sides).
 MAX_MESSAGE_AGE_S = 2.0
 MAX_CLOCK_AHEAD_S = 0.5

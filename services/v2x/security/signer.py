@@ -23,7 +23,8 @@ from coopdrive.services.v2x.its_pdu import peek_its_header
 from coopdrive.services.v2x.security.certificate import Certificate
 from coopdrive.services.v2x.security.envelope import GenerationLocation, build_signed_data
 from coopdrive.services.v2x.security.profile import (
-    ELEVATION_UNKNOWN, FULL_CERTIFICATE_INTERVAL_S, PSID_DENM, PSID_OF_PORT, US_PER_S)
+    ELEVATION_UNKNOWN, FULL_CERTIFICATE_INTERVAL_S, PSID_DENM, PSID_OF_PORT)
+from coopdrive.services.v2x.timebase import US_PER_S
 
 STATION_ID_MODULUS = 2**32
 _LOCALLY_ADMINISTERED, _MULTICAST = 0x02, 0x01

@@ -15,16 +15,15 @@ from typing import NamedTuple
 
 from coopdrive.services.v2x.btp import parse_btp_b
 from coopdrive.services.v2x.geonet import (
-    SUPPORTED_GN_VERSIONS, BasicNextHeader, CommonNextHeader, GnPacket, parse_basic_header, parse_gn,
+    BASIC_HEADER_SIZE, SUPPORTED_GN_VERSIONS, BasicNextHeader, CommonNextHeader, GnPacket, parse_basic_header, parse_gn,
     with_basic_next_header)
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.services.v2x.security.certificate import Certificate, CertificateError
 from coopdrive.services.v2x.security.crypto import data_digest, hashed_id8, verify_digest
 from coopdrive.services.v2x.security.envelope import SignedEnvelope, parse_signed_data
-from coopdrive.services.v2x.security.profile import MAX_CLOCK_AHEAD_S, MAX_MESSAGE_AGE_S, PSID_OF_PORT, US_PER_S
+from coopdrive.services.v2x.security.profile import MAX_CLOCK_AHEAD_S, MAX_MESSAGE_AGE_S, PSID_OF_PORT
 from coopdrive.services.v2x.security.store import CertificateStore
-
-BASIC_HEADER_SIZE = 4
+from coopdrive.services.v2x.timebase import US_PER_S
 
 
 class VerificationResult(NamedTuple):

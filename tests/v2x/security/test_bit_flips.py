@@ -4,8 +4,8 @@ import random
 
 from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE
 from coopdrive.services.v2x.reasons import RejectReason
-from coopdrive.services.v2x.security.profile import US_PER_S
 from coopdrive.services.v2x.security.verifier import SecurityVerifier
+from coopdrive.services.v2x.timebase import US_PER_S
 
 from .signed import cam_packet, denm_packet, now_tai_us
 

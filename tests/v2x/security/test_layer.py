@@ -6,8 +6,7 @@ from coopdrive.services.v2x.security.layer import ModeSecurityLayer
 from coopdrive.services.v2x.security.pki import tamper_packet
 from coopdrive.services.v2x.security.profile import SecurityMode
 from coopdrive.services.v2x.security.verifier import SecurityVerifier
-
-from coopdrive.services.v2x.security.profile import US_PER_S
+from coopdrive.services.v2x.timebase import US_PER_S
 
 from .signed import cam_packet, now_tai_us
 
