@@ -15,6 +15,7 @@ from foxglove_schemas_protobuf.SceneEntityDeletion_pb2 import SceneEntityDeletio
 from foxglove_schemas_protobuf.SceneUpdate_pb2 import SceneUpdate
 
 from coopdrive.roadmap import RoadMap
+from coopdrive.services.scene.unknowns import DEFAULT_LENGTH_M, DEFAULT_WIDTH_M
 from coopdrive.services.sim.geometry import rear_overhang_m
 from coopdrive.visual.primitives import (
     MAP_FRAME,
@@ -27,9 +28,6 @@ from coopdrive.visual.primitives import (
 )
 from coopdrive.v1 import ego_pb2, planner_pb2, scene_pb2, sim_pb2
 
-# A box for an object whose size the scene does not know (yet): a passenger car.
-DEFAULT_LENGTH_M = 4.5
-DEFAULT_WIDTH_M = 1.8
 MIO_COLOR = color(1.0, 0.45, 0.0, 0.9)
 EGO_COLOR = color(0.2, 0.45, 1.0, 0.9)
 TRUTH_COLOR = color(1.0, 1.0, 1.0, 0.35)

@@ -24,13 +24,9 @@ from coopdrive.services.gateway.view_models import (
     TransitionView,
     V2xStationsResponse,
 )
+from coopdrive.services.scene.unknowns import DEFAULT_LENGTH_M, DEFAULT_WIDTH_M, UNKNOWN_CONFIDENCE
 from coopdrive.v1 import actuation_pb2, header_pb2, planner_pb2, scene_pb2, sensors_pb2, v2x_pb2
 
-# The scene marks an unknown or faded property with this confidence.
-UNKNOWN_CONFIDENCE = -1.0
-# Drawn when the scene does not know a size: the simulator's passenger car.
-DEFAULT_LENGTH_M = 4.5
-DEFAULT_WIDTH_M = 1.8
 DEFAULT_LANE_WIDTH_M = 3.5
 # Below this speed a time gap means nothing (standing still).
 MIN_SPEED_FOR_TIME_GAP_MPS = 0.5

@@ -11,7 +11,8 @@ from collections.abc import Callable
 import numpy as np
 
 from .config import SourceConfig
-from .support_table import UNKNOWN_CONFIDENCE, SupportTable
+from .support_table import SupportTable
+from .unknowns import UNKNOWN_CONFIDENCE
 
 __all__ = ["UNKNOWN_CONFIDENCE", "FusedProperty"]
 

@@ -30,8 +30,8 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from .config import SourceConfig
+from .unknowns import UNKNOWN_CONFIDENCE
 
-UNKNOWN_CONFIDENCE = -1.0
 # Columns: header_pb2.SensorSource values, UNSPECIFIED (0) to MAP (6); a source without settings is never used.
 SOURCE_COLUMNS = 7
 # Up to this many rows, one entry at a time in plain floats costs less than setting up arrays.
