@@ -23,12 +23,12 @@ from coopdrive.recording.candump_import import read_candump_log
 from coopdrive.recording.import_source import ImportFailure, SourceReport, TimedMessage
 from coopdrive.recording.nmea_import import read_nmea_log
 from coopdrive.recording.pcap_import import read_pcap
+from coopdrive.recording.replay_config import CONFIG_SOURCE_METADATA
 from coopdrive.recording.writer import NANOSECONDS, McapRecorder, config_metadata
 from coopdrive.runtime.registry import VEHICLE_STACK, service_class
 
 DEFAULT_VEHICLE = "ego"
 SENDER = "import"
-CONFIG_SOURCE_METADATA = "coopdrive.config_source"
 IMPORT_METADATA = "coopdrive.import"
 # The services whose default configs an import writes: the vehicle's stack and its radio.
 IMPORT_CONFIG_SERVICES = VEHICLE_STACK

@@ -10,6 +10,8 @@ from coopdrive.bus.keys import KeyLayout
 from coopdrive.runtime.config import apply_override, read_mapping, validate_config
 from coopdrive.runtime.service import Service, ServiceConfig
 
+# The metadata record of a recording that says where each service config came from: "default" for the configs an
+# import writes (importer.py), where nothing was recorded; a replay with one of them says so.
 CONFIG_SOURCE_METADATA = "coopdrive.config_source"
 
 

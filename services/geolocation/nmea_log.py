@@ -16,10 +16,9 @@ from pathlib import Path
 
 import pynmea2
 
-from coopdrive.services.geolocation.nmea_decoder import nmea_checksum
+from coopdrive.services.geolocation.nmea_decoder import DAY_S, nmea_checksum
 
 TIMED_TYPES = ("GGA", "RMC", "GNS", "ZDA")
-DAY_S = 86400.0
 EPOCH_DATE = datetime.date(1970, 1, 1)
 
 
