@@ -20,8 +20,9 @@ from foxglove_schemas_protobuf.TextPrimitive_pb2 import TextPrimitive
 from foxglove_schemas_protobuf.Vector3_pb2 import Vector3
 from google.protobuf.timestamp_pb2 import Timestamp
 
+from coopdrive.recording.publish_spool import NANOSECONDS
+
 MAP_FRAME = "map"
-NANOSECONDS = 1_000_000_000
 # Boxes stand on the road: their centre is half their height up.
 BOX_HEIGHT_M = 1.5
 LABEL_HEIGHT_M = 2.5
