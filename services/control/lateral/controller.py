@@ -14,14 +14,13 @@ from __future__ import annotations
 import math
 
 from ..profiles import VehicleProfile
+from ..step_period import step_period_s
 from .lane_change import QuinticTransition
 from .pd import HeudiasycPd
 from .pure_pursuit import PurePursuit
 from .stanley import Stanley
 from .types import LateralCommand, LateralLaw, LateralMode, PathState, SteeringLaw
 
-DEFAULT_DT_S = 0.02
-MAX_DT_S = 0.5
 # A change of the offset to the target lane centre larger than this between two steps is a reference switch.
 REFERENCE_JUMP_M = 1.0
 
@@ -74,9 +73,7 @@ class LateralController:
             if not math.isfinite(value):
                 self.rejected_inputs += 1
                 raise ValueError(f"lateral controller: {name} is not finite ({value})")
-        dt = DEFAULT_DT_S if self._last_time_s is None else time_s - self._last_time_s
-        if dt <= 0 or dt > MAX_DT_S:
-            dt = DEFAULT_DT_S
+        dt, _ = step_period_s(self._last_time_s, time_s)
         duration = lane_change_duration_s or self.profile.lateral.lane_change_duration_s
         measured = PathState(speed_mps, lateral_offset_m, heading_error_rad, curvature_1pm)
         self._maybe_start_transition(time_s, measured, desired_offset_m, duration)

@@ -14,6 +14,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from ..profiles import VehicleProfile
+from ..step_period import step_period_s
 from .acc import RadarAcc, RajamaniAcc
 from .cacc import LagCompensatedCacc
 from .contracts import CruiseLaw, FollowingLaw
@@ -27,9 +28,6 @@ from .stop_line import StopLineApproach
 from .types import (STANDSTILL_SPEED_MPS, AccLaw, CaccLaw, FollowInput, LongitudinalCommand, LongitudinalMode, Spacing,
                     SpeedLaw, Target)
 
-DEFAULT_DT_S = 0.02
-# A gap in the call sequence longer than this restarts the controller from the measured state.
-MAX_DT_S = 0.5
 # Below this speed a target's present time gap means nothing; a new track starts at the goal.
 NEW_TARGET_MIN_SPEED_MPS = 1.0
 # A new track never starts below this time gap: the laws divide by it, and a target inside the standstill
@@ -181,10 +179,9 @@ class LongitudinalController:
             if not math.isfinite(value):
                 self._reject(f"{name} is not finite")
                 raise ValueError(f"longitudinal controller: {name} is not finite ({value})")
-        dt = DEFAULT_DT_S if self._last_time_s is None else time_s - self._last_time_s
-        if dt <= 0 or dt > MAX_DT_S:
+        dt, broke_off = step_period_s(self._last_time_s, time_s)
+        if broke_off:
             self.reset(self.shaper.last_mps2, ego_speed_mps)
-            dt = DEFAULT_DT_S
         self._last_time_s = time_s
         return dt
 

@@ -27,7 +27,7 @@ from coopdrive.services.v2x.security.envelope import parse_signed_data
 from coopdrive.services.v2x.security.profile import TICKET_PSIDS
 from coopdrive.services.v2x.security.signer import SecuredPacketSigner
 from coopdrive.services.v2x.security.store import CertificateStore
-from coopdrive.services.v2x.timebase import tai_ms_from_unix_s
+from coopdrive.services.v2x.timebase import MS_PER_S, tai_ms_from_unix_s
 
 ROOT_VALIDITY_HOURS = 5 * 365 * 24
 AUTHORITY_VALIDITY_HOURS = 2 * 365 * 24
@@ -37,7 +37,6 @@ BACKDATE_S = 3600
 EXPIRED_TICKET_AGE_S = 2 * 24 * 3600
 DEFAULT_TICKETS_PER_VEHICLE = 3
 ROOT_NAME, AUTHORITY_NAME = "root", "aa"
-MS_PER_S = 1000
 BITS_PER_BYTE = 8
 
 Ticket = tuple[Certificate, ec.EllipticCurvePrivateKey]
