@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # CI's sweep (.ci/run; issue 26): seeds 1-2 of every scenario (SEEDS), without reports, in the seconds CI has left
-# (the argument), through tools/sweep.sh. About 8.5 minutes on 2 cores after a 5-minute suite: close to CI's 15.
-# A run that fails fails CI. The sweep runs its costliest runs first, so the runs a slow machine's time does not
-# reach are its last: follow's and localisation's, which the suite runs too. They are listed in the pass table and
-# do not fail CI (the sweep's exit status 4). With under a minute left the sweep is skipped, and says so.
+# (the argument), through tools/sweep.sh. About 8 minutes on 2 cores after a 5-minute suite: close to CI's 15.
+# A run that fails fails CI. The sweep runs its costliest runs first, so the runs a slower hour's time does not
+# reach are its shortest: localisation's and follow's first, then platoon40's and intersection's. They are listed
+# in the pass table and do not fail CI (the sweep's exit status 4). With under a minute left the sweep is skipped,
+# and says so.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 left_s=${1:?usage: tools/ci_sweep.sh SECONDS_LEFT}
