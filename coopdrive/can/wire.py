@@ -16,7 +16,8 @@ def python_can_data_frame(arbitration_id: int, data: bytes, timestamp_s: float, 
                        channel=channel, is_rx=False)
 
 
-def protobuf_data_frame(arbitration_id: int, data: bytes, timestamp_s: float, channel: str | None) -> vehicle_pb2.CanFrame:
+def protobuf_data_frame(arbitration_id: int, data: bytes, timestamp_s: float,
+                        channel: str | None) -> vehicle_pb2.CanFrame:
     """The same frame as it travels on the Zenoh bus: to_protobuf(python_can_data_frame(...)) without the Message."""
     return vehicle_pb2.CanFrame(channel=channel or "", arbitration_id=arbitration_id, data=data,
                                 timestamp_s=timestamp_s)

@@ -120,7 +120,8 @@ class Lane:
         along_m = stations_m - self._station0[i]
         unit = self._unit[i]
         left = np.column_stack((-unit[:, 1], unit[:, 0]))
-        return self._start[i] + unit * along_m[:, None] + left * np.asarray(lateral_offsets_m, dtype=float)[:, None, None]
+        offsets_m = np.asarray(lateral_offsets_m, dtype=float)[:, None, None]
+        return self._start[i] + unit * along_m[:, None] + left * offsets_m
 
     def curvature_at(self, station_m: float) -> float:
         """Curvature interpolated between vertices, positive to the left, 1/m."""

@@ -54,8 +54,9 @@ class SupportTable:
         self._max = np.zeros(SOURCE_COLUMNS)
         self._gain = np.zeros(SOURCE_COLUMNS)
         # The columns of the sources that have given support (their settings looked up) in enum order, and the span
-        # from the first to the last of them: the other columns hold no support, and numpy reduces a short last axis element by element (a max over 7 columns of
-        # 200 x 8 slots cost 90 us), so the reductions over sources leave them out.
+        # from the first to the last of them. The other columns hold no support, and numpy reduces a short last axis
+        # element by element (a max over 7 columns of 200 x 8 slots cost 90 us), so the reductions over sources
+        # leave them out.
         self._columns: list[int] = []
         self._span = slice(0, 0)
         self._conf = np.zeros((_INITIAL_ROWS, slots, SOURCE_COLUMNS))
@@ -102,17 +103,19 @@ class SupportTable:
 
     def valid_until_s(self, rows) -> np.ndarray:
         """When the last supporting source of each slot fades, -inf where none ever did: (rows, slots)."""
-        support_time_s = self._time_s[rows]
-        latest = np.full(support_time_s.shape[:-1], -math.inf)
-        for column in self._columns:
-            np.maximum(latest, support_time_s[..., column] + self._fade_s[column], out=latest)
-        return latest
+        return self._latest_support_s(rows, self._fade_s)
 
     def last_support_s(self, rows) -> np.ndarray:
+        return self._latest_support_s(rows)
+
+    def _latest_support_s(self, rows, fade_s: np.ndarray | None = None) -> np.ndarray:
+        """The latest support time over the sources that gave any (plus each source's fade_s), -inf where none did:
+        (rows, slots). One np.maximum per such column: see _columns."""
         support_time_s = self._time_s[rows]
         latest = np.full(support_time_s.shape[:-1], -math.inf)
         for column in self._columns:
-            np.maximum(latest, support_time_s[..., column], out=latest)
+            times_s = support_time_s[..., column]
+            np.maximum(latest, times_s if fade_s is None else times_s + fade_s[column], out=latest)
         return latest
 
     def values(self, rows) -> np.ndarray:

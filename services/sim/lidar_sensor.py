@@ -62,8 +62,10 @@ class LidarSensor(TimedSensor[sensors_pb2.LidarScan]):
         x_m = cfg.mount_x_m + ranges * np.cos(azimuths)
         y_m = cfg.mount_y_m + ranges * np.sin(azimuths)
         bounds = np.cumsum([len(r) for r in layer_ranges])[:-1]
+        layer_azimuths_rad = np.split(np.arctan2(y_m, x_m), bounds)
+        layer_ranges_m = np.split(np.hypot(x_m, y_m), bounds)
         for layer_index, (elevation_rad, azimuth_rad, range_m) in enumerate(zip(
-                cfg.layer_elevations_rad, np.split(np.arctan2(y_m, x_m), bounds), np.split(np.hypot(x_m, y_m), bounds))):
+                cfg.layer_elevations_rad, layer_azimuths_rad, layer_ranges_m)):
             scan.layers.add(layer=layer_index, elevation_rad=elevation_rad, azimuth_rad=azimuth_rad.tolist(),
                             range_m=range_m.tolist())
         return scan
