@@ -5,7 +5,8 @@
 # scheduler's workers instead of a local cluster (README, Sweeps); SCENARIO=NAME sweeps that scenario alone.
 # REPORTS=0 keeps each run's metrics.json and the summaries only, no recording or plots (CI's sweep, .ci/run).
 # TIME_LIMIT=SECONDS stops the sweep that long after its runs are handed out and lists the runs it left: exit
-# status 4 when every run that finished passed.
+# status 4 when every run that finished passed. DURATION=SECONDS runs each scenario that long instead of its own
+# duration (a quick look, not the sweep of the issue).
 # On two cores this takes hours; `SEEDS=1-2 tools/sweep.sh` is the quick check.
 # Prints the pass table and exits non-zero when any run failed (or the sweep could not start).
 # PYTHON: the interpreter with coopdrive installed (default .venv/bin/python, as `make` sets it up).
@@ -16,7 +17,7 @@ out=${OUT:-out/sweep}
 rm -f "$out/pass_table.md"  # a table printed below is this sweep's, never an earlier one's
 "${PYTHON:-.venv/bin/python}" -m coopdrive.cli run "${SCENARIO:-all}" --seeds "$seeds" --workers "${WORKERS:-2}" \
   --out "$out" ${FAULTS:+--faults "$FAULTS"} $([ "${REPORTS:-1}" = 0 ] && echo --no-reports) \
-  ${TIME_LIMIT:+--time-limit "$TIME_LIMIT"} ${CLUSTER:+--cluster "$CLUSTER"}
+  ${TIME_LIMIT:+--time-limit "$TIME_LIMIT"} ${DURATION:+--duration "$DURATION"} ${CLUSTER:+--cluster "$CLUSTER"}
 status=$?
 if [ -f "$out/pass_table.md" ]; then
   cat "$out/pass_table.md"

@@ -34,18 +34,24 @@ def metrics_with(processes: ProcessLayout) -> dict[str, float]:
     return dict(result.metrics)
 
 
-def test_two_stacks_each_in_one_process_give_the_metrics_of_one_process_per_service():
-    assert metrics_with(ProcessLayout.VEHICLE) == metrics_with(ProcessLayout.SERVICE)
+@pytest.fixture(scope="module")
+def layout_metrics() -> dict[ProcessLayout, dict[str, float]]:
+    """Each layout's metrics, run once for the whole file whichever test asks first (services forked from the
+    preloaded server, as every run starts them unless told otherwise)."""
+    return {layout: metrics_with(layout) for layout in (ProcessLayout.SERVICE, ProcessLayout.VEHICLE)}
 
 
-def test_the_simulator_and_two_stacks_in_one_process_give_the_metrics_of_one_process_per_service():
-    assert metrics_with(ProcessLayout.ONE) == metrics_with(ProcessLayout.SERVICE)
+def test_two_stacks_each_in_one_process_give_the_metrics_of_one_process_per_service(layout_metrics):
+    assert layout_metrics[ProcessLayout.VEHICLE] == layout_metrics[ProcessLayout.SERVICE]
 
 
-def test_services_forked_from_the_preloaded_server_give_the_metrics_of_new_interpreters(monkeypatch):
-    forked = metrics_with(ProcessLayout.VEHICLE)
+def test_the_simulator_and_two_stacks_in_one_process_give_the_metrics_of_one_process_per_service(layout_metrics):
+    assert metrics_with(ProcessLayout.ONE) == layout_metrics[ProcessLayout.SERVICE]
+
+
+def test_services_forked_from_the_preloaded_server_give_the_metrics_of_new_interpreters(layout_metrics, monkeypatch):
     monkeypatch.setenv(NEW_INTERPRETERS_VARIABLE, "1")
-    assert metrics_with(ProcessLayout.VEHICLE) == forked
+    assert metrics_with(ProcessLayout.VEHICLE) == layout_metrics[ProcessLayout.VEHICLE]
 
 
 def test_the_one_process_of_a_run_ends_by_itself_on_the_launchers_sigterm(monkeypatch):

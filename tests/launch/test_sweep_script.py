@@ -9,8 +9,9 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
 SCRIPT = REPO / "tools" / "sweep.sh"
-# One follow run (60 s simulated) on a one-worker local Dask cluster.
+# One follow run (DURATION_S simulated) on a one-worker local Dask cluster.
 SWEEP_TIMEOUT_S = 300
+DURATION_S = 5
 
 
 def sweep(out: Path, **settings: str) -> subprocess.CompletedProcess:
@@ -20,7 +21,8 @@ def sweep(out: Path, **settings: str) -> subprocess.CompletedProcess:
 
 def test_the_script_sweeps_a_scenario_s_seeds_prints_the_pass_table_and_exits_0(tmp_path):
     """As CI calls it (tools/ci_sweep.sh): REPORTS=0, each run's metrics and the summaries without a report."""
-    result = sweep(tmp_path / "sweep", SCENARIO="follow", SEEDS="1", WORKERS="1", REPORTS="0")
+    result = sweep(tmp_path / "sweep", SCENARIO="follow", SEEDS="1", WORKERS="1", REPORTS="0",
+                   DURATION=str(DURATION_S))
     assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
     assert "| follow | none | 1/1 | pass |" in result.stdout
     assert (tmp_path / "sweep" / "pass_table.md").read_text() in result.stdout
@@ -42,17 +44,28 @@ def test_a_sweep_that_cannot_start_exits_non_zero_and_prints_no_earlier_table(tm
 CI_SCRIPT = REPO / "tools" / "ci_sweep.sh"
 
 
-def ci_sweep(tmp_path: Path, seconds_left: int, sweep_status: int) -> tuple[subprocess.CompletedProcess, str]:
-    """tools/ci_sweep.sh with a stand-in for the sweep's interpreter that records its arguments and exits with
+def with_stand_in(tmp_path: Path, command: list[str], sweep_status: int,
+                  **settings: str) -> tuple[subprocess.CompletedProcess, str]:
+    """Runs a script with a stand-in for the sweep's interpreter that records its arguments and exits with
     sweep_status, as `coopdrive run all` would."""
     arguments = tmp_path / "arguments"
     stand_in = tmp_path / "python"
     stand_in.write_text(f'#!/bin/sh\necho "$@" > {arguments}\nexit {sweep_status}\n')
     stand_in.chmod(0o755)
-    env = {**os.environ, "PYTHON": str(stand_in), "OUT": str(tmp_path / "sweep")}
-    result = subprocess.run(["bash", str(CI_SCRIPT), str(seconds_left)], capture_output=True, text=True, env=env,
-                            timeout=60)
+    env = {**os.environ, "PYTHON": str(stand_in), "OUT": str(tmp_path / "sweep"), **settings}
+    result = subprocess.run(command, capture_output=True, text=True, env=env, timeout=60)
     return result, arguments.read_text() if arguments.exists() else ""
+
+
+def ci_sweep(tmp_path: Path, seconds_left: int, sweep_status: int) -> tuple[subprocess.CompletedProcess, str]:
+    return with_stand_in(tmp_path, ["bash", str(CI_SCRIPT), str(seconds_left)], sweep_status)
+
+
+def test_duration_runs_every_scenario_that_long_and_without_it_each_runs_its_own(tmp_path):
+    _, arguments = with_stand_in(tmp_path, ["bash", str(SCRIPT)], 0, DURATION="5")
+    assert "--duration 5" in arguments
+    _, arguments = with_stand_in(tmp_path, ["bash", str(SCRIPT)], 0)
+    assert "--duration" not in arguments
 
 
 def test_ci_sweeps_seeds_1_and_2_of_every_scenario_without_reports_in_the_seconds_it_has_left(tmp_path):
