@@ -25,7 +25,7 @@ from bench.sizes import sized
 from coopdrive.launch.processes import NEW_INTERPRETERS_VARIABLE
 
 LAYOUTS = ("service", "vehicle")
-DURATIONS_S = sized((5.0, 60.0), (1.0, 2.0))
+DURATIONS_S = sized((5.0, 60.0), (1.0,))
 STACKS = sized(8, 2)
 STACKS_DURATION_S = sized(5.0, 0.5)
 ROUNDS = sized(2, 1)
