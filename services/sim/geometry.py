@@ -76,6 +76,24 @@ class Outlines:
         """Each outline's point nearest to point_xy, (polygons, 2)."""
         return closest_points_on_outlines(point_xy, self.corners, self.edges)
 
+    def near(self, point_xy: tuple[float, float], reach_m: float) -> Outlines:
+        """The outlines that may come within reach_m of point_xy, a cheap bound: every point of an outline is within
+        its longest edge of a corner, so an outline none of whose corners is within reach_m plus that edge stays
+        beyond reach_m. A ray cast that reports nothing beyond reach_m gives the same ranges cast at these alone."""
+        if not len(self):
+            return self
+        corner_sq_m2 = ((self.corners - np.asarray(point_xy, dtype=float)) ** 2).sum(axis=2).min(axis=1)
+        longest_edge_m = np.sqrt((self.edges ** 2).sum(axis=2).max(axis=1))
+        near = corner_sq_m2 <= (reach_m + longest_edge_m) ** 2
+        return self.subset(near)
+
+    def ahead_of(self, x_m: float) -> np.ndarray:
+        """Which outlines (a mask) reach ahead of x = x_m: a ray pointing forward from there meets no other."""
+        return (self.corners[..., 0] > x_m).any(axis=1)
+
+    def subset(self, mask: np.ndarray) -> Outlines:
+        return self if mask.all() else Outlines(self.corners[mask], self.edges[mask])
+
 
 def ray_polygon_ranges(origin_xy: tuple[float, float] | np.ndarray, azimuths_rad: np.ndarray,
                        polygons: Sequence[np.ndarray] | Outlines) -> np.ndarray:

@@ -77,9 +77,13 @@ class LidarSensor(TimedSensor[sensors_pb2.LidarScan]):
         beams = self.beam_azimuths_rad.size
         layers = len(cfg.layer_elevations_rad)
         outlines = world.outlines()
+        heights = np.array([world.height_m(o) for o in world.others])
+        if cfg.half_fov_rad < 0.5 * math.pi and len(outlines):
+            # A forward scanner's beams meet nothing wholly behind its mount: cast at the others only (the same ranges).
+            ahead = outlines.ahead_of(cfg.mount_x_m)
+            outlines, heights = outlines.subset(ahead), heights[ahead]
         if not len(outlines):
             return np.full((layers, beams), np.inf)
-        heights = np.array([world.height_m(o) for o in world.others])
         # (vehicle, beam): a reduction over the vehicles is then one np.minimum per vehicle, not numpy's element by
         # element pass over a short last axis.
         table = np.ascontiguousarray(

@@ -23,6 +23,8 @@ class SonarSensor(TimedSensor[sensors_pb2.SonarRanges]):
                                      dtype=float).reshape(-1, 2)
         self._ray_azimuths_rad = np.concatenate([mount.yaw_rad + cone_rad for mount in config.mounts]) \
             if config.mounts else np.empty(0)
+        self._farthest_mount_m = float(np.hypot(self._ray_origins[:, 0], self._ray_origins[:, 1]).max()) \
+            if config.mounts else 0.0
 
     def poll(self, now_s: float, world: WorldView) -> list[sensors_pb2.SonarRanges]:
         return self._deliver(now_s, lambda: self._measure(world))
@@ -33,8 +35,9 @@ class SonarSensor(TimedSensor[sensors_pb2.SonarRanges]):
         message = sensors_pb2.SonarRanges()
         if not cfg.mounts:
             return message
-        all_ranges, _ = geometry.cast_rays(self._ray_origins, self._ray_azimuths_rad, outlines,
-                                           cfg.max_range_m)
+        # An echo comes from a few metres at most: the rays are cast at the vehicles that near, the same ranges.
+        near = outlines.near((0.0, 0.0), self._farthest_mount_m + cfg.max_range_m)
+        all_ranges, _ = geometry.cast_rays(self._ray_origins, self._ray_azimuths_rad, near, cfg.max_range_m)
         for index, (mount, ranges) in enumerate(zip(cfg.mounts, all_ranges.reshape(len(cfg.mounts), -1))):
             nearest_m = float(ranges.min()) if ranges.size else np.inf
             echo = bool(np.isfinite(nearest_m))

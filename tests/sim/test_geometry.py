@@ -100,3 +100,28 @@ def test_rays_cast_each_from_its_own_origin_meet_what_each_alone_meets():
               elements=st.floats(allow_nan=False) | st.just(np.inf)))
 def test_the_minimum_over_a_short_last_axis_is_numpys_minimum_to_the_bit(values):
     np.testing.assert_array_equal(geometry.min_over_last_axis(values), values.min(axis=-1))
+
+
+@given(st.lists(st.tuples(st.floats(-30.0, 30.0), st.floats(-30.0, 30.0), st.floats(-3.2, 3.2),
+                          st.floats(0.5, 18.0), st.floats(0.5, 3.0)), max_size=8),
+       st.floats(-5.0, 5.0), st.floats(-5.0, 5.0), st.floats(0.0, 12.0))
+def test_the_outlines_near_a_point_keep_every_outline_within_reach(vehicles, x_m, y_m, reach_m):
+    outlines = geometry.Outlines.of([geometry.footprint_corners(*vehicle) for vehicle in vehicles])
+    near = outlines.near((x_m, y_m), reach_m)
+    within = np.hypot(*(outlines.closest_points((x_m, y_m)) - (x_m, y_m)).T) <= reach_m
+    kept = {corners.tobytes() for corners in near.corners}
+    assert all(corners.tobytes() in kept for corners in outlines.corners[within])
+
+
+def test_rays_cast_at_the_outlines_near_their_origins_give_the_ranges_within_reach_of_all():
+    rng = np.random.default_rng(5)
+    polygons = [geometry.footprint_corners(*rng.uniform(-12.0, 12.0, 2), rng.uniform(-3.2, 3.2), 4.5, 1.8)
+                for _ in range(10)]
+    outlines = geometry.Outlines.of(polygons)
+    origins = rng.uniform(-1.5, 1.5, (60, 2))
+    azimuths = rng.uniform(-math.pi, math.pi, 60)
+    reach_m = 4.0
+    near = outlines.near((0.0, 0.0), reach_m + np.hypot(*origins.T).max())
+    assert 0 < len(near) < len(outlines)
+    assert np.array_equal(cast_rays(origins, azimuths, near, reach_m)[0],
+                          cast_rays(origins, azimuths, outlines, reach_m)[0])

@@ -3,6 +3,7 @@ import math
 import numpy as np
 import pytest
 
+from coopdrive.services.sim import geometry
 from coopdrive.services.sim.camera_sensor import CameraSensor
 from coopdrive.services.sim.can_state_sensor import CanStateSensor, DriverPedals, wheel_speeds_mps
 from coopdrive.services.sim.lidar_sensor import LidarSensor
@@ -131,6 +132,60 @@ def test_sonars_echo_on_a_close_vehicle_and_report_free_space_elsewhere():
     assert len(ranges) == 6
     assert ranges[1].echo and ranges[1].range_m == pytest.approx(2.0, abs=1e-6)
     assert not ranges[4].echo and ranges[4].range_m == 4.0
+
+
+def _counting_left_out(monkeypatch, method: str, kept_count) -> list[int]:
+    """Wraps Outlines.<method>, a culling of outlines, to record how many each call left out (kept_count(its result):
+    how many it kept)."""
+    culling = getattr(geometry.Outlines, method)
+    left_out = []
+
+    def counting(outlines, *arguments):
+        result = culling(outlines, *arguments)
+        left_out.append(len(outlines) - kept_count(result))
+        return result
+
+    monkeypatch.setattr(geometry.Outlines, method, counting)
+    return left_out
+
+
+def _traffic(seed: int, half_width_m: float, vehicles: int, worlds: int) -> list[WorldView]:
+    rng = np.random.default_rng(seed)
+    return [_world(*[_car(f"v{k}", *rng.uniform(-half_width_m, half_width_m, 2), heading_rad=rng.uniform(-3.0, 3.0))
+                     for k in range(vehicles)]) for _ in range(worlds)]
+
+
+def _polled(sensor, worlds: list[WorldView]) -> list:
+    return [sensor.poll(0.1 * k, world) for k, world in enumerate(worlds)]
+
+
+def test_sonars_casting_only_at_the_vehicles_near_report_what_casting_at_all_reports(monkeypatch):
+    """Traffic around the ego, some of it within the sonars' reach: the same messages, every field."""
+    worlds = _traffic(3, 20.0, 6, 30)
+
+    def sonar():
+        return SonarSensor(SonarConfig(timing=TIMING), sensor_rng(5, "ego", "sonar"), "ego")
+
+    left_out = _counting_left_out(monkeypatch, "near", len)
+    culled = _polled(sonar(), worlds)
+    monkeypatch.setattr(geometry.Outlines, "near", lambda outlines, _point, _reach_m: outlines)
+    assert culled == _polled(sonar(), worlds)
+    assert sum(left_out) > 0
+    assert any(reading.echo for polled in culled for message in polled for reading in message.ranges)
+
+
+def test_a_forward_lidar_casting_only_at_the_vehicles_reaching_ahead_of_it_reports_what_casting_at_all_reports(
+        monkeypatch):
+    worlds = _traffic(4, 30.0, 8, 10)
+
+    def lidar():
+        return LidarSensor(LidarConfig(timing=TIMING), sensor_rng(5, "ego", "lidar"), "ego")
+
+    left_out = _counting_left_out(monkeypatch, "ahead_of", lambda ahead: int(ahead.sum()))
+    culled = _polled(lidar(), worlds)
+    monkeypatch.setattr(geometry.Outlines, "ahead_of", lambda outlines, _x_m: np.ones(len(outlines), dtype=bool))
+    assert culled == _polled(lidar(), worlds)
+    assert sum(left_out) > 0
 
 
 def test_a_sensor_in_forced_dropout_delivers_nothing():
