@@ -35,7 +35,7 @@ class SonarSensor(TimedSensor[sensors_pb2.SonarRanges]):
         message = sensors_pb2.SonarRanges()
         if not cfg.mounts:
             return message
-        # An echo comes from a few metres at most: the rays are cast at the vehicles that near, the same ranges.
+        # An echo comes from a few metres at most: the rays are cast only at the vehicles near enough (the same ranges).
         near = outlines.near((0.0, 0.0), self._farthest_mount_m + cfg.max_range_m)
         all_ranges, _ = geometry.cast_rays(self._ray_origins, self._ray_azimuths_rad, near, cfg.max_range_m)
         for index, (mount, ranges) in enumerate(zip(cfg.mounts, all_ranges.reshape(len(cfg.mounts), -1))):
