@@ -19,6 +19,7 @@ from contextlib import contextmanager
 from typing import Callable, Iterator
 
 from coopdrive.launch.batch import RunOutcome, SweepEnd
+from coopdrive.launch.sweep_order import start_order
 from coopdrive.launch.sweep_task import SweepJob, run_job
 
 # How many times a run's worker may die under it before the run counts as failed (Dask's default, said here).
@@ -74,18 +75,16 @@ def _quiet_distributed() -> Iterator[None]:
 
 def stream_runs(client, jobs: list[SweepJob], on_outcome: Callable[[RunOutcome, dict[str, bytes]], None],
                 time_limit_s: float | None = None) -> tuple[list[SweepJob], SweepEnd]:
-    """Submits every job and calls on_outcome(outcome, report files) as each run ends, in the order they end.
-    Returns the jobs left unfinished, which are cancelled, when interrupted (Ctrl-C) or time_limit_s after the jobs
-    were submitted, and how the sweep ended."""
+    """Submits every job, in the order sweep_order.start_order gives, and calls on_outcome(outcome, report files) as
+    each run ends, in the order they end. Returns the jobs left unfinished, which are cancelled, when interrupted
+    (Ctrl-C) or time_limit_s after the jobs were submitted, and how the sweep ended."""
     from distributed import as_completed
 
     topic = f"coopdrive-sweep-{uuid.uuid4().hex}"
-    # The costliest runs first (longest processing time first): a sweep's last runs are then its short ones, and
-    # its workers end close together instead of one running a long run while the others are idle.
-    costed = sorted(((job.stack_seconds(), job) for job in jobs), key=lambda pair: pair[0], reverse=True)
+    ordered = start_order(jobs, time_limited=time_limit_s is not None)
     futures = {client.submit(run_job, job, topic, key=f"coopdrive-run-{job.label}-{topic[-8:]}",
-                             priority=round(cost)): job
-               for cost, job in costed}
+                             priority=len(ordered) - rank): job
+               for rank, job in enumerate(ordered)}
     end = SweepEnd.COMPLETE
     submitted_s = time.monotonic()
     try:

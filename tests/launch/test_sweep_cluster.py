@@ -103,15 +103,25 @@ def test_a_worker_killed_mid_run_loses_no_run_and_its_run_is_run_again_and_marke
     assert not any(running(process) for process in killed["services"])
 
 
+def started_runs(cluster, time_limit_s: float | None = None) -> list[str]:
+    """Sweeps follow and platoon40 on seeds 1 and 2 (1 s each) and gives the labels of its runs as they started."""
+    address, client = cluster
+    earlier_sweeps = set(client.get_events())
+    summary = run_batch(BatchOptions(scenarios=["follow", "platoon40"], seeds=[1, 2], duration_s=1.0,
+                                     cluster=address, time_limit_s=time_limit_s), Console(record=True, width=200))
+    assert len(summary.outcomes) == 4
+    [topic] = [topic for topic in client.get_events() if topic.startswith("coopdrive-sweep-")
+               and topic not in earlier_sweeps]
+    return [event["run"] for _time, event in sorted(client.get_events(topic), key=lambda timed: timed[0])]
+
+
 def test_a_sweep_starts_its_costliest_runs_first_wherever_the_scenarios_list_them(cluster):
     """platoon40 runs three stacks where follow runs one: listed last, its runs still take both workers first."""
-    address, client = cluster
-    summary = run_batch(BatchOptions(scenarios=["follow", "platoon40"], seeds=[1, 2], duration_s=1.0,
-                                     cluster=address), Console(record=True, width=200))
-    assert len(summary.outcomes) == 4
-    [starts] = [sorted(events, key=lambda timed: timed[0]) for topic, events in client.get_events().items()
-                if topic.startswith("coopdrive-sweep-") and any("platoon40" in e["run"] for _t, e in events)]
-    assert [event["run"].split("/")[0] for _time, event in starts] == ["platoon40"] * 2 + ["follow"] * 2
+    assert [run.split("/")[0] for run in started_runs(cluster)] == ["platoon40"] * 2 + ["follow"] * 2
+
+
+def test_a_sweep_with_a_time_limit_starts_every_scenario_on_the_first_seed_before_any_on_the_second(cluster):
+    assert [run.split("/")[-1] for run in started_runs(cluster, time_limit_s=300.0)] == ["seed-1"] * 2 + ["seed-2"] * 2
 
 
 def test_a_cluster_address_where_no_scheduler_answers_is_one_line(monkeypatch):
