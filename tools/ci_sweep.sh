@@ -2,9 +2,9 @@
 # CI's sweep (.ci/run; issue 26): seeds 1-2 of every scenario (SEEDS), without reports, in the seconds CI has left
 # (the argument), through tools/sweep.sh. About 8 minutes on 2 cores after a 5-minute suite: close to CI's 15.
 # A run that fails fails CI. With its time limit the sweep runs every scenario's seed 1 before any seed 2 (the
-# costliest first within a seed), so a slower hour loses seed 2 of the shortest scenarios first, then of the longest,
-# and CI still runs every scenario once. The runs it does not reach are listed in the pass table and do not fail CI
-# (the sweep's exit status 4). With under a minute left the sweep is skipped, and says so.
+# costliest first within a seed), so a slower hour loses seed-2 runs (whichever the limit finds unfinished) before
+# any scenario's seed 1, and CI still runs every scenario once. The runs it does not finish are listed in the pass
+# table and do not fail CI (the sweep's exit status 4). With under a minute left the sweep is skipped, and says so.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 left_s=${1:?usage: tools/ci_sweep.sh SECONDS_LEFT}
