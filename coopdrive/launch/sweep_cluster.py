@@ -25,6 +25,11 @@ from coopdrive.launch.sweep_task import SweepJob, run_job
 # How many times a run's worker may die under it before the run counts as failed (Dask's default, said here).
 ALLOWED_FAILURES = 3
 CONNECT_TIMEOUT_S = 10
+# A worker is given its next run when it finishes one, never one ahead (Dask's default, 1.1, hands a one-thread
+# worker a second task to hold): a run held behind a long one waits there while another worker goes idle, and the
+# sweep's order (sweep_order.py) holds only per worker. Seen in CI: string's seed 2 held behind merge's, cut by the
+# time limit, while the other worker ran every shorter run.
+WORKER_SATURATION = 1.0
 
 
 class SweepError(RuntimeError):
@@ -46,10 +51,11 @@ def sweep_client(cluster: str | None, workers: int) -> Iterator:
         with client:
             yield client
         return
-    # The scheduler reads allowed-failures when it starts; a remote scheduler has its own setting. Workers that are
-    # not daemonic processes may fork a run's services from their preloaded server (forked_process.py), which they
-    # keep from run to run; a daemonic one starts each service as a new interpreter.
-    settings = {"distributed.scheduler.allowed-failures": ALLOWED_FAILURES, "distributed.worker.daemon": False}
+    # The scheduler reads allowed-failures and worker-saturation when it starts; a remote scheduler has its own
+    # settings. Workers that are not daemonic processes may fork a run's services from their preloaded server
+    # (forked_process.py), which they keep from run to run; a daemonic one starts each service as a new interpreter.
+    settings = {"distributed.scheduler.allowed-failures": ALLOWED_FAILURES, "distributed.worker.daemon": False,
+                "distributed.scheduler.worker-saturation": WORKER_SATURATION}
     with dask.config.set(settings), _quiet_distributed():
         # No dashboard (bokeh is not installed); the scheduler's HTTP routes on a free loopback port, not on 8787.
         local = LocalCluster(n_workers=max(1, workers), threads_per_worker=1, processes=True,

@@ -16,7 +16,7 @@ from rich.console import Console
 from coopdrive.launch.batch import BatchOptions, run_batch
 from coopdrive.launch.run import RunOptions, run_scenario
 from coopdrive.launch.batch import RunOutcome
-from coopdrive.launch.sweep_cluster import SweepError, finished_run, sweep_client
+from coopdrive.launch.sweep_cluster import WORKER_SATURATION, SweepError, finished_run, sweep_client
 from coopdrive.launch.sweep_task import SweepJob
 
 SEEDS = [1, 2, 3, 4]
@@ -165,3 +165,9 @@ def test_a_task_that_raised_is_a_failed_run_in_one_line_and_not_a_retried_one():
     outcome, _ = finished_run(Ended(error=error), SweepJob("follow", "none", 1), ["tcp://a:1"])
     assert outcome.failure_reason == "not run: ModuleNotFoundError: No module named 'coopdrive' (on the worker)"
     assert not outcome.retried
+
+
+def test_the_local_cluster_gives_a_worker_its_next_run_only_when_it_has_finished_one(cluster):
+    """No run is held on a busy worker, so the sweep's order holds across the workers, not per worker."""
+    _address, client = cluster
+    assert client.run_on_scheduler(lambda dask_scheduler: dask_scheduler.WORKER_SATURATION) == WORKER_SATURATION == 1.0
