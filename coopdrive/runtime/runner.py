@@ -36,6 +36,7 @@ from coopdrive.runtime.clock import SimulationClock, WallClock
 from coopdrive.runtime.clock_subscription import ClockSubscription
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
 from coopdrive.runtime.events import RuntimeEvent
+from coopdrive.runtime.handler_ledger import HandlerLedger, handler_name
 from coopdrive.runtime.launcher_watch import launched_by_a_run
 from coopdrive.runtime.master import STALL_WARNING_S, ClockMaster
 from coopdrive.runtime.participants import ParticipantTracker
@@ -95,6 +96,7 @@ class ServiceRunner:
         # CPU of this service's handling, kept by a SharedWorker; None: the worker thread's own CPU time.
         self.worker_cpu_s: float | None = None
         self._handlers: dict[str, list[tuple[str, Callable[[Envelope], None]]]] = defaultdict(list)
+        self._ledger = HandlerLedger.from_environment(f"{vehicle_id}-{service_cls.name}")
         self._bus_subscriptions: set[tuple[str, str]] = set()
         self._liveliness_handlers: list[Callable[[str, bool], None]] = []
         self._participant_tracker = ParticipantTracker()
@@ -143,6 +145,8 @@ class ServiceRunner:
             if stepped:
                 self._barrier.subscribed.add(f"{source}/{topic}")
             self.bus.subscribe(source, topic, self._on_data)
+        if self._ledger is not None:
+            handler = self._ledger.timed("topic", topic, handler)
         self._handlers[topic].append((source, handler))
 
     def publish(self, topic: str, message: Message, sample_time_s: float | None = None) -> None:
@@ -157,6 +161,8 @@ class ServiceRunner:
             self.bus.publish(vehicle_id, topic, message)
 
     def every(self, period_s: float, handler: Callable[[float], None]) -> None:
+        if self._ledger is not None:
+            handler = self._ledger.timed("timer", handler_name(handler), handler)
         self._triggers.add(period_s, handler)
         self._clock_subscription.trigger_added()
 
@@ -164,6 +170,8 @@ class ServiceRunner:
         self._liveliness_handlers.append(handler)
 
     def call_soon(self, function: Callable[[], None]) -> None:
+        if self._ledger is not None:
+            function = self._ledger.timed("call", handler_name(function), function)
         self._events.put((RuntimeEvent.CALL, function))
 
     def request_stop(self, reason: str) -> None:
@@ -201,6 +209,13 @@ class ServiceRunner:
             self.service.stop()
         finally:
             self.bus.close()
+            if self._ledger is not None:
+                self._ledger.write(self.own_cpu_s)
+
+    @property
+    def own_cpu_s(self) -> float:
+        """The CPU this service's handling has used: its share of a SharedWorker, or its own thread's."""
+        return time.thread_time() if self.worker_cpu_s is None else self.worker_cpu_s
 
     @property
     def stop_reason(self) -> str:
@@ -539,7 +554,7 @@ class ServiceRunner:
         for name, overruns in self._triggers.overruns().items():
             message.counters[f"overruns_{name}"] = overruns
         # CPU the service's own worker thread has used (handlers and triggers): where a run's time goes.
-        message.counters["worker_cpu_s"] = time.thread_time() if self.worker_cpu_s is None else self.worker_cpu_s
+        message.counters["worker_cpu_s"] = self.own_cpu_s
         self.publish(f"diagnostics/{self._service_name}", message)
 
     def _service_info(self) -> Message:
