@@ -36,12 +36,15 @@ class HandlerRow:
     handler: str
     calls: int
     cpu_s: float
+    # The longest single call on any vehicle; 0 for a runtime row.
+    longest_call_cpu_s: float = 0.0
 
 
 def read_ledgers(folder: Path) -> list[HandlerRow]:
     """Every handler's row summed over the vehicles, and each service's runtime row, most CPU first."""
     calls: dict[tuple[str, str], int] = defaultdict(int)
     cpu_s: dict[tuple[str, str], float] = defaultdict(float)
+    longest_s: dict[tuple[str, str], float] = defaultdict(float)
     for path in sorted(folder.glob(f"*{HANDLER_CPU_SUFFIX}")):
         service = path.name.removesuffix(HANDLER_CPU_SUFFIX).rsplit("-", 1)[-1]
         with path.open(newline="") as ledger:
@@ -53,9 +56,10 @@ def read_ledgers(folder: Path) -> list[HandlerRow]:
                 key = (service, f"{row['kind']} {row['name']}")
                 calls[key] += int(row["calls"])
                 cpu_s[key] += spent_s
+                longest_s[key] = max(longest_s[key], float(row["longest_call_cpu_s"]))
                 cpu_s[service, RUNTIME_ROW] -= spent_s
-    rows = [HandlerRow(service, handler, calls.get((service, handler), 0), spent_s)
-            for (service, handler), spent_s in cpu_s.items()]
+    rows = [HandlerRow(service, handler, calls.get((service, handler), 0), spent_s,
+                       longest_s.get((service, handler), 0.0)) for (service, handler), spent_s in cpu_s.items()]
     return sorted(rows, key=lambda row: -row.cpu_s)
 
 
@@ -70,13 +74,14 @@ def main(argv: list[str] | None = None) -> None:
         parser.error(f"{args.folder} holds no *{HANDLER_CPU_SUFFIX}: was COOPDRIVE_HANDLER_CPU_DIR set for the run?")
     total_s = sum(row.cpu_s for row in rows)
     table = Table(title=f"{args.folder}: every service's worker CPU, {total_s:.2f} s, by handler")
-    for column in ("service", "handler", "calls", "CPU s", "share", "us per call") + (
+    for column in ("service", "handler", "calls", "CPU s", "share", "us per call", "longest call ms") + (
             ("ms per simulated s",) if args.simulated_s else ()):
         table.add_column(column, justify="left" if column in ("service", "handler") else "right")
     for row in rows[:args.most]:
         per_call = f"{1e6 * row.cpu_s / row.calls:.0f}" if row.calls else "-"
+        longest = f"{1e3 * row.longest_call_cpu_s:.2f}" if row.calls else "-"
         cells = [row.service, row.handler, str(row.calls or "-"), f"{row.cpu_s:.2f}",
-                 f"{100 * row.cpu_s / total_s:.1f} %", per_call]
+                 f"{100 * row.cpu_s / total_s:.1f} %", per_call, longest]
         if args.simulated_s:
             cells.append(f"{1e3 * row.cpu_s / args.simulated_s:.0f}")
         table.add_row(*cells)

@@ -27,7 +27,7 @@ log = logging.getLogger(__name__)
 
 HANDLER_CPU_DIR_VARIABLE = "COOPDRIVE_HANDLER_CPU_DIR"
 HANDLER_CPU_SUFFIX = ".handlers.csv"
-CSV_COLUMNS = ("kind", "name", "calls", "cpu_s")
+CSV_COLUMNS = ("kind", "name", "calls", "cpu_s", "longest_call_cpu_s")
 WORKER_ROW = "worker"
 
 # Per thread, the CPU that the calls nested in each open handler call have spent, innermost last.
@@ -40,6 +40,8 @@ class HandlerCost:
     name: str
     calls: int = 0
     cpu_s: float = 0.0
+    # The most CPU one call took: a realtime step's latency has its longest handler in it.
+    longest_call_cpu_s: float = 0.0
 
 
 class HandlerLedger:
@@ -60,12 +62,12 @@ class HandlerLedger:
         cost = self.costs.setdefault((kind, name), HandlerCost(kind, name))
 
         @functools.wraps(handler)
-        def charged(*args):
+        def charged(*args, **kwargs):
             nested = _open_calls.__dict__.setdefault("nested_cpu_s", [])
             nested.append(0.0)
             started_s = time.thread_time()
             try:
-                return handler(*args)
+                return handler(*args, **kwargs)
             finally:
                 spent_s = time.thread_time() - started_s
                 own_s = spent_s - nested.pop()
@@ -73,6 +75,7 @@ class HandlerLedger:
                     nested[-1] += spent_s
                 cost.calls += 1
                 cost.cpu_s += own_s
+                cost.longest_call_cpu_s = max(cost.longest_call_cpu_s, own_s)
 
         return charged
 
@@ -85,8 +88,9 @@ class HandlerLedger:
                 writer = csv.writer(out)
                 writer.writerow(CSV_COLUMNS)
                 for cost in sorted(self.costs.values(), key=lambda c: -c.cpu_s):
-                    writer.writerow((cost.kind, cost.name, cost.calls, f"{cost.cpu_s:.6f}"))
-                writer.writerow((WORKER_ROW, WORKER_ROW, "", f"{worker_cpu_s:.6f}"))
+                    writer.writerow((cost.kind, cost.name, cost.calls, f"{cost.cpu_s:.6f}",
+                                     f"{cost.longest_call_cpu_s:.6f}"))
+                writer.writerow((WORKER_ROW, WORKER_ROW, "", f"{worker_cpu_s:.6f}", ""))
         except OSError as error:
             log.warning("%s=%s: the handlers' CPU could not be written: %s", HANDLER_CPU_DIR_VARIABLE,
                         self.out_file.parent, error)

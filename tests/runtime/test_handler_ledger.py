@@ -43,6 +43,16 @@ def test_each_call_of_a_handler_is_counted_and_its_cpu_charged_to_its_row(tmp_pa
     assert (cost.calls, cost.cpu_s) == (3, 0.75)
 
 
+def test_the_longest_call_of_a_handler_is_kept_beside_its_sum(tmp_path, clock):
+    ledger = HandlerLedger(tmp_path / "ego-scene.handlers.csv")
+    charged = ledger.timed("timer", "publish_scene",
+                           lambda now_s, cost_s: setattr(clock, "now_s", clock.now_s + cost_s))
+    for cost_s in (0.25, 2.0, 0.5):
+        charged(0.0, cost_s=cost_s)
+    cost = ledger.costs["timer", "publish_scene"]
+    assert (cost.calls, cost.cpu_s, cost.longest_call_cpu_s) == (3, 2.75, 2.0)
+
+
 def test_a_handler_run_inside_another_is_charged_to_itself_and_not_again_to_the_outer_one(tmp_path, clock):
     ledger = HandlerLedger(tmp_path / "ego-scene.handlers.csv")
     inner = ledger.timed("topic", "v2x/cam", lambda envelope: setattr(clock, "now_s", clock.now_s + 5.0))
@@ -91,6 +101,8 @@ def test_the_ledger_file_lists_the_handlers_most_cpu_first_and_ends_with_the_wor
     assert [(row["kind"], row["name"], row["calls"]) for row in rows] == [
         ("topic", "v2x/cam", "1"), ("topic", "ego/state", "1"), ("worker", "worker", "")]
     assert [float(row["cpu_s"]) for row in rows] == pytest.approx([0.7, 0.1, 1.0])
+    assert [row["longest_call_cpu_s"] for row in rows][2] == ""
+    assert [float(row["longest_call_cpu_s"]) for row in rows[:2]] == pytest.approx([0.7, 0.1])
 
 
 def test_a_ledger_that_cannot_be_written_is_named_in_a_warning_and_raises_nothing(tmp_path, caplog):
@@ -108,17 +120,19 @@ def write_ledger(path, rows, worker_cpu_s):
     with path.open("w", newline="") as out:
         writer = csv.writer(out)
         writer.writerow(handler_ledger.CSV_COLUMNS)
-        writer.writerows(rows)
-        writer.writerow(("worker", "worker", "", worker_cpu_s))
+        writer.writerows(row + (row[3] / 2,) for row in rows)
+        writer.writerow(("worker", "worker", "", worker_cpu_s, ""))
 
 
 def test_the_table_sums_a_service_s_handler_over_the_vehicles_and_gives_each_service_its_runtime(tmp_path):
     write_ledger(tmp_path / "a1-scene.handlers.csv", [("topic", "v2x/cam", 10, 0.5)], 0.75)
     write_ledger(tmp_path / "a-2-scene.handlers.csv", [("topic", "v2x/cam", 30, 1.5)], 2.0)
     write_ledger(tmp_path / "world-sim.handlers.csv", [("timer", "ScenarioFeed.on_step", 50, 3.0)], 3.25)
-    rows = {(row.service, row.handler): (row.calls, row.cpu_s) for row in read_ledgers(tmp_path)}
-    assert rows == {("sim", "timer ScenarioFeed.on_step"): (50, 3.0), ("scene", "topic v2x/cam"): (40, 2.0),
-                    ("scene", RUNTIME_ROW): (0, pytest.approx(0.75)), ("sim", RUNTIME_ROW): (0, 0.25)}
+    rows = {(row.service, row.handler): (row.calls, row.cpu_s, row.longest_call_cpu_s)
+            for row in read_ledgers(tmp_path)}
+    # The longest call is the longest on any vehicle (the test's ledgers say half of each row's CPU).
+    assert rows == {("sim", "timer ScenarioFeed.on_step"): (50, 3.0, 1.5), ("scene", "topic v2x/cam"): (40, 2.0, 0.75),
+                    ("scene", RUNTIME_ROW): (0, pytest.approx(0.75), 0.0), ("sim", RUNTIME_ROW): (0, 0.25, 0.0)}
 
 
 def test_the_command_prints_the_table_per_simulated_second_and_names_a_folder_with_no_ledgers(tmp_path, capsys):
