@@ -97,6 +97,7 @@ class HandlerLedger:
 
 
 def handler_name(handler: Callable) -> str:
-    """A timer's row: the function's qualified name (a partial's function's, a lambda's enclosing one's)."""
+    """A timer's or a call_soon's row: the function's qualified name (a partial's function's; a lambda's, which
+    names the function it was written in)."""
     function = getattr(handler, "func", handler)
     return getattr(function, "__qualname__", type(function).__name__)
