@@ -17,6 +17,7 @@ from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.run_aborted import RunAborted
 from coopdrive.services.v2x.cli import add_commands as add_v2x_commands
 from coopdrive.runtime.config import ConfigError
+from coopdrive.runtime.priority import nice_session_as_asked
 from coopdrive.runtime.service import HardwareUnavailable
 
 # A run's start-up time is counted from here: the command as its user waits for it, less the interpreter's start.
@@ -29,6 +30,7 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(level=logging.WARNING if not getattr(args, "verbose", False) else logging.INFO,
                         format="%(asctime)s %(name)s %(levelname)s %(message)s")
     try:
+        nice_session_as_asked()
         return args.handler(args)
     except ConfigError as error:
         print(f"coopdrive: {error}", file=sys.stderr)

@@ -87,3 +87,31 @@ def test_with_under_a_minute_left_ci_skips_the_sweep_and_says_so(tmp_path):
     result, arguments = ci_sweep(tmp_path, 40, 0)
     assert result.returncode == 0 and arguments == ""
     assert result.stdout == "CI sweep skipped: 40 s of CI's time left\n"
+
+
+NICE_RECORDER = """#!/bin/sh
+echo "$COOPDRIVE_SESSION_NICE $(nice) $(cat /proc/self/autogroup 2>/dev/null)" > {record}
+exit 0
+"""
+
+
+def test_beside_the_suite_the_sweep_s_session_and_every_session_its_runs_start_run_at_nice_19(tmp_path):
+    record = tmp_path / "record"
+    stand_in = tmp_path / "python"
+    stand_in.write_text(NICE_RECORDER.format(record=record))
+    stand_in.chmod(0o755)
+    env = {**os.environ, "PYTHON": str(stand_in), "OUT": str(tmp_path / "sweep"), "BESIDE": "1"}
+    result = subprocess.run(["bash", str(CI_SCRIPT), "480"], capture_output=True, text=True, env=env, timeout=60,
+                            start_new_session=True)
+    assert result.returncode == 0, result.stderr
+    session_nice, thread_nice, *autogroup = record.read_text().split()
+    assert (session_nice, thread_nice) == ("19", "19")
+    if Path("/proc/self/autogroup").exists():
+        assert autogroup[1:] == ["nice", "19"]
+
+
+def test_beside_the_suite_the_sweep_refuses_to_lower_a_session_it_does_not_lead(tmp_path):
+    result, arguments = with_stand_in(tmp_path, ["bash", str(CI_SCRIPT), "480"], 0, BESIDE="1")
+    assert result.returncode == 2 and arguments == ""
+    assert result.stderr == ("tools/ci_sweep.sh: BESIDE=1 lowers its whole session's priority, so it must lead one of "
+                             "its own (setsid)\n")
