@@ -99,8 +99,8 @@ def _add_run_command(commands) -> None:
     run.add_argument("--out", type=Path, metavar="DIR",
                      help="batch runs: metrics.json and the report per run, and summary files")
     run.add_argument("--time-limit", type=float, metavar="SECONDS",
-                     help="batch runs: stop this long after the runs are handed out, cancel the runs not finished and "
-                          "list them; exit status 4 when every run that finished passed")
+                     help="batch runs: stop this long after the sweep started (its cluster's start counted), cancel "
+                          "the runs not finished and list them; exit status 4 when every run that finished passed")
     run.add_argument("--no-reports", dest="reports", action="store_false",
                      help="batch runs with --out: metrics.json per run and the summary files only, no recording or "
                           "plots (a run spends a tenth less; CI's sweep)")

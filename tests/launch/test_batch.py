@@ -2,10 +2,13 @@
 refused before anything runs, and the summary files with each run's folder."""
 
 import csv
+import io
 import json
 import re
 import subprocess
 import sys
+import time
+from contextlib import contextmanager
 
 import pytest
 from rich.console import Console
@@ -13,7 +16,7 @@ from rich.console import Console
 from coopdrive.cli import sweep_exit_status
 from coopdrive.exit_status import EXIT_FAILED, EXIT_INCOMPLETE, EXIT_OK
 from coopdrive.launch.batch import (BatchOptions, BatchSummary, RunOutcome, SweepEnd, check_runs, parse_seeds,
-                                    scenario_names, sweep_jobs)
+                                    run_batch, scenario_names, sweep_jobs)
 from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.sweep_output import retried_lines, summary_table, write_run, write_summary
 from coopdrive.launch.sweep_task import run_one
@@ -115,7 +118,7 @@ def test_a_sweep_s_exit_status_is_4_only_when_its_time_limit_stopped_it_and_no_f
 
 
 def test_a_sweep_past_its_time_limit_cancels_the_runs_not_finished_names_them_and_exits_4(tmp_path):
-    """A minute of follow takes a run over 10 s; the limit is 4 s after the runs are handed out."""
+    """A minute of follow takes a run over 10 s; the limit is 4 s after the sweep started."""
     out = tmp_path / "sweep"
     completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--seeds", "1-2",
                                 "--workers", "1", "--time-limit", "4", "--out", str(out), "--no-reports"],
@@ -208,3 +211,26 @@ def test_the_command_sweeps_on_a_local_cluster_and_writes_the_summaries_and_each
     # Every figure column has a value: each is a figure the run's own (live) verdict reports.
     figures_row = next(line for line in table.splitlines()[3:] if line.startswith("| follow | lossy |"))
     assert "-" not in [cell.strip() for cell in figures_row.split("|")[3:-1]], figures_row
+
+
+def test_a_sweep_s_time_limit_counts_the_time_its_cluster_took_to_start(monkeypatch):
+    from coopdrive.launch import sweep_cluster
+
+    cluster_start_s = 0.5
+    given_s = []
+
+    @contextmanager
+    def slow_cluster(_address, _workers):
+        time.sleep(cluster_start_s)
+        yield None
+
+    def no_runs(_client, jobs, _on_outcome, time_limit_s):
+        given_s.append(time_limit_s)
+        return jobs, SweepEnd.TIME_LIMIT
+
+    monkeypatch.setattr(sweep_cluster, "sweep_client", slow_cluster)
+    monkeypatch.setattr(sweep_cluster, "stream_runs", no_runs)
+    run_batch(BatchOptions(scenarios=["follow"], seeds=[1], time_limit_s=30.0), Console(file=io.StringIO()))
+    assert 0 < given_s[0] <= 30.0 - cluster_start_s
+    run_batch(BatchOptions(scenarios=["follow"], seeds=[1], time_limit_s=0.2), Console(file=io.StringIO()))
+    assert given_s[1] == 0.0
