@@ -90,12 +90,13 @@ def test_with_under_a_minute_left_ci_skips_the_sweep_and_says_so(tmp_path):
 
 
 NICE_RECORDER = """#!/bin/sh
-echo "$COOPDRIVE_SESSION_NICE $(nice) $(cat /proc/self/autogroup 2>/dev/null)" > {record}
+echo "$(chrt -p $$ | head -1 | sed 's/.*: //') $COOPDRIVE_SESSION_NICE $(nice) $(cat /proc/self/autogroup 2>/dev/null)" > {record}
 exit 0
 """
 
 
-def test_beside_the_suite_the_sweep_s_session_and_every_session_its_runs_start_run_at_nice_19(tmp_path):
+def test_beside_the_suite_the_sweep_runs_as_an_idle_task_and_its_session_and_every_session_its_runs_start_at_nice_19(
+        tmp_path):
     record = tmp_path / "record"
     stand_in = tmp_path / "python"
     stand_in.write_text(NICE_RECORDER.format(record=record))
@@ -104,8 +105,8 @@ def test_beside_the_suite_the_sweep_s_session_and_every_session_its_runs_start_r
     result = subprocess.run(["bash", str(CI_SCRIPT), "480"], capture_output=True, text=True, env=env, timeout=60,
                             start_new_session=True)
     assert result.returncode == 0, result.stderr
-    session_nice, thread_nice, *autogroup = record.read_text().split()
-    assert (session_nice, thread_nice) == ("19", "19")
+    policy, session_nice, thread_nice, *autogroup = record.read_text().split()
+    assert (policy, session_nice, thread_nice) == ("SCHED_IDLE", "19", "19")
     if Path("/proc/self/autogroup").exists():
         assert autogroup[1:] == ["nice", "19"]
 
