@@ -4,9 +4,9 @@
 # FAULTS=FILE sweeps its fault variants too (docs/sweep-faults.yaml); CLUSTER=tcp://host:8786 runs on that Dask
 # scheduler's workers instead of a local cluster (README, Sweeps); SCENARIO=NAME sweeps that scenario alone.
 # REPORTS=0 keeps each run's metrics.json and the summaries only, no recording or plots (CI's sweep, .ci/run).
-# TIME_LIMIT=SECONDS stops the sweep that long after it started (its cluster's start counted) and lists the runs it left: exit
-# status 4 when every run that finished passed. DURATION=SECONDS runs each scenario that long instead of its own
-# duration (a quick look, not the sweep of the issue).
+# TIME_LIMIT=SECONDS stops the sweep that long after it started (its cluster's start counted) and lists the runs it
+# left: exit status 4 when every run that finished passed. DURATION=SECONDS runs each scenario that long instead of
+# its own duration (a quick look, not the sweep of the issue).
 # On two cores this takes hours; `SEEDS=1-2 tools/sweep.sh` is the quick check.
 # Prints the pass table and exits non-zero when any run failed (or the sweep could not start).
 # PYTHON: the interpreter with coopdrive installed (default .venv/bin/python, as `make` sets it up).

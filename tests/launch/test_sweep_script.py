@@ -90,7 +90,8 @@ def test_with_under_a_minute_left_ci_skips_the_sweep_and_says_so(tmp_path):
 
 
 NICE_RECORDER = """#!/bin/sh
-echo "$(chrt -p $$ | head -1 | sed 's/.*: //') $COOPDRIVE_SESSION_NICE $(nice) $(cat /proc/self/autogroup 2>/dev/null)" > {record}
+policy=$(chrt -p $$ | head -1 | sed 's/.*: //')
+echo "$policy $COOPDRIVE_SESSION_NICE $(nice) $(cat /proc/self/autogroup 2>/dev/null)" > {record}
 exit 0
 """
 
