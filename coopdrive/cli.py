@@ -139,7 +139,7 @@ def _add_run_command(commands) -> None:
 
 def _add_judging_commands(commands) -> None:
     score = commands.add_parser("score", help="judge a recording from its ground truth")
-    score.add_argument("file", type=Path)
+    score.add_argument("file", type=Path, help="a run's recording (FILE.mcap, with its ground truth)")
     score.add_argument("--scenario", help="judging settings of this scenario (default: the recorded one)")
     score.add_argument("--json", action="store_true", help="print the metrics as JSON")
     score.set_defaults(handler=_score)
@@ -161,9 +161,9 @@ def _add_judging_commands(commands) -> None:
     scenarios.set_defaults(handler=_scenarios)
 
     candump = commands.add_parser("candump", help="a vehicle's CAN frames from a recording, as a candump .log")
-    candump.add_argument("file", type=Path)
-    candump.add_argument("--vehicle", default="ego")
-    candump.add_argument("--out", type=Path, required=True, metavar="FILE.log")
+    candump.add_argument("file", type=Path, help="the recording (FILE.mcap)")
+    candump.add_argument("--vehicle", default="ego", help="whose CAN bus (default: ego)")
+    candump.add_argument("--out", type=Path, required=True, metavar="FILE.log", help="the candump log to write")
     candump.set_defaults(handler=_candump)
 
 

@@ -106,9 +106,9 @@ def _offsets(assignments: list[str]) -> dict[str, float]:
 
 def add_replay_command(commands) -> None:
     replay = commands.add_parser("replay", help="replay a recording through one service and compare its outputs")
-    replay.add_argument("file", type=Path)
-    replay.add_argument("--service", required=True)
-    replay.add_argument("--vehicle")
+    replay.add_argument("file", type=Path, help="the recording (FILE.mcap: a run's, a drive's or an import's)")
+    replay.add_argument("--service", required=True, help="the service to run again on the recorded inputs, e.g. scene")
+    replay.add_argument("--vehicle", help="whose service (default: the one vehicle the recording has it for)")
     replay.add_argument("--config", type=Path, help="replay with this config instead of the recorded one")
     replay.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="change a config key")
     replay.add_argument("--out", type=Path, metavar="FILE.mcap", help="write the inputs and the replayed outputs")
@@ -180,12 +180,13 @@ def _print_replay(args, result, differences, problems, exact: bool) -> None:
 def add_export_command(commands) -> None:
     export = commands.add_parser("export", help="one topic of a recording as CSV or JSON lines, or the recording "
                                                 "with the channels Foxglove draws")
-    export.add_argument("file", type=Path)
-    export.add_argument("--topic", help="e.g. ego/state")
+    export.add_argument("file", type=Path, help="the recording (FILE.mcap)")
+    export.add_argument("--topic", help="the topic to write, e.g. ego/state")
     export.add_argument("--foxglove", type=Path, metavar="OUT.mcap",
                         help="write the recording with Foxglove's map, 3D and plot channels added")
     export.add_argument("--vehicle", help="only this vehicle's messages (default: every vehicle's)")
-    export.add_argument("--format", choices=["csv", "jsonl"], default="csv")
+    export.add_argument("--format", choices=["csv", "jsonl"], default="csv",
+                        help="one row per message with a column per field, or one JSON object per line (default: csv)")
     export.add_argument("--out", type=Path, help="file to write (default: standard output)")
     export.set_defaults(handler=_export)
 
