@@ -8,6 +8,8 @@ import pytest
 
 from coopdrive.launch.baseline import BaselineComparison, with_cacc_law
 from coopdrive.launch.run import RunOptions, build_specs
+from coopdrive.recording.reader import read_metadata
+from coopdrive.recording.writer import CONFIG_METADATA
 from coopdrive.services.control.longitudinal import CaccLaw
 from coopdrive.v1 import sim_pb2
 
@@ -85,6 +87,18 @@ def test_run_with_a_baseline_prints_both_gains_and_passes_only_if_ours_is_no_wor
     assert 0 < gains["ours"] and 0 < gains["baseline"]
     assert summary["baseline"]["ours_no_worse"] == (gains["ours"] <= gains["baseline"])
     assert summary["success"] == (completed.returncode == 0)
+
+
+def test_run_with_a_cacc_law_runs_the_stack_s_controller_on_that_law(tmp_path):
+    scenario, recording = tmp_path / "tiny_string.yaml", tmp_path / "run.mcap"
+    scenario.write_text(TINY_STRING)
+    completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", str(scenario), "--cacc-law", "ploeg",
+                                "--duration", "1", "--record", str(recording)], capture_output=True, text=True,
+                               timeout=120)
+    assert completed.returncode in (0, 1), completed.stderr
+    # The configs in a recording are those the running services reported, not those the launcher meant.
+    control = json.loads(read_metadata(recording)[CONFIG_METADATA]["f1/control"])
+    assert control["cacc_law"] == "ploeg"
 
 
 def test_an_unknown_baseline_law_is_refused_by_name():
