@@ -181,7 +181,8 @@ def add_export_command(commands) -> None:
     export = commands.add_parser("export", help="one topic of a recording as CSV or JSON lines, or the recording "
                                                 "with the channels Foxglove draws")
     export.add_argument("file", type=Path, help="the recording (FILE.mcap)")
-    export.add_argument("--topic", help="the topic to write, e.g. ego/state")
+    export.add_argument("--topic", help="the topic to write, e.g. ego/state (every vehicle's), or a vehicle's as "
+                                        "VEHICLE/TOPIC, e.g. p2/scene")
     export.add_argument("--foxglove", type=Path, metavar="OUT.mcap",
                         help="write the recording with Foxglove's map, 3D and plot channels added")
     export.add_argument("--vehicle", help="only this vehicle's messages (default: every vehicle's)")

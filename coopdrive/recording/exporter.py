@@ -24,16 +24,18 @@ class ExportError(ValueError):
 
 
 def export_rows(recording: str | Path, topic: str, vehicle_id: str | None = None) -> list[dict[str, Any]]:
+    """Every message of `topic` (of `vehicle_id` only, when given) as a flat row. `topic` may also be written
+    VEHICLE/TOPIC, as the list of recorded topics in the error names them, where no topic has that whole name."""
     layout = KeyLayout()
-    topics_seen, wanted = set(), []
+    recorded: list[tuple[str, str, str]] = []
     for key in recorded_topics(recording):
         parsed = layout.parse(key)
-        if parsed is None:
-            continue
-        vehicle, name = parsed
-        topics_seen.add(f"{vehicle}/{name}")
-        if name == topic and vehicle_id in (None, vehicle):
-            wanted.append(key)
+        if parsed is not None:
+            recorded.append((key, *parsed))
+    topics_seen = {f"{vehicle}/{name}" for _, vehicle, name in recorded}
+    if vehicle_id is None and not any(name == topic for _, _, name in recorded) and topic in topics_seen:
+        vehicle_id, topic = topic.split("/", 1)
+    wanted = [key for key, vehicle, name in recorded if name == topic and vehicle_id in (None, vehicle)]
     rows = [{"log_time_s": recorded.log_time_ns / NANOSECONDS, "vehicle": layout.split(recorded.topic)[0],
              **flatten(recorded.message)} for recorded in read_messages(recording, wanted)] if wanted else []
     if not rows:

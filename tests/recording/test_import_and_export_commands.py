@@ -82,6 +82,14 @@ def test_export_as_json_lines_to_a_file_and_an_unknown_topic_names_the_recorded_
     assert "no messages of vehicle 'boat', topic 'ego/state'; recorded: boat/can/powertrain" in missing.stderr
 
 
+def test_export_takes_a_topic_as_the_recorded_list_names_it_with_its_vehicle_first(drive):
+    out, _ = drive
+    result = coopdrive("export", str(out), "--topic", "boat/gnss/nmea")
+    assert result.returncode == 0, result.stderr
+    rows = list(csv.DictReader(io.StringIO(result.stdout)))
+    assert len(rows) == 753 and {row["vehicle"] for row in rows} == {"boat"}
+
+
 def test_flattening_names_enums_as_text_and_nests_with_dots():
     state = ego_pb2.EgoState(x_m=1.5, last_fix_mode=gnss_pb2.FIX_MODE_RTK_FIXED, covariance=[1.0, 2.0])
     state.header.sample_time_s = 3.25
