@@ -27,15 +27,16 @@ def export_rows(recording: str | Path, topic: str, vehicle_id: str | None = None
     """Every message of `topic` (of `vehicle_id` only, when given) as a flat row. `topic` may also be written
     VEHICLE/TOPIC, as the list of recorded topics in the error names them, where no topic has that whole name."""
     layout = KeyLayout()
-    recorded: list[tuple[str, str, str]] = []
+    # (key, vehicle, topic) of every recorded channel of our key layout.
+    channels: list[tuple[str, str, str]] = []
     for key in recorded_topics(recording):
         parsed = layout.parse(key)
         if parsed is not None:
-            recorded.append((key, *parsed))
-    topics_seen = {f"{vehicle}/{name}" for _, vehicle, name in recorded}
-    if vehicle_id is None and not any(name == topic for _, _, name in recorded) and topic in topics_seen:
+            channels.append((key, *parsed))
+    topics_seen = {f"{vehicle}/{name}" for _, vehicle, name in channels}
+    if vehicle_id is None and not any(name == topic for _, _, name in channels) and topic in topics_seen:
         vehicle_id, topic = topic.split("/", 1)
-    wanted = [key for key, vehicle, name in recorded if name == topic and vehicle_id in (None, vehicle)]
+    wanted = [key for key, vehicle, name in channels if name == topic and vehicle_id in (None, vehicle)]
     rows = [{"log_time_s": recorded.log_time_ns / NANOSECONDS, "vehicle": layout.split(recorded.topic)[0],
              **flatten(recorded.message)} for recorded in read_messages(recording, wanted)] if wanted else []
     if not rows:
