@@ -156,6 +156,9 @@ class SceneFusion:
         poorly_placed = snapshot.only_source(POSITION, SONAR) | snapshot.only_source(POSITION, CAMERA)
         # Radar clutter, or readings of a car split off into a track beside it: no MIO to brake for.
         seen_through = self._lidar_sees_through(snapshot, time_s)
+        # A radar false alarm is one reading, and noisy camera bearings of a car beside it can confirm its
+        # track: an object whose only ranging is one LiDAR or radar reading is no obstacle until another comes.
+        lone_ranging = np.array([track.ranging_hits == 1 for track in snapshot.tracks], dtype=bool)
         v2v_only = snapshot.only_source(POSITION, V2V).tolist()
         stations = [track.station_id for track in snapshot.tracks]
         ghost = np.array([station is not None and self.trust.is_ghost(station) for station in stations], dtype=bool)
@@ -163,7 +166,8 @@ class SceneFusion:
         # Nothing of ours sees a V2V-only object: the station's trust decides whether it may be an obstacle.
         trusted_v2v = np.array([only and station is not None and self.trust.trusted(station)
                                 for only, station in zip(v2v_only, stations, strict=True)], dtype=bool)
-        eligible = np.where(np.array(v2v_only, dtype=bool), trusted_v2v, ~(poorly_placed | seen_through | ghost))
+        not_an_obstacle = poorly_placed | seen_through | ghost | lone_ranging
+        eligible = np.where(np.array(v2v_only, dtype=bool), trusted_v2v, ~not_an_obstacle)
         return ObjectViews(snapshot, eligible, ghost, [self.trust.trust(station) for station in stations])
 
     def _lidar_sees_through(self, snapshot: TrackSnapshot, time_s: float) -> np.ndarray:

@@ -20,6 +20,7 @@ from .config import SceneFusionConfig
 from .confidence import UNKNOWN_CONFIDENCE
 from .kalman import IAX, IAY, IVX, IVY, IX, IY
 from .measurement import EgoPose
+from .occupancy import MIN_SPEED_FOR_HEADING_MPS
 from .properties import ACCEL, HEADING, LENGTH, OBJECT_CLASS, POSITION, SPEED, STATION_ID, WIDTH
 from .scene_picks import Candidates, pick_mio, pick_neighbours
 from .track_snapshot import TrackSnapshot
@@ -28,8 +29,6 @@ LaneOf = Callable[[float, float], "int | None"]
 # (x_m, y_m) -> (station_m, lateral_offset_m) on the current ego lane's centre line, or None.
 FrenetOf = Callable[[float, float], "tuple[float, float] | None"]
 UNKNOWN_LANE = -1
-# Below this speed the velocity direction says nothing about heading.
-_MIN_SPEED_FOR_HEADING_MPS = 0.5
 # Faster than this, an object moving against our heading is oncoming traffic.
 ONCOMING_MIN_SPEED_MPS = 1.0
 _MAP_BIT = 1 << header_pb2.SENSOR_SOURCE_MAP
@@ -107,8 +106,8 @@ class SceneBuilder:
         speed = np.sqrt(velocity[:, 0] ** 2 + velocity[:, 1] ** 2)
         heading = np.arctan2(velocity[:, 1], velocity[:, 0])
         blended = snapshot.values[:, HEADING]
-        heading = np.where((speed < _MIN_SPEED_FOR_HEADING_MPS) & ~np.isnan(blended), blended, heading)
-        moving = speed > _MIN_SPEED_FOR_HEADING_MPS
+        heading = np.where((speed < MIN_SPEED_FOR_HEADING_MPS) & ~np.isnan(blended), blended, heading)
+        moving = speed > MIN_SPEED_FOR_HEADING_MPS
         along_velocity = (x[:, IAX] * velocity[:, 0] + x[:, IAY] * velocity[:, 1]) / np.where(moving, speed, 1.0)
         accel = np.where(moving, along_velocity, 0.0)
         # A partner's own reported acceleration wins while its V2V still supports the property.

@@ -90,6 +90,8 @@ class Track:
         self.hits = 0
         self.station_id: int | None = None
         self.ranging_fix: RangingFix | None = None
+        # LiDAR and radar readings that counted as hits.
+        self.ranging_hits = 0
         self.props = properties
         self._config = config
         x0 = np.zeros(DIM)
@@ -190,6 +192,7 @@ class Track:
         self.last_hit_s = max(self.last_hit_s, meas.time_s)
         if meas.source not in RANGING_SOURCES:
             return
+        self.ranging_hits += 1
         if self.ranging_fix is None:
             self.ranging_fix = RangingFix(meas.time_s, meas.position_m.copy())
         elif meas.time_s >= self.ranging_fix.time_s:

@@ -16,12 +16,15 @@ from scipy.spatial import cKDTree
 
 from coopdrive.v1 import header_pb2
 
+from . import kalman
 from .association import match_quality, polar_cost_matrix
 from .config import SceneFusionConfig
 from .frame_association import associate
+from .kalman import IVX, IVY, IX, IY
 from .measurement import Measurement
-from .properties import POSITION, ObjectProperties, property_table, support_many
-from .track import RANGING_SOURCES, Track, TrackStatus, filter_steps, predict_positions
+from .occupancy import inside_bodies
+from .properties import LENGTH, POSITION, WIDTH, ObjectProperties, property_table, support_many
+from .track import RANGING_SOURCES, Track, TrackStatus, filter_steps, predict_positions, stacked_states
 
 
 @dataclass
@@ -36,6 +39,8 @@ class TrackerCounters:
     ambiguous_unmatched: int = 0
     # Confirmed tracks found to be one vehicle and made one (see Tracker.merge_duplicates).
     duplicates_merged: int = 0
+    # Readings matching no track that lay inside a confirmed vehicle's body (see occupancy.py).
+    inside_known_vehicle: int = 0
     by_reason: dict[str, int] = field(default_factory=dict)
 
 
@@ -76,10 +81,26 @@ class Tracker:
         starting = [measurements[i] for i in sorted(unmatched) if not measurements[i].ambiguous]
         self.counters.ambiguous_unmatched += len(unmatched) - len(starting)
         if starting:
+            inside = self._inside_confirmed_vehicles(starting)
+            self.counters.inside_known_vehicle += int(inside.sum())
+            starting = [meas for meas, occupied in zip(starting, inside, strict=True) if not occupied]
+        if starting:
             started = [self._new_track(meas) for meas in starting]
             support_many([track.props for track in started], starting, np.ones(len(starting)))
             for track in started:
                 self._maybe_confirm(track)
+
+    def _inside_confirmed_vehicles(self, measurements: list[Measurement]) -> np.ndarray:
+        """Whether each of one frame's readings lies inside a confirmed vehicle's body at the frame's time."""
+        confirmed = self.confirmed()
+        if not confirmed:
+            return np.zeros(len(measurements), dtype=bool)
+        x, _ = stacked_states(confirmed)
+        dt_s = measurements[0].time_s - np.array([t.time_s for t in confirmed])
+        x = np.einsum("mij,mj->mi", kalman.transition(dt_s), x)
+        sizes = self.properties.values([t.props.row for t in confirmed])
+        return inside_bodies(np.array([m.position_m for m in measurements]), x[:, [IX, IY]], x[:, [IVX, IVY]],
+                             sizes[:, LENGTH], sizes[:, WIDTH])
 
     def _geometry(self, measurements: list[Measurement], tracks: list[Track]) -> tuple[np.ndarray, ...]:
         """Measurement positions, covariances and sensor origins, and the tracks' predicted positions and

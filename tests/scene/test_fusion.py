@@ -338,3 +338,27 @@ def test_a_camera_only_object_short_of_the_car_our_radar_holds_is_reported_but_n
     assert list(camera_only.position.sources) == [header_pb2.SENSOR_SOURCE_CAMERA]
     assert scene.has_mio and scene.mio_id == seen.object_id
     assert not scene.has_forward_mio or scene.forward_mio_id == seen.object_id
+
+
+def test_an_object_whose_only_ranging_is_one_radar_false_alarm_is_reported_but_never_takes_the_mio():
+    fusion = SceneFusion()
+    road = Road(fusion)
+    car = lambda t: (road.ego_x(t) + 30.0, 0.0, 10.0)  # noqa: E731
+    for t in road.ticks(0.0, 0.5):
+        road.sense(t, [car(t)], lidar=False)
+    # One radar frame also holds a false alarm standing still 15 m ahead; two camera frames then put a
+    # detection on that spot, as noisy bearings of a car beside it would.
+    phantom_x_m = road.ego_x(0.5) + 15.0
+    road.sense(0.5, [car(0.5), (phantom_x_m, 0.3, 0.0)], lidar=False)
+    for t in road.ticks(0.55, 0.7):
+        road.sense(t, [car(t)], lidar=False)
+        frame = sensors_pb2.CameraFrame()
+        frame.header.sample_time_s = t
+        frame.detections.add(detection_id=1, x_m=phantom_x_m - road.ego_x(t), y_m=0.3, width_m=1.8, confidence=0.9)
+        fusion.on_camera(frame, road.ego(t))
+    scene = fusion.scene(0.7)
+    by_gap = sorted(scene.objects, key=lambda o: o.longitudinal_gap_m)
+    assert len(by_gap) == 2
+    phantom, seen = by_gap
+    assert set(phantom.position.sources) == {RADAR, header_pb2.SENSOR_SOURCE_CAMERA}
+    assert scene.has_mio and scene.mio_id == seen.object_id

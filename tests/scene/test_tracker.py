@@ -108,3 +108,42 @@ def test_a_station_s_object_stays_published_until_the_ranging_track_that_takes_i
     link = tracker.link_v2v(claim)
     assert link.track_id == v2v_id
     assert v2v_id in [t.track_id for t in tracker.confirmed()]
+
+
+RADAR = header_pb2.SENSOR_SOURCE_RADAR
+
+
+def car_reading(time_s, rear_x_m, y_m=2.0):
+    """Our LiDAR on the rear face of a 4.5 m long, 1.8 m wide car."""
+    return Measurement(source=LIDAR, time_s=time_s, position_m=np.array([rear_x_m, y_m]), cov_m2=np.eye(2) * 0.01,
+                       origin_m=np.zeros(2), length_m=4.5, width_m=1.8)
+
+
+def standing_radar_alarm(time_s, x_m, y_m):
+    return Measurement(source=RADAR, time_s=time_s, position_m=np.array([x_m, y_m]), cov_m2=np.eye(2) * 0.01,
+                       origin_m=np.zeros(2), radial_speed_mps=0.04, radial_speed_std_mps=0.1,
+                       line_of_sight=np.array([1.0, 0.0]))
+
+
+def tracked_car_doing_11_mps() -> Tracker:
+    tracker = Tracker(SceneFusionConfig())
+    for k in range(6):
+        tracker.process([car_reading(0.05 * k, 20.0 + 11.0 * 0.05 * k)])
+    assert len(tracker.confirmed()) == 1
+    return tracker
+
+
+def test_a_radar_false_alarm_inside_the_body_of_a_car_we_track_starts_no_object():
+    tracker = tracked_car_doing_11_mps()
+    rear_x_m = 20.0 + 11.0 * 0.3
+    tracker.process([standing_radar_alarm(0.3, rear_x_m + 1.9, 2.2)])
+    assert len(tracker.tracks) == 1
+    assert tracker.counters.inside_known_vehicle == 1
+
+
+def test_the_same_false_alarm_beside_the_car_or_behind_it_starts_a_tentative_track_as_before():
+    for x_m, y_m in ((20.0 + 11.0 * 0.3 + 1.9, 5.5), (20.0 + 11.0 * 0.3 - 3.0, 2.0)):
+        tracker = tracked_car_doing_11_mps()
+        tracker.process([standing_radar_alarm(0.3, x_m, y_m)])
+        assert len(tracker.tracks) == 2
+        assert tracker.counters.inside_known_vehicle == 0

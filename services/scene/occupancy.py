@@ -1,0 +1,32 @@
+"""Where the confirmed vehicles' bodies are. A reading inside one starts no new object.
+
+A car ahead gives a radar several reflections: its rear face, its wheel arches and under-body, and multipath
+ghosts that appear at or beyond it. Two objects cannot share a space, so an unmatched reading that lies inside a
+tracked vehicle's body is that vehicle or a ghost of it, never a new object (the extended-object view of
+Granstrom, Baum and Reuter, "Extended object tracking: introduction, overview and applications", 2017). A track
+started from one would sit inside a car we follow, and a later short reading of that car could confirm it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+# Below this speed the velocity direction says nothing about heading.
+MIN_SPEED_FOR_HEADING_MPS = 0.5
+
+
+def inside_bodies(points_m: np.ndarray, rear_m: np.ndarray, velocity_mps: np.ndarray, length_m: np.ndarray,
+                  width_m: np.ndarray) -> np.ndarray:
+    """(K,) whether each point (K, 2) lies inside some vehicle's body: from its rear bumper centre rear_m (M, 2)
+    forward along its velocity (M, 2) by length_m (M,), width_m / 2 to each side. A vehicle whose length or
+    width is unknown (NaN), or that moves too slowly to give a heading, holds no point."""
+    speed_mps = np.linalg.norm(velocity_mps, axis=1)
+    known = (speed_mps >= MIN_SPEED_FOR_HEADING_MPS) & np.isfinite(length_m) & np.isfinite(width_m)
+    if not known.any():
+        return np.zeros(len(points_m), dtype=bool)
+    forward = velocity_mps[known] / speed_mps[known, None]
+    offset_m = points_m[:, None, :] - rear_m[None, known, :]
+    along_m = offset_m[..., 0] * forward[:, 0] + offset_m[..., 1] * forward[:, 1]
+    across_m = offset_m[..., 1] * forward[:, 0] - offset_m[..., 0] * forward[:, 1]
+    inside = (along_m >= 0.0) & (along_m <= length_m[known]) & (np.abs(across_m) <= width_m[known] / 2.0)
+    return inside.any(axis=1)
