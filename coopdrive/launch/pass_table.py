@@ -12,7 +12,7 @@ from coopdrive.runtime.barrier import MESSAGES_GIVEN_UP_COUNTER
 if TYPE_CHECKING:
     from coopdrive.launch.batch import BatchSummary, RunOutcome
 
-FIGURES = ("speed_error_kmh", "spacing_error_m", "lateral_error_m", "min_gap_m", "collisions")
+FIGURES = ("speed_error_kmh", "spacing_error_m", "lateral_error_m", "min_gap_m", "collisions", "phantom_brakes")
 PASSED, FAILED = "pass", "FAIL"
 
 
@@ -43,6 +43,10 @@ def pass_table_markdown(summary: BatchSummary) -> str:
     if unsteady:
         lines += ["", f"Not deterministic ({GIVE_UP_MEANING}: an overloaded host; run it again alone):", ""] + [
             f"- {o.label}: {int(o.metrics[MESSAGES_GIVEN_UP_COUNTER])} times" for o in unsteady]
+    phantom = [o for o in ordered if o.metrics.get("phantom_brakes", 0) > 0]
+    if phantom:
+        lines += ["", "Phantom brakes (hard brakes nothing in the lane called for; not part of the verdict):", ""]
+        lines += [f"- {o.label}: {int(o.metrics['phantom_brakes'])}" for o in phantom]
     retried = [o for o in ordered if o.retried]
     if retried:
         lines += ["", "Retried (a worker died under them):", ""] + [

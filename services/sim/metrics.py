@@ -21,6 +21,13 @@ MIN_SPEED_FOR_TIME_GAP_MPS = 0.5
 # Heudiasyc eq. (4) defaults: standstill distance r and time headway h.
 DEFAULT_STANDSTILL_M = 6.0
 DEFAULT_HEADWAY_S = 1.5
+# Well beyond control's comfort deceleration (2 m/s2, services/control/profiles.py): a car brakes this hard only
+# on its emergency path, or its driver's foot.
+HARD_BRAKE_MPS2 = 3.0
+# A hard brake is called for when the vehicle ahead in the lane brakes beyond comfort as well, or when the gap to
+# it would close within this time at the speeds of the moment.
+CALLED_FOR_DECEL_MPS2 = 2.0
+CALLED_FOR_TIME_TO_COLLISION_S = 4.0
 
 
 def _corners(v: sim_pb2.VehicleTruth) -> np.ndarray:
@@ -148,6 +155,32 @@ def comfort(truth: TruthSeries, vehicle_ids: Sequence[str]) -> dict[str, float]:
         jerks.append(np.diff(accel[valid]) / np.diff(truth.time_s[valid]))
     all_jerk = np.concatenate(jerks) if jerks else np.zeros(1)
     return {"max_abs_accel_mps2": max_accel, "rms_jerk_mps3": float(np.sqrt(np.mean(all_jerk ** 2)))}
+
+
+def hard_brakes(truth: TruthSeries, vehicle_ids: Sequence[str]) -> dict[str, float]:
+    """`hard_brakes`: how often a judged vehicle starts to decelerate harder than HARD_BRAKE_MPS2 (a lasting brake
+    counts once); `phantom_brakes`: those of them that nothing in the vehicle's lane called for (the false positive
+    of automatic emergency braking). A brake for a car on a crossing road or in another lane counts as a phantom
+    too: the figure is meant for traffic in one lane, as in the platoon scenarios."""
+    judged, braking = set(vehicle_ids), set()
+    onsets = phantoms = 0
+    for _, vehicles in truth.frames:
+        now = {v.vehicle_id for v in vehicles if v.vehicle_id in judged and v.accel_mps2 < -HARD_BRAKE_MPS2}
+        if now - braking:
+            ahead = {follower.vehicle_id: leader for leader, follower in following_pairs(vehicles)}
+            for vehicle in (v for v in vehicles if v.vehicle_id in now - braking):
+                onsets += 1
+                phantoms += not _brake_called_for(vehicle, ahead.get(vehicle.vehicle_id))
+        braking = now
+    return {"hard_brakes": float(onsets), "phantom_brakes": float(phantoms)}
+
+
+def _brake_called_for(vehicle: sim_pb2.VehicleTruth, leader: sim_pb2.VehicleTruth | None) -> bool:
+    if leader is None:
+        return False
+    closing_mps = vehicle.speed_mps - leader.speed_mps
+    return (leader.accel_mps2 <= -CALLED_FOR_DECEL_MPS2
+            or bumper_gap_m(leader, vehicle) < CALLED_FOR_TIME_TO_COLLISION_S * closing_mps)
 
 
 SpeedReference = Callable[[np.ndarray], np.ndarray]
@@ -289,6 +322,7 @@ def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[s
         "crossing_circle_violations": float(crossing_circle_violations(truth, safety_radius_m))}
     metrics.update(gaps(truth))
     metrics.update(comfort(truth, judged))
+    metrics.update(hard_brakes(truth, judged))
     metrics.update(spacing_error(truth, platoon, judged, standstill_m, headway_s))
     metrics.update(lateral_error(truth, judged))
     if reference_speed_mps is None:

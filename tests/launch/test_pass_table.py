@@ -47,3 +47,13 @@ def test_runs_a_time_limit_left_unfinished_are_named_under_why_the_sweep_stopped
 def test_a_sweep_that_finished_no_run_still_has_a_well_formed_header():
     lines = pass_table_markdown(BatchSummary([], unfinished=["follow/none/seed-1"], end=SweepEnd.TIME_LIMIT))
     assert lines.splitlines()[:2] == ["| scenario | fault | passed |", "|---|---|---|"]
+
+
+def test_runs_with_phantom_brakes_are_named_with_their_count():
+    summary = BatchSummary([
+        RunOutcome("platoon40", 6, True, "", metrics={"phantom_brakes": 2.0}),
+        RunOutcome("platoon40", 7, True, "", metrics={"phantom_brakes": 0.0}),
+    ])
+    lines = pass_table_markdown(summary).splitlines()
+    assert "- platoon40/none/seed-6: 2" in lines
+    assert not any(line.startswith("- platoon40/none/seed-7") for line in lines)

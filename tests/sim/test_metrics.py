@@ -161,3 +161,38 @@ def test_the_reach_shortcut_finds_exactly_the_overlaps_the_corners_find(dx, dy, 
     a = sim_pb2.VehicleTruth(vehicle_id="a", heading_rad=heading_a, length_m=4.5, width_m=1.8)
     b = sim_pb2.VehicleTruth(vehicle_id="b", x_m=dx, y_m=dy, heading_rad=heading_b, length_m=length_m, width_m=width_m)
     assert metrics._footprints_overlap(a, b) == geometry.rectangles_overlap(metrics._corners(a), metrics._corners(b))
+
+
+def _brake_frames(follower_accels, leader_accel=0.0, leader_speed_mps=10.0, leader_station_m=60.0):
+    """A follower at 10 m/s 50 m behind a car (or alone, leader_station_m None), one frame per follower
+    acceleration."""
+    return TruthSeries.from_frames(
+        [(0.1 * k, [_truth("f", 10.0, accel=accel)]
+          + ([] if leader_station_m is None else
+             [_truth("lead", leader_station_m, speed_mps=leader_speed_mps, accel=leader_accel, automated=False)]))
+         for k, accel in enumerate(follower_accels)])
+
+
+def test_a_hard_brake_with_nothing_ahead_braking_or_closing_is_a_phantom_and_lasting_counts_once():
+    truth = _brake_frames([0.0, -4.0, -5.0, -3.5, 0.0, -3.2, -1.0])
+    assert metrics.hard_brakes(truth, ["f"]) == {"hard_brakes": 2.0, "phantom_brakes": 2.0}
+    alone = _brake_frames([0.0, -4.0], leader_station_m=None)
+    assert metrics.hard_brakes(alone, ["f"]) == {"hard_brakes": 1.0, "phantom_brakes": 1.0}
+
+
+def test_a_hard_brake_behind_a_car_braking_beyond_comfort_or_closing_fast_is_called_for():
+    behind_braking_car = _brake_frames([0.0, -4.0], leader_accel=-2.5)
+    closing = _brake_frames([0.0, -4.0], leader_speed_mps=0.0, leader_station_m=40.0)
+    for truth in (behind_braking_car, closing):
+        assert metrics.hard_brakes(truth, ["f"]) == {"hard_brakes": 1.0, "phantom_brakes": 0.0}
+
+
+def test_comfort_braking_and_vehicles_not_judged_count_no_hard_brake():
+    truth = _brake_frames([0.0, -2.9, -2.0], leader_accel=-6.0)
+    assert metrics.hard_brakes(truth, ["f"]) == {"hard_brakes": 0.0, "phantom_brakes": 0.0}
+    assert metrics.hard_brakes(_brake_frames([0.0, -4.0]), ["lead"])["hard_brakes"] == 0.0
+
+
+def test_the_judge_reports_hard_and_phantom_brakes_of_the_automated_vehicles():
+    result = metrics.judge(_brake_frames([0.0, -4.0, 0.0]))
+    assert (result["hard_brakes"], result["phantom_brakes"]) == (1.0, 1.0)
