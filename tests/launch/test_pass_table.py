@@ -1,6 +1,8 @@
 """The sweep's pass table: a row per (scenario, fault variant), a column per seed, figures averaged, every failure,
 every retried run and every run left unfinished named."""
 
+import pytest
+
 from coopdrive.launch.batch import BatchSummary, RunOutcome, SweepEnd
 from coopdrive.launch.pass_table import pass_table_markdown
 
@@ -26,14 +28,18 @@ def test_the_pass_table_marks_each_seed_averages_the_figures_and_names_every_fai
     assert "- follow/lossy/seed-1: lost tcp://10.0.0.7:40111" in lines
 
 
-def test_a_run_in_which_lockstep_gave_up_waiting_is_named_as_not_deterministic():
+@pytest.mark.parametrize(("metric", "named"), [
+    ("lockstep_messages_given_up", "- merge/none/seed-11: 3 times"),  # not deterministic
+    ("phantom_brakes", "- merge/none/seed-11: 3"),
+])
+def test_runs_in_which_lockstep_gave_up_or_that_braked_for_a_phantom_are_named_with_their_count(metric, named):
     summary = BatchSummary([
-        RunOutcome("merge", 11, False, "safe stop: b3 at 81.8 s", metrics={"lockstep_messages_given_up": 3.0}),
-        RunOutcome("merge", 12, True, "", metrics={"lockstep_messages_given_up": 0.0}),
+        RunOutcome("merge", 11, False, "safe stop: b3 at 81.8 s", metrics={metric: 3.0}),
+        RunOutcome("merge", 12, True, "", metrics={metric: 0.0}),
     ])
     lines = pass_table_markdown(summary).splitlines()
-    assert "- merge/none/seed-11: 3 times" in lines
-    assert not any(line.startswith("- merge/none/seed-12: ") and "times" in line for line in lines)
+    assert named in lines
+    assert not any(line.startswith("- merge/none/seed-12") for line in lines)
 
 
 def test_runs_a_time_limit_left_unfinished_are_named_under_why_the_sweep_stopped():
@@ -47,13 +53,3 @@ def test_runs_a_time_limit_left_unfinished_are_named_under_why_the_sweep_stopped
 def test_a_sweep_that_finished_no_run_still_has_a_well_formed_header():
     lines = pass_table_markdown(BatchSummary([], unfinished=["follow/none/seed-1"], end=SweepEnd.TIME_LIMIT))
     assert lines.splitlines()[:2] == ["| scenario | fault | passed |", "|---|---|---|"]
-
-
-def test_runs_with_phantom_brakes_are_named_with_their_count():
-    summary = BatchSummary([
-        RunOutcome("platoon40", 6, True, "", metrics={"phantom_brakes": 2.0}),
-        RunOutcome("platoon40", 7, True, "", metrics={"phantom_brakes": 0.0}),
-    ])
-    lines = pass_table_markdown(summary).splitlines()
-    assert "- platoon40/none/seed-6: 2" in lines
-    assert not any(line.startswith("- platoon40/none/seed-7") for line in lines)
