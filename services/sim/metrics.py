@@ -7,6 +7,7 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
+from coopdrive.roadmap.build_maps import LANE_WIDTH_M
 from coopdrive.services.sim import geometry
 from coopdrive.services.sim.truth_series import TruthSeries
 from coopdrive.v1 import sim_pb2
@@ -24,8 +25,8 @@ DEFAULT_HEADWAY_S = 1.5
 # Well beyond control's comfort deceleration (2 m/s2, services/control/profiles.py): a car brakes this hard only
 # on its emergency path, or its driver's foot.
 HARD_BRAKE_MPS2 = 3.0
-# A hard brake is called for when the vehicle ahead in the lane brakes beyond comfort as well, or when the gap to
-# it would close within this time at the speeds of the moment.
+# A hard brake is called for by a vehicle ahead in the lane or the next ones that brakes beyond comfort as well, or
+# that would be reached within this time at the speeds of the moment.
 CALLED_FOR_DECEL_MPS2 = 2.0
 CALLED_FOR_TIME_TO_COLLISION_S = 4.0
 
@@ -159,28 +160,36 @@ def comfort(truth: TruthSeries, vehicle_ids: Sequence[str]) -> dict[str, float]:
 
 def hard_brakes(truth: TruthSeries, vehicle_ids: Sequence[str]) -> dict[str, float]:
     """`hard_brakes`: how often a judged vehicle starts to decelerate harder than HARD_BRAKE_MPS2 (a lasting brake
-    counts once); `phantom_brakes`: those of them that nothing in the vehicle's lane called for (the false positive
-    of automatic emergency braking). A brake for a car on a crossing road or in another lane counts as a phantom
-    too: the figure is meant for traffic in one lane, as in the platoon scenarios."""
+    counts once); `phantom_brakes`: those of them that no vehicle near its path called for (the false positive of
+    automatic emergency braking). Near the path: ahead, with a footprint that reaches within a lane's width of the
+    judged vehicle's flanks. A car cutting in or crossing counts, and so does one in the next lane, which a merge
+    makes a car's own (a merger slowing to slot in behind it, its partner opening the gap for the merger)."""
     judged, braking = set(vehicle_ids), set()
     onsets = phantoms = 0
     for _, vehicles in truth.frames:
         now = {v.vehicle_id for v in vehicles if v.vehicle_id in judged and v.accel_mps2 < -HARD_BRAKE_MPS2}
-        if now - braking:
-            ahead = {follower.vehicle_id: leader for leader, follower in following_pairs(vehicles)}
-            for vehicle in (v for v in vehicles if v.vehicle_id in now - braking):
-                onsets += 1
-                phantoms += not _brake_called_for(vehicle, ahead.get(vehicle.vehicle_id))
+        for vehicle in (v for v in vehicles if v.vehicle_id in now - braking):
+            onsets += 1
+            phantoms += not any(_brake_called_for(vehicle, other) for other in vehicles if other is not vehicle)
         braking = now
     return {"hard_brakes": float(onsets), "phantom_brakes": float(phantoms)}
 
 
-def _brake_called_for(vehicle: sim_pb2.VehicleTruth, leader: sim_pb2.VehicleTruth | None) -> bool:
-    if leader is None:
+def _brake_called_for(vehicle: sim_pb2.VehicleTruth, other: sim_pb2.VehicleTruth) -> bool:
+    """Whether `other`, if near the vehicle's path, brakes beyond comfort or would be reached within
+    CALLED_FOR_TIME_TO_COLLISION_S at the speeds of the moment (measured along the vehicle's heading)."""
+    forward = np.array([math.cos(vehicle.heading_rad), math.sin(vehicle.heading_rad)])
+    left = np.array([-forward[1], forward[0]])
+    bumper_ahead_m = vehicle.length_m - geometry.rear_overhang_m(vehicle.length_m)
+    front_m = np.array([vehicle.x_m, vehicle.y_m]) + bumper_ahead_m * forward
+    corners = _corners(other) - front_m
+    along_m, across_m = corners @ forward, corners @ left
+    reach_m = vehicle.width_m / 2.0 + LANE_WIDTH_M
+    if along_m.max() <= 0.0 or across_m.min() > reach_m or across_m.max() < -reach_m:
         return False
-    closing_mps = vehicle.speed_mps - leader.speed_mps
-    return (leader.accel_mps2 <= -CALLED_FOR_DECEL_MPS2
-            or bumper_gap_m(leader, vehicle) < CALLED_FOR_TIME_TO_COLLISION_S * closing_mps)
+    closing_mps = vehicle.speed_mps - other.speed_mps * math.cos(other.heading_rad - vehicle.heading_rad)
+    return (other.accel_mps2 <= -CALLED_FOR_DECEL_MPS2
+            or max(along_m.min(), 0.0) < CALLED_FOR_TIME_TO_COLLISION_S * closing_mps)
 
 
 SpeedReference = Callable[[np.ndarray], np.ndarray]

@@ -196,3 +196,19 @@ def test_comfort_braking_and_vehicles_not_judged_count_no_hard_brake():
 def test_the_judge_reports_hard_and_phantom_brakes_of_the_automated_vehicles():
     result = metrics.judge(_brake_frames([0.0, -4.0, 0.0]))
     assert (result["hard_brakes"], result["phantom_brakes"]) == (1.0, 1.0)
+
+
+def _with_other(other):
+    return TruthSeries.from_frames([(0.0, [_truth("f", 10.0), other]), (0.1, [_truth("f", 10.0, accel=-4.0), other])])
+
+
+def test_a_slower_car_ahead_cutting_in_or_in_the_next_lane_calls_for_the_brake_one_two_lanes_over_does_not():
+    for y_m, phantoms in ((2.0, 0.0), (3.5, 0.0), (7.0, 1.0)):
+        other = _truth("c", 30.0, speed_mps=5.0, lane=round(y_m / 3.5), y_m=y_m, automated=False)
+        assert metrics.hard_brakes(_with_other(other), ["f"])["phantom_brakes"] == phantoms
+
+
+def test_a_car_crossing_our_path_ahead_calls_for_the_brake():
+    crossing = sim_pb2.VehicleTruth(vehicle_id="x", x_m=30.0, y_m=-3.0, heading_rad=math.pi / 2, speed_mps=8.0,
+                                    length_m=4.5, width_m=1.8)
+    assert metrics.hard_brakes(_with_other(crossing), ["f"]) == {"hard_brakes": 1.0, "phantom_brakes": 0.0}
