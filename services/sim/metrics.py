@@ -25,7 +25,7 @@ DEFAULT_HEADWAY_S = 1.5
 # Well beyond control's comfort deceleration (2 m/s2, services/control/profiles.py): a car brakes this hard only
 # on its emergency path, or its driver's foot.
 HARD_BRAKE_MPS2 = 3.0
-# A hard brake is called for by a vehicle ahead in the lane or the next ones that brakes beyond comfort as well, or
+# A hard brake is called for by a vehicle ahead in the lane or the next one that brakes beyond comfort as well, or
 # that would be reached within this time at the speeds of the moment.
 CALLED_FOR_DECEL_MPS2 = 2.0
 CALLED_FOR_TIME_TO_COLLISION_S = 4.0
