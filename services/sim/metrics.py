@@ -29,6 +29,12 @@ HARD_BRAKE_MPS2 = 3.0
 # that would be reached within this time at the speeds of the moment.
 CALLED_FOR_DECEL_MPS2 = 2.0
 CALLED_FOR_TIME_TO_COLLISION_S = 4.0
+# A brake shows in the truth up to this long after it was asked for (actuation delay and driveline lag), so what
+# called for it is looked for over this window before its onset.
+BRAKE_BUILD_UP_S = 1.0
+# A vehicle whose footprint reaches this near the judged vehicle's flank is in its own path; beyond it, out to a
+# lane's width, only traffic going the same way counts (oncoming traffic in the next lane passes by).
+PATH_MARGIN_M = 0.5
 
 
 def _corners(v: sim_pb2.VehicleTruth) -> np.ndarray:
@@ -160,17 +166,21 @@ def comfort(truth: TruthSeries, vehicle_ids: Sequence[str]) -> dict[str, float]:
 
 def hard_brakes(truth: TruthSeries, vehicle_ids: Sequence[str]) -> dict[str, float]:
     """`hard_brakes`: how often a judged vehicle starts to decelerate harder than HARD_BRAKE_MPS2 (a lasting brake
-    counts once); `phantom_brakes`: those of them that no vehicle near its path called for (the false positive of
-    automatic emergency braking). Near the path: ahead, with a footprint that reaches within a lane's width of the
-    judged vehicle's flanks. A car cutting in or crossing counts, and so does one in the next lane, which a merge
-    makes a car's own (a merger slowing to slot in behind it, its partner opening the gap for the merger)."""
+    counts once); `phantom_brakes`: those of them that no vehicle near its path called for in the BRAKE_BUILD_UP_S
+    before (the false positive of automatic emergency braking). Near the path: ahead, with a footprint in the path
+    (a car cutting in or crossing), or going the same way in the next lane, which a merge makes a car's own (a merger
+    slowing to slot in behind it, its partner opening the gap for the merger)."""
     judged, braking = set(vehicle_ids), set()
     onsets = phantoms = 0
-    for _, vehicles in truth.frames:
+    for index, (time_s, vehicles) in enumerate(truth.frames):
         now = {v.vehicle_id for v in vehicles if v.vehicle_id in judged and v.accel_mps2 < -HARD_BRAKE_MPS2}
-        for vehicle in (v for v in vehicles if v.vehicle_id in now - braking):
+        for vehicle_id in sorted(now - braking):
             onsets += 1
-            phantoms += not any(_brake_called_for(vehicle, other) for other in vehicles if other is not vehicle)
+            phantoms += not any(_brake_called_for(own, other)
+                                for before_s, earlier in reversed(truth.frames[:index + 1])
+                                if time_s - before_s <= BRAKE_BUILD_UP_S
+                                for own in earlier if own.vehicle_id == vehicle_id
+                                for other in earlier if other is not own)
         braking = now
     return {"hard_brakes": float(onsets), "phantom_brakes": float(phantoms)}
 
@@ -184,7 +194,8 @@ def _brake_called_for(vehicle: sim_pb2.VehicleTruth, other: sim_pb2.VehicleTruth
     front_m = np.array([vehicle.x_m, vehicle.y_m]) + bumper_ahead_m * forward
     corners = _corners(other) - front_m
     along_m, across_m = corners @ forward, corners @ left
-    reach_m = vehicle.width_m / 2.0 + LANE_WIDTH_M
+    same_way = math.cos(other.heading_rad - vehicle.heading_rad) > 0.0
+    reach_m = vehicle.width_m / 2.0 + (LANE_WIDTH_M if same_way else PATH_MARGIN_M)
     if along_m.max() <= 0.0 or across_m.min() > reach_m or across_m.max() < -reach_m:
         return False
     closing_mps = vehicle.speed_mps - other.speed_mps * math.cos(other.heading_rad - vehicle.heading_rad)

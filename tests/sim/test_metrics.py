@@ -212,3 +212,23 @@ def test_a_car_crossing_our_path_ahead_calls_for_the_brake():
     crossing = sim_pb2.VehicleTruth(vehicle_id="x", x_m=30.0, y_m=-3.0, heading_rad=math.pi / 2, speed_mps=8.0,
                                     length_m=4.5, width_m=1.8)
     assert metrics.hard_brakes(_with_other(crossing), ["f"]) == {"hard_brakes": 1.0, "phantom_brakes": 0.0}
+
+
+def test_oncoming_traffic_in_the_next_lane_calls_for_no_brake_oncoming_traffic_in_our_path_does():
+    def oncoming(y_m):
+        return sim_pb2.VehicleTruth(vehicle_id="o", x_m=40.0, y_m=y_m, heading_rad=math.pi, speed_mps=12.0,
+                                    length_m=4.5, width_m=1.8, lane_index=0)
+    assert metrics.hard_brakes(_with_other(oncoming(3.5)), ["f"])["phantom_brakes"] == 1.0
+    assert metrics.hard_brakes(_with_other(oncoming(0.5)), ["f"])["phantom_brakes"] == 0.0
+
+
+def test_what_called_for_a_brake_counts_for_as_long_as_a_brake_takes_to_build_up_before_its_onset():
+    gone_by = _truth("c", 30.0, speed_mps=5.0, y_m=2.0, automated=False)
+
+    def frames(brake_after_s):
+        steps = round(brake_after_s / 0.1)
+        return TruthSeries.from_frames([(0.0, [_truth("f", 10.0), gone_by])]
+                                       + [(0.1 * k, [_truth("f", 10.0)]) for k in range(1, steps)]
+                                       + [(0.1 * steps, [_truth("f", 10.0, accel=-4.0)])])
+    assert metrics.hard_brakes(frames(0.8), ["f"])["phantom_brakes"] == 0.0
+    assert metrics.hard_brakes(frames(1.5), ["f"])["phantom_brakes"] == 1.0
