@@ -16,12 +16,15 @@ MIN_SPEED_FOR_HEADING_MPS = 0.5
 
 
 def inside_bodies(points_m: np.ndarray, rear_m: np.ndarray, velocity_mps: np.ndarray, length_m: np.ndarray,
-                  width_m: np.ndarray) -> np.ndarray:
+                  width_m: np.ndarray, sensor_m: np.ndarray) -> np.ndarray:
     """(K,) whether each point (K, 2) lies inside some vehicle's body: from its rear bumper centre rear_m (M, 2)
-    forward along its velocity (M, 2) by length_m (M,), width_m / 2 to each side. A vehicle whose length or
-    width is unknown (NaN), or that moves too slowly to give a heading, holds no point."""
+    forward along its velocity (M, 2) by length_m (M,), width_m / 2 to each side. Only a vehicle moving away from
+    the sensor at sensor_m (2,) shows it its rear: the face of one coming towards it (oncoming, or following
+    behind) is its front, so where its body lies is not known, and it holds no point. Nor does a vehicle whose
+    length or width is unknown (NaN), or that moves too slowly to give a heading."""
     speed_mps = np.linalg.norm(velocity_mps, axis=1)
-    known = (speed_mps >= MIN_SPEED_FOR_HEADING_MPS) & np.isfinite(length_m) & np.isfinite(width_m)
+    moving_away = np.einsum("mi,mi->m", rear_m - sensor_m, velocity_mps) > 0.0
+    known = (speed_mps >= MIN_SPEED_FOR_HEADING_MPS) & moving_away & np.isfinite(length_m) & np.isfinite(width_m)
     if not known.any():
         return np.zeros(len(points_m), dtype=bool)
     forward = velocity_mps[known] / speed_mps[known, None]

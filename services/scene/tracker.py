@@ -100,7 +100,7 @@ class Tracker:
         x = np.einsum("mij,mj->mi", kalman.transition(dt_s), x)
         sizes = self.properties.values([t.props.row for t in confirmed])
         return inside_bodies(np.array([m.position_m for m in measurements]), x[:, [IX, IY]], x[:, [IVX, IVY]],
-                             sizes[:, LENGTH], sizes[:, WIDTH])
+                             sizes[:, LENGTH], sizes[:, WIDTH], measurements[0].origin_m)
 
     def _geometry(self, measurements: list[Measurement], tracks: list[Track]) -> tuple[np.ndarray, ...]:
         """Measurement positions, covariances and sensor origins, and the tracks' predicted positions and
