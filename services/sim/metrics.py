@@ -176,9 +176,10 @@ def hard_brakes(truth: TruthSeries, vehicle_ids: Sequence[str]) -> dict[str, flo
         now = {v.vehicle_id for v in vehicles if v.vehicle_id in judged and v.accel_mps2 < -HARD_BRAKE_MPS2}
         for vehicle_id in sorted(now - braking):
             onsets += 1
+            window = itertools.takewhile(lambda frame: time_s - frame[0] <= BRAKE_BUILD_UP_S,
+                                         (truth.frames[k] for k in range(index, -1, -1)))
             phantoms += not any(_brake_called_for(own, other)
-                                for before_s, earlier in reversed(truth.frames[:index + 1])
-                                if time_s - before_s <= BRAKE_BUILD_UP_S
+                                for _, earlier in window
                                 for own in earlier if own.vehicle_id == vehicle_id
                                 for other in earlier if other is not own)
         braking = now
