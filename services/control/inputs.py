@@ -7,6 +7,11 @@ never ignore the vehicle directly ahead.
 V2V freshness: a target's V2V age is the time since its latest CAM was measured (SceneObject.v2v_time_s), when
 its acceleration is supported by SENSOR_SOURCE_V2V and not faded (confidence >= 0), else there is no V2V. The
 scene keeps a V2V-supported property for its fade time (about a second), far beyond GCDC's 400 ms.
+
+In path: a virtual target (the merge's partner in the other lane) is in our path only once the scene puts it in
+our corridor (its MIO) or our lane (its forward MIO); until then the emergency path does not judge it, because a
+longitudinal gap to a car a lane to the side is no time to collision (merge: a merger 2.5 m behind a slower
+gap maker in the next lane emergency-braked at 6 m/s2, and the gap maker's follower braked for that).
 """
 
 from __future__ import annotations
@@ -30,7 +35,7 @@ def spacing_from_request(request: planner_pb2.BehaviourRequest) -> Spacing | Non
     return Spacing(request.spacing.standstill_m, request.spacing.time_gap_s)
 
 
-def _target(obj: scene_pb2.SceneObject, role: int, extra_gap_m: float, now_s: float) -> Target:
+def _target(obj: scene_pb2.SceneObject, role: int, extra_gap_m: float, now_s: float, in_path: bool) -> Target:
     accel = obj.accel_mps2
     has_v2v = accel.confidence >= 0 and V2V in accel.sources and obj.v2v_time_s > 0
     intended = obj.intended_accel_mps2
@@ -43,6 +48,7 @@ def _target(obj: scene_pb2.SceneObject, role: int, extra_gap_m: float, now_s: fl
         role=role,
         extra_gap_m=extra_gap_m,
         intended_accel_mps2=intended.value if V2V in intended.sources else None,
+        in_path=in_path,
     )
 
 
@@ -50,15 +56,18 @@ def targets_from_scene(request: planner_pb2.BehaviourRequest, scene: scene_pb2.S
                        ego_speed_mps: float = 0.0) -> list[Target]:
     """Targets ahead of the ego (gap > 0) that the scene knows, unknown ids left out, and the stop line."""
     objects = {o.object_id: o for o in scene.objects if not o.ghost}
+    in_our_path = {object_id for has, object_id in ((scene.has_mio, scene.mio_id),
+                                                   (scene.has_forward_mio, scene.forward_mio_id)) if has}
     targets: dict[int, Target] = {}
     for tv in request.targets:
         obj = objects.get(tv.object_id)
         if obj is not None and obj.longitudinal_gap_m > 0:
-            targets[obj.object_id] = _target(obj, tv.role, tv.extra_gap_m, now_s)
+            in_path = tv.role != planner_pb2.TARGET_ROLE_VIRTUAL or obj.object_id in in_our_path
+            targets[obj.object_id] = _target(obj, tv.role, tv.extra_gap_m, now_s, in_path)
     if scene.has_forward_mio and scene.forward_mio_id not in targets:
         obj = objects.get(scene.forward_mio_id)
         if obj is not None and obj.longitudinal_gap_m > 0:
-            targets[obj.object_id] = _target(obj, planner_pb2.TARGET_ROLE_PREDECESSOR, 0.0, now_s)
+            targets[obj.object_id] = _target(obj, planner_pb2.TARGET_ROLE_PREDECESSOR, 0.0, now_s, True)
     stop_line = stop_line_target(request, ego_speed_mps, now_s)
     if stop_line is not None:
         targets[stop_line.object_id] = stop_line

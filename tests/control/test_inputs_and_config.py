@@ -68,6 +68,18 @@ def test_the_forward_mio_is_always_a_target_and_vehicles_behind_are_not():
     assert [(t.object_id, t.role) for t in targets] == [(1, planner_pb2.TARGET_ROLE_PREDECESSOR)]
 
 
+def test_a_virtual_target_is_in_our_path_only_once_the_scene_puts_it_in_our_corridor_or_lane():
+    beside = scene_object(3, 2.5, 16.7)
+    request = planner_pb2.BehaviourRequest(targets=[
+        planner_pb2.TargetVehicle(object_id=3, role=planner_pb2.TARGET_ROLE_VIRTUAL),
+        planner_pb2.TargetVehicle(object_id=5, role=planner_pb2.TARGET_ROLE_PREDECESSOR)])
+    other_lane = scene_pb2.Scene(objects=[beside, scene_object(5, 30.0, 16.7)])
+    assert [(t.object_id, t.in_path) for t in targets_from_scene(request, other_lane, now_s=0.0)] == [(3, False), (5, True)]
+    for in_corridor in (dict(has_mio=True, mio_id=3), dict(has_forward_mio=True, forward_mio_id=3)):
+        cutting_in = scene_pb2.Scene(objects=[beside, scene_object(5, 30.0, 16.7)], **in_corridor)
+        assert all(t.in_path for t in targets_from_scene(request, cutting_in, now_s=0.0))
+
+
 def test_the_spacing_comes_from_the_request_when_present():
     assert spacing_from_request(planner_pb2.BehaviourRequest()) is None
     request = planner_pb2.BehaviourRequest(spacing=planner_pb2.SpacingPolicy(standstill_m=6.0, time_gap_s=0.8))

@@ -139,6 +139,16 @@ def test_a_stopped_vehicle_close_ahead_triggers_emergency_braking_beyond_the_com
     assert cmd.accel_request_mps2 == pytest.approx(-CAR.limits.emergency_decel_mps2)
 
 
+def test_a_slower_virtual_target_close_ahead_in_the_other_lane_is_left_to_the_comfort_laws():
+    # The merge's case: 2.5 m behind a gap maker in the next lane, 5.5 m/s faster; TTC 0.45 s by the gap alone.
+    beside = steady_target(object_id=4, gap_m=2.5, speed_mps=16.7, role=planner_pb2.TARGET_ROLE_VIRTUAL, in_path=False)
+    cmd = run(LongitudinalController(CAR), 60, [beside], speed_mps=22.2)
+    assert not cmd.emergency_brake and cmd.target_object_id == 4
+    assert cmd.accel_request_mps2 == pytest.approx(-CAR.limits.max_decel_mps2)
+    in_our_lane = steady_target(object_id=4, gap_m=2.5, speed_mps=16.7, role=planner_pb2.TARGET_ROLE_VIRTUAL)
+    assert run(LongitudinalController(CAR), 25, [in_our_lane], speed_mps=22.2).emergency_brake
+
+
 def test_a_predecessor_requesting_hard_braking_starts_emergency_braking_before_its_brakes_bite():
     # 17 m at 22 m/s behind a car still measured at 0 m/s2 whose controller now asks for -5 m/s2 (iCLCM).
     requesting = steady_target(gap_m=17.0, speed_mps=22.0, accel_mps2=0.0, intended_accel_mps2=-5.0)

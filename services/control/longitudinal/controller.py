@@ -200,8 +200,9 @@ class LongitudinalController:
 
     def _apply(self, dt: float, best: _Choice, valid: list[Target], ego_speed_mps: float, desired_speed_mps: float,
                spacing: Spacing, outputs: dict[str, float]) -> LongitudinalCommand:
-        """The emergency path may override the min-select's winner; the shaper limits what is applied."""
-        decision = self.emergency.step(ego_speed_mps, [self._emergency_view(t) for t in valid])
+        """The emergency path may override the min-select's winner; the shaper limits what is applied. It judges
+        only targets in our path: the follow laws keep the gap to a virtual target in the other lane."""
+        decision = self.emergency.step(ego_speed_mps, [self._emergency_view(t) for t in valid if t.in_path])
         mode, target = best.mode, best.target
         if decision.active:
             applied = self.shaper.step(dt, decision.accel_mps2, emergency=True)

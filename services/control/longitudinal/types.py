@@ -41,6 +41,8 @@ class Target:
     accel_mps2 is the predecessor's acceleration received over V2V (CAM / iCLCM), None when absent.
     v2v_age_s is the age of that V2V data, None when the target has no V2V at all.
     intended_accel_mps2 is the acceleration its controller requests (iCLCM), None when not fresh.
+    in_path says it drives where we drive: in our lane or our corridor. A virtual target of the merge drives in
+    the other lane; the follow laws keep a gap to it, but nothing we can hit is there until it is in our path.
     """
 
     object_id: int
@@ -53,6 +55,7 @@ class Target:
     # A line to stop at (give way, road works), not a vehicle: gap_m is the distance to the stopping point.
     stop_line: bool = False
     intended_accel_mps2: float | None = None
+    in_path: bool = True
 
     def invalid_reason(self) -> str | None:
         if not math.isfinite(self.gap_m):
