@@ -1,7 +1,12 @@
 """Free loopback ports: TCP for per-run Zenoh endpoints, UDP for the simulated radio boxes."""
 
+import fcntl
+import os
 import random
 import socket
+import tempfile
+import threading
+import time
 from pathlib import Path
 
 EPHEMERAL_RANGE_FILE = Path("/proc/sys/net/ipv4/ip_local_port_range")
@@ -9,6 +14,13 @@ EPHEMERAL_RANGE_FILE = Path("/proc/sys/net/ipv4/ip_local_port_range")
 FALLBACK_RANGE = (10000, 32768)
 LOWEST_PORT = 10000
 MAX_ATTEMPTS = 10000
+# A drawn port stays leased this long to the process that drew it: its run's services bind it seconds later, and
+# far later on a loaded machine (a sweep beside the test suite at nice 19), while other runs and tests draw too.
+LEASE_S = 300.0
+LEASE_DIR = Path(tempfile.gettempdir()) / "coopdrive-udp-leases"
+
+_leases: list[tuple[float, int]] = []  # (expiry on the monotonic clock, locked file descriptor)
+_leases_lock = threading.Lock()
 
 
 def free_tcp_port() -> int:
@@ -22,30 +34,71 @@ def loopback_endpoint(port: int) -> str:
 
 
 def free_udp_ports(count: int) -> list[int]:
-    """count distinct free UDP ports below the kernel's ephemeral range.
+    """count distinct free UDP ports below the kernel's ephemeral range, each leased for LEASE_S.
 
     Below it, because a socket that sends before it binds gets an ephemeral port from the kernel, and one did
     take a stack's radio port between this probe and the v2x service's bind. Every probe stays bound until all
-    are found, so no port is handed out twice.
+    are found, so no port is handed out twice. The lease (an flock on a file named after the port, released
+    when it expires or the process ends) keeps every other draw in any coopdrive process from handing the port
+    out meanwhile: a probe only finds a port nobody has bound yet, and CI's sweep once lost a run when a test
+    beside it drew a stack's port before the stack had bound it ("Address already in use").
     """
     low, high = _below_ephemeral_range()
     draw = random.SystemRandom()
     probes: list[socket.socket] = []
+    leases: list[int] = []
+    _end_expired_leases()
     try:
         for _ in range(MAX_ATTEMPTS):
             if len(probes) == count:
+                _keep_leases(leases)
+                leases = []
                 return [probe.getsockname()[1] for probe in probes]
+            port = draw.randrange(low, high)
+            lease = _take_lease(port)
+            if lease is None:
+                continue
             probe = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
             try:
-                probe.bind(("127.0.0.1", draw.randrange(low, high)))
+                probe.bind(("127.0.0.1", port))
             except OSError:
                 probe.close()
+                os.close(lease)
                 continue
             probes.append(probe)
+            leases.append(lease)
         raise OSError(f"no {count} free UDP ports in {low}-{high}")
     finally:
         for probe in probes:
             probe.close()
+        for lease in leases:
+            os.close(lease)
+
+
+def _take_lease(port: int) -> int | None:
+    """A locked descriptor of the port's lease file, or None when another draw holds the port."""
+    LEASE_DIR.mkdir(exist_ok=True)
+    fd = os.open(LEASE_DIR / f"{port}", os.O_RDWR | os.O_CREAT, 0o666)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        os.close(fd)
+        return None
+    return fd
+
+
+def _keep_leases(fds: list[int]) -> None:
+    expiry = time.monotonic() + LEASE_S
+    with _leases_lock:
+        _leases.extend((expiry, fd) for fd in fds)
+
+
+def _end_expired_leases() -> None:
+    now = time.monotonic()
+    with _leases_lock:
+        for expiry, fd in [lease for lease in _leases if lease[0] <= now]:
+            os.close(fd)
+        _leases[:] = [lease for lease in _leases if lease[0] > now]
 
 
 def free_udp_port() -> int:
