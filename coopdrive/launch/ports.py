@@ -17,7 +17,8 @@ MAX_ATTEMPTS = 10000
 # A drawn port stays leased this long to the process that drew it: its run's services bind it seconds later, and
 # far later on a loaded machine (a sweep beside the test suite at nice 19), while other runs and tests draw too.
 LEASE_S = 300.0
-LEASE_DIR = Path(tempfile.gettempdir()) / "coopdrive-udp-leases"
+# One folder per user: another user's folder is not ours to create lease files in.
+LEASE_DIR = Path(tempfile.gettempdir()) / f"coopdrive-udp-leases-{os.getuid()}"
 
 _leases: list[tuple[float, int]] = []  # (expiry on the monotonic clock, locked file descriptor)
 _leases_lock = threading.Lock()
@@ -48,6 +49,7 @@ def free_udp_ports(count: int) -> list[int]:
     probes: list[socket.socket] = []
     leases: list[int] = []
     _end_expired_leases()
+    LEASE_DIR.mkdir(exist_ok=True)
     try:
         for _ in range(MAX_ATTEMPTS):
             if len(probes) == count:
@@ -77,7 +79,6 @@ def free_udp_ports(count: int) -> list[int]:
 
 def _take_lease(port: int) -> int | None:
     """A locked descriptor of the port's lease file, or None when another draw holds the port."""
-    LEASE_DIR.mkdir(exist_ok=True)
     fd = os.open(LEASE_DIR / f"{port}", os.O_RDWR | os.O_CREAT, 0o666)
     try:
         fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -96,9 +97,10 @@ def _keep_leases(fds: list[int]) -> None:
 def _end_expired_leases() -> None:
     now = time.monotonic()
     with _leases_lock:
-        for expiry, fd in [lease for lease in _leases if lease[0] <= now]:
-            os.close(fd)
-        _leases[:] = [lease for lease in _leases if lease[0] > now]
+        expired = [fd for expiry, fd in _leases if expiry <= now]
+        _leases[:] = [(expiry, fd) for expiry, fd in _leases if expiry > now]
+    for fd in expired:
+        os.close(fd)
 
 
 def free_udp_port() -> int:
