@@ -21,6 +21,9 @@ from .measurement import EgoPose, Measurement, cov_to_enu, polar_cov_vehicle
 
 # A vehicle's rear face may be partly hidden, so its measured centre is off by up to a tenth of its width.
 _FACE_CENTRE_STD_FRACTION = 0.1
+# A centre placed half a typical width out from a vehicle's near side is off by however much wider or narrower the
+# vehicle is than typical: cars are 1.6-2.0 m wide, trucks 2.5 m.
+_NEAR_SIDE_CENTRE_STD_FRACTION = 0.25
 
 
 @dataclass
@@ -142,16 +145,12 @@ class LidarClusterer:
         cfg = self._config
         out = []
         for cluster in self.clusters(scan):
-            rear = cluster.rear_centre_m
+            cut_by_fov = self._cut_by_field_of_view(cluster)
+            rear, face_std_m = self._rear_centre(cluster, cut_by_fov)
             range_m = float(np.hypot(*rear))
             bearing = math.atan2(rear[1], rear[0])
             cov = polar_cov_vehicle(range_m, bearing, cfg.range_std_m, cfg.bearing_std_rad)
-            # A face narrower than a vehicle is partly hidden (occluded, or cut by the edge of the
-            # field of view): its true centre may lie anywhere within the missing width.
-            missing_m = max(0.0, cfg.typical_width_m - cluster.width_m)
-            face_std_m = max(_FACE_CENTRE_STD_FRACTION * cluster.width_m, 0.5 * missing_m)
             cov += face_std_m**2 * _across_beam(bearing)
-            cut_by_fov = self._cut_by_field_of_view(cluster)
             if cut_by_fov:
                 # Only the lateral position is known: the first visible point slides with us as the flank
                 # passes, so where the vehicle's rear is says nothing about how it moves.
@@ -169,6 +168,24 @@ class LidarClusterer:
                 )
             )
         return out
+
+    def _rear_centre(self, cluster: LidarCluster, cut_by_fov: bool) -> tuple[np.ndarray, float]:
+        """The rear centre a cluster gives (vehicle frame) and the standard deviation of its centre across the beam.
+
+        A face narrower than a vehicle is partly hidden: its true centre may lie anywhere within the missing
+        width. Where the edge of the field of view cuts a vehicle wholly to one side of us, what is hidden is its
+        outer part, and the visible edge nearest our axis is its near side: the centre is half a vehicle's width
+        further out. (Taking the middle of what is left put a car passing the other way, as the field of view
+        cut it down to its flank, a metre into our lane within 0.2 s: a new track read that as a car turning
+        across our path, and the intersection's safety circle braked for it.)"""
+        cfg = self._config
+        missing_m = max(0.0, cfg.typical_width_m - cluster.width_m)
+        one_side = cluster.y_min_m > 0.0 or cluster.y_max_m < 0.0
+        if cut_by_fov and one_side and missing_m > 0.0:
+            near_side_m = cluster.y_min_m if cluster.y_min_m > 0.0 else cluster.y_max_m
+            centre_m = near_side_m + math.copysign(0.5 * cfg.typical_width_m, near_side_m)
+            return np.array([cluster.x_min_m, centre_m]), _NEAR_SIDE_CENTRE_STD_FRACTION * cfg.typical_width_m
+        return cluster.rear_centre_m, max(_FACE_CENTRE_STD_FRACTION * cluster.width_m, 0.5 * missing_m)
 
     def _cut_by_field_of_view(self, cluster: LidarCluster) -> bool:
         bearings = np.arctan2(cluster.points_m[:, 1], cluster.points_m[:, 0] - self._mount_x_m)

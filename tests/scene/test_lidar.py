@@ -124,6 +124,31 @@ def test_a_flank_cut_by_the_edge_of_the_field_of_view_only_places_the_vehicle_si
     assert math.sqrt(whole.cov_m2[0, 0]) < 1.0
 
 
+def test_a_car_beside_us_cut_down_by_the_field_of_view_is_placed_half_a_width_out_from_its_near_side():
+    """The edge of the field of view hides the outer part of a car passing on our left: the middle of what is
+    left slid a metre towards our lane as the car came beside us, and read as a car turning across our path."""
+    pose = EgoPose(time_s=1.0, x_m=0.0, y_m=0.0, heading_rad=0.0, speed_mps=10.0,
+                   yaw_rate_radps=0.0, accel_mps2=0.0, position_cov_m2=np.zeros((2, 2)))
+    config = LidarConfig(half_fov_rad=math.radians(50.0))
+    clusterer = LidarClusterer(config, front_bumper_x_m=3.6)
+    near_side_m = 2.6
+    edge_x_m = 3.6 + near_side_m / math.tan(math.radians(50.0))
+    flank = [(edge_x_m + 0.3 * i, near_side_m) for i in range(12)]
+    # The front face as far out as the field of view still shows it, and the flank behind it.
+    face = [(edge_x_m, near_side_m + 0.1 * i) for i in range(1, 6)]
+    expected_m = near_side_m + 0.5 * config.typical_width_m
+    for points in (flank, face + flank):
+        (reading,) = clusterer.measurements(scan_of_points({2: points}), pose)
+        assert reading.ambiguous
+        assert reading.position_m[1] == pytest.approx(expected_m)
+    # On our right the same, mirrored.
+    (right,) = clusterer.measurements(scan_of_points({2: [(x, -y) for x, y in flank]}), pose)
+    assert right.position_m[1] == pytest.approx(-expected_m)
+    # A car wholly in view keeps the middle of its face.
+    (whole,) = clusterer.measurements(scan_of_points({2: row(edge_x_m + 4.0, near_side_m, 10)}), pose)
+    assert whole.position_m[1] == pytest.approx(near_side_m + 0.9)
+
+
 def test_a_stray_echo_in_front_of_a_car_does_not_cut_it_into_two_clusters():
     face = row(17.7, -0.9, 10)
     echo = [(9.0, face[5][1] * 9.0 / 17.7 - 0.01)]
