@@ -51,13 +51,16 @@ class ObjectViews:
 
 @dataclass
 class _Kinematics:
-    """Per object: position, speed, heading, acceleration along the velocity, the larger position std, and
-    where it is relative to us (along and across our lane, speed along our heading)."""
+    """Per object: position, speed, heading, acceleration along the velocity, the standard deviations of speed
+    and heading, the larger position std, and where it is relative to us (along and across our lane, speed along
+    our heading)."""
 
     position_m: np.ndarray
     speed_mps: np.ndarray
     heading_rad: np.ndarray
     accel_mps2: np.ndarray
+    speed_std_mps: np.ndarray
+    heading_std_rad: np.ndarray
     std_m: np.ndarray
     along_m: np.ndarray
     across_m: np.ndarray
@@ -113,6 +116,7 @@ class SceneBuilder:
         # A partner's own reported acceleration wins while its V2V still supports the property.
         reported = np.array([t.props.reported_accel_mps2 for t in snapshot.tracks], dtype=float)
         accel = np.where(snapshot.has_source(ACCEL, _V2V) & ~np.isnan(reported), reported, accel)
+        speed_std, heading_std = _speed_and_heading_std(p[:, [IVX, IVY]][:, :, [IVX, IVY]], heading, speed)
         half_trace = 0.5 * (p[:, IX, IX] + p[:, IY, IY])
         spread = np.hypot(0.5 * (p[:, IX, IX] - p[:, IY, IY]), p[:, IX, IY])
         forward = np.array([math.cos(ego.heading_rad), math.sin(ego.heading_rad)])
@@ -120,8 +124,8 @@ class SceneBuilder:
         rel = position - ego.position_m
         along, across = rel @ forward, rel @ left
         self._along_ego_lane(ego, position, along, across)
-        return _Kinematics(position, speed, heading, accel, np.sqrt(np.maximum(0.0, half_trace + spread)), along,
-                           across, velocity @ forward - ego.speed_mps)
+        return _Kinematics(position, speed, heading, accel, speed_std, heading_std,
+                           np.sqrt(np.maximum(0.0, half_trace + spread)), along, across, velocity @ forward - ego.speed_mps)
 
     def _along_ego_lane(self, ego: EgoPose, position_m: np.ndarray, along_m: np.ndarray, across_m: np.ndarray):
         """Station and lateral offset relative to the ego on the ego lane's centre line, where the map gives them;
@@ -144,13 +148,16 @@ class SceneBuilder:
         values[:, SPEED], values[:, HEADING], values[:, ACCEL] = kin.speed_mps, kin.heading_rad, kin.accel_mps2
         confidence, codes, valid_until = snapshot.confidence, snapshot.source_codes, snapshot.valid_until_s
         objects = self._new_objects(scene, views, kin)
+        no_std = np.zeros(len(objects))
+        stds = {SPEED: kin.speed_std_mps, HEADING: kin.heading_std_rad}
         for get, slot in _SCALARS:
-            for obj, c, value, code, until in zip(objects, confidence[:, slot].tolist(), values[:, slot].tolist(),
-                                                  codes[:, slot].tolist(), valid_until[:, slot].tolist()):
+            for obj, c, value, std, code, until in zip(objects, confidence[:, slot].tolist(), values[:, slot].tolist(),
+                                                       stds.get(slot, no_std).tolist(), codes[:, slot].tolist(),
+                                                       valid_until[:, slot].tolist()):
                 target = get(obj)
                 target.confidence = c
                 if c != UNKNOWN_CONFIDENCE:
-                    target.value = value
+                    target.value, target.std = value, std
                     target.sources.extend(_sources_of(code))
                     target.valid_until_s = until
         position = zip(objects, confidence[:, POSITION].tolist(), kin.position_m.tolist(), kin.std_m.tolist(),
@@ -189,3 +196,16 @@ class SceneBuilder:
                     lateral_offset_m=across, relative_speed_mps=relative_speed, v2v_trust=trust,
                     v2v_time_s=track.props.v2v_time_s, ghost=ghost)
                 for track, known, gap, across, relative_speed, trust, ghost in fields]
+
+
+def _speed_and_heading_std(velocity_cov: np.ndarray, heading_rad: np.ndarray,
+                           speed_mps: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Standard deviations of speed and heading (N,) from the filter's velocity covariances (N, 2, 2), to first
+    order: the velocity's variance along its direction is the speed's, across it divided by the speed squared the
+    heading's. Below MIN_SPEED_FOR_HEADING_MPS the heading is that speed's worth, never more than pi."""
+    along = np.stack((np.cos(heading_rad), np.sin(heading_rad)), axis=1)
+    across = np.stack((-along[:, 1], along[:, 0]), axis=1)
+    speed_var = np.einsum("ni,nij,nj->n", along, velocity_cov, along)
+    across_var = np.einsum("ni,nij,nj->n", across, velocity_cov, across)
+    heading_std = np.sqrt(np.maximum(across_var, 0.0)) / np.maximum(speed_mps, MIN_SPEED_FOR_HEADING_MPS)
+    return np.sqrt(np.maximum(speed_var, 0.0)), np.minimum(heading_std, math.pi)

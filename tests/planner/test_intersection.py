@@ -121,6 +121,22 @@ def test_a_car_passing_the_other_way_in_its_own_lane_is_no_reason_to_stop_while_
     assert not any(t.role == planner_pb2.TARGET_ROLE_YIELD for t in request.targets)
 
 
+@pytest.mark.parametrize("heading_std_rad, stops", [(0.0, True), (0.05, True), (0.3, False)])
+def test_a_car_seen_crossing_our_path_stops_us_unless_its_heading_s_uncertainty_leaves_it_in_its_own_lane(
+        heading_std_rad, stops):
+    """A new track on a car passing the other way has a heading out of a few positions: 60 degrees off its lane
+    give or take 0.3 rad may be a car in its own lane, give or take 0.05 rad it is not."""
+    p, _ = CROSSING.run()
+    # The ego heads east at x = -10 m; this car, 3 m ahead and 2 m to our right, heads 60 degrees off west,
+    # towards our path.
+    turning = obj(6, 0, gap_m=3.0, x_m=-7.0, y_m=-2.0, speed_mps=8.0, heading_rad=math.radians(120.0))
+    turning.heading_rad.std = heading_std_rad
+    request, state = p.step(0.2, world(0.2, -10.0, extra=[turning]))
+    assert state.state == "CROSSING"
+    assert (request.desired_speed_mps == 0.0) is stops
+    assert any(t.role == planner_pb2.TARGET_ROLE_YIELD for t in request.targets) is stops
+
+
 def test_a_competitor_further_into_the_zone_on_our_own_road_is_no_conflict_when_going_straight():
     competitor = obj(6, COMPETITOR, gap_m=40.0, x_m=40.0, y_m=3.5, speed_mps=8.0, heading_rad=math.pi)
     ahead_in_zone = {COMPETITOR: iclcm(COMPETITOR, 0.2, distance_travelled_cz_m=80.0)}

@@ -362,3 +362,20 @@ def test_an_object_whose_only_ranging_is_one_radar_false_alarm_is_reported_but_n
     phantom, seen = by_gap
     assert set(phantom.position.sources) == {RADAR, header_pb2.SENSOR_SOURCE_CAMERA}
     assert scene.has_mio and scene.mio_id == seen.object_id
+
+
+def test_a_track_s_speed_and_heading_come_with_standard_deviations_that_shrink_as_its_readings_come_in():
+    """Out of its first few LiDAR positions a new track knows its heading to a tenth of a radian, after seconds to
+    a few hundredths: the scene says so, and the truth stays within three of them."""
+    fusion = SceneFusion()
+    road = Road(fusion)
+    published = []
+    for t in road.ticks(0.0, 3.0):
+        road.sense(t, [(lead_rear_x(t), 0.0, 12.0)], radar=False)
+        published += [(o.speed_mps, o.heading_rad) for o in fusion.scene(t).objects]
+    (first_speed, first_heading), (last_speed, last_heading) = published[0], published[-1]
+    assert first_heading.std > 2.0 * last_heading.std > 0.0
+    assert first_speed.std > 1.5 * last_speed.std > 0.0
+    assert last_heading.std < 0.1 and last_speed.std < 0.5
+    assert all(abs(heading.value) <= 3.0 * heading.std and abs(speed.value - 12.0) <= 3.0 * speed.std
+               for speed, heading in published)
