@@ -27,6 +27,9 @@ from .properties import LENGTH, POSITION, WIDTH, ObjectProperties, property_tabl
 from .track import RANGING_SOURCES, Track, TrackStatus, filter_steps, predict_positions, stacked_states
 
 
+_SONAR = header_pb2.SENSOR_SOURCE_SONAR
+
+
 @dataclass
 class TrackerCounters:
     created: int = 0
@@ -41,6 +44,8 @@ class TrackerCounters:
     duplicates_merged: int = 0
     # Readings matching no track that lay inside a confirmed vehicle's body (see occupancy.py).
     inside_known_vehicle: int = 0
+    # Sonar echoes matched to an object another sensor holds, which they do not move (see Tracker.process).
+    echoes_on_objects_others_hold: int = 0
     by_reason: dict[str, int] = field(default_factory=dict)
 
 
@@ -77,7 +82,7 @@ class Tracker:
         fused, unmatched = associate(*self._geometry(measurements, tracks), self._config.tracking)
         # In measurement order, as one joint assignment would fuse and start them.
         pairs = [(tracks[j], measurements[i], match_quality(cost, gate)) for i, j, cost in sorted(fused)]
-        self._fuse_frame(pairs)
+        self._fuse_frame(self._without_echoes_on_objects_others_hold(pairs))
         starting = [measurements[i] for i in sorted(unmatched) if not measurements[i].ambiguous]
         self.counters.ambiguous_unmatched += len(unmatched) - len(starting)
         if starting:
@@ -89,6 +94,20 @@ class Tracker:
             support_many([track.props for track in started], starting, np.ones(len(starting)))
             for track in started:
                 self._maybe_confirm(track)
+
+    def _without_echoes_on_objects_others_hold(self, pairs: list[tuple[Track, Measurement, float]]) -> list:
+        """The pairs to fuse: a sonar echo moves only an object the sonars alone hold.
+
+        Chalmers 4.3.1: a sonar tells that something is at our side, not where. Its echo comes from the surface
+        nearest it, anywhere in its cone: from a car beside us, the near side of its flank, half a width short of
+        its centre line and at whatever point of its length passes the sonar. Fused into a car our LiDAR, radar or
+        camera holds, echoes pinned beside us as a car slid past made it drive along with us and into our lane
+        (a car passing the other way at the T-intersection; a radar false alarm they confirmed as a car crossing
+        our path). Such an echo is still that object's, so it starts none of its own."""
+        kept = [pair for pair in pairs if pair[1].source != _SONAR
+                or set(pair[0].props.position.sources(pair[1].time_s)) <= {_SONAR}]
+        self.counters.echoes_on_objects_others_hold += len(pairs) - len(kept)
+        return kept
 
     def _inside_confirmed_vehicles(self, measurements: list[Measurement]) -> np.ndarray:
         """Whether each of one frame's readings lies inside a confirmed vehicle's body at the frame's time."""
@@ -341,7 +360,7 @@ class Tracker:
 
     @staticmethod
     def sonar_only(track: Track, time_s: float) -> bool:
-        return track.props.position.sources(time_s) == [header_pb2.SENSOR_SOURCE_SONAR]
+        return track.props.position.sources(time_s) == [_SONAR]
 
     @staticmethod
     def camera_only(track: Track, time_s: float) -> bool:

@@ -36,6 +36,29 @@ def test_ambiguous_readings_refine_a_tentative_track_but_do_not_confirm_it():
     assert [t.track_id for t in tracker.confirmed()] == [track.track_id]
 
 
+def echo(time_s, x_m, y_m):
+    return Measurement(source=header_pb2.SENSOR_SOURCE_SONAR, time_s=time_s, position_m=np.array([x_m, y_m]),
+                       cov_m2=np.eye(2) * 0.25, origin_m=np.array([x_m, 0.0]))
+
+
+def test_a_sonar_echo_moves_an_object_the_sonars_alone_hold_but_not_one_the_lidar_holds_nor_starts_another():
+    tracker = Tracker(SceneFusionConfig())
+    for k in range(4):
+        tracker.process([reading(0.1 * k, 10.0)])
+    (lidar_track,) = tracker.tracks.values()
+    before = lidar_track.mean.copy()
+    tracker.process([echo(0.35, 10.0, 1.4)])
+    assert list(tracker.tracks) == [lidar_track.track_id]
+    assert np.array_equal(lidar_track.mean, before)
+    assert tracker.counters.echoes_on_objects_others_hold == 1
+
+    near_field = Tracker(SceneFusionConfig())
+    for k in range(4):
+        near_field.process([echo(0.1 * k, 3.0, 1.0 + 0.05 * k)])
+    (sonar_track,) = near_field.tracks.values()
+    assert sonar_track.hits == 4 and near_field.counters.echoes_on_objects_others_hold == 0
+
+
 def at(time_s, x_m, y_m):
     return Measurement(source=LIDAR, time_s=time_s, position_m=np.array([x_m, y_m]), cov_m2=np.eye(2) * 0.01,
                        origin_m=np.zeros(2))
