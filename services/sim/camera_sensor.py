@@ -70,13 +70,22 @@ class CameraSensor(TimedSensor[sensors_pb2.CameraFrame]):
             if index not in first_hits or self.rng.random() < cfg.miss_probability:
                 continue
             other = world.others[index]
-            x_m, y_m = points[index] + cfg.position_sigma_m * self.rng.standard_normal(2)
+            x_m, y_m = self._noisy(rel[index]) + mount
             frame.detections.add(
                 detection_id=self._detection_ids.setdefault(other.vehicle_id, len(self._detection_ids) + 1),
                 object_class=self._classify(world.object_class(other)), x_m=x_m, y_m=y_m,
                 width_m=self._width_m(other.width_m),
                 confidence=1.0 - (1.0 - FAR_CONFIDENCE) * distance_m / cfg.max_range_m,
             )
+
+    def _noisy(self, from_mount_m: np.ndarray) -> np.ndarray:
+        """A point seen from the camera, its range and bearing each off by the camera's errors."""
+        cfg = self.config
+        range_m = float(np.hypot(*from_mount_m))
+        range_sigma_m = max(cfg.min_range_sigma_m, cfg.range_sigma_per_m2 * range_m**2)
+        range_noise_m, bearing_noise_rad = self.rng.standard_normal(2) * (range_sigma_m, cfg.bearing_sigma_rad)
+        bearing_rad = math.atan2(from_mount_m[1], from_mount_m[0]) + bearing_noise_rad
+        return (range_m + range_noise_m) * np.array([math.cos(bearing_rad), math.sin(bearing_rad)])
 
     def _classify(self, true_class: int) -> int:
         probability = self.config.misclassification_probability

@@ -110,10 +110,28 @@ def test_lidar_lower_layers_return_from_the_ground_and_range_noise_matches_confi
     assert np.std(samples) == pytest.approx(0.1, rel=0.15)
 
 
+@pytest.mark.parametrize("rear_gap_m, range_sigma_m", [(45.0, 2.25), (10.0, 0.11)])
+def test_the_camera_s_range_errs_5_percent_at_45_m_growing_with_its_square_and_its_bearing_a_third_of_a_degree(
+        rear_gap_m, range_sigma_m):
+    config = CameraConfig(timing=TIMING, miss_probability=0.0, misclassification_probability=0.0).placed()
+    sensor = CameraSensor(config, sensor_rng(5, "ego", "camera"), "ego")
+    lead_x_m = rear_gap_m + config.mount_x_m + 0.2 * 4.5
+    ranges_m, bearings_rad = [], []
+    for k in range(400):
+        (detection,) = sensor.poll(0.1 * k, _world(_car("lead", lead_x_m)))[0].detections
+        x_m, y_m = detection.x_m - config.mount_x_m, detection.y_m
+        ranges_m.append(math.hypot(x_m, y_m))
+        bearings_rad.append(math.atan2(y_m, x_m))
+    assert np.mean(ranges_m) == pytest.approx(rear_gap_m, abs=3.0 * range_sigma_m / math.sqrt(400))
+    assert np.std(ranges_m) == pytest.approx(range_sigma_m, rel=0.15)
+    assert np.std(bearings_rad) == pytest.approx(math.radians(0.3), rel=0.15)
+
+
 def test_camera_detects_unoccluded_vehicles_and_fits_the_lane_markings():
     lanes = straight_road(2, width_m=3.5)
-    sensor = CameraSensor(ideal(CameraConfig(timing=TIMING, position_sigma_m=0.0, lane_offset_sigma_m=0.0,
-                                       lane_heading_sigma_rad=0.0)), sensor_rng(4, "ego", "camera"), "ego", lanes)
+    exact = CameraConfig(timing=TIMING, range_sigma_per_m2=0.0, min_range_sigma_m=0.0, bearing_sigma_rad=0.0,
+                         lane_offset_sigma_m=0.0, lane_heading_sigma_rad=0.0)
+    sensor = CameraSensor(ideal(exact), sensor_rng(4, "ego", "camera"), "ego", lanes)
     ego = _car("ego", 0.0, y_m=0.3)
     frame = sensor.poll(0.0, _world(_car("lead", 25.0), _car("hidden", 45.0), _car("left", 30.0, y_m=3.5),
                                     ego=ego))[0]
