@@ -137,6 +137,17 @@ def test_a_car_seen_crossing_our_path_stops_us_unless_its_heading_s_uncertainty_
     assert any(t.role == planner_pb2.TARGET_ROLE_YIELD for t in request.targets) is stops
 
 
+def test_a_sonar_echo_at_our_side_whose_speed_is_unknown_is_no_reason_to_stop_while_crossing():
+    """A side sonar's echo off a car passing the other way is an object with no speed, 1.4 m ahead and 2.7 m to
+    our left (intersection seed 7): taken for a standing car, it braked us at 6 m/s2."""
+    p, _ = CROSSING.run()
+    echo = obj(6, 0, gap_m=1.4, x_m=-6.6, y_m=2.7, speed_mps=0.0)
+    echo.speed_mps.confidence = echo.heading_rad.confidence = -1.0
+    request, state = p.step(0.2, world(0.2, -10.0, extra=[echo]))
+    assert state.state == "CROSSING" and request.desired_speed_mps == pytest.approx(50 / 3.6)
+    assert not any(t.role == planner_pb2.TARGET_ROLE_YIELD for t in request.targets)
+
+
 def test_a_competitor_further_into_the_zone_on_our_own_road_is_no_conflict_when_going_straight():
     competitor = obj(6, COMPETITOR, gap_m=40.0, x_m=40.0, y_m=3.5, speed_mps=8.0, heading_rad=math.pi)
     ahead_in_zone = {COMPETITOR: iclcm(COMPETITOR, 0.2, distance_travelled_cz_m=80.0)}
