@@ -168,6 +168,22 @@ class TrustConfig(BaseModel):
     lidar_veto_range_m: float = Field(default=60.0, ge=0.0)
 
 
+class FrontFaceConfig(BaseModel):
+    """When a tracked vehicle shows our sensors its front rather than its rear (front_faces.py)."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    # Below this the filter's velocity is too uncertain to tell where a vehicle points (a tracked car's speed
+    # settles to a few tenths of a m/s).
+    min_speed_mps: float = Field(default=3.0, gt=0.0)
+    # ... and while its heading is less certain than this (a LiDAR track settles at 0.04-0.05 rad at 12 m/s).
+    max_heading_std_rad: float = Field(default=0.15, gt=0.0)
+    # A vehicle moving within this angle of the line to the sensor shows it its front ...
+    facing_angle_rad: float = Field(default=1.05, gt=0.0)
+    # ... until it moves more than this off that line: beside us, it shows its flank.
+    release_angle_rad: float = Field(default=1.40, gt=0.0)
+
+
 class TrackingConfig(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
@@ -194,6 +210,7 @@ class TrackingConfig(BaseModel):
     # moving alike, are one vehicle whose readings split between them, and become one track.
     duplicate_distance_m: float = Field(default=1.5, gt=0.0)
     duplicate_speed_difference_mps: float = Field(default=1.5, gt=0.0)
+    front_faces: FrontFaceConfig = Field(default_factory=FrontFaceConfig)
 
 
 class SceneFusionConfig(BaseModel):

@@ -93,3 +93,13 @@ def predict_position(x: np.ndarray, p: np.ndarray, dt_s: np.ndarray, psd: float)
     cov[:, 1, 1] = np.einsum("ki,kij,kj->k", f, p[:, IY:IY + 3, IY:IY + 3], f) + q
     cov[:, 0, 1] = cov[:, 1, 0] = np.einsum("ki,kij,kj->k", f, p[:, IX:IX + 3, IY:IY + 3], f)
     return xy, cov
+
+
+def velocity_stds(velocity_cov: np.ndarray, heading_rad: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Standard deviations (N,) of the velocity along heading_rad (N,) and across it, from velocity covariances
+    (N, 2, 2): along it the speed's, across it divided by the speed the heading's to first order."""
+    along = np.stack((np.cos(heading_rad), np.sin(heading_rad)), axis=1)
+    across = np.stack((-along[:, 1], along[:, 0]), axis=1)
+    along_var = np.einsum("ni,nij,nj->n", along, velocity_cov, along)
+    across_var = np.einsum("ni,nij,nj->n", across, velocity_cov, across)
+    return np.sqrt(np.maximum(along_var, 0.0)), np.sqrt(np.maximum(across_var, 0.0))

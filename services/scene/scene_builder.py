@@ -18,6 +18,7 @@ from coopdrive.v1 import header_pb2, scene_pb2
 
 from .config import SceneFusionConfig
 from .confidence import UNKNOWN_CONFIDENCE
+from . import kalman
 from .kalman import IAX, IAY, IVX, IVY, IX, IY
 from .measurement import EgoPose
 from .occupancy import MIN_SPEED_FOR_HEADING_MPS
@@ -201,11 +202,7 @@ class SceneBuilder:
 def _speed_and_heading_std(velocity_cov: np.ndarray, heading_rad: np.ndarray,
                            speed_mps: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Standard deviations of speed and heading (N,) from the filter's velocity covariances (N, 2, 2), to first
-    order: the velocity's variance along its direction is the speed's, across it divided by the speed squared the
-    heading's. Below MIN_SPEED_FOR_HEADING_MPS the heading is that speed's worth, never more than pi."""
-    along = np.stack((np.cos(heading_rad), np.sin(heading_rad)), axis=1)
-    across = np.stack((-along[:, 1], along[:, 0]), axis=1)
-    speed_var = np.einsum("ni,nij,nj->n", along, velocity_cov, along)
-    across_var = np.einsum("ni,nij,nj->n", across, velocity_cov, across)
-    heading_std = np.sqrt(np.maximum(across_var, 0.0)) / np.maximum(speed_mps, MIN_SPEED_FOR_HEADING_MPS)
-    return np.sqrt(np.maximum(speed_var, 0.0)), np.minimum(heading_std, math.pi)
+    order (kalman.velocity_stds). Below MIN_SPEED_FOR_HEADING_MPS the heading is that speed's worth, never more
+    than pi."""
+    speed_std, across_std = kalman.velocity_stds(velocity_cov, heading_rad)
+    return speed_std, np.minimum(across_std / np.maximum(speed_mps, MIN_SPEED_FOR_HEADING_MPS), math.pi)

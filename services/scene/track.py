@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import bisect
 import enum
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -93,6 +93,12 @@ class Track:
         # LiDAR and radar readings that counted as hits.
         self.ranging_hits = 0
         self.props = properties
+        # Whether its sensors see its front (front_faces.py), and whether its state, started from a face they saw,
+        # was moved back to its rear once it showed them that face.
+        self.shows_front = False
+        self.moved_to_rear = False
+        # The unit vector it last moved along while the filter knew where it pointed (zero before that).
+        self.direction = np.zeros(2)
         self._config = config
         x0 = np.zeros(DIM)
         x0[IX], x0[IY] = first.position_m
@@ -147,6 +153,24 @@ class Track:
     @staticmethod
     def position_cov_of(p: np.ndarray) -> np.ndarray:
         return np.array([[p[IX, IX], p[IX, IY]], [p[IY, IX], p[IY, IY]]])
+
+    def move(self, offset_m: np.ndarray) -> None:
+        """Move the object by offset_m (2,) in its state, its replay log and its ranging fix alike: the point its
+        sensors saw was not its rear. Logged V2V readings already gave the rear and stay."""
+        def moved(x: np.ndarray) -> np.ndarray:
+            x = x.copy()
+            x[IX] += offset_m[0]
+            x[IY] += offset_m[1]
+            return x
+
+        self._x = moved(self._x)
+        self._base = (self._base[0], moved(self._base[1]), self._base[2])
+        for entry in self._log:
+            entry.x = moved(entry.x)
+            if entry.measurement.source != header_pb2.SENSOR_SOURCE_V2V:
+                entry.measurement = replace(entry.measurement, position_m=entry.measurement.position_m + offset_m)
+        if self.ranging_fix is not None:
+            self.ranging_fix.position_m = self.ranging_fix.position_m + offset_m
 
     # -- measurements ---------------------------------------------------------------------
 

@@ -20,14 +20,31 @@ from . import kalman
 from .association import match_quality, polar_cost_matrix
 from .config import SceneFusionConfig
 from .frame_association import associate
+from .front_faces import facing_sensor, front_offsets, heading_known
 from .kalman import IVX, IVY, IX, IY
 from .measurement import Measurement
 from .occupancy import inside_bodies
 from .properties import LENGTH, POSITION, WIDTH, ObjectProperties, property_table, support_many
+from .unknowns import DEFAULT_LENGTH_M
 from .track import RANGING_SOURCES, Track, TrackStatus, filter_steps, predict_positions, stacked_states
 
 
 _SONAR = header_pb2.SENSOR_SOURCE_SONAR
+_V2V = header_pb2.SENSOR_SOURCE_V2V
+
+
+def _predicted_means(tracks: list[Track], time_s: float) -> np.ndarray:
+    """The tracks' means (M, 6) predicted to time_s."""
+    x, _ = stacked_states(tracks)
+    dt_s = time_s - np.array([t.time_s for t in tracks])
+    return np.einsum("mij,mj->mi", kalman.transition(dt_s), x)
+
+
+def _moved(meas: Measurement, offset_m: np.ndarray) -> Measurement:
+    """meas with its position moved by offset_m (2,); meas itself where that is nothing."""
+    if not offset_m.any():
+        return meas
+    return replace(meas, position_m=meas.position_m + offset_m)
 
 
 @dataclass
@@ -79,9 +96,12 @@ class Tracker:
             return
         tracks = list(self.tracks.values())
         gate = self._config.tracking.gate_chi2
-        fused, unmatched = associate(*self._geometry(measurements, tracks), self._config.tracking)
-        # In measurement order, as one joint assignment would fuse and start them.
-        pairs = [(tracks[j], measurements[i], match_quality(cost, gate)) for i, j, cost in sorted(fused)]
+        front_m = self._front_faces(tracks, measurements[0])
+        fused, unmatched = associate(*self._geometry(measurements, tracks, front_m), self._config.tracking)
+        # In measurement order, as one joint assignment would fuse and start them; each reading of a face taken
+        # back to the rear its track holds.
+        pairs = [(tracks[j], _moved(measurements[i], -front_m[j]), match_quality(cost, gate))
+                 for i, j, cost in sorted(fused)]
         self._fuse_frame(self._without_echoes_on_objects_others_hold(pairs))
         starting = [measurements[i] for i in sorted(unmatched) if not measurements[i].ambiguous]
         self.counters.ambiguous_unmatched += len(unmatched) - len(starting)
@@ -114,22 +134,51 @@ class Tracker:
         confirmed = self.confirmed()
         if not confirmed:
             return np.zeros(len(measurements), dtype=bool)
-        x, _ = stacked_states(confirmed)
-        dt_s = measurements[0].time_s - np.array([t.time_s for t in confirmed])
-        x = np.einsum("mij,mj->mi", kalman.transition(dt_s), x)
+        x = _predicted_means(confirmed, measurements[0].time_s)
         sizes = self.properties.values([t.props.row for t in confirmed])
         return inside_bodies(np.array([m.position_m for m in measurements]), x[:, [IX, IY]], x[:, [IVX, IVY]],
                              sizes[:, LENGTH], sizes[:, WIDTH], measurements[0].origin_m)
 
-    def _geometry(self, measurements: list[Measurement], tracks: list[Track]) -> tuple[np.ndarray, ...]:
+    def _front_faces(self, tracks: list[Track], first: Measurement) -> np.ndarray:
+        """(M, 2) from each track's rear to the face the sensor of this frame sees (front_faces.py). A track that
+        shows its front for the first time and was started from what sensors saw of that front is moved back to
+        its rear, once; one V2V holds is at its rear already."""
+        if not tracks:
+            return np.zeros((0, 2))
+        x = _predicted_means(tracks, first.time_s)
+        velocity_mps = x[:, [IVX, IVY]]
+        velocity_cov = np.array([t.cov[np.ix_([IVX, IVY], [IVX, IVY])] for t in tracks])
+        known = heading_known(velocity_mps, velocity_cov, self._config.tracking.front_faces)
+        direction = np.array([t.direction for t in tracks])
+        direction[known] = velocity_mps[known] / np.linalg.norm(velocity_mps[known], axis=1)[:, None]
+        for k in np.flatnonzero(known):
+            tracks[k].direction = direction[k]
+        was_facing = np.array([t.shows_front for t in tracks])
+        facing = facing_sensor(x[:, [IX, IY]], direction, known, first.origin_m, was_facing,
+                               self._config.tracking.front_faces)
+        lengths_m = self.properties.values([t.props.row for t in tracks])[:, LENGTH]
+        offsets_m = front_offsets(direction, lengths_m, facing, DEFAULT_LENGTH_M)
+        for k in np.flatnonzero(facing != was_facing):
+            track = tracks[k]
+            track.shows_front = bool(facing[k])
+            if track.shows_front and not track.moved_to_rear:
+                track.moved_to_rear = True
+                if _V2V not in track.props.position.sources(first.time_s):
+                    track.move(-offsets_m[k])
+        return offsets_m
+
+    def _geometry(self, measurements: list[Measurement], tracks: list[Track],
+                  front_m: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
         """Measurement positions, covariances and sensor origins, and the tracks' predicted positions and
-        covariances at the measurements' time."""
+        covariances at the measurements' time; with front_m (M, 2), the positions of the faces the sensor sees."""
         meas_xy = np.array([m.position_m for m in measurements])
         meas_cov = np.array([m.cov_m2 for m in measurements])
         origins = np.array([m.origin_m for m in measurements])
         if tracks:
             track_xy, track_cov = predict_positions(tracks, measurements[0].time_s,
                                                     self._config.tracking.jerk_psd_m2ps5)
+            if front_m is not None:
+                track_xy = track_xy + front_m
         else:
             track_xy, track_cov = np.zeros((0, 2)), np.zeros((0, 2, 2))
         return meas_xy, meas_cov, origins, track_xy, track_cov
@@ -356,7 +405,7 @@ class Tracker:
 
     @staticmethod
     def v2v_only(track: Track, time_s: float) -> bool:
-        return track.props.position.sources(time_s) == [header_pb2.SENSOR_SOURCE_V2V]
+        return track.props.position.sources(time_s) == [_V2V]
 
     @staticmethod
     def sonar_only(track: Track, time_s: float) -> bool:

@@ -11,14 +11,16 @@ import math
 import pytest
 
 from coopdrive.services.scene.fusion import SceneFusion
+from coopdrive.services.scene.measurement import V2vObservation
 from coopdrive.services.sim.camera_sensor import CameraSensor
+from coopdrive.services.sim.geometry import rear_overhang_m
 from coopdrive.services.sim.lidar_sensor import LidarSensor
 from coopdrive.services.sim.radar_sensor import RadarSensor
 from coopdrive.services.sim.sensor_config import CameraConfig, LidarConfig, RadarConfig, SensorTimingConfig, SonarConfig
 from coopdrive.services.sim.sensor_timing import sensor_rng
 from coopdrive.services.sim.sonar_sensor import SonarSensor
 from coopdrive.services.sim.world_view import WorldView
-from coopdrive.v1 import sim_pb2
+from coopdrive.v1 import header_pb2, sim_pb2
 
 from .helpers import ego_state
 
@@ -27,6 +29,11 @@ SPEED_MPS = 11.0
 EGO_Y_M, ONCOMING_Y_M = -1.7, 1.7
 # Start 60 m apart, closing at 22 m/s: they pass each other after about 2.7 s.
 DURATION_S = 4.5
+LENGTH_M, WIDTH_M = 4.5, 1.8
+CAM_EVERY_STEPS, CAM_AGE_S = 5, 0.1
+STATION_ID = 7
+# The cars are still more than 8 m apart here; from about 1 s the filter knows where the car is going.
+BEFORE_PASSING_S = (1.0, 2.2)
 
 
 def lanes(x_m, y_m):
@@ -38,14 +45,12 @@ def lanes(x_m, y_m):
 
 def truth(vehicle_id, x_m, y_m, heading_rad):
     return sim_pb2.VehicleTruth(vehicle_id=vehicle_id, x_m=x_m, y_m=y_m, heading_rad=heading_rad,
-                                speed_mps=SPEED_MPS, length_m=4.5, width_m=1.8)
+                                speed_mps=SPEED_MPS, length_m=LENGTH_M, width_m=WIDTH_M)
 
 
-# Seed 6 drew a radar false alarm just ahead as the car came beside us, and the side sonar's echoes off the car's
-# flank confirmed it as a car crossing our path.
-@pytest.fixture(scope="module", params=[1, 6])
-def passing_scenes(request):
-    seed = request.param
+def drive_past(seed, station_id=None):
+    """(time, ego x, scene) every step while the cars pass; with station_id, the oncoming car sends CAMs at 10 Hz
+    (reference point the centre of its front, 0.1 s old when they arrive)."""
     sensors = [
         (LidarSensor(LidarConfig(timing=SensorTimingConfig(rate_hz=12.5, latency_s=0.03)),
                      sensor_rng(seed, "ego", "lidar"), "ego"), "on_lidar"),
@@ -65,13 +70,35 @@ def passing_scenes(request):
         states[k] = ego
         fusion.on_ego(ego)
         world = WorldView(ego=truth("ego", ego_x, EGO_Y_M, 0.0),
-                          others=[truth("oncoming", 30.0 - SPEED_MPS * t, ONCOMING_Y_M, math.pi)])
+                          others=[truth("oncoming", oncoming_axle_x_m(t), ONCOMING_Y_M, math.pi)])
         for sensor, handler in sensors:
             for frame in sensor.poll(t, world):
                 sampled = states[round(frame.header.sample_time_s / STEP_S)]
                 getattr(fusion, handler)(frame, sampled)
+        if station_id is not None and k % CAM_EVERY_STEPS == 0 and t >= CAM_AGE_S:
+            sent_s = t - CAM_AGE_S
+            fusion.on_v2v(V2vObservation(
+                station_id=station_id, x_m=oncoming_rear_x_m(sent_s) - LENGTH_M, y_m=ONCOMING_Y_M,
+                speed_mps=SPEED_MPS, heading_rad=math.pi, accel_mps2=0.0, length_m=LENGTH_M, width_m=WIDTH_M,
+                sample_time_s=sent_s))
         scenes.append((t, ego_x, fusion.scene(t)))
-    return scenes
+    return scenes, fusion
+
+
+def oncoming_axle_x_m(t_s):
+    return 30.0 - SPEED_MPS * t_s
+
+
+def oncoming_rear_x_m(t_s):
+    """Its rear bumper: behind its rear axle, which for a car driving towards -x is at larger x."""
+    return oncoming_axle_x_m(t_s) + rear_overhang_m(LENGTH_M)
+
+
+# Seed 6 drew a radar false alarm just ahead as the car came beside us, and the side sonar's echoes off the car's
+# flank confirmed it as a car crossing our path.
+@pytest.fixture(scope="module", params=[1, 6])
+def passing_scenes(request):
+    return drive_past(request.param)[0]
 
 
 def test_a_car_passing_the_other_way_is_never_the_object_to_follow(passing_scenes):
@@ -119,3 +146,28 @@ def test_nothing_ahead_within_the_intersection_s_safety_circle_is_given_a_path_a
                 and math.hypot(obj.position.x_m - ego_x, obj.position.y_m - EGO_Y_M) < 7.5
                 and abs(math.sin(obj.heading_rad.value)) > math.sin(math.radians(30.0))]
     assert crossing == []
+
+
+def test_the_oncoming_car_is_placed_at_its_rear_though_our_sensors_see_its_front(passing_scenes):
+    """Our sensors see the face nearest them, for a car coming towards us its front; the scene tracks rear bumpers."""
+    errors_m = [round(obj.position.x_m - oncoming_rear_x_m(t), 2) for t, ego_x, scene in passing_scenes
+                if BEFORE_PASSING_S[0] <= t <= BEFORE_PASSING_S[1] for obj in scene.objects]
+    assert errors_m and max(abs(e) for e in errors_m) < 1.0, errors_m
+
+
+@pytest.fixture(scope="module")
+def passing_with_cams():
+    return drive_past(1, station_id=STATION_ID)
+
+
+def test_the_oncoming_car_s_cams_and_our_sensors_make_one_object_linked_to_its_station(passing_with_cams):
+    scenes, _ = passing_with_cams
+    before_passing = [scene for t, _, scene in scenes if BEFORE_PASSING_S[0] <= t <= BEFORE_PASSING_S[1]]
+    seen = [[(obj.station_id.value, sorted(obj.position.sources)) for obj in scene.objects] for scene in before_passing]
+    assert all(len(objects) == 1 and objects[0][0] == STATION_ID and header_pb2.SENSOR_SOURCE_LIDAR in objects[0][1]
+               for objects in seen), seen
+
+
+def test_an_honest_oncoming_station_gains_trust_as_our_sensors_confirm_where_it_says_it_is(passing_with_cams):
+    _, fusion = passing_with_cams
+    assert fusion.trust.trust(STATION_ID) > fusion.config.trust.initial
