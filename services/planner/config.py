@@ -6,6 +6,8 @@ import enum
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from coopdrive.services.scene.unknowns import DEFAULT_LENGTH_M
+
 KPH = 1.0 / 3.6
 
 
@@ -34,8 +36,9 @@ class PlatoonConfig(BaseModel):
     leave_timeout_s: float = Field(15.0, gt=0)
 
 
-# A passenger car's length: ours unless configured, and that of a car the scene gives no length for.
-TYPICAL_CAR_LENGTH_M = 4.5
+# A passenger car's length: ours unless configured, and that of a car the scene gives no length for (the length
+# every reader of the scene assumes then).
+TYPICAL_CAR_LENGTH_M = DEFAULT_LENGTH_M
 
 
 class MergeConfig(BaseModel):

@@ -156,9 +156,9 @@ class IntersectionScenario:
         return not any(self._object_conflicts(o) for o in self.sit.objects())
 
     def _within_safety_circle(self) -> list:
-        """Objects ahead inside the safety circle that stand or whose path crosses ours. A car passing in its
-        own lane the other way, or one driving ahead in ours (the forward MIO, followed anyway), is no reason
-        to stop."""
+        """Objects ahead with some of their body inside the safety circle that stand or whose path crosses ours
+        (a car coming towards us has its front, not its rear, nearest). A car passing in its own lane the other
+        way, or one driving ahead in ours (the forward MIO, followed anyway), is no reason to stop."""
         ego, r = self.sit.inputs.ego, self.config.intersection.safety_circle_m
         if ego is None:
             return []
@@ -173,7 +173,7 @@ class IntersectionScenario:
             return standing or surely_crossing(o.heading_rad, ego.heading_rad)
 
         return [o for o in self.sit.objects() if o.longitudinal_gap_m > 0 and in_the_way(o)
-                and math.hypot(o.position.x_m - ego.x_m, o.position.y_m - ego.y_m) < r]
+                and self.sit.distance_to_body_m(o, ego.x_m, ego.y_m) < r]
 
     def observe(self, sit: Situation, state: enum.Enum, time_in_state_s: float) -> list[enum.Enum]:
         self.sit = sit

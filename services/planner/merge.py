@@ -17,7 +17,7 @@ import enum
 from coopdrive.v1 import planner_pb2
 
 from .behaviour import add_target, keep_lane, spacing_m
-from .config import TYPICAL_CAR_LENGTH_M, PlannerLogicConfig
+from .config import PlannerLogicConfig
 from .engine import MachineSpec, StateSpec, Transition, from_each
 from .platooning import PLATOON_A, PLATOON_B
 from .situation import Situation
@@ -192,9 +192,7 @@ class MergeScenario:
         if behind is None:
             return None
         m = self.config.merge
-        length_m = behind.length_m.value if behind.length_m.confidence >= 0 and behind.length_m.value > 0 \
-            else TYPICAL_CAR_LENGTH_M
-        front_ahead_of_our_rear_m = behind.longitudinal_gap_m + length_m + m.ego_length_m
+        front_ahead_of_our_rear_m = behind.longitudinal_gap_m + self.sit.length_of_m(behind) + m.ego_length_m
         return behind if front_ahead_of_our_rear_m > -m.side_margin_m else None
 
     def _room_beside_and_ahead(self) -> bool:

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 from coopdrive.v1 import header_pb2, its_pb2, scene_pb2
 
-from .config import PlannerLogicConfig
+from .config import TYPICAL_CAR_LENGTH_M, PlannerLogicConfig
 from .inputs import PlannerInputs
 
 # Metres per degree of latitude (spherical Earth); enough for relative positions within a kilometre.
@@ -49,6 +49,23 @@ class Situation:
     @staticmethod
     def lane_of(obj: scene_pb2.SceneObject) -> int | None:
         return int(obj.lane_index.value) if obj.lane_index.confidence >= 0 else None
+
+    @staticmethod
+    def length_of_m(obj: scene_pb2.SceneObject) -> float:
+        """Its length where the scene knows it, else a typical car's."""
+        known = obj.length_m.confidence >= 0 and obj.length_m.value > 0
+        return obj.length_m.value if known else TYPICAL_CAR_LENGTH_M
+
+    @classmethod
+    def distance_to_body_m(cls, obj: scene_pb2.SceneObject, x_m: float, y_m: float) -> float:
+        """From (x_m, y_m) to the nearest point of the object's centre line: its position (the rear bumper's centre)
+        and its length ahead along its heading. Where the heading is unknown, to its position."""
+        dx, dy = x_m - obj.position.x_m, y_m - obj.position.y_m
+        if obj.heading_rad.confidence < 0:
+            return math.hypot(dx, dy)
+        along_m = dx * math.cos(obj.heading_rad.value) + dy * math.sin(obj.heading_rad.value)
+        along_m = min(max(along_m, 0.0), cls.length_of_m(obj))
+        return math.hypot(dx - along_m * math.cos(obj.heading_rad.value), dy - along_m * math.sin(obj.heading_rad.value))
 
     def object_of_station(self, station_id: int) -> scene_pb2.SceneObject | None:
         if station_id == 0:

@@ -137,6 +137,19 @@ def test_a_car_seen_crossing_our_path_stops_us_unless_its_heading_s_uncertainty_
     assert any(t.role == planner_pb2.TARGET_ROLE_YIELD for t in request.targets) is stops
 
 
+@pytest.mark.parametrize("length_m, stops", [(4.5, True), (1.0, False)])
+def test_the_safety_circle_holds_a_car_whose_front_is_inside_it_though_its_rear_is_not(length_m, stops):
+    """The scene places a car at its rear bumper; coming towards our path, its front is nearest us."""
+    p, _ = CROSSING.run()
+    # The ego at x = -10 m heads east; this car's rear is 8.9 m away, 4 m ahead and 8 m to our right, and it heads
+    # north across our path: its front, 4.5 m on, is 5.3 m from us.
+    crossing = obj(6, 0, gap_m=4.0, x_m=-6.0, y_m=-8.0, speed_mps=8.0, heading_rad=NORTH)
+    crossing.length_m.value, crossing.length_m.confidence = length_m, 1.0
+    request, state = p.step(0.2, world(0.2, -10.0, extra=[crossing]))
+    assert state.state == "CROSSING"
+    assert (request.desired_speed_mps == 0.0) is stops
+
+
 def test_a_sonar_echo_at_our_side_whose_speed_is_unknown_is_no_reason_to_stop_while_crossing():
     """A side sonar's echo off a car passing the other way is an object with no speed, 1.4 m ahead and 2.7 m to
     our left (intersection seed 7): taken for a standing car, it braked us at 6 m/s2."""
