@@ -18,16 +18,19 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import kalman
 from .config import FrontFaceConfig
 
 
 def heading_known(velocity_mps: np.ndarray, velocity_cov: np.ndarray, config: FrontFaceConfig) -> np.ndarray:
     """(M,) whether each velocity (M, 2), known to covariance velocity_cov (M, 2, 2), says where the vehicle points:
-    fast enough, and its direction certain enough."""
-    speed_mps = np.linalg.norm(velocity_mps, axis=1)
-    _, across_std_mps = kalman.velocity_stds(velocity_cov, np.arctan2(velocity_mps[:, 1], velocity_mps[:, 0]))
-    return (speed_mps >= config.min_speed_mps) & (across_std_mps <= config.max_heading_std_rad * speed_mps)
+    fast enough, and its direction certain enough. The heading's variance is the velocity's across it over the
+    speed squared (kalman.velocity_stds), written out here because this runs for every track on every frame."""
+    vx, vy = velocity_mps[:, 0], velocity_mps[:, 1]
+    speed2 = vx * vx + vy * vy
+    # Variance across the velocity times speed^2: (-vy, vx) P (-vy, vx)^T.
+    across_var_speed2 = (vy * vy * velocity_cov[:, 0, 0] - 2.0 * vx * vy * velocity_cov[:, 0, 1]
+                         + vx * vx * velocity_cov[:, 1, 1])
+    return (speed2 >= config.min_speed_mps ** 2) & (across_var_speed2 <= config.max_heading_std_rad ** 2 * speed2 * speed2)
 
 
 def facing_sensor(rear_m: np.ndarray, direction: np.ndarray, known: np.ndarray, sensor_m: np.ndarray,

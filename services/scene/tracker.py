@@ -21,7 +21,7 @@ from .association import match_quality, polar_cost_matrix
 from .config import SceneFusionConfig
 from .frame_association import associate
 from .front_faces import facing_sensor, front_offsets, heading_known
-from .kalman import IVX, IVY, IX, IY
+from .kalman import IAX, IAY, IVX, IVY, IX, IY
 from .measurement import Measurement
 from .occupancy import inside_bodies
 from .properties import LENGTH, POSITION, WIDTH, ObjectProperties, property_table, support_many
@@ -41,9 +41,7 @@ def _predicted_means(tracks: list[Track], time_s: float) -> np.ndarray:
 
 
 def _moved(meas: Measurement, offset_m: np.ndarray) -> Measurement:
-    """meas with its position moved by offset_m (2,); meas itself where that is nothing."""
-    if not offset_m.any():
-        return meas
+    """meas with its position moved by offset_m (2,)."""
     return replace(meas, position_m=meas.position_m + offset_m)
 
 
@@ -96,12 +94,14 @@ class Tracker:
             return
         tracks = list(self.tracks.values())
         gate = self._config.tracking.gate_chi2
-        front_m = self._front_faces(tracks, measurements[0])
-        fused, unmatched = associate(*self._geometry(measurements, tracks, front_m), self._config.tracking)
+        states = stacked_states(tracks) if tracks else None
+        front_m = self._front_faces(tracks, states, measurements[0])
+        fused, unmatched = associate(*self._geometry(measurements, tracks, states, front_m), self._config.tracking)
         # In measurement order, as one joint assignment would fuse and start them; each reading of a face taken
         # back to the rear its track holds.
-        pairs = [(tracks[j], _moved(measurements[i], -front_m[j]), match_quality(cost, gate))
-                 for i, j, cost in sorted(fused)]
+        facing = front_m.any(axis=1)
+        pairs = [(tracks[j], _moved(measurements[i], -front_m[j]) if facing[j] else measurements[i],
+                  match_quality(cost, gate)) for i, j, cost in sorted(fused)]
         self._fuse_frame(self._without_echoes_on_objects_others_hold(pairs))
         starting = [measurements[i] for i in sorted(unmatched) if not measurements[i].ambiguous]
         self.counters.ambiguous_unmatched += len(unmatched) - len(starting)
@@ -139,25 +139,35 @@ class Tracker:
         return inside_bodies(np.array([m.position_m for m in measurements]), x[:, [IX, IY]], x[:, [IVX, IVY]],
                              sizes[:, LENGTH], sizes[:, WIDTH], measurements[0].origin_m)
 
-    def _front_faces(self, tracks: list[Track], first: Measurement) -> np.ndarray:
-        """(M, 2) from each track's rear to the face the sensor of this frame sees (front_faces.py). A track that
-        shows its front for the first time and was started from what sensors saw of that front is moved back to
-        its rear, once; one V2V holds is at its rear already."""
+    def _front_faces(self, tracks: list[Track], states: tuple[np.ndarray, np.ndarray] | None,
+                     first: Measurement) -> np.ndarray:
+        """(M, 2) from each track's rear to the face the sensor of this frame sees (front_faces.py), given the tracks'
+        stacked means and covariances. A track that shows its front for the first time and was started from what
+        sensors saw of that front is moved back to its rear, once; one V2V holds is at its rear already."""
         if not tracks:
             return np.zeros((0, 2))
-        x = _predicted_means(tracks, first.time_s)
-        velocity_mps = x[:, [IVX, IVY]]
-        velocity_cov = np.array([t.cov[np.ix_([IVX, IVY], [IVX, IVY])] for t in tracks])
-        known = heading_known(velocity_mps, velocity_cov, self._config.tracking.front_faces)
-        direction = np.array([t.direction for t in tracks])
-        direction[known] = velocity_mps[known] / np.linalg.norm(velocity_mps[known], axis=1)[:, None]
-        for k in np.flatnonzero(known):
+        x, p = states
+        dt_s = first.time_s - np.array([t.time_s for t in tracks])
+        velocity_mps = np.stack((x[:, IVX] + x[:, IAX] * dt_s, x[:, IVY] + x[:, IAY] * dt_s), axis=1)
+        rear_m = np.stack((x[:, IX] + (x[:, IVX] + 0.5 * x[:, IAX] * dt_s) * dt_s,
+                           x[:, IY] + (x[:, IVY] + 0.5 * x[:, IAY] * dt_s) * dt_s), axis=1)
+        # Rows and columns IVX and IVY: a view, where a list index would copy.
+        velocity_cov = p[:, IVX::IVY - IVX, IVX::IVY - IVX]
+        config = self._config.tracking.front_faces
+        known = heading_known(velocity_mps, velocity_cov, config)
+        direction = velocity_mps / np.maximum(np.hypot(velocity_mps[:, 0], velocity_mps[:, 1]), 1e-9)[:, None]
+        was_facing = np.fromiter((t.shows_front for t in tracks), dtype=bool, count=len(tracks))
+        facing = facing_sensor(rear_m, direction, known, first.origin_m, was_facing, config)
+        for k in np.flatnonzero(facing & ~known):  # facing on an earlier frame's word: the direction it had then
+            direction[k] = tracks[k].direction
+        for k in np.flatnonzero(facing & known):
             tracks[k].direction = direction[k]
-        was_facing = np.array([t.shows_front for t in tracks])
-        facing = facing_sensor(x[:, [IX, IY]], direction, known, first.origin_m, was_facing,
-                               self._config.tracking.front_faces)
-        lengths_m = self.properties.values([t.props.row for t in tracks])[:, LENGTH]
-        offsets_m = front_offsets(direction, lengths_m, facing, DEFAULT_LENGTH_M)
+        offsets_m = np.zeros((len(tracks), 2))
+        shown = np.flatnonzero(facing)
+        if shown.size:
+            lengths_m = self.properties.values([tracks[k].props.row for k in shown])[:, LENGTH]
+            offsets_m[shown] = front_offsets(direction[shown], lengths_m, np.ones(shown.size, dtype=bool),
+                                             DEFAULT_LENGTH_M)
         for k in np.flatnonzero(facing != was_facing):
             track = tracks[k]
             track.shows_front = bool(facing[k])
@@ -168,15 +178,18 @@ class Tracker:
         return offsets_m
 
     def _geometry(self, measurements: list[Measurement], tracks: list[Track],
+                  states: tuple[np.ndarray, np.ndarray] | None = None,
                   front_m: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
         """Measurement positions, covariances and sensor origins, and the tracks' predicted positions and
-        covariances at the measurements' time; with front_m (M, 2), the positions of the faces the sensor sees."""
+        covariances at the measurements' time (from their stacked means and covariances where given); with front_m
+        (M, 2), the positions of the faces the sensor sees."""
         meas_xy = np.array([m.position_m for m in measurements])
         meas_cov = np.array([m.cov_m2 for m in measurements])
         origins = np.array([m.origin_m for m in measurements])
         if tracks:
-            track_xy, track_cov = predict_positions(tracks, measurements[0].time_s,
-                                                    self._config.tracking.jerk_psd_m2ps5)
+            x, p = states if states is not None else stacked_states(tracks)
+            dt_s = measurements[0].time_s - np.array([t.time_s for t in tracks])
+            track_xy, track_cov = kalman.predict_position(x, p, dt_s, self._config.tracking.jerk_psd_m2ps5)
             if front_m is not None:
                 track_xy = track_xy + front_m
         else:
