@@ -88,3 +88,24 @@ def test_batch_prediction_for_gating_matches_each_tracks_own_prediction():
         x, p = track.predicted(0.9)
         assert got_xy == pytest.approx(Track.position_of(x))
         assert got_cov == pytest.approx(Track.position_cov_of(p))
+
+
+@pytest.mark.parametrize("late_s", [0.05, 0.25])
+def test_a_moved_track_replays_a_late_reading_as_if_its_sensors_had_seen_the_point_it_was_moved_to(late_s):
+    """The tracker moves a track started from a car's front back to its rear (front_faces.py); a CAM that comes late
+    then replays over sensor readings that are all of the rear (from the first reading, 0.05 s, or a later one)."""
+    offset_m = np.array([4.5, 0.0])
+    late = meas(late_s, object_at(late_s) + offset_m[0], source=header_pb2.SENSOR_SOURCE_V2V, velocity=10.0)
+    moved = new_track(meas(0.0, object_at(0.0)))
+    rear = new_track(meas(0.0, object_at(0.0) + offset_m[0]))
+    for t in (0.1, 0.2, 0.3):
+        moved.apply(meas(t, object_at(t)))
+        rear.apply(meas(t, object_at(t) + offset_m[0]))
+    moved.move(offset_m)
+    assert moved.apply(late) and rear.apply(late)
+    assert moved.replays == rear.replays == 1
+    x_moved, p_moved = moved.predicted(0.4)
+    x_rear, p_rear = rear.predicted(0.4)
+    assert x_moved == pytest.approx(x_rear)
+    assert p_moved == pytest.approx(p_rear)
+    assert moved.ranging_fix.position_m == pytest.approx(rear.ranging_fix.position_m)
