@@ -416,14 +416,3 @@ class Tracker:
     def has_ranging(track: Track, time_s: float) -> bool:
         return any(track.props.position.has_source(s, time_s) for s in RANGING_SOURCES)
 
-    @staticmethod
-    def v2v_only(track: Track, time_s: float) -> bool:
-        return track.props.position.sources(time_s) == [_V2V]
-
-    @staticmethod
-    def sonar_only(track: Track, time_s: float) -> bool:
-        return track.props.position.sources(time_s) == [_SONAR]
-
-    @staticmethod
-    def camera_only(track: Track, time_s: float) -> bool:
-        return track.props.position.sources(time_s) == [header_pb2.SENSOR_SOURCE_CAMERA]
