@@ -11,7 +11,7 @@ import threading
 import time
 from pathlib import Path
 
-from coopdrive.exit_status import EXIT_FAILED, EXIT_OK, EXIT_USAGE
+from coopdrive.exit_status import EXIT_FAILED, EXIT_OK
 
 DEFAULT_FOXGLOVE_PORT = 8765
 HEALTH_RETRY_S = 0.1

@@ -6,7 +6,6 @@ import math
 
 import numpy as np
 
-from coopdrive.services.sim import geometry
 from coopdrive.services.sim.profiles import PASSENGER_CAR, VehicleProfile
 from coopdrive.services.sim.sensor_config import RadarConfig
 from coopdrive.services.sim.timed_sensor import TimedSensor

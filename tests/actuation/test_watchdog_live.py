@@ -10,7 +10,6 @@ from __future__ import annotations
 import threading
 import time
 
-import pytest
 
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.bus.keys import WORLD_ID

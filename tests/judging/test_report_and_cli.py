@@ -8,7 +8,6 @@ import pytest
 from coopdrive.cli import main
 from coopdrive.judging.plots import FIGURES
 from coopdrive.judging.report import write_report
-from coopdrive.services.sim.scenario_config import load_scenario
 from coopdrive.v1 import sim_pb2
 from tests.judging.synthetic import write_two_car_recording
 

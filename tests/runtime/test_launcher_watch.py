@@ -7,7 +7,6 @@ import sys
 import time
 from pathlib import Path
 
-from coopdrive.launch.processes import ServiceProcesses
 
 # The launcher starts a service the way ServiceProcesses does (its own session, its environment) and waits.
 LAUNCHER = """

@@ -14,7 +14,7 @@ from coopdrive.v1 import header_pb2, scene_pb2
 DROPOUT_S = (6.0, 8.0)
 ALL_STOP_S = 10.5
 V2V = header_pb2.SENSOR_SOURCE_V2V
-SCENARIO = f"""
+SCENARIO = """
 name: sensor_dropout
 description: A stack behind a scripted leader loses its ranging sensors for 2 s, then every source.
 map: a270
@@ -24,8 +24,8 @@ world: ideal
 duration_s: 13
 step_s: 0.02
 vehicles:
-  - {{vehicle_id: leader, station_id: 101, role: scripted, lane: 0, station_m: 200, speed_mps: 15.0}}
-  - {{vehicle_id: ego, station_id: 102, lane: 0, station_m: 172, speed_mps: 15.0}}
+  - {vehicle_id: leader, station_id: 101, role: scripted, lane: 0, station_m: 200, speed_mps: 15.0}
+  - {vehicle_id: ego, station_id: 102, lane: 0, station_m: 172, speed_mps: 15.0}
 faults:
 """ + "".join(
     f"  - {{type: sensor_dropout, vehicle_id: ego, sensor: {sensor}, start_s: {DROPOUT_S[0]}, end_s: {DROPOUT_S[1]}}}\n"
