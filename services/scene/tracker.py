@@ -25,8 +25,8 @@ from .kalman import IAX, IAY, IVX, IVY, IX, IY
 from .measurement import Measurement
 from .occupancy import inside_bodies
 from .properties import LENGTH, POSITION, WIDTH, ObjectProperties, property_table, support_many
-from .unknowns import DEFAULT_LENGTH_M
 from .track import RANGING_SOURCES, Track, TrackStatus, filter_steps, predict_positions, stacked_states
+from .unknowns import DEFAULT_LENGTH_M
 
 
 _SONAR = header_pb2.SENSOR_SOURCE_SONAR
