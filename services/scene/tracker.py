@@ -10,6 +10,7 @@ than the longest fade time of the sources that saw it.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from typing import NamedTuple
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -38,6 +39,18 @@ def _predicted_means(tracks: list[Track], time_s: float) -> np.ndarray:
     x, _ = stacked_states(tracks)
     dt_s = time_s - np.array([t.time_s for t in tracks])
     return np.einsum("mij,mj->mi", kalman.transition(dt_s), x)
+
+
+class _Prior(NamedTuple):
+    """The tracks' stacked means (M, 6) and covariances (M, 6, 6), the time from each to time_s, and their positions
+    (M, 2) with covariances (M, 2, 2) predicted to it."""
+
+    x: np.ndarray
+    p: np.ndarray
+    dt_s: np.ndarray
+    position_m: np.ndarray
+    position_cov: np.ndarray
+    time_s: float
 
 
 def _moved(meas: Measurement, offset_m: np.ndarray) -> Measurement:
@@ -94,9 +107,9 @@ class Tracker:
             return
         tracks = list(self.tracks.values())
         gate = self._config.tracking.gate_chi2
-        states = stacked_states(tracks) if tracks else None
-        front_m = self._front_faces(tracks, states, measurements[0])
-        fused, unmatched = associate(*self._geometry(measurements, tracks, states, front_m), self._config.tracking)
+        prior = self._prior(tracks, measurements[0].time_s) if tracks else None
+        front_m = self._front_faces(tracks, prior, measurements[0].origin_m)
+        fused, unmatched = associate(*self._geometry(measurements, tracks, prior, front_m), self._config.tracking)
         # In measurement order, as one joint assignment would fuse and start them; each reading of a face taken
         # back to the rear its track holds.
         facing = front_m.any(axis=1)
@@ -139,25 +152,29 @@ class Tracker:
         return inside_bodies(np.array([m.position_m for m in measurements]), x[:, [IX, IY]], x[:, [IVX, IVY]],
                              sizes[:, LENGTH], sizes[:, WIDTH], measurements[0].origin_m)
 
-    def _front_faces(self, tracks: list[Track], states: tuple[np.ndarray, np.ndarray] | None,
-                     first: Measurement) -> np.ndarray:
-        """(M, 2) from each track's rear to the face the sensor of this frame sees (front_faces.py), given the tracks'
-        stacked means and covariances. A track that shows its front for the first time and was started from what
-        sensors saw of that front is moved back to its rear, once; one V2V holds is at its rear already."""
+    def _prior(self, tracks: list[Track], time_s: float) -> _Prior:
+        """The tracks' stacked means and covariances and their positions predicted to time_s, worked out once per
+        frame for the front faces and the gating."""
+        x, p = stacked_states(tracks)
+        dt_s = time_s - np.array([t.time_s for t in tracks])
+        position_m, position_cov = kalman.predict_position(x, p, dt_s, self._config.tracking.jerk_psd_m2ps5)
+        return _Prior(x, p, dt_s, position_m, position_cov, time_s)
+
+    def _front_faces(self, tracks: list[Track], prior: _Prior | None, sensor_m: np.ndarray) -> np.ndarray:
+        """(M, 2) from each track's rear to the face the sensor at sensor_m sees (front_faces.py). A track that shows
+        its front for the first time and was started from what sensors saw of that front is moved back to its rear,
+        once; one V2V holds is at its rear already."""
         if not tracks:
             return np.zeros((0, 2))
-        x, p = states
-        dt_s = first.time_s - np.array([t.time_s for t in tracks])
+        x, p, dt_s = prior.x, prior.p, prior.dt_s
         velocity_mps = np.stack((x[:, IVX] + x[:, IAX] * dt_s, x[:, IVY] + x[:, IAY] * dt_s), axis=1)
-        rear_m = np.stack((x[:, IX] + (x[:, IVX] + 0.5 * x[:, IAX] * dt_s) * dt_s,
-                           x[:, IY] + (x[:, IVY] + 0.5 * x[:, IAY] * dt_s) * dt_s), axis=1)
         # Rows and columns IVX and IVY: a view, where a list index would copy.
         velocity_cov = p[:, IVX::IVY - IVX, IVX::IVY - IVX]
         config = self._config.tracking.front_faces
         known = heading_known(velocity_mps, velocity_cov, config)
         direction = velocity_mps / np.maximum(np.hypot(velocity_mps[:, 0], velocity_mps[:, 1]), 1e-9)[:, None]
         was_facing = np.fromiter((t.shows_front for t in tracks), dtype=bool, count=len(tracks))
-        facing = facing_sensor(rear_m, direction, known, first.origin_m, was_facing, config)
+        facing = facing_sensor(prior.position_m, direction, known, sensor_m, was_facing, config)
         for k in np.flatnonzero(facing & ~known):  # facing on an earlier frame's word: the direction it had then
             direction[k] = tracks[k].direction
         for k in np.flatnonzero(facing & known):
@@ -173,23 +190,21 @@ class Tracker:
             track.shows_front = bool(facing[k])
             if track.shows_front and not track.moved_to_rear:
                 track.moved_to_rear = True
-                if _V2V not in track.props.position.sources(first.time_s):
+                if _V2V not in track.props.position.sources(prior.time_s):
                     track.move(-offsets_m[k])
         return offsets_m
 
     def _geometry(self, measurements: list[Measurement], tracks: list[Track],
-                  states: tuple[np.ndarray, np.ndarray] | None = None,
-                  front_m: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
+                  prior: _Prior | None = None, front_m: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
         """Measurement positions, covariances and sensor origins, and the tracks' predicted positions and
-        covariances at the measurements' time (from their stacked means and covariances where given); with front_m
-        (M, 2), the positions of the faces the sensor sees."""
+        covariances at the measurements' time (prior's where given); with front_m (M, 2), the positions of the faces
+        the sensor sees."""
         meas_xy = np.array([m.position_m for m in measurements])
         meas_cov = np.array([m.cov_m2 for m in measurements])
         origins = np.array([m.origin_m for m in measurements])
         if tracks:
-            x, p = states if states is not None else stacked_states(tracks)
-            dt_s = measurements[0].time_s - np.array([t.time_s for t in tracks])
-            track_xy, track_cov = kalman.predict_position(x, p, dt_s, self._config.tracking.jerk_psd_m2ps5)
+            prior = prior if prior is not None else self._prior(tracks, measurements[0].time_s)
+            track_xy, track_cov = prior.position_m, prior.position_cov
             if front_m is not None:
                 track_xy = track_xy + front_m
         else:
