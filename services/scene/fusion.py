@@ -116,7 +116,7 @@ class SceneFusion:
         reason = self.trust.implausibility(observation)
         if reason is not None:
             self.rejects.reject(f"v2v station {observation.station_id}: {reason}")
-        link = self.tracker.link_v2v(meas)
+        link = self.tracker.link_v2v(meas, self.trust.trust(observation.station_id))
         disagreement = link.disagreement_m if link is not None else None
         trust = self.trust.observe(observation, disagreement, plausible=reason is None)
         track = self.tracker.tracks.get(link.track_id) if link is not None else None

@@ -172,6 +172,19 @@ class Track:
         if self.ranging_fix is not None:
             self.ranging_fix.position_m = self.ranging_fix.position_m + offset_m
 
+    def take_motion(self, other: Track, variance_scale: float) -> None:
+        """Fuse other's velocity and acceleration, the same vehicle known another way (its station's CAMs), into
+        this track's as one measurement of them, their covariance scaled by variance_scale (1/trust^2 for a
+        station): a track our sensors have just started knows the motion only as the filter's first guess, and
+        with that guess it neither gates its next readings nor agrees with the station. The replay log is left
+        as it is: a replay from before this re-derives the motion from its readings, the station's among them."""
+        rows = [IVX, IAX, IVY, IAY]
+        x_other, p_other = other.predicted(self.time_s)
+        h = np.eye(DIM)[rows]
+        x, p = kalman.update(self._x[None], self._p[None], x_other[rows][None], h[None],
+                             (p_other[np.ix_(rows, rows)] * variance_scale)[None])
+        self._x, self._p = x[0], p[0]
+
     # -- measurements ---------------------------------------------------------------------
 
     def apply(self, meas: Measurement) -> bool:

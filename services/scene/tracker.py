@@ -32,6 +32,8 @@ from .unknowns import DEFAULT_LENGTH_M
 
 _SONAR = header_pb2.SENSOR_SOURCE_SONAR
 _V2V = header_pb2.SENSOR_SOURCE_V2V
+# Trust below which a station's covariance stops growing as 1/trust^2 (a finite number, however little it counts).
+MIN_TRUST = 1e-3
 
 
 def _predicted_means(tracks: list[Track], time_s: float) -> np.ndarray:
@@ -220,16 +222,19 @@ class Tracker:
 
     # -- V2V -------------------------------------------------------------------------------
 
-    def link_v2v(self, meas: Measurement) -> V2vLink | None:
-        """The track this station is (or becomes) linked to, without fusing anything yet."""
+    def link_v2v(self, meas: Measurement, trust: float = 1.0) -> V2vLink | None:
+        """The track this station (of this trust so far) is or becomes linked to, without fusing the reading yet."""
         station = meas.station_id
         linked = self._station_links.get(station)
         if linked is not None and linked in self.tracks:
             if not self._seen_lately(self.tracks[linked], meas.time_s):
                 # Our sensors now see a car near where this object only V2V keeps up is: that is the
-                # same vehicle, so the V2V-only duplicate goes and the station moves to the seen track.
+                # same vehicle, so the V2V-only duplicate goes and the station moves to the seen track,
+                # with the motion the station gave it (emergency seed 6: a track begun at 2.1 m/s on an
+                # ambulance passing at 25 lost its readings, drifted on beside us and was braked for).
                 seen = self._nearest_free_ranging(meas)
                 if seen is not None:
+                    seen.take_motion(self.tracks[linked], 1.0 / max(trust, MIN_TRUST) ** 2)
                     self._remove(linked)
                     return self._link(seen, meas)
             link = V2vLink(linked, self._disagreement(self.tracks[linked], meas))
@@ -311,7 +316,7 @@ class Tracker:
         weight = max(trust, self._config.trust.min_support_weight)
         if fuse_kinematics:
             # Less trusted stations count for less: their covariance grows as 1/trust^2.
-            scale = 1.0 / max(trust, 1e-3) ** 2 if scale_covariance else 1.0
+            scale = 1.0 / max(trust, MIN_TRUST) ** 2 if scale_covariance else 1.0
             scaled = replace(meas, cov_m2=meas.cov_m2 * scale, velocity_std_mps=meas.velocity_std_mps * scale**0.5)
             self._fuse(track, scaled, 1.0, v2v_weight=weight)
         else:

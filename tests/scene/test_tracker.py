@@ -133,6 +133,42 @@ def test_a_station_s_object_stays_published_until_the_ranging_track_that_takes_i
     assert v2v_id in [t.track_id for t in tracker.confirmed()]
 
 
+def ambulance_claim(time_s):
+    return Measurement(source=header_pb2.SENSOR_SOURCE_V2V, time_s=time_s,
+                       position_m=np.array([10.0 + 25.0 * time_s, 2.0]), cov_m2=np.eye(2) * 0.25, origin_m=np.zeros(2), velocity_mps=np.array([25.0, 0.0]),
+                       velocity_std_mps=0.3, station_id=5100)
+
+
+def station_passing_at_25_mps_as_our_lidar_starts_a_track_on_it(trust: float):
+    """Its CAMs alone keep its object up; then three LiDAR readings begin a track of ours on its rear whose speed
+    is the filter's first guess, and its next CAM comes (emergency seed 6's ambulance)."""
+    tracker = Tracker(SceneFusionConfig())
+    for k in range(5):
+        claim = ambulance_claim(0.04 * k)
+        station_object = tracker.fuse_v2v(claim, tracker.link_v2v(claim, trust), trust, fuse_kinematics=True,
+                                          scale_covariance=False)
+    for k in range(3):
+        tracker.process([at(0.17 + 0.01 * k, 12.5 + 0.1 * k, 2.0)])
+    (seen,) = [t for t in tracker.confirmed() if t.track_id != station_object]
+    assert np.linalg.norm(seen.mean[[1, 4]] - [25.0, 0.0]) > 10.0
+    link = tracker.link_v2v(ambulance_claim(0.2), trust)
+    assert link.track_id == seen.track_id and station_object not in tracker.tracks
+    return tracker, seen
+
+
+def test_a_track_of_ours_that_takes_over_a_station_s_object_takes_the_motion_the_station_gave_it():
+    tracker, seen = station_passing_at_25_mps_as_our_lidar_starts_a_track_on_it(trust=1.0)
+    assert abs(seen.mean[1] - 25.0) < 1.0 and abs(seen.mean[4]) < 1.0
+    # Our next reading, 1 m on 40 ms later, is the same car, not a second one.
+    tracker.process([at(0.23, 13.5, 2.0)])
+    assert list(tracker.tracks) == [seen.track_id]
+
+
+def test_a_station_we_hardly_trust_barely_moves_the_motion_of_the_track_of_ours_that_takes_it_over():
+    _, seen = station_passing_at_25_mps_as_our_lidar_starts_a_track_on_it(trust=0.01)
+    assert np.linalg.norm(seen.mean[[1, 4]] - [25.0, 0.0]) > 10.0
+
+
 RADAR = header_pb2.SENSOR_SOURCE_RADAR
 
 
