@@ -182,3 +182,13 @@ def test_the_shaper_clips_to_comfort_and_limits_jerk_but_the_emergency_path_goes
     shaper.reset(-2.0)
     assert shaper.step(DT, -8.0) == pytest.approx(-2.0)
     assert shaper.step(DT, -8.0, emergency=True) == pytest.approx(-2.0 - 30.0 * DT)
+
+
+def test_a_brake_beyond_comfort_is_released_at_the_emergency_jerk_down_to_the_comfort_limit_then_at_comfort():
+    shaper = CommandShaper(CAR.limits)
+    shaper.reset(-6.0)
+    steps = [shaper.step(DT, 0.0) for _ in range(10)]
+    emergency_steps = math.ceil((6.0 - CAR.limits.max_decel_mps2) / (CAR.limits.emergency_jerk_mps3 * DT))
+    assert steps[emergency_steps - 1] == pytest.approx(-CAR.limits.max_decel_mps2)
+    assert steps[emergency_steps] == pytest.approx(-CAR.limits.max_decel_mps2 + CAR.limits.max_jerk_mps3 * DT)
+    assert steps[0] == pytest.approx(-6.0 + CAR.limits.emergency_jerk_mps3 * DT)
