@@ -31,7 +31,11 @@ A270_MERGE_ZONE = ("merge_zone", 1500.0, 500.0)  # name, reference-line station,
 
 # T-intersection (GCDC intersection scenario): main road east-west, side road joining from the south.
 INTERSECTION_ORIGIN = (51.4690, 5.6380, 20.0)
-MAIN_HALF_LENGTH_M = 300.0
+# The main road runs this far towards the intersection on either side, and this far beyond it: a stack car of the
+# intersection scenario stays on it for the whole 75 s run even at the speed limit (its cars had driven their last
+# 22 s off a 300 m exit, where no map gave them a lane).
+MAIN_APPROACH_LENGTH_M = 300.0
+MAIN_EXIT_LENGTH_M = 850.0
 SIDE_LENGTH_M = 300.0
 INTERSECTION_SPEED_LIMIT_MPS = 50.0 / 3.6
 # The competition-zone radius of GCDC 2016 is not in the seed papers; this value is an assumption.
@@ -105,8 +109,8 @@ def build_intersection() -> dict:
     """Right-hand traffic; the intersection reference point is the origin, where the centre lines cross."""
     half = 0.5 * LANE_WIDTH_M
     edge = LANE_WIDTH_M  # side-road lanes stop and start at the main road's edge
-    east = np.array([[-MAIN_HALF_LENGTH_M, -half], [MAIN_HALF_LENGTH_M, -half]])
-    west = np.array([[MAIN_HALF_LENGTH_M, half], [-MAIN_HALF_LENGTH_M, half]])
+    east = np.array([[-MAIN_APPROACH_LENGTH_M, -half], [MAIN_EXIT_LENGTH_M, -half]])
+    west = np.array([[MAIN_APPROACH_LENGTH_M, half], [-MAIN_EXIT_LENGTH_M, half]])
     north = np.array([[half, -SIDE_LENGTH_M], [half, -edge]])
     south = np.array([[-half, -edge], [-half, -SIDE_LENGTH_M]])
     o = INTERSECTION_ORIGIN

@@ -90,9 +90,10 @@ def test_the_a270_is_straight_then_curves_gently_to_the_right():
     assert lane.project(*lane.pose_at(3500.0)[:2])[3] == pytest.approx(-1.0 / inner_radius_m, rel=0.01)
 
 
-def test_the_shipped_a270_is_what_the_build_script_generates():
-    shipped = json.loads(files("coopdrive.maps").joinpath("a270.geojson").read_text())
-    assert shipped == json.loads(json.dumps(build_maps.build_a270()))
+@pytest.mark.parametrize("name", sorted(build_maps.BUILDERS))
+def test_each_shipped_map_is_what_the_build_script_generates(name):
+    shipped = json.loads(files("coopdrive.maps").joinpath(f"{name}.geojson").read_text())
+    assert shipped == json.loads(json.dumps(build_maps.BUILDERS[name]()))
 
 
 def test_the_intersection_map_has_a_competition_zone_around_its_reference_point():
