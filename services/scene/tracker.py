@@ -36,6 +36,11 @@ _V2V = header_pb2.SENSOR_SOURCE_V2V
 MIN_TRUST = 1e-3
 
 
+def station_variance_scale(trust: float) -> float:
+    """Less trusted stations count for less: what their variances are multiplied by, 1/trust^2."""
+    return 1.0 / max(trust, MIN_TRUST) ** 2
+
+
 def _predicted_means(tracks: list[Track], time_s: float) -> np.ndarray:
     """The tracks' means (M, 6) predicted to time_s."""
     x, _ = stacked_states(tracks)
@@ -234,7 +239,7 @@ class Tracker:
                 # ambulance passing at 25 lost its readings, drifted on beside us and was braked for).
                 seen = self._nearest_free_ranging(meas)
                 if seen is not None:
-                    seen.take_motion(self.tracks[linked], 1.0 / max(trust, MIN_TRUST) ** 2)
+                    seen.take_motion(self.tracks[linked], station_variance_scale(trust))
                     self._remove(linked)
                     return self._link(seen, meas)
             link = V2vLink(linked, self._disagreement(self.tracks[linked], meas))
@@ -315,8 +320,7 @@ class Tracker:
         track = self.tracks[link.track_id]
         weight = max(trust, self._config.trust.min_support_weight)
         if fuse_kinematics:
-            # Less trusted stations count for less: their covariance grows as 1/trust^2.
-            scale = 1.0 / max(trust, MIN_TRUST) ** 2 if scale_covariance else 1.0
+            scale = station_variance_scale(trust) if scale_covariance else 1.0
             scaled = replace(meas, cov_m2=meas.cov_m2 * scale, velocity_std_mps=meas.velocity_std_mps * scale**0.5)
             self._fuse(track, scaled, 1.0, v2v_weight=weight)
         else:
