@@ -49,6 +49,28 @@ def associate(meas_xy: np.ndarray, meas_cov: np.ndarray, origins_xy: np.ndarray,
     return matches, unmatched
 
 
+def associate_confirmed_first(meas_xy: np.ndarray, meas_cov: np.ndarray, origins_xy: np.ndarray, track_xy: np.ndarray,
+                              track_cov: np.ndarray, confirmed: np.ndarray,
+                              tracking: TrackingConfig) -> tuple[Matches, list[int]]:
+    """associate() in two rounds: the confirmed tracks (bool mask, one per track) choose among the frame's
+    readings first; the tentative tracks take what is left.
+
+    A matching cascade by track standing: a tentative track is a few readings old and its covariance still wide,
+    so by likelihood alone it can outbid the car we have tracked for seconds for a reading that car's own,
+    noisy one: string seed 4, a camera reading 1 m short of the car ahead went to a radar false alarm beside
+    it, which it confirmed, and the car behind braked hard for an object standing in its lane."""
+    first, rest = np.flatnonzero(confirmed), np.flatnonzero(~confirmed)
+    matches, unmatched = associate(meas_xy, meas_cov, origins_xy, track_xy[first], track_cov[first], tracking)
+    matches = [(i, int(first[j]), cost) for i, j, cost in matches]
+    if rest.size and unmatched:
+        left = np.array(sorted(unmatched))
+        more, still = associate(meas_xy[left], meas_cov[left], origins_xy[left], track_xy[rest], track_cov[rest],
+                                tracking)
+        matches += [(int(left[i]), int(rest[j]), cost) for i, j, cost in more]
+        unmatched = [int(left[i]) for i in still]
+    return matches, unmatched
+
+
 def _solve_groups(meas_of, track_of, d2, log_det, n: int, m: int, gate: float,
                   one_matrix_max: int) -> tuple[Matches, list[int]]:
     """The gated pairs' assignment: one matrix while it stays small, else one per connected group of them."""

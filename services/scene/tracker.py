@@ -20,7 +20,7 @@ from coopdrive.v1 import header_pb2
 from . import kalman
 from .association import match_quality, polar_cost_matrix
 from .config import SceneFusionConfig
-from .frame_association import associate
+from .frame_association import associate_confirmed_first
 from .front_faces import facing_sensor, front_offsets, heading_known
 from .kalman import IAX, IAY, IVX, IVY, IX, IY
 from .measurement import Measurement
@@ -109,14 +109,17 @@ class Tracker:
     # -- sensor frames ---------------------------------------------------------------------
 
     def process(self, measurements: list[Measurement]) -> None:
-        """One frame of one sensor: associate jointly, update, start tentative tracks for the rest."""
+        """One frame of one sensor: associate jointly, confirmed tracks first, update, start tentative tracks for
+        the rest."""
         if not measurements:
             return
         tracks = list(self.tracks.values())
         gate = self._config.tracking.gate_chi2
         prior = self._prior(tracks, measurements[0].time_s) if tracks else None
         front_m = self._front_faces(tracks, prior, measurements[0].origin_m)
-        fused, unmatched = associate(*self._geometry(measurements, tracks, prior, front_m), self._config.tracking)
+        confirmed = np.fromiter((t.status is TrackStatus.CONFIRMED for t in tracks), dtype=bool, count=len(tracks))
+        fused, unmatched = associate_confirmed_first(*self._geometry(measurements, tracks, prior, front_m), confirmed,
+                                                     self._config.tracking)
         # In measurement order, as one joint assignment would fuse and start them; each reading of a face taken
         # back to the rear its track holds.
         facing = front_m.any(axis=1)

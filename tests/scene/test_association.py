@@ -16,7 +16,7 @@ from coopdrive.services.scene.association import (
     polar_cost_pairs,
 )
 from coopdrive.services.scene.config import TrackingConfig
-from coopdrive.services.scene.frame_association import ONE_MATRIX_MAX, associate
+from coopdrive.services.scene.frame_association import ONE_MATRIX_MAX, associate, associate_confirmed_first
 
 ORIGIN = np.zeros(2)
 
@@ -185,3 +185,24 @@ def test_a_frames_association_gives_the_pairs_of_one_joint_assignment(seed, trac
     expected = joint_pairs(meas_xy, meas_cov, track_xy, track_cov)
     assert {(i, j) for i, j, _ in matches} == expected
     assert sorted(unmatched) == sorted(set(range(len(meas_xy))) - {i for i, _ in expected})
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 30), st.integers(0, 30))
+def test_confirmed_tracks_choose_first_and_tentative_ones_share_out_what_they_leave(seed, tracks, clutter):
+    meas_xy, meas_cov, track_xy, track_cov = traffic(seed, tracks, clutter)
+    if len(meas_xy) == 0:
+        return
+    confirmed = np.random.default_rng(seed).random(tracks) < 0.5
+    tracking = TrackingConfig(gate_chi2=GATE, angle_emphasis=1.2)
+    matches, unmatched = associate_confirmed_first(meas_xy, meas_cov, np.zeros_like(meas_xy), track_xy, track_cov,
+                                                   confirmed, tracking)
+    first = np.flatnonzero(confirmed)
+    to_confirmed = {(i, int(first[j])) for i, j in joint_pairs(meas_xy, meas_cov, track_xy[first], track_cov[first])}
+    assert {(i, j) for i, j, _ in matches if confirmed[j]} == to_confirmed
+    left = sorted(set(range(len(meas_xy))) - {i for i, _ in to_confirmed})
+    rest = np.flatnonzero(~confirmed)
+    to_tentative = {(left[i], int(rest[j])) for i, j in joint_pairs(meas_xy[left], meas_cov[left], track_xy[rest],
+                                                                    track_cov[rest])} if left and rest.size else set()
+    assert {(i, j) for i, j, _ in matches if not confirmed[j]} == to_tentative
+    assert sorted(unmatched) == sorted(set(left) - {i for i, _ in to_tentative})

@@ -206,3 +206,21 @@ def test_the_same_false_alarm_beside_the_car_or_behind_it_starts_a_tentative_tra
         tracker.process([standing_radar_alarm(0.3, x_m, y_m)])
         assert len(tracker.tracks) == 2
         assert tracker.counters.inside_known_vehicle == 0
+
+
+CAMERA = header_pb2.SENSOR_SOURCE_CAMERA
+
+
+def test_a_false_alarm_behind_a_car_we_track_is_not_confirmed_by_that_car_s_own_noisy_readings():
+    """String seed 4: a radar false alarm 1.2 m behind the car ahead's rear, then a LiDAR reading shortened 1 m
+    by spray (outside the car's gate, so the alarm's), then a camera reading 0.8 m short: inside the car's gate,
+    and by likelihood alone closer to the alarm, whose prior the LiDAR has just sharpened. Had it taken the
+    camera's too, the alarm would be a confirmed object standing in our lane."""
+    tracker = tracked_car_doing_11_mps()
+    (car,) = tracker.confirmed()
+    alarm = tracker._start(standing_radar_alarm(0.3, 20.0 + 11.0 * 0.3 - 1.2, 2.0))
+    tracker.process([car_reading(0.33, 20.0 + 11.0 * 0.33 - 1.0)])
+    tracker.process([Measurement(source=CAMERA, time_s=0.35, position_m=np.array([20.0 + 11.0 * 0.35 - 0.8, 2.0]),
+                                 cov_m2=np.diag([1.0, 0.05]), origin_m=np.zeros(2))])
+    assert car.time_s == 0.35
+    assert alarm.hits == 2 and tracker.confirmed() == [car]
