@@ -33,3 +33,16 @@ def inside_bodies(points_m: np.ndarray, rear_m: np.ndarray, velocity_mps: np.nda
     across_m = offset_m[..., 1] * forward[:, 0] - offset_m[..., 0] * forward[:, 1]
     inside = (along_m >= 0.0) & (along_m <= length_m[known]) & (np.abs(across_m) <= width_m[known] / 2.0)
     return inside.any(axis=1)
+
+
+def nearest_body_point(rear_m: np.ndarray, heading_rad: float, length_m: float, width_m: float,
+                       sensor_m: np.ndarray) -> np.ndarray:
+    """(2,) the point of a vehicle's body nearest the sensor at sensor_m: the body runs from its rear bumper centre
+    rear_m forward along heading_rad by length_m, width_m / 2 to each side. What a radar reports of a car that
+    shows it its flank or a corner (the simulator's radar, and the strongest return of a real one)."""
+    forward = np.array([np.cos(heading_rad), np.sin(heading_rad)])
+    left = np.array([-forward[1], forward[0]])
+    offset_m = sensor_m - rear_m
+    along_m = min(max(float(offset_m @ forward), 0.0), length_m)
+    across_m = min(max(float(offset_m @ left), -width_m / 2.0), width_m / 2.0)
+    return rear_m + along_m * forward + across_m * left

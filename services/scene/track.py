@@ -74,10 +74,11 @@ class _Logged:
 
 @dataclass(slots=True)
 class RangingFix:
-    """Latest LiDAR or radar position of this object, to compare V2V claims with."""
+    """Latest LiDAR or radar position of this object, to compare V2V claims with, and where its sensor was."""
 
     time_s: float
     position_m: np.ndarray
+    origin_m: np.ndarray
 
 
 class Track:
@@ -231,10 +232,11 @@ class Track:
             return
         self.ranging_hits += 1
         if self.ranging_fix is None:
-            self.ranging_fix = RangingFix(meas.time_s, meas.position_m.copy())
+            self.ranging_fix = RangingFix(meas.time_s, meas.position_m.copy(), meas.origin_m)
         elif meas.time_s >= self.ranging_fix.time_s:
             # Moved on in place: a fix per track and frame would be that much more for the garbage collector.
-            self.ranging_fix.time_s, self.ranging_fix.position_m = meas.time_s, meas.position_m.copy()
+            fix = self.ranging_fix
+            fix.time_s, fix.position_m, fix.origin_m = meas.time_s, meas.position_m.copy(), meas.origin_m
 
     def _trim(self) -> None:
         horizon = self.time_s - self._config.replay_window_s

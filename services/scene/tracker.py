@@ -24,7 +24,7 @@ from .frame_association import associate_confirmed_first
 from .front_faces import facing_sensor, front_offsets, heading_known
 from .kalman import IAX, IAY, IVX, IVY, IX, IY
 from .measurement import Measurement
-from .occupancy import inside_bodies
+from .occupancy import inside_bodies, nearest_body_point
 from .properties import LENGTH, POSITION, WIDTH, ObjectProperties, property_table, support_many
 from .track import RANGING_SOURCES, Track, TrackStatus, filter_steps, predict_positions, stacked_states
 from .unknowns import DEFAULT_LENGTH_M
@@ -302,13 +302,23 @@ class Tracker:
         return V2vLink(track.track_id, self._disagreement(track, meas))
 
     def _disagreement(self, track: Track, meas: Measurement) -> float | None:
-        """Distance from the V2V claim to our latest LiDAR/radar fix, moved to the claim's time."""
+        """Distance from the V2V claim to our latest LiDAR/radar fix, moved to the claim's time.
+
+        Our fix is the claimed rear bumper centre when our sensors see the car's rear (or its front, which they take
+        back to its rear), but the point of its body nearest them when they see its flank or a corner: a radar's
+        strongest return. The claim agrees with whichever of the two its own body puts nearer our fix. Measured
+        against the rear alone, an honest organiser's car crossing the T-intersection in front of us read 3-4 m
+        off, and our trust in it fell from 0.6 to 0 in a second (intersection seed 1)."""
         fix = track.ranging_fix
         if fix is None or abs(meas.time_s - fix.time_s) > self._config.trust.max_sensor_age_s:
             return None
         velocity = Track.velocity_of(track.predicted_mean(fix.time_s))
         at_claim = fix.position_m + velocity * (meas.time_s - fix.time_s)
-        return float(np.linalg.norm(meas.position_m - at_claim))
+        disagreement_m = float(np.linalg.norm(meas.position_m - at_claim))
+        if None in (meas.heading_rad, meas.length_m, meas.width_m):
+            return disagreement_m
+        nearest_m = nearest_body_point(meas.position_m, meas.heading_rad, meas.length_m, meas.width_m, fix.origin_m)
+        return min(disagreement_m, float(np.linalg.norm(nearest_m - at_claim)))
 
     def fuse_v2v(self, meas: Measurement, link: V2vLink | None, trust: float, fuse_kinematics: bool,
                  scale_covariance: bool = True) -> int:

@@ -224,3 +224,33 @@ def test_a_false_alarm_behind_a_car_we_track_is_not_confirmed_by_that_car_s_own_
                                  cov_m2=np.diag([1.0, 0.05]), origin_m=np.zeros(2))])
     assert car.time_s == 0.35
     assert alarm.hits == 2 and tracker.confirmed() == [car]
+
+
+def crossing_car_claim(time_s, rear_y_m, offset_m=(0.0, 0.0)):
+    """The CAM of a 4.5 m x 1.8 m car driving south at 5 m/s across our path 15 m ahead, its rear bumper
+    centre at (15, rear_y_m), moved by offset_m."""
+    return Measurement(source=header_pb2.SENSOR_SOURCE_V2V, time_s=time_s,
+                       position_m=np.array([15.0, rear_y_m]) + offset_m, cov_m2=np.eye(2) * 0.25,
+                       origin_m=np.zeros(2), velocity_mps=np.array([0.0, -5.0]), velocity_std_mps=0.3,
+                       heading_rad=-np.pi / 2, length_m=4.5, width_m=1.8, station_id=4100)
+
+
+def tracked_crossing_car() -> Tracker:
+    """Our sensors see the crossing car's near flank, at the point of its body nearest us: (14.1, 0)."""
+    tracker = Tracker(SceneFusionConfig())
+    for k in range(4):
+        tracker.process([at(0.05 * k, 14.1, 0.0)])
+    return tracker
+
+
+def test_a_car_crossing_our_path_agrees_with_its_cams_where_our_sensors_see_its_flank_not_its_rear():
+    link = tracked_crossing_car().link_v2v(crossing_car_claim(0.15, 1.25))
+    # Measured against its rear bumper centre alone: 1.54 m off, beyond the 1.5 m of agreement.
+    assert link.disagreement_m < 0.1
+
+
+def test_a_crossing_car_s_cams_moved_off_its_body_still_disagree_with_what_our_sensors_see():
+    for offset_m in ((3.0, 0.0), (-3.0, 0.0), (0.0, 7.0)):
+        tracker = tracked_crossing_car()
+        link = tracker.link_v2v(crossing_car_claim(0.15, 1.25, offset_m))
+        assert link is None or link.disagreement_m > SceneFusionConfig().trust.agree_m
