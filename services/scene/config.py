@@ -189,6 +189,10 @@ class TrackingConfig(BaseModel):
 
     # Chi-square 99 % for two degrees of freedom (range, bearing).
     gate_chi2: float = Field(default=9.21, gt=0.0)
+    # Chi-square 99 % for one degree of freedom: a radar reading's range rate against a track's (doppler_gate.py).
+    doppler_gate_chi2: float = Field(default=6.63, gt=0.0)
+    # ... and never tighter than this: a track's speed lags a hard brake's onset by more than its covariance says.
+    doppler_gate_min_mps: float = Field(default=2.0, ge=0.0)
     # Chalmers 4.3.1: matching by direction and distance "with a slight emphasis on the angle".
     angle_emphasis: float = Field(default=1.2, ge=1.0)
     # White-jerk spectral density of the constant-acceleration model.

@@ -13,6 +13,7 @@ import numpy as np
 
 from .association import DENSE_PAIRS_MAX, assign, gated_pairs, likelihood_cost, pair_components, polar_cost_matrix
 from .config import TrackingConfig
+from .doppler_gate import PairTerms
 
 # (measurement index, track index, d^2) of every match.
 Matches = list[tuple[int, int, float]]
@@ -22,11 +23,13 @@ ONE_MATRIX_MAX = 40_000
 
 
 def associate(meas_xy: np.ndarray, meas_cov: np.ndarray, origins_xy: np.ndarray, track_xy: np.ndarray,
-              track_cov: np.ndarray, tracking: TrackingConfig, dense_pairs_max: int = DENSE_PAIRS_MAX,
+              track_cov: np.ndarray, tracking: TrackingConfig, pair_terms: PairTerms | None = None,
+              dense_pairs_max: int = DENSE_PAIRS_MAX,
               one_matrix_max: int = ONE_MATRIX_MAX) -> tuple[Matches, list[int]]:
     """The matches of the joint assignment and the measurements left unmatched. Up to dense_pairs_max
     measurement-track pairs are all costed in one matrix; beyond that, the gated pairs not matched at once are
-    solved as one matrix up to one_matrix_max entries, and group by group above."""
+    solved as one matrix up to one_matrix_max entries, and group by group above. pair_terms, where given, adds
+    to each pair's likelihood cost and forbids pairs beyond its own gate (a radar's range rate: doppler_gate.py)."""
     n, m = len(meas_xy), len(track_xy)
     gate, emphasis = tracking.gate_chi2, tracking.angle_emphasis
     if m == 0:
@@ -34,8 +37,16 @@ def associate(meas_xy: np.ndarray, meas_cov: np.ndarray, origins_xy: np.ndarray,
     if n * m <= dense_pairs_max:
         d2, log_det = polar_cost_matrix(meas_xy, meas_cov, origins_xy, track_xy, track_cov, emphasis,
                                         with_log_det=True)
+        if pair_terms is not None:
+            meas_of, track_of = np.indices((n, m))
+            more, allowed = pair_terms(meas_of.ravel(), track_of.ravel())
+            d2 = np.where(allowed.reshape(n, m), d2, np.inf)
+            log_det = log_det + more.reshape(n, m)
         return _solve(np.arange(n), np.arange(m), d2, log_det, gate)
     meas_of, track_of, d2, log_det = gated_pairs(meas_xy, meas_cov, origins_xy, track_xy, track_cov, gate, emphasis)
+    if pair_terms is not None:
+        more, allowed = pair_terms(meas_of, track_of)
+        meas_of, track_of, d2, log_det = meas_of[allowed], track_of[allowed], d2[allowed], (log_det + more)[allowed]
     meas_degree, track_degree = np.bincount(meas_of, minlength=n), np.bincount(track_of, minlength=m)
     alone = (meas_degree[meas_of] == 1) & (track_degree[track_of] == 1)
     matches = list(zip(meas_of[alone].tolist(), track_of[alone].tolist(), d2[alone].tolist(), strict=True))
@@ -50,8 +61,8 @@ def associate(meas_xy: np.ndarray, meas_cov: np.ndarray, origins_xy: np.ndarray,
 
 
 def associate_confirmed_first(meas_xy: np.ndarray, meas_cov: np.ndarray, origins_xy: np.ndarray, track_xy: np.ndarray,
-                              track_cov: np.ndarray, confirmed: np.ndarray,
-                              tracking: TrackingConfig) -> tuple[Matches, list[int]]:
+                              track_cov: np.ndarray, confirmed: np.ndarray, tracking: TrackingConfig,
+                              pair_terms: PairTerms | None = None) -> tuple[Matches, list[int]]:
     """associate() in two rounds: the confirmed tracks (bool mask, one per track) choose among the frame's
     readings first; the tentative tracks take what is left.
 
@@ -60,15 +71,23 @@ def associate_confirmed_first(meas_xy: np.ndarray, meas_cov: np.ndarray, origins
     noisy one: string seed 4, a camera reading 1 m short of the car ahead went to a radar false alarm beside
     it, which it confirmed, and the car behind braked hard for an object standing in its lane."""
     first, rest = np.flatnonzero(confirmed), np.flatnonzero(~confirmed)
-    matches, unmatched = associate(meas_xy, meas_cov, origins_xy, track_xy[first], track_cov[first], tracking)
+    matches, unmatched = associate(meas_xy, meas_cov, origins_xy, track_xy[first], track_cov[first], tracking,
+                                   _among(pair_terms, np.arange(len(meas_xy)), first))
     matches = [(i, int(first[j]), cost) for i, j, cost in matches]
     if rest.size and unmatched:
         left = np.array(sorted(unmatched))
         more, still = associate(meas_xy[left], meas_cov[left], origins_xy[left], track_xy[rest], track_cov[rest],
-                                tracking)
+                                tracking, _among(pair_terms, left, rest))
         matches += [(int(left[i]), int(rest[j]), cost) for i, j, cost in more]
         unmatched = [int(left[i]) for i in still]
     return matches, unmatched
+
+
+def _among(pair_terms: PairTerms | None, measurements: np.ndarray, tracks: np.ndarray) -> PairTerms | None:
+    """pair_terms for a subset of the frame's measurements and tracks, indexed within the subset."""
+    if pair_terms is None:
+        return None
+    return lambda meas_of, track_of: pair_terms(measurements[meas_of], tracks[track_of])
 
 
 def _solve_groups(meas_of, track_of, d2, log_det, n: int, m: int, gate: float,

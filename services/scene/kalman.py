@@ -85,14 +85,26 @@ def _times(matrices: np.ndarray, vectors: np.ndarray) -> np.ndarray:
 def predict_position(x: np.ndarray, p: np.ndarray, dt_s: np.ndarray, psd: float) -> tuple[np.ndarray, np.ndarray]:
     """Positions (K, 2) and their covariances (K, 2, 2) after dt_s: the position rows of predict() alone, for
     gating and for the scene, without building the full 6x6 prior."""
-    f = np.stack((np.ones_like(dt_s), dt_s, 0.5 * dt_s * dt_s), axis=1)  # one axis's row of F, (K, 3)
-    xy = np.stack((np.einsum("ki,ki->k", f, x[:, IX:IX + 3]), np.einsum("ki,ki->k", f, x[:, IY:IY + 3])), axis=1)
-    q = psd * np.abs(dt_s) ** 5 / 20.0
+    f = np.stack((np.ones_like(dt_s), dt_s, 0.5 * dt_s * dt_s), axis=1)  # one axis's position row of F, (K, 3)
+    return _predicted_rows(x, p, f, psd * np.abs(dt_s) ** 5 / 20.0)
+
+
+def predict_velocity(x: np.ndarray, p: np.ndarray, dt_s: np.ndarray, psd: float) -> tuple[np.ndarray, np.ndarray]:
+    """Velocities (K, 2) and their covariances (K, 2, 2) after dt_s: the velocity rows of predict() alone, for the
+    radar's range-rate gate (doppler_gate.py)."""
+    f = np.stack((np.zeros_like(dt_s), np.ones_like(dt_s), dt_s), axis=1)  # one axis's velocity row of F, (K, 3)
+    return _predicted_rows(x, p, f, psd * np.abs(dt_s) ** 3 / 3.0)
+
+
+def _predicted_rows(x: np.ndarray, p: np.ndarray, f: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """One row of F per axis, f (K, 3) over (value, rate, acceleration), applied to both axes of x (K, 6) and p
+    (K, 6, 6), with q (K,) that row's diagonal of Q: the predicted values (K, 2) and their covariances (K, 2, 2)."""
+    values = np.stack((np.einsum("ki,ki->k", f, x[:, IX:IX + 3]), np.einsum("ki,ki->k", f, x[:, IY:IY + 3])), axis=1)
     cov = np.empty((len(x), 2, 2))
     cov[:, 0, 0] = np.einsum("ki,kij,kj->k", f, p[:, IX:IX + 3, IX:IX + 3], f) + q
     cov[:, 1, 1] = np.einsum("ki,kij,kj->k", f, p[:, IY:IY + 3, IY:IY + 3], f) + q
     cov[:, 0, 1] = cov[:, 1, 0] = np.einsum("ki,kij,kj->k", f, p[:, IX:IX + 3, IY:IY + 3], f)
-    return xy, cov
+    return values, cov
 
 
 def velocity_stds(velocity_cov: np.ndarray, heading_rad: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -20,6 +20,7 @@ from coopdrive.v1 import header_pb2
 from . import kalman
 from .association import match_quality, polar_cost_matrix
 from .config import SceneFusionConfig
+from .doppler_gate import PairTerms, range_rate_terms
 from .frame_association import associate_confirmed_first
 from .front_faces import facing_sensor, front_offsets, heading_known
 from .kalman import IAX, IAY, IVX, IVY, IX, IY
@@ -119,7 +120,7 @@ class Tracker:
         front_m = self._front_faces(tracks, prior, measurements[0].origin_m)
         confirmed = np.fromiter((t.status is TrackStatus.CONFIRMED for t in tracks), dtype=bool, count=len(tracks))
         fused, unmatched = associate_confirmed_first(*self._geometry(measurements, tracks, prior, front_m), confirmed,
-                                                     self._config.tracking)
+                                                     self._config.tracking, self._range_rate_terms(measurements, prior))
         # In measurement order, as one joint assignment would fuse and start them; each reading of a face taken
         # back to the rear its track holds.
         facing = front_m.any(axis=1)
@@ -137,6 +138,15 @@ class Tracker:
             support_many([track.props for track in started], starting, np.ones(len(starting)))
             for track in started:
                 self._maybe_confirm(track)
+
+    def _range_rate_terms(self, measurements: list[Measurement], prior: _Prior | None) -> PairTerms | None:
+        """A radar frame's range-rate gate and costs against the tracks' velocities at its time (doppler_gate.py)."""
+        if prior is None:
+            return None
+        cfg = self._config.tracking
+        velocity_mps, velocity_cov = kalman.predict_velocity(prior.x, prior.p, prior.dt_s, cfg.jerk_psd_m2ps5)
+        return range_rate_terms(measurements, velocity_mps, velocity_cov, cfg.doppler_gate_chi2,
+                                cfg.doppler_gate_min_mps)
 
     def _without_echoes_on_objects_others_hold(self, pairs: list[tuple[Track, Measurement, float]]) -> list:
         """The pairs to fuse: a sonar echo moves only an object the sonars alone hold.

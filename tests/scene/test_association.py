@@ -181,7 +181,8 @@ def test_a_frames_association_gives_the_pairs_of_one_joint_assignment(seed, trac
     if len(meas_xy) == 0:
         return
     tracking = TrackingConfig(gate_chi2=GATE, angle_emphasis=1.2)
-    matches, unmatched = associate(meas_xy, meas_cov, np.zeros_like(meas_xy), track_xy, track_cov, tracking, *limits)
+    matches, unmatched = associate(meas_xy, meas_cov, np.zeros_like(meas_xy), track_xy, track_cov, tracking, None,
+                                   *limits)
     expected = joint_pairs(meas_xy, meas_cov, track_xy, track_cov)
     assert {(i, j) for i, j, _ in matches} == expected
     assert sorted(unmatched) == sorted(set(range(len(meas_xy))) - {i for i, _ in expected})
@@ -206,3 +207,23 @@ def test_confirmed_tracks_choose_first_and_tentative_ones_share_out_what_they_le
                                                                     track_cov[rest])} if left and rest.size else set()
     assert {(i, j) for i, j, _ in matches if not confirmed[j]} == to_tentative
     assert sorted(unmatched) == sorted(set(left) - {i for i, _ in to_tentative})
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 40), st.integers(0, 40),
+       st.sampled_from([(0, 0), (0, ONE_MATRIX_MAX), (DENSE_PAIRS_MAX, ONE_MATRIX_MAX)]))
+def test_pairs_the_pair_terms_forbid_are_never_matched_by_any_path_of_the_association(seed, tracks, clutter, limits):
+    meas_xy, meas_cov, track_xy, track_cov = traffic(seed, tracks, clutter)
+    if len(meas_xy) == 0:
+        return
+    forbidden = np.random.default_rng(seed).random((len(meas_xy), tracks)) < 0.3
+
+    def terms(meas_of, track_of):
+        return np.zeros(meas_of.size), ~forbidden[meas_of, track_of]
+
+    tracking = TrackingConfig(gate_chi2=GATE, angle_emphasis=1.2)
+    matches, _ = associate(meas_xy, meas_cov, np.zeros_like(meas_xy), track_xy, track_cov, tracking, terms, *limits)
+    d2, log_det = polar_cost_matrix(meas_xy, meas_cov, np.zeros_like(meas_xy), track_xy, track_cov, 1.2,
+                                    with_log_det=True)
+    expected, _ = assign(likelihood_cost(d2, log_det), GATE, gate_cost=np.where(forbidden, np.inf, d2))
+    assert {(i, j) for i, j, _ in matches} == set(expected)

@@ -119,3 +119,22 @@ def test_the_scene_service_imports_neither_filterpy_nor_scipy_stats():
     code = "import sys, coopdrive.services.scene.service; print('filterpy' in sys.modules, 'scipy.stats' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.split() == ["False", "False"]
+
+
+def test_the_predicted_positions_and_velocities_are_those_rows_of_filterpy_s_predict():
+    rng = np.random.default_rng(7)
+    x = rng.normal(0.0, 5.0, (4, kalman.DIM))
+    p = np.stack([random_spd(rng, kalman.DIM, 2.0) for _ in range(4)])
+    dt_s = np.array([0.0, 0.04, 0.1, 0.3])
+    positions, position_cov = kalman.predict_position(x, p, dt_s, PSD)
+    velocities, velocity_cov = kalman.predict_velocity(x, p, dt_s, PSD)
+    for k in range(4):
+        kf = KalmanFilter(dim_x=kalman.DIM, dim_z=2)
+        kf.x, kf.P = x[k].copy(), p[k].copy()
+        kf.F = constant_acceleration_f(dt_s[k])
+        kf.Q = np.kron(np.eye(2), Q_continuous_white_noise(dim=3, dt=dt_s[k], spectral_density=PSD))
+        kf.predict()
+        for rows, values, cov in (([kalman.IX, kalman.IY], positions, position_cov),
+                                  ([kalman.IVX, kalman.IVY], velocities, velocity_cov)):
+            assert values[k] == pytest.approx(kf.x[rows], abs=TOLERANCE)
+            assert cov[k] == pytest.approx(kf.P[np.ix_(rows, rows)], abs=TOLERANCE)

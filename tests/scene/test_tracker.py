@@ -254,3 +254,30 @@ def test_a_crossing_car_s_cams_moved_off_its_body_still_disagree_with_what_our_s
         tracker = tracked_crossing_car()
         link = tracker.link_v2v(crossing_car_claim(0.15, 1.25, offset_m))
         assert link is None or link.disagreement_m > SceneFusionConfig().trust.agree_m
+
+
+def radar_reading(time_s, x_m, y_m, radial_speed_mps):
+    return Measurement(source=RADAR, time_s=time_s, position_m=np.array([x_m, y_m]), cov_m2=np.diag([0.04, 0.09]),
+                       origin_m=np.zeros(2), radial_speed_mps=radial_speed_mps, radial_speed_std_mps=0.2,
+                       line_of_sight=np.array([1.0, 0.0]))
+
+
+def test_a_standing_false_alarm_on_the_rear_of_a_car_we_track_does_not_take_that_car_s_radar_reading():
+    """String seed 3: in one scan, a stationary false alarm 0.2 m nearer the track's prediction than the car's own
+    reading. Gated on position alone it took the car's track, whose speed fell 2.7 m/s."""
+    tracker = tracked_car_doing_11_mps()
+    (car,) = tracker.confirmed()
+    rear_x_m = 20.0 + 11.0 * 0.3
+    tracker.process([radar_reading(0.3, rear_x_m + 0.3, 2.0, 11.0), radar_reading(0.3, rear_x_m, 2.0, 0.1)])
+    assert car.time_s == 0.3 and abs(car.mean[1] - 11.0) < 0.5
+
+
+def test_a_radar_reading_of_a_car_braking_harder_than_its_track_knows_still_goes_to_it():
+    tracker = Tracker(SceneFusionConfig())
+    for k in range(40):  # two seconds of radar at 11 m/s: the track's speed is known to a few cm/s
+        tracker.process([radar_reading(0.05 * k, 20.0 + 11.0 * 0.05 * k, 2.0, 11.0)])
+    (car,) = tracker.confirmed()
+    assert car.cov[1, 1] < 0.05
+    # Braking hard, 1.5 m/s slower than the track's speed: far beyond the range rate's chi-square gate.
+    tracker.process([radar_reading(2.0, 20.0 + 11.0 * 2.0, 2.0, 9.5)])
+    assert car.time_s == 2.0 and car.mean[1] < 11.0
