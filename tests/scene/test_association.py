@@ -2,7 +2,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from coopdrive.services.scene.association import (
@@ -188,13 +188,20 @@ def test_a_frames_association_gives_the_pairs_of_one_joint_assignment(seed, trac
     assert sorted(unmatched) == sorted(set(range(len(meas_xy))) - {i for i, _ in expected})
 
 
+@st.composite
+def frames(draw):
+    """A seed and a non-empty frame of traffic() drawn from it."""
+    seed = draw(st.integers(0, 2**32 - 1))
+    frame = traffic(seed, draw(st.integers(1, 30)), draw(st.integers(0, 30)))
+    assume(len(frame[0]) > 0)
+    return seed, frame
+
+
 @settings(max_examples=40, deadline=None)
-@given(st.integers(0, 2**32 - 1), st.integers(1, 30), st.integers(0, 30))
-def test_confirmed_tracks_choose_first_and_tentative_ones_share_out_what_they_leave(seed, tracks, clutter):
-    meas_xy, meas_cov, track_xy, track_cov = traffic(seed, tracks, clutter)
-    if len(meas_xy) == 0:
-        return
-    confirmed = np.random.default_rng(seed).random(tracks) < 0.5
+@given(frames())
+def test_confirmed_tracks_choose_first_and_tentative_ones_share_out_what_they_leave(seeded_frame):
+    seed, (meas_xy, meas_cov, track_xy, track_cov) = seeded_frame
+    confirmed = np.random.default_rng(seed).random(len(track_xy)) < 0.5
     tracking = TrackingConfig(gate_chi2=GATE, angle_emphasis=1.2)
     matches, unmatched = associate_confirmed_first(meas_xy, meas_cov, np.zeros_like(meas_xy), track_xy, track_cov,
                                                    confirmed, tracking)
@@ -210,13 +217,10 @@ def test_confirmed_tracks_choose_first_and_tentative_ones_share_out_what_they_le
 
 
 @settings(max_examples=30, deadline=None)
-@given(st.integers(0, 2**32 - 1), st.integers(1, 40), st.integers(0, 40),
-       st.sampled_from([(0, 0), (0, ONE_MATRIX_MAX), (DENSE_PAIRS_MAX, ONE_MATRIX_MAX)]))
-def test_pairs_the_pair_terms_forbid_are_never_matched_by_any_path_of_the_association(seed, tracks, clutter, limits):
-    meas_xy, meas_cov, track_xy, track_cov = traffic(seed, tracks, clutter)
-    if len(meas_xy) == 0:
-        return
-    forbidden = np.random.default_rng(seed).random((len(meas_xy), tracks)) < 0.3
+@given(frames(), st.sampled_from([(0, 0), (0, ONE_MATRIX_MAX), (DENSE_PAIRS_MAX, ONE_MATRIX_MAX)]))
+def test_pairs_the_pair_terms_forbid_are_never_matched_by_any_path_of_the_association(seeded_frame, limits):
+    seed, (meas_xy, meas_cov, track_xy, track_cov) = seeded_frame
+    forbidden = np.random.default_rng(seed).random((len(meas_xy), len(track_xy))) < 0.3
 
     def terms(meas_of, track_of):
         return np.zeros(meas_of.size), ~forbidden[meas_of, track_of]
