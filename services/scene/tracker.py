@@ -140,8 +140,9 @@ class Tracker:
                 self._maybe_confirm(track)
 
     def _range_rate_terms(self, measurements: list[Measurement], prior: _Prior | None) -> PairTerms | None:
-        """A radar frame's range-rate gate and costs against the tracks' velocities at its time (doppler_gate.py)."""
-        if prior is None:
+        """A radar frame's range-rate gate and costs against the tracks' velocities at its time (doppler_gate.py);
+        None for other frames, without predicting a velocity."""
+        if prior is None or all(meas.radial_speed_mps is None for meas in measurements):
             return None
         cfg = self._config.tracking
         velocity_mps, velocity_cov = kalman.predict_velocity(prior.x, prior.p, prior.dt_s, cfg.jerk_psd_m2ps5)
