@@ -28,11 +28,12 @@ run: $(STAMP) bytecode
 desk: $(STAMP) bytecode
 	$(BIN)/python -m coopdrive.launch.compose_processes --profile desk
 
-## test: the whole test suite, a test file at a time on each core (pytest-xdist: a file's module fixtures run once);
-## TEST_WORKERS=N runs N files at a time (default: one per core)
+## test: the whole test suite, a test file at a time on each core (pytest-xdist: a file's module fixtures run once),
+## in the order tests/conftest.py gives them: the files that start whole runs first; TEST_WORKERS=N runs N files at
+## a time (default: one per core)
 TEST_WORKERS ?= auto
 test: $(STAMP) bytecode
-	$(BIN)/python -m pytest -n $(TEST_WORKERS) --dist loadfile
+	$(BIN)/python -m pytest -n $(TEST_WORKERS) --dist loadfile --no-loadscope-reorder
 
 ## bench: benchmarks, each against a baseline measured in the same run
 bench: $(STAMP) bytecode

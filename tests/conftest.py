@@ -1,4 +1,5 @@
-"""Shared fixtures: free loopback ports and processes that are always cleaned up."""
+"""Shared fixtures: free loopback ports and processes that are always cleaned up; the files that start whole runs
+are handed to the test workers first."""
 
 import os
 import signal
@@ -8,6 +9,19 @@ import sys
 import pytest
 
 from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
+
+WHOLE_RUN = "whole_run"
+
+
+def pytest_configure(config):
+    config.addinivalue_line("markers", f"{WHOLE_RUN}: the file starts whole scenario runs (tens of seconds each)")
+
+
+def pytest_collection_modifyitems(items):
+    """Files marked `whole_run` go first, each file's tests kept together and in order. `make test` hands files to
+    its workers in this order (`--no-loadscope-reorder`): xdist's own order, most tests first, put these files of a
+    few tests behind one long run last, and the suite ended on both workers running them one after the other."""
+    items.sort(key=lambda item: item.get_closest_marker(WHOLE_RUN) is None)
 
 
 @pytest.fixture

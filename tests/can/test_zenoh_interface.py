@@ -17,6 +17,8 @@ from coopdrive.can.wire import to_protobuf
 from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
 from coopdrive.v1 import vehicle_pb2
 
+pytestmark = pytest.mark.whole_run
+
 WAIT_S = 10.0
 CYCLES = 200
 

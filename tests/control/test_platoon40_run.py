@@ -5,6 +5,8 @@ import pytest
 
 from tests.scenario_report import run_scenario_report
 
+pytestmark = pytest.mark.whole_run
+
 DURATION_S = 30
 # Heudiasyc, steady platooning at 40 km/h: average errors and the largest lateral error. Their errors kept one
 # sign throughout (speed 0.71 +- 0.03 km/h, spacing 1.07 +- 0.04 m, lateral within [0.05, 0.60] m), so their

@@ -7,8 +7,12 @@ import sys
 from pathlib import Path
 from types import SimpleNamespace
 
+import pytest
+
 from bench import __main__ as bench_runner
 from bench.sizes import QUICK_VARIABLE
+
+pytestmark = pytest.mark.whole_run
 
 REPO = Path(__file__).resolve().parents[2]
 # Every benchmark at its quick size takes about a minute on this project's 2-core machine.

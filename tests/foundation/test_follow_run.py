@@ -21,6 +21,8 @@ from coopdrive.recording.reader import read_messages
 from coopdrive.recording.replay import replay_service
 from coopdrive.recording.spool_merge import SPOOL_SUFFIX
 
+pytestmark = pytest.mark.whole_run
+
 # A run ends within this long of SIGTERM, its recording complete (measured: 0.62-0.72 s).
 SIGTERM_STOP_S = 3.0
 # A few seconds of a realtime follow run's messages (about 4 s on a quiet 2-core machine).

@@ -9,6 +9,8 @@ import pytest
 
 from coopdrive.recording.reader import read_messages
 
+pytestmark = pytest.mark.whole_run
+
 EXAMPLE = Path(__file__).parents[2] / "services" / "sim" / "examples" / "string_stability.yaml"
 
 

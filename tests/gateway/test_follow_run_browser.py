@@ -11,6 +11,8 @@ from pathlib import Path
 import pytest
 from websockets.sync.client import connect
 
+pytestmark = pytest.mark.whole_run
+
 STARTUP_DEADLINE_S = 90.0
 DATA_DEADLINE_S = 30.0
 RECV_TIMEOUT_S = 10.0

@@ -12,6 +12,8 @@ import pytest
 
 from coopdrive.runtime.registry import VEHICLE_STACK
 
+pytestmark = pytest.mark.whole_run
+
 STARTUP_DEADLINE_S = 90.0
 DATA_DEADLINE_S = 60.0
 SHUTDOWN_LIMIT_S = 3.0

@@ -6,6 +6,8 @@ import pytest
 
 from tests.scenario_report import run_scenario_report
 
+pytestmark = pytest.mark.whole_run
+
 # The jump is at 45 s; the run needs a second after it.
 DURATION_S = 47
 

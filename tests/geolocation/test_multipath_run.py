@@ -5,6 +5,8 @@ import pytest
 
 from tests.scenario_report import run_scenario_report
 
+pytestmark = pytest.mark.whole_run
+
 DURATION_S = 22
 MULTIPATH = "{type: gnss_multipath, vehicle_id: ego, start_s: 8, end_s: 18, jump_m: 3.0, hop_s: 1.0}"
 # Well under the smallest jump (1.5 m): the estimate did not follow the fixes.

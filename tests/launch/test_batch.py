@@ -24,6 +24,8 @@ from coopdrive.services.control.longitudinal import CaccLaw
 from coopdrive.services.sim.scenario_config import ScenarioError
 from coopdrive.v1 import sim_pb2
 
+pytestmark = pytest.mark.whole_run
+
 RUN_RESULT = sim_pb2.RunResult(scenario="follow", seed=1, success=True)
 LOSSY = ({"type": "v2v_loss", "start_s": 0.0, "loss_probability": 0.3},)
 

@@ -11,6 +11,8 @@ from coopdrive.launch.run import RunOptions, build_specs
 from coopdrive.services.sim.fault_config import V2vLoss
 from coopdrive.services.sim.scenario_config import load_scenario
 
+pytestmark = pytest.mark.whole_run
+
 EXAMPLE = Path(__file__).parents[2] / "services" / "sim" / "examples" / "string_stability.yaml"
 LOSSY = ({"type": "v2v_loss", "start_s": 0.0, "loss_probability": 0.2},
          {"type": "v2v_loss", "start_s": 30.0, "loss_probability": 1.0})

@@ -13,6 +13,8 @@ from coopdrive.launch.run import ONE_PROCESS_NAME, RunOptions, run_scenario
 from coopdrive.recording.replay import replay_service
 from coopdrive.runtime.registry import VEHICLE_STACK
 
+pytestmark = pytest.mark.whole_run
+
 SCENARIO = "platoon40"
 STACKS = 2
 DURATION_S = 8.0

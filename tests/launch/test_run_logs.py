@@ -3,6 +3,10 @@
 import subprocess
 import sys
 
+import pytest
+
+pytestmark = pytest.mark.whole_run
+
 
 def run_with_logs(tmp_path, *extra: str) -> set[str]:
     completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--duration", "3", "--logs",

@@ -13,6 +13,8 @@ from coopdrive.launch.summary import WALL_CLOCK_KEYS
 from coopdrive.recording.reader import read_messages, read_metadata
 from coopdrive.v1 import actuation_pb2
 
+pytestmark = pytest.mark.whole_run
+
 CRASH_AT_S = 4.0
 RESTART_AT_S = 7.0
 DURATION_S = 12.0

@@ -19,6 +19,8 @@ from coopdrive.launch.batch import RunOutcome
 from coopdrive.launch.sweep_cluster import WORKER_SATURATION, SweepError, finished_run, sweep_client
 from coopdrive.launch.sweep_task import SweepJob
 
+pytestmark = pytest.mark.whole_run
+
 SEEDS = [1, 2, 3, 4]
 DURATION_S = 3.0
 

@@ -7,6 +7,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
+pytestmark = pytest.mark.whole_run
+
 REPO = Path(__file__).resolve().parents[2]
 SCRIPT = REPO / "tools" / "sweep.sh"
 # One follow run (DURATION_S simulated) on a one-worker local Dask cluster.

@@ -13,6 +13,8 @@ from coopdrive.runtime import priority
 from coopdrive.runtime.config import ConfigError
 from coopdrive.runtime.priority import SESSION_NICE_VARIABLE, nice_session_as_asked
 
+pytestmark = pytest.mark.whole_run
+
 AUTOGROUPS = Path("/proc/self/autogroup").exists()
 
 

@@ -14,6 +14,8 @@ from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
 from coopdrive.v1 import ego_pb2, scene_pb2
 from tests.visual.foxglove_ws_client import watch
 
+pytestmark = pytest.mark.whole_run
+
 START_TIMEOUT_S = 90.0
 LISTEN_S = 4.0
 # Subscriptions to the raw topic and its derived channel start within one subscribe request, a message apart.

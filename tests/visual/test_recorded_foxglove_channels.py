@@ -9,6 +9,8 @@ from coopdrive.recording.reader import read_messages
 from coopdrive.v1 import ego_pb2, scene_pb2
 from tests.visual.foxglove_mcap import foxglove_channels
 
+pytestmark = pytest.mark.whole_run
+
 STACKS = ("a1", "a2")
 
 
