@@ -11,6 +11,9 @@ import pytest
 
 from coopdrive.recording.reader import read_messages
 from coopdrive.v1 import ego_pb2, scene_pb2, sim_pb2
+from tests.scenario_report import FASTEST_LAYOUT
+
+pytestmark = pytest.mark.whole_run
 
 RAMP_START_S = 3.0
 RAMP_S = 6.0
@@ -27,7 +30,7 @@ def recorded(tmp_path_factory):
     fault = (f"{{type: gnss_jump, vehicle_id: p1, start_s: {RAMP_START_S}, ramp_s: {RAMP_S},"
              f" east_m: {OFFSET_PART_M}, north_m: {OFFSET_PART_M}}}")
     result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "platoon40", "--stacks", "1",
-                             "--duration", str(DURATION_S), "--fault", fault, "--record", str(recording)],
+                             "--duration", str(DURATION_S), "--fault", fault, "--record", str(recording), *FASTEST_LAYOUT],
                             capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
     assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
     scenes, map_offsets, truth_offsets = [], [], []

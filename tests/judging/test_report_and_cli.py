@@ -10,6 +10,9 @@ from coopdrive.judging.plots import FIGURES
 from coopdrive.judging.report import write_report
 from coopdrive.v1 import sim_pb2
 from tests.judging.synthetic import write_two_car_recording
+from tests.scenario_report import FASTEST_LAYOUT
+
+pytestmark = pytest.mark.whole_run
 
 # A loaded 2-core machine runs the 20 s follow loop in well under this.
 RUN_TIMEOUT_S = 240
@@ -20,7 +23,7 @@ def follow_report(tmp_path_factory):
     """One `coopdrive run follow --duration 20 --report DIR`: (its JSON summary, the report folder)."""
     folder = tmp_path_factory.mktemp("follow") / "report"
     completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--duration", "20", "--json",
-                                "--report", str(folder)], capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
+                                "--report", str(folder), *FASTEST_LAYOUT], capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
     assert completed.returncode in (0, 1), completed.stderr
     return json.loads(completed.stdout), folder
 

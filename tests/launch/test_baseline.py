@@ -12,6 +12,9 @@ from coopdrive.recording.reader import read_metadata
 from coopdrive.recording.writer import CONFIG_METADATA
 from coopdrive.services.control.longitudinal import CaccLaw
 from coopdrive.v1 import sim_pb2
+from tests.scenario_report import FASTEST_LAYOUT
+
+pytestmark = pytest.mark.whole_run
 
 # A scripted leader oscillating from 1 s and one stack behind it: the smallest run with a string gain.
 TINY_STRING = """
@@ -78,7 +81,7 @@ def test_run_with_a_baseline_prints_both_gains_and_passes_only_if_ours_is_no_wor
     scenario = tmp_path / "tiny_string.yaml"
     scenario.write_text(TINY_STRING)
     completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", str(scenario), "--baseline", "ploeg",
-                                "--json"], capture_output=True, text=True, timeout=300)
+                                "--json", *FASTEST_LAYOUT], capture_output=True, text=True, timeout=300)
     assert completed.returncode in (0, 1), completed.stderr
     summary = json.loads(completed.stdout)
     gains = summary["baseline"]["metrics"]["string_gain"]

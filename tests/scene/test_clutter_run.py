@@ -12,6 +12,9 @@ import pytest
 
 from coopdrive.recording.reader import read_messages
 from coopdrive.v1 import scene_pb2
+from tests.scenario_report import FASTEST_LAYOUT
+
+pytestmark = pytest.mark.whole_run
 
 CLUTTER_S = (4.0, 16.0)
 DURATION_S = 18.0
@@ -30,7 +33,8 @@ def run(request, tmp_path_factory) -> tuple[dict, list[scene_pb2.Scene]]:
     recording = tmp_path_factory.mktemp("clutter") / "run.mcap"
     fault = f"{{{CLUTTER_FAULTS[request.param]}, vehicle_id: p1, start_s: {CLUTTER_S[0]}, end_s: {CLUTTER_S[1]}}}"
     result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "platoon40", "--stacks", "1",
-                             "--duration", str(DURATION_S), "--fault", fault, "--record", str(recording), "--json"],
+                             "--duration", str(DURATION_S), "--fault", fault, "--record", str(recording), "--json",
+                             *FASTEST_LAYOUT],
                             capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
     assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
     scenes = [r.message for r in read_messages(recording)

@@ -10,6 +10,9 @@ import pytest
 from coopdrive.recording.reader import read_messages
 from coopdrive.services.scene.config import SceneFusionConfig
 from coopdrive.v1 import header_pb2, scene_pb2
+from tests.scenario_report import FASTEST_LAYOUT
+
+pytestmark = pytest.mark.whole_run
 
 DROPOUT_S = (6.0, 8.0)
 ALL_STOP_S = 10.5
@@ -40,7 +43,8 @@ def scenes(tmp_path_factory) -> list[scene_pb2.Scene]:
     (folder / "dropout.yaml").write_text(SCENARIO)
     recording = folder / "run.mcap"
     result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", str(folder / "dropout.yaml"),
-                             "--record", str(recording)], capture_output=True, text=True, timeout=600)
+                             "--record", str(recording), *FASTEST_LAYOUT], capture_output=True, text=True,
+                            timeout=600)
     assert result.returncode in (0, 1), result.stderr
     return [m.message for m in read_messages(recording)
             if isinstance(m.message, scene_pb2.Scene) and m.message.header.vehicle_id == "ego"]

@@ -8,6 +8,9 @@ import pytest
 
 from coopdrive.recording.reader import read_messages
 from coopdrive.v1 import scene_pb2
+from tests.scenario_report import FASTEST_LAYOUT
+
+pytestmark = pytest.mark.whole_run
 
 FAULT_AT_S = 3.0
 DURATION_S = 12.0
@@ -21,7 +24,7 @@ def run_with_fault(folder, fault: str) -> list[scene_pb2.Scene]:
     result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "platoon40", "--stacks", "1",
                              # Exact answers (the leader is the MIO in every scene): the ideal world.
                              "--world", "ideal", "--duration", str(DURATION_S), "--fault", fault,
-                             "--record", str(recording)],
+                             "--record", str(recording), *FASTEST_LAYOUT],
                             capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
     assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
     return [r.message for r in read_messages(recording) if isinstance(r.message, scene_pb2.Scene)]

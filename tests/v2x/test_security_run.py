@@ -13,6 +13,9 @@ from coopdrive.recording.reader import read_messages
 from coopdrive.services.scene.config import TrustConfig
 from coopdrive.services.v2x.security_verdict import UNTRUSTED_REASONS
 from coopdrive.v1 import scene_pb2, v2x_pb2
+from tests.scenario_report import FASTEST_LAYOUT
+
+pytestmark = pytest.mark.whole_run
 
 A1, A2 = 3001, 3002
 EXPIRY_S = 3.0
@@ -26,7 +29,8 @@ def run(tmp_path_factory):
     fault = json.dumps({"type": "ticket_expired", "vehicle_id": "a1", "start_s": EXPIRY_S})
     done = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "merge", "--stacks", "2", "--json",
                            "--security", "verify_required", "--untrusted", "a2", "--fault", fault,
-                           "--duration", str(DURATION_S), "--record", str(recording), "--report", str(report)],
+                           "--duration", str(DURATION_S), "--record", str(recording), "--report", str(report),
+                           *FASTEST_LAYOUT],
                           capture_output=True, text=True, timeout=600)
     # the merge cannot finish in 5 s: the run "fails" as not merged, which is not what is judged here
     assert done.returncode in (0, 1), done.stderr

@@ -11,6 +11,9 @@ import pytest
 
 from coopdrive.recording.reader import read_messages
 from coopdrive.v1 import v2x_pb2
+from tests.scenario_report import FASTEST_LAYOUT
+
+pytestmark = pytest.mark.whole_run
 
 LOSS = 0.2
 CUT_AT_S = 10.0
@@ -36,7 +39,8 @@ def statuses(tmp_path_factory) -> dict[str, list[v2x_pb2.V2xStatus]]:
     (folder / "pair.yaml").write_text(SCENARIO)
     recording = folder / "run.mcap"
     result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", str(folder / "pair.yaml"), "--json",
-                             "--v2v-loss", str(LOSS), "--v2v-cut-at", str(CUT_AT_S), "--record", str(recording)],
+                             "--v2v-loss", str(LOSS), "--v2v-cut-at", str(CUT_AT_S), "--record", str(recording),
+                             *FASTEST_LAYOUT],
                             capture_output=True, text=True, timeout=600)
     assert result.returncode in (0, 1), result.stderr
     assert json.loads(result.stdout)["collisions"] == 0
