@@ -7,6 +7,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Iterable
 
 from coopdrive.launch.lockstep_give_ups import GIVE_UP_MEANING
+from coopdrive.launch.paper_figures import paper_table_markdown
 from coopdrive.runtime.barrier import MESSAGES_GIVEN_UP_COUNTER
 
 if TYPE_CHECKING:
@@ -54,4 +55,7 @@ def pass_table_markdown(summary: BatchSummary) -> str:
     if summary.unfinished:
         lines += ["", f"Not finished (the sweep's {summary.end.value}):", ""] + [
             f"- {label}" for label in summary.unfinished]
+    papers = paper_table_markdown(summary)
+    if papers:
+        lines += ["", "Beside the GCDC 2016 papers (coopdrive/launch/paper_figures.py):", "", papers.rstrip("\n")]
     return "\n".join(lines) + "\n"

@@ -3,6 +3,7 @@
 
 import pytest
 
+from coopdrive.launch.paper_figures import PAPER_FIGURES
 from tests.scenario_report import run_scenario_report
 
 pytestmark = pytest.mark.whole_run
@@ -38,3 +39,9 @@ def test_the_followers_keep_to_the_lane_centre_through_the_curve_better_than_heu
 
 def test_the_run_passes_with_every_stack_automated_throughout(report):
     assert report["success"] and report["collisions"] == 0 and report["live_judge"]["automation_lost"] == 0
+
+
+def test_every_figure_the_papers_table_takes_from_platoon40_is_in_its_metrics(report):
+    keys = {key for figure in PAPER_FIGURES if figure.scenario == "platoon40"
+            for key in (figure.metric, *(metric for _, metric in figure.spread))}
+    assert keys and keys <= set(report)
