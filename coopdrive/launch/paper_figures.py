@@ -44,7 +44,8 @@ class PaperFigure:
 PAPER_FIGURES = (
     PaperFigure(HEUDIASYC, "speed error, steady platooning at 40 km/h",
                 f"0.71 km/h, average (sd 0.03); {HEUDIASYC_ONE_SIGN}", "heudiasyc L323", "platoon40",
-                "speed_error_kmh", "km/h", PLATOON_ERROR, (("RMS", "speed_error_rms_kmh"), ("p95", "speed_error_p95_kmh"))),
+                "speed_error_kmh", "km/h", PLATOON_ERROR,
+                (("RMS", "speed_error_rms_kmh"), ("p95", "speed_error_p95_kmh"))),
     PaperFigure(HEUDIASYC, "spacing error, steady platooning at 40 km/h",
                 f"1.07 m, average (sd 0.04) against d = r + h v, eq. (4); {HEUDIASYC_ONE_SIGN}", "heudiasyc L323",
                 "platoon40", "spacing_error_m", "m", PLATOON_ERROR + ", against d = r + h v (r 6 m, h 1.5 s)",
@@ -62,7 +63,7 @@ PAPER_FIGURES = (
                 "(60-80 km/h)"),
 )
 
-# Measured figures of the papers with no like metric in a sweep, and why (the README names where ours stand).
+# Measured figures of the papers with no like metric in a sweep, and why.
 UNMATCHED = (
     "Heudiasyc's CAM reception (median above 20 Hz of 25, L348): ours is a report figure "
     "(`v2x_reception_ratio_min`), not in a sweep without reports.",
@@ -87,19 +88,19 @@ def _cell(values: list[float], unit: str) -> str:
 
 def figure_row(figure: PaperFigure, outcomes: list[RunOutcome]) -> str | None:
     """The table's row of one figure over the runs of its scenario that report it; None where none does."""
-    reporting = [o for o in outcomes if _value(o, figure.metric) is not None]
+    reporting = [(o, value) for o in outcomes if (value := _value(o, figure.metric)) is not None]
     if not reporting:
         return None
-    worst = max(reporting, key=lambda o: _value(o, figure.metric))
-    mean = _cell([_value(o, figure.metric) for o in reporting], figure.unit)
+    worst, worst_value = max(reporting, key=lambda pair: pair[1])
+    mean = _cell([value for _, value in reporting], figure.unit)
     spreads = []
     for label, key in figure.spread:
-        values = [v for v in (_value(o, key) for o in reporting) if v is not None]
+        values = [v for v in (_value(o, key) for o, _ in reporting) if v is not None]
         if values:
             spreads.append(f"{label} {_cell(values, figure.unit)}")
     if spreads:
         mean += " (" + ", ".join(spreads) + ")"
-    worst_cell = f"{_value(worst, figure.metric):.3g} {figure.unit} (seed {worst.seed})"
+    worst_cell = f"{worst_value:.3g} {figure.unit} (seed {worst.seed})"
     return (f"| {figure.paper}: {figure.what} | {figure.theirs} ({figure.where}) | {figure.scenario} "
             f"`{figure.metric}`: {figure.ours} | {len(reporting)} | {mean} | {worst_cell} |")
 

@@ -30,7 +30,8 @@ def recorded(tmp_path_factory):
     fault = (f"{{type: gnss_jump, vehicle_id: p1, start_s: {RAMP_START_S}, ramp_s: {RAMP_S},"
              f" east_m: {OFFSET_PART_M}, north_m: {OFFSET_PART_M}}}")
     result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "platoon40", "--stacks", "1",
-                             "--duration", str(DURATION_S), "--fault", fault, "--record", str(recording), *FASTEST_LAYOUT],
+                             "--duration", str(DURATION_S), "--fault", fault, "--record", str(recording),
+                             *FASTEST_LAYOUT],
                             capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
     assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
     scenes, map_offsets, truth_offsets = [], [], []

@@ -26,7 +26,8 @@ def commands(tmp_path_factory) -> dict[str, list[tuple[float, int]]]:
     # the real one's burst losses may stale the CAMs past 400 ms for a moment, as they should.
     result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "platoon40", "--stacks", "2",
                              "--world", "ideal", "--duration", str(DURATION_S), "--v2v-cut-at", str(CUT_AT_S),
-                             "--record", str(recording), *FASTEST_LAYOUT], capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
+                             "--record", str(recording), *FASTEST_LAYOUT], capture_output=True, text=True,
+                            timeout=RUN_TIMEOUT_S)
     assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
     modes: dict[str, list[tuple[float, int]]] = {}
     for recorded in read_messages(recording):

@@ -23,7 +23,8 @@ def follow_report(tmp_path_factory):
     """One `coopdrive run follow --duration 20 --report DIR`: (its JSON summary, the report folder)."""
     folder = tmp_path_factory.mktemp("follow") / "report"
     completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", "follow", "--duration", "20", "--json",
-                                "--report", str(folder), *FASTEST_LAYOUT], capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
+                                "--report", str(folder), *FASTEST_LAYOUT], capture_output=True, text=True,
+                                timeout=RUN_TIMEOUT_S)
     assert completed.returncode in (0, 1), completed.stderr
     return json.loads(completed.stdout), folder
 
