@@ -1,4 +1,5 @@
-"""The order a sweep starts its runs in: the costliest first, or seed by seed when the sweep has a time limit."""
+"""The order a sweep starts its runs in: the costliest first, or seed by seed (the cheapest first within a seed) when
+the sweep has a time limit."""
 
 from coopdrive.launch.sweep_order import start_order
 from coopdrive.launch.sweep_task import SweepJob
@@ -16,11 +17,11 @@ def test_without_a_time_limit_the_costliest_runs_start_first_whatever_their_seed
         "merge/1", "merge/2", "platoon40/1", "platoon40/2", "follow/1", "follow/2"]
 
 
-def test_with_a_time_limit_every_scenario_s_first_seed_starts_before_any_second_costliest_first_within_a_seed():
+def test_with_a_time_limit_every_scenario_s_first_seed_starts_before_any_second_cheapest_first_within_a_seed():
     assert labels(start_order(JOBS, time_limited=True)) == [
-        "merge/1", "platoon40/1", "follow/1", "merge/2", "platoon40/2", "follow/2"]
+        "follow/1", "platoon40/1", "merge/1", "follow/2", "platoon40/2", "merge/2"]
 
 
 def test_seeds_go_in_the_order_the_sweep_lists_them():
     jobs = [SweepJob("follow", "none", seed) for seed in (7, 3)] + [SweepJob("merge", "none", seed) for seed in (7, 3)]
-    assert labels(start_order(jobs, time_limited=True)) == ["merge/7", "follow/7", "merge/3", "follow/3"]
+    assert labels(start_order(jobs, time_limited=True)) == ["follow/7", "merge/7", "follow/3", "merge/3"]
