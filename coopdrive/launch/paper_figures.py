@@ -32,7 +32,8 @@ class PaperFigure:
 
     paper: str
     what: str
-    theirs: str  # the figure with its definition, as the paper gives it
+    value: float  # their figure, in unit: what ours is held against (tests/control/test_platoon40_run.py)
+    theirs: str  # their definition as the paper gives it, "{}" where the figure stands
     where: str  # file and lines in ../shared/seeds
     scenario: str
     metric: str
@@ -40,24 +41,28 @@ class PaperFigure:
     ours: str  # how our metric is defined
     spread: tuple[tuple[str, str], ...] = ()  # (label, metric): companions shown beside the mean, in its unit
 
+    def their_figure(self) -> str:
+        """Their figure with its definition, as the table shows it."""
+        return self.theirs.format(f"{self.value:g} {self.unit}")
+
 
 PAPER_FIGURES = (
-    PaperFigure(HEUDIASYC, "speed error, steady platooning at 40 km/h",
-                f"0.71 km/h, average (sd 0.03); {HEUDIASYC_ONE_SIGN}", "heudiasyc L323", "platoon40",
+    PaperFigure(HEUDIASYC, "speed error, steady platooning at 40 km/h", 0.71,
+                f"{{}}, average (sd 0.03); {HEUDIASYC_ONE_SIGN}", "heudiasyc L323", "platoon40",
                 "speed_error_kmh", "km/h", PLATOON_ERROR,
                 (("RMS", "speed_error_rms_kmh"), ("p95", "speed_error_p95_kmh"))),
-    PaperFigure(HEUDIASYC, "spacing error, steady platooning at 40 km/h",
-                f"1.07 m, average (sd 0.04) against d = r + h v, eq. (4); {HEUDIASYC_ONE_SIGN}", "heudiasyc L323",
+    PaperFigure(HEUDIASYC, "spacing error, steady platooning at 40 km/h", 1.07,
+                f"{{}}, average (sd 0.04) against d = r + h v, eq. (4); {HEUDIASYC_ONE_SIGN}", "heudiasyc L323",
                 "platoon40", "spacing_error_m", "m", PLATOON_ERROR + ", against d = r + h v (r 6 m, h 1.5 s)",
                 (("RMS", "spacing_error_rms_m"), ("p95", "spacing_error_p95_m"))),
-    PaperFigure(HEUDIASYC, "lateral error, steady platooning at 40 km/h",
-                "0.29 m, average (sd 0.18)", "heudiasyc L327", "platoon40", "lateral_error_m", "m",
+    PaperFigure(HEUDIASYC, "lateral error, steady platooning at 40 km/h", 0.29,
+                "{}, average (sd 0.18)", "heudiasyc L327", "platoon40", "lateral_error_m", "m",
                 "mean absolute distance of every stack from its lane's centre line over the run",
                 (("RMS", "lateral_error_rms_m"), ("p95", "lateral_error_p95_m"))),
-    PaperFigure(HEUDIASYC, "largest lateral error, steady platooning", "0.60 m, the top of [0.05; 0.60] m",
+    PaperFigure(HEUDIASYC, "largest lateral error, steady platooning", 0.6, "{}, the top of [0.05; 0.60] m",
                 "heudiasyc L327", "platoon40", "lateral_error_max_m", "m",
                 "largest distance of any stack from its lane's centre line"),
-    PaperFigure(HEUDIASYC, "lane change of a merge", "a bit less than 10 s, at 40 km/h", "heudiasyc L336",
+    PaperFigure(HEUDIASYC, "lane change of a merge", 10.0, "a bit less than {}, at 40 km/h", "heudiasyc L336",
                 "merge", "lane_change_time_s", "s",
                 "slowest merger's lane change, leaving the closed lane's centre to settling in the open one "
                 "(60-80 km/h)"),
@@ -101,7 +106,7 @@ def figure_row(figure: PaperFigure, outcomes: list[RunOutcome]) -> str | None:
     if spreads:
         mean += " (" + ", ".join(spreads) + ")"
     worst_cell = f"{worst_value:.3g} {figure.unit} (seed {worst.seed})"
-    return (f"| {figure.paper}: {figure.what} | {figure.theirs} ({figure.where}) | {figure.scenario} "
+    return (f"| {figure.paper}: {figure.what} | {figure.their_figure()} ({figure.where}) | {figure.scenario} "
             f"`{figure.metric}`: {figure.ours} | {len(reporting)} | {mean} | {worst_cell} |")
 
 
