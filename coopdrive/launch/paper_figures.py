@@ -2,6 +2,7 @@
 vehicle that one of our scenarios also measures, with both definitions, over the seeds of a sweep.
 
     python -m coopdrive.launch.paper_figures out/sweep/summary.json     (the table a sweep's pass table ends with)
+    python -m coopdrive.launch.paper_figures A/summary.json B/summary.json     (over sweeps of other seeds)
 
 The papers report one vehicle over one heat; a sweep gives each figure once per seed, so the table shows the mean
 over the seeds and the worst seed (the largest error or time)."""
@@ -123,17 +124,18 @@ def paper_table_markdown(summary: BatchSummary) -> str:
     return "\n".join(header + rows + [""] + [f"- {line}" for line in UNMATCHED]) + "\n"
 
 
-def load_summary(path: Path) -> BatchSummary:
-    """A sweep's summary.json (sweep_output.write_summary) back as a BatchSummary."""
+def load_summary(*paths: Path) -> BatchSummary:
+    """Sweeps' summary.json files (sweep_output.write_summary) back as one BatchSummary of all their runs: a sweep
+    split over sessions or clusters by seeds gives one table."""
     from coopdrive.launch.batch import BatchSummary, RunOutcome
 
-    return BatchSummary([RunOutcome(**row) for row in json.loads(Path(path).read_text())])
+    return BatchSummary([RunOutcome(**row) for path in paths for row in json.loads(Path(path).read_text())])
 
 
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("summary", type=Path, help="a sweep's summary.json")
-    print(paper_table_markdown(load_summary(parser.parse_args(argv).summary)), end="")
+    parser.add_argument("summary", type=Path, nargs="+", help="a sweep's summary.json, or several")
+    print(paper_table_markdown(load_summary(*parser.parse_args(argv).summary)), end="")
 
 
 if __name__ == "__main__":

@@ -43,6 +43,15 @@ def test_the_command_makes_the_table_from_the_summary_json_a_sweep_wrote(tmp_pat
     assert capsys.readouterr().out == paper_table_markdown(summary)
 
 
+def test_the_command_makes_one_table_over_sweeps_of_other_seeds(tmp_path, capsys):
+    first, second = BatchSummary([platoon40(1, 0.05)]), BatchSummary([platoon40(2, 0.07), platoon40(3, 0.06)])
+    write_summary(first, tmp_path / "seeds-1")
+    write_summary(second, tmp_path / "seeds-2-3")
+    main([str(tmp_path / "seeds-1" / "summary.json"), str(tmp_path / "seeds-2-3" / "summary.json")])
+    assert capsys.readouterr().out == paper_table_markdown(BatchSummary(first.outcomes + second.outcomes))
+    assert "| 3 | 0.06 km/h" in speed_row(paper_table_markdown(BatchSummary(first.outcomes + second.outcomes)))
+
+
 def test_every_figure_names_its_paper_s_lines_and_a_unit():
     assert all(figure.where.split()[0] in ("heudiasyc", "drivertive", "chalmers") and " L" in figure.where
                and figure.unit for figure in PAPER_FIGURES)
