@@ -2,9 +2,9 @@
 # CI's sweep (.ci/run; issue 26): seeds 1-2 of every scenario (SEEDS), without reports, in the seconds CI has left
 # (the argument), through tools/sweep.sh. About 8 minutes of both cores in a normal hour. A run that fails fails CI.
 # With its time limit the sweep runs every scenario's seed 1 before any seed 2 (the cheapest first within a seed),
-# so a slower hour loses seed-2 runs (whichever the limit finds unfinished) before any scenario's seed 1, and its
-# short scenarios before its long ones. The runs it does not finish are listed in the pass table and do not fail CI (the
-# sweep's exit status 4). With under a minute left the sweep is skipped, and says so.
+# so a slower hour loses seed-2 runs (whichever the limit finds unfinished) before any scenario's seed 1, and a
+# seed's long scenarios before its short ones. The runs it does not finish are listed in the pass table and do not
+# fail CI (the sweep's exit status 4). With under a minute left the sweep is skipped, and says so.
 # BESIDE=1: the sweep runs beside the test suite (.ci/run), behind it, in the cores the suite leaves idle and
 # then in all of them. The script must then lead a session of its own (`setsid`): it sets that session's nice value
 # to 19 and has every session its runs start do the same (COOPDRIVE_SESSION_NICE), since Linux shares the cores
