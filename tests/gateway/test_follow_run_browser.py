@@ -1,10 +1,14 @@
 """During a real `coopdrive run follow --realtime --gateway PORT`: the /ws stream and the HMI in Chromium.
 
 The file's tests share one run (conftest.follow_run). Polling with generous deadlines: a loaded 2-core machine
-runs the run's processes and a browser here. The browser test saves docs/hmi-screenshot.png.
+runs the run's processes and a browser here. The browser test saves its screenshot in its own temporary folder, so
+that a test run leaves the checkout as it was; with COOPDRIVE_UPDATE_SCREENSHOT=1 it writes the README's picture,
+docs/hmi-screenshot.png.
 """
 
 import json
+import os
+import shutil
 import time
 from pathlib import Path
 
@@ -21,7 +25,9 @@ CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-backg
                  "--disable-component-update", "--disable-sync", "--no-first-run"]
 TABLET = {"width": 1280, "height": 800}
 BROWSER_TIMEOUT_MS = 30_000
-SCREENSHOT = Path(__file__).resolve().parents[2] / "docs" / "hmi-screenshot.png"
+README_SCREENSHOT = Path(__file__).resolve().parents[2] / "docs" / "hmi-screenshot.png"
+UPDATE_SCREENSHOT_VARIABLE = "COOPDRIVE_UPDATE_SCREENSHOT"
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
 
 def following(state: dict) -> bool:
@@ -52,7 +58,7 @@ def test_the_stream_carries_several_frames_with_a_changing_ego_speed(run):
     assert latest["health"]["scene"] is True
 
 
-def test_the_hmi_draws_the_lead_vehicle_moves_the_gap_gauge_and_shows_a_refused_mode_change(run):
+def test_the_hmi_draws_the_lead_vehicle_moves_the_gap_gauge_and_shows_a_refused_mode_change(run, tmp_path):
     if not CHROMIUM.exists():
         pytest.skip(f"no browser at {CHROMIUM}")
     from playwright.sync_api import sync_playwright
@@ -86,7 +92,10 @@ def test_the_hmi_draws_the_lead_vehicle_moves_the_gap_gauge_and_shows_a_refused_
             assert page.evaluate("window.hmi.lastCommand.status") == 401
             assert "unavailable" in page.text_content("#availability") or "available" in page.text_content(
                 "#availability")
-            SCREENSHOT.parent.mkdir(exist_ok=True)
-            page.screenshot(path=str(SCREENSHOT))
+            screenshot = tmp_path / README_SCREENSHOT.name
+            page.screenshot(path=str(screenshot))
         finally:
             browser.close()
+    assert screenshot.read_bytes().startswith(PNG_SIGNATURE)
+    if os.environ.get(UPDATE_SCREENSHOT_VARIABLE) == "1":
+        shutil.copyfile(screenshot, README_SCREENSHOT)
