@@ -52,8 +52,17 @@ def filter_steps(tracks: list[Track], measurements: list[Measurement],
     track's time: every track predicted to its measurement's time and updated with it, all in one pass."""
     x, p = stacked_states(tracks)
     dt_s = np.array([m.time_s for m in measurements]) - np.array([t.time_s for t in tracks])
+    return _filtered(x, p, dt_s, measurements, config)
+
+
+def _filtered(x: np.ndarray, p: np.ndarray, dt_s: np.ndarray, measurements: list[Measurement],
+              config: TrackingConfig) -> tuple[np.ndarray, np.ndarray]:
+    """filter_steps on the tracks' stacked means (K, 6), covariances (K, 6, 6) and time steps (K,)."""
     # A step of dt 0 leaves the state as it is (F = I, Q = 0), so no track needs to skip the prediction.
     x, p = kalman.predict(x, p, kalman.transition(dt_s), kalman.process_noise(dt_s, config.jerk_psd_m2ps5))
+    if len(measurements) == 1:  # one track's step (a V2V message, a replay): one layout, nothing to group
+        return kalman.update(x, p, *measurement_model(measurements, layout_of(measurements[0]), x[:, [IX, IY]],
+                                                      config.closer_bias))
     groups: dict[Layout, list[int]] = {}
     for k, meas in enumerate(measurements):
         groups.setdefault(layout_of(meas), []).append(k)
@@ -220,7 +229,8 @@ class Track:
         self._note_hit(meas)
 
     def _step(self, meas: Measurement) -> tuple[np.ndarray, np.ndarray]:
-        x, p = filter_steps([self], [meas], self._config)
+        """filter_steps of this track alone: the same kernels on its state as a stack of one, so the same bits."""
+        x, p = _filtered(self._x[None], self._p[None], np.array([meas.time_s - self.time_s]), [meas], self._config)
         return x[0], p[0]
 
     def _note_hit(self, meas: Measurement) -> None:
