@@ -53,6 +53,9 @@ class SupportTable:
         self._decay_per_s = np.zeros(SOURCE_COLUMNS)
         self._max = np.zeros(SOURCE_COLUMNS)
         self._gain = np.zeros(SOURCE_COLUMNS)
+        # The same settings as plain floats, (fade_s, decay_per_s, max, gain) by source, for the one-entry paths:
+        # arithmetic on numpy scalars costs several times Python's on floats, for the same IEEE results.
+        self._settings_one: dict[int, tuple[float, float, float, float]] = {}
         # The columns of the sources that have given support (their settings looked up) in enum order, and the span
         # from the first to the last of them. The other columns hold no support, and numpy reduces a short last axis
         # element by element (a max over 7 columns of 200 x 8 slots cost 90 us), so the reductions over sources
@@ -166,10 +169,14 @@ class SupportTable:
 
     def source_confidence_one(self, row: int, slot: int, source: int, time_s: float) -> float:
         """(C1) of one row, slot and source."""
-        age_s = max(0.0, time_s - float(self._time_s[row, slot, source]))
-        if age_s > self._fade_s[source]:
+        settings = self._settings_one.get(source)
+        if settings is None:  # a source that never supported anything in this table
             return 0.0
-        return float(self._conf[row, slot, source]) * math.exp(-self._decay_per_s[source] * age_s)
+        fade_s, decay_per_s, _, _ = settings
+        age_s = max(0.0, time_s - self._time_s.item(row, slot, source))
+        if age_s > fade_s:
+            return 0.0
+        return self._conf.item(row, slot, source) * math.exp(-decay_per_s * age_s)
 
     def confidence_one(self, row: int, slot: int, time_s: float) -> tuple[float, list[int]]:
         """(C3) of one row and slot, and the sources still supporting it."""
@@ -187,20 +194,21 @@ class SupportTable:
         if quality == 0.0:
             return
         column = self._column(source)
-        at_s = max(time_s, float(self._time_s[row, slot, column]))
+        at_s = max(time_s, self._time_s.item(row, slot, column))
         current = self.source_confidence_one(row, slot, column, at_s)
-        self._conf[row, slot, column] = current + self._gain[column] * (quality * self._max[column] - current)
+        _, _, max_confidence, gain = self._settings_one[column]
+        self._conf[row, slot, column] = current + gain * (quality * max_confidence - current)
         self._time_s[row, slot, column] = at_s
 
     def update_one(self, row: int, slot: int, source: int, time_s: float, value: float, quality: float) -> None:
         """(C4) and (C2) of one reading of one row and slot."""
         old_confidence = max(0.0, self.confidence_one(row, slot, time_s)[0])
-        old_value = float(self._value[row, slot])
+        old_value = self._value.item(row, slot)
         if math.isnan(old_value) or old_confidence == 0.0:
             self._value[row, slot] = value
         else:
-            bias = self._new_data_bias * (self._closer_bias[slot] if value < old_value else 1.0)
-            new_weight = bias * self._max[self._column(source)] * max(quality, 1e-3)
+            bias = self._new_data_bias * (self._closer_bias.item(slot) if value < old_value else 1.0)
+            new_weight = bias * self._settings_one[self._column(source)][2] * max(quality, 1e-3)
             self._value[row, slot] = (old_confidence * old_value + new_weight * value) / (old_confidence + new_weight)
         self.support_one(row, slot, source, time_s, quality)
 
@@ -218,6 +226,8 @@ class SupportTable:
             cfg = self._source_config(source)
             self._fade_s[source], self._decay_per_s[source] = cfg.fade_time_s, cfg.decay_per_s
             self._max[source], self._gain[source] = cfg.max_confidence, cfg.gain
+            self._settings_one[source] = (float(self._fade_s[source]), float(self._decay_per_s[source]),
+                                          float(self._max[source]), float(self._gain[source]))
             self._columns = sorted(self._columns + [source])
             self._span = slice(self._columns[0], self._columns[-1] + 1)
         return source
