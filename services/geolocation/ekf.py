@@ -76,6 +76,14 @@ def _wrap(angle_rad: float) -> float:
     return (angle_rad + math.pi) % (2.0 * math.pi) - math.pi
 
 
+def normalised_innovation_squared(y: np.ndarray, S: np.ndarray) -> float:
+    """y^T S^-1 y, as y @ numpy.linalg.solve(S, y). For one row that solve is y / s to the bit
+    (tests/geolocation/test_model_driven_ekf.py) at a tenth of its cost."""
+    if len(y) == 1:
+        return float(y[0] * (y[0] / S[0, 0]))
+    return float(y @ np.linalg.solve(S, y))
+
+
 def _residual(z: np.ndarray, hx: np.ndarray, angle_rows: tuple[int, ...] = ()) -> np.ndarray:
     """z - h(x), the angles among them wrapped (a heading of 179 deg against 181 deg is 2 deg off, not 358)."""
     y = z - hx
@@ -176,7 +184,7 @@ class GeolocationEkf:
         filter believing its own extrapolation, and the next one is further off still)."""
         y = _residual(z, hx, angle_rows)
         S = H @ self.kf.P @ H.T + R
-        self.last_nis = float(y @ np.linalg.solve(S, y))
+        self.last_nis = normalised_innovation_squared(y, S)
         if self.last_nis > self.gate(len(z)):
             self.rejected[kind] += 1
             if not soft:

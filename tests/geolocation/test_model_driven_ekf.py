@@ -8,11 +8,14 @@ import sys
 
 import numpy as np
 import pytest
+import scipy.linalg
 from filterpy.kalman import ExtendedKalmanFilter
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.stats import chi2
 
-from coopdrive.services.geolocation.ekf import chi2_quantile
-from coopdrive.services.geolocation.model_driven_ekf import ModelDrivenEkf
+from coopdrive.services.geolocation.ekf import chi2_quantile, normalised_innovation_squared
+from coopdrive.services.geolocation.model_driven_ekf import ModelDrivenEkf, inverse
 from coopdrive.services.geolocation.motion_models import (
     HEADING, SPEED, STATE_DIM, YAW_RATE, CtraModel, KinematicBicycleModel, ProcessNoise,
 )
@@ -77,3 +80,27 @@ def test_the_geolocation_service_imports_neither_filterpy_nor_scipy_stats():
             "print('filterpy' in sys.modules, 'scipy.stats' in sys.modules)")
     output = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert output.split() == ["False", "False"]
+
+
+positive_variances = st.floats(min_value=1e-9, max_value=1e9, allow_nan=False, allow_infinity=False)
+residuals = st.floats(min_value=-1e6, max_value=1e6, allow_nan=False, allow_infinity=False)
+
+
+@settings(max_examples=500, deadline=None)
+@given(positive_variances)
+def test_a_one_row_innovation_covariance_is_inverted_to_scipys_bits(variance):
+    S = np.array([[variance]])
+    assert np.array_equal(inverse(S), scipy.linalg.inv(S))
+
+
+@settings(max_examples=500, deadline=None)
+@given(residuals, positive_variances)
+def test_a_one_row_normalised_innovation_squared_is_numpys_solve_to_the_bit(residual, variance):
+    y, S = np.array([residual]), np.array([[variance]])
+    assert normalised_innovation_squared(y, S) == float(y @ np.linalg.solve(S, y))
+
+
+def test_two_rows_go_through_numpys_solve_and_scipys_inverse():
+    y, S = np.array([0.3, -1.2]), np.array([[2.0, 0.4], [0.4, 1.5]])
+    assert normalised_innovation_squared(y, S) == float(y @ np.linalg.solve(S, y))
+    assert np.array_equal(inverse(S), scipy.linalg.inv(S))
