@@ -60,16 +60,14 @@ def _filtered(x: np.ndarray, p: np.ndarray, dt_s: np.ndarray, measurements: list
     """filter_steps on the tracks' stacked means (K, 6), covariances (K, 6, 6) and time steps (K,)."""
     # A step of dt 0 leaves the state as it is (F = I, Q = 0), so no track needs to skip the prediction.
     x, p = kalman.predict(x, p, kalman.transition(dt_s), kalman.process_noise(dt_s, config.jerk_psd_m2ps5))
-    if len(measurements) == 1:  # one track's step (a V2V message, a replay): one layout, nothing to group
-        return kalman.update(x, p, *measurement_model(measurements, layout_of(measurements[0]), x[:, [IX, IY]],
-                                                      config.closer_bias))
     groups: dict[Layout, list[int]] = {}
     for k, meas in enumerate(measurements):
         groups.setdefault(layout_of(meas), []).append(k)
+    if len(groups) == 1:  # one layout (always so for one track's step): every row at once, none to pick out
+        return kalman.update(x, p, *measurement_model(measurements, next(iter(groups)), x[:, [IX, IY]],
+                                                      config.closer_bias))
     for layout, rows in groups.items():
-        rows = slice(None) if len(rows) == len(measurements) else rows
-        z, h, r = measurement_model(measurements if isinstance(rows, slice) else [measurements[k] for k in rows],
-                                    layout, x[rows][:, [IX, IY]], config.closer_bias)
+        z, h, r = measurement_model([measurements[k] for k in rows], layout, x[rows][:, [IX, IY]], config.closer_bias)
         x[rows], p[rows] = kalman.update(x[rows], p[rows], z, h, r)
     return x, p
 
