@@ -20,7 +20,7 @@ from coopdrive.services.sim.sensor_suite import SensorOutputs
 from coopdrive.services.sim.station_faults import StationFaults
 from coopdrive.services.sim.vehicle_model import VehicleModel, VehicleState
 from coopdrive.services.sim.vehicle_truth import vehicle_truth
-from coopdrive.services.sim.world_view import WorldView, footprints_enu
+from coopdrive.services.sim.world_view import world_views
 from coopdrive.v1 import sim_pb2
 
 
@@ -123,15 +123,12 @@ class ScenarioSim:
     def sensor_outputs(self, now_s: float) -> dict[str, SensorOutputs]:
         truths = self.truths()
         classes = {vid: p.object_class for vid, p in self.objects.participants.items()}
-        corners = footprints_enu(truths)
+        egos = [truth for truth in truths if truth.vehicle_id in self.objects.sensor_suites]
         outputs = {}
-        for ego in truths:
-            suite = self.objects.sensor_suites.get(ego.vehicle_id)
-            if suite is None:
-                continue
-            others = [t for t in truths if t.vehicle_id != ego.vehicle_id]
-            model = self.objects.models[ego.vehicle_id]
-            outputs[ego.vehicle_id] = suite.poll(now_s, WorldView(ego, others, classes, corners), model.brake_pressure_bar())
+        for view in world_views(truths, egos, classes):
+            vehicle_id = view.ego.vehicle_id
+            outputs[vehicle_id] = self.objects.sensor_suites[vehicle_id].poll(
+                now_s, view, self.objects.models[vehicle_id].brake_pressure_bar())
         return outputs
 
     def intents(self, now_s: float) -> list[MessageIntent]:

@@ -1,6 +1,7 @@
 """What a sensor sees of the world at one instant: the ego truth and the other road users."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Mapping, Sequence
 
@@ -62,9 +63,39 @@ class WorldView:
             self._outlines = geometry.Outlines.of(self.footprints_in_ego_frame())
         return self._outlines
 
+    def prime(self, outlines: geometry.Outlines) -> None:
+        """Take the others' outlines in the ego frame, in the order of `others`, as worked out for many views at
+        once (world_views)."""
+        self._outlines = outlines
+        self._in_ego_frame = list(outlines.corners)
+
     def _corners_enu(self, truth: sim_pb2.VehicleTruth) -> np.ndarray:
         corners = self.corners_enu.get(truth.vehicle_id)
         return corners if corners is not None else footprint_enu(truth)
+
+
+def world_views(truths: Sequence[sim_pb2.VehicleTruth], egos: Sequence[sim_pb2.VehicleTruth],
+                object_classes: Mapping[str, int]) -> list[WorldView]:
+    """The WorldView of each of egos (some of truths) at one instant, their outlines ready: every vehicle's corners
+    taken into every ego's frame and edged in one numpy pass for them all, not one per view. Each point gets the
+    arithmetic of geometry.to_ego_frame, so each view's outlines are those it would outline itself."""
+    corners_enu = footprints_enu(truths)
+    views = [WorldView(ego, [t for t in truths if t.vehicle_id != ego.vehicle_id], object_classes, corners_enu)
+             for ego in egos]
+    if len(truths) < 2 or not views:
+        return views
+    corners = np.stack([corners_enu[truth.vehicle_id] for truth in truths])  # (vehicle, corner, xy)
+    delta = corners - np.array([[ego.x_m, ego.y_m] for ego in egos])[:, None, None, :]  # (ego, vehicle, corner, xy)
+    cos_h = np.array([math.cos(ego.heading_rad) for ego in egos])[:, None, None]
+    sin_h = np.array([math.sin(ego.heading_rad) for ego in egos])[:, None, None]
+    local = np.stack((delta[..., 0] * cos_h + delta[..., 1] * sin_h, -delta[..., 0] * sin_h + delta[..., 1] * cos_h),
+                     axis=-1)
+    edges = np.roll(local, -1, axis=2) - local
+    ids = [truth.vehicle_id for truth in truths]
+    for view, ego_corners, ego_edges in zip(views, local, edges):
+        others = np.array([vehicle_id != view.ego.vehicle_id for vehicle_id in ids])
+        view.prime(geometry.Outlines(ego_corners[others], ego_edges[others]))
+    return views
 
 
 def footprint_enu(truth: sim_pb2.VehicleTruth) -> np.ndarray:
