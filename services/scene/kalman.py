@@ -9,6 +9,8 @@ Kalman Filters"), which tests/scene/test_kalman.py holds this module to within 1
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 DIM = 6
@@ -19,12 +21,22 @@ _AXES = (IX, IY)
 # Q's 3x3 block row by row: which power of t (index into t^5 .. t^1) over what.
 _NOISE_POWERS = [0, 1, 2, 1, 2, 3, 2, 3, 4]
 _NOISE_DIVISORS = np.array([20.0, 8.0, 6.0, 8.0, 3.0, 2.0, 6.0, 2.0, 1.0])
+# A single track's steps (each V2V message, each step of a late one's replay) come back to a few time steps: a
+# sensor's period, 0 for a reading at the track's own time (two in three of them in an 8-stack string run). Their F
+# and Q are kept, read-only, keyed by the bits of the step, so -0.0 keeps its own.
+_ONE_STEP_CACHE_SIZE = 64
 
 
 def transition(dt_s: np.ndarray) -> np.ndarray:
     """F (K, 6, 6) for each time step dt_s (K,): constant acceleration on each axis,
     p' = p + v dt + a dt^2 / 2, v' = v + a dt, a' = a."""
     dt_s = np.asarray(dt_s, dtype=float)
+    if dt_s.size == 1:
+        return _one_step(_transition, dt_s.tobytes(), None)
+    return _transition(dt_s)
+
+
+def _transition(dt_s: np.ndarray) -> np.ndarray:
     f = np.tile(_IDENTITY, (dt_s.size, 1, 1))
     for first in _AXES:
         f[:, first, first + 1] = dt_s
@@ -38,7 +50,14 @@ def process_noise(dt_s: np.ndarray, psd: float) -> np.ndarray:
     white-noise model discretised over dt (Bar-Shalom, Li and Kirubarajan 2001, sect. 6.2.3; filterpy's
     Q_continuous_white_noise(dim=3)): block [[t^5/20, t^4/8, t^3/6], [t^4/8, t^3/3, t^2/2], [t^3/6, t^2/2, t]],
     written out because scipy's block_diag there costs more than the update."""
-    t = np.abs(np.asarray(dt_s, dtype=float))
+    dt_s = np.asarray(dt_s, dtype=float)
+    if dt_s.size == 1:
+        return _one_step(_process_noise, dt_s.tobytes(), psd)
+    return _process_noise(dt_s, psd)
+
+
+def _process_noise(dt_s: np.ndarray, psd: float) -> np.ndarray:
+    t = np.abs(dt_s)
     t2 = t * t
     t3 = t2 * t
     powers = np.empty((t.size, 5))  # t^5 .. t^1
@@ -48,6 +67,15 @@ def process_noise(dt_s: np.ndarray, psd: float) -> np.ndarray:
     for first in _AXES:
         q[:, first:first + 3, first:first + 3] = block
     return q
+
+
+@lru_cache(maxsize=_ONE_STEP_CACHE_SIZE)
+def _one_step(build, dt_bytes: bytes, psd: float | None) -> np.ndarray:
+    """build's matrix (1, 6, 6) for the one time step whose float64 bits are dt_bytes, made once and read-only."""
+    dt_s = np.frombuffer(dt_bytes, dtype=float)
+    matrix = build(dt_s) if psd is None else build(dt_s, psd)
+    matrix.flags.writeable = False
+    return matrix
 
 
 def predict(x: np.ndarray, p: np.ndarray, f: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

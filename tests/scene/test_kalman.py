@@ -9,6 +9,8 @@ import sys
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from filterpy.common import Q_continuous_white_noise
 from filterpy.kalman import KalmanFilter
 
@@ -138,3 +140,16 @@ def test_the_predicted_positions_and_velocities_are_those_rows_of_filterpy_s_pre
                                   ([kalman.IVX, kalman.IVY], velocities, velocity_cov)):
             assert values[k] == pytest.approx(kf.x[rows], abs=TOLERANCE)
             assert cov[k] == pytest.approx(kf.P[np.ix_(rows, rows)], abs=TOLERANCE)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.one_of(st.just(0.0), st.just(-0.0), st.sampled_from([0.02, 0.04, 0.05]),
+                 st.floats(-5.0, 5.0, allow_nan=False)))
+def test_a_single_steps_kept_f_and_q_are_the_ones_a_stack_of_steps_makes_to_the_bit(dt_s):
+    # The same step in a stack of two is built afresh; alone it may come from the kept ones.
+    alone_f, alone_q = kalman.transition(np.array([dt_s])), kalman.process_noise(np.array([dt_s]), PSD)
+    stacked_f, stacked_q = kalman.transition(np.array([dt_s, 0.3])), kalman.process_noise(np.array([dt_s, 0.3]), PSD)
+    assert alone_f.tobytes() == stacked_f[:1].tobytes() and alone_q.tobytes() == stacked_q[:1].tobytes()
+    assert kalman.transition(np.array([dt_s])) is alone_f  # kept
+    with pytest.raises(ValueError):
+        alone_f[0, 0, 0] = 2.0  # read-only: a caller writing into it would change every later step's F
