@@ -32,9 +32,19 @@ def footprint_corners(x_m: float, y_m: float, heading_rad: float, length_m: floa
 
 def to_ego_frame(points_xy: np.ndarray, ego_x_m: float, ego_y_m: float, ego_heading_rad: float) -> np.ndarray:
     """ENU points (N x 2) into the ego frame: x forward, y left, origin at the ego rear axle."""
-    cos_h, sin_h = math.cos(ego_heading_rad), math.sin(ego_heading_rad)
-    delta = np.asarray(points_xy, dtype=float) - np.array([ego_x_m, ego_y_m])
-    return np.column_stack((delta[:, 0] * cos_h + delta[:, 1] * sin_h, -delta[:, 0] * sin_h + delta[:, 1] * cos_h))
+    return to_ego_frames(points_xy, [(ego_x_m, ego_y_m, ego_heading_rad)])[0]
+
+
+def to_ego_frames(points_xy: np.ndarray, egos: Sequence[tuple[float, float, float]]) -> np.ndarray:
+    """ENU points (..., 2) into each ego's frame, egos given as (x_m, y_m, heading_rad): (ego, ..., 2). Each point
+    gets the same arithmetic whatever else is transformed with it."""
+    points = np.asarray(points_xy, dtype=float)
+    spread = (slice(None),) + (None,) * (points.ndim - 1)  # one value per ego, broadcast over the points' axes
+    cos_h = np.array([math.cos(heading_rad) for _, _, heading_rad in egos])[spread]
+    sin_h = np.array([math.sin(heading_rad) for _, _, heading_rad in egos])[spread]
+    delta = points - np.array([(x_m, y_m) for x_m, y_m, _ in egos])[spread]
+    return np.stack((delta[..., 0] * cos_h + delta[..., 1] * sin_h, -delta[..., 0] * sin_h + delta[..., 1] * cos_h),
+                    axis=-1)
 
 
 def _project_polygon(corners: np.ndarray, axis: np.ndarray) -> tuple[float, float]:
@@ -67,7 +77,12 @@ class Outlines:
     def of(cls, polygons: Sequence[np.ndarray]) -> Outlines:
         corners = np.asarray(polygons, dtype=float).reshape(len(polygons), -1, 2) if len(polygons) else \
             np.empty((0, 0, 2))
-        return cls(corners, np.roll(corners, -1, axis=1) - corners)
+        return cls(corners, cls.edges_of(corners))
+
+    @staticmethod
+    def edges_of(corners: np.ndarray) -> np.ndarray:
+        """Each corner's edge to the next of its polygon, corners (..., corner, xy)."""
+        return np.roll(corners, -1, axis=-2) - corners
 
     def __len__(self) -> int:
         return len(self.corners)

@@ -1,7 +1,6 @@
 """What a sensor sees of the world at one instant: the ego truth and the other road users."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Mapping, Sequence
 
@@ -77,20 +76,16 @@ class WorldView:
 def world_views(truths: Sequence[sim_pb2.VehicleTruth], egos: Sequence[sim_pb2.VehicleTruth],
                 object_classes: Mapping[str, int]) -> list[WorldView]:
     """The WorldView of each of egos (some of truths) at one instant, their outlines ready: every vehicle's corners
-    taken into every ego's frame and edged in one numpy pass for them all, not one per view. Each point gets the
-    arithmetic of geometry.to_ego_frame, so each view's outlines are those it would outline itself."""
+    taken into every ego's frame and edged in one numpy pass for them all, not one per view: the arithmetic of each
+    point is the same either way (geometry.to_ego_frames), so each view's outlines are those it would make itself."""
     corners_enu = footprints_enu(truths)
     views = [WorldView(ego, [t for t in truths if t.vehicle_id != ego.vehicle_id], object_classes, corners_enu)
              for ego in egos]
     if len(truths) < 2 or not views:
         return views
     corners = np.stack([corners_enu[truth.vehicle_id] for truth in truths])  # (vehicle, corner, xy)
-    delta = corners - np.array([[ego.x_m, ego.y_m] for ego in egos])[:, None, None, :]  # (ego, vehicle, corner, xy)
-    cos_h = np.array([math.cos(ego.heading_rad) for ego in egos])[:, None, None]
-    sin_h = np.array([math.sin(ego.heading_rad) for ego in egos])[:, None, None]
-    local = np.stack((delta[..., 0] * cos_h + delta[..., 1] * sin_h, -delta[..., 0] * sin_h + delta[..., 1] * cos_h),
-                     axis=-1)
-    edges = np.roll(local, -1, axis=2) - local
+    local = geometry.to_ego_frames(corners, [(ego.x_m, ego.y_m, ego.heading_rad) for ego in egos])
+    edges = geometry.Outlines.edges_of(local)
     ids = [truth.vehicle_id for truth in truths]
     for view, ego_corners, ego_edges in zip(views, local, edges):
         others = np.array([vehicle_id != view.ego.vehicle_id for vehicle_id in ids])
