@@ -11,6 +11,7 @@ import cantools
 from cantools.database.can import Database, Message
 
 from coopdrive.can.saturating_packer import SaturatingPacker
+from coopdrive.reasons import ReasonedError
 
 DBC_FILE = "vehicle.dbc"
 COUNTER_SIGNAL = "Counter"
@@ -53,13 +54,8 @@ class DecodeFailure(enum.Enum):
     UNEXPECTED_FRAME = "frame not handled by this decoder"
 
 
-class CanDecodeError(ValueError):
+class CanDecodeError(ReasonedError[DecodeFailure], ValueError):
     """A received frame that cannot be trusted; `reason` says why."""
-
-    def __init__(self, reason: DecodeFailure, detail: str = ""):
-        self.reason = reason
-        self.detail = detail
-        super().__init__(f"{reason.value}: {detail}" if detail else reason.value)
 
 
 @cache

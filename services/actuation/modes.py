@@ -12,6 +12,7 @@ import math
 from collections import deque
 from dataclasses import dataclass
 
+from coopdrive.reasons import Reasoned
 from coopdrive.services.actuation.config import ModeRequirements, ModesConfig
 from coopdrive.v1 import actuation_pb2, ego_pb2, vehicle_pb2
 
@@ -44,13 +45,8 @@ class Condition(enum.Enum):
     CONTROL_COMMAND = "fresh control command"
 
 
-@dataclass(frozen=True)
-class UnmetCondition:
-    condition: Condition
-    detail: str
-
-    def __str__(self) -> str:
-        return f"{self.condition.value}: {self.detail}"
+class UnmetCondition(Reasoned[Condition]):
+    """The first activation condition that does not hold."""
 
 
 @dataclass(frozen=True)

@@ -7,8 +7,8 @@ command at a limited jerk to the configured deceleration, never loosening a hard
 
 import enum
 import math
-from dataclasses import dataclass
 
+from coopdrive.reasons import Reasoned
 from coopdrive.services.actuation.config import WatchdogConfig
 from coopdrive.v1 import control_pb2
 
@@ -21,13 +21,8 @@ class StopCause(enum.Enum):
     REQUESTED = "safe stop requested"
 
 
-@dataclass(frozen=True)
-class StopTrigger:
-    cause: StopCause
-    detail: str
-
-    def __str__(self) -> str:
-        return f"{self.cause.value}: {self.detail}"
+class StopTrigger(Reasoned[StopCause]):
+    """What starts a controlled stop."""
 
 
 def command_problem(cmd: control_pb2.ControlCommand, config: WatchdogConfig) -> str | None:

@@ -2,6 +2,8 @@
 
 import enum
 
+from coopdrive.reasons import ReasonedError
+
 
 class RejectReason(enum.Enum):
     TRUNCATED_BASIC_HEADER = "truncated_basic_header"
@@ -44,13 +46,8 @@ class RejectReason(enum.Enum):
     UNSECURED_PACKET_REFUSED = "unsecured_packet_refused"
 
 
-class V2xDecodeError(Exception):
+class V2xDecodeError(ReasonedError[RejectReason]):
     """A packet that could not be decoded; `reason` says which layer refused it and why."""
-
-    def __init__(self, reason: RejectReason, detail: str = ""):
-        super().__init__(f"{reason.value}: {detail}" if detail else reason.value)
-        self.reason = reason
-        self.detail = detail
 
 
 class V2xEncodeError(ValueError):

@@ -50,7 +50,7 @@ def test_a_dead_service_refuses_the_mode_naming_the_service():
     manager = ready_manager()
     manager.set_service_alive("planner", False)
     unmet = refused(manager)
-    assert unmet.condition is Condition.SERVICES_ALIVE
+    assert unmet.reason is Condition.SERVICES_ALIVE
     assert "planner" in str(unmet)
 
 
@@ -58,14 +58,14 @@ def test_a_service_never_heard_of_counts_as_dead():
     manager = DrivingModeManager(ModesConfig(), COMMAND_TIMEOUT_S)
     feed(manager, 0.0)
     manager._alive.pop("scene")
-    assert refused(manager).condition is Condition.SERVICES_ALIVE
+    assert refused(manager).reason is Condition.SERVICES_ALIVE
 
 
 def test_degraded_localisation_refuses_autonomous_but_allows_cooperative():
     manager = ready_manager()
     feed(manager, 0.0, localisation=ego_pb2.LOCALISATION_MODE_GNSS_DEGRADED)
     unmet = refused(manager, AUTONOMOUS)
-    assert unmet.condition is Condition.LOCALISATION
+    assert unmet.reason is Condition.LOCALISATION
     assert "GNSS_DEGRADED" in str(unmet)
     assert manager.request(COOPERATIVE, 0.0).accepted
 
@@ -73,27 +73,27 @@ def test_degraded_localisation_refuses_autonomous_but_allows_cooperative():
 def test_lost_localisation_refuses_cooperative():
     manager = ready_manager()
     feed(manager, 0.0, localisation=ego_pb2.LOCALISATION_MODE_LOST)
-    assert refused(manager, COOPERATIVE).condition is Condition.LOCALISATION
+    assert refused(manager, COOPERATIVE).reason is Condition.LOCALISATION
 
 
 def test_unhealthy_v2x_refuses_the_cooperative_modes():
     manager = ready_manager()
     feed(manager, 0.0, v2x=False)
-    assert refused(manager, COOPERATIVE).condition is Condition.V2X_HEALTHY
-    assert refused(manager, AUTONOMOUS).condition is Condition.V2X_HEALTHY
+    assert refused(manager, COOPERATIVE).reason is Condition.V2X_HEALTHY
+    assert refused(manager, AUTONOMOUS).reason is Condition.V2X_HEALTHY
 
 
 def test_a_stale_v2x_status_counts_as_unhealthy():
     manager = ready_manager()
     feed(manager, 1.0)
     manager.set_v2x_healthy(True, 0.0)
-    assert refused(manager, COOPERATIVE, now_s=1.0).condition is Condition.V2X_HEALTHY
+    assert refused(manager, COOPERATIVE, now_s=1.0).reason is Condition.V2X_HEALTHY
 
 
 def test_driving_faster_than_10_kmh_refuses_engaging():
     manager = ready_manager(speed_mps=5.0)
     unmet = refused(manager)
-    assert unmet.condition is Condition.ENGAGE_SPEED
+    assert unmet.reason is Condition.ENGAGE_SPEED
 
 
 def test_a_speed_beyond_the_mode_range_refuses_it_even_when_switching_between_automated_modes():
@@ -105,7 +105,7 @@ def test_a_speed_beyond_the_mode_range_refuses_it_even_when_switching_between_au
     feed(manager, 0.1, speed_mps=20.0)
     decision = manager.request(AUTONOMOUS, 0.1)
     assert not decision.accepted
-    assert decision.unmet.condition is Condition.SPEED_IN_RANGE
+    assert decision.unmet.reason is Condition.SPEED_IN_RANGE
     assert manager.mode == COOPERATIVE
 
 
@@ -113,25 +113,25 @@ def test_a_gear_other_than_drive_refuses_the_mode():
     manager = ready_manager()
     feed(manager, 0.0, gear=vehicle_pb2.GEAR_NEUTRAL)
     unmet = refused(manager)
-    assert unmet.condition is Condition.GEAR and "GEAR_NEUTRAL" in str(unmet)
+    assert unmet.reason is Condition.GEAR and "GEAR_NEUTRAL" in str(unmet)
 
 
 def test_no_vehicle_state_refuses_the_mode():
     manager = DrivingModeManager(ModesConfig(), COMMAND_TIMEOUT_S)
-    assert refused(manager).condition is Condition.VEHICLE_STATE
+    assert refused(manager).reason is Condition.VEHICLE_STATE
 
 
 def test_a_pressed_pedal_refuses_engaging():
     manager = ready_manager()
     manager.set_driver_input("OVERRIDE_REASON_BRAKE at 0.30")
-    assert refused(manager).condition is Condition.NO_DRIVER_INPUT
+    assert refused(manager).reason is Condition.NO_DRIVER_INPUT
 
 
 def test_no_fresh_control_command_refuses_the_mode():
     manager = ready_manager()
     feed(manager, 1.0)
     manager.set_control_command_time(0.5)
-    assert refused(manager, now_s=1.0).condition is Condition.CONTROL_COMMAND
+    assert refused(manager, now_s=1.0).reason is Condition.CONTROL_COMMAND
 
 
 def test_availability_names_the_unmet_condition_per_mode():
@@ -165,7 +165,7 @@ def test_autonomous_rides_out_a_short_loss_of_rtk_while_the_estimate_stays_lane_
     assert manager.update(0.1).to_mode == SAFE_STOP
     fresh = ready_manager()
     fresh.set_localisation_mode(ego_pb2.LOCALISATION_MODE_GNSS_DEGRADED, 0.0, position_std_m=0.1)
-    assert refused(fresh).condition is Condition.LOCALISATION
+    assert refused(fresh).reason is Condition.LOCALISATION
 
 
 def test_conditions_that_keep_holding_keep_the_mode():
@@ -184,4 +184,4 @@ def test_manual_is_always_granted():
 
 def test_an_unspecified_mode_is_refused():
     manager = ready_manager()
-    assert refused(manager, actuation_pb2.DRIVING_MODE_UNSPECIFIED).condition is Condition.KNOWN_MODE
+    assert refused(manager, actuation_pb2.DRIVING_MODE_UNSPECIFIED).reason is Condition.KNOWN_MODE

@@ -22,21 +22,21 @@ def test_a_non_finite_command_is_rejected_naming_the_field(field, value):
 def test_an_out_of_range_command_is_rejected(accel_mps2, angle_rad):
     watchdog = Watchdog(WatchdogConfig())
     trigger = watchdog.on_command(control_command(accel_mps2, angle_rad), 0.0)
-    assert trigger.cause is StopCause.INVALID_COMMAND and "outside" in trigger.detail
+    assert trigger.reason is StopCause.INVALID_COMMAND and "outside" in trigger.detail
     assert watchdog.last_valid_command is None and watchdog.commands_rejected == 1
 
 
 def test_a_command_sampled_more_than_100_ms_ago_is_rejected():
     cmd = control_command(1.0)
     cmd.header.sample_time_s = 1.0
-    assert Watchdog(WatchdogConfig()).on_command(cmd, 1.15).cause is StopCause.INVALID_COMMAND
+    assert Watchdog(WatchdogConfig()).on_command(cmd, 1.15).reason is StopCause.INVALID_COMMAND
 
 
 def test_commands_older_than_100_ms_trigger_a_stop():
     watchdog = Watchdog(WatchdogConfig(critical_services=[]))
     watchdog.on_command(control_command(), 0.0)
     assert watchdog.check(0.1) is None
-    assert watchdog.check(0.11).cause is StopCause.COMMAND_TIMEOUT
+    assert watchdog.check(0.11).reason is StopCause.COMMAND_TIMEOUT
 
 
 @pytest.mark.parametrize("service", ["planner", "geolocation"])
@@ -46,7 +46,7 @@ def test_a_dead_planner_or_geolocation_triggers_a_stop(service):
         watchdog.set_service_alive(name, name != service)
     watchdog.on_command(control_command(), 0.0)
     trigger = watchdog.check(0.05)
-    assert trigger.cause is StopCause.SERVICE_DEAD and trigger.detail == service
+    assert trigger.reason is StopCause.SERVICE_DEAD and trigger.detail == service
 
 
 def test_the_stop_ramp_falls_at_the_configured_jerk_and_holds_the_deceleration():

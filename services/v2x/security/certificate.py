@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 from cryptography.hazmat.primitives.asymmetric import ec
 
+from coopdrive.reasons import ReasonedError
 from coopdrive.services.v2x.reasons import RejectReason
 from coopdrive.services.v2x.security import asn
 from coopdrive.services.v2x.security.crypto import (
@@ -29,12 +30,8 @@ ROOT_MIN_CHAIN_LENGTH = 2
 AUTHORITY_MIN_CHAIN_LENGTH = 1
 
 
-class CertificateError(ValueError):
+class CertificateError(ReasonedError[RejectReason], ValueError):
     """A certificate that cannot be used; `reason` is the RejectReason to count."""
-
-    def __init__(self, reason: RejectReason, detail: str = ""):
-        super().__init__(f"{reason.value}: {detail}" if detail else reason.value)
-        self.reason = reason
 
 
 @dataclass(frozen=True)
