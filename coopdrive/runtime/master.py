@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
+
+from pydantic import BaseModel, Field
 
 from coopdrive.runtime.barrier import MESSAGE_WAIT_LIMIT_S, MESSAGES_GIVEN_UP_COUNTER
 from coopdrive.runtime.events import RuntimeEvent
@@ -30,22 +32,28 @@ class Outage:
     restart_step: int | None = None
 
 
-@dataclass
-class ClockSettings:
+class ClockConfig(BaseModel):
+    """How the simulated clock runs: what the clock master's owner configures (the simulator's config has it)."""
+
     step_s: float = 0.01
     lockstep: bool = True
-    # Never run ahead of the wall clock scaled by realtime_factor (1.0 = real time). With lockstep
+    # Never run ahead of the wall clock scaled by realtime_factor (1.0 = real time; --realtime). With lockstep
     # too, a machine too slow for real time runs slower instead of starving the stack.
     paced: bool = False
     realtime_factor: float = 1.0
     # "<vehicle>/<service>" of every service in the barrier.
-    participants: list[str] = field(default_factory=list)
+    participants: list[str] = Field(default_factory=list)
+    startup_timeout_s: float = 60.0
+
+
+class ClockSettings(ClockConfig):
+    """A clock master's settings: its owner's configuration and what the owner derives for this run."""
+
     # Steps between a command's step and the step that applies it. 2 lets the simulator compute
     # step k+1 while the stacks still work on step k (two steps in flight on two cores); the
     # world model subtracts the extra step from the actuators' dead time.
     feedback_delay_steps: int = 1
-    startup_timeout_s: float = 60.0
-    outages: list[Outage] = field(default_factory=list)
+    outages: list[Outage] = Field(default_factory=list)
 
 
 class ParticipantsMissing(RuntimeError):

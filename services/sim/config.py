@@ -8,6 +8,7 @@ from typing import Literal
 
 from pydantic import Field
 
+from coopdrive.runtime.master import ClockConfig
 from coopdrive.runtime.service import ServiceConfig
 from coopdrive.services.sim.scenario_config import SCENARIO_PACKAGE, load_scenario
 
@@ -20,17 +21,11 @@ def packaged_scenario_file(name: str) -> str:
     return str(resources.files(SCENARIO_PACKAGE) / f"{name}.yaml")
 
 
-class SimConfig(ServiceConfig):
+class SimConfig(ServiceConfig, ClockConfig):
     scenario: str = "follow"
     seed: int = 1
     duration_s: float = 60.0
     step_s: float = 0.02
-    lockstep: bool = True
-    # Pace to the wall clock (--realtime); with lockstep the stack still never falls behind.
-    paced: bool = False
-    realtime_factor: float = 1.0
-    participants: list[str] = Field(default_factory=list)
-    startup_timeout_s: float = 60.0
     # Lockstep: a command computed in step k moves the vehicle from step k + feedback_delay_steps, which keeps
     # that many steps in flight. The vehicle models take the extra steps off their actuators' dead times, so the
     # physics is the same as with 1; fewer are used when a stack vehicle's dead time is shorter than that.

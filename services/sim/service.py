@@ -5,7 +5,7 @@ from __future__ import annotations
 import time
 
 from coopdrive.bus.keys import WORLD_ID
-from coopdrive.runtime.master import ClockMaster, ClockSettings
+from coopdrive.runtime.master import ClockConfig, ClockMaster, ClockSettings
 from coopdrive.runtime.service import Service
 from coopdrive.services.sim.config import SimConfig
 from coopdrive.services.sim.scenario_feed import ScenarioFeed
@@ -30,8 +30,7 @@ class SimService(Service, ClockMaster.Driven):
     # ----- ClockMaster.Driven ---------------------------------------------------------------
     def clock_settings(self) -> ClockSettings:
         c: SimConfig = self.config
-        return ClockSettings(step_s=c.step_s, lockstep=c.lockstep, paced=c.paced, realtime_factor=c.realtime_factor,
-                             participants=list(c.participants), startup_timeout_s=c.startup_timeout_s,
+        return ClockSettings(**c.model_dump(include=set(ClockConfig.model_fields)),
                              feedback_delay_steps=1 + self._pipelined_steps() if c.lockstep else 1,
                              outages=crash_outages(self.feed.config.faults, c.participants, c.step_s))
 
