@@ -22,6 +22,7 @@ from typing import NamedTuple
 import asn1tools
 
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError, V2xEncodeError
+from coopdrive.services.v2x.recent_decodes import RECENT_DECODES
 
 # ItsPduHeader: protocolVersion (8 bits), messageID (8 bits), stationID (32 bits); the PDUs start with it
 # and have no preamble, so these are the first six octets of every UPER message.
@@ -139,15 +140,22 @@ class ItsCodec:
         return header, self.decode_with_header(header, uper)
 
     def decode_with_header(self, header: ItsHeader, uper: bytes) -> dict:
-        """decode() for a caller that has peeked the header already."""
+        """decode() for a caller that has peeked the header already. The value may be shared with other callers
+        (recent_decodes.py): read it, do not change it."""
         schema = self._schemas.get((header.protocol_version, header.message_id))
         if schema is None:
             schema = self._schema_of(header)
+        uper = bytes(uper)  # the key must not change under the memo (bytes(b) is b itself)
+        value = RECENT_DECODES.get(uper)
+        if value is not None:
+            return value
         spec, type_name = schema
         try:
-            return spec.decode(type_name, uper)
+            value = spec.decode(type_name, uper)
         except Exception as error:  # noqa: BLE001 -- asn1tools raises many types on garbage input
             raise V2xDecodeError(RejectReason.MALFORMED_ASN1, f"{type(error).__name__}: {error}") from None
+        RECENT_DECODES.keep(uper, value)
+        return value
 
     def _schema_of(self, header: ItsHeader) -> tuple[asn1tools.compiler.Specification, str]:
         """The compiled schema and type name for a header, remembered; raises the reason it has none."""
