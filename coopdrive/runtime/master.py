@@ -6,7 +6,7 @@ import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field
 
 from coopdrive.runtime.barrier import MESSAGE_WAIT_LIMIT_S, MESSAGES_GIVEN_UP_COUNTER
 from coopdrive.runtime.events import RuntimeEvent
@@ -34,6 +34,9 @@ class Outage:
 
 class ClockConfig(BaseModel):
     """How the simulated clock runs: what the clock master's owner configures (the simulator's config has it)."""
+
+    # A misspelt setting is an error, as it was when the settings were a dataclass.
+    model_config = ConfigDict(extra="forbid")
 
     step_s: float = 0.01
     lockstep: bool = True
