@@ -1,0 +1,38 @@
+"""Every coopdrive process loads numpy's and scipy's OpenBLAS without a pool of worker threads (coopdrive/__init__.py):
+their threads spin at load and took a quarter of a second of CPU from the other core per interpreter."""
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+THREAD_COUNT = "import os, sys; print(len(os.listdir(f'/proc/{os.getpid()}/task')))"
+
+
+def threads_after_importing(first: str, environment: dict[str, str]) -> int:
+    code = f"import {first}, numpy, scipy.linalg; {THREAD_COUNT}"
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=environment,
+                            check=True)
+    return int(result.stdout)
+
+
+def environment_without_thread_setting(**extra: str) -> dict[str, str]:
+    environment = {key: value for key, value in os.environ.items() if key != "OPENBLAS_NUM_THREADS"}
+    return {**environment, **extra}
+
+
+def test_a_process_that_imports_coopdrive_first_loads_numpy_and_scipy_on_its_own_thread_alone():
+    assert threads_after_importing("coopdrive", environment_without_thread_setting()) == 1
+
+
+def test_without_coopdrive_the_same_imports_start_openblas_worker_threads_so_the_check_can_fail():
+    if os.cpu_count() == 1:
+        pytest.skip("one core: OpenBLAS starts no pool of its own")
+    assert threads_after_importing("os", environment_without_thread_setting()) > 1
+
+
+def test_a_thread_count_the_user_sets_stands():
+    if os.cpu_count() == 1:
+        pytest.skip("one core: OpenBLAS starts no pool of its own")
+    assert threads_after_importing("coopdrive", environment_without_thread_setting(OPENBLAS_NUM_THREADS="2")) > 1
