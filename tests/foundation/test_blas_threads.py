@@ -7,6 +7,10 @@ import sys
 
 import pytest
 
+# What OpenBLAS reads for its thread count, in its order. An earlier test in the same worker may have set them: a
+# Dask LocalCluster with worker processes sets OMP_, MKL_ and OPENBLAS_NUM_THREADS=1 in the process that starts it.
+# So each check starts without any of them.
+THREAD_SETTINGS = ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS")
 THREAD_COUNT = "import os, sys; print(len(os.listdir(f'/proc/{os.getpid()}/task')))"
 
 
@@ -18,7 +22,7 @@ def threads_after_importing(first: str, environment: dict[str, str]) -> int:
 
 
 def environment_without_thread_setting(**extra: str) -> dict[str, str]:
-    environment = {key: value for key, value in os.environ.items() if key != "OPENBLAS_NUM_THREADS"}
+    environment = {key: value for key, value in os.environ.items() if key not in THREAD_SETTINGS}
     return {**environment, **extra}
 
 
