@@ -45,7 +45,7 @@ class SceneFusion:
         (lidar.lane_margin_m) and gaps run along the ego heading."""
         self.config = config or SceneFusionConfig()
         self.rejects = RejectCounter()
-        self.tracker = Tracker(self.config)
+        self._tracker = Tracker(self.config)
         self.trust = V2vTrust(self.config.trust)
         self._lidar = LidarClusterer(self.config.lidar, self.config.ego_length_m - self.config.ego_rear_overhang_m)
         self._radar = RadarFrontEnd(self.config.radar, self.rejects)
@@ -106,7 +106,18 @@ class SceneFusion:
         self._free_ranges_m = self._sonar.free_ranges_m(ranges)
         self._process(self._sonar.measurements(ranges, pose), pose.time_s)
 
+    @property
+    def tracker(self) -> Tracker:
+        """The tracker, with every V2V reading fused (on_v2v puts off the filter step of most: see Tracker.fuse_v2v)."""
+        self._tracker.flush_v2v()
+        return self._tracker
+
     def on_v2v(self, observation: V2vObservation) -> None:
+        """One station's reading. Its filter step waits for the next input of another kind or of the same station,
+        or for scene(), so that a step's CAMs, one from each station, are filtered in one pass; the result is the
+        same as one at a time (tests/scene/test_deferred_v2v.py)."""
+        if self._tracker.awaits_v2v(observation.station_id):
+            self._tracker.flush_v2v()
         pose = self._pose(observation.sample_time_s, None, "v2v")
         if pose is None:
             return
@@ -116,22 +127,23 @@ class SceneFusion:
         reason = self.trust.implausibility(observation)
         if reason is not None:
             self.rejects.reject(f"v2v station {observation.station_id}: {reason}")
-        link = self.tracker.link_v2v(meas, self.trust.trust(observation.station_id))
+        link = self._tracker.link_v2v(meas, self.trust.trust(observation.station_id))
         disagreement = link.disagreement_m if link is not None else None
         trust = self.trust.observe(observation, disagreement, plausible=reason is None)
-        track = self.tracker.tracks.get(link.track_id) if link is not None else None
-        seen_by_us = track is not None and self.tracker.has_ranging(track, meas.time_s)
+        track = self._tracker.tracks.get(link.track_id) if link is not None else None
+        seen_by_us = track is not None and self._tracker.has_ranging(track, meas.time_s)
         if not seen_by_us and self._free_space.is_free(meas.position_m, meas.time_s):
             self.trust.free_space_contradiction(observation.station_id)
             trust = self.trust.trust(observation.station_id)
         if track is None or not seen_by_us:
             # Nothing of ours sees it: V2V is its only source, so it follows the station, and
             # trust decides whether it may be an obstacle (see _views).
-            self.tracker.fuse_v2v(meas, link, trust, fuse_kinematics=True, scale_covariance=False)
+            self._tracker.fuse_v2v(meas, link, trust, fuse_kinematics=True, scale_covariance=False,
+                                   defer=True)
             return
         agrees = disagreement is None or disagreement <= self.config.trust.agree_m
         fuse = reason is None and agrees and self.trust.trusted(observation.station_id)
-        self.tracker.fuse_v2v(meas, link, trust, fuse_kinematics=fuse)
+        self._tracker.fuse_v2v(meas, link, trust, fuse_kinematics=fuse, defer=True)
 
     # -- output ----------------------------------------------------------------------------
 

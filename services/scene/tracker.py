@@ -85,6 +85,15 @@ class TrackerCounters:
     by_reason: dict[str, int] = field(default_factory=dict)
 
 
+@dataclass(frozen=True, slots=True)
+class _DeferredV2v:
+    """A V2V reading in sequence on its track, waiting for Tracker.flush_v2v, and the weight of its support."""
+
+    track: Track
+    measurement: Measurement
+    weight: float
+
+
 @dataclass(frozen=True)
 class V2vLink:
     """Where a V2V measurement went and how far it was from our own ranging fix."""
@@ -106,12 +115,15 @@ class Tracker:
         self._source_configs = {source: config.source(source) for source in sources}
         # Every track's properties, one row each.
         self.properties = property_table(self._source_configs.__getitem__, config.tracking)
+        # V2V readings fuse_v2v(defer=True) has put off, in order: each in sequence on a track of its own.
+        self._deferred_v2v: list[_DeferredV2v] = []
 
     # -- sensor frames ---------------------------------------------------------------------
 
     def process(self, measurements: list[Measurement]) -> None:
         """One frame of one sensor: associate jointly, confirmed tracks first, update, start tentative tracks for
         the rest."""
+        self.flush_v2v()
         if not measurements:
             return
         tracks = list(self.tracks.values())
@@ -332,11 +344,16 @@ class Tracker:
         return min(disagreement_m, float(np.linalg.norm(nearest_m - at_claim)))
 
     def fuse_v2v(self, meas: Measurement, link: V2vLink | None, trust: float, fuse_kinematics: bool,
-                 scale_covariance: bool = True) -> int:
+                 scale_covariance: bool = True, defer: bool = False) -> int:
         """Fuse a V2V measurement into its linked track (or a new one); returns the track id.
 
         scale_covariance=False for objects only V2V sees: there the station is the only source of the
-        position, and its trust shows in confidence, v2v_trust and eligibility instead."""
+        position, and its trust shows in confidence, v2v_trust and eligibility instead.
+
+        defer=True: a reading in sequence on its track waits for flush_v2v, which filters every waiting track in
+        one pass (a step brings a CAM of each station in a row). The caller flushes before the next reading of the
+        same station (awaits_v2v); link_v2v reads no other station's track, only the station's own and tracks no
+        station holds. process, expire, merge_duplicates, confirmed and track_of_station flush first."""
         if link is None:
             track = self._start(meas, max(trust, self._config.trust.min_support_weight))
             self._link(track, meas)
@@ -346,11 +363,32 @@ class Tracker:
         if fuse_kinematics:
             scale = station_variance_scale(trust) if scale_covariance else 1.0
             scaled = replace(meas, cov_m2=meas.cov_m2 * scale, velocity_std_mps=meas.velocity_std_mps * scale**0.5)
-            self._fuse(track, scaled, 1.0, v2v_weight=weight)
+            if defer and scaled.time_s >= track.time_s:
+                self._deferred_v2v.append(_DeferredV2v(track, scaled, weight))
+            else:
+                self._fuse(track, scaled, 1.0, v2v_weight=weight)
         else:
             self.counters.v2v_not_fused += 1
             track.props.station_id.update(meas.source, meas.time_s, float(meas.station_id), weight)
         return track.track_id
+
+    def awaits_v2v(self, station_id: int | None) -> bool:
+        """Whether a reading of this station waits for flush_v2v."""
+        return any(deferred.measurement.station_id == station_id for deferred in self._deferred_v2v)
+
+    def flush_v2v(self) -> None:
+        """Fuse the readings fuse_v2v(defer=True) put off: what _fuse does for each, their filter steps in one pass
+        (filter_steps gives each row the bits its track's own step would)."""
+        if not self._deferred_v2v:
+            return
+        deferred, self._deferred_v2v = self._deferred_v2v, []
+        x, p = filter_steps([item.track for item in deferred], [item.measurement for item in deferred],
+                            self._config.tracking)
+        for item, x_k, p_k in zip(deferred, x, p, strict=True):
+            item.track.accept(item.measurement, x_k, p_k)
+            if not item.measurement.ambiguous:
+                item.track.props.support(item.measurement, 1.0, item.weight)
+            self._maybe_confirm(item.track)
 
     # -- life cycle ------------------------------------------------------------------------
 
@@ -408,6 +446,7 @@ class Tracker:
 
     def expire(self, time_s: float) -> None:
         """Delete tentative tracks that went quiet and confirmed ones whose position faded."""
+        self.flush_v2v()
         timeout = self._config.tracking.tentative_timeout_s
         dead = [t.track_id for t in self.tracks.values()
                 if t.status is TrackStatus.TENTATIVE and time_s - t.last_hit_s > timeout]
@@ -454,9 +493,11 @@ class Tracker:
         self.counters.deleted += 1
 
     def confirmed(self) -> list[Track]:
+        self.flush_v2v()
         return [t for t in self.tracks.values() if t.status is TrackStatus.CONFIRMED]
 
     def track_of_station(self, station_id: int) -> Track | None:
+        self.flush_v2v()
         track_id = self._station_links.get(station_id)
         return self.tracks.get(track_id) if track_id is not None else None
 
