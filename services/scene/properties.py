@@ -50,8 +50,10 @@ class ObjectProperties:
         self.object_class_value = sensors_pb2.OBJECT_CLASS_UNSPECIFIED
 
     def support(self, meas: Measurement, quality: float, v2v_weight: float = 1.0) -> None:
-        """Credit every property this reading says something about. v2v_weight scales V2V by trust."""
-        support_many([self], [meas], [quality], v2v_weight)
+        """Credit every property this reading says something about. v2v_weight scales V2V by trust. support_many's
+        work for one reading, in plain floats (the same IEEE products)."""
+        q = quality * meas.quality * (v2v_weight if meas.source == _V2V else 1.0)
+        _support_one_by_one(meas.source, [self], [meas], [q])
 
     def release(self) -> None:
         """Give the row back to the table: the object is gone."""
@@ -75,28 +77,42 @@ def support_many(props: list[ObjectProperties], measurements: list[Measurement],
 
 
 def _support_source(source: int, props: list[ObjectProperties], group: list[Measurement], q: np.ndarray) -> None:
+    if len(group) <= ONE_BY_ONE_MAX:
+        _support_one_by_one(source, props, group, q.tolist())
+        return
     table = props[0].table
     slots, shares = _slot_shares(source, props[0].derived_quality)
-    class_quality = q * _class_readings(source, props, group)
-    if source == _V2V:
-        for prop, meas in zip(props, group, strict=True):
-            prop.reported_accel_mps2 = meas.accel_mps2
-            prop.v2v_time_s = max(prop.v2v_time_s, meas.time_s)
-    if len(group) > ONE_BY_ONE_MAX:
-        rows, t = np.array([p.row for p in props]), np.array([m.time_s for m in group])
-        table.support(rows, slots + [OBJECT_CLASS], source, t,
-                      np.column_stack((q[:, None] * np.array(shares), class_quality)))
-        # Values no filter estimates: NaN where a reading gives none.
-        values = np.array([[value for _, value in _values_of(source, m)] for m in group], dtype=float)
-        table.update(rows, _VALUE_SLOTS, source, t, values, q)
-        return
-    for prop, meas, q_k, class_k in zip(props, group, q.tolist(), class_quality.tolist(), strict=True):
+    class_quality = q * np.array([_class_reading(source, prop, meas) for prop, meas in zip(props, group, strict=True)])
+    for prop, meas in zip(props, group, strict=True):
+        _note_v2v(source, prop, meas)
+    rows, t = np.array([p.row for p in props]), np.array([m.time_s for m in group])
+    table.support(rows, slots + [OBJECT_CLASS], source, t, np.column_stack((q[:, None] * np.array(shares), class_quality)))
+    # Values no filter estimates: NaN where a reading gives none.
+    values = np.array([[value for _, value in _values_of(source, m)] for m in group], dtype=float)
+    table.update(rows, _VALUE_SLOTS, source, t, values, q)
+
+
+def _support_one_by_one(source: int, props: list[ObjectProperties], group: list[Measurement],
+                        q: list[float]) -> None:
+    """_support_source for a few readings, one table entry at a time in plain floats."""
+    table = props[0].table
+    slots, shares = _slot_shares(source, props[0].derived_quality)
+    for prop, meas, q_k in zip(props, group, q, strict=True):
+        class_k = q_k * _class_reading(source, prop, meas)
+        _note_v2v(source, prop, meas)
         for slot, share in zip(slots, shares, strict=True):
             table.support_one(prop.row, slot, source, meas.time_s, q_k * share)
         table.support_one(prop.row, OBJECT_CLASS, source, meas.time_s, class_k)
         for slot, value in _values_of(source, meas):
             if value is not None:
                 table.update_one(prop.row, slot, source, meas.time_s, value, q_k)
+
+
+def _note_v2v(source: int, prop: ObjectProperties, meas: Measurement) -> None:
+    """A V2V reading's own acceleration and time, kept as sent."""
+    if source == _V2V:
+        prop.reported_accel_mps2 = meas.accel_mps2
+        prop.v2v_time_s = max(prop.v2v_time_s, meas.time_s)
 
 
 def _slot_shares(source: int, derived_quality: float) -> tuple[list[int], list[float]]:
@@ -124,15 +140,13 @@ def _values_of(source: int, meas: Measurement) -> tuple[tuple[int, float | None]
     return (WIDTH, meas.width_m), (LENGTH, meas.length_m), (STATION_ID, station)
 
 
-def _class_readings(source: int, props: list[ObjectProperties], group: list[Measurement]) -> np.ndarray:
-    """1 where a reading says what class the object is (and sets it), 0 elsewhere."""
-    says = np.zeros(len(group))
-    for k, (prop, meas) in enumerate(zip(props, group, strict=True)):
-        if meas.object_class != sensors_pb2.OBJECT_CLASS_UNSPECIFIED:
-            says[k] = 1.0
-            prop.object_class_value = meas.object_class
-        elif source == _V2V and prop.object_class_value == sensors_pb2.OBJECT_CLASS_UNSPECIFIED:
-            # A CAM sender is a vehicle; the camera may refine car versus truck.
-            says[k] = 1.0
-            prop.object_class_value = sensors_pb2.OBJECT_CLASS_CAR
-    return says
+def _class_reading(source: int, prop: ObjectProperties, meas: Measurement) -> float:
+    """1 where the reading says what class the object is (and sets it), 0 elsewhere."""
+    if meas.object_class != sensors_pb2.OBJECT_CLASS_UNSPECIFIED:
+        prop.object_class_value = meas.object_class
+        return 1.0
+    if source == _V2V and prop.object_class_value == sensors_pb2.OBJECT_CLASS_UNSPECIFIED:
+        # A CAM sender is a vehicle; the camera may refine car versus truck.
+        prop.object_class_value = sensors_pb2.OBJECT_CLASS_CAR
+        return 1.0
+    return 0.0
