@@ -1,11 +1,14 @@
 """Replaying one service of one vehicle from a multi-stack recording: reading only the channels that concern it
-against reading every channel, turn about, on the same recording.
+against reading every channel, and reading them through the file's message indexes against mcap's reader, turn
+about, on the same recording.
 
 A team debugging a vehicle replays its scene (or any service) out of a run of eight stacks. `coopdrive replay`
 reads the channels that can hold the service's inputs, the clock and the vehicle's own outputs (the others are
 neither decoded nor put in time order); "every channel" is the same replay with that choice switched off, as
-every replay read before. Both compare the outputs as the command does. BENCH_REPLAY_STACKS and
-BENCH_REPLAY_DURATION_S set the recorded run (default 8 stacks, 10 simulated s).
+every replay read before. It reads them through the MCAP file's message indexes, parsing only their records
+(coopdrive/recording/channel_reader.py); "mcap's reader" is the same replay reading them as mcap's own reader does,
+every record of every chunk parsed and the others dropped, as replays read before. All compare the outputs as the
+command does. BENCH_REPLAY_STACKS and BENCH_REPLAY_DURATION_S set the recorded run (default 8 stacks, 10 simulated s).
 """
 
 from __future__ import annotations
@@ -22,7 +25,7 @@ from rich.table import Table
 
 from bench.sizes import sized
 from coopdrive.launch.run import RunOptions, run_scenario
-from coopdrive.recording import replay
+from coopdrive.recording import reader, replay
 from coopdrive.recording.replay_diff import compare_outputs
 
 SCENARIO = "string"
@@ -33,13 +36,16 @@ VEHICLE = "v1"
 ROUNDS = sized(3, 1)
 
 
-def replay_s(recording: Path, service: str, every_channel: bool) -> float:
+# How each variant reads: (every channel, through mcap's reader).
+EVERY_CHANNEL, MCAP_READER, NOW = (True, True), (False, True), (False, False)
+
+
+def replay_s(recording: Path, service: str, every_channel: bool, mcap_reader: bool) -> float:
     """Wall seconds of one replay and its comparison, as `coopdrive replay` makes them."""
     started_s = time.perf_counter()
-    if every_channel:
-        with mock.patch.object(replay, "_may_concern", lambda *_: True):
-            result = replay.replay_service(recording, service, VEHICLE)
-    else:
+    with mock.patch.object(replay, "_may_concern", (lambda *_: True) if every_channel else replay._may_concern), \
+            mock.patch.object(reader, "indexes_every_chunk",
+                              (lambda _: False) if mcap_reader else reader.indexes_every_chunk):
         result = replay.replay_service(recording, service, VEHICLE)
     compare_outputs(result.outputs, result.recorded_outputs)
     if result.mismatches():
@@ -54,15 +60,18 @@ def main() -> None:
         size_mb = recording.stat().st_size / 1e6
         table = Table(title=f"replay of {VEHICLE}'s service from {SCENARIO} --stacks {STACKS} --duration "
                             f"{DURATION_S:g} ({size_mb:.1f} MB), median of {ROUNDS} turn about")
-        for column in ("service", "every channel s", "its channels s", "ratio"):
+        for column in ("service", "every channel s", "its channels, mcap's reader s", "its channels, indexes s",
+                       "indexes / mcap's reader", "indexes / every channel"):
             table.add_column(column, justify="right")
         for service in SERVICES:
-            timings: dict[bool, list[float]] = {True: [], False: []}
+            variants = (EVERY_CHANNEL, MCAP_READER, NOW)
+            timings: dict[tuple[bool, bool], list[float]] = {variant: [] for variant in variants}
             for _ in range(ROUNDS):
-                for every_channel in (True, False):
-                    timings[every_channel].append(replay_s(recording, service, every_channel))
-            before_s, now_s = statistics.median(timings[True]), statistics.median(timings[False])
-            table.add_row(service, f"{before_s:.2f}", f"{now_s:.2f}", f"{now_s / before_s:.2f}")
+                for variant, times in timings.items():
+                    times.append(replay_s(recording, service, *variant))
+            every_s, mcap_s, now_s = (statistics.median(timings[variant]) for variant in variants)
+            table.add_row(service, f"{every_s:.2f}", f"{mcap_s:.2f}", f"{now_s:.2f}", f"{now_s / mcap_s:.2f}",
+                          f"{now_s / every_s:.2f}")
         Console(highlight=False).print(table)
 
 

@@ -23,6 +23,7 @@ from mcap.stream_reader import StreamReader
 from mcap.writer import MCAP0_MAGIC
 
 from coopdrive.bus.type_registry import message_class
+from coopdrive.recording.channel_reader import channel_messages, indexes_every_chunk
 from coopdrive.recording.publish_spool import NANOSECONDS
 
 _log = logging.getLogger(__name__)
@@ -156,11 +157,28 @@ def _raw_messages(path: str | Path) -> Iterator[tuple[_Channel, McapMessage]]:
 
 def _indexed_messages(path: str | Path, topics: list[str] | None, start_ns: int | None,
                       end_ns: int | None) -> Iterator[tuple[_Channel, McapMessage]]:
+    summary = _summary(path)
+    if indexes_every_chunk(summary):
+        yield from _messages_of_channels(path, summary, topics, start_ns, end_ns)
+        return
     with open(path, "rb") as stream:
         reader = make_reader(stream)
         for schema, channel, message in reader.iter_messages(topics=topics, starting_at=start_ns, ending_before=end_ns,
                                                              log_time_order=True):
             yield _Channel(channel.topic, schema.name if schema else None), message
+
+
+def _messages_of_channels(path: str | Path, summary: Summary, topics: list[str] | None, start_ns: int | None,
+                          end_ns: int | None) -> Iterator[tuple[_Channel, McapMessage]]:
+    """_indexed_messages through the message indexes: only the records of the topics' channels parsed (every
+    channel's where topics is None; channel_reader.py)."""
+    wanted = None if topics is None else set(topics)
+    channels = {channel_id: _Channel(channel.topic, summary.schemas[channel.schema_id].name
+                                     if channel.schema_id in summary.schemas else None)
+                for channel_id, channel in summary.channels.items() if wanted is None or channel.topic in wanted}
+    with open(path, "rb") as stream:
+        for message in channel_messages(stream, summary, set(channels), start_ns, end_ns):
+            yield channels[message.channel_id], message
 
 
 def _indexed_metadata(path: str | Path) -> Iterator[Metadata]:

@@ -86,7 +86,8 @@ def _support_source(source: int, props: list[ObjectProperties], group: list[Meas
     for prop, meas in zip(props, group, strict=True):
         _note_v2v(source, prop, meas)
     rows, t = np.array([p.row for p in props]), np.array([m.time_s for m in group])
-    table.support(rows, slots + [OBJECT_CLASS], source, t, np.column_stack((q[:, None] * np.array(shares), class_quality)))
+    table.support(rows, slots + [OBJECT_CLASS], source, t,
+                  np.column_stack((q[:, None] * np.array(shares), class_quality)))
     # Values no filter estimates: NaN where a reading gives none.
     values = np.array([[value for _, value in _values_of(source, m)] for m in group], dtype=float)
     table.update(rows, _VALUE_SLOTS, source, t, values, q)
