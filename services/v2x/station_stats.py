@@ -30,6 +30,8 @@ class StreamWindow:
         self.expected_period_ms = expected_period_ms
         self.window_s = window_s
         self._entries: deque[tuple[float, int]] = deque()
+        # The slots of the entries in the window, kept as they come and go (a status asks for it twice a second).
+        self._slots_in_window = 0
         self._last_generation_tai_ms: int | None = None
         # Since the first message, not only in the window.
         self.received_total = 0
@@ -45,17 +47,18 @@ class StreamWindow:
         if generation_tai_ms is not None:
             self._last_generation_tai_ms = generation_tai_ms
         self._entries.append((receive_s, slots))
+        self._slots_in_window += slots
         self.received_total += 1
         self.expected_total += slots
         self.prune(receive_s)
 
     def prune(self, now_s: float) -> None:
         while self._entries and self._entries[0][0] < now_s - self.window_s:
-            self._entries.popleft()
+            self._slots_in_window -= self._entries.popleft()[1]
 
     def received_and_expected(self) -> tuple[int, int]:
         # The first message of the window closes a gap that started before it: count it as one slot.
-        expected = sum(slots for _, slots in self._entries) - (self._entries[0][1] - 1 if self._entries else 0)
+        expected = self._slots_in_window - (self._entries[0][1] - 1 if self._entries else 0)
         return len(self._entries), expected
 
     def rate_hz(self, now_s: float, first_heard_s: float) -> float:
