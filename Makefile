@@ -31,8 +31,11 @@ desk: $(STAMP) bytecode
 ## test: the whole test suite, a test file at a time on each core (pytest-xdist: a file's module fixtures run once),
 ## in the order tests/conftest.py gives them: the files that start whole runs first; TEST_WORKERS=N runs N files at
 ## a time (default: one per core)
+## The Debian packages some tests use are installed first, once (tools/system_packages.sh: where this user may not
+## install them, it names the tests that will skip).
 TEST_WORKERS ?= auto
 test: $(STAMP) bytecode
+	@tools/system_packages.sh
 	$(BIN)/python -m pytest -n $(TEST_WORKERS) --dist loadfile --no-loadscope-reorder
 
 ## bench: benchmarks, each against a baseline measured in the same run

@@ -9,6 +9,7 @@ import sys
 import pytest
 
 from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
+from tests.system_packages import fail_if_ci_skipped_for_a_package
 
 WHOLE_RUN = "whole_run"
 
@@ -22,6 +23,13 @@ def pytest_collection_modifyitems(items):
     its workers in this order (`--no-loadscope-reorder`): xdist's own order, most tests first, put these files of a
     few tests behind one long run last, and the suite ended on both workers running them one after the other."""
     items.sort(key=lambda item: item.get_closest_marker(WHOLE_RUN) is None)
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    """Under CI a test skipped for a missing system package fails (tests/system_packages.py)."""
+    outcome = yield
+    fail_if_ci_skipped_for_a_package(outcome.get_result(), os.environ)
 
 
 @pytest.fixture

@@ -3,7 +3,6 @@ would give its container (coopdrive/launch/compose_processes.py; `coopdrive rout
 healthcheck passes, the gateway's /health has every service alive, a Foxglove client gets LocationFix, and each
 process ends cleanly within 3 s of SIGTERM."""
 
-import shutil
 import subprocess
 import time
 from pathlib import Path
@@ -15,6 +14,7 @@ from foxglove_schemas_protobuf.LocationFix_pb2 import LocationFix
 
 from coopdrive.launch.compose_processes import command_of, compose_processes, interpolate, start_all, stop
 from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
+from tests.system_packages import needs
 from tests.visual.foxglove_ws_client import watch
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -105,7 +105,7 @@ def test_sigterm_ends_every_desk_process_cleanly_within_3_s(desk, desk_logs):
                           f"{_log(desk_logs, process.name)}"
 
 
-@pytest.mark.skipif(shutil.which("docker-compose") is None, reason="Debian's docker-compose is installed by .ci/run")
+@needs("docker-compose")
 def test_docker_compose_resolves_the_desk_services_as_these_processes_are_given_them(desk_environment):
     import os
 
@@ -122,7 +122,7 @@ def test_docker_compose_resolves_the_desk_services_as_these_processes_are_given_
             assert theirs["healthcheck"]["test"] == ["CMD", "coopdrive", *ours[process.name]["healthcheck"]["test"][2:]]
 
 
-@pytest.mark.skipif(shutil.which("docker-compose") is None, reason="Debian's docker-compose is installed by .ci/run")
+@needs("docker-compose")
 @pytest.mark.parametrize("profile", ["vehicle", "desk"])
 def test_docker_compose_accepts_both_profiles(profile):
     result = subprocess.run(["docker-compose", "-f", str(ROOT / "docker-compose.yml"), "--profile", profile,

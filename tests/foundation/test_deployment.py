@@ -1,6 +1,5 @@
 """Deployment files: compose validates, maps to real services, and the wheel is a normal one."""
 
-import shutil
 import subprocess
 import sys
 import zipfile
@@ -10,6 +9,7 @@ import pytest
 import yaml
 
 from coopdrive.runtime.registry import service_class
+from tests.system_packages import needs
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -82,7 +82,7 @@ def test_on_the_vehicle_actuation_owns_the_car_s_bus_scene_reads_the_radar_s_and
     assert any(device.endswith(f":{gnss_port}") for device in compose_services()["geolocation"]["devices"])
 
 
-@pytest.mark.skipif(shutil.which("docker-compose") is None, reason="Debian's docker-compose is installed by .ci/run")
+@needs("docker-compose")
 @pytest.mark.parametrize("profile", [None, "vehicle", "desk", "record"])
 def test_docker_compose_accepts_the_file_with_each_profile(profile):
     chosen = [] if profile is None else ["--profile", profile]

@@ -1,7 +1,6 @@
 """bench.replay_instructions: instruction counts under callgrind, and the code of a revision importable beside today's."""
 
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -10,10 +9,11 @@ import pytest
 
 from bench.replay_instructions import CallgrindError, instructions
 from bench.tree_at_revision import RevisionError, tree_at_revision
+from tests.system_packages import needs
 
 REPO = Path(__file__).resolve().parents[2]
 FIXED_HASHES = {**os.environ, "PYTHONHASHSEED": "0"}
-needs_valgrind = pytest.mark.skipif(shutil.which("valgrind") is None, reason="valgrind is not installed")
+needs_valgrind = needs("valgrind")
 
 
 @needs_valgrind

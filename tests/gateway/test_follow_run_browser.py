@@ -15,12 +15,13 @@ from pathlib import Path
 import pytest
 from websockets.sync.client import connect
 
+from tests.system_packages import require
+
 pytestmark = pytest.mark.whole_run
 
 STARTUP_DEADLINE_S = 90.0
 DATA_DEADLINE_S = 30.0
 RECV_TIMEOUT_S = 10.0
-CHROMIUM = Path("/usr/bin/chromium")
 CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
                  "--disable-component-update", "--disable-sync", "--no-first-run"]
 TABLET = {"width": 1280, "height": 800}
@@ -59,12 +60,10 @@ def test_the_stream_carries_several_frames_with_a_changing_ego_speed(run):
 
 
 def test_the_hmi_draws_the_lead_vehicle_moves_the_gap_gauge_and_shows_a_refused_mode_change(run, tmp_path):
-    if not CHROMIUM.exists():
-        pytest.skip(f"no browser at {CHROMIUM}")
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as playwright:
-        browser = playwright.chromium.launch(executable_path=str(CHROMIUM), args=CHROMIUM_ARGS)
+        browser = playwright.chromium.launch(executable_path=require("chromium"), args=CHROMIUM_ARGS)
         try:
             page = browser.new_page(viewport=TABLET)
             page.set_default_timeout(BROWSER_TIMEOUT_MS)

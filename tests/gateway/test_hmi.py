@@ -1,20 +1,19 @@
 """The HMI in Chromium against a gateway fed by an in-memory bus: a mode request with a token, and reconnection."""
 
-from pathlib import Path
 
 import pytest
 
 from conftest import OPERATOR_TOKEN, TOKENS
 from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.gateway.service import GatewayService
+from tests.system_packages import needs, require
 
-CHROMIUM = Path("/usr/bin/chromium")
 CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
                  "--disable-component-update", "--disable-sync", "--no-first-run"]
 TABLET = {"width": 1280, "height": 800}
 TIMEOUT_MS = 30_000
 
-pytestmark = pytest.mark.skipif(not CHROMIUM.exists(), reason=f"no browser at {CHROMIUM}")
+pytestmark = needs("chromium")
 
 
 @pytest.fixture
@@ -22,7 +21,7 @@ def page():
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as playwright:
-        browser = playwright.chromium.launch(executable_path=str(CHROMIUM), args=CHROMIUM_ARGS)
+        browser = playwright.chromium.launch(executable_path=require("chromium"), args=CHROMIUM_ARGS)
         try:
             page = browser.new_page(viewport=TABLET)
             page.set_default_timeout(TIMEOUT_MS)

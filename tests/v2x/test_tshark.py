@@ -1,7 +1,5 @@
 """Wireshark's own dissector reads the pcap files we write (Debian package tshark)."""
 
-import os
-import shutil
 import subprocess
 
 import pytest
@@ -10,24 +8,16 @@ from coopdrive.services.v2x.packet import GnParams, SourcePosition, encode_cam, 
 from coopdrive.recording.capture import read_capture
 from coopdrive.services.v2x.pcap import PcapWriter
 from coopdrive.v1 import its_pb2
+from tests.system_packages import require
 
 from .messages import denm
 
 SOURCE_MAC = bytes.fromhex("02000000002a")
-APT_TIMEOUT_S = 600
 
 
 def tshark() -> str:
-    """Path of tshark, installing the Debian package when missing; skips only where apt cannot run."""
-    path = shutil.which("tshark")
-    if path:
-        return path
-    if shutil.which("apt-get") is None or os.geteuid() != 0:
-        pytest.skip("tshark missing and apt-get unavailable (not Debian or not root)")
-    environment = {**os.environ, "DEBIAN_FRONTEND": "noninteractive"}
-    for command in (["apt-get", "update"], ["apt-get", "install", "-y", "tshark"]):
-        subprocess.run(command, env=environment, check=True, capture_output=True, timeout=APT_TIMEOUT_S)
-    return shutil.which("tshark")
+    """Path of tshark (Debian's package, installed before the suite by tools/system_packages.sh)."""
+    return require("tshark")
 
 
 def cam(station_id, latitude_deg, speed_mps, protocol_version):
