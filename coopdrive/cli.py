@@ -251,18 +251,34 @@ def _run(args) -> int:
     except ScenarioError as error:
         print(f"coopdrive: {error}", file=sys.stderr)
         return EXIT_USAGE
-    result, recorded_to = _run_once(options, args.report, args.record)
     if args.baseline is None:
-        if args.json:
-            from coopdrive.launch.summary import summary_dict
-
-            print(json.dumps(summary_dict(result), indent=2))
-        else:
-            from coopdrive.launch.summary import print_summary
-
-            print_summary(result, recording=recorded_to)
-        return EXIT_OK if result.success else EXIT_FAILED
+        return _run_and_tell(args, options)
+    result, recorded_to = _run_once(options, args.report, args.record)
     return _compare_with_baseline(args, options, result, recorded_to)
+
+
+def _run_and_tell(args, options) -> int:
+    """One run: its summary as JSON, or its story with a progress line while it runs."""
+    import dataclasses
+
+    if args.json:
+        from coopdrive.launch.summary import summary_dict
+
+        result, _ = _run_once(options, args.report, args.record)
+        print(json.dumps(summary_dict(result), indent=2))
+        return EXIT_OK if result.success else EXIT_FAILED
+    from coopdrive.launch.progress_line import ProgressLine
+    from coopdrive.launch.run_story import tell
+    from coopdrive.launch.scenario_source import resolve_scenario
+
+    progress = ProgressLine()
+    try:
+        result, recorded_to = _run_once(dataclasses.replace(options, on_progress=progress.update), args.report,
+                                        args.record)
+    finally:
+        progress.close()
+    tell(result, resolve_scenario(options.scenario).config.description, recorded_to, args.report)
+    return EXIT_OK if result.success else EXIT_FAILED
 
 
 def _extra_faults(args) -> tuple[dict, ...]:

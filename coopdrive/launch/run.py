@@ -78,6 +78,8 @@ class RunOptions:
     # When the command started (time.monotonic()), for the summary's startup_time_s; None: when run_scenario is
     # called.
     started_monotonic_s: float | None = None
+    # Called as on_progress(sim_time_s, duration_s) on the bus's thread at each step of the simulator's clock.
+    on_progress: Callable[[float, float], None] | None = None
 
 
 MS_PER_S = 1000
@@ -205,6 +207,9 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     give_ups = LockstepGiveUps()
     hub.subscribe_key(DIAGNOSTICS_KEYS, give_ups.observe)
     simulator = next(spec for spec in specs if spec.service == "sim")
+    if options.on_progress is not None:
+        report_progress, duration_s = options.on_progress, simulator.config["duration_s"]
+        hub.subscribe(WORLD_ID, "clock", lambda envelope: report_progress(envelope.message.time_s, duration_s))
     spool_dir = run_dir / "spools" if recording is not None else None
     processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir,
                                  clock_step_s=simulator.config["step_s"], spool_dir=spool_dir)

@@ -51,8 +51,12 @@ def print_summary(result: sim_pb2.RunResult, recording: Path | None = None, labe
     console.print(table)
     verdict = "[bold green]PASS[/]" if result.success else f"[bold red]FAIL[/]: {result.failure_reason}"
     console.print(verdict)
+    warn_if_not_deterministic(console, summary)
+    if recording is not None:
+        console.print(f"recording: {recording}")
+
+
+def warn_if_not_deterministic(console: Console, summary: dict) -> None:
     give_ups = summary.get(MESSAGES_GIVEN_UP_COUNTER, 0)
     if give_ups:
         console.print(f"[bold yellow]not deterministic[/]: {give_ups} times {GIVE_UP_MEANING} (an overloaded host?)")
-    if recording is not None:
-        console.print(f"recording: {recording}")
