@@ -36,9 +36,19 @@ class LinkSync(enum.Enum):
     MARKS = "marks"
 
 
-class RadioLinkConfig(_Section):
-    """UDP to the radio box: it sends us raw GN packets on listen_port and takes ours on its port."""
+class LinkType(enum.Enum):
+    # UDP to a radio box that forwards GN packets as datagrams (and the simulator's radio).
+    UDP = "udp"
+    # GN frames straight on a network interface (802.11p OCB, a Cohda-style box's Linux interface): AF_PACKET.
+    RAW = "raw"
 
+
+class RadioLinkConfig(_Section):
+    """How GN packets reach the air. udp: a radio box sends us raw GN packets on listen_port and takes ours on its
+    port. raw: frames with ethertype 0x8947 on `interface` (needs CAP_NET_RAW)."""
+
+    type: LinkType = LinkType.UDP
+    interface: str | None = None
     sync: LinkSync = LinkSync.FREE
     # How long a mark may wait for its datagrams before they are counted missing.
     mark_timeout_s: float = Field(2.0, gt=0)
@@ -49,6 +59,14 @@ class RadioLinkConfig(_Section):
     # 0: any free port (tests).
     listen_port: int = Field(4401, ge=0, le=65535)
     max_packet_bytes: int = Field(2048, gt=0)
+
+    @model_validator(mode="after")
+    def _raw_needs_an_interface(self) -> "RadioLinkConfig":
+        if self.type is LinkType.RAW and not self.interface:
+            raise ValueError("link: type raw needs the network interface, e.g. interface: wlan0")
+        if self.type is LinkType.RAW and self.sync is LinkSync.MARKS:
+            raise ValueError("link: sync marks is the simulated radio box's; a raw link reads freely")
+        return self
 
 
 class VehicleDimensions(_Section):

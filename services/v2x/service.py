@@ -7,14 +7,16 @@ Socket input only updates state (through ctx.call_soon); everything is published
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable
 
 from coopdrive.bus import Envelope
 from coopdrive.runtime.service import Service
-from coopdrive.services.v2x.config import GCDC_RATE_HZ, LinkSync, SecurityConfig, V2xConfig
+from coopdrive.services.v2x.config import GCDC_RATE_HZ, LinkSync, LinkType, SecurityConfig, V2xConfig
 from coopdrive.services.v2x.denm_manager import ActionId
 from coopdrive.services.v2x.its_pdu import ItsMessageId
 from coopdrive.services.v2x.link import CaptureLog, RecordedLink, UdpLink
 from coopdrive.services.v2x.pseudonym import PseudonymChanger
+from coopdrive.services.v2x.raw_link import RawLink
 from coopdrive.services.v2x.reception import OwnIdentity, Reception
 from coopdrive.services.v2x.security.certificate import Certificate
 from coopdrive.services.v2x.security.layer import ModeSecurityLayer
@@ -57,6 +59,15 @@ def build_security_layer(config: SecurityConfig, station_id: int, mac: bytes,
     return ModeSecurityLayer(config.mode, verifier, signer, clock_tai_us)
 
 
+def open_link(config: V2xConfig, on_packet: Callable[[bytes], None]) -> UdpLink | RawLink:
+    """The configured link to the air; a raw link that cannot open raises HardwareUnavailable's one line."""
+    link = config.link
+    if link.type is LinkType.RAW:
+        return RawLink(link.interface, config.mac_bytes, on_packet)
+    return UdpLink((link.listen_host, link.listen_port), (link.radio_host, link.radio_port), on_packet,
+                   link.max_packet_bytes)
+
+
 class V2xService(Service):
     name = "v2x"
     Config = V2xConfig
@@ -84,9 +95,7 @@ class V2xService(Service):
             self.link = RecordedLink()
             self.ctx.subscribe("v2x/rx", self.on_recorded_packet, vehicle_id=self.ctx.vehicle_id)
         else:
-            self.link = UdpLink((c.link.listen_host, c.link.listen_port), (c.link.radio_host, c.link.radio_port),
-                                lambda datagram: self.ctx.call_soon(lambda: self.on_datagram(datagram)),
-                                c.link.max_packet_bytes)
+            self.link = open_link(c, lambda packet: self.ctx.call_soon(lambda: self.on_datagram(packet)))
         self.ctx.subscribe("ego/state", lambda envelope: self.transmitter.on_ego_state(envelope.message))
         self.ctx.subscribe("planner/behaviour", self.on_behaviour)
         self.ctx.subscribe("control/command", self.on_command)
