@@ -14,10 +14,10 @@ import time
 from typing import BinaryIO, Callable
 
 from coopdrive.recording.link_types import ETHERTYPE_GEONETWORKING
+from coopdrive.services.v2x.link_reader import RECEIVE_POLL_S, LinkReader
 from coopdrive.services.v2x.pcap import BROADCAST_MAC, PcapWriter
 from coopdrive.services.v2x.timebase import US_PER_S
 
-RECEIVE_POLL_S = 0.1
 
 
 class CaptureLog(PcapWriter):
@@ -37,7 +37,7 @@ class CaptureLog(PcapWriter):
             self._stream.flush()
 
 
-class UdpLink:
+class UdpLink(LinkReader):
     """Sends datagrams to the radio box and reads the ones it sends us on a daemon thread."""
 
     def __init__(self, listen: tuple[str, int], radio: tuple[str, int], on_datagram: Callable[[bytes], None],
@@ -45,11 +45,9 @@ class UdpLink:
         self.radio = radio
         self._on_datagram = on_datagram
         self._max_packet_bytes = max_packet_bytes
-        self._socket = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-        self._socket.bind(listen)
-        self._socket.settimeout(RECEIVE_POLL_S)
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._receive_loop, name="v2x-udp", daemon=True)
+        udp_socket = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        udp_socket.bind(listen)
+        super().__init__(udp_socket, "v2x-udp")
         self.send_errors = 0
         # Lockstep reading (receive_until): datagrams read so far, and those the radio box sent that never came.
         self.received_count = 0
@@ -58,9 +56,6 @@ class UdpLink:
     @property
     def local_address(self) -> tuple[str, int]:
         return self._socket.getsockname()
-
-    def start(self) -> None:
-        self._thread.start()
 
     def send(self, datagram: bytes) -> bool:
         """False (and counted) when the OS refused the datagram, e.g. the radio box is unreachable."""
@@ -92,24 +87,8 @@ class UdpLink:
                 continue
         return datagrams
 
-    def close(self) -> None:
-        self._stop.set()
-        if self._thread.is_alive():
-            self._thread.join(timeout=2 * RECEIVE_POLL_S + 1.0)
-        self._socket.close()
-
-    def _receive_loop(self) -> None:
-        while not self._stop.is_set():
-            try:
-                datagram = self._socket.recv(self._max_packet_bytes)
-            except socket.timeout:
-                continue
-            except OSError:
-                # Closed under us, or an ICMP port-unreachable echo of an earlier send: keep listening.
-                if self._stop.is_set():
-                    return
-                continue
-            self._on_datagram(datagram)
+    def _receive_one(self) -> None:
+        self._on_datagram(self._socket.recv(self._max_packet_bytes))
 
 
 class RecordedLink:

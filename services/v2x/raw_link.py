@@ -10,14 +10,13 @@ from __future__ import annotations
 import errno
 import socket
 import struct
-import threading
 from typing import Callable
 
 from coopdrive.recording.link_types import ETHERTYPE_GEONETWORKING
 from coopdrive.runtime.service import HardwareUnavailable
+from coopdrive.services.v2x.link_reader import LinkReader
 from coopdrive.services.v2x.pcap import BROADCAST_MAC
 
-RECEIVE_POLL_S = 0.1
 ETHERNET_HEADER_BYTES = 14
 MAC_BYTES = 6
 # The largest frame an 802.11 OCB or Ethernet interface carries without fragmentation: header and a 1500-byte MTU.
@@ -49,7 +48,7 @@ def open_packet_socket(interface: str) -> socket.socket:
     return packet_socket
 
 
-class RawLink:
+class RawLink(LinkReader):
     """Sends GN packets as broadcast frames from our MAC and reads the others' frames on a daemon thread."""
 
     def __init__(self, interface: str, source_mac: bytes, on_packet: Callable[[bytes], None]):
@@ -60,18 +59,12 @@ class RawLink:
         self._header = BROADCAST_MAC + source_mac + struct.pack(">H", ETHERTYPE_GEONETWORKING)
         self._source_mac = source_mac
         self._on_packet = on_packet
-        self._socket = open_packet_socket(interface)
-        self._socket.settimeout(RECEIVE_POLL_S)
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._receive_loop, name=f"v2x-raw-{interface}", daemon=True)
+        super().__init__(open_packet_socket(interface), f"v2x-raw-{interface}")
         self.send_errors = 0
         # Frames refused before GeoNetworking: too short for an Ethernet header.
         self.runt_frames = 0
         # Never waited for: a raw link has no radio box to say how much it sent.
         self.missing_datagrams = 0
-
-    def start(self) -> None:
-        self._thread.start()
 
     def send(self, gn_packet: bytes) -> bool:
         """False (and counted) when the interface refused the frame (down, or the packet too long)."""
@@ -82,23 +75,9 @@ class RawLink:
             self.send_errors += 1
             return False
 
-    def close(self) -> None:
-        self._stop.set()
-        if self._thread.is_alive():
-            self._thread.join(timeout=2 * RECEIVE_POLL_S + 1.0)
-        self._socket.close()
-
-    def _receive_loop(self) -> None:
-        while not self._stop.is_set():
-            try:
-                frame, address = self._socket.recvfrom(MAX_FRAME_BYTES)
-            except socket.timeout:
-                continue
-            except OSError:
-                if self._stop.is_set():
-                    return
-                continue
-            self.on_frame(frame, address[2] if len(address) > 2 else 0)
+    def _receive_one(self) -> None:
+        frame, address = self._socket.recvfrom(MAX_FRAME_BYTES)
+        self.on_frame(frame, address[2] if len(address) > 2 else 0)
 
     def on_frame(self, frame: bytes, packet_type: int) -> None:
         """One frame off the interface: our own (looped back to a packet socket) are dropped, the rest handed on
