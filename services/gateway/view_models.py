@@ -23,6 +23,8 @@ class StationView(BaseModel):
     last_heard_s: float = Field(description="Vehicle clock when the station was last heard.")
     message_rate_hz: float
     reception_ratio: float = Field(description="Received over expected messages, [0, 1].")
+    expected_cam_rate_hz: float = Field(0.0, description="The rate its CAMs are expected at: a profile's, or the "
+                                        "station's own median rate; 0 until known.")
     update_delay_p50_s: float
     update_delay_p95_s: float
     update_delay_max_s: float

@@ -147,8 +147,10 @@ class V2xConfig(ServiceConfig):
     # in simulation give the UTC instant of sim time 0, e.g. "2016-05-28T10:00:00Z".
     clock_epoch_utc: datetime | None = None
     loss_timeout_s: float = Field(0.4, gt=0.0)
-    # Rate at which remote CAMs and iCLCMs are expected, for the reception ratio.
-    expected_rate_hz: float = Field(GCDC_RATE_HZ, gt=0.0)
+    # Rate at which every remote station's CAMs and iCLCMs are expected, for the reception ratio. Unset: the
+    # profile's (cam_mode gcdc: 25 Hz); with cam_mode etsi, each station's own (services/v2x/expected_period.py),
+    # since EN 302 637-2 lets a CAM come every 100-1000 ms as the sender's dynamics trigger it.
+    expected_rate_hz: float | None = Field(None, gt=0.0)
     statistics_window_s: float = Field(5.0, gt=0.0)
     status_rate_hz: float = Field(5.0, gt=0.0)
     iclcm_rate_hz: float = Field(GCDC_RATE_HZ, gt=0.0)
@@ -156,6 +158,12 @@ class V2xConfig(ServiceConfig):
     receive_flush_period_s: float = Field(0.02, gt=0.0)
     plausibility: PlausibilityLimits = PlausibilityLimits()
     security: SecurityConfig = SecurityConfig()
+
+    @model_validator(mode="after")
+    def _profile_rate(self) -> "V2xConfig":
+        if "expected_rate_hz" not in self.model_fields_set and self.cam_mode is CamMode.GCDC:
+            self.expected_rate_hz = GCDC_RATE_HZ
+        return self
 
     @field_validator("gn_version")
     @classmethod

@@ -100,7 +100,7 @@ def observation_of(decoded: DecodedPacket, mac: bytes, time_tai_ms: int) -> Obse
 
 class Reception:
     def __init__(self, own: OwnIdentity, clock: ItsClock, limits: PlausibilityLimits, loss_timeout_s: float,
-                 expected_rate_hz: float, window_s: float, codec: V2xPacketCodec | None = None,
+                 expected_rate_hz: float | None, window_s: float, codec: V2xPacketCodec | None = None,
                  security=None):
         self.own = own
         # A packet.SecurityLayer: open(packet) -> (unsecured packet, OpenedPacket | None), or V2xDecodeError.

@@ -2,7 +2,8 @@
 
 - message rate: accepted messages per second of the station's busiest stream (its CAMs at GCDC);
 - reception ratio: received / expected messages of its periodic streams (CAM, iCLCM), where the expected
-  count comes from the generationDeltaTime gaps at the known rate (a 120 ms gap at 25 Hz = 3 slots, 2 lost);
+  count comes from the generationDeltaTime gaps at the stream's expected period (expected_period.py: a profile's
+  fixed rate, a 120 ms gap at 25 Hz = 3 slots, 2 lost; or the station's own median gap);
 - update delay: receive time - generation time, p50 / p95 / max;
 - LOST once nothing was heard for the loss timeout (400 ms at GCDC);
 - security: how many of its packets were signed, verified, trusted, had an invalid signature or were refused
@@ -15,6 +16,7 @@ from collections import deque
 
 import numpy as np
 
+from coopdrive.services.v2x.expected_period import ExpectedPeriod, expected_period
 from coopdrive.services.v2x.its_pdu import ItsMessageId
 from coopdrive.services.v2x.security_verdict import SecurityVerdict
 from coopdrive.services.v2x.timebase import MS_PER_S
@@ -26,8 +28,8 @@ PERIODIC_TYPES = (ItsMessageId.CAM, ItsMessageId.ICLCM)
 class StreamWindow:
     """One message type of one station: (receive time, slots the message closes) in the window."""
 
-    def __init__(self, expected_period_ms: float, window_s: float):
-        self.expected_period_ms = expected_period_ms
+    def __init__(self, expected: ExpectedPeriod, window_s: float):
+        self.expected = expected
         self.window_s = window_s
         self._entries: deque[tuple[float, int]] = deque()
         # The slots of the entries in the window, kept as they come and go (a status asks for it twice a second).
@@ -41,9 +43,12 @@ class StreamWindow:
         slots = 1
         if generation_tai_ms is not None and self._last_generation_tai_ms is not None:
             gap_ms = generation_tai_ms - self._last_generation_tai_ms
-            # Cap: a silence longer than the window says nothing about the window.
-            max_slots = max(1, round(self.window_s * MS_PER_S / self.expected_period_ms))
-            slots = min(max(1, round(gap_ms / self.expected_period_ms)), max_slots)
+            period_ms = self.expected.period_ms()
+            if period_ms is not None:
+                # Cap: a silence longer than the window says nothing about the window.
+                max_slots = max(1, round(self.window_s * MS_PER_S / period_ms))
+                slots = min(max(1, round(gap_ms / period_ms)), max_slots)
+            self.expected.observe(gap_ms)
         if generation_tai_ms is not None:
             self._last_generation_tai_ms = generation_tai_ms
         self._entries.append((receive_s, slots))
@@ -100,9 +105,10 @@ class StationSecurity:
 
 
 class StationStats:
-    def __init__(self, station_id: int, expected_rate_hz: float, window_s: float):
+    def __init__(self, station_id: int, expected_rate_hz: float | None, window_s: float):
+        """expected_rate_hz: every periodic stream's rate (a profile's, GCDC's 25 Hz); None: each stream's own."""
         self.station_id = station_id
-        self.expected_period_ms = MS_PER_S / expected_rate_hz
+        self.expected_rate_hz = expected_rate_hz
         self.window_s = window_s
         self.first_heard_s: float | None = None
         self.last_heard_s: float | None = None
@@ -122,7 +128,7 @@ class StationStats:
         self.messages_received += 1
         stream = self._streams.get(message_type)
         if stream is None:
-            stream = self._streams[message_type] = StreamWindow(self.expected_period_ms, self.window_s)
+            stream = self._streams[message_type] = StreamWindow(expected_period(self.expected_rate_hz), self.window_s)
         stream.add(receive_s, generation_tai_ms if message_type in PERIODIC_TYPES else None)
         if delay_s is not None:
             self._delays.append((receive_s, delay_s))
@@ -159,6 +165,10 @@ class StationStats:
             last_heard_s=self.last_heard_s or 0.0, reception_ratio=self.reception_ratio(now_s),
             messages_received=self.messages_received, messages_rejected=self.messages_rejected)
         stats.periodic_received_total, stats.periodic_expected_total = self.periodic_totals()
+        cam_stream = self._streams.get(ItsMessageId.CAM)
+        cam_period_ms = cam_stream.expected.period_ms() if cam_stream is not None else None
+        if cam_period_ms:
+            stats.expected_cam_rate_hz = MS_PER_S / cam_period_ms
         self.security.fill(stats)
         if self.first_heard_s is not None and self._streams:
             stats.message_rate_hz = max(stream.rate_hz(now_s, self.first_heard_s) for stream in self._streams.values())

@@ -69,7 +69,7 @@ def feed_a_following_vehicle(ctx: MemoryContext, clock_s: float = 10.0, speed_mp
     ctx.deliver("planner/state", state)
     status = v2x_pb2.V2xStatus(packets_sent=120, packets_received=250)
     status.stations.add(station_id=4242, state=v2x_pb2.LINK_STATE_ACTIVE, message_rate_hz=25.0, reception_ratio=0.98,
-                        trust=0.9, signed=True, verified=True, trusted=True, messages_received=250,
+                        expected_cam_rate_hz=25.0, trust=0.9, signed=True, verified=True, trusted=True, messages_received=250,
                         messages_signed=250, messages_verified=249, messages_trusted=249, signature_failures=1,
                         last_security_reason="")
     status.stations.add(station_id=99, state=v2x_pb2.LINK_STATE_LOST, trust=0.4)

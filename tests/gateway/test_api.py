@@ -29,6 +29,7 @@ def test_the_stations_carry_link_statistics_and_trust_from_the_v2x_status(gatewa
     by_id = {s["station_id"]: s for s in stations["stations"]}
     assert by_id[4242]["state"] == "active" and by_id[4242]["trust"] == 0.9 and by_id[4242]["verified"]
     assert by_id[4242]["reception_ratio"] == 0.98 and by_id[4242]["message_rate_hz"] == 25.0
+    assert by_id[4242]["expected_cam_rate_hz"] == 25.0
     assert by_id[99]["state"] == "lost"
     assert (stations["active_count"], stations["lost_count"]) == (1, 2)
     assert stations["rejected_by_reason"] == {"implausible_speed": 3}
