@@ -18,13 +18,12 @@ from coopdrive.services.v2x.link import CaptureLog, RecordedLink, UdpLink
 from coopdrive.services.v2x.pseudonym import PseudonymChanger
 from coopdrive.services.v2x.raw_link import RawLink
 from coopdrive.services.v2x.reception import OwnIdentity, Reception
-from coopdrive.services.v2x.security.certificate import Certificate
 from coopdrive.services.v2x.security.layer import ModeSecurityLayer
-from coopdrive.services.v2x.security.pki import load_test_pki
 from coopdrive.services.v2x.security.profile import SecurityMode
 from coopdrive.services.v2x.security.signer import SecuredPacketSigner
 from coopdrive.services.v2x.security.store import CertificateStore
 from coopdrive.services.v2x.security.verifier import SecurityVerifier
+from coopdrive.services.v2x.security_setup import load_security_material
 from coopdrive.services.v2x.timebase import US_PER_MS, ItsClock
 from coopdrive.services.v2x.transmission import Transmitter
 from coopdrive.v1 import its_pb2, v2x_pb2
@@ -51,11 +50,9 @@ def build_security_layer(config: SecurityConfig, station_id: int, mac: bytes,
     change here), since the generators stamp those into every packet."""
     if config.mode is SecurityMode.OFF and config.pki_dir is None:
         return None
-    pki = load_test_pki(config.pki_dir)
-    roots = [pki.root] + [Certificate.from_bytes(path.read_bytes()) for path in config.extra_trusted_roots]
-    authorities = [pki.authority] + [Certificate.from_bytes(path.read_bytes()) for path in config.extra_authorities]
-    verifier = SecurityVerifier(CertificateStore(trusted_roots=roots, authorities=authorities))
-    signer = SecuredPacketSigner(pki.tickets[config.ticket], station_id, mac) if config.ticket else None
+    material = load_security_material(config)  # a bad file is one line, before anything starts
+    verifier = SecurityVerifier(CertificateStore(trusted_roots=material.roots, authorities=material.authorities))
+    signer = SecuredPacketSigner(material.tickets, station_id, mac) if material.tickets else None
     return ModeSecurityLayer(config.mode, verifier, signer, clock_tai_us)
 
 
