@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: run desk test bench proto clean bytecode
+.PHONY: run desk test bench docs proto clean bytecode
 
 # The protobuf modules are generated at install (setup.py), so a changed .proto reinstalls.
 $(STAMP): pyproject.toml setup.py $(wildcard proto/coopdrive/v1/*.proto)
@@ -42,10 +42,15 @@ test: $(STAMP) bytecode
 bench: $(STAMP) bytecode
 	$(BIN)/python -m bench
 
+## docs: the documentation site from docs/ into site/ (open site/index.html); --strict: a broken link, a missing page
+## or a reference page that cannot be generated fails the build
+docs: $(STAMP)
+	NO_MKDOCS_2_WARNING=1 $(BIN)/python -m mkdocs build --strict --site-dir site
+
 ## proto: regenerate coopdrive/v1/*_pb2.py from proto/ (any install does it; this one forces it)
 proto:
 	rm -f $(STAMP)
 	$(MAKE) $(STAMP)
 
 clean:
-	rm -rf $(VENV) out build *.egg-info
+	rm -rf $(VENV) out build site *.egg-info

@@ -2,7 +2,7 @@
 # The sweep of issue 26: every scenario on seeds 1-20 (or SEEDS), real-world defaults, two runs at a time
 # (WORKERS), results in OUT (default out/sweep): summary.json, summary.csv and the pass table pass_table.md.
 # FAULTS=FILE sweeps its fault variants too (docs/sweep-faults.yaml); CLUSTER=tcp://host:8786 runs on that Dask
-# scheduler's workers instead of a local cluster (README, Sweeps); SCENARIO=NAME sweeps that scenario alone.
+# scheduler's workers instead of a local cluster (docs/how-to/sweeps.md); SCENARIO=NAME sweeps that scenario alone.
 # REPORTS=0 keeps each run's metrics.json and the summaries only, no recording or plots (CI's sweep, .ci/run).
 # TIME_LIMIT=SECONDS stops the sweep that long after it started (its cluster's start counted) and lists the runs it
 # left: exit status 4 when every run that finished passed. DURATION=SECONDS runs each scenario that long instead of

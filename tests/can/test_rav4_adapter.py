@@ -1,7 +1,7 @@
 """Acceptance on a real car: 20 s of a 2017 RAV4's powertrain bus (comma2k19) through the shipped adapter
 deploy/vehicles/toyota_rav4_2017.yaml and its opendbc DBC, against the values comma decoded from the same frames.
 
-Measured (see the README's "Any car's CAN bus"): without GNSS the service reports the wheels' speed and the yaw-rate
+Measured (see docs/how-to/vehicle-can.md): without GNSS the service reports the wheels' speed and the yaw-rate
 sensor as they arrive; dead reckoning from one fix, the filter's speed is within 0.031 m/s RMS of the mean wheel
 speed and its yaw rate within 0.0013 rad/s RMS of KINEMATICS' YAW_RATE.
 """

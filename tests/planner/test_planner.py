@@ -5,7 +5,7 @@ from planner_world import ego, inputs, planner, rsu_start, scene
 
 from coopdrive.services.planner.config import PlannerLogicConfig
 from coopdrive.services.planner.engine import MachineSpec
-from coopdrive.services.planner.export_graphs import machine_specs, markdown, readme_block, with_readme_block
+from coopdrive.services.planner.export_graphs import machine_specs, markdown, with_readme_block
 from coopdrive.services.planner.graph import to_mermaid
 from coopdrive.services.planner.planner import PlannerInputError
 from coopdrive.v1 import planner_pb2
@@ -94,10 +94,11 @@ def test_bad_inputs_are_refused_with_a_clear_error_and_counted(now_s, station_id
     assert p.input_errors == 1 and p.state_name == "JOINING"
 
 
-def test_the_readme_shows_every_machine_graph_as_generated():
-    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
-    assert readme_block() in readme
-    assert all(f"%% machine {spec.name}" in readme for spec in machine_specs())
+def test_the_planner_page_shows_every_machine_graph_as_generated():
+    page = (Path(__file__).resolve().parents[2] / "docs" / "planner.md").read_text(encoding="utf-8")
+    assert page == markdown(), "docs/planner.md is stale: python -m coopdrive.services.planner.export_graphs " \
+                               "--output docs/planner.md"
+    assert all(f"%% machine {spec.name}" in page for spec in machine_specs())
 
 
 def test_a_readme_without_the_graph_markers_is_refused_with_their_names():

@@ -16,7 +16,7 @@ from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
 from coopdrive.runtime.signal_wait import SIGNAL_POLL_S, wait_hearing_signals
 from tests.recording.live_bus import wait_recording
 
-# The stop grace the README states for a stopped process.
+# The stop grace docs/how-to/record-replay.md states for a stopped process.
 STOP_WITHIN_S = 3.0
 START_TIMEOUT_S = 60.0
 
