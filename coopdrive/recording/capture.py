@@ -11,7 +11,9 @@ Contract (used by `coopdrive v2x decode` and `coopdrive v2x replay`):
 
     for frame in read_gn_packets(path): ...           # only the frames that carry GeoNetworking
 
-Every frame of the file comes out once, in file order: nothing is dropped silently. A file that is neither
+Every frame of the file comes out once, in file order: nothing is dropped silently. A radiotap frame is read as its
+Flags field says (radiotap.py): its FCS removed where the capture kept it, a frame that failed its FCS counted as
+bad_fcs and not read. A file that is neither
 pcap nor pcapng raises CaptureFormatError. Link types: Ethernet (1), 802.11 (105), radiotap + 802.11 (127),
 Linux cooked v1 (113) and v2 (276), bare GeoNetworking on USER0 (147, what a UDP radio bridge records).
 802.11 data frames carry GeoNetworking behind LLC/SNAP with ethertype 0x8947 (ITS-G5, OCB: no encryption).
@@ -32,6 +34,7 @@ import dpkt
 from coopdrive.recording.link_types import (ETHERTYPE_GEONETWORKING, LINK_TYPE_NAMES, LINKTYPE_ETHERNET,
                                             LINKTYPE_IEEE802_11, LINKTYPE_LINUX_SLL, LINKTYPE_LINUX_SLL2,
                                             LINKTYPE_RADIOTAP, LINKTYPE_USER0_BARE_GN)
+from coopdrive.recording.radiotap import FCS_BYTES, RadiotapError, read_radiotap
 
 _PCAPNG_MAGIC = b"\x0a\x0d\x0d\x0a"
 _LLC_SNAP = b"\xaa\xaa\x03"
@@ -40,6 +43,12 @@ _LLC_SIZE = 3
 # 802.11 frame control: type 2 is data; subtypes with bit 2 set carry no data (null, CF-ack/poll only).
 _IEEE80211_DATA_TYPE = 2
 _IEEE80211_NO_DATA_SUBTYPE_BIT = 0x4
+_IEEE80211_QOS_SUBTYPE_BIT = 0x8
+_IEEE80211_TO_DS, _IEEE80211_FROM_DS = 0x01, 0x02
+# Frame control, duration, three addresses and sequence control.
+_IEEE80211_BASE_HEADER_BYTES = 24
+_MAC_BYTES = 6
+_QOS_CONTROL_BYTES = 2
 
 OTHER_ETHERTYPE = "other_ethertype"
 UNSUPPORTED_LINK_TYPE = "unsupported_link_type"
@@ -47,8 +56,10 @@ MALFORMED_FRAME = "malformed_frame"
 NOT_A_DATA_FRAME = "not_a_data_frame"
 PROTECTED_FRAME = "protected_frame"
 NOT_LLC_SNAP = "not_llc_snap"
+# The radio's own check of the frame failed (radiotap's bad-FCS flag): its bytes cannot be trusted.
+BAD_FCS = "bad_fcs"
 UNREADABLE_REASONS = (OTHER_ETHERTYPE, UNSUPPORTED_LINK_TYPE, MALFORMED_FRAME, NOT_A_DATA_FRAME,
-                      PROTECTED_FRAME, NOT_LLC_SNAP)
+                      PROTECTED_FRAME, NOT_LLC_SNAP, BAD_FCS)
 
 
 class CaptureFormatError(ValueError):
@@ -166,10 +177,34 @@ def _ieee80211(data: bytes) -> Parsed:
 
 
 def _radiotap(data: bytes) -> Parsed:
-    frame = dpkt.radiotap.Radiotap(data).data
-    if not isinstance(frame, dpkt.ieee80211.IEEE80211):
-        raise _Unreadable(MALFORMED_FRAME, "radiotap header without an 802.11 frame")
-    return _ieee80211_frame(frame)
+    """The 802.11 frame behind the header, as its Flags field says: without its FCS where the capture kept it,
+    unpadded where the driver padded the 802.11 header to 32 bits; a frame whose FCS failed is not read."""
+    try:
+        header = read_radiotap(data)
+    except RadiotapError as error:
+        raise _Unreadable(MALFORMED_FRAME, str(error)) from None
+    if header.bad_fcs:
+        raise _Unreadable(BAD_FCS, "radiotap flags: the frame failed its FCS check")
+    frame = data[header.length:len(data) - FCS_BYTES if header.has_fcs else len(data)]
+    if header.data_padded:
+        frame = _without_header_padding(frame)
+    return _ieee80211(frame)
+
+
+def _without_header_padding(frame: bytes) -> bytes:
+    """Removes the bytes that pad a data frame's 802.11 header to a multiple of 4 (radiotap's data-pad flag)."""
+    if len(frame) < _IEEE80211_BASE_HEADER_BYTES:
+        return frame
+    frame_type, flags = (frame[0] >> 2) & 0x3, frame[1]
+    if frame_type != _IEEE80211_DATA_TYPE:
+        return frame
+    header_bytes = _IEEE80211_BASE_HEADER_BYTES
+    if flags & _IEEE80211_TO_DS and flags & _IEEE80211_FROM_DS:
+        header_bytes += _MAC_BYTES  # the fourth address
+    if (frame[0] >> 4) & _IEEE80211_QOS_SUBTYPE_BIT:
+        header_bytes += _QOS_CONTROL_BYTES
+    padding = -header_bytes % 4
+    return frame[:header_bytes] + frame[header_bytes + padding:]
 
 
 def _cooked(header: dpkt.Packet) -> Parsed:
