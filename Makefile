@@ -7,10 +7,12 @@ STAMP := $(VENV)/.installed
 .PHONY: run desk test bench docs proto clean bytecode
 
 # The protobuf modules are generated at install (setup.py), so a changed .proto reinstalls.
+# pip's own output goes to $(VENV)/install.log, shown only when the install fails: `make run` prints the run.
 $(STAMP): pyproject.toml setup.py $(wildcard proto/coopdrive/v1/*.proto)
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test]'
+	@echo "installing coopdrive and its dependencies into $(VENV) (log: $(VENV)/install.log)"
+	@{ $(BIN)/python -m pip install --upgrade pip && $(BIN)/python -m pip install -e '.[test]'; } \
+		> $(VENV)/install.log 2>&1 || { tail -40 $(VENV)/install.log; exit 1; }
 	@touch $(STAMP)
 
 ## bytecode: compiled modules of the source tree. An editable install compiles none, and where PYTHONDONTWRITEBYTECODE
@@ -21,7 +23,7 @@ bytecode: $(STAMP)
 
 ## run: the follow scenario with the full stack (the simulator and the stack, a process each); prints the summary
 run: $(STAMP) bytecode
-	$(BIN)/coopdrive run follow --record out/follow.mcap
+	@$(BIN)/coopdrive run follow --record out/follow.mcap
 
 ## desk: the deployed stack without the car or Docker: docker-compose.yml's desk profile as local processes
 ## (simulated follow world, one stack, gateway on :8080, Foxglove on ws://localhost:8765) until Ctrl-C

@@ -27,8 +27,9 @@ class KeyFigure:
 KEY_FIGURES = (
     KeyFigure("min_gap_m", "closest gap", "m"),
     KeyFigure("min_time_gap_s", "closest time gap", "s"),
-    KeyFigure("spacing_error_rms_m", "spacing error, RMS", "m"),
-    KeyFigure("speed_error_rms_kmh", "speed error, RMS", "km/h"),
+    # Mean absolute errors: a signed mean would let errors of both signs cancel (the story gives the RMS too).
+    KeyFigure("spacing_error_m", "spacing error, mean absolute", "m"),
+    KeyFigure("speed_error_kmh", "speed error, mean absolute", "km/h"),
     KeyFigure("max_abs_accel_mps2", "largest acceleration", "m/s²"),
     KeyFigure("string_gain", "string gain (< 1 damps)", ""),
     KeyFigure("lateral_error_rms_m", "lateral error, RMS", "m"),

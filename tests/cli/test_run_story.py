@@ -24,8 +24,8 @@ RUN_TIMEOUT_S = 300
 def follow_result(success: bool = True) -> sim_pb2.RunResult:
     result = sim_pb2.RunResult(scenario="follow", seed=3, success=success, sim_time_s=60.0, wall_time_s=20.0,
                                failure_reason="" if success else "collision: ego hit leader")
-    result.metrics.update({"min_gap_m": 19.9, "min_time_gap_s": 1.79, "spacing_error_rms_m": 4.67,
-                           "spacing_error_max_m": 12.0, "speed_error_rms_kmh": 4.8, "max_abs_accel_mps2": 2.19,
+    result.metrics.update({"min_gap_m": 19.9, "min_time_gap_s": 1.79, "spacing_error_m": 3.34,
+                           "spacing_error_rms_m": 4.67, "spacing_error_max_m": 12.0, "speed_error_kmh": 2.67, "max_abs_accel_mps2": 2.19,
                            "string_gain": 0.95, "collisions": 0, "hard_brakes": 1})
     return result
 
