@@ -25,6 +25,9 @@ class StationView(BaseModel):
     reception_ratio: float = Field(description="Received over expected messages, [0, 1].")
     expected_cam_rate_hz: float = Field(0.0, description="The rate its CAMs are expected at: a profile's, or the "
                                         "station's own median rate; 0 until known.")
+    clock_offset_s: float = Field(0.0, description="Its clock minus ours from its generation times, s (negative: "
+                                  "behind; transit included).")
+    clock_diagnostic: str = Field("", description="A likely cause when its clock is off by more than transit.")
     update_delay_p50_s: float
     update_delay_p95_s: float
     update_delay_max_s: float

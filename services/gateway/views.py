@@ -82,7 +82,8 @@ def v2x_view(snapshot: StoreSnapshot, vehicle_id: str) -> V2xStationsResponse:
     stations = [StationView(
         station_id=s.station_id, state=_station_link(s), last_heard_s=s.last_heard_s,
         message_rate_hz=s.message_rate_hz, reception_ratio=s.reception_ratio,
-        expected_cam_rate_hz=s.expected_cam_rate_hz, update_delay_p50_s=s.update_delay_p50_s, update_delay_p95_s=s.update_delay_p95_s,
+        expected_cam_rate_hz=s.expected_cam_rate_hz, clock_offset_s=s.clock_offset_s,
+        clock_diagnostic=s.clock_diagnostic, update_delay_p50_s=s.update_delay_p50_s, update_delay_p95_s=s.update_delay_p95_s,
         update_delay_max_s=s.update_delay_max_s, messages_received=s.messages_received,
         messages_rejected=s.messages_rejected, trust=trust.get(s.station_id, s.trust), signed=s.signed,
         verified=s.verified,

@@ -152,6 +152,10 @@ class V2xConfig(ServiceConfig):
     # since EN 302 637-2 lets a CAM come every 100-1000 ms as the sender's dynamics trigger it.
     expected_rate_hz: float | None = Field(None, gt=0.0)
     statistics_window_s: float = Field(5.0, gt=0.0)
+    # Stations whose clock is known to run a constant off TAI, in seconds (negative: behind), by station id: their
+    # generation times are taken back by it before they are judged fresh. E.g. {3001: -5.0} for a peer that stamps
+    # UTC since 2004 without the leap seconds. The station table shows every station's measured clock_offset_s.
+    known_clock_offsets_s: dict[int, float] = {}
     status_rate_hz: float = Field(5.0, gt=0.0)
     iclcm_rate_hz: float = Field(GCDC_RATE_HZ, gt=0.0)
     # How often received packets are handed to the bus (publishing happens only in time triggers).

@@ -20,7 +20,7 @@ from coopdrive.services.v2x.plausibility import Observation, PlausibilityChecker
 from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.services.v2x.security_verdict import sender_of, verdict_of_opened, verdict_of_refusal
 from coopdrive.services.v2x.station_stats import StationStats
-from coopdrive.services.v2x.timebase import ItsClock, tai_ms_from_delta
+from coopdrive.services.v2x.timebase import MS_PER_S, ItsClock, leap_seconds_since_its_epoch, tai_ms_from_delta
 from coopdrive.services.v2x.units import TENTH_MICRODEG_PER_DEG
 from coopdrive.v1 import v2x_pb2
 
@@ -72,13 +72,6 @@ def message_time_tai_ms(decoded: DecodedPacket, receive_tai_ms: int) -> int:
     return tai_ms_from_delta(decoded.content.generation_delta_time_ms, receive_tai_ms)
 
 
-def transit_delay_s(decoded: DecodedPacket, receive_tai_ms: int) -> float | None:
-    """From a CAM's or iCLCM's generation to its reception; None for a DENM, whose reference time is the event's."""
-    if decoded.message_type == ItsMessageId.DENM:
-        return None
-    return ItsClock.seconds_between(message_time_tai_ms(decoded, receive_tai_ms), receive_tai_ms)
-
-
 def observation_of(decoded: DecodedPacket, mac: bytes, time_tai_ms: int) -> Observation:
     content = decoded.content
     if decoded.message_type == ItsMessageId.CAM:
@@ -101,8 +94,12 @@ def observation_of(decoded: DecodedPacket, mac: bytes, time_tai_ms: int) -> Obse
 class Reception:
     def __init__(self, own: OwnIdentity, clock: ItsClock, limits: PlausibilityLimits, loss_timeout_s: float,
                  expected_rate_hz: float | None, window_s: float, codec: V2xPacketCodec | None = None,
-                 security=None):
+                 security=None, known_clock_offsets_s: dict[int, float] | None = None):
         self.own = own
+        # Stations whose clock is known to run off TAI by a constant (config known_clock_offsets_s): their times are
+        # taken back by it before they are judged.
+        self.known_clock_offsets_ms = {station: round(offset_s * MS_PER_S)
+                                       for station, offset_s in (known_clock_offsets_s or {}).items()}
         # A packet.SecurityLayer: open(packet) -> (unsecured packet, OpenedPacket | None), or V2xDecodeError.
         self.security = security
         self.clock = clock
@@ -143,6 +140,9 @@ class Reception:
         receive_tai_ms = self.clock.tai_ms(receive_s)
         time_tai_ms = message_time_tai_ms(decoded, receive_tai_ms)
         stats = self._stats(decoded.station_id)
+        if decoded.message_type != ItsMessageId.DENM:  # a DENM's reference time is its event's, not its sending
+            stats.clock.add(time_tai_ms, receive_tai_ms)
+            time_tai_ms -= self.known_clock_offsets_ms.get(decoded.station_id, 0)
         # Without a layer of ours the codec's own may have opened the envelope: its result rides on the packet.
         stats.security.add(verdict_of_opened(decoded.security), refused=False)
         reason = self.plausibility.check(observation_of(decoded, mac, time_tai_ms), receive_tai_ms)
@@ -150,7 +150,8 @@ class Reception:
             self.rejected_by_reason[reason.value] += 1
             stats.on_rejected(receive_s)
             return Heard(receive_s, mac)
-        delay_s = transit_delay_s(decoded, receive_tai_ms)
+        delay_s = None if decoded.message_type == ItsMessageId.DENM else \
+            ItsClock.seconds_between(time_tai_ms, receive_tai_ms)
         stats.on_message(decoded.message_type, receive_s, None if delay_s is None else time_tai_ms, delay_s)
         return Heard(receive_s, mac, decoded, delay_s)
 
@@ -188,11 +189,13 @@ class Reception:
             del self.stations[station_id]
             self.plausibility.forget(station_id)
         status = v2x_pb2.V2xStatus(packets_received=self.packets_received)
+        leap_seconds = leap_seconds_since_its_epoch(self.clock.unix_s(now_s))
         for station_id in sorted(self.stations):
             stats = self.stations[station_id]
-            # A station only ever refused by the security mode is listed too (LOST): it is there, and not heard.
-            if stats.last_heard_s is not None or stats.security.refused:
-                status.stations.append(stats.to_proto(now_s, self.loss_timeout_s))
+            # A station only ever refused by the security mode is listed too (LOST): it is there, and not heard. So is
+            # one whose messages are refused as too old or from the future because its clock is off: it says why.
+            if stats.last_heard_s is not None or stats.security.refused or stats.clock.is_off():
+                status.stations.append(stats.to_proto(now_s, self.loss_timeout_s, leap_seconds))
         for reason, count in sorted(self.rejected_by_reason.items()):
             status.rejected_by_reason[reason] = count
         return status

@@ -78,7 +78,7 @@ class V2xService(Service):
         self.transmitter = Transmitter(c, self.clock, security=self.security)
         self.reception = Reception(OwnIdentity(c.mac_bytes, c.station_id), self.clock, c.plausibility,
                                    c.loss_timeout_s, c.expected_rate_hz, c.statistics_window_s,
-                                   security=self.security)
+                                   security=self.security, known_clock_offsets_s=c.known_clock_offsets_s)
         self.pseudonyms = None
         if c.security.pseudonym_period_s is not None:
             self.pseudonyms = PseudonymChanger(self.security.signer, self.transmitter, self.reception)

@@ -16,6 +16,7 @@ from collections import deque
 
 import numpy as np
 
+from coopdrive.services.v2x.clock_offset import ClockOffset, diagnose
 from coopdrive.services.v2x.expected_period import ExpectedPeriod, expected_period
 from coopdrive.services.v2x.its_pdu import ItsMessageId
 from coopdrive.services.v2x.security_verdict import SecurityVerdict
@@ -119,6 +120,7 @@ class StationStats:
         self._streams: dict[ItsMessageId, StreamWindow] = {}
         self._delays: deque[tuple[float, float]] = deque()
         self.security = StationSecurity()
+        self.clock = ClockOffset()
 
     def on_message(self, message_type: ItsMessageId, receive_s: float, generation_tai_ms: int | None,
                    delay_s: float | None) -> None:
@@ -154,7 +156,8 @@ class StationStats:
         periodic = [stream for message_type, stream in self._streams.items() if message_type in PERIODIC_TYPES]
         return sum(s.received_total for s in periodic), sum(s.expected_total for s in periodic)
 
-    def to_proto(self, now_s: float, loss_timeout_s: float) -> v2x_pb2.StationLinkStats:
+    def to_proto(self, now_s: float, loss_timeout_s: float, leap_seconds: int = 0) -> v2x_pb2.StationLinkStats:
+        """leap_seconds: since 2004 at now_s, to name a clock offset of that many seconds."""
         for stream in self._streams.values():
             stream.prune(now_s)
         while self._delays and self._delays[0][0] < now_s - self.window_s:
@@ -169,6 +172,9 @@ class StationStats:
         cam_period_ms = cam_stream.expected.period_ms() if cam_stream is not None else None
         if cam_period_ms:
             stats.expected_cam_rate_hz = MS_PER_S / cam_period_ms
+        offset_s = self.clock.offset_s()
+        if offset_s is not None:
+            stats.clock_offset_s, stats.clock_diagnostic = offset_s, diagnose(offset_s, leap_seconds)
         self.security.fill(stats)
         if self.first_heard_s is not None and self._streams:
             stats.message_rate_hz = max(stream.rate_hz(now_s, self.first_heard_s) for stream in self._streams.values())
