@@ -68,6 +68,7 @@ class Log:
         self.sent = collections.Counter()
         self.verify_reports = collections.Counter()
         self.receive_errors = collections.Counter()
+        self.our_chain: dict = {}
 
     def on_cam(self, cam: dict) -> None:
         station_id = cam["header"]["stationId"]
@@ -95,7 +96,8 @@ class Log:
         with self.lock:
             return {"cams": {str(k): v for k, v in self.cams.items()},
                     "denms": {str(k): v for k, v in self.denms.items()}, "sent": dict(self.sent),
-                    "verify_reports": dict(self.verify_reports), "receive_errors": dict(self.receive_errors)}
+                    "verify_reports": dict(self.verify_reports), "receive_errors": dict(self.receive_errors),
+                    "our_chain_kept": self.our_chain}
 
 
 def guarded(log: Log, receive):
@@ -122,7 +124,23 @@ def counted(log: Log, name: str, function):
     return call
 
 
-def security_services(certs: Path, log: Log) -> tuple[SignService, VerifyService]:
+def trust_our_chain(library: CertificateLibrary, trust: Path) -> dict:
+    """Our root and authority (`coopdrive pki init` DIR: root.cert, aa.cert) offered to FlexStack's library, which
+    keeps a certificate only when it verifies its way (and drops the rest silently): what it kept, or why not."""
+    kept = {}
+    try:
+        root = Certificate().decode((trust / "root.cert").read_bytes(), issuer=None)
+        library.add_root_certificate(root)
+        kept["root"] = root.as_hashedid8() in library.known_root_certificates
+        authority = Certificate().decode((trust / "aa.cert").read_bytes(), issuer=root)
+        library.add_authorization_authority(authority)
+        kept["aa"] = authority.as_hashedid8() in library.known_authorization_authorities
+    except Exception as error:  # noqa: BLE001 - what its decoder or verifier raises is the finding
+        kept["error"] = f"{type(error).__name__}: {error}"
+    return kept
+
+
+def security_services(certs: Path, trust: Path | None, log: Log) -> tuple[SignService, VerifyService]:
     backend = PythonECDSABackend()
     files = {name: certs / file for name, file in CHAIN_FILES.items()}
     root = Certificate().decode(files["root"].read_bytes(), issuer=None)
@@ -133,6 +151,8 @@ def security_services(certs: Path, log: Log) -> tuple[SignService, VerifyService
     library = CertificateLibrary(ecdsa_backend=backend, root_certificates=[root], aa_certificates=[authority],
                                  at_certificates=[own])
     library.add_own_certificate(own)
+    if trust is not None:
+        log.our_chain = trust_our_chain(library, trust)
     sign = SignService(backend=backend, certificate_library=library)
     verify = VerifyService(backend=backend, certificate_library=library, sign_service=sign)
     plain_verify = verify.verify
@@ -179,7 +199,7 @@ class Station:
     def __init__(self, args: argparse.Namespace, log: Log):
         self.log, self.args = log, args
         mac = bytes.fromhex(args.mac.replace(":", ""))
-        sign, verify = security_services(args.certs, log) if args.certs else (None, None)
+        sign, verify = security_services(args.certs, args.trust, log) if args.certs else (None, None)
         mib = MIB(itsGnLocalGnAddr=GNAddress(m=M.GN_MULTICAST, st=ST.PASSENGER_CAR, mid=MID(mac)),
                   itsGnSecurity=GnSecurity.ENABLED if args.certs else GnSecurity.DISABLED)
         self.gn = GNRouter(mib=mib, sign_service=sign, verify_service=verify)
@@ -236,6 +256,7 @@ def main() -> None:
     run.add_argument("--longitude", type=float, default=5.6247)
     run.add_argument("--denm", action="store_true")
     run.add_argument("--certs", type=Path, help="sign and verify with the chain make-certs wrote here")
+    run.add_argument("--trust", type=Path, help="with --certs: also trust our PKI (root.cert, aa.cert) here")
     run.add_argument("--go-on-stdin", action="store_true", help="print 'ready', start when a line arrives on stdin")
     args = parser.parse_args()
     if args.command == "make-certs":
