@@ -47,15 +47,17 @@ def _ip(*args: str) -> None:
 class VethPair:
     """Namespaces cd<token>a and cd<token>b, with veth ends cdv<token>a and cdv<token>b in them, links up."""
 
-    def __init__(self, token: str):
+    def __init__(self, token: str, together: bool):
         self.a = Station(f"cd{token}a", f"cdv{token}a")
-        self.b = Station(f"cd{token}b", f"cdv{token}b")
+        # together: both ends in namespace a (a desk with two cards), namespace b made but left empty.
+        self.b = Station(self.a.namespace if together else f"cd{token}b", f"cdv{token}b")
+        self._namespaces = (self.a.namespace, f"cd{token}b")
 
     @classmethod
-    def create(cls) -> "VethPair":
+    def create(cls, together: bool = False) -> "VethPair":
         """A new pair, unique to this process; skips the calling test where namespaces cannot be made (no root,
         no CAP_SYS_ADMIN, a container without them), with ip's error line as the reason."""
-        pair = cls(f"{os.getpid() % 0xFFFF:04x}{secrets.token_hex(TOKEN_BYTES // 2)}")
+        pair = cls(f"{os.getpid() % 0xFFFF:04x}{secrets.token_hex(TOKEN_BYTES // 2)}", together)
         try:
             _ip("netns", "add", pair.a.namespace)
         except NamespaceError as error:
@@ -68,7 +70,7 @@ class VethPair:
         return pair
 
     def _build(self) -> None:
-        _ip("netns", "add", self.b.namespace)
+        _ip("netns", "add", self._namespaces[1])
         _ip("link", "add", self.a.interface, "netns", self.a.namespace, "type", "veth",
             "peer", "name", self.b.interface, "netns", self.b.namespace)
         for station in (self.a, self.b):
@@ -76,8 +78,9 @@ class VethPair:
             # cross the wire.
             _ip("-n", station.namespace, "link", "set", station.interface, "addrgenmode", "none")
             _ip("-n", station.namespace, "link", "set", station.interface, "up")
+        for namespace in self._namespaces:
             # Loopback, for the Zenoh bus a station's harness opens on 127.0.0.1 inside its namespace.
-            _ip("-n", station.namespace, "link", "set", "lo", "up")
+            _ip("-n", namespace, "link", "set", "lo", "up")
 
     def command(self, station: Station, *argv: str) -> list[str]:
         """The argv that runs `argv` inside the station's namespace."""
@@ -85,9 +88,8 @@ class VethPair:
 
     def remove(self) -> None:
         """Deletes both namespaces (the veth pair goes with them); a namespace already gone is no error."""
-        for station in (self.a, self.b):
-            subprocess.run([require("ip"), "netns", "delete", station.namespace], capture_output=True,
-                           timeout=IP_TIMEOUT_S)
+        for namespace in self._namespaces:
+            subprocess.run([require("ip"), "netns", "delete", namespace], capture_output=True, timeout=IP_TIMEOUT_S)
 
     def __enter__(self) -> "VethPair":
         return self

@@ -117,7 +117,7 @@ def run(config_path: Path, duration_s: float, speed_mps: float, send_denm: bool,
     process = start_service(config_path, endpoint)
     denms = None
     try:
-        collected.started.wait(START_TIMEOUT_S)
+        wait_until_started(collected, process)
         if go_on_stdin:
             wait_for_go()
         if send_denm and process.poll() is None:
@@ -135,6 +135,14 @@ def run(config_path: Path, duration_s: float, speed_mps: float, send_denm: bool,
                 "cams": {str(k): v for k, v in collected.cams.items()},
                 "denms": {str(k): v for k, v in collected.denms.items()},
                 "denms_sent": denms.sent if denms is not None else 0, "status": collected.status or {}}
+
+
+def wait_until_started(collected: Collected, process: subprocess.Popen) -> None:
+    """Until the service's first status, its exit (a missing interface: its one line is in the summary) or
+    START_TIMEOUT_S."""
+    deadline = time.monotonic() + START_TIMEOUT_S
+    while not collected.started.wait(EGO_PERIOD_S) and process.poll() is None and time.monotonic() < deadline:
+        pass
 
 
 def wait_for_go() -> None:

@@ -15,7 +15,6 @@ import pytest
 import yaml
 
 from tests.system_packages import MISSING
-from tests.v2x.live.netns import Station, VethPair
 
 ROOT = Path(__file__).resolve().parents[3]
 PEER_PYTHON = ROOT / ".venv-peers" / "bin" / "python"
@@ -35,24 +34,26 @@ def needs_peer_env() -> Path:
     return PEER_PYTHON
 
 
-def our_config(folder: Path, station: Station, station_id: int, mac: str, **settings) -> Path:
-    """Our service's config on the station's interface: ETSI CAM generation, no iCLCM (GCDC's own message)."""
-    config = {"link": {"type": "raw", "interface": station.interface}, "station_id": station_id,
+def our_config(folder: Path, interface: str, station_id: int, mac: str, **settings) -> Path:
+    """Our service's config on the interface: ETSI CAM generation, no iCLCM (GCDC's own message)."""
+    config = {"link": {"type": "raw", "interface": interface}, "station_id": station_id,
               "vehicle_mac": mac, "cam_mode": "etsi", "send_iclcm": False, **STANDARD_VERSIONS, **settings}
     path = folder / f"v2x-{station_id}.yaml"
     path.write_text(yaml.safe_dump(config))
     return path
 
 
-def our_station(pair: VethPair, station: Station, config: Path, *options: str) -> list[str]:
-    return pair.command(station, sys.executable, "-m", "tests.v2x.live.our_station", "--config", str(config),
-                        "--duration-s", str(EXCHANGE_S), "--speed-mps", str(SPEED_MPS), "--go-on-stdin", *options)
+def our_station(config: Path, *options: str, duration_s: float = EXCHANGE_S) -> list[str]:
+    """The argv of our station (our_station.py) with the service on the config's interface."""
+    return [sys.executable, "-m", "tests.v2x.live.our_station", "--config", str(config), "--duration-s",
+            str(duration_s), "--speed-mps", str(SPEED_MPS), "--go-on-stdin", *options]
 
 
-def flexstack_station(pair: VethPair, station: Station, station_id: int, mac: str, *options: str) -> list[str]:
-    return pair.command(station, str(PEER_PYTHON), str(PEER_SCRIPT), "run", "--interface", station.interface,
-                        "--station-id", str(station_id), "--mac", mac, "--duration-s", str(EXCHANGE_S),
-                        "--speed-mps", str(SPEED_MPS), "--go-on-stdin", *options)
+def flexstack_station(interface: str, station_id: int, mac: str, *options: str,
+                      duration_s: float = EXCHANGE_S) -> list[str]:
+    """The argv of a FlexStack station (flexstack_peer.py run) on the interface."""
+    return [str(PEER_PYTHON), str(PEER_SCRIPT), "run", "--interface", interface, "--station-id", str(station_id),
+            "--mac", mac, "--duration-s", str(duration_s), "--speed-mps", str(SPEED_MPS), "--go-on-stdin", *options]
 
 
 def make_flexstack_chain(directory: Path) -> Path:

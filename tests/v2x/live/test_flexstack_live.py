@@ -8,6 +8,8 @@ exact refusal reason and the peer's departure from the standard, with the clause
 /work/shared/notes/v2x-peers.md.
 """
 
+import json
+
 import pytest
 
 from coopdrive.services.v2x.security.pki import create_test_pki
@@ -43,15 +45,18 @@ def live(tmp_path_factory):
     security = {"mode": "verify_required", "pki_dir": str(our_pki), "ticket": "ego",
                 "extra_authorities": [str(flexstack_chain / "aa.cert")]}
     with VethPair.create() as plain, VethPair.create() as signed:
+        our_signed = our_config(folder, signed.a.interface, OURS_SIGNED, OUR_MAC, security=security)
         stations = {
-            "ours": our_station(plain, plain.a, our_config(folder, plain.a, OURS, OUR_MAC), "--denm"),
-            "flexstack": flexstack_station(plain, plain.b, PEER, PEER_MAC, "--denm"),
-            "ours_signed": our_station(signed, signed.a, our_config(folder, signed.a, OURS_SIGNED, OUR_MAC,
-                                                                    security=security)),
-            "flexstack_signed": flexstack_station(signed, signed.b, PEER_SIGNED, PEER_MAC, "--certs",
-                                                  str(flexstack_chain), "--trust", str(our_pki)),
+            "ours": plain.command(plain.a, *our_station(our_config(folder, plain.a.interface, OURS, OUR_MAC),
+                                                        "--denm")),
+            "flexstack": plain.command(plain.b, *flexstack_station(plain.b.interface, PEER, PEER_MAC, "--denm")),
+            "ours_signed": signed.command(signed.a, *our_station(our_signed)),
+            "flexstack_signed": signed.command(signed.b, *flexstack_station(
+                signed.b.interface, PEER_SIGNED, PEER_MAC, "--certs", str(flexstack_chain), "--trust", str(our_pki))),
         }
         summaries = run_exchange(stations, folder)
+    # Kept beside the stations' stderr: the counts of the run, for a reader of a failure.
+    (folder / "summaries.json").write_text(json.dumps(summaries, indent=1))
     summaries["flexstack_chain"] = flexstack_chain
     return summaries
 
