@@ -46,7 +46,8 @@ from flexstack.utils.time_service import TimeService
 from peer_certs import CHAIN_FILES, make_chain
 
 CAM_PORT, DENM_PORT = 2001, 2002
-PSID_CAM, PSID_DENM = 36, 37
+MESSAGE_OF_PORT = {CAM_PORT: "cams", DENM_PORT: "denms"}
+PSID_DENM = 37
 PERIOD_S = 0.1
 METRES_PER_DEGREE_LATITUDE = 111_320.0
 # DENM: a stationary vehicle (cause 94, no sub cause) where the peer is, valid 60 s, sent twice a second.
@@ -115,11 +116,13 @@ def guarded(log: Log, receive):
     return on_packet
 
 
-def counted(log: Log, name: str, function):
-    def call(*args, **kwargs):
+def counted_by_port(log: Log, request_data):
+    """FlexStack's BTP data request, counting what it is asked to send by message (its BTP destination port)."""
+
+    def call(request: BTPDataRequest):
         with log.lock:
-            log.sent[name] += 1
-        return function(*args, **kwargs)
+            log.sent[MESSAGE_OF_PORT.get(request.destination_port, str(request.destination_port))] += 1
+        return request_data(request)
 
     return call
 
@@ -210,10 +213,9 @@ class Station:
         self.ca.cam_reception_management.add_application_callback(log.on_cam)
         self.den = DecentralizedEnvironmentalNotificationService(btp_router=self.btp, vehicle_data=self.vehicle)
         self.btp.register_indication_callback_btp(port=DENM_PORT, callback=self._on_denm)
-        self.btp.btp_data_request = counted(log, "btp_requests", self.btp.btp_data_request)
+        self.btp.btp_data_request = counted_by_port(log, self.btp.btp_data_request)
         self.btp.freeze_callbacks()
         self.link = RawLinkLayer(args.interface, mac, guarded(log, self.gn.gn_data_indicate))
-        self.link.send = counted(log, "frames", self.link.send)
         self.gn.link_layer = self.link
 
     def _on_denm(self, indication) -> None:
@@ -235,8 +237,6 @@ class Station:
             if self.args.denm and time.monotonic() >= next_denm_s:
                 next_denm_s += DENM_INTERVAL_S
                 self.btp.btp_data_request(denm_request(self.vehicle, tpv, self.den.denm_coder))
-                with self.log.lock:
-                    self.log.sent["denms"] += 1
             time.sleep(PERIOD_S)
         self.ca.stop()
 
