@@ -16,6 +16,7 @@ import time
 from pathlib import Path
 
 from tests.v2x.live.our_station import READY
+from tests.v2x.live.stations import ROOT
 
 # How long a station may take to start (interpreter, imports, Zenoh, the service) on a machine loaded by a full
 # test run; and to finish after its duration.
@@ -54,14 +55,16 @@ def _summary(name: str, process: subprocess.Popen, stderr: Path) -> dict:
 
 
 def run_exchange(stations: dict[str, list[str]], logs_dir: Path) -> dict[str, dict]:
-    """Runs the stations' argvs together; returns each one's summary by name. Their stderr stays in logs_dir."""
+    """Runs the stations' argvs together (in the repository, where `python -m tests...` finds our harness); returns
+    each one's summary by name. Their stderr stays in logs_dir."""
     processes: dict[str, tuple[subprocess.Popen, Path]] = {}
     try:
         for name, argv in stations.items():
             stderr = logs_dir / f"{name}.stderr"
             with stderr.open("w") as stderr_file:
                 processes[name] = (subprocess.Popen(argv, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                                    stderr=stderr_file, text=True, start_new_session=True),
+                                                    stderr=stderr_file, text=True, start_new_session=True,
+                                                    cwd=ROOT),
                                    stderr)
         deadline = time.monotonic() + READY_TIMEOUT_S
         for name, (process, stderr) in processes.items():
