@@ -3,7 +3,7 @@ its own process, run by .venv-peers/bin/python (tools/peer_env.sh), never import
 
     .venv-peers/bin/python tests/v2x/live/flexstack_peer.py make-certs DIR
     .venv-peers/bin/python tests/v2x/live/flexstack_peer.py run --interface IF --station-id N --mac 02:..
-        [--duration-s 10] [--denm] [--certs DIR] [--go-on-stdin]
+        [--duration-s 10] [--denm] [--vam-station-id N] [--certs DIR [--trust OUR_PKI]] [--go-on-stdin]
 
 `make-certs` writes a chain made by FlexStack's own certificate code (root.cert, aa.cert, at.cert and at.pem).
 `run` puts a FlexStack station on the interface (raw link, ethertype 0x8947): GN router (MIB: GN version 1, its own
@@ -25,6 +25,8 @@ from flexstack.btp.router import Router as BTPRouter
 from flexstack.btp.service_access_point import BTPDataRequest, CommonNH, CommunicationProfile
 from flexstack.facilities.ca_basic_service.ca_basic_service import CooperativeAwarenessBasicService
 from flexstack.facilities.ca_basic_service.cam_transmission_management import VehicleData
+from flexstack.facilities.vru_awareness_service.vam_transmission_management import DeviceDataProvider
+from flexstack.facilities.vru_awareness_service.vru_awareness_service import VRUAwarenessService
 from flexstack.facilities.decentralized_environmental_notification_service.den_service import (
     DecentralizedEnvironmentalNotificationService)
 from flexstack.facilities.decentralized_environmental_notification_service.denm_transmission_management import (
@@ -45,8 +47,10 @@ from flexstack.utils.time_service import TimeService
 
 from peer_certs import CHAIN_FILES, make_chain
 
-CAM_PORT, DENM_PORT = 2001, 2002
-MESSAGE_OF_PORT = {CAM_PORT: "cams", DENM_PORT: "denms"}
+CAM_PORT, DENM_PORT, VAM_PORT = 2001, 2002, 2018
+MESSAGE_OF_PORT = {CAM_PORT: "cams", DENM_PORT: "denms", VAM_PORT: "vams"}
+# ETSI StationType of the VRU whose VAMs the peer sends with --vam-station-id.
+STATION_TYPE_PEDESTRIAN = 1
 PSID_DENM = 37
 PERIOD_S = 0.1
 METRES_PER_DEGREE_LATITUDE = 111_320.0
@@ -213,6 +217,11 @@ class Station:
         self.ca.cam_reception_management.add_application_callback(log.on_cam)
         self.den = DecentralizedEnvironmentalNotificationService(btp_router=self.btp, vehicle_data=self.vehicle)
         self.btp.register_indication_callback_btp(port=DENM_PORT, callback=self._on_denm)
+        self.vru = None
+        if args.vam_station_id is not None:
+            # A VRU beside the vehicle, sending VAMs (TS 103 300-3) through the same router.
+            self.vru = VRUAwarenessService(btp_router=self.btp, device_data_provider=DeviceDataProvider(
+                station_id=args.vam_station_id, station_type=STATION_TYPE_PEDESTRIAN))
         self.btp.btp_data_request = counted_by_port(log, self.btp.btp_data_request)
         self.btp.freeze_callbacks()
         self.link = RawLinkLayer(args.interface, mac, guarded(log, self.gn.gn_data_indicate))
@@ -234,6 +243,8 @@ class Station:
             tpv.update(speed=self.args.speed_mps, track=0.0, altHAE=tpv["alt"], epd=1.0)
             self.gn.refresh_ego_position_vector(tpv)
             self.ca.cam_transmission_management.location_service_callback(tpv)
+            if self.vru is not None:
+                self.vru.vam_transmission_management.location_service_callback(tpv)
             if self.args.denm and time.monotonic() >= next_denm_s:
                 next_denm_s += DENM_INTERVAL_S
                 self.btp.btp_data_request(denm_request(self.vehicle, tpv, self.den.denm_coder))
@@ -255,6 +266,7 @@ def main() -> None:
     run.add_argument("--latitude", type=float, default=51.4758)
     run.add_argument("--longitude", type=float, default=5.6247)
     run.add_argument("--denm", action="store_true")
+    run.add_argument("--vam-station-id", type=int, help="also send VAMs of a pedestrian with this station id")
     run.add_argument("--certs", type=Path, help="sign and verify with the chain make-certs wrote here")
     run.add_argument("--trust", type=Path, help="with --certs: also trust our PKI (root.cert, aa.cert) here")
     run.add_argument("--go-on-stdin", action="store_true", help="print 'ready', start when a line arrives on stdin")

@@ -23,6 +23,8 @@ pytestmark = [pytest.mark.whole_run, needs("ip")]
 
 OURS, PEER = 1001, 4242
 OURS_SIGNED, PEER_SIGNED = 1002, 4243
+# The pedestrian beside FlexStack's vehicle whose VAMs it sends on the unsigned wire.
+PEER_VRU = 4250
 OUR_MAC, PEER_MAC = "02:00:00:00:10:01", "02:00:00:00:42:42"
 # Where the FlexStack station starts (its script's default) and drives north from: the GCDC origin.
 PEER_START_DEG = (51.4758, 5.6247)
@@ -49,7 +51,8 @@ def live(tmp_path_factory):
         stations = {
             "ours": plain.command(plain.a, *our_station(our_config(folder, plain.a.interface, OURS, OUR_MAC),
                                                         "--denm")),
-            "flexstack": plain.command(plain.b, *flexstack_station(plain.b.interface, PEER, PEER_MAC, "--denm")),
+            "flexstack": plain.command(plain.b, *flexstack_station(plain.b.interface, PEER, PEER_MAC, "--denm",
+                                                                   "--vam-station-id", str(PEER_VRU))),
             "ours_signed": signed.command(signed.a, *our_station(our_signed)),
             "flexstack_signed": signed.command(signed.b, *flexstack_station(
                 signed.b.interface, PEER_SIGNED, PEER_MAC, "--certs", str(flexstack_chain), "--trust", str(our_pki))),
@@ -96,6 +99,16 @@ def test_flexstack_decodes_our_denms_with_our_station_id_and_event(live):
     assert 0 < heard["count"] <= live["ours"]["denms_sent"]
     assert heard["originating_station_id"] == OURS and heard["termination"] is None
     assert heard["cause_code"] == "stationaryVehicle94"
+
+
+def test_flexstacks_vams_are_refused_as_an_unknown_btp_port_as_our_service_takes_no_vams_yet(live):
+    """Issue 71 wants its VAMs in our station table; the service publishes CAMs, DENMs and iCLCMs only (VAMs are
+    decoded in captures, services/v2x/release2.py), so today each VAM is refused at BTP port 2018, and nothing
+    else on the wire is."""
+    refused = live["ours"]["status"]["rejected_by_reason"]
+    assert set(refused) == {"unknown_btp_port"}
+    assert 0 < int(refused["unknown_btp_port"]) <= live["flexstack"]["sent"]["vams"]
+    assert str(PEER_VRU) not in live["ours"]["cams"]
 
 
 def test_we_refuse_flexstacks_signed_cams_because_it_does_not_sign_as_ieee_1609_2_says(live):
