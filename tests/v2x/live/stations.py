@@ -61,3 +61,9 @@ def make_flexstack_chain(directory: Path) -> Path:
     subprocess.run([str(PEER_PYTHON), str(PEER_SCRIPT), "make-certs", str(directory)], check=True,
                    capture_output=True, timeout=CERTS_TIMEOUT_S)
     return directory
+
+
+def ours_ran(summary: dict) -> dict:
+    """The summary of our station, after checking that its service ran the whole exchange (else its stderr)."""
+    assert summary["started"] and not summary["service_exited_early"], summary["service_stderr"]
+    return summary

@@ -17,7 +17,7 @@ from tests.system_packages import needs
 from tests.v2x.live.exchange import run_exchange
 from tests.v2x.live.netns import VethPair
 from tests.v2x.live.stations import (
-    SPEED_MPS, flexstack_station, make_flexstack_chain, needs_peer_env, our_config, our_station)
+    SPEED_MPS, flexstack_station, make_flexstack_chain, needs_peer_env, our_config, our_station, ours_ran)
 
 pytestmark = [pytest.mark.whole_run, needs("ip")]
 
@@ -58,6 +58,7 @@ def live(tmp_path_factory):
                 signed.b.interface, PEER_SIGNED, PEER_MAC, "--certs", str(flexstack_chain), "--trust", str(our_pki))),
         }
         summaries = run_exchange(stations, folder)
+    ours_ran(summaries["ours"]), ours_ran(summaries["ours_signed"])
     # Kept beside the stations' stderr: the counts of the run, for a reader of a failure.
     (folder / "summaries.json").write_text(json.dumps(summaries, indent=1))
     summaries["flexstack_chain"] = flexstack_chain

@@ -7,7 +7,7 @@ import pytest
 from tests.system_packages import needs
 from tests.v2x.live.exchange import run_exchange
 from tests.v2x.live.netns import VethPair
-from tests.v2x.live.stations import SPEED_MPS, our_config, our_station
+from tests.v2x.live.stations import SPEED_MPS, our_config, our_station, ours_ran
 
 pytestmark = [pytest.mark.whole_run, needs("ip")]
 
@@ -19,9 +19,12 @@ def summaries(tmp_path_factory):
     folder = tmp_path_factory.mktemp("raw_netns")
     with VethPair.create() as pair:
         ends = {"a": pair.a, "b": pair.b}
-        return run_exchange({name: pair.command(ends[name], *our_station(our_config(folder, ends[name].interface,
-                                                                                    station_id, mac)))
-                             for name, (station_id, mac) in STATIONS.items()}, folder)
+        stations = {}
+        for name, (station_id, mac) in STATIONS.items():
+            config = our_config(folder, ends[name].interface, station_id, mac)
+            stations[name] = pair.command(ends[name], *our_station(config))
+        summaries = run_exchange(stations, folder)
+    return {name: ours_ran(summary) for name, summary in summaries.items()}
 
 
 @pytest.mark.parametrize("listener, speaker", [("a", "b"), ("b", "a")])
