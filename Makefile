@@ -38,6 +38,7 @@ desk: $(STAMP) bytecode
 TEST_WORKERS ?= auto
 test: $(STAMP) bytecode
 	@tools/system_packages.sh
+	@tools/peer_env.sh
 	$(BIN)/python -m pytest -n $(TEST_WORKERS) --dist loadfile --no-loadscope-reorder
 
 ## bench: benchmarks, each against a baseline measured in the same run
@@ -55,4 +56,4 @@ proto:
 	$(MAKE) $(STAMP)
 
 clean:
-	rm -rf $(VENV) out build site *.egg-info
+	rm -rf $(VENV) .venv-peers out build site *.egg-info

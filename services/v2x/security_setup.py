@@ -1,5 +1,5 @@
 """The v2x service's security settings read from their files and checked before anything starts: each root
-self-signed, each authority and ticket signed by a certificate this station knows, each ticket's key file its
+self-signed, each authority and ticket whose issuer this station knows signed by it, each ticket's key file its
 ticket's key. Whatever is wrong is one line naming the setting, the file and the reason (SecuritySettingError), never
 a traceback, and the service does not start.
 """
@@ -79,8 +79,8 @@ def _issued(setting: str, path: Path, issuers: dict[bytes, Certificate]) -> Cert
         return certificate  # a root known, not trusted: what it issued chains to it and is refused as untrusted
     issuer = issuers.get(certificate.issuer_digest or b"")
     if issuer is None:
-        raise SecuritySettingError(f"security.{setting} {path}: {certificate.name} is issued by a certificate this "
-                                   "station neither trusts nor knows (add its root or authority)")
+        # Known, not chained: what it issued is refused on the air as from an unknown issuer, never trusted.
+        return certificate
     if not certificate.signature_is_from(issuer):
         raise SecuritySettingError(f"security.{setting} {path}: {certificate.name}'s signature by {issuer.name} "
                                    "does not verify")

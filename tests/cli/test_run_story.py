@@ -4,20 +4,18 @@ and where to go next; a progress line on a terminal while it runs."""
 import io
 from pathlib import Path
 
-
 from coopdrive.launch.progress_line import ProgressLine
 from coopdrive.launch.run_story import KEY_FIGURE_COUNT, key_figures, next_steps, sentences, tell, verdict_line
 from coopdrive.launch.summary import summary_dict
 from coopdrive.v1 import sim_pb2
 
 
-
 def follow_result(success: bool = True) -> sim_pb2.RunResult:
     result = sim_pb2.RunResult(scenario="follow", seed=3, success=success, sim_time_s=60.0, wall_time_s=20.0,
                                failure_reason="" if success else "collision: ego hit leader")
     result.metrics.update({"min_gap_m": 19.9, "min_time_gap_s": 1.79, "spacing_error_m": 3.34,
-                           "spacing_error_rms_m": 4.67, "spacing_error_max_m": 12.0, "speed_error_kmh": 2.67, "max_abs_accel_mps2": 2.19,
-                           "string_gain": 0.95, "collisions": 0, "hard_brakes": 1})
+                           "spacing_error_rms_m": 4.67, "spacing_error_max_m": 12.0, "speed_error_kmh": 2.67,
+                           "max_abs_accel_mps2": 2.19, "string_gain": 0.95, "collisions": 0, "hard_brakes": 1})
     return result
 
 

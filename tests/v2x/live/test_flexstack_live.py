@@ -140,8 +140,7 @@ def test_flexstack_refuses_our_signed_cams_and_our_chain_by_its_own_hashing(live
 
 def test_our_service_refuses_flexstacks_root_as_a_trusted_root(live, spawn, endpoint, tmp_path):
     """Its root's self-signature is FlexStack's plain SHA-256 (IEEE 1609.2 5.3.1 departs): a root we cannot verify
-    is not trusted, so the service does not start with it. Today it ends with a traceback (issue 77 item 1 makes it
-    one line); both name the reason."""
+    is not trusted, so the service does not start with it, and says so in one line naming the file."""
     pki = tmp_path / "pki"
     create_test_pki(pki, ["ego"])
     config = tmp_path / "v2x.yaml"
@@ -151,4 +150,6 @@ def test_our_service_refuses_flexstacks_root_as_a_trusted_root(live, spawn, endp
     process = spawn("service", "v2x", "--config", str(config), "--vehicle", "ego", "--connect", endpoint)
     _, stderr = process.communicate(timeout=120)
     assert process.returncode != 0
-    assert "invalid_certificate_signature" in stderr and "live-root" in stderr
+    root = live["flexstack_chain"] / "root.cert"
+    assert stderr.strip() == (f"coopdrive: security.extra_trusted_roots {root}: live-root's self-signature does not "
+                              "verify")

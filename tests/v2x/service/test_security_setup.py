@@ -71,10 +71,19 @@ def test_the_pki_s_own_root_and_authority_are_checked_too(pki):
         f"security.pki_dir {mine / 'aa.cert'}: aa's signature by root does not verify"
 
 
-def test_an_extra_authority_issued_by_a_root_nobody_configured_is_named(pki):
+def test_an_extra_authority_issued_by_a_root_nobody_configured_is_known_but_chains_to_nothing_trusted(pki):
     mine, other = pki
-    assert "is issued by a certificate this station neither trusts nor knows" in refused(
-        mode="sign_and_verify", pki_dir=mine, ticket="ego", extra_authorities=[other / "aa.cert"])
+    material = load_security_material(SecurityConfig(mode="sign_and_verify", pki_dir=mine, ticket="ego",
+                                                     extra_authorities=[other / "aa.cert"]))
+    assert len(material.authorities) == 2 and len(material.roots) == 1
+
+
+def test_an_extra_authority_whose_signature_its_configured_root_did_not_make_is_named(pki):
+    mine, other = pki
+    flip_last_byte(other / "aa.cert")
+    assert refused(mode="sign_and_verify", pki_dir=mine, ticket="ego", extra_trusted_roots=[other / "root.cert"],
+                   extra_authorities=[other / "aa.cert"]) == \
+        f"security.extra_authorities {other / 'aa.cert'}: aa's signature by root does not verify"
 
 
 def test_a_ticket_that_is_no_certificate_is_named(pki):
