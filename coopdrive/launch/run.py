@@ -78,6 +78,10 @@ class RunOptions:
     # When the command started (time.monotonic()), for the summary's startup_time_s; None: when run_scenario is
     # called.
     started_monotonic_s: float | None = None
+    # Called as on_process_started(name, pid) for each process the run starts, and starts again after a crash: name
+    # is the service's participant ("v1/gateway") or the group's ("v1/group"). For tools watching a process (the
+    # gateway bench samples the gateway's memory).
+    on_process_started: Callable[[str, int], None] | None = None
 
 
 MS_PER_S = 1000
@@ -207,7 +211,8 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     simulator = next(spec for spec in specs if spec.service == "sim")
     spool_dir = run_dir / "spools" if recording is not None else None
     processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir,
-                                 clock_step_s=simulator.config["step_s"], spool_dir=spool_dir)
+                                 clock_step_s=simulator.config["step_s"], spool_dir=spool_dir,
+                                 on_started=options.on_process_started)
     # The simulator says when (service_crash faults, in simulated time); the launcher owns the processes.
     hub.subscribe(WORLD_ID, "service_fault", lambda envelope: carry_out(processes, envelope.message))
     try:
