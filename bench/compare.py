@@ -98,6 +98,10 @@ def compare(old: BenchResults, new: BenchResults) -> list[Change]:
         changes.append(Change(bench, name, figure.unit.value, figure.value, None, verdict))
     changes += [Change(bench, name, figure.unit.value, None, figure.value, Verdict.NEW_FIGURE)
                 for (bench, name), figure in new_figures.items() if (bench, name) not in old_figures]
+    # A benchmark that failed in NEW and had nothing in OLD to miss is flagged by itself.
+    measured_before = {bench for bench, _ in old_figures}
+    changes += [Change(bench, f"(failed: {failure})", "", None, None, Verdict.NOT_MEASURED)
+                for bench, failure in new.failures().items() if bench not in measured_before]
     return changes
 
 

@@ -105,6 +105,13 @@ def test_figures_of_a_benchmark_that_failed_or_got_nan_are_flagged_not_measured(
         "coopdrive typed p50 to raw"] is Verdict.NOT_MEASURED
 
 
+def test_a_benchmark_that_failed_in_both_runs_is_still_flagged_with_its_reason(tmp_path, capsys):
+    failed = {"bench_gateway_ws": {"seconds": 6.5, "failure": "the run started no gateway process", "figures": []}}
+    old, new = results(tmp_path, "old", failed), results(tmp_path, "new", failed)
+    assert bench_compare.main([str(old), str(new)]) == 1
+    assert "NOT MEASURED: bench_gateway_ws (failed: the run started no gateway process)" in capsys.readouterr().out
+
+
 def test_a_benchmark_left_out_of_the_new_run_is_not_flagged(tmp_path):
     old = {"bench_bus": bus(100.0, 1.5), "bench_sim": {"seconds": 1.0, "failure": None, "figures": [
         figure("1 stacks: simulator CPU", 90.0, "ms per simulated s")]}}
