@@ -29,7 +29,7 @@ from coopdrive.launch.processes import NEW_INTERPRETERS_VARIABLE
 # The quick size starts the default layout only: each command is a whole run.
 LAYOUTS = sized(("service", "vehicle"), ("vehicle",))
 DURATIONS_S = sized((5.0, 60.0), (1.0,))
-STACKS = sized(8, 2)
+STACKS = sized(8, 1)
 STACKS_DURATION_S = sized(5.0, 0.5)
 ROUNDS = sized(2, 1)
 
