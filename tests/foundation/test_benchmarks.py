@@ -22,8 +22,8 @@ from bench.sizes import QUICK_VARIABLE
 pytestmark = pytest.mark.whole_run
 
 REPO = Path(__file__).resolve().parents[2]
-# Every benchmark at its quick size takes about a minute and a half on this project's 2-core machine, five minutes
-# when four other jobs share it.
+# Every benchmark at its quick size took over five minutes when four other jobs shared this project's 2-core machine
+# (load average 20); about 85 s quiet before bench_gateway_ws measured again.
 RUN_TIMEOUT_S = 900
 GATEWAY_RUN_S = 1.0
 
