@@ -10,6 +10,7 @@ import statistics
 import sys
 import time
 
+from bench.figure import Figure, Unit
 from bench.sizes import sized
 from coopdrive.can.codec import VehicleCanCodec, VehicleCommand
 from coopdrive.services.actuation.actuator import Actuator
@@ -77,15 +78,18 @@ def measure(iterations: int) -> dict[str, list[float]]:
     return samples
 
 
-def main() -> None:
+def main() -> list[Figure]:
     # An environment variable, not argv: `python -m bench NAME` passes the benchmark's name on argv.
     iterations = int(os.environ.get("BENCH_ACTUATION_CYCLES", DEFAULT_ITERATIONS))
     samples = measure(iterations)
     print(f"Actuator latency, {iterations} cycles, Python {sys.version.split()[0]}")
     print(f"{'stage':<28} {'p50 us':>9} {'p99 us':>9} {'max us':>9} {'mean us':>9}")
+    figures = []
     for stage, values in samples.items():
-        print(f"{stage:<28} {percentile(values, 0.5):9.1f} {percentile(values, 0.99):9.1f} "
-              f"{max(values):9.1f} {statistics.fmean(values):9.1f}")
+        p50, p99 = percentile(values, 0.5), percentile(values, 0.99)
+        print(f"{stage:<28} {p50:9.1f} {p99:9.1f} {max(values):9.1f} {statistics.fmean(values):9.1f}")
+        figures += [Figure(f"{stage} p50", p50, Unit.US), Figure(f"{stage} p99", p99, Unit.US)]
+    return figures
 
 
 if __name__ == "__main__":

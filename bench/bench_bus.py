@@ -15,6 +15,7 @@ import numpy as np
 from rich.console import Console
 from rich.table import Table
 
+from bench.figure import Figure, Unit, ratio
 from bench.sizes import sized
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
@@ -85,16 +86,20 @@ def _measure(typed: bool) -> np.ndarray:
     return np.array(samples) * 1e6
 
 
-def main() -> None:
+def main() -> list[Figure]:
     raw = _measure(typed=False)
     typed = _measure(typed=True)
     table = Table(title=f"bus one-way latency, 2 processes, {ROUND_TRIPS} round trips (us)")
     for column in ("path", "p50", "p99", "ratio p50 to raw"):
         table.add_column(column, justify="right")
+    raw_p50 = np.percentile(raw, 50)
+    figures = []
     for name, samples in (("raw zenoh bytes", raw), ("coopdrive typed", typed)):
-        table.add_row(name, f"{np.percentile(samples, 50):.0f}", f"{np.percentile(samples, 99):.0f}",
-                      f"{np.percentile(samples, 50) / np.percentile(raw, 50):.2f}")
+        p50, p99 = np.percentile(samples, 50), np.percentile(samples, 99)
+        table.add_row(name, f"{p50:.0f}", f"{p99:.0f}", f"{p50 / raw_p50:.2f}")
+        figures += [Figure(f"{name} p50", p50, Unit.US), Figure(f"{name} p99", p99, Unit.US)]
     Console().print(table)
+    return figures + [ratio("coopdrive typed p50 to raw", np.percentile(typed, 50) / raw_p50, "raw zenoh bytes p50")]
 
 
 if __name__ == "__main__":

@@ -8,6 +8,7 @@ import os
 import statistics
 import time
 
+from bench.figure import Figure, Unit
 from bench.sizes import sized
 from coopdrive.services.control.lateral import LateralController, LateralLaw
 from coopdrive.services.control.longitudinal import CaccLaw, LongitudinalController, Spacing, Target
@@ -45,7 +46,7 @@ def controller_call(law: CaccLaw, targets: int):
     return lambda k: ctrl.step(k * DT_S, 22.0, 0.1, tgts, 25.0, spacing)
 
 
-def main() -> None:
+def main() -> list[Figure]:
     # An environment variable, not argv: `python -m bench NAME` passes the benchmark's name on argv.
     iterations = int(os.environ.get("BENCH_CONTROL_ITERATIONS", DEFAULT_ITERATIONS))
     ours, ploeg = LagCompensatedCacc(CAR.cacc, CAR.engine_lag_s), PloegCacc(CAR.ploeg)
@@ -61,11 +62,14 @@ def main() -> None:
     for law, ctrl in lateral.items():
         rows.append((f"lateral: {law.value}", lambda k, c=ctrl: c.step(k * DT_S, 22.0, 0.2, 0.01, 0.001)))
     print(f"{'call':32s} {'p50 us':>9s} {'p99 us':>9s} {'max us':>9s} {'mean us':>9s}")
+    figures = []
     for name, call in rows:
         timed(call, min(iterations, 500))  # warm-up
         samples = timed(call, iterations)
-        print(f"{name:32s} {percentile(samples, 0.5):9.1f} {percentile(samples, 0.99):9.1f} "
-              f"{max(samples):9.1f} {statistics.fmean(samples):9.1f}")
+        p50, p99 = percentile(samples, 0.5), percentile(samples, 0.99)
+        print(f"{name:32s} {p50:9.1f} {p99:9.1f} {max(samples):9.1f} {statistics.fmean(samples):9.1f}")
+        figures += [Figure(f"{name} p50", p50, Unit.US), Figure(f"{name} p99", p99, Unit.US)]
+    return figures
 
 
 if __name__ == "__main__":

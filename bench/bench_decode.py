@@ -24,6 +24,7 @@ from cryptography.hazmat.primitives.asymmetric import ec
 from cryptography.hazmat.primitives.asymmetric.utils import Prehashed, encode_dss_signature
 
 from bench.bench_v2x import GN, typical_cam
+from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
 from coopdrive.services.v2x.btp import parse_btp_b
 from coopdrive.recording.capture import read_capture
@@ -132,19 +133,24 @@ def measure(seconds: float) -> list[tuple[str, int, float]]:
     return [(path, size, rate) for (path, size, _), rate in zip(rows, rates)]
 
 
-def main() -> None:
+def main() -> list[Figure]:
     seconds = float(os.environ.get("BENCH_DECODE_SECONDS", sized(2.0, 0.05)))
     rows = measure(seconds)
     print(f"{'path':46} {'bytes':>5} {'decode/s':>9} {'x bare':>7}")
     bare_signed, bare_uper, bare_like = rows[0][2], rows[3][2], rows[4][2]
+    figures = []
     for path, size, rate in rows:
-        bare = bare_signed if path.startswith("signed") else bare_like
+        bare, bare_path = (bare_signed, rows[0][0]) if path.startswith("signed") else (bare_like, rows[4][0])
         print(f"{path:46} {size:5d} {rate:9.0f} {bare / rate:7.2f}")
+        figures.append(Figure(f"{path} decodes", rate, Unit.PER_S))
+        if path != bare_path:
+            figures.append(ratio(f"{path}: time x bare", bare / rate, bare_path, Better.LOWER))
     ours = rows[5][2]
     verdict = "within" if bare_like / ours <= TARGET_RATIO else "NOT within"
     print(f"unsigned decode path: {bare_like / ours:.2f}x bare struct + asn1tools doing the same checks, {verdict} "
           f"the {TARGET_RATIO}x target ({bare_uper / ours:.2f}x asn1tools decoding the UPER alone)")
     print(f"signed CAM path (unwrap + verify + decode): {bare_signed / rows[1][2]:.2f}x bare")
+    return figures
 
 
 if __name__ == "__main__":

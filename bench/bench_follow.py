@@ -16,6 +16,8 @@ from rich.console import Console
 from rich.table import Table
 
 from bench import baselines
+from bench.failure import require_success
+from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
 from bench.step_latency import StepLatency
 from coopdrive.launch.process_layout import ProcessLayout
@@ -45,7 +47,7 @@ def percentiles(latencies_ms: np.ndarray) -> tuple[str, str]:
     return tuple(f"{np.percentile(latencies_ms, q):.2f}" for q in (50, 99))
 
 
-def main() -> None:
+def main() -> list[Figure]:
     table = Table(title=f"follow scenario, lockstep, {DURATION_S:.0f} s simulated, and {REALTIME_DURATION_S:.0f} s "
                         f"paced to the wall clock (required sim_time_s / wall_time_s >= {REQUIRED_REALTIME_FACTOR})")
     for column in ("processes", "success", "sim_time_s / wall_time_s", "steps per wall second",
@@ -58,14 +60,29 @@ def main() -> None:
                ("one per vehicle", vehicle, False, False), ("one for the run", one, False, False),
                ("one per service, realtime", service, True, False), ("one per vehicle, realtime", vehicle, True, False),
                ("one for the run, realtime", one, True, False))
+    figures, factors = [], {}
     for label, processes, realtime, thread_per_service in layouts:
         result, latency = run(processes, realtime, thread_per_service)
+        require_success(result, f"the run {label!r}")
         p50, p99 = percentiles(latency.latencies_ms())
-        table.add_row(label, str(result.success), f"{result.sim_time_s / result.wall_time_s:.2f}",
+        factors[label] = result.sim_time_s / result.wall_time_s
+        table.add_row(label, str(result.success), f"{factors[label]:.2f}",
                       f"{result.sim_time_s / STEP_S / result.wall_time_s:.0f}", p50, p99,
                       " / ".join(percentiles(latency.latencies_ms(scene_steps=True))),
                       " / ".join(percentiles(latency.latencies_ms(scene_steps=False))))
+        if not realtime:  # a paced run's factor is 1 by design
+            figures.append(Figure(f"{label}: real-time factor", factors[label], Unit.REALTIME_FACTOR))
+        figures += [Figure(f"{label}: sensor -> command p{q}", _percentile(latency.latencies_ms(), q), Unit.MS)
+                    for q in (50, 99)]
     Console().print(table)
+    before, now = layouts[1][0], layouts[2][0]
+    return figures + [ratio(f"{now}: real-time factor to a thread per service", factors[now] / factors[before],
+                            f"{before}: real-time factor", Better.HIGHER)]
+
+
+def _percentile(latencies_ms: np.ndarray, q: int) -> float:
+    """NaN when no step was measured: the runner then fails the benchmark naming the figure."""
+    return float(np.percentile(latencies_ms, q)) if latencies_ms.size else float("nan")
 
 
 if __name__ == "__main__":

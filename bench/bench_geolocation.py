@@ -20,6 +20,7 @@ from filterpy.kalman import ExtendedKalmanFilter
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "geolocation"))
 from geolocation_drive import GNSS_EVERY, ORIGIN, can_state, drive, gnss_fix  # noqa: E402
 
+from bench.figure import Better, Figure, Unit, ratio  # noqa: E402
 from bench.sizes import sized  # noqa: E402
 from coopdrive.roadmap import RoadMap  # noqa: E402
 from coopdrive.services.geolocation.config import GeolocatorConfig  # noqa: E402
@@ -98,7 +99,7 @@ def map_match(n_calls: int) -> float:
     return time.perf_counter() - start
 
 
-def main(argv: list[str] | None = None) -> None:
+def main(argv: list[str] | None = None) -> list[Figure]:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--seconds", type=float, default=sized(30.0, 1.0), help="simulated drive length")
     args = parser.parse_args(argv or [])
@@ -118,11 +119,15 @@ def main(argv: list[str] | None = None) -> None:
     rows.append(("RoadMap.match on the a270 (calls)", 2000, elapsed))
     realtime_inputs_per_s = 100 + 100 / GNSS_EVERY
     print(f"{'case':44s} {'count':>7s} {'per s':>10s} {'us each':>9s} {'x real time':>11s}")
+    figures = []
     for name, count, seconds in rows:
         rate = count / seconds
         realtime = f"{rate / realtime_inputs_per_s:11.1f}" if name.startswith(("Geolocator", "  +")) else " " * 11
         print(f"{name:44s} {count:7d} {rate:10.0f} {1e6 / rate:9.1f} {realtime}")
+        figures.append(Figure(name.strip(), rate, Unit.PER_S))
     print(f"real time needs {realtime_inputs_per_s:.0f} inputs/s (100 Hz odometry + {100 / GNSS_EVERY:.0f} Hz GNSS)")
+    (bare, bare_n, bare_s), (ours, ours_n, ours_s) = rows[0], rows[1]
+    return figures + [ratio(f"{ours}: time x bare", (ours_s / ours_n) / (bare_s / bare_n), bare, Better.LOWER)]
 
 
 if __name__ == "__main__":

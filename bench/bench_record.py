@@ -19,6 +19,8 @@ from pathlib import Path
 from rich.console import Console
 from rich.table import Table
 
+from bench.failure import require_success
+from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
 from coopdrive.launch.run import RunOptions, run_scenario
 
@@ -32,11 +34,12 @@ def run(record: Path | None) -> tuple[float, float, float]:
     """(real-time factor, the launcher's CPU seconds per simulated second, the command's wall seconds) of one run."""
     cpu_before_s, started_s = time.process_time(), time.monotonic()
     result = run_scenario(RunOptions(scenario=SCENARIO, stacks=STACKS, duration_s=DURATION_S, record=record))
+    require_success(result, f"the {'recorded' if record else 'unrecorded'} run")
     launcher_cpu_s = time.process_time() - cpu_before_s
     return result.sim_time_s / max(result.wall_time_s, 1e-9), launcher_cpu_s / DURATION_S, time.monotonic() - started_s
 
 
-def main() -> None:
+def main() -> list[Figure]:
     factors: dict[bool, list[float]] = {False: [], True: []}
     launcher_cpu: dict[bool, list[float]] = {False: [], True: []}
     command_s: dict[bool, list[float]] = {False: [], True: []}
@@ -54,12 +57,17 @@ def main() -> None:
                    "command wall s"):
         table.add_column(column, justify="right")
     unrecorded = statistics.mean(factors[False])
+    figures = []
     for recorded, name in ((False, "unrecorded"), (True, "--record")):
-        factor = statistics.mean(factors[recorded])
-        table.add_row(name, f"{factor:.2f}", f"{factor / unrecorded:.2f}",
-                      f"{1e3 * statistics.mean(launcher_cpu[recorded]):.0f} ms",
+        factor, cpu_ms = statistics.mean(factors[recorded]), 1e3 * statistics.mean(launcher_cpu[recorded])
+        table.add_row(name, f"{factor:.2f}", f"{factor / unrecorded:.2f}", f"{cpu_ms:.0f} ms",
                       f"{statistics.mean(command_s[recorded]):.1f}")
+        figures += [Figure(f"{name}: real-time factor", factor, Unit.REALTIME_FACTOR),
+                    Figure(f"{name}: launcher CPU", cpu_ms, Unit.MS_PER_SIMULATED_S),
+                    Figure(f"{name}: command", statistics.mean(command_s[recorded]), Unit.S)]
     Console().print(table)
+    return figures + [ratio("--record: real-time factor to unrecorded", statistics.mean(factors[True]) / unrecorded,
+                            "unrecorded: real-time factor", Better.HIGHER)]
 
 
 if __name__ == "__main__":

@@ -23,6 +23,8 @@ from unittest import mock
 from rich.console import Console
 from rich.table import Table
 
+from bench.failure import require_success
+from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
 from coopdrive.launch.run import RunOptions, run_scenario
 from coopdrive.recording import reader, replay
@@ -53,16 +55,18 @@ def replay_s(recording: Path, service: str, every_channel: bool, mcap_reader: bo
     return time.perf_counter() - started_s
 
 
-def main() -> None:
+def main() -> list[Figure]:
     with tempfile.TemporaryDirectory(prefix="bench-replay-") as folder:
         recording = Path(folder) / "run.mcap"
-        run_scenario(RunOptions(scenario=SCENARIO, stacks=STACKS, duration_s=DURATION_S, record=recording))
+        require_success(run_scenario(RunOptions(scenario=SCENARIO, stacks=STACKS, duration_s=DURATION_S,
+                                                record=recording)), "the recorded run")
         size_mb = recording.stat().st_size / 1e6
         table = Table(title=f"replay of {VEHICLE}'s service from {SCENARIO} --stacks {STACKS} --duration "
                             f"{DURATION_S:g} ({size_mb:.1f} MB), median of {ROUNDS} turn about")
         for column in ("service", "every channel s", "its channels, mcap's reader s", "its channels, indexes s",
                        "indexes / mcap's reader", "indexes / every channel"):
             table.add_column(column, justify="right")
+        figures = []
         for service in SERVICES:
             variants = (EVERY_CHANNEL, MCAP_READER, NOW)
             timings: dict[tuple[bool, bool], list[float]] = {variant: [] for variant in variants}
@@ -72,7 +76,15 @@ def main() -> None:
             every_s, mcap_s, now_s = (statistics.median(timings[variant]) for variant in variants)
             table.add_row(service, f"{every_s:.2f}", f"{mcap_s:.2f}", f"{now_s:.2f}", f"{now_s / mcap_s:.2f}",
                           f"{now_s / every_s:.2f}")
+            figures += [Figure(f"{service}: every channel", every_s, Unit.S),
+                        Figure(f"{service}: its channels, mcap's reader", mcap_s, Unit.S),
+                        Figure(f"{service}: its channels, indexes", now_s, Unit.S),
+                        ratio(f"{service}: indexes to mcap's reader", now_s / mcap_s,
+                              f"{service}: its channels, mcap's reader", Better.LOWER),
+                        ratio(f"{service}: indexes to every channel", now_s / every_s, f"{service}: every channel",
+                              Better.LOWER)]
         Console(highlight=False).print(table)
+    return figures
 
 
 if __name__ == "__main__":

@@ -24,6 +24,7 @@ from types import ModuleType
 import numpy as np
 
 from bench import scene_before
+from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
 from coopdrive.services.scene import fusion as fusion_now
 from coopdrive.services.scene.association import assign, likelihood_cost, polar_cost_loop
@@ -41,6 +42,9 @@ TIMED_FRAMES = sized(40, 2)
 EGO_SPEED_MPS = 20.0
 RANGE_NOISE_M = 0.2
 BEARING_NOISE_RAD = 0.003
+# The quick size leaves out 200 objects: the brute-force association alone takes seconds there.
+OBJECT_COUNTS = sized((10, 50, 200), (10, 50))
+BRUTE_FORCE_REPEATS = sized(3, 1)
 
 
 def layout(count: int, rng: np.random.Generator) -> np.ndarray:
@@ -114,25 +118,38 @@ def association_ms(count: int, brute_force: bool = False, repeats: int = 20) -> 
     return 1e3 * (time.perf_counter() - start) / repeats
 
 
-def main() -> None:
+def main() -> list[Figure]:
     before = scene_before.load(BEFORE_REVISION)
     print(f"scene update = radar frame with every object + scene(); median of {TIMED_FRAMES} frames, seed {SEED}; "
           f"before = services/scene at {BEFORE_REVISION[:12]}" + ("" if before else " (not available: no git)"))
     print(f"{'objects':>8} {'published':>9} {'before ms':>10} {'now ms':>8} {'speed-up':>9} {'alone ms':>9} "
           f"{'assoc ms':>9} {'brute-force assoc ms':>21} {'growth / n log n':>17}")
-    now_ms = {}
-    for count in (10, 50, 200):
+    now_ms, figures = {}, []
+    for count in OBJECT_COUNTS:
         timings_ms, published = run([fusion_now] + ([before] if before else []), count)
         now_ms[count] = timings_ms[0]
         before_ms = timings_ms[1] if before else math.nan
         (alone_ms,), _ = run([fusion_now], count)
-        assoc_ms, brute_force_ms = association_ms(count), association_ms(count, brute_force=True, repeats=3)
+        assoc_ms, brute_force_ms = association_ms(count), association_ms(count, brute_force=True, repeats=BRUTE_FORCE_REPEATS)
         growth = ""
-        if count == 200:
-            n_log_n = (200 * math.log(200)) / (50 * math.log(50))
-            growth = f"{now_ms[200] / now_ms[50] / n_log_n:.2f}"
+        if count == OBJECT_COUNTS[-1]:
+            fewer = OBJECT_COUNTS[-2]
+            n_log_n = (count * math.log(count)) / (fewer * math.log(fewer))
+            growth = f"{now_ms[count] / now_ms[fewer] / n_log_n:.2f}"
+            figures.append(ratio(f"update growth {fewer} -> {count} objects to n log n's",
+                                 now_ms[count] / now_ms[fewer] / n_log_n, f"n log n's growth from {fewer} to {count}",
+                                 Better.LOWER))
         print(f"{count:>8} {published:>9} {before_ms:>10.2f} {now_ms[count]:>8.2f} {before_ms / now_ms[count]:>9.1f} "
               f"{alone_ms:>9.2f} {assoc_ms:>9.3f} {brute_force_ms:>21.2f} {growth:>17}")
+        figures += [Figure(f"{count} objects: update, turn about", now_ms[count], Unit.MS),
+                    Figure(f"{count} objects: update alone", alone_ms, Unit.MS),
+                    Figure(f"{count} objects: association", assoc_ms, Unit.MS),
+                    ratio(f"{count} objects: association to brute force", assoc_ms / brute_force_ms,
+                          f"{count} objects: brute-force association", Better.LOWER)]
+        if before:  # without git the scene before is not there to measure
+            figures.append(ratio(f"{count} objects: speed-up over before", before_ms / now_ms[count],
+                                 f"{count} objects: update before", Better.HIGHER))
+    return figures
 
 
 if __name__ == "__main__":

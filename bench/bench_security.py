@@ -17,6 +17,7 @@ from collections.abc import Callable
 from cryptography.hazmat.primitives import hashes
 from cryptography.hazmat.primitives.asymmetric import ec
 
+from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
 from coopdrive.services.v2x.packet import GnParams, SourcePosition, V2xPacketCodec
 from coopdrive.services.v2x.security.crypto import Curve
@@ -69,12 +70,12 @@ def signed_cams(curve: Curve, directory: str) -> tuple[SecurityVerifier, int, by
     return verifier, now, full, digest
 
 
-def main() -> None:
+def main() -> list[Figure]:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seconds", type=float, default=sized(1.0, 0.05), help="time per measurement")
     seconds = parser.parse_known_args()[0].seconds
     print(f"{'curve':18} {'path':34} {'bytes':>6} {'verify/s':>10}")
-    verdicts = []
+    verdicts, figures = [], []
     with tempfile.TemporaryDirectory() as directory:
         for curve in Curve:
             verifier, now, full, digest = signed_cams(curve, f"{directory}/{curve.value}")
@@ -90,11 +91,15 @@ def main() -> None:
                                      ("signed CAM, full certificate", len(full), with_certificate),
                                      ("10 Hz mix (1 in 10 with cert)", 0, mix)):
                 print(f"{curve.name:18} {path:34} {size if size else '':>6} {rate:10.0f}")
+                figures.append(Figure(f"{curve.name} {path}", rate, Unit.PER_S))
+            figures.append(ratio(f"{curve.name} signed CAM, digest signer: time x bare verify", bare / with_digest,
+                                 f"{curve.name} bare cryptography ECDSA verify", Better.LOWER))
             verdicts.append((curve, mix))
     for curve, mix in verdicts:
         fits = "fits" if mix >= TARGET_PER_S else "does NOT fit"
         print(f"{curve.name}: {STATIONS} stations x {CAM_RATE_HZ} Hz = {TARGET_PER_S} CAM/s {fits} on one core "
               f"({TARGET_PER_S / mix:.0%} of a core)")
+    return figures
 
 
 if __name__ == "__main__":

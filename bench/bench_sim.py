@@ -26,6 +26,7 @@ import time
 from rich.console import Console
 from rich.table import Table
 
+from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
 from coopdrive.launch.ports import free_udp_ports
 from coopdrive.runtime.testing import MemoryContext
@@ -91,7 +92,7 @@ def cpu_ms_per_simulated_s(stacks: int) -> float:
         simulator.close()
 
 
-def main(argv: list[str] | None = None) -> None:
+def main(argv: list[str] | None = None) -> list[Figure] | None:
     parser = argparse.ArgumentParser(description="the simulator's CPU per simulated second")
     parser.add_argument("--profile", action="store_true", help="cProfile the 8-stack world instead")
     parser.add_argument("--digest", action="store_true", help="print the sha256 of the 8-stack world's messages")
@@ -101,25 +102,30 @@ def main(argv: list[str] | None = None) -> None:
         simulator.run(DURATION_S, digest)
         simulator.close()
         print(digest.hexdigest())
-        return
+        return None
     if args.profile:
         simulator = SimulatorAlone(max(STACK_COUNTS))
         profiler = cProfile.Profile()
         profiler.runcall(simulator.run, DURATION_S)
         simulator.close()
         pstats.Stats(profiler).sort_stats("tottime").print_stats(35)
-        return
+        return None
     table = Table(title=f"simulator alone, {SCENARIO}, {DURATION_S:.0f} s simulated, real world "
                         f"(target: below {TARGET_MS_PER_SIMULATED_S:.0f} ms per simulated s with 8 stacks)")
     for column in ("stacks", "CPU ms per simulated s", "per stack"):
         table.add_column(column, justify="right")
+    figures = []
     for stacks in STACK_COUNTS:
         cpu_ms = cpu_ms_per_simulated_s(stacks)
         table.add_row(str(stacks), f"{cpu_ms:.0f}", f"{cpu_ms / stacks:.0f}")
+        figures.append(Figure(f"{stacks} stacks: simulator CPU", cpu_ms, Unit.MS_PER_SIMULATED_S))
     console = Console()
     console.print(table)
     console.print(f"before issue 27: {BEFORE_ISSUE_MS_PER_SIMULATED_S:,.0f} ms per simulated s with 8 stacks, the "
                   f"simulator's process in a whole run; in a whole run now, see its worker_cpu_s (docs/performance.md)")
+    fewest, most = STACK_COUNTS[0], STACK_COUNTS[-1]
+    return figures + [ratio(f"{most} stacks: CPU per stack to {fewest} stack's", figures[-1].value / most / figures[0].value,
+                            f"{fewest} stacks: simulator CPU", Better.LOWER)]
 
 
 if __name__ == "__main__":

@@ -17,6 +17,8 @@ from rich.console import Console
 from rich.table import Table
 
 from bench import baselines
+from bench.failure import require_success
+from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
 from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.run import RunOptions, run_scenario
@@ -40,42 +42,59 @@ def run(stacks: int, thread_per_service: bool = False, processes: ProcessLayout 
     with baselines.thread_per_service(thread_per_service), baselines.local_by_zenoh(local_by_zenoh):
         result = run_scenario(RunOptions(scenario=SCENARIO, stacks=stacks, duration_s=DURATION_S, observer=observe,
                                          processes=processes))
+    require_success(result, f"the run of {stacks} stacks ({processes.value})")
     return result.sim_time_s / max(result.wall_time_s, 1e-9), worker_cpu_s
 
 
-def main() -> None:
+def main() -> list[Figure]:
     console = Console(width=max(Console().width, 110))
     summary = Table(title=f"{SCENARIO}: lockstep, one process per stack, {DURATION_S:.0f} s simulated")
     for column in ("stacks", "sim_time_s / wall_time_s", "ratio to 1 stack", "stack CPU per simulated s"):
         summary.add_column(column, justify="right")
-    baseline = None
     breakdown = None
+    most, factors = STACK_COUNTS[-1], {}
     for stacks in STACK_COUNTS:
-        factor, cpu = run(stacks)
-        baseline = baseline or factor
+        factors[f"{stacks} stacks"], cpu = run(stacks)
         stack_cpu_s = sum(sum(services.values()) for vehicle, services in cpu.items() if vehicle != "world")
-        summary.add_row(str(stacks), f"{factor:.2f}", f"{factor / baseline:.2f}", f"{stack_cpu_s / DURATION_S:.2f} s")
+        summary.add_row(str(stacks), *ratio_cells(factors, f"{stacks} stacks"), f"{stack_cpu_s / DURATION_S:.2f} s")
         breakdown = cpu
-    factor, _ = run(STACK_COUNTS[-1], thread_per_service=True)
-    summary.add_row(f"{STACK_COUNTS[-1]}, a thread per service (before)", f"{factor:.2f}", f"{factor / baseline:.2f}",
-                    "")
+    threads, by_zenoh, by_bus = (f"{most}, a thread per service (before)", f"{most}, all in one process, its "
+                                 "messages through Zenoh (before)", f"{most}, all in one process, handed over by the bus")
+    factors[threads] = run(most, thread_per_service=True)[0]
     # Turn about, so a load that comes and goes weighs on both.
-    for local_by_zenoh in (True, False):
-        factor, _ = run(STACK_COUNTS[-1], processes=ProcessLayout.ONE, local_by_zenoh=local_by_zenoh)
-        delivered = "its messages through Zenoh (before)" if local_by_zenoh else "handed over by the bus"
-        summary.add_row(f"{STACK_COUNTS[-1]}, all in one process, {delivered}", f"{factor:.2f}",
-                        f"{factor / baseline:.2f}", "")
+    factors[by_zenoh] = run(most, processes=ProcessLayout.ONE, local_by_zenoh=True)[0]
+    factors[by_bus] = run(most, processes=ProcessLayout.ONE, local_by_zenoh=False)[0]
+    for label in (threads, by_zenoh, by_bus):
+        summary.add_row(label, *ratio_cells(factors, label), "")
     console.print(summary)
-    if breakdown:
-        services = sorted({s for per_vehicle in breakdown.values() for s in per_vehicle})
-        table = Table(title=f"where the time goes, {STACK_COUNTS[-1]} stacks: worker CPU per simulated second (ms)")
-        table.add_column("vehicle")
-        for service in services:
-            table.add_column(service, justify="right")
-        for vehicle in sorted(breakdown):
-            table.add_row(vehicle, *(f"{1e3 * breakdown[vehicle][s] / DURATION_S:.0f}" if s in breakdown[vehicle]
-                                     else "" for s in services))
-        console.print(table)
+    print_breakdown(console, breakdown)
+    return [Figure(f"{label}: real-time factor", factor, Unit.REALTIME_FACTOR) for label, factor in factors.items()] + [
+        ratio(f"{most} stacks: real-time factor to a thread per service", factors[f"{most} stacks"] / factors[threads],
+              f"{threads}: real-time factor", Better.HIGHER),
+        ratio(f"{most} in one process: the bus's hand-over to Zenoh's", factors[by_bus] / factors[by_zenoh],
+              f"{by_zenoh}: real-time factor", Better.HIGHER),
+        ratio(f"{most} stacks: real-time factor to 1 stack's", factors[f"{most} stacks"] / factors["1 stacks"],
+              "1 stacks: real-time factor", Better.HIGHER)]
+
+
+def ratio_cells(factors: dict[str, float], label: str) -> tuple[str, str]:
+    """The real-time factor of `label` and its ratio to the first run's (1 stack)."""
+    first = next(iter(factors.values()))
+    return f"{factors[label]:.2f}", f"{factors[label] / first:.2f}"
+
+
+def print_breakdown(console: Console, breakdown: dict[str, dict[str, float]] | None) -> None:
+    if not breakdown:
+        return
+    services = sorted({s for per_vehicle in breakdown.values() for s in per_vehicle})
+    table = Table(title=f"where the time goes, {STACK_COUNTS[-1]} stacks: worker CPU per simulated second (ms)")
+    table.add_column("vehicle")
+    for service in services:
+        table.add_column(service, justify="right")
+    for vehicle in sorted(breakdown):
+        table.add_row(vehicle, *(f"{1e3 * breakdown[vehicle][s] / DURATION_S:.0f}" if s in breakdown[vehicle]
+                                 else "" for s in services))
+    console.print(table)
 
 
 if __name__ == "__main__":

@@ -20,13 +20,16 @@ import time
 from rich.console import Console
 from rich.table import Table
 
+from bench.failure import BenchFailed
+from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
 
 from coopdrive.launch.processes import NEW_INTERPRETERS_VARIABLE
 
-LAYOUTS = ("service", "vehicle")
+# The quick size starts the default layout only: each command is a whole run.
+LAYOUTS = sized(("service", "vehicle"), ("vehicle",))
 DURATIONS_S = sized((5.0, 60.0), (1.0,))
-STACKS = sized(8, 2)
+STACKS = sized(8, 1)
 STACKS_DURATION_S = sized(5.0, 0.5)
 ROUNDS = sized(2, 1)
 
@@ -35,11 +38,14 @@ def command_time(arguments: list[str], new_interpreters: bool = False) -> tuple[
     environment = {**os.environ, NEW_INTERPRETERS_VARIABLE: "1" if new_interpreters else "0"}
     started = time.monotonic()
     completed = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", *arguments, "--json"],
-                               capture_output=True, text=True, check=True, env=environment)
+                               capture_output=True, text=True, env=environment)
+    if completed.returncode != 0:
+        said = (completed.stderr.strip() or "nothing").splitlines()[-1]
+        raise BenchFailed(f"coopdrive run {' '.join(arguments)} exited {completed.returncode}: {said}")
     return time.monotonic() - started, json.loads(completed.stdout)
 
 
-def forked_against_new_interpreters() -> None:
+def forked_against_new_interpreters() -> list[Figure]:
     arguments = ["string", "--stacks", str(STACKS), "--duration", str(STACKS_DURATION_S)]
     times: dict[bool, list[tuple[float, float, float]]] = {False: [], True: []}
     for _ in range(ROUNDS):
@@ -51,24 +57,33 @@ def forked_against_new_interpreters() -> None:
     for column in ("services", "command", "start-up", "shut-down", "command / new interpreters'"):
         table.add_column(column, justify="right")
     baseline_s = statistics.mean(total for total, _, _ in times[True])
+    figures = []
     for new_interpreters, name in ((True, "new interpreters"), (False, "forked")):
         total_s, startup_s, shutdown_s = (statistics.mean(column) for column in zip(*times[new_interpreters]))
         table.add_row(name, f"{total_s:.2f}", f"{startup_s:.2f}", f"{shutdown_s:.2f}", f"{total_s / baseline_s:.2f}")
+        figures += [Figure(f"{STACKS} stacks, {name}: command", total_s, Unit.S),
+                    Figure(f"{STACKS} stacks, {name}: start-up", startup_s, Unit.S)]
     Console().print(table)
+    return figures + [ratio(f"{STACKS} stacks: forked command to new interpreters'", figures[2].value / baseline_s,
+                            f"{STACKS} stacks, new interpreters: command", Better.LOWER)]
 
 
-def main() -> None:
+def main() -> list[Figure]:
     table = Table(title="coopdrive run follow: the command, start to prompt (s)")
     for column in ("simulated s", "processes", "command", "start-up", "stepping", "shut-down", "real-time factor"):
         table.add_column(column, justify="right")
+    figures = []
     for duration_s in DURATIONS_S:
         for layout in LAYOUTS:
             total_s, summary = command_time(["follow", "--duration", str(duration_s), "--processes", layout])
             table.add_row(f"{duration_s:.0f}", f"one per {layout}", f"{total_s:.2f}",
                           f"{summary['startup_time_s']:.2f}", f"{summary['wall_time_s']:.2f}",
                           f"{summary['shutdown_time_s']:.2f}", f"{summary['realtime_factor']:.1f}")
+            run = f"follow {duration_s:g} s, one per {layout}"
+            figures += [Figure(f"{run}: command", total_s, Unit.S),
+                        Figure(f"{run}: start-up", summary["startup_time_s"], Unit.S)]
     Console().print(table)
-    forked_against_new_interpreters()
+    return figures + forked_against_new_interpreters()
 
 
 if __name__ == "__main__":

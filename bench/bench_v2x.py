@@ -12,6 +12,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
 from coopdrive.services.v2x.its_pdu import ItsCodec, ItsMessageId, PDU_TYPE_NAMES
 from coopdrive.services.v2x.mapping.cam import cam_to_asn
@@ -102,7 +103,7 @@ def _times_bare(rate: float | None, bare_rate: float | None) -> str:
     return "-" if rate is None or bare_rate is None else f"{bare_rate / rate:.2f}"
 
 
-def main(argv: list[str] | None = None) -> None:
+def main(argv: list[str] | None = None) -> list[Figure]:
     """argv None: the time per measurement comes from BENCH_V2X_SECONDS, since `python -m bench NAME` puts
     the bench's name on the command line."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -113,18 +114,36 @@ def main(argv: list[str] | None = None) -> None:
     bare = {row.message: row for row in rows if row.path == BARE}
     print(f"{'message':8} {'path':22} {'bytes':>5} {'encode/s':>9} {'decode/s':>9} {'encode x bare':>13} "
           f"{'decode x bare':>13}")
+    figures = []
     for row in rows:
         encode = "-" if row.encode_per_s is None else f"{row.encode_per_s:9.0f}"
         print(f"{row.message:8} {row.path:22} {row.size_bytes:5d} {encode:>9} {row.decode_per_s:9.0f} "
               f"{_times_bare(row.encode_per_s, bare[row.message].encode_per_s):>13} "
               f"{_times_bare(row.decode_per_s, bare[row.message].decode_per_s):>13}")
+        figures += row_figures(row, bare[row.message])
     full = [row for row in rows if row.path == "GN+BTP+UPER+protobuf"]
     core_share = sum(STATIONS * RATE_HZ / row.decode_per_s for row in full)
     print(f"\n{STATIONS} stations sending CAM and iCLCM at {RATE_HZ:.0f} Hz each: decoding them to protobuf takes "
           f"{100 * core_share:.0f}% of one core")
     start = time.perf_counter()
     ItsCodec().spec(1)
-    print(f"schema v1 load from the disk cache: {1000 * (time.perf_counter() - start):.0f} ms")
+    load_ms = 1000 * (time.perf_counter() - start)
+    print(f"schema v1 load from the disk cache: {load_ms:.0f} ms")
+    return figures + [Figure("schema v1 load from the disk cache", load_ms, Unit.MS)]
+
+
+def row_figures(row: Row, bare: Row) -> list[Figure]:
+    """A row's rates, and beside the bare row's its time per message as a multiple of bare asn1tools'."""
+    figures = []
+    for operation, rate, bare_rate in (("encode", row.encode_per_s, bare.encode_per_s),
+                                       ("decode", row.decode_per_s, bare.decode_per_s)):
+        if rate is None:
+            continue
+        figures.append(Figure(f"{row.message} {row.path} {operation}s", rate, Unit.PER_S))
+        if row is not bare:
+            figures.append(ratio(f"{row.message} {row.path} {operation}: time x bare", bare_rate / rate,
+                                 f"{row.message} {BARE} {operation}s", Better.LOWER))
+    return figures
 
 
 if __name__ == "__main__":

@@ -19,6 +19,7 @@ import numpy as np
 from rich.console import Console
 from rich.table import Table
 
+from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
 from coopdrive.can import frames
 from coopdrive.can.frames import VehicleFrame
@@ -75,14 +76,19 @@ def frame_rows(rng: np.random.Generator) -> list[tuple[str, float, float]]:
     return rows
 
 
-def main() -> None:
+def main() -> list[Figure]:
     rng = np.random.default_rng(SEED)
     table = Table(title="simulated world: each part against the general path it replaced (same results)")
     for column in ("part", "general path us", "now us", "speed-up"):
         table.add_column(column, justify="right")
+    figures = []
     for label, before_us, now_us in projection_rows(rng) + frame_rows(rng):
         table.add_row(label, f"{before_us:.2f}", f"{now_us:.2f}", f"{before_us / now_us:.1f}")
+        name = label.split(" (", 1)[0]  # without the count of points, which follows the maps
+        figures += [Figure(f"{name}: now", now_us, Unit.US),
+                    ratio(f"{name}: speed-up", before_us / now_us, f"{name}: general path", Better.HIGHER)]
     Console().print(table)
+    return figures
 
 
 if __name__ == "__main__":

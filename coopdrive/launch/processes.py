@@ -12,6 +12,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -45,9 +46,12 @@ class ServiceSpec:
 
 class ServiceProcesses:
     def __init__(self, connect_endpoint: str, clock: str = "sim", log_dir: Path | None = None,
-                 clock_step_s: float | None = None, spool_dir: Path | None = None):
+                 clock_step_s: float | None = None, spool_dir: Path | None = None,
+                 on_started: Callable[[str, int], None] | None = None):
         """`clock_step_s`: the simulator's step, told to every service (`--clock-step`). `spool_dir`: where each
-        process writes what it publishes for the run's recording (publish_spool.py), one file per process start."""
+        process writes what it publishes for the run's recording (publish_spool.py), one file per process start.
+        `on_started(name, pid)`: told of each process as it starts (RunOptions.on_process_started)."""
+        self._on_started = on_started
         self._connect = connect_endpoint
         self._clock = clock
         self._clock_step = [] if clock_step_s is None else ["--clock-step", repr(clock_step_s)]
@@ -92,6 +96,8 @@ class ServiceProcesses:
         self._started_with[name] = (specs, arguments)
         for spec in specs:
             self.process_of[spec.participant] = name
+        if self._on_started is not None:
+            self._on_started(name, self.processes[name].pid)
 
     @staticmethod
     def environment() -> dict[str, str]:

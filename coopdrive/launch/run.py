@@ -80,6 +80,10 @@ class RunOptions:
     started_monotonic_s: float | None = None
     # Called as on_progress(sim_time_s, duration_s) on the bus's thread at each step of the simulator's clock.
     on_progress: Callable[[float, float], None] | None = None
+    # Called as on_process_started(name, pid) for each process the run starts, and starts again after a crash: name
+    # is the service's participant ("v1/gateway") or the group's ("v1/group"). For tools watching a process (the
+    # gateway bench samples the gateway's memory).
+    on_process_started: Callable[[str, int], None] | None = None
 
 
 MS_PER_S = 1000
@@ -212,7 +216,8 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         hub.subscribe(WORLD_ID, "clock", lambda envelope: report_progress(envelope.message.time_s, duration_s))
     spool_dir = run_dir / "spools" if recording is not None else None
     processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir,
-                                 clock_step_s=simulator.config["step_s"], spool_dir=spool_dir)
+                                 clock_step_s=simulator.config["step_s"], spool_dir=spool_dir,
+                                 on_started=options.on_process_started)
     # The simulator says when (service_crash faults, in simulated time); the launcher owns the processes.
     hub.subscribe(WORLD_ID, "service_fault", lambda envelope: carry_out(processes, envelope.message))
     try:

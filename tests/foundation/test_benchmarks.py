@@ -1,6 +1,10 @@
-"""`make bench` is `python -m bench`: every benchmark in bench/ in turn, or those named. These tests check that it
-runs and reports, not how fast anything is (speed is the benchmarks' own business, never a test's)."""
+"""`make bench` is `python -m bench`: every benchmark in bench/ in turn, or those named, each reporting its figures
+into bench/results.json. These tests check that each measures something and that one that measured nothing fails
+naming the figure, not how fast anything is (speed is the benchmarks' own business, never a test's). The first is
+CI's bench smoke: every benchmark at its quick size (bench/sizes.py)."""
 
+import json
+import math
 import os
 import subprocess
 import sys
@@ -10,70 +14,122 @@ from types import SimpleNamespace
 import pytest
 
 from bench import __main__ as bench_runner
+from bench import bench_gateway_ws
+from bench.bench_gateway_ws import DURATION_ENV
+from bench.figure import Figure, Unit
 from bench.sizes import QUICK_VARIABLE
 
 pytestmark = pytest.mark.whole_run
 
 REPO = Path(__file__).resolve().parents[2]
-# Every benchmark at its quick size takes about a minute on this project's 2-core machine.
-RUN_TIMEOUT_S = 600
+# Every benchmark at its quick size took over five minutes when four other jobs shared this project's 2-core machine
+# (load average 20); about 85 s quiet before bench_gateway_ws measured again.
+RUN_TIMEOUT_S = 900
+GATEWAY_RUN_S = 1.0
 
 
-def python_m_bench(*names: str) -> subprocess.CompletedProcess:
-    result = subprocess.run([sys.executable, "-m", "bench", *names], cwd=REPO, capture_output=True, text=True,
-                            timeout=RUN_TIMEOUT_S, env={**os.environ, QUICK_VARIABLE: "1"})
+def python_m_bench(results: Path, *names: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "bench", "--results", str(results), *names], cwd=REPO,
+                          capture_output=True, text=True, timeout=RUN_TIMEOUT_S, env={**os.environ, QUICK_VARIABLE: "1"})
+
+
+@pytest.mark.timeout(RUN_TIMEOUT_S)
+def test_every_benchmark_of_make_bench_measures_finite_figures_into_results_json(tmp_path):
+    result = python_m_bench(tmp_path / "results.json")
     assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
-    return result
-
-
-def test_every_benchmark_of_make_bench_runs_to_the_end_and_prints_its_table():
-    names = bench_runner.benchmark_names()
-    assert len(names) >= 14
-    out = python_m_bench().stdout
-    assert "failed" not in out
-    for name in names:
-        assert f"=== {name}" in out and f"({name}: " in out
-        table = out.split(f"=== {name}", 1)[1].split(f"({name}: ", 1)[0]
+    written = json.loads((tmp_path / "results.json").read_text())
+    assert written["quick"] is True and written["machine"]["cores"] >= 1 and len(written["commit"]["sha"]) == 40
+    assert list(written["benches"]) == bench_runner.benchmark_names()
+    for name, run in written["benches"].items():
+        assert run["failure"] is None and run["figures"], name
+        for figure in run["figures"]:
+            assert isinstance(figure["value"], float) and math.isfinite(figure["value"]), (name, figure)
+            assert (figure["unit"] == Unit.RATIO.value) == (figure["baseline"] is not None), (name, figure)
+        # each still prints its table for a person to read
+        table = result.stdout.split(f"=== {name}", 1)[1].split(f"({name}: ", 1)[0]
         assert len(table.strip().splitlines()) >= 3, f"{name} printed no table: {table!r}"
+    gateway = {f["name"]: f["value"] for f in written["benches"]["bench_gateway_ws"]["figures"]}
+    assert {"0 clients: sensor -> command p99", "2 clients: sensor -> command p99"} <= set(gateway)
 
 
-def test_python_m_bench_with_names_runs_only_those_benchmarks_and_exits_0():
-    result = python_m_bench("geolocation", "sim")
+def test_python_m_bench_with_names_runs_only_those_benchmarks_and_writes_only_theirs(tmp_path):
+    result = python_m_bench(tmp_path / "results.json", "geolocation", "sim")
+    assert result.returncode == 0, result.stdout[-3000:]
     assert "=== bench_geolocation" in result.stdout and "=== bench_sim" in result.stdout
-    assert "failed" not in result.stdout
     assert "=== bench_follow" not in result.stdout
+    assert list(json.loads((tmp_path / "results.json").read_text())["benches"]) == ["bench_geolocation", "bench_sim"]
     # Each prints its table: the geolocation filter beside filterpy's, the simulator's CPU per simulated second.
     assert "GeolocationEkf CTRA predict+gated update" in result.stdout
     assert "CPU ms per simulated s" in result.stdout
 
 
-def test_a_benchmark_that_fails_or_exits_is_named_and_the_others_still_run(monkeypatch, capsys):
+def fake_benchmarks(monkeypatch, mains: dict) -> list[str]:
+    """The runner imports these instead of the benchmarks: module name -> its main()."""
     ran = []
 
     def fake_module(name: str):
         def main():
             ran.append(name)
-            if name == "bench.bench_control":
-                raise ValueError("shapes not aligned")
-            if name == "bench.bench_decode":
-                sys.exit(2)  # as argparse does on options it does not know
-
+            return mains[name]()
         return SimpleNamespace(main=main)
 
     monkeypatch.setattr(bench_runner.importlib, "import_module", fake_module)
-    assert bench_runner.main(["actuation", "control", "decode"]) == 1
+    return ran
+
+
+def a_figure():
+    return [Figure("p50", 1.0, Unit.MS)]
+
+
+def test_a_benchmark_that_fails_or_exits_is_named_and_the_others_still_run(monkeypatch, capsys, tmp_path):
+    def shapes():
+        raise ValueError("shapes not aligned")
+
+    def argparse_exit():
+        sys.exit(2)  # as argparse does on options it does not know
+
+    ran = fake_benchmarks(monkeypatch, {"bench.bench_actuation": a_figure, "bench.bench_control": shapes,
+                                        "bench.bench_decode": argparse_exit})
+    assert bench_runner.main(["actuation", "control", "decode", "--results", str(tmp_path / "r.json")]) == 1
     assert ran == ["bench.bench_actuation", "bench.bench_control", "bench.bench_decode"]
     out = capsys.readouterr().out
     assert "bench_control failed: ValueError('shapes not aligned')" in out
     assert "bench_decode failed: SystemExit(2)" in out
     assert "bench_actuation failed" not in out
+    assert "FAILED bench_control: ValueError('shapes not aligned')" in out
+    written = json.loads((tmp_path / "r.json").read_text())["benches"]
+    assert written["bench_actuation"]["figures"][0]["value"] == 1.0
+    assert written["bench_control"]["failure"] == "ValueError('shapes not aligned')"
 
 
-def test_a_benchmark_sees_none_of_the_runner_s_arguments_as_its_options(monkeypatch):
+@pytest.mark.parametrize("figures, reason", [
+    (lambda: None, "measured nothing: it reported no figures"),
+    (lambda: [], "measured nothing: it reported no figures"),
+    (lambda: [Figure("0 clients: sensor -> command p99", math.nan, Unit.MS)],
+     "figure '0 clients: sensor -> command p99' is nan: nothing was measured for it"),
+    (lambda: [Figure("p50", 1.0, Unit.MS), Figure("p50", 2.0, Unit.MS)], "figure 'p50' reported twice"),
+])
+def test_a_benchmark_that_measured_nothing_exits_non_zero_naming_the_figure(monkeypatch, capsys, tmp_path, figures,
+                                                                             reason):
+    fake_benchmarks(monkeypatch, {"bench.bench_follow": figures})
+    assert bench_runner.main(["follow", "--results", str(tmp_path / "r.json")]) == 1
+    assert f"FAILED bench_follow: {reason}\n" in capsys.readouterr().out
+
+
+def test_a_benchmark_sees_none_of_the_runner_s_arguments_as_its_options(monkeypatch, tmp_path):
     seen = []
-    monkeypatch.setattr(bench_runner.importlib, "import_module",
-                        lambda name: SimpleNamespace(main=lambda: seen.append(list(sys.argv[1:]))))
+    fake_benchmarks(monkeypatch, {"bench.bench_geolocation": lambda: seen.append(list(sys.argv[1:])) or a_figure()})
     monkeypatch.setattr(sys, "argv", ["bench", "geolocation"])
-    assert bench_runner.main(["geolocation"]) == 0
+    assert bench_runner.main(["geolocation", "--results", str(tmp_path / "r.json")]) == 0
     assert seen == [[]]
     assert sys.argv == ["bench", "geolocation"]
+
+
+def test_the_gateway_bench_whose_gateway_never_starts_fails_in_one_line_saying_so(monkeypatch, capsys, tmp_path):
+    real_run = bench_gateway_ws.run_scenario
+    monkeypatch.setattr(bench_gateway_ws, "run_scenario",
+                        lambda options: real_run(options.__class__(**{**vars(options), "gateway_port": None})))
+    monkeypatch.setenv(DURATION_ENV, str(GATEWAY_RUN_S))
+    assert bench_runner.main(["gateway", "--results", str(tmp_path / "r.json")]) == 1
+    assert ("FAILED bench_gateway_ws: the run started no gateway process (the launcher told of none)\n"
+            in capsys.readouterr().out)
