@@ -28,7 +28,7 @@ from .measurement import Measurement
 from .occupancy import inside_bodies, nearest_body_point
 from .properties import LENGTH, POSITION, WIDTH, ObjectProperties, property_table, support_many
 from .track import RANGING_SOURCES, Track, TrackStatus, filter_steps, predict_positions, stacked_states
-from .unknowns import DEFAULT_LENGTH_M
+from coopdrive.messages.unknowns import DEFAULT_LENGTH_M
 
 
 _SONAR = header_pb2.SENSOR_SOURCE_SONAR

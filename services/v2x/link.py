@@ -14,8 +14,8 @@ import time
 from typing import BinaryIO, Callable
 
 from coopdrive.recording.link_types import ETHERTYPE_GEONETWORKING
-from coopdrive.services.v2x.pcap import BROADCAST_MAC, PcapWriter
-from coopdrive.services.v2x.timebase import US_PER_S
+from coopdrive.v2x.pcap import BROADCAST_MAC, PcapWriter
+from coopdrive.v2x.timebase import US_PER_S
 
 RECEIVE_POLL_S = 0.1
 
