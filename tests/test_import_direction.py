@@ -1,10 +1,11 @@
 """The framework sits below the applications, and no two modules import each other, read from the import graph of
 the installed package (tests/import_graph.py: every module, relative and deferred imports too).
 
-- No framework module reaches a service or an application (the simulator, the launcher, the judge, the command
-  line), directly or through any chain of imports: a service class is named in the services table and imported only
+- Every module belongs to one of the layers of coopdrive/bus/layers.py, and a layer never reaches a higher one,
+  directly or through any chain of imports: no framework module reaches a service or an application (the
+  launcher, the judge, the command line), since a service class is named in the services table and imported only
   when it is started.
-- The framework's own layers point one way: a lower layer never reaches a higher one.
+- No service reaches another service.
 - No import cycle anywhere: a module never ends up importing itself.
 
 The one thing the framework reads of a service is its topic declaration (services/<name>/topics.py, named in the
@@ -16,22 +17,13 @@ from pathlib import Path
 
 import pytest
 
+from coopdrive.bus.layers import LAYERS, ROOT_PACKAGE, layer_of
 from coopdrive.bus.services import SERVICES
 from import_graph import ROOT, cycles, import_graph, imported_names, path_to, reach
 
-# Lowest first: a module may import its own layer and those below it. Messages and their conventions; the bus and
-# the protocol libraries every side shares; the service runtime; what runs on it and draws its messages; recordings
-# (which carry the drawn channels); the V2X library (whose pcap log uses the recordings' link types).
-LAYERS = (
-    ("coopdrive.v1", "coopdrive.reasons", "coopdrive.exit_status", "coopdrive.geodesy", "coopdrive.messages"),
-    ("coopdrive.bus", "coopdrive.gnss", "coopdrive.roadmap"),
-    ("coopdrive.runtime",),
-    ("coopdrive.can", "coopdrive.visual"),
-    ("coopdrive.recording",),
-    ("coopdrive.v2x",),
-)
-FRAMEWORK = tuple(package for layer in LAYERS for package in layer)
-ABOVE = ("coopdrive.services", "coopdrive.launch", "coopdrive.judging", "coopdrive.analysis", "coopdrive.cli")
+FRAMEWORK_LAYERS = [layer for layer in LAYERS if layer.framework]
+FRAMEWORK = tuple(package for layer in FRAMEWORK_LAYERS for package in layer.packages)
+ABOVE = tuple(package for layer in LAYERS if not layer.framework for package in layer.packages)
 
 # The one cycle left, which the run-description work of issue 70 (item 5) removes: the command line, the launcher's
 # run, batch, sweep and process modules and the judge's commands import each other (cli -> launch.run ->
@@ -74,10 +66,23 @@ def test_no_framework_module_reaches_a_service_or_an_application(graph, package)
     assert reaches(graph, [module for module in graph if in_package(module, [package])], ABOVE) == []
 
 
-@pytest.mark.parametrize("level", range(len(LAYERS) - 1), ids=lambda level: "+".join(LAYERS[level]))
-def test_no_framework_layer_reaches_a_higher_one(graph, level):
-    higher = [package for layer in LAYERS[level + 1:] for package in layer]
-    assert reaches(graph, [module for module in graph if in_package(module, LAYERS[level])], higher) == []
+def test_every_module_belongs_to_a_layer(graph):
+    assert [module for module in graph if module != ROOT_PACKAGE and layer_of(module) is None] == []
+
+
+@pytest.mark.parametrize("level", range(len(LAYERS) - 1), ids=lambda level: LAYERS[level].name)
+def test_no_layer_reaches_a_higher_one(graph, level):
+    higher = [package for layer in LAYERS[level + 1:] for package in layer.packages]
+    assert reaches(graph, [module for module in graph if in_package(module, LAYERS[level].packages)], higher) == []
+
+
+@pytest.mark.parametrize("entry", SERVICES, ids=lambda entry: entry.name)
+def test_no_service_reaches_another_service(graph, entry):
+    """What two services share is a topic's message or a library below them (the V2X library for the simulator and
+    the v2x service), never one's code in the other."""
+    own = f"coopdrive.services.{entry.name}"
+    others = [f"coopdrive.services.{other.name}" for other in SERVICES if other.name != entry.name]
+    assert reaches(graph, [module for module in graph if in_package(module, [own])], others) == []
 
 
 def test_no_two_modules_import_each_other_in_a_cycle_anywhere(graph):
