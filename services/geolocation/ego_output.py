@@ -21,16 +21,15 @@ SENDER = "geolocation"
 
 
 class EgoOutput:
-    def __init__(self, config: GeolocatorConfig, plane: LocalTangentPlane | None, road_map: RoadMap | None,
-                 thresholds: ModeThresholds):
+    def __init__(self, config: GeolocatorConfig):
         self.config = config
-        self.plane = plane
-        self.road_map = road_map
-        self.thresholds = thresholds
         self._sequence = 0
 
-    def estimate(self, time_s: float, ekf: GeolocationEkf, book: Bookkeeping) -> ego_pb2.EgoState:
-        """The ego state predicted to time_s from the filter and the bookkeeping (the filter itself is not moved)."""
+    def estimate(self, time_s: float, ekf: GeolocationEkf, book: Bookkeeping, plane: LocalTangentPlane,
+                 road_map: RoadMap | None, thresholds: ModeThresholds) -> ego_pb2.EgoState:
+        """The ego state predicted to time_s from the filter and the bookkeeping (the filter itself is not moved),
+        in the geolocator's frame (`plane`, set by the first fix where no origin was given), matched to `road_map`
+        and moded by `thresholds` (whose GNSS timeout follows the receiver's rate)."""
         self._sequence += 1
         state = ego_pb2.EgoState()
         state.header.sample_time_s = time_s
@@ -47,11 +46,11 @@ class EgoOutput:
         position_std_m = position_std_m_of(P)
         state.position_std_m = position_std_m
         since_fix_s = None if book.last_fix_time_s is None else time_s - book.last_fix_time_s
-        state.mode = localisation_mode(True, position_std_m, since_fix_s, book.last_fix_mode, self.thresholds,
+        state.mode = localisation_mode(True, position_std_m, since_fix_s, book.last_fix_mode, thresholds,
                                        heading_known=book.heading_known)
-        state.latitude_deg, state.longitude_deg, _ = self.plane.to_geodetic(float(x[E]), float(x[N]))
-        if self.road_map is not None:
-            match = self.road_map.match(x[E], x[N], x[HEADING])
+        state.latitude_deg, state.longitude_deg, _ = plane.to_geodetic(float(x[E]), float(x[N]))
+        if road_map is not None:
+            match = road_map.match(x[E], x[N], x[HEADING])
             if match is not None:
                 lane = state.lane
                 lane.matched = True

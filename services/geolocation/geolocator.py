@@ -87,7 +87,7 @@ class Geolocator:
         self.counters: Counter[InputEvent] = Counter()
         self._book = Bookkeeping()
         self._buffer = ReplayBuffer(self._apply, self._snapshot, self._restore, config.history_s)
-        self._output = EgoOutput(config, self.plane, road_map, self.thresholds)
+        self._output = EgoOutput(config)
 
     def configure_odometry(self, options: OdometryOptions) -> None:
         """How this car's wheels are read (its vehicle CAN adapter's odometry options)."""
@@ -342,7 +342,7 @@ class Geolocator:
 
     def estimate(self, time_s: float) -> ego_pb2.EgoState:
         """The ego state predicted to time_s (the filter itself is not moved)."""
-        return self._output.estimate(time_s, self.ekf, self._book)
+        return self._output.estimate(time_s, self.ekf, self._book, self.plane, self.road_map, self.thresholds)
 
 
 def _fix_std_m(fix: Fix) -> float:
