@@ -26,13 +26,13 @@ from cryptography.hazmat.primitives.asymmetric.utils import Prehashed, encode_ds
 from bench.bench_v2x import GN, typical_cam
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
-from coopdrive.services.v2x.btp import parse_btp_b
+from coopdrive.v2x.btp import parse_btp_b
 from coopdrive.recording.capture import read_capture
-from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE, BasicNextHeader, parse_gn, with_basic_next_header
-from coopdrive.services.v2x.packet import V2xPacketCodec
-from coopdrive.services.v2x.security import asn
-from coopdrive.services.v2x.security.certificate import Certificate
-from coopdrive.services.v2x.security.envelope import TBS_OFFSET_IN_ENVELOPE, parse_signed_data
+from coopdrive.v2x.geonet import BASIC_HEADER_SIZE, BasicNextHeader, parse_gn, with_basic_next_header
+from coopdrive.v2x.packet import V2xPacketCodec
+from coopdrive.v2x.security import asn
+from coopdrive.v2x.security.certificate import Certificate
+from coopdrive.v2x.security.envelope import TBS_OFFSET_IN_ENVELOPE, parse_signed_data
 from tests.shared_data import shared_file
 
 ROUNDS = sized(40, 1)

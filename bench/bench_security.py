@@ -19,11 +19,11 @@ from cryptography.hazmat.primitives.asymmetric import ec
 
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
-from coopdrive.services.v2x.packet import GnParams, SourcePosition, V2xPacketCodec
-from coopdrive.services.v2x.security.crypto import Curve
-from coopdrive.services.v2x.security.pki import create_test_pki
-from coopdrive.services.v2x.security.verifier import SecurityVerifier
-from coopdrive.services.v2x.timebase import tai_ms_from_unix_s
+from coopdrive.v2x.packet import GnParams, SourcePosition, V2xPacketCodec
+from coopdrive.v2x.security.crypto import Curve
+from coopdrive.v2x.security.pki import create_test_pki
+from coopdrive.v2x.security.verifier import SecurityVerifier
+from coopdrive.v2x.timebase import tai_ms_from_unix_s
 from coopdrive.v1 import its_pb2
 
 STATIONS = 100

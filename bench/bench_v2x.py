@@ -14,10 +14,10 @@ from dataclasses import dataclass
 
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
-from coopdrive.services.v2x.its_pdu import ItsCodec, ItsMessageId, PDU_TYPE_NAMES
-from coopdrive.services.v2x.mapping.cam import cam_to_asn
-from coopdrive.services.v2x.mapping.iclcm import iclcm_to_asn
-from coopdrive.services.v2x.packet import GnParams, SourcePosition, V2xPacketCodec
+from coopdrive.v2x.its_pdu import ItsCodec, ItsMessageId, PDU_TYPE_NAMES
+from coopdrive.v2x.mapping.cam import cam_to_asn
+from coopdrive.v2x.mapping.iclcm import iclcm_to_asn
+from coopdrive.v2x.packet import GnParams, SourcePosition, V2xPacketCodec
 from coopdrive.v1 import its_pb2
 
 BARE = "bare asn1tools UPER"

@@ -437,7 +437,7 @@ def _cacc_laws():
 
 
 def _security_modes():
-    from coopdrive.services.v2x.security.profile import SecurityMode
+    from coopdrive.v2x.security.profile import SecurityMode
 
     return list(SecurityMode)
 

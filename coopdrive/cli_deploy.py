@@ -116,7 +116,7 @@ def _foxglove(args) -> int:
     from coopdrive.bus import Bus, BusConfig
     from coopdrive.roadmap import RoadMap
     from coopdrive.runtime.config import ConfigError
-    from coopdrive.visual.live_bridge import FoxgloveBridge
+    from coopdrive.recording.foxglove_live import FoxgloveBridge
 
     try:
         road_map = RoadMap.load(args.map) if args.map else None

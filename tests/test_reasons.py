@@ -6,7 +6,7 @@ import pytest
 from coopdrive.can.frames import CanDecodeError, DecodeFailure
 from coopdrive.reasons import Reasoned, ReasonedError
 from coopdrive.services.actuation.watchdog import StopCause, StopTrigger
-from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
 
 
 class Why(enum.Enum):

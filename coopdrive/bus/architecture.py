@@ -1,5 +1,5 @@
 """The generated part of docs/architecture.md: who publishes and who reads each topic, from the services table and
-each service's topic declaration, so the page cannot drift from the code.
+each service's topic declaration, and the package's layers (layers.py), so the page cannot drift from the code.
 
     python -m coopdrive.bus.architecture                              # print the generated part
     python -m coopdrive.bus.architecture --write docs/architecture.md # rewrite it between the markers
@@ -13,6 +13,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from coopdrive.bus.layers import LAYERS
 from coopdrive.bus.services import SERVICES, ServiceEntry
 from coopdrive.bus.topic import EVERY_OTHER_TOPIC, Topic
 from coopdrive.bus.topics import declarations_of, published_by
@@ -83,6 +84,15 @@ def topics_table() -> list[str]:
     return lines
 
 
+def layers_table() -> list[str]:
+    lines = ["| layer (lowest first) | packages | what it holds |", "|---|---|---|"]
+    for layer in LAYERS:
+        packages = ", ".join(f"`{package}`" for package in layer.packages)
+        lines.append(f"| {layer.name}{'' if layer.framework else ' (above the framework)'} | {packages} | "
+                     f"{layer.holds} |")
+    return lines
+
+
 def generated_section() -> str:
     observers = ", ".join(entry.name for entry in _by_rank() if _observes_everything(entry))
     parts = [
@@ -95,7 +105,11 @@ def generated_section() -> str:
         "subscribes to it; the runtime, the launcher or a recorder reads it. \"its own\": under replay, or from "
         "its own hardware, a service reads what it published when the drive was recorded. Every service also "
         "publishes `diagnostics/<service>` (`coopdrive.v1.Diagnostics`, from the runtime, not stepped).", "",
-        *topics_table(), "", END,
+        *topics_table(), "",
+        "The layers of the package (`coopdrive/bus/layers.py`): a module imports its own layer and those below it, "
+        "directly or through any chain of imports, and no two modules import each other "
+        "(`tests/test_import_direction.py`).", "",
+        *layers_table(), "", END,
     ]
     return "\n".join(parts) + "\n"
 

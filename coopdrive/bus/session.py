@@ -23,7 +23,7 @@ from coopdrive.bus.local_delivery import LocalDelivery
 from coopdrive.bus.remote_matching import RemoteMatching
 from coopdrive.bus.topics import Topic, topic_named
 from coopdrive.bus.type_registry import message_class
-from coopdrive.recording.publish_spool import is_recorded, process_spool
+from coopdrive.bus.publish_spool import is_recorded, process_spool
 
 log = logging.getLogger(__name__)
 

@@ -18,8 +18,8 @@ from coopdrive.judging.run_messages import RunMessages
 from coopdrive.judging.tracking import tracking_metrics
 from coopdrive.services.sim import metrics as judge_metrics
 from coopdrive.services.sim.truth_series import TruthSeries
-from coopdrive.services.v2x.reasons import RejectReason
-from coopdrive.services.v2x.security_verdict import UNTRUSTED_REASONS
+from coopdrive.v2x.reasons import RejectReason
+from coopdrive.v2x.security_verdict import UNTRUSTED_REASONS
 from coopdrive.v1 import ego_pb2, v2x_pb2
 
 # A scene object is taken for the true vehicle whose rear bumper centre is this close.

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from coopdrive.judging.run_messages import RunMessages
+from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.services.sim import geometry
 from coopdrive.services.sim import metrics as judge_metrics
 from coopdrive.services.sim.truth_series import TruthSeries
@@ -51,14 +52,14 @@ class _Pose:
                    interpolated("width_m"))
 
     def rear_centre(self, k: int) -> tuple[float, float]:
-        back_m = geometry.rear_overhang_m(self.length_m[k])
+        back_m = rear_overhang_m(self.length_m[k])
         return (self.x_m[k] - back_m * math.cos(self.heading_rad[k]),
                 self.y_m[k] - back_m * math.sin(self.heading_rad[k]))
 
     def distances_to_body_m(self, k: int, points_xy_m: np.ndarray) -> np.ndarray:
         """Distance from each ENU point (N x 2) to the vehicle's footprint (0 inside it)."""
         local = geometry.to_ego_frame(points_xy_m, self.x_m[k], self.y_m[k], self.heading_rad[k])
-        back_m = geometry.rear_overhang_m(self.length_m[k])
+        back_m = rear_overhang_m(self.length_m[k])
         outside_along = np.maximum(np.maximum(-back_m - local[:, 0], local[:, 0] - (self.length_m[k] - back_m)), 0.0)
         outside_across = np.maximum(np.abs(local[:, 1]) - 0.5 * self.width_m[k], 0.0)
         return np.hypot(outside_along, outside_across)

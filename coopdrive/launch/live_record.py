@@ -17,7 +17,7 @@ from pathlib import Path
 
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.recording.live_configs import ServiceConfigCollector
-from coopdrive.recording.publish_spool import is_recorded
+from coopdrive.bus.publish_spool import is_recorded
 from coopdrive.recording.writer import LIVE_CHUNK_BYTES, McapRecorder
 from coopdrive.runtime.signal_wait import wait_hearing_signals
 

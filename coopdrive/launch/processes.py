@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from coopdrive.launch.forked_process import ForkedProcess
-from coopdrive.recording.publish_spool import SPOOL_PATH_ENV
+from coopdrive.bus.publish_spool import SPOOL_PATH_ENV
 from coopdrive.recording.spool_merge import SPOOL_SUFFIX
 from coopdrive.runtime.launcher_watch import launcher_environment
 

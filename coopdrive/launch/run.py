@@ -34,7 +34,7 @@ from coopdrive.services.sim.scenario_config import ScenarioConfig, ScenarioError
 from coopdrive.services.sim.world_profile import WorldProfile
 from coopdrive.services.sim.config import SimConfig
 from coopdrive.services.sim.service_crashes import crashed_participants
-from coopdrive.services.v2x.security.profile import SecurityMode
+from coopdrive.v2x.security.profile import SecurityMode
 from coopdrive.v1 import sim_pb2
 
 if TYPE_CHECKING:
@@ -48,7 +48,7 @@ class RunOptions:
     realtime: bool = False
     record: Path | None = None
     gateway_port: int | None = None
-    # Serve the run's bus to Foxglove on this WebSocket port (coopdrive.visual.live_bridge).
+    # Serve the run's bus to Foxglove on this WebSocket port (coopdrive.recording.foxglove_live).
     foxglove_port: int | None = None
     # Zenoh endpoints the run's hub listens on besides its own, so other tools (coopdrive record, python-can's
     # coopdrive interface, a zenohd router) can join the run's bus.
@@ -152,8 +152,8 @@ def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[Servic
 def secured_run(config: ScenarioConfig, stacks: list[str], options: RunOptions, pki_dir: Path) -> dict[str, dict]:
     """A test PKI valid from the scenario's start for the stacks and the simulator's own senders; per stack
     its v2x `security` section."""
-    from coopdrive.services.v2x.security.run_setup import security_overrides
-    from coopdrive.services.v2x.timebase import tai_ms_from_utc
+    from coopdrive.v2x.security.run_setup import security_overrides
+    from coopdrive.v2x.timebase import tai_ms_from_utc
 
     try:
         mode = SecurityMode(options.security)
@@ -173,9 +173,9 @@ def secured_run(config: ScenarioConfig, stacks: list[str], options: RunOptions, 
 
 def _expire_tickets(config: ScenarioConfig, pki_dir: Path, untrusted: tuple[str, ...], valid_from_tai_s: int) -> None:
     """ticket_expired faults: the vehicle's tickets in the run's PKI end at the fault's start."""
-    from coopdrive.services.v2x.security.pki import issue_expiring_tickets, load_test_pki
-    from coopdrive.services.v2x.security.run_setup import UNTRUSTED_SUBDIR
-    from coopdrive.services.v2x.timebase import tai_ms_from_utc
+    from coopdrive.v2x.security.pki import issue_expiring_tickets, load_test_pki
+    from coopdrive.v2x.security.run_setup import UNTRUSTED_SUBDIR
+    from coopdrive.v2x.timebase import tai_ms_from_utc
 
     epoch_tai_s = tai_ms_from_utc(config.utc_epoch) // MS_PER_S
     for fault in (f for f in config.faults if isinstance(f, TicketExpired)):
@@ -288,7 +288,7 @@ def _watch(options: RunOptions, hub: Bus, configs: dict[str, dict]):
         # The configs go in at the end, as the services ran them (effective_configs); the map is needed now.
         recording = Recording(McapRecorder(options.record, road_map=recorded_road_map(configs)), options.on_recorded)
     if options.foxglove_port is not None:
-        from coopdrive.visual.live_bridge import FoxgloveBridge
+        from coopdrive.recording.foxglove_live import FoxgloveBridge
 
         bridge = FoxgloveBridge(hub, options.foxglove_port, road_map=recorded_road_map(configs))
     if options.observer is not None:

@@ -14,7 +14,7 @@ from typing import Any, TextIO
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.recording.flatten import flatten
 from coopdrive.recording.reader import read_messages, recorded_topics
-from coopdrive.recording.publish_spool import NANOSECONDS
+from coopdrive.bus.publish_spool import NANOSECONDS
 
 FORMATS = ("csv", "jsonl")
 

@@ -24,7 +24,7 @@ from coopdrive.recording.import_source import ImportFailure, SourceReport, Timed
 from coopdrive.recording.nmea_import import read_nmea_log
 from coopdrive.recording.pcap_import import read_pcap
 from coopdrive.recording.replay_config import CONFIG_SOURCE_METADATA
-from coopdrive.recording.publish_spool import NANOSECONDS
+from coopdrive.bus.publish_spool import NANOSECONDS
 from coopdrive.recording.writer import McapRecorder, config_metadata
 from coopdrive.runtime.registry import VEHICLE_STACK, service_class
 

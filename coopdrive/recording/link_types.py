@@ -1,5 +1,5 @@
 """What a capture's frames are: the pcap link types coopdrive reads, and GeoNetworking's ethertype. Said once for
-the capture reader (capture.py) and the v2x service's pcap writer (services/v2x/pcap.py); no imports, so a service
+the capture reader (capture.py) and the v2x service's pcap writer (coopdrive/v2x/pcap.py); no imports, so a service
 that writes captures does not load the reader's packet library."""
 
 # Wireshark dissects GeoNetworking on this ethertype (ETSI EN 302 636-4-1).

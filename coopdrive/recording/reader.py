@@ -24,7 +24,7 @@ from mcap.writer import MCAP0_MAGIC
 
 from coopdrive.bus.type_registry import message_class
 from coopdrive.recording.channel_reader import channel_messages, indexes_every_chunk
-from coopdrive.recording.publish_spool import NANOSECONDS
+from coopdrive.bus.publish_spool import NANOSECONDS
 
 _log = logging.getLogger(__name__)
 # What a file cut inside a record, or not MCAP at all, raises while it is read.

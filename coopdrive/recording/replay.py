@@ -24,7 +24,7 @@ from coopdrive.recording.reader import (RecordedMessage, read_messages, read_met
                                         recording_start_ns)
 from coopdrive.recording.replay_config import ReplayError, missing_inputs_text, replay_config
 from coopdrive.recording.replay_wall import run_wall_clock
-from coopdrive.recording.publish_spool import NANOSECONDS
+from coopdrive.bus.publish_spool import NANOSECONDS
 from coopdrive.recording.writer import McapRecorder, config_metadata
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
 from coopdrive.runtime.participants import ParticipantTracker

@@ -13,7 +13,7 @@ from __future__ import annotations
 import logging
 
 from coopdrive.bus import Envelope, KeyLayout
-from coopdrive.recording.publish_spool import NANOSECONDS
+from coopdrive.bus.publish_spool import NANOSECONDS
 
 log = logging.getLogger(__name__)
 

@@ -1,4 +1,4 @@
-"""The spools a recorded run's processes wrote (publish_spool.py), merged into its recording in time order.
+"""The spools a recorded run's processes wrote (coopdrive/bus/publish_spool.py), merged into its recording in time order.
 
 Messages of one time keep a fixed order, by the spool's name (the launcher names each after its process) and then
 as the process sent them, so a recording's order does not depend on when its messages arrived anywhere.

@@ -16,7 +16,7 @@ from typing import Callable
 from google.protobuf.message import Message
 from mcap_protobuf.writer import Writer
 
-from coopdrive.recording.publish_spool import message_time_ns
+from coopdrive.bus.publish_spool import message_time_ns
 from coopdrive.roadmap import RoadMap
 from coopdrive.visual import VisualChannels, recorded_road_map
 

@@ -1,23 +1,27 @@
-"""ClockMaster: the simulator's side of time. Steps the world in lockstep or paced to wall time."""
+"""ClockMaster: the simulator's side of time. Steps the world in lockstep or paced to wall time.
+
+It works through the runtime's public parts: the service's context (events, stopping, logging), the Stepper (a
+step, the clock it publishes, the barrier) and the StepWait every follower uses too."""
 
 from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from coopdrive.runtime.barrier import MESSAGE_WAIT_LIMIT_S, MESSAGES_GIVEN_UP_COUNTER
-from coopdrive.runtime.events import RuntimeEvent
+from coopdrive.bus import Envelope
+from coopdrive.runtime.context import RunnerContext
+from coopdrive.runtime.step_wait import StepWait
+from coopdrive.runtime.stepping import Stepper
 from coopdrive.v1 import sim_pb2
-
-if TYPE_CHECKING:
-    from coopdrive.runtime.runner import ServiceRunner
 
 # Subscriptions of freshly started peers take a moment to reach the publishers.
 SETTLE_S = 0.3
-STALL_WARNING_S = 10.0
+# How long the master waits for an event at most before it looks at its steps again: while participants come up,
+# and while a step waits for its markers.
+STARTUP_POLL_S = 0.05
+STEP_POLL_S = 0.5
 # How long a crash may take to end the service's process (its liveliness token gone).
 CRASH_TIMEOUT_S = 30.0
 
@@ -83,8 +87,11 @@ class ClockMaster:
             """An Outage falls due: have the participant's process killed (restart: started again). The clock
             holds until its liveliness token is gone (restart: back)."""
 
-    def __init__(self, runner: ServiceRunner):
-        self._runner = runner
+    def __init__(self, service: "ClockMaster.Driven", context: RunnerContext, steps: Stepper, step_wait: StepWait):
+        self._service = service
+        self._context = context
+        self._steps = steps
+        self._wait = step_wait
         self._settings = ClockSettings()
         self._participants: list[str] = []
         self._alive: set[str] = set()
@@ -97,18 +104,18 @@ class ClockMaster:
 
     def run(self) -> None:
         # Read once the service has started: how many steps it can pipeline may depend on the world it loaded.
-        self._settings = self._runner.service.clock_settings()
+        self._settings = self._service.clock_settings()
         self._participants = list(self._settings.participants)
         lag = max(1, self._settings.feedback_delay_steps)
-        self._runner.dispatcher.feedback_lag_s = (lag - 1) * self._settings.step_s
+        self._steps.dispatcher.feedback_lag_s = (lag - 1) * self._settings.step_s
         try:
             self._wait_for_participants()
         except ParticipantsMissing as error:
-            self._runner.service.on_clock_failed(str(error))
+            self._service.on_clock_failed(str(error))
             raise
         wall_start = time.monotonic()
-        self._runner.service.on_clock_started(wall_start)
-        while not self._runner.stopping:
+        self._service.on_clock_started(wall_start)
+        while not self._context.stopping:
             time_s = self._step * self._settings.step_s
             if self._settings.lockstep:
                 lag = max(1, self._settings.feedback_delay_steps)
@@ -119,27 +126,27 @@ class ClockMaster:
             if self._settings.paced or not self._settings.lockstep:
                 if not self._wait_until(wall_start + time_s / self._settings.realtime_factor):
                     break
-            self._runner.run_step(self._step, time_s)
+            self._steps.run_step(self._step, time_s)
             self._publish_clock()
             self._step += 1
 
     def _publish_clock(self, to_all: bool = False) -> None:
         """To the followers whose triggers can run in this step (KeyLayout.clock_step); `to_all` (and every
         clock of a run not in lockstep) to each of them."""
-        clock = sim_pb2.SimClock(step=self._step, time_s=self._runner.now_s(), step_s=self._settings.step_s,
+        clock = sim_pb2.SimClock(step=self._step, time_s=self._context.now_s(), step_s=self._settings.step_s,
                                  lockstep=self._settings.lockstep, participants=self._participants,
-                                 sequences=self._runner.published_sequences)
-        layout = self._runner.bus.layout
+                                 sequences=self._steps.published_sequences)
+        layout = self._context.bus.layout
         to_all = to_all or not self._settings.lockstep
-        self._runner.publish_clock(clock, layout.clock_to_all() if to_all else layout.clock_step(self._step))
+        self._steps.publish_clock(clock, layout.clock_to_all() if to_all else layout.clock_step(self._step))
 
     def _wait_for_participants(self) -> None:
         deadline = time.monotonic() + self._settings.startup_timeout_s
-        while not self._runner.stopping and not set(self._participants) <= self._alive:
+        while not self._context.stopping and not set(self._participants) <= self._alive:
             if time.monotonic() > deadline:
                 missing = sorted(set(self._participants) - self._alive)
                 raise ParticipantsMissing(f"services did not come up: {', '.join(missing)}")
-            self._handle(self._runner.next_event(0.05))
+            self._handle_one(STARTUP_POLL_S)
         self._wait_for(lambda: False, SETTLE_S)
 
     def _wait_for(self, condition, timeout_s: float) -> bool:
@@ -147,9 +154,9 @@ class ClockMaster:
         deadline = time.monotonic() + timeout_s
         while not condition():
             remaining = deadline - time.monotonic()
-            if remaining <= 0 or self._runner.stopping:
+            if remaining <= 0 or self._context.stopping:
                 return False
-            self._handle(self._runner.next_event(min(remaining, 0.05)))
+            self._handle_one(min(remaining, STARTUP_POLL_S))
         return True
 
     def _carry_out_outages(self) -> bool:
@@ -159,94 +166,76 @@ class ClockMaster:
                 self._crash(outage.participant)
             if outage.restart_step == self._step:
                 self._restart(outage.participant)
-        return not self._runner.stopping
+        return not self._context.stopping
 
     def _crash(self, participant: str) -> None:
         # What the service sent up to the last step is in before it dies, so its last outputs do not depend on
         # how far it had got when the kill came.
         if self._settings.lockstep and self._step > 0 and not self._wait_for_step_done(self._step - 1):
             return
-        self._runner.service.on_outage(participant, restart=False)
+        self._service.on_outage(participant, restart=False)
         if not self._wait_for(lambda: participant not in self._alive, CRASH_TIMEOUT_S):
-            self._runner.log.warning("%s is still alive after its crash; dropped from the run", participant)
-        self._on_participant_lost(participant)  # nothing more when its token's end already did it
+            self._context.log.warning("%s is still alive after its crash; dropped from the run", participant)
+        self.on_alive(participant, False)  # nothing more when its token's end already did it
 
     def _restart(self, participant: str) -> None:
-        self._runner.service.on_outage(participant, restart=True)
+        self._service.on_outage(participant, restart=True)
         if not self._wait_for(lambda: participant in self._alive, self._settings.startup_timeout_s):
-            self._runner.log.warning("%s did not come back; continuing without it", participant)
+            self._context.log.warning("%s did not come back; continuing without it", participant)
             return
         self._wait_for(lambda: False, SETTLE_S)  # its subscriptions reach the publishers first
         self._participants = [p for p in self._settings.participants if p in self._participants or p == participant]
-        self._runner.barrier.mark_done(participant, self._step - 1)  # it has nothing before its first step
-        self._runner.service.count("participants_restarted")
-        self._runner.log.info("%s rejoined the run at step %d", participant, self._step)
+        self._steps.barrier.mark_done(participant, self._step - 1)  # it has nothing before its first step
+        self._service.count("participants_restarted")
+        self._context.log.info("%s rejoined the run at step %d", participant, self._step)
         # A clock listing it for the first time tells it the step it joins from and has the others re-send their
         # last step markers to it (see MidRunJoin).
         self._resend_last_clock()
 
     def _wait_for_step_done(self, step: int) -> bool:
-        warned_at = markers_in_at = time.monotonic()
-        while not self._runner.stopping:
-            barrier = self._runner.barrier
+        """Waits until every participant has reported `step` (the barrier lets step + 1 go), or the wait gives up
+        on a lost message (step_wait.py); False when the run stopped meanwhile."""
+        while not self._context.stopping:
             running = set(self._participants)
-            if not barrier.waits(step + 1, running):
+            if not self._steps.barrier.waits(step + 1, running) or self._wait.gives_up(step + 1, running):
                 return True
-            if barrier.waits(step + 1, running, markers_only=True):
-                markers_in_at = time.monotonic()
-            elif time.monotonic() - markers_in_at > MESSAGE_WAIT_LIMIT_S:
-                # Every marker is in but a message it counts never came: go on without it (see runner.py).
-                self._runner.service.count(MESSAGES_GIVEN_UP_COUNTER)
-                self._runner.log.warning("step %d: gave up waiting for messages counted by %s", step,
-                                         ", ".join(barrier.missing(step + 1, running)))
-                return True
-            self._handle(self._runner.next_event(0.5))
-            # What queued behind it first: the barrier is asked once per burst of markers, not once per marker.
-            self._handle_queued()
-            if time.monotonic() - warned_at > STALL_WARNING_S:
-                warned_at = time.monotonic()
-                waiting = barrier.missing(step + 1, running)
-                self._runner.log.warning("step %d still waits for %s", step, ", ".join(waiting))
+            self._context.events.handle_burst(STEP_POLL_S, self)
         return False
 
     def _wait_until(self, wall_deadline: float) -> bool:
-        while not self._runner.stopping:
+        while not self._context.stopping:
             remaining = wall_deadline - time.monotonic()
             if remaining <= 0:
                 return True
-            self._handle(self._runner.next_event(remaining))
+            self._handle_one(remaining)
         return False
 
-    def _handle_queued(self) -> None:
-        for _ in range(self._runner.queued_events()):
-            self._handle(self._runner.next_event(0.0))
+    def _handle_one(self, timeout_s: float) -> None:
+        events = self._context.events
+        events.handle(events.next_event(timeout_s), self)
 
-    def _handle(self, event) -> None:
-        if event is None:
+    # ----- EventRole ------------------------------------------------------------------------
+    def on_data(self, envelope: Envelope) -> None:
+        self._steps.note_received(envelope)
+        self._steps.dispatcher.add(envelope)
+
+    def on_clock(self, clock: sim_pb2.SimClock) -> None:
+        """The master publishes the clock; it never follows one."""
+
+    def on_step_done(self, participant: str, step: int, next_step: int, sequences: dict[str, int]) -> None:
+        self._steps.barrier.mark_done(participant, step, next_step, sequences)
+
+    def on_alive(self, participant: str, alive: bool) -> None:
+        if alive:
+            self._alive.add(participant)
             return
-        kind, payload = event
-        if kind is RuntimeEvent.DATA:
-            self._runner.note_received(payload)
-            self._runner.dispatcher.add(payload)
-        elif kind is RuntimeEvent.DONE:
-            self._runner.barrier.mark_done(*payload)
-        elif kind is RuntimeEvent.CALL:
-            self._runner.call(payload)
-        elif kind is RuntimeEvent.ALIVE:
-            participant, alive = payload
-            if alive:
-                self._alive.add(participant)
-            else:
-                self._on_participant_lost(participant)
-
-    def _on_participant_lost(self, participant: str) -> None:
         self._alive.discard(participant)
         if participant not in self._participants:
             return
         self._participants.remove(participant)
-        self._runner.service.count("participants_lost")
-        self._runner.log.warning("%s left the run; continuing without it", participant)
-        self._runner.service.on_participant_lost(participant)
+        self._service.count("participants_lost")
+        self._context.log.warning("%s left the run; continuing without it", participant)
+        self._service.on_participant_lost(participant)
         # Followers blocked on the lost service's marker re-read the participant list.
         self._resend_last_clock()
 

@@ -28,7 +28,7 @@ from google.protobuf.message import Message
 
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.roadmap import RoadMap
-from coopdrive.services.geolocation.nmea_decoder import NmeaDecoder
+from coopdrive.gnss.nmea_decoder import NmeaDecoder
 from coopdrive.visual.primitives import MAP_FRAME, NANOSECONDS, color, timestamp, yaw_quaternion
 from coopdrive.visual.scene_entities import lanes_update, scene_update, truth_update
 from coopdrive.v1 import ego_pb2, gnss_pb2, its_pb2, planner_pb2, scene_pb2, sim_pb2

@@ -20,7 +20,7 @@ from foxglove_schemas_protobuf.TextPrimitive_pb2 import TextPrimitive
 from foxglove_schemas_protobuf.Vector3_pb2 import Vector3
 from google.protobuf.timestamp_pb2 import Timestamp
 
-from coopdrive.recording.publish_spool import NANOSECONDS
+from coopdrive.bus.publish_spool import NANOSECONDS
 
 MAP_FRAME = "map"
 # Boxes stand on the road: their centre is half their height up.

@@ -15,8 +15,8 @@ from foxglove_schemas_protobuf.SceneEntityDeletion_pb2 import SceneEntityDeletio
 from foxglove_schemas_protobuf.SceneUpdate_pb2 import SceneUpdate
 
 from coopdrive.roadmap import RoadMap
-from coopdrive.services.scene.unknowns import DEFAULT_LENGTH_M, DEFAULT_WIDTH_M
-from coopdrive.services.sim.geometry import rear_overhang_m
+from coopdrive.messages.unknowns import DEFAULT_LENGTH_M, DEFAULT_WIDTH_M
+from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.visual.primitives import (
     MAP_FRAME,
     box,

@@ -24,7 +24,7 @@ from coopdrive.services.gateway.view_models import (
     TransitionView,
     V2xStationsResponse,
 )
-from coopdrive.services.scene.unknowns import DEFAULT_LENGTH_M, DEFAULT_WIDTH_M, UNKNOWN_CONFIDENCE
+from coopdrive.messages.unknowns import DEFAULT_LENGTH_M, DEFAULT_WIDTH_M, UNKNOWN_CONFIDENCE
 from coopdrive.v1 import actuation_pb2, header_pb2, planner_pb2, scene_pb2, sensors_pb2, v2x_pb2
 
 DEFAULT_LANE_WIDTH_M = 3.5

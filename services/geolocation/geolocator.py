@@ -10,7 +10,7 @@ from __future__ import annotations
 import enum
 import math
 from collections import Counter
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 from pymap3d.vincenty import vdist
@@ -18,27 +18,26 @@ from pymap3d.vincenty import vdist
 from coopdrive.can.adapter import OdometryOptions
 from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.roadmap import RoadMap
+from coopdrive.services.geolocation.bookkeeping import Bookkeeping, Fix, Imu, replaced
 from coopdrive.services.geolocation.config import GeolocatorConfig
+from coopdrive.services.geolocation.ego_output import EgoOutput, position_std_m_of
 from coopdrive.services.geolocation.ekf import GeolocationEkf, UpdateKind, gnss_position_std_m
 from coopdrive.services.geolocation.gated_fixes import GatedFixes
-from coopdrive.services.geolocation.frames import RTK_FIX_MODES, LeverArm, ModeThresholds, localisation_mode
+from coopdrive.services.geolocation.initial_heading import UNKNOWN_HEADING_STD_RAD, enu_heading_rad, initial_heading
+from coopdrive.services.geolocation.frames import RTK_FIX_MODES, LeverArm, ModeThresholds
 from coopdrive.services.geolocation.latency import Insertion, ReplayBuffer
 from coopdrive.services.geolocation.motion_models import (
-    ACCEL, HEADING, SPEED, STATE_DIM, VEHICLE_STATE_DIM, YAW_RATE, CtraModel, E, KinematicBicycleModel,
+    HEADING, SPEED, STATE_DIM, CtraModel, E, KinematicBicycleModel,
     MotionModelKind, N, ProcessNoise,
 )
 from coopdrive.services.geolocation.odometry import Odometry, OdometrySample
 from coopdrive.v1 import ego_pb2, gnss_pb2, vehicle_pb2
 
-SENDER = "geolocation"
-STATIONARY_SPEED_MPS = 0.5
 # Rear wheels this slow are standing still (wheel-speed sensors read zero there, give or take their noise).
 STANDSTILL_SPEED_MPS = 0.05
-HEADING_FROM_TRACK_MIN_M = 2.0  # two fixes this far apart give a usable heading
 PENDING_FIX_MAX_AGE_S = 5.0
 INITIAL_YAW_RATE_STD_RADPS = 0.1
 INITIAL_ACCEL_STD_MPS2 = 1.0
-UNKNOWN_HEADING_STD_RAD = math.pi
 NO_LEVER_ARM = LeverArm()
 FIX_INTERVALS_FRESH = 1.5  # a fix is fresh until this many receiver intervals after it
 # Until a second fix shows the receiver's rate, it is taken to be the slowest common one: a 1 Hz receiver's
@@ -58,47 +57,6 @@ class InputEvent(enum.Enum):
     TOO_OLD = "too_old"
     STANDSTILL = "standstill"
     FIX_FAR_FROM_ORIGIN = "fix_far_from_origin"
-
-
-@dataclass(frozen=True)
-class _Fix:
-    east_m: float
-    north_m: float
-    std_east_m: float
-    std_north_m: float
-    fix_mode: int
-    speed_mps: float
-    course_deg: float
-    velocity_valid: bool = False
-    heading_rad: float | None = None  # dual-antenna heading, ENU
-
-
-@dataclass(frozen=True)
-class _Imu:
-    yaw_rate_radps: float
-    accel_mps2: float
-
-
-@dataclass(frozen=True)
-class _Bookkeeping:
-    last_fix_time_s: float | None = None
-    last_fix_mode: int = gnss_pb2.FIX_MODE_UNSPECIFIED
-    # The fixes refused since the last fused one (None while fixes are fused).
-    gated: GatedFixes | None = None
-    pending_fix: tuple[float, _Fix] | None = None
-    last_speed_mps: float | None = None
-    # The car's latest yaw rate (its sensor's, else its wheels'): reported while there is no fix.
-    last_yaw_rate_radps: float | None = None
-    # False while the filter runs on a position alone (heading unknown, std pi): a heading found later
-    # (dual antenna, course over ground, a track) then re-initialises it.
-    heading_known: bool = False
-    last_odometry_time_s: float | None = None
-    # The reported std of the last fix fused. A DGPS or float solution's error is correlated over tens of seconds,
-    # so an estimate that followed such fixes is off by about as much, however small its covariance (which
-    # takes each fix's error as independent) has become.
-    fused_fix_std_m: float = 0.0
-    # Since when every yaw rate measured (gyro, wheels) has been refused by the gate (None: the last was fused).
-    yaw_rate_refused_since_s: float | None = None
 
 
 class Geolocator:
@@ -127,9 +85,9 @@ class Geolocator:
         self.lever_arm = LeverArm(config.antenna_x_m, config.antenna_y_m)
         self.thresholds = ModeThresholds(config.precise_std_m, config.lost_std_m, config.gnss_timeout_s)
         self.counters: Counter[InputEvent] = Counter()
-        self._book = _Bookkeeping()
+        self._book = Bookkeeping()
         self._buffer = ReplayBuffer(self._apply, self._snapshot, self._restore, config.history_s)
-        self._sequence = 0
+        self._output = EgoOutput(config)
 
     def configure_odometry(self, options: OdometryOptions) -> None:
         """How this car's wheels are read (its vehicle CAN adapter's odometry options)."""
@@ -160,11 +118,11 @@ class Geolocator:
             return None
         # Producers older than velocity_valid (the simulator's gnss/fix) leave it false but fill the speed.
         velocity_valid = fix.velocity_valid or fix.speed_mps > 0.0
-        heading_rad = _enu_heading_rad(fix.heading_deg) if fix.heading_valid else None
+        heading_rad = enu_heading_rad(fix.heading_deg) if fix.heading_valid else None
         # A fix's time is known only to the spread of its latency: it is off along the track by up to speed
         # times that, which its noise must allow for (else a 1 cm RTK fix late by 4 ms at 80 km/h is refused).
         timing_std_m = fix.speed_mps * self.config.gnss_time_jitter_s
-        event = _Fix(east_m, north_m, math.hypot(stds[0], timing_std_m), math.hypot(stds[1], timing_std_m),
+        event = Fix(east_m, north_m, math.hypot(stds[0], timing_std_m), math.hypot(stds[1], timing_std_m),
                      fix.fix_mode, fix.speed_mps, fix.course_deg, velocity_valid, heading_rad)
         return self._add(fix.header.sample_time_s, event)
 
@@ -191,7 +149,7 @@ class Geolocator:
         if not math.isfinite(msg.yaw_rate_radps) or math.isinf(msg.accel_longitudinal_mps2):
             self.counters[InputEvent.IMU_INVALID] += 1
             return None
-        return self._add(msg.header.sample_time_s, _Imu(msg.yaw_rate_radps, msg.accel_longitudinal_mps2))
+        return self._add(msg.header.sample_time_s, Imu(msg.yaw_rate_radps, msg.accel_longitudinal_mps2))
 
     def _add(self, time_s: float, event: object) -> Insertion:
         latest_s = self._buffer.latest_time_s
@@ -211,14 +169,14 @@ class Geolocator:
         self.ekf.restore(ekf_snap)
 
     def _apply(self, time_s: float, event: object) -> None:
-        if isinstance(event, _Fix):
+        if isinstance(event, Fix):
             self._apply_fix(time_s, event)
         elif isinstance(event, OdometrySample):
             self._apply_odometry(time_s, event)
         else:
             self._apply_imu(time_s, event)
 
-    def _apply_fix(self, time_s: float, fix: _Fix) -> None:
+    def _apply_fix(self, time_s: float, fix: Fix) -> None:
         if (not self.ekf.initialised or not self._book.heading_known) and self._try_initialise(time_s, fix):
             return
         self.ekf.predict_to(time_s)
@@ -228,13 +186,13 @@ class Geolocator:
         lever_arm = self.lever_arm if book.heading_known else NO_LEVER_ARM
         if self.ekf.update_gnss_position(fix.east_m, fix.north_m, fix.std_east_m, fix.std_north_m, lever_arm):
             self.counters[InputEvent.FIX_FUSED] += 1
-            self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None,
+            self._book = replaced(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None,
                                   fused_fix_std_m=_fix_std_m(fix))
         else:
             self._gated_fix(time_s, fix)
         self._fuse_gnss_motion(time_s, fix)
 
-    def _gated_fix(self, time_s: float, fix: _Fix) -> None:
+    def _gated_fix(self, time_s: float, fix: Fix) -> None:
         book, config = self._book, self.config
         self.counters[InputEvent.FIX_GATED] += 1
         x, y = self.lever_arm.rear_axle_position(fix.east_m, fix.north_m, self.ekf.x[HEADING])
@@ -250,18 +208,18 @@ class Geolocator:
             # The GNSS has disagreed for long, and smoothly: trust it over a filter that has drifted.
             self.ekf.reset_position(x, y, fix_std_m)
             self.counters[InputEvent.GNSS_RESET] += 1
-            self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None,
+            self._book = replaced(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None,
                                   fused_fix_std_m=fix_std_m)
         else:
-            self._book = _replace(book, gated=gated)
+            self._book = replaced(book, gated=gated)
 
     def _could_have_drifted(self, offset_m: tuple[float, float]) -> bool:
         """Whether the estimate can be this far off: by its own uncertainty, or by the error of the fixes it
         followed last (a DGPS solution's bias, which the next RTK fix shows as a step)."""
-        std_m = max(_position_std_m(self.ekf.P), self._book.fused_fix_std_m)
+        std_m = max(position_std_m_of(self.ekf.P), self._book.fused_fix_std_m)
         return math.hypot(*offset_m) <= self.config.gnss_reset_sigmas * std_m
 
-    def _fuse_gnss_motion(self, time_s: float, fix: _Fix) -> None:
+    def _fuse_gnss_motion(self, time_s: float, fix: Fix) -> None:
         """The receiver's heading, and without odometry its speed and course (a receiver alone)."""
         config, book = self.config, self._book
         if fix.heading_rad is not None:
@@ -271,46 +229,28 @@ class Geolocator:
             return
         self.ekf.update_speed(fix.speed_mps, config.gnss_speed_std_mps, UpdateKind.GNSS_SPEED, soft=True)
         if fix.heading_rad is None and fix.speed_mps >= config.min_course_speed_mps:
-            self.ekf.update_heading(_enu_heading_rad(fix.course_deg), math.radians(config.gnss_course_std_deg),
+            self.ekf.update_heading(enu_heading_rad(fix.course_deg), math.radians(config.gnss_course_std_deg),
                                     soft=True)
 
-    def _initial_heading(self, time_s: float, fix: _Fix) -> tuple[float, float, float | None] | None:
-        """(heading, its std, speed along the track or None) when this fix tells the heading, else None."""
-        book, config = self._book, self.config
-        if fix.heading_rad is not None:
-            return fix.heading_rad, math.radians(config.gnss_heading_std_deg), None
-        if fix.velocity_valid and fix.speed_mps >= config.min_course_speed_mps:
-            return _enu_heading_rad(fix.course_deg), config.initial_heading_std_rad, None
-        if book.pending_fix is not None and not fix.velocity_valid:  # a receiver's own slow speed beats a track
-            previous_time_s, previous = book.pending_fix
-            de, dn = fix.east_m - previous.east_m, fix.north_m - previous.north_m
-            # A track shorter than the fixes' own noise says nothing about the heading.
-            min_track_m = max(HEADING_FROM_TRACK_MIN_M, 3.0 * max(fix.std_east_m, fix.std_north_m))
-            if math.hypot(de, dn) >= min_track_m and time_s > previous_time_s:
-                return math.atan2(dn, de), config.initial_heading_std_rad, math.hypot(de, dn) / (time_s - previous_time_s)
-        if book.last_speed_mps is not None and abs(book.last_speed_mps) < STATIONARY_SPEED_MPS:
-            return 0.0, UNKNOWN_HEADING_STD_RAD, None  # the wheels say standing: any heading will do for now
-        return None
-
-    def _try_initialise(self, time_s: float, fix: _Fix) -> bool:
+    def _try_initialise(self, time_s: float, fix: Fix) -> bool:
         """(Re)initialises the filter from this fix when it tells the heading, or at the first fix with the
         heading unknown (a position as soon as there is a fix). False: fuse the fix as usual."""
         book = self._book
-        found = self._initial_heading(time_s, fix)
+        found = initial_heading(time_s, fix, book, self.config)
         if found is None:
             # Keep the oldest fix as the start of the track, unless it is too old to tell the heading.
             if book.pending_fix is None or time_s - book.pending_fix[0] > PENDING_FIX_MAX_AGE_S:
-                self._book = book = _replace(book, pending_fix=(time_s, fix))
+                self._book = book = replaced(book, pending_fix=(time_s, fix))
             if self.ekf.initialised:
                 return False
             self._initialise(time_s, fix, None, UNKNOWN_HEADING_STD_RAD, None)
-            self._book = _replace(self._book, pending_fix=book.pending_fix, heading_known=False)
+            self._book = replaced(self._book, pending_fix=book.pending_fix, heading_known=False)
             return True
         heading_rad, heading_std_rad, track_speed_mps = found
         self._initialise(time_s, fix, heading_rad, heading_std_rad, track_speed_mps)
         return True
 
-    def _initialise(self, time_s: float, fix: _Fix, heading_rad: float | None, heading_std_rad: float,
+    def _initialise(self, time_s: float, fix: Fix, heading_rad: float | None, heading_std_rad: float,
                     track_speed_mps: float | None) -> None:
         book = self._book
         speed_mps, speed_std = (fix.speed_mps if fix.velocity_valid else 0.0), self.config.initial_speed_std_mps
@@ -337,13 +277,13 @@ class Geolocator:
                       self.config.imu_yaw_rate_bias_std_radps**2, self.config.imu_accel_bias_std_mps2**2])
         self.ekf.initialise(time_s, x0, P0)
         self.counters[InputEvent.FIX_FUSED] += 1
-        self._book = _replace(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, pending_fix=None,
+        self._book = replaced(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, pending_fix=None,
                               heading_known=heading_rad is not None, gated=None, fused_fix_std_m=_fix_std_m(fix))
 
     def _apply_odometry(self, time_s: float, sample: OdometrySample) -> None:
-        self._book = _replace(self._book, last_speed_mps=sample.speed_mps, last_odometry_time_s=time_s)
+        self._book = replaced(self._book, last_speed_mps=sample.speed_mps, last_odometry_time_s=time_s)
         if sample.yaw_rate_radps is not None:
-            self._book = _replace(self._book, last_yaw_rate_radps=sample.yaw_rate_radps)
+            self._book = replaced(self._book, last_yaw_rate_radps=sample.yaw_rate_radps)
         if not self.ekf.initialised:
             self.ekf.hold_steering(sample.steering_angle_rad)
             return
@@ -360,8 +300,8 @@ class Geolocator:
                                                 sample.yaw_rate_std_radps)
             self._watch_yaw_rate(time_s, accepted, sample.yaw_rate_radps, sample.yaw_rate_std_radps, by_imu=False)
 
-    def _apply_imu(self, time_s: float, imu: _Imu) -> None:
-        self._book = _replace(self._book, last_yaw_rate_radps=imu.yaw_rate_radps)
+    def _apply_imu(self, time_s: float, imu: Imu) -> None:
+        self._book = replaced(self._book, last_yaw_rate_radps=imu.yaw_rate_radps)
         if not self.ekf.initialised:
             return
         self.ekf.predict_to(time_s)
@@ -377,14 +317,14 @@ class Geolocator:
         since_s = self._book.yaw_rate_refused_since_s
         if accepted:
             if since_s is not None:
-                self._book = _replace(self._book, yaw_rate_refused_since_s=None)
+                self._book = replaced(self._book, yaw_rate_refused_since_s=None)
             return
         if since_s is None:
-            self._book = _replace(self._book, yaw_rate_refused_since_s=time_s)
+            self._book = replaced(self._book, yaw_rate_refused_since_s=time_s)
         elif time_s - since_s >= self.config.yaw_rate_reset_after_s:
             self.ekf.reset_yaw_rate(measured_radps, std_radps, time_s - since_s, by_imu)
             self.counters[InputEvent.YAW_RATE_RESET] += 1
-            self._book = _replace(self._book, yaw_rate_refused_since_s=None)
+            self._book = replaced(self._book, yaw_rate_refused_since_s=None)
 
     # --- output --------------------------------------------------------------------------------
     @property
@@ -402,64 +342,8 @@ class Geolocator:
 
     def estimate(self, time_s: float) -> ego_pb2.EgoState:
         """The ego state predicted to time_s (the filter itself is not moved)."""
-        self._sequence += 1
-        state = ego_pb2.EgoState()
-        state.header.sample_time_s = time_s
-        state.header.vehicle_id = self.config.vehicle_id
-        state.header.sender = SENDER
-        state.header.sequence = self._sequence
-        state.last_fix_mode = self._book.last_fix_mode
-        if not self.ekf.initialised:
-            return self._without_position(state)
-        x, P = self.ekf.predicted(time_s)
-        state.x_m, state.y_m, state.heading_rad = x[E], x[N], x[HEADING]
-        state.speed_mps, state.yaw_rate_radps, state.accel_mps2 = x[SPEED], x[YAW_RATE], x[ACCEL]
-        state.covariance.extend(P[:VEHICLE_STATE_DIM, :VEHICLE_STATE_DIM].ravel().tolist())
-        position_std_m = _position_std_m(P)
-        state.position_std_m = position_std_m
-        since_fix_s = None if self._book.last_fix_time_s is None else time_s - self._book.last_fix_time_s
-        state.mode = localisation_mode(True, position_std_m, since_fix_s, self._book.last_fix_mode, self.thresholds,
-                                       heading_known=self._book.heading_known)
-        state.latitude_deg, state.longitude_deg, _ = self.plane.to_geodetic(float(x[E]), float(x[N]))
-        if self.road_map is not None:
-            match = self.road_map.match(x[E], x[N], x[HEADING])
-            if match is not None:
-                lane = state.lane
-                lane.matched = True
-                lane.lane_index = match.lane_index
-                lane.lane_id = match.lane.lane_id
-                lane.road_id = match.lane.road_id
-                lane.station_m = match.station_m
-                lane.lateral_offset_m = match.lateral_offset_m
-                lane.heading_error_rad = match.heading_error_rad
-                lane.lane_width_m = match.lane.width_m
-                lane.curvature_1pm = match.curvature_1pm
-        return state
-
-    def _without_position(self, state: ego_pb2.EgoState) -> ego_pb2.EgoState:
-        """No fix yet: no position (LOST, no covariance: x, y and heading mean nothing), but the car's own
-        latest speed and yaw rate, which need no fix. (position_std_m stays 0, not infinite: consumers that
-        ignore the mode would turn an infinite one into NaN covariances.)"""
-        state.mode = ego_pb2.LOCALISATION_MODE_LOST
-        if self._book.last_speed_mps is not None or self._book.last_yaw_rate_radps is not None:
-            state.speed_mps = self._book.last_speed_mps or 0.0
-            state.yaw_rate_radps = self._book.last_yaw_rate_radps or 0.0
-        return state
+        return self._output.estimate(time_s, self.ekf, self._book, self.plane, self.road_map, self.thresholds)
 
 
-def _fix_std_m(fix: _Fix) -> float:
+def _fix_std_m(fix: Fix) -> float:
     return max(fix.std_east_m, fix.std_north_m)
-
-
-def _position_std_m(P: np.ndarray) -> float:
-    """The position's std along its worst direction."""
-    return math.sqrt(max(float(np.linalg.eigvalsh(P[:2, :2])[-1]), 0.0))
-
-
-def _enu_heading_rad(course_deg: float) -> float:
-    """NMEA course or heading (from north, clockwise, degrees) -> ENU heading (from east, anticlockwise)."""
-    return math.pi / 2.0 - math.radians(course_deg)
-
-
-def _replace(book: _Bookkeeping, **changes) -> _Bookkeeping:
-    return _Bookkeeping(**{**book.__dict__, **changes})

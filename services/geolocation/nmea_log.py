@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pynmea2
 
-from coopdrive.services.geolocation.nmea_decoder import DAY_S, nmea_checksum
+from coopdrive.gnss.nmea_decoder import DAY_S, nmea_checksum
 
 TIMED_TYPES = ("GGA", "RMC", "GNS", "ZDA")
 EPOCH_DATE = datetime.date(1970, 1, 1)

@@ -17,7 +17,7 @@ from coopdrive.runtime.service import Service, ServiceConfig
 from coopdrive.services.geolocation.config import GeolocatorConfig
 from coopdrive.services.geolocation.geolocator import Geolocator
 from coopdrive.services.geolocation.gnss_serial import GnssSerial
-from coopdrive.services.geolocation.nmea_decoder import NmeaDecoder, SentenceType
+from coopdrive.gnss.nmea_decoder import NmeaDecoder, SentenceType
 from coopdrive.v1 import gnss_pb2
 
 

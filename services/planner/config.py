@@ -6,7 +6,7 @@ import enum
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from coopdrive.services.scene.unknowns import DEFAULT_LENGTH_M
+from coopdrive.messages.unknowns import DEFAULT_LENGTH_M
 
 KPH = 1.0 / 3.6
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import enum
 import math
 
-from coopdrive.services.scene.unknowns import UNKNOWN_CONFIDENCE
+from coopdrive.messages.unknowns import UNKNOWN_CONFIDENCE
 from coopdrive.v1 import planner_pb2, scene_pb2
 
 from .behaviour import add_target, keep_lane

@@ -12,7 +12,7 @@ import numpy as np
 
 from .config import SourceConfig
 from .support_table import SupportTable
-from .unknowns import UNKNOWN_CONFIDENCE
+from coopdrive.messages.unknowns import UNKNOWN_CONFIDENCE
 
 __all__ = ["UNKNOWN_CONFIDENCE", "FusedProperty"]
 

@@ -30,7 +30,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from .config import SourceConfig
-from .unknowns import UNKNOWN_CONFIDENCE
+from coopdrive.messages.unknowns import UNKNOWN_CONFIDENCE
 
 # Columns: header_pb2.SensorSource values, UNSPECIFIED (0) to MAP (6); a source without settings is never used.
 SOURCE_COLUMNS = 7

@@ -10,29 +10,23 @@ than the longest fade time of the sources that saw it.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from typing import NamedTuple
 
 import numpy as np
 from scipy.spatial import cKDTree
 
 from coopdrive.v1 import header_pb2
 
-from . import kalman
-from .association import match_quality, polar_cost_matrix
+from .association import match_quality
 from .config import SceneFusionConfig
-from .doppler_gate import PairTerms, range_rate_terms
 from .frame_association import associate_confirmed_first
-from .front_faces import facing_sensor, front_offsets, heading_known
-from .kalman import IAX, IAY, IVX, IVY, IX, IY
+from .frame_geometry import FrameGeometry
 from .measurement import Measurement
-from .occupancy import inside_bodies, nearest_body_point
-from .properties import LENGTH, POSITION, WIDTH, ObjectProperties, property_table, support_many
-from .track import RANGING_SOURCES, Track, TrackStatus, filter_steps, predict_positions, stacked_states
-from .unknowns import DEFAULT_LENGTH_M
+from .properties import POSITION, ObjectProperties, property_table, support_many
+from .track import RANGING_SOURCES, Track, TrackStatus, filter_steps, predict_positions
+from .v2v_evidence import agreeing_free_track, disagreement_m, nearest_free_ranging, seen_lately
 
 
 _SONAR = header_pb2.SENSOR_SOURCE_SONAR
-_V2V = header_pb2.SENSOR_SOURCE_V2V
 # Trust below which a station's covariance stops growing as 1/trust^2 (a finite number, however little it counts).
 MIN_TRUST = 1e-3
 
@@ -40,25 +34,6 @@ MIN_TRUST = 1e-3
 def station_variance_scale(trust: float) -> float:
     """Less trusted stations count for less: what their variances are multiplied by, 1/trust^2."""
     return 1.0 / max(trust, MIN_TRUST) ** 2
-
-
-def _predicted_means(tracks: list[Track], time_s: float) -> np.ndarray:
-    """The tracks' means (M, 6) predicted to time_s."""
-    x, _ = stacked_states(tracks)
-    dt_s = time_s - np.array([t.time_s for t in tracks])
-    return np.einsum("mij,mj->mi", kalman.transition(dt_s), x)
-
-
-class _Prior(NamedTuple):
-    """The tracks' stacked means (M, 6) and covariances (M, 6, 6), the time from each to time_s, and their positions
-    (M, 2) with covariances (M, 2, 2) predicted to it."""
-
-    x: np.ndarray
-    p: np.ndarray
-    dt_s: np.ndarray
-    position_m: np.ndarray
-    position_cov: np.ndarray
-    time_s: float
 
 
 def _moved(meas: Measurement, offset_m: np.ndarray) -> Measurement:
@@ -115,6 +90,7 @@ class Tracker:
         self._source_configs = {source: config.source(source) for source in sources}
         # Every track's properties, one row each.
         self.properties = property_table(self._source_configs.__getitem__, config.tracking)
+        self._frames = FrameGeometry(config, self.properties)
         # V2V readings fuse_v2v(defer=True) has put off, in order: each in sequence on a track of its own.
         self._deferred_v2v: list[_DeferredV2v] = []
 
@@ -128,11 +104,12 @@ class Tracker:
             return
         tracks = list(self.tracks.values())
         gate = self._config.tracking.gate_chi2
-        prior = self._prior(tracks, measurements[0].time_s) if tracks else None
-        front_m = self._front_faces(tracks, prior, measurements[0].origin_m)
+        prior = self._frames.prior(tracks, measurements[0].time_s) if tracks else None
+        front_m = self._frames.front_faces(tracks, prior, measurements[0].origin_m)
         confirmed = np.fromiter((t.status is TrackStatus.CONFIRMED for t in tracks), dtype=bool, count=len(tracks))
-        fused, unmatched = associate_confirmed_first(*self._geometry(measurements, tracks, prior, front_m), confirmed,
-                                                     self._config.tracking, self._range_rate_terms(measurements, prior))
+        fused, unmatched = associate_confirmed_first(*self._frames.geometry(measurements, tracks, prior, front_m), confirmed,
+                                                     self._config.tracking,
+                                                     self._frames.range_rate_terms_of(measurements, prior))
         # In measurement order, as one joint assignment would fuse and start them; each reading of a face taken
         # back to the rear its track holds.
         facing = front_m.any(axis=1)
@@ -142,7 +119,7 @@ class Tracker:
         starting = [measurements[i] for i in sorted(unmatched) if not measurements[i].ambiguous]
         self.counters.ambiguous_unmatched += len(unmatched) - len(starting)
         if starting:
-            inside = self._inside_confirmed_vehicles(starting)
+            inside = self._frames.inside_vehicles(self.confirmed(), starting)
             self.counters.inside_known_vehicle += int(inside.sum())
             starting = [meas for meas, occupied in zip(starting, inside, strict=True) if not occupied]
         if starting:
@@ -150,16 +127,6 @@ class Tracker:
             support_many([track.props for track in started], starting, np.ones(len(starting)))
             for track in started:
                 self._maybe_confirm(track)
-
-    def _range_rate_terms(self, measurements: list[Measurement], prior: _Prior | None) -> PairTerms | None:
-        """A radar frame's range-rate gate and costs against the tracks' velocities at its time (doppler_gate.py);
-        None for other frames, without predicting a velocity."""
-        if prior is None or all(meas.radial_speed_mps is None for meas in measurements):
-            return None
-        cfg = self._config.tracking
-        velocity_mps, velocity_cov = kalman.predict_velocity(prior.x, prior.p, prior.dt_s, cfg.jerk_psd_m2ps5)
-        return range_rate_terms(measurements, velocity_mps, velocity_cov, cfg.doppler_gate_chi2,
-                                cfg.doppler_gate_min_mps)
 
     def _without_echoes_on_objects_others_hold(self, pairs: list[tuple[Track, Measurement, float]]) -> list:
         """The pairs to fuse: a sonar echo moves only an object the sonars alone hold.
@@ -175,82 +142,6 @@ class Tracker:
         self.counters.echoes_on_objects_others_hold += len(pairs) - len(kept)
         return kept
 
-    def _inside_confirmed_vehicles(self, measurements: list[Measurement]) -> np.ndarray:
-        """Whether each of one frame's readings lies inside a confirmed vehicle's body at the frame's time."""
-        confirmed = self.confirmed()
-        if not confirmed:
-            return np.zeros(len(measurements), dtype=bool)
-        x = _predicted_means(confirmed, measurements[0].time_s)
-        sizes = self.properties.values([t.props.row for t in confirmed])
-        return inside_bodies(np.array([m.position_m for m in measurements]), x[:, [IX, IY]], x[:, [IVX, IVY]],
-                             sizes[:, LENGTH], sizes[:, WIDTH], measurements[0].origin_m)
-
-    def _prior(self, tracks: list[Track], time_s: float) -> _Prior:
-        """The tracks' stacked means and covariances and their positions predicted to time_s, worked out once per
-        frame for the front faces and the gating."""
-        x, p = stacked_states(tracks)
-        dt_s = time_s - np.array([t.time_s for t in tracks])
-        position_m, position_cov = kalman.predict_position(x, p, dt_s, self._config.tracking.jerk_psd_m2ps5)
-        return _Prior(x, p, dt_s, position_m, position_cov, time_s)
-
-    def _front_faces(self, tracks: list[Track], prior: _Prior | None, sensor_m: np.ndarray) -> np.ndarray:
-        """(M, 2) from each track's rear to the face the sensor at sensor_m sees (front_faces.py). A track that shows
-        its front for the first time and was started from what sensors saw of that front is moved back to its rear,
-        once; one V2V holds is at its rear already."""
-        if not tracks:
-            return np.zeros((0, 2))
-        x, p, dt_s = prior.x, prior.p, prior.dt_s
-        velocity_mps = np.stack((x[:, IVX] + x[:, IAX] * dt_s, x[:, IVY] + x[:, IAY] * dt_s), axis=1)
-        # Rows and columns IVX and IVY: a view, where a list index would copy.
-        velocity_cov = p[:, IVX::IVY - IVX, IVX::IVY - IVX]
-        config = self._config.tracking.front_faces
-        known = heading_known(velocity_mps, velocity_cov, config)
-        direction = velocity_mps / np.maximum(np.hypot(velocity_mps[:, 0], velocity_mps[:, 1]), 1e-9)[:, None]
-        was_facing = np.fromiter((t.shows_front for t in tracks), dtype=bool, count=len(tracks))
-        facing = facing_sensor(prior.position_m, direction, known, sensor_m, was_facing, config)
-        for k in np.flatnonzero(facing & ~known):  # facing on an earlier frame's word: the direction it had then
-            direction[k] = tracks[k].direction
-        for k in np.flatnonzero(facing & known):
-            tracks[k].direction = direction[k]
-        offsets_m = np.zeros((len(tracks), 2))
-        shown = np.flatnonzero(facing)
-        if shown.size:
-            lengths_m = self.properties.values([tracks[k].props.row for k in shown])[:, LENGTH]
-            offsets_m[shown] = front_offsets(direction[shown], lengths_m, np.ones(shown.size, dtype=bool),
-                                             DEFAULT_LENGTH_M)
-        for k in np.flatnonzero(facing != was_facing):
-            track = tracks[k]
-            track.shows_front = bool(facing[k])
-            if track.shows_front and not track.moved_to_rear:
-                track.moved_to_rear = True
-                if _V2V not in track.props.position.sources(prior.time_s):
-                    track.move(-offsets_m[k])
-        return offsets_m
-
-    def _geometry(self, measurements: list[Measurement], tracks: list[Track],
-                  prior: _Prior | None = None, front_m: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
-        """Measurement positions, covariances and sensor origins, and the tracks' predicted positions and
-        covariances at the measurements' time (prior's where given); with front_m (M, 2), the positions of the faces
-        the sensor sees."""
-        meas_xy = np.array([m.position_m for m in measurements])
-        meas_cov = np.array([m.cov_m2 for m in measurements])
-        origins = np.array([m.origin_m for m in measurements])
-        if tracks:
-            prior = prior if prior is not None else self._prior(tracks, measurements[0].time_s)
-            track_xy, track_cov = prior.position_m, prior.position_cov
-            if front_m is not None:
-                track_xy = track_xy + front_m
-        else:
-            track_xy, track_cov = np.zeros((0, 2)), np.zeros((0, 2, 2))
-        return meas_xy, meas_cov, origins, track_xy, track_cov
-
-    def _costs(self, measurements: list[Measurement], tracks: list[Track]) -> tuple[np.ndarray, np.ndarray]:
-        """Squared Mahalanobis distances and innovation log-determinants, measurements x tracks."""
-        if not tracks:
-            return np.zeros((len(measurements), 0)), np.zeros((len(measurements), 0))
-        return polar_cost_matrix(*self._geometry(measurements, tracks), self._config.tracking.angle_emphasis,
-                                 with_log_det=True)
-
     # -- V2V -------------------------------------------------------------------------------
 
     def link_v2v(self, meas: Measurement, trust: float = 1.0) -> V2vLink | None:
@@ -258,90 +149,43 @@ class Tracker:
         station = meas.station_id
         linked = self._station_links.get(station)
         if linked is not None and linked in self.tracks:
-            if not self._seen_lately(self.tracks[linked], meas.time_s):
+            if not seen_lately(self.tracks[linked], meas.time_s, self._config.trust):
                 # Our sensors now see a car near where this object only V2V keeps up is: that is the
                 # same vehicle, so the V2V-only duplicate goes and the station moves to the seen track,
                 # with the motion the station gave it (emergency seed 6: a track begun at 2.1 m/s on an
                 # ambulance passing at 25 lost its readings, drifted on beside us and was braked for).
-                seen = self._nearest_free_ranging(meas)
+                seen = nearest_free_ranging(self.tracks.values(), meas, self._config.trust)
                 if seen is not None:
                     seen.take_motion(self.tracks[linked], station_variance_scale(trust))
                     self._remove(linked)
                     return self._link(seen, meas)
-            link = V2vLink(linked, self._disagreement(self.tracks[linked], meas))
+            link = V2vLink(linked, disagreement_m(self.tracks[linked], meas, self._config.trust))
             if link.disagreement_m is None or link.disagreement_m <= self._config.trust.agree_m:
                 return link
             # The link itself may be the mistake (two cars close together): move it to a track our
             # own sensors see where the station says it is, if there is one; otherwise keep it.
-            better = self._agreeing_free_track(meas)
+            better = agreeing_free_track(self.tracks.values(), meas, self._config.trust)
             if better is None:
                 return link
             self.tracks[linked].station_id = None
             return self._link(better, meas)
         free = [t for t in self.tracks.values() if t.station_id is None]
         if free:
-            cost = self._costs([meas], free)[0][0]
+            cost = self._frames.costs([meas], free)[0][0]
             best = int(np.argmin(cost))
             if cost[best] <= self._config.tracking.gate_chi2:
                 return self._link(free[best], meas)
             # An offset station lands outside the gate; a ranging track within a car length still
             # takes it, so the offset shows up as disagreement rather than as a second object.
-            seen = self._nearest_free_ranging(meas)
+            seen = nearest_free_ranging(self.tracks.values(), meas, self._config.trust)
             if seen is not None:
                 return self._link(seen, meas)
-        return None
-
-    def _seen_lately(self, track: Track, time_s: float) -> bool:
-        """Whether our LiDAR or radar fixed the track within max_sensor_age_s of time_s."""
-        fix = track.ranging_fix
-        return fix is not None and time_s - fix.time_s <= self._config.trust.max_sensor_age_s
-
-    def _nearest_free_ranging(self, meas: Measurement) -> Track | None:
-        """The unlinked, confirmed LiDAR/radar track seen lately that is nearest the claim, if within link_gate_m.
-
-        Confirmed only: the station's object is dropped for it, and a tentative track is not published, so a
-        car beside us that one radar reading started a track on vanished from the scene until that track was
-        confirmed (merge seed 4: for three frames, the very frames a merger checked its side and changed lane)."""
-        best, best_gap = None, self._config.trust.link_gate_m
-        for track in self.tracks.values():
-            if (track.station_id is None and track.status is TrackStatus.CONFIRMED
-                    and self._seen_lately(track, meas.time_s)):
-                gap = float(np.linalg.norm(Track.position_of(track.predicted_mean(meas.time_s)) - meas.position_m))
-                if gap <= best_gap:
-                    best, best_gap = track, gap
-        return best
-
-    def _agreeing_free_track(self, meas: Measurement) -> Track | None:
-        for track in self.tracks.values():
-            if track.station_id is None:
-                disagreement = self._disagreement(track, meas)
-                if disagreement is not None and disagreement <= self._config.trust.agree_m:
-                    return track
         return None
 
     def _link(self, track: Track, meas: Measurement) -> V2vLink:
         track.station_id = meas.station_id
         self._station_links[meas.station_id] = track.track_id
-        return V2vLink(track.track_id, self._disagreement(track, meas))
-
-    def _disagreement(self, track: Track, meas: Measurement) -> float | None:
-        """Distance from the V2V claim to our latest LiDAR/radar fix, moved to the claim's time.
-
-        Our fix is the claimed rear bumper centre when our sensors see the car's rear (or its front, which they take
-        back to its rear), but the point of its body nearest them when they see its flank or a corner: a radar's
-        strongest return. The claim agrees with whichever of the two its own body puts nearer our fix. Measured
-        against the rear alone, an honest organiser's car crossing the T-intersection in front of us read 3-4 m
-        off, and our trust in it fell from 0.6 to 0 in a second (intersection seed 1)."""
-        fix = track.ranging_fix
-        if fix is None or abs(meas.time_s - fix.time_s) > self._config.trust.max_sensor_age_s:
-            return None
-        velocity = Track.velocity_of(track.predicted_mean(fix.time_s))
-        at_claim = fix.position_m + velocity * (meas.time_s - fix.time_s)
-        disagreement_m = float(np.linalg.norm(meas.position_m - at_claim))
-        if None in (meas.heading_rad, meas.length_m, meas.width_m):
-            return disagreement_m
-        nearest_m = nearest_body_point(meas.position_m, meas.heading_rad, meas.length_m, meas.width_m, fix.origin_m)
-        return min(disagreement_m, float(np.linalg.norm(nearest_m - at_claim)))
+        return V2vLink(track.track_id, disagreement_m(track, meas, self._config.trust))
 
     def fuse_v2v(self, meas: Measurement, link: V2vLink | None, trust: float, fuse_kinematics: bool,
                  scale_covariance: bool = True, defer: bool = False) -> int:

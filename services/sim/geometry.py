@@ -10,12 +10,7 @@ from typing import Sequence
 
 import numpy as np
 
-# Rear axle to rear bumper as a share of the length when a vehicle does not say (typical cars and trucks).
-DEFAULT_REAR_OVERHANG_RATIO = 0.2
-
-
-def rear_overhang_m(length_m: float) -> float:
-    return DEFAULT_REAR_OVERHANG_RATIO * length_m
+from coopdrive.messages.vehicle_frame import rear_overhang_m
 
 
 def footprint_corners(x_m: float, y_m: float, heading_rad: float, length_m: float, width_m: float,

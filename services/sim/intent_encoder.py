@@ -13,11 +13,11 @@ from typing import Callable
 
 from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.services.sim.participants import IntentKind, MessageIntent
-from coopdrive.services.v2x.config import CamMode, VehicleDimensions
-from coopdrive.services.v2x.generation import CamGenerator
-from coopdrive.services.sim.geometry import rear_overhang_m
-from coopdrive.services.v2x.packet import DestinationArea, GnParams, SourcePosition, V2xPacketCodec
-from coopdrive.services.v2x.timebase import ItsClock, generation_delta_time_ms
+from coopdrive.v2x.generation import CamMode, VehicleDimensions
+from coopdrive.v2x.generation import CamGenerator
+from coopdrive.messages.vehicle_frame import rear_overhang_m
+from coopdrive.v2x.packet import DestinationArea, GnParams, SourcePosition, V2xPacketCodec
+from coopdrive.v2x.timebase import ItsClock, generation_delta_time_ms
 from coopdrive.v1 import ego_pb2, its_pb2
 
 ToGeodetic = Callable[[float, float], tuple[float, float, float]]

@@ -8,6 +8,7 @@ from typing import Callable, Mapping, Sequence
 import numpy as np
 
 from coopdrive.roadmap.build_maps import LANE_WIDTH_M
+from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.services.sim import geometry
 from coopdrive.services.sim.truth_series import TruthSeries
 from coopdrive.v1 import sim_pb2
@@ -61,7 +62,7 @@ def _onsets(truth: TruthSeries, condition: Callable[[sim_pb2.VehicleTruth, sim_p
 
 def _reach_m(v: sim_pb2.VehicleTruth) -> float:
     """The farthest any point of the footprint is from the vehicle's reference point (its rear axle)."""
-    back_m = geometry.rear_overhang_m(v.length_m)
+    back_m = rear_overhang_m(v.length_m)
     return math.hypot(max(back_m, v.length_m - back_m), v.width_m / 2.0)
 
 
@@ -93,8 +94,8 @@ def crossing_circle_violations(truth: TruthSeries, radius_m: float = DEFAULT_SAF
 
 def bumper_gap_m(leader: sim_pb2.VehicleTruth, follower: sim_pb2.VehicleTruth) -> float:
     """Leader's rear bumper to follower's front bumper along the lane (stations are at the rear axles)."""
-    leader_rear = leader.station_m - geometry.rear_overhang_m(leader.length_m)
-    follower_front = follower.station_m + follower.length_m - geometry.rear_overhang_m(follower.length_m)
+    leader_rear = leader.station_m - rear_overhang_m(leader.length_m)
+    follower_front = follower.station_m + follower.length_m - rear_overhang_m(follower.length_m)
     return leader_rear - follower_front
 
 
@@ -191,7 +192,7 @@ def _brake_called_for(vehicle: sim_pb2.VehicleTruth, other: sim_pb2.VehicleTruth
     CALLED_FOR_TIME_TO_COLLISION_S at the speeds of the moment (measured along the vehicle's heading)."""
     forward = np.array([math.cos(vehicle.heading_rad), math.sin(vehicle.heading_rad)])
     left = np.array([-forward[1], forward[0]])
-    bumper_ahead_m = vehicle.length_m - geometry.rear_overhang_m(vehicle.length_m)
+    bumper_ahead_m = vehicle.length_m - rear_overhang_m(vehicle.length_m)
     front_m = np.array([vehicle.x_m, vehicle.y_m]) + bumper_ahead_m * forward
     corners = _corners(other) - front_m
     along_m, across_m = corners @ forward, corners @ left

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 from typing import Any, Sequence
 
 from coopdrive.services.sim.cam_noise import CamNoise
-from coopdrive.services.sim.geometry import rear_overhang_m
+from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.services.sim.profiles import VehicleProfile
 from coopdrive.services.sim.road_geometry import LaneGeometry
 from coopdrive.services.sim.speed_profiles import ConstantSpeed, LaneChange, SpeedProfile, smoothstep

@@ -10,9 +10,9 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 
 from coopdrive.services.sim.fault_config import Fault, IclcmDrop, PartnerSilent
-from coopdrive.services.v2x.its_pdu import ItsMessageId
-from coopdrive.services.v2x.packet import decode_packet
-from coopdrive.services.v2x.reasons import V2xDecodeError
+from coopdrive.v2x.its_pdu import ItsMessageId
+from coopdrive.v2x.packet import decode_packet
+from coopdrive.v2x.reasons import V2xDecodeError
 
 Unwrap = Callable[[bytes], bytes | None]
 

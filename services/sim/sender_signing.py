@@ -11,12 +11,12 @@ import datetime as dt
 from pathlib import Path
 
 from coopdrive.services.sim.intent_encoder import station_mac
-from coopdrive.services.v2x.geonet import is_secured
+from coopdrive.v2x.geonet import is_secured
 from coopdrive.services.sim.participants import MessageIntent
-from coopdrive.services.v2x.security.pki import load_test_pki
-from coopdrive.services.v2x.security.signer import SecuredPacketSigner
-from coopdrive.services.v2x.security.verifier import SecurityVerifier
-from coopdrive.services.v2x.timebase import ItsClock
+from coopdrive.v2x.security.pki import load_test_pki
+from coopdrive.v2x.security.signer import SecuredPacketSigner
+from coopdrive.v2x.security.verifier import SecurityVerifier
+from coopdrive.v2x.timebase import ItsClock
 
 US_PER_MS = 1000
 

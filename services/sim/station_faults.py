@@ -11,7 +11,7 @@ import math
 from collections.abc import Sequence
 
 from coopdrive.services.sim.fault_config import Fault, GhostVehicle, PositionOffset
-from coopdrive.services.sim.geometry import rear_overhang_m
+from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.services.sim.participants import IntentKind, MessageIntent, RateGate
 from coopdrive.v1 import sim_pb2
 

@@ -25,18 +25,18 @@ from typing import BinaryIO
 
 from google.protobuf import json_format
 
-from coopdrive.services.v2x.btp import MESSAGE_NAME_OF_PORT, parse_btp_b
+from coopdrive.v2x.btp import MESSAGE_NAME_OF_PORT, parse_btp_b
 from coopdrive.recording.capture import CapturedFrame, read_capture
 from coopdrive.services.v2x.capture_summary import DecodeSummary, format_summary
-from coopdrive.services.v2x.geonet import BeaconHeader, CommonNextHeader, GnPacket, HeaderType, parse_gn
-from coopdrive.services.v2x.packet import V2xPacketCodec
-from coopdrive.services.v2x.reasons import V2xDecodeError
-from coopdrive.services.v2x.release2 import TOP_TYPE_OF_MESSAGE, release2_content
-from coopdrive.services.v2x.security.inspection import PacketInspector
-from coopdrive.services.v2x.security.store import CertificateStore
-from coopdrive.services.v2x.security.trust import trust_store
-from coopdrive.services.v2x.timebase import US_PER_MS, tai_ms_from_unix_s
-from coopdrive.services.v2x.units import TENTH_MICRODEG_PER_DEG
+from coopdrive.v2x.geonet import BeaconHeader, CommonNextHeader, GnPacket, HeaderType, parse_gn
+from coopdrive.v2x.packet import V2xPacketCodec
+from coopdrive.v2x.reasons import V2xDecodeError
+from coopdrive.v2x.release2 import TOP_TYPE_OF_MESSAGE, release2_content
+from coopdrive.v2x.security.inspection import PacketInspector
+from coopdrive.v2x.security.store import CertificateStore
+from coopdrive.v2x.security.trust import trust_store
+from coopdrive.v2x.timebase import US_PER_MS, tai_ms_from_unix_s
+from coopdrive.v2x.units import TENTH_MICRODEG_PER_DEG
 
 MAPPED_MESSAGES = ("cam", "denm", "iclcm")
 HEADER_TYPE_NAMES = {HeaderType.BEACON: "beacon", HeaderType.TOPOLOGICALLY_SCOPED_BROADCAST: "tsb_single_hop",

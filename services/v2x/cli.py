@@ -1,7 +1,7 @@
 """The v2x command line: `coopdrive v2x decode|send|replay ...` and `coopdrive pki init ...`.
 
 Arguments are parsed and results printed here; the work is done by the module each command is named for
-(capture_decode.py, send_file.py, replay.py, security/pki.py), imported only when its command runs so
+(capture_decode.py, send_file.py, capture_player.py, coopdrive/v2x/security/pki.py), imported only when its command runs so
 that every other `coopdrive` command starts without the codec.
 """
 
@@ -50,7 +50,7 @@ def add_commands(commands) -> None:
 def _decode(args: argparse.Namespace) -> int:
     from coopdrive.recording.capture import CaptureFormatError
     from coopdrive.services.v2x.capture_decode import decode_capture
-    from coopdrive.services.v2x.security.trust import TrustFileError
+    from coopdrive.v2x.security.trust import TrustFileError
 
     try:
         for line in decode_capture(args.file, as_json=args.json, trust=[*args.trust, *filter(None, [args.pki])],
@@ -74,7 +74,7 @@ def _send(args: argparse.Namespace) -> int:
 
 
 def _replay(args: argparse.Namespace) -> int:
-    from coopdrive.services.v2x.replay import ReplayError, replay_capture
+    from coopdrive.services.v2x.capture_player import ReplayError, replay_capture
 
     try:
         summary = replay_capture(args.file, (args.address, args.port), args.rate)
@@ -89,6 +89,6 @@ def _replay(args: argparse.Namespace) -> int:
 
 
 def _pki_init(args: argparse.Namespace) -> int:
-    from coopdrive.services.v2x.security.pki import pki_init
+    from coopdrive.v2x.security.pki import pki_init
 
     return pki_init(args.directory, args.vehicles)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import statistics
 from collections import deque
 
-from coopdrive.services.v2x.timebase import MS_PER_S
+from coopdrive.v2x.timebase import MS_PER_S
 
 # Offsets the median is taken over: a handful of messages, so one late packet does not move it.
 OFFSET_SAMPLES = 16

@@ -10,19 +10,10 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator, model_valida
 
 from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.runtime.service import ServiceConfig
-from coopdrive.services.v2x.geonet import GN_VERSION_GCDC, MAC_SIZE_BYTES, SUPPORTED_GN_VERSIONS
-from coopdrive.services.v2x.security.profile import SecurityMode
+from coopdrive.v2x.generation import GCDC_RATE_HZ, CamMode, VehicleDimensions
+from coopdrive.v2x.geonet import GN_VERSION_GCDC, MAC_SIZE_BYTES, SUPPORTED_GN_VERSIONS
+from coopdrive.v2x.security.profile import SecurityMode
 from coopdrive.v1 import its_pb2
-
-GCDC_RATE_HZ = 25.0
-
-
-class CamMode(enum.Enum):
-    # GCDC 2016: every CAM at 25 Hz.
-    GCDC = "gcdc"
-    # EN 302 637-2 generation rules: 1-10 Hz, triggered by the vehicle dynamics.
-    ETSI = "etsi"
-
 
 class _Section(BaseModel):
     model_config = ConfigDict(extra="forbid")
@@ -67,13 +58,6 @@ class RadioLinkConfig(_Section):
         if self.type is LinkType.RAW and self.sync is LinkSync.MARKS:
             raise ValueError("link: sync marks is the simulated radio box's; a raw link reads freely")
         return self
-
-
-class VehicleDimensions(_Section):
-    length_m: float = Field(4.5, gt=0.0)
-    width_m: float = Field(1.8, gt=0.0)
-    # Rear axle to the front bumper: the iCLCM rearAxleLocation.
-    rear_axle_location_m: float = Field(3.5, ge=0.0)
 
 
 class PlausibilityLimits(_Section):

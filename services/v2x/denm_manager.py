@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from coopdrive.services.v2x.generation import TIME_EPSILON_S
-from coopdrive.services.v2x.mapping.denm import DEFAULT_VALIDITY_DURATION_S
-from coopdrive.services.v2x.timebase import MS_PER_S
+from coopdrive.v2x.generation import TIME_EPSILON_S
+from coopdrive.v2x.mapping.denm import DEFAULT_VALIDITY_DURATION_S
+from coopdrive.v2x.timebase import MS_PER_S
 from coopdrive.v1 import its_pb2
 
 SEQUENCE_NUMBER_MODULUS = 65_536

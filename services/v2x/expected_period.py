@@ -12,7 +12,7 @@ from __future__ import annotations
 import statistics
 from collections import deque
 
-from coopdrive.services.v2x.timebase import MS_PER_S
+from coopdrive.v2x.timebase import MS_PER_S
 
 # Gaps the observed period is the median of: enough to ride over a loss, few enough to follow a change of rate
 # (a station that slows from 10 Hz to 1 Hz is followed after about 5 of its slow gaps).

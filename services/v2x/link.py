@@ -15,8 +15,8 @@ from typing import BinaryIO, Callable
 
 from coopdrive.recording.link_types import ETHERTYPE_GEONETWORKING
 from coopdrive.services.v2x.link_reader import RECEIVE_POLL_S, LinkReader
-from coopdrive.services.v2x.pcap import BROADCAST_MAC, PcapWriter
-from coopdrive.services.v2x.timebase import US_PER_S
+from coopdrive.v2x.pcap import BROADCAST_MAC, PcapWriter
+from coopdrive.v2x.timebase import US_PER_S
 
 
 

@@ -12,9 +12,9 @@ import math
 from dataclasses import dataclass
 
 from coopdrive.services.v2x.config import PlausibilityLimits
-from coopdrive.services.v2x.its_pdu import ItsMessageId
-from coopdrive.services.v2x.timebase import MS_PER_S
-from coopdrive.services.v2x.units import EARTH_RADIUS_M
+from coopdrive.v2x.its_pdu import ItsMessageId
+from coopdrive.v2x.timebase import MS_PER_S
+from coopdrive.v2x.units import EARTH_RADIUS_M
 
 
 

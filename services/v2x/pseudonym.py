@@ -13,7 +13,7 @@ from __future__ import annotations
 import logging
 
 from coopdrive.services.v2x.reception import OwnIdentity, Reception
-from coopdrive.services.v2x.security.signer import PseudonymChangeRefused, SecuredPacketSigner
+from coopdrive.v2x.security.signer import PseudonymChangeRefused, SecuredPacketSigner
 from coopdrive.services.v2x.transmission import Transmitter
 from coopdrive.v1 import planner_pb2
 

@@ -15,7 +15,7 @@ from typing import Callable
 from coopdrive.recording.link_types import ETHERTYPE_GEONETWORKING
 from coopdrive.runtime.service import HardwareUnavailable
 from coopdrive.services.v2x.link_reader import LinkReader
-from coopdrive.services.v2x.pcap import BROADCAST_MAC
+from coopdrive.v2x.pcap import BROADCAST_MAC
 
 ETHERNET_HEADER_BYTES = 14
 MAC_BYTES = 6

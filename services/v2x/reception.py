@@ -13,15 +13,15 @@ from collections import Counter
 from dataclasses import dataclass
 
 from coopdrive.services.v2x.config import PlausibilityLimits
-from coopdrive.services.v2x.geonet import GnPacket
-from coopdrive.services.v2x.its_pdu import ItsMessageId
-from coopdrive.services.v2x.packet import BeaconPacket, DecodedPacket, V2xPacketCodec, default_codec
+from coopdrive.v2x.geonet import GnPacket
+from coopdrive.v2x.its_pdu import ItsMessageId
+from coopdrive.v2x.packet import BeaconPacket, DecodedPacket, V2xPacketCodec, default_codec
 from coopdrive.services.v2x.plausibility import Observation, PlausibilityChecker
-from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
-from coopdrive.services.v2x.security_verdict import sender_of, verdict_of_opened, verdict_of_refusal
+from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.v2x.security_verdict import sender_of, verdict_of_opened, verdict_of_refusal
 from coopdrive.services.v2x.station_stats import StationStats
-from coopdrive.services.v2x.timebase import MS_PER_S, ItsClock, leap_seconds_since_its_epoch, tai_ms_from_delta
-from coopdrive.services.v2x.units import TENTH_MICRODEG_PER_DEG
+from coopdrive.v2x.timebase import MS_PER_S, ItsClock, leap_seconds_since_its_epoch, tai_ms_from_delta
+from coopdrive.v2x.units import TENTH_MICRODEG_PER_DEG
 from coopdrive.v1 import v2x_pb2
 
 # A station silent this long leaves the status (it stays LOST in it until then).

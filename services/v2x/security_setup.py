@@ -13,9 +13,9 @@ from cryptography.hazmat.primitives import serialization
 
 from coopdrive.runtime.config import ConfigError
 from coopdrive.services.v2x.config import SecurityConfig
-from coopdrive.services.v2x.security.certificate import Certificate, CertificateError
-from coopdrive.services.v2x.security.crypto import load_private_key_pem
-from coopdrive.services.v2x.security.pki import AUTHORITY_NAME, ROOT_NAME, Ticket
+from coopdrive.v2x.security.certificate import Certificate, CertificateError
+from coopdrive.v2x.security.crypto import load_private_key_pem
+from coopdrive.v2x.security.pki import AUTHORITY_NAME, ROOT_NAME, Ticket
 
 CERTIFICATE_SUFFIX = ".cert"
 KEY_SUFFIX = ".key.pem"

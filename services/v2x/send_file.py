@@ -27,10 +27,10 @@ from google.protobuf import json_format
 from pydantic import BaseModel, ConfigDict, Field
 
 from coopdrive.services.v2x.config import parse_mac
-from coopdrive.services.v2x.geonet import GN_VERSION_GCDC
-from coopdrive.services.v2x.its_pdu import ItsMessageId
-from coopdrive.services.v2x.packet import GnParams, SourcePosition, V2xPacketCodec, default_codec
-from coopdrive.services.v2x.timebase import ItsClock, generation_delta_time_ms
+from coopdrive.v2x.geonet import GN_VERSION_GCDC
+from coopdrive.v2x.its_pdu import ItsMessageId
+from coopdrive.v2x.packet import GnParams, SourcePosition, V2xPacketCodec, default_codec
+from coopdrive.v2x.timebase import ItsClock, generation_delta_time_ms
 from coopdrive.v1 import its_pb2
 
 

@@ -13,18 +13,18 @@ from coopdrive.bus import Envelope
 from coopdrive.runtime.service import Service
 from coopdrive.services.v2x.config import GCDC_RATE_HZ, LinkSync, LinkType, SecurityConfig, V2xConfig
 from coopdrive.services.v2x.denm_manager import ActionId
-from coopdrive.services.v2x.its_pdu import ItsMessageId
+from coopdrive.v2x.its_pdu import ItsMessageId
 from coopdrive.services.v2x.link import CaptureLog, RecordedLink, UdpLink
 from coopdrive.services.v2x.pseudonym import PseudonymChanger
 from coopdrive.services.v2x.raw_link import RawLink
 from coopdrive.services.v2x.reception import OwnIdentity, Reception
-from coopdrive.services.v2x.security.layer import ModeSecurityLayer
-from coopdrive.services.v2x.security.profile import SecurityMode
-from coopdrive.services.v2x.security.signer import SecuredPacketSigner
-from coopdrive.services.v2x.security.store import CertificateStore
-from coopdrive.services.v2x.security.verifier import SecurityVerifier
+from coopdrive.v2x.security.layer import ModeSecurityLayer
+from coopdrive.v2x.security.profile import SecurityMode
+from coopdrive.v2x.security.signer import SecuredPacketSigner
+from coopdrive.v2x.security.store import CertificateStore
+from coopdrive.v2x.security.verifier import SecurityVerifier
 from coopdrive.services.v2x.security_setup import load_security_material
-from coopdrive.services.v2x.timebase import US_PER_MS, ItsClock
+from coopdrive.v2x.timebase import US_PER_MS, ItsClock
 from coopdrive.services.v2x.transmission import Transmitter
 from coopdrive.v1 import its_pb2, v2x_pb2
 

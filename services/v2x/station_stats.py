@@ -18,9 +18,9 @@ import numpy as np
 
 from coopdrive.services.v2x.clock_offset import ClockOffset, diagnose
 from coopdrive.services.v2x.expected_period import ExpectedPeriod, expected_period
-from coopdrive.services.v2x.its_pdu import ItsMessageId
-from coopdrive.services.v2x.security_verdict import SecurityVerdict
-from coopdrive.services.v2x.timebase import MS_PER_S
+from coopdrive.v2x.its_pdu import ItsMessageId
+from coopdrive.v2x.security_verdict import SecurityVerdict
+from coopdrive.v2x.timebase import MS_PER_S
 from coopdrive.v1 import v2x_pb2
 
 PERIODIC_TYPES = (ItsMessageId.CAM, ItsMessageId.ICLCM)

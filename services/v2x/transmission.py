@@ -10,11 +10,11 @@ from dataclasses import dataclass
 
 from coopdrive.services.v2x.config import V2xConfig
 from coopdrive.services.v2x.denm_manager import ActionId, DenmManager
-from coopdrive.services.v2x.generation import CamGenerator, IclcmGenerator
-from coopdrive.services.v2x.its_pdu import ItsMessageId
-from coopdrive.services.v2x.packet import DestinationArea, GnParams, SourcePosition, V2xPacketCodec, default_codec
-from coopdrive.services.v2x.security.layer import ModeSecurityLayer
-from coopdrive.services.v2x.timebase import US_PER_MS, ItsClock
+from coopdrive.v2x.generation import CamGenerator, IclcmGenerator
+from coopdrive.v2x.its_pdu import ItsMessageId
+from coopdrive.v2x.packet import DestinationArea, GnParams, SourcePosition, V2xPacketCodec, default_codec
+from coopdrive.v2x.security.layer import ModeSecurityLayer
+from coopdrive.v2x.timebase import US_PER_MS, ItsClock
 from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2
 
 log = logging.getLogger(__name__)

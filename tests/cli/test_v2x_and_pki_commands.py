@@ -5,10 +5,10 @@ import subprocess
 import sys
 import time
 
-from coopdrive.services.v2x.packet import GnParams, SourcePosition, V2xPacketCodec
-from coopdrive.services.v2x.pcap import PcapWriter
-from coopdrive.services.v2x.security.pki import load_test_pki, tamper_packet
-from coopdrive.services.v2x.timebase import tai_ms_from_unix_s, unix_s_from_tai_ms
+from coopdrive.v2x.packet import GnParams, SourcePosition, V2xPacketCodec
+from coopdrive.v2x.pcap import PcapWriter
+from coopdrive.v2x.security.pki import load_test_pki, tamper_packet
+from coopdrive.v2x.timebase import tai_ms_from_unix_s, unix_s_from_tai_ms
 from coopdrive.v1 import its_pb2
 
 US_PER_MS = 1000

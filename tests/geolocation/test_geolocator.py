@@ -237,7 +237,7 @@ def test_a_standing_car_initialises_with_an_unknown_heading():
 
 
 def test_fixes_decoded_from_nmea_bytes_drive_the_geolocator():
-    from coopdrive.services.geolocation.nmea_decoder import NmeaDecoder, SentenceType, with_checksum
+    from coopdrive.gnss.nmea_decoder import NmeaDecoder, SentenceType, with_checksum
 
     geolocator = Geolocator(GeolocatorConfig(antenna_x_m=0.0), origin=ORIGIN)
     decoder = NmeaDecoder(geolocator.on_gnss_fix, expected_sentences=frozenset({SentenceType.GGA}))

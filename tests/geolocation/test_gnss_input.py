@@ -15,7 +15,7 @@ from pydantic import ValidationError
 from coopdrive.runtime.clock import WallClock
 from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.geolocation.gnss_serial import GnssPortError, GnssSerial
-from coopdrive.services.geolocation.nmea_decoder import with_checksum
+from coopdrive.gnss.nmea_decoder import with_checksum
 from coopdrive.services.geolocation.service import GeolocationConfig, GeolocationService, GnssInput, gnss_sources
 from coopdrive.services.sim.gnss_pty import GnssPty
 from tests.geolocation.nmea_replay import nmea_chunks, replay_chunks

@@ -6,7 +6,7 @@ import pytest
 
 from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.geolocation.gnss_serial import GnssPortError, GnssSerial
-from coopdrive.services.geolocation.nmea_decoder import BadSentence, NmeaDecoder
+from coopdrive.gnss.nmea_decoder import BadSentence, NmeaDecoder
 from coopdrive.services.sim.gnss_pty import GnssPty
 from coopdrive.services.sim.gnss_sensor import GnssSensor
 from coopdrive.services.sim.sensor_config import FixModeName, GnssConfig, SensorTimingConfig

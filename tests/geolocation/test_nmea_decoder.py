@@ -1,6 +1,6 @@
 import pytest
 
-from coopdrive.services.geolocation.nmea_decoder import BadSentence, NmeaDecoder, SentenceType, with_checksum
+from coopdrive.gnss.nmea_decoder import BadSentence, NmeaDecoder, SentenceType, with_checksum
 from coopdrive.v1 import gnss_pb2
 
 # 51 deg 28.2900' N = 51.4715, 5 deg 36.0600' E = 5.601

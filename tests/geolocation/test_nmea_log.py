@@ -2,7 +2,7 @@
 
 import datetime
 
-from coopdrive.services.geolocation.nmea_decoder import with_checksum
+from coopdrive.gnss.nmea_decoder import with_checksum
 from coopdrive.services.geolocation.nmea_log import read_nmea_log
 from tests.shared_data import shared_file
 

@@ -5,7 +5,7 @@ import random
 
 import pytest
 
-from coopdrive.services.geolocation.nmea_decoder import BadSentence, NmeaDecoder, SentenceType, with_checksum
+from coopdrive.gnss.nmea_decoder import BadSentence, NmeaDecoder, SentenceType, with_checksum
 from coopdrive.services.geolocation.nmea_log import read_nmea_log
 from coopdrive.v1 import gnss_pb2
 from tests.shared_data import shared_file

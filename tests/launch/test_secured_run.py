@@ -5,8 +5,8 @@ import pytest
 from coopdrive.launch.run import RunOptions, build_specs
 from coopdrive.launch.scenario_source import resolve_scenario
 from coopdrive.services.sim.scenario_config import ScenarioError
-from coopdrive.services.v2x.security.pki import load_test_pki
-from coopdrive.services.v2x.timebase import tai_ms_from_utc
+from coopdrive.v2x.security.pki import load_test_pki
+from coopdrive.v2x.timebase import tai_ms_from_utc
 
 
 def specs_of(tmp_path, **options):

@@ -13,7 +13,7 @@ from coopdrive.bus import KeyLayout
 from coopdrive.recording.reader import RecordedMessage, read_messages
 from coopdrive.recording.replay import ReplayContext, replay_service
 from coopdrive.recording.replay_wall import run_wall_clock
-from coopdrive.recording.publish_spool import NANOSECONDS
+from coopdrive.bus.publish_spool import NANOSECONDS
 from coopdrive.recording.writer import McapRecorder, config_metadata
 from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.services.geolocation.service import GeolocationConfig

@@ -1,14 +1,16 @@
 """ClockMaster outages: a participant killed and restarted at fixed steps, whatever the wall clock did."""
 
 import logging
-from collections import Counter, deque
+from collections import Counter
 from types import SimpleNamespace
 
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.runtime.barrier import StepBarrier
 from coopdrive.runtime.dispatcher import StepDispatcher
+from coopdrive.runtime.event_loop import EventLoop
 from coopdrive.runtime.master import ClockMaster, ClockSettings, Outage
 from coopdrive.runtime.events import RuntimeEvent
+from coopdrive.runtime.step_wait import StepWait
 
 PARTICIPANTS = ["v/control", "v/actuation"]
 STEPS = 12
@@ -28,17 +30,19 @@ class Launcher(ClockMaster.Driven):
 
     def on_outage(self, participant, restart):
         self.announced.append((self.runner.steps_run, participant, restart))
-        self.runner.events.append((RuntimeEvent.ALIVE, (participant, restart)))  # token gone, or back
+        self.runner.events.put(RuntimeEvent.ALIVE, (participant, restart))  # token gone, or back
 
     def count(self, counter):
         self.counters[counter] += 1
 
 
 class SteppedRunner:
-    """What ClockMaster needs of a ServiceRunner, with the events a run would bring."""
+    """What ClockMaster needs of a service's context and Stepper, with the events a run would bring."""
 
     def __init__(self):
-        self.events = deque((RuntimeEvent.ALIVE, (p, True)) for p in PARTICIPANTS)
+        self.events = EventLoop(None, call=lambda function: function())
+        for participant in PARTICIPANTS:
+            self.events.put(RuntimeEvent.ALIVE, (participant, True))
         self.clocks = []
         self.steps_run = 0
         self.barrier = StepBarrier("sim")
@@ -51,9 +55,6 @@ class SteppedRunner:
     @property
     def stopping(self):
         return self.steps_run >= STEPS
-
-    def next_event(self, _timeout_s):
-        return self.events.popleft() if self.events else None
 
     def run_step(self, step, time_s):
         self.steps_run, self.time_s = step + 1, time_s
@@ -68,8 +69,12 @@ class SteppedRunner:
 def run_master(outages):
     runner = SteppedRunner()
     runner.service = Launcher(runner, outages)
-    ClockMaster(runner).run()
+    master_of(runner).run()
     return runner
+
+
+def master_of(runner):
+    return ClockMaster(runner.service, runner, runner, StepWait(runner.barrier, runner.log, runner.service.count))
 
 
 def test_a_crash_drops_the_participant_at_its_step_and_a_restart_brings_it_back_at_its_step():
@@ -91,5 +96,5 @@ def test_a_restart_that_never_comes_back_leaves_the_run_going_without_it(monkeyp
     settings.startup_timeout_s = 0.2
     runner.service.clock_settings = lambda: settings
     monkeypatch.setattr("coopdrive.runtime.master.CRASH_TIMEOUT_S", 0.2)
-    ClockMaster(runner).run()
+    master_of(runner).run()
     assert runner.clocks[-1][1] == ["v/actuation"] and runner.steps_run == STEPS

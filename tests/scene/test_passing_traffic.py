@@ -13,7 +13,7 @@ import pytest
 from coopdrive.services.scene.fusion import SceneFusion
 from coopdrive.services.scene.measurement import V2vObservation
 from coopdrive.services.sim.camera_sensor import CameraSensor
-from coopdrive.services.sim.geometry import rear_overhang_m
+from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.services.sim.lidar_sensor import LidarSensor
 from coopdrive.services.sim.radar_sensor import RadarSensor
 from coopdrive.services.sim.sensor_config import CameraConfig, LidarConfig, RadarConfig, SensorTimingConfig, SonarConfig

@@ -114,7 +114,7 @@ def test_an_sbas_fix_can_be_reported_as_quality_2_like_u_blox_receivers():
 
 
 def test_the_geolocation_decoder_reads_our_epochs_with_their_fix_mode_and_position():
-    decoder_module = pytest.importorskip("coopdrive.services.geolocation.nmea_decoder")
+    decoder_module = pytest.importorskip("coopdrive.gnss.nmea_decoder")
     for mode in FixModeName:
         fixes = []
         decoder = decoder_module.NmeaDecoder(fixes.append)

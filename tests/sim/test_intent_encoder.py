@@ -6,10 +6,10 @@ import math
 import pytest
 
 from coopdrive.roadmap import RoadMap
-from coopdrive.services.sim.geometry import rear_overhang_m
+from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.services.sim.intent_encoder import IntentEncoder
 from coopdrive.services.sim.participants import IntentKind, MessageIntent
-from coopdrive.services.v2x.packet import decode_packet
+from coopdrive.v2x.packet import decode_packet
 from coopdrive.v1 import its_pb2
 
 EPOCH = dt.datetime(2016, 5, 28, 10, 0, tzinfo=dt.timezone.utc)

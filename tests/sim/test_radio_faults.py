@@ -4,7 +4,7 @@ import pytest
 
 from coopdrive.services.sim.fault_config import IclcmDrop, IclcmFlag, PartnerSilent
 from coopdrive.services.sim.radio_faults import RadioFaults
-from coopdrive.services.v2x.packet import GnParams, SourcePosition, encode_cam, encode_iclcm
+from coopdrive.v2x.packet import GnParams, SourcePosition, encode_cam, encode_iclcm
 from coopdrive.v1 import its_pb2
 
 STATION = 3011

@@ -9,10 +9,10 @@ from coopdrive.roadmap import RoadMap
 from coopdrive.services.sim.intent_encoder import IntentEncoder
 from coopdrive.services.sim.participants import IntentKind, MessageIntent
 from coopdrive.services.sim.sender_signing import SenderSigning
-from coopdrive.services.v2x.security.pki import create_test_pki
-from coopdrive.services.v2x.security.store import CertificateStore
-from coopdrive.services.v2x.security.verifier import SecurityVerifier
-from coopdrive.services.v2x.timebase import ItsClock, tai_ms_from_utc
+from coopdrive.v2x.security.pki import create_test_pki
+from coopdrive.v2x.security.store import CertificateStore
+from coopdrive.v2x.security.verifier import SecurityVerifier
+from coopdrive.v2x.timebase import ItsClock, tai_ms_from_utc
 
 EPOCH = dt.datetime(2016, 5, 28, 10, 0, tzinfo=dt.timezone.utc)
 VALID_FROM_TAI_S = tai_ms_from_utc(EPOCH) // 1000 - 3600

@@ -9,10 +9,10 @@ from collections import Counter
 import dpkt
 import pytest
 
-from coopdrive.services.v2x.btp import MESSAGE_NAME_OF_PORT
+from coopdrive.v2x.btp import MESSAGE_NAME_OF_PORT
 from coopdrive.recording.capture import read_capture
 from coopdrive.services.v2x.capture_decode import CaptureDecoder
-from coopdrive.services.v2x.pcap import PcapWriter
+from coopdrive.v2x.pcap import PcapWriter
 from tests.shared_data import shared_file
 from tests.v2x.capture_wrap import wrap_capture, wrapped
 from tests.v2x.test_tshark import tshark

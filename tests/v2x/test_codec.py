@@ -1,8 +1,8 @@
 import pytest
 
-from coopdrive.services.v2x.its_pdu import ItsCodec, ItsMessageId, default_cache_dir, peek_its_header
-from coopdrive.services.v2x.mapping.iclcm import iclcm_to_asn
-from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.v2x.its_pdu import ItsCodec, ItsMessageId, default_cache_dir, peek_its_header
+from coopdrive.v2x.mapping.iclcm import iclcm_to_asn
+from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
 
 from .messages import iclcm
 
@@ -45,7 +45,7 @@ def test_garbage_after_a_valid_its_header_is_malformed_asn1():
 
 
 def test_content_outside_the_asn1_ranges_is_an_encode_error_naming_the_message():
-    from coopdrive.services.v2x.reasons import V2xEncodeError
+    from coopdrive.v2x.reasons import V2xEncodeError
     value = iclcm_to_asn(iclcm(False))
     value["iclm"]["generationDeltaTime"] = 70_000
     with pytest.raises(V2xEncodeError, match="ICLCM"):

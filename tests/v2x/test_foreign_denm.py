@@ -3,10 +3,10 @@
 import asn1tools
 import pytest
 
-from coopdrive.services.v2x.btp import BtpBHeader, BtpPort
-from coopdrive.services.v2x.geonet import (
+from coopdrive.v2x.btp import BtpBHeader, BtpPort
+from coopdrive.v2x.geonet import (
     BasicHeader, CommonHeader, GbcHeader, GeoArea, GnAddress, GnPacket, LongPositionVector)
-from coopdrive.services.v2x.packet import V2xPacketCodec
+from coopdrive.v2x.packet import V2xPacketCodec
 from tests.shared_data import shared_data_dir
 
 STATION_ID = 12816437

@@ -4,10 +4,10 @@ import random
 import struct
 from collections import Counter
 
-from coopdrive.services.v2x.geonet import GnPacket, parse_gn
-from coopdrive.services.v2x.packet import (
+from coopdrive.v2x.geonet import GnPacket, parse_gn
+from coopdrive.v2x.packet import (
     DestinationArea, GnParams, SourcePosition, decode_packet, encode_cam, encode_denm, encode_iclcm)
-from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
 
 from .messages import cam, denm, iclcm
 

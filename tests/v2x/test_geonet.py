@@ -1,10 +1,10 @@
 import pytest
 
-from coopdrive.services.v2x.btp import BtpBHeader, BtpParseError, BtpPort, parse_btp_b
-from coopdrive.services.v2x.geonet import (
+from coopdrive.v2x.btp import BtpBHeader, BtpParseError, BtpPort, parse_btp_b
+from coopdrive.v2x.geonet import (
     GN_VERSION_GCDC, SHB_HEADER_SIZE, BasicHeader, CommonHeader, GbcHeader, GeoArea, GeoAreaShape, GnAddress,
     GnPacket, GnParseError, HeaderType, LongPositionVector, ShbHeader, encode_lifetime, parse_gn)
-from coopdrive.services.v2x.reasons import RejectReason
+from coopdrive.v2x.reasons import RejectReason
 
 POSITION = LongPositionVector(GnAddress(False, 5, 0, bytes.fromhex("0a0b0c0d0e0f")), 0xFFFFFFFF,
                               -577_089_000, 119_735_000, True, -16_384, 3599)

@@ -6,11 +6,11 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from coopdrive.services.v2x.its_pdu import ItsCodec, ItsMessageId
-from coopdrive.services.v2x.mapping.cam import cam_to_asn
-from coopdrive.services.v2x.mapping.denm import denm_to_asn
-from coopdrive.services.v2x.mapping.iclcm import iclcm_to_asn
-from coopdrive.services.v2x.reasons import V2xEncodeError
+from coopdrive.v2x.its_pdu import ItsCodec, ItsMessageId
+from coopdrive.v2x.mapping.cam import cam_to_asn
+from coopdrive.v2x.mapping.denm import denm_to_asn
+from coopdrive.v2x.mapping.iclcm import iclcm_to_asn
+from coopdrive.v2x.reasons import V2xEncodeError
 from coopdrive.v1 import its_pb2
 from tests.v2x.any_content import any_message
 

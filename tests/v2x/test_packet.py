@@ -3,11 +3,11 @@ import struct
 
 import pytest
 
-from coopdrive.services.v2x.geonet import CommonNextHeader, ShbHeader
-from coopdrive.services.v2x.packet import (
+from coopdrive.v2x.geonet import CommonNextHeader, ShbHeader
+from coopdrive.v2x.packet import (
     GnParams, SourcePosition, decode_packet, encode_cam, encode_denm, encode_iclcm)
-from coopdrive.services.v2x.its_pdu import ItsMessageId
-from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.v2x.its_pdu import ItsMessageId
+from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.v1 import its_pb2
 
 from .messages import denm, iclcm

@@ -4,7 +4,7 @@ import pytest
 
 from coopdrive.recording.capture import read_capture
 from coopdrive.recording.link_types import ETHERTYPE_GEONETWORKING
-from coopdrive.services.v2x.pcap import PcapWriter
+from coopdrive.v2x.pcap import PcapWriter
 
 SOURCE_MAC = bytes.fromhex("02000000002a")
 

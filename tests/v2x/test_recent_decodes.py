@@ -8,13 +8,13 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from coopdrive.recording.capture import read_gn_packets
-from coopdrive.services.v2x.its_pdu import PDU_TYPE_NAMES, ItsCodec, ItsMessageId, peek_its_header
-from coopdrive.services.v2x.mapping.cam import cam_from_asn, cam_to_asn
-from coopdrive.services.v2x.mapping.denm import denm_from_asn, denm_to_asn
-from coopdrive.services.v2x.mapping.iclcm import iclcm_from_asn, iclcm_to_asn
-from coopdrive.services.v2x.packet import V2xPacketCodec
-from coopdrive.services.v2x.reasons import V2xDecodeError, V2xEncodeError
-from coopdrive.services.v2x.recent_decodes import RecentDecodes
+from coopdrive.v2x.its_pdu import PDU_TYPE_NAMES, ItsCodec, ItsMessageId, peek_its_header
+from coopdrive.v2x.mapping.cam import cam_from_asn, cam_to_asn
+from coopdrive.v2x.mapping.denm import denm_from_asn, denm_to_asn
+from coopdrive.v2x.mapping.iclcm import iclcm_from_asn, iclcm_to_asn
+from coopdrive.v2x.packet import V2xPacketCodec
+from coopdrive.v2x.reasons import V2xDecodeError, V2xEncodeError
+from coopdrive.v2x.recent_decodes import RecentDecodes
 from coopdrive.v1 import its_pb2
 from tests.shared_data import shared_file
 from tests.v2x.any_content import any_message

@@ -5,7 +5,7 @@ import struct
 
 import pytest
 
-from coopdrive.services.v2x.packet import decode_packet
+from coopdrive.v2x.packet import decode_packet
 from coopdrive.v1 import its_pb2
 
 
@@ -100,8 +100,8 @@ def test_a_hand_built_reference_cam_decodes_to_the_fields_it_was_built_from():
 
 
 def test_our_encoder_produces_the_reference_bytes_from_the_decoded_content():
-    from coopdrive.services.v2x.its_pdu import ItsCodec, ItsMessageId
-    from coopdrive.services.v2x.mapping.cam import cam_to_asn
+    from coopdrive.v2x.its_pdu import ItsCodec, ItsMessageId
+    from coopdrive.v2x.mapping.cam import cam_to_asn
     uper = reference_cam_uper()
     decoded = decode_packet(reference_gn_packet(uper)).content
     assert ItsCodec().encode(ItsMessageId.CAM, cam_to_asn(decoded)) == uper

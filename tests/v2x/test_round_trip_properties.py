@@ -3,9 +3,9 @@ import math
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from coopdrive.services.v2x.its_pdu import ItsCodec, ItsMessageId
-from coopdrive.services.v2x.mapping.cam import cam_from_asn, cam_to_asn
-from coopdrive.services.v2x.mapping.iclcm import iclcm_from_asn, iclcm_to_asn
+from coopdrive.v2x.its_pdu import ItsCodec, ItsMessageId
+from coopdrive.v2x.mapping.cam import cam_from_asn, cam_to_asn
+from coopdrive.v2x.mapping.iclcm import iclcm_from_asn, iclcm_to_asn
 from coopdrive.v1 import its_pb2
 
 CODEC = ItsCodec()

@@ -2,7 +2,7 @@ import math
 
 import pytest
 
-from coopdrive.services.v2x.packet import GnParams, SourcePosition, decode_packet, encode_cam, encode_denm, encode_iclcm
+from coopdrive.v2x.packet import GnParams, SourcePosition, decode_packet, encode_cam, encode_denm, encode_iclcm
 from coopdrive.v1 import its_pb2
 
 from .messages import cam, denm, flatten, iclcm
@@ -79,8 +79,8 @@ def test_out_of_range_values_are_clamped_when_encoding():
 
 
 def test_a_denm_sent_to_a_circle_carries_the_area_in_its_geo_broadcast_header():
-    from coopdrive.services.v2x.geonet import GbcHeader, GeoAreaShape
-    from coopdrive.services.v2x.packet import DestinationArea
+    from coopdrive.v2x.geonet import GbcHeader, GeoAreaShape
+    from coopdrive.v2x.packet import DestinationArea
     area = DestinationArea(51.45, 5.48, 300.0)
     params = GnParams(source_mac=GN.source_mac, source_position=GN.source_position, destination_area=area,
                       sequence_number=12)
@@ -92,7 +92,7 @@ def test_a_denm_sent_to_a_circle_carries_the_area_in_its_geo_broadcast_header():
 
 
 def test_an_extension_value_of_the_curvature_mode_newer_than_our_schema_reads_as_unavailable():
-    from coopdrive.services.v2x.mapping.cam import cam_from_asn, cam_to_asn
+    from coopdrive.v2x.mapping.cam import cam_from_asn, cam_to_asn
     value = cam_to_asn(cam(True))
     value["cam"]["camParameters"]["highFrequencyContainer"][1]["curvatureCalculationMode"] = None
     decoded = cam_from_asn(value).high_frequency
@@ -100,7 +100,7 @@ def test_an_extension_value_of_the_curvature_mode_newer_than_our_schema_reads_as
 
 
 def test_a_drive_direction_outside_the_enumeration_is_refused_by_the_mapping():
-    from coopdrive.services.v2x.mapping.cam import cam_from_asn, cam_to_asn
+    from coopdrive.v2x.mapping.cam import cam_from_asn, cam_to_asn
     value = cam_to_asn(cam(True))
     value["cam"]["camParameters"]["highFrequencyContainer"][1]["driveDirection"] = None
     with pytest.raises(ValueError, match="unknown enumerated value"):

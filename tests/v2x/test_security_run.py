@@ -11,7 +11,7 @@ import pytest
 
 from coopdrive.recording.reader import read_messages
 from coopdrive.services.scene.config import TrustConfig
-from coopdrive.services.v2x.security_verdict import UNTRUSTED_REASONS
+from coopdrive.v2x.security_verdict import UNTRUSTED_REASONS
 from coopdrive.v1 import scene_pb2, v2x_pb2
 from tests.scenario_report import FASTEST_LAYOUT
 

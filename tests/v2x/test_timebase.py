@@ -3,7 +3,7 @@ from datetime import datetime, timezone
 from hypothesis import given
 from hypothesis import strategies as st
 
-from coopdrive.services.v2x import timebase
+from coopdrive.v2x import timebase
 
 
 def test_the_its_epoch_is_tai_zero():

@@ -4,9 +4,9 @@ import subprocess
 
 import pytest
 
-from coopdrive.services.v2x.packet import GnParams, SourcePosition, encode_cam, encode_denm
+from coopdrive.v2x.packet import GnParams, SourcePosition, encode_cam, encode_denm
 from coopdrive.recording.capture import read_capture
-from coopdrive.services.v2x.pcap import PcapWriter
+from coopdrive.v2x.pcap import PcapWriter
 from coopdrive.v1 import its_pb2
 from tests.system_packages import require
 

@@ -3,7 +3,7 @@ import math
 from hypothesis import given
 from hypothesis import strategies as st
 
-from coopdrive.services.v2x import units
+from coopdrive.v2x import units
 
 
 def test_latitude_in_degrees_becomes_tenths_of_microdegrees():

@@ -106,7 +106,7 @@ def test_every_topic_the_layout_names_is_in_the_recording(merge_recording):
 
 
 def test_an_imported_nmea_log_opens_in_foxglove_with_its_fixes_on_the_map(tmp_path):
-    from coopdrive.services.geolocation.nmea_decoder import with_checksum
+    from coopdrive.gnss.nmea_decoder import with_checksum
 
     log = tmp_path / "drive.nmea"
     lines = []

@@ -84,7 +84,7 @@ def test_raw_gnss_fixes_and_every_v2x_station_heard_become_location_fixes():
 
 
 def test_each_epoch_of_the_receiver_s_nmea_bytes_becomes_one_location_fix():
-    from coopdrive.services.geolocation.nmea_decoder import with_checksum
+    from coopdrive.gnss.nmea_decoder import with_checksum
 
     out = Collected()
     channels = VisualChannels(out)

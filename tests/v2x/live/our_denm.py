@@ -14,7 +14,7 @@ import time
 from coopdrive.services.v2x.config import V2xConfig
 from coopdrive.services.v2x.raw_link import RawLink
 from coopdrive.services.v2x.service import build_security_layer
-from coopdrive.services.v2x.timebase import US_PER_MS, ItsClock
+from coopdrive.v2x.timebase import US_PER_MS, ItsClock
 from coopdrive.services.v2x.transmission import Transmitter
 from coopdrive.v1 import its_pb2
 

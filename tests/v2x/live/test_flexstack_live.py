@@ -12,7 +12,7 @@ import json
 
 import pytest
 
-from coopdrive.services.v2x.security.pki import create_test_pki
+from coopdrive.v2x.security.pki import create_test_pki
 from tests.system_packages import needs
 from tests.v2x.live.exchange import run_exchange
 from tests.v2x.live.netns import VethPair
@@ -104,7 +104,7 @@ def test_flexstack_decodes_our_denms_with_our_station_id_and_event(live):
 
 def test_flexstacks_vams_are_refused_as_an_unknown_btp_port_as_our_service_takes_no_vams_yet(live):
     """Issue 71 wants its VAMs in our station table; the service publishes CAMs, DENMs and iCLCMs only (VAMs are
-    decoded in captures, services/v2x/release2.py), so today each VAM is refused at BTP port 2018, and nothing
+    decoded in captures, coopdrive/v2x/release2.py), so today each VAM is refused at BTP port 2018, and nothing
     else on the wire is."""
     refused = live["ours"]["status"]["rejected_by_reason"]
     assert set(refused) == {"unknown_btp_port"}

@@ -1,7 +1,7 @@
 import pytest
 
-from coopdrive.services.v2x.security.crypto import Curve
-from coopdrive.services.v2x.security.pki import create_test_pki
+from coopdrive.v2x.security.crypto import Curve
+from coopdrive.v2x.security.pki import create_test_pki
 
 
 @pytest.fixture(scope="module", params=list(Curve), ids=lambda curve: curve.name.lower())

@@ -2,9 +2,9 @@
 
 import time
 
-from coopdrive.services.v2x.packet import GnParams, SourcePosition, V2xPacketCodec
-from coopdrive.services.v2x.security.signer import SecuredPacketSigner
-from coopdrive.services.v2x.timebase import tai_ms_from_unix_s
+from coopdrive.v2x.packet import GnParams, SourcePosition, V2xPacketCodec
+from coopdrive.v2x.security.signer import SecuredPacketSigner
+from coopdrive.v2x.timebase import tai_ms_from_unix_s
 from coopdrive.v1 import its_pb2
 
 from ..messages import denm, iclcm

@@ -2,10 +2,10 @@
 
 import random
 
-from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE
-from coopdrive.services.v2x.reasons import RejectReason
-from coopdrive.services.v2x.security.verifier import SecurityVerifier
-from coopdrive.services.v2x.timebase import US_PER_S
+from coopdrive.v2x.geonet import BASIC_HEADER_SIZE
+from coopdrive.v2x.reasons import RejectReason
+from coopdrive.v2x.security.verifier import SecurityVerifier
+from coopdrive.v2x.timebase import US_PER_S
 
 from .signed import cam_packet, denm_packet, now_tai_us
 

@@ -3,9 +3,9 @@
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE
-from coopdrive.services.v2x.reasons import RejectReason
-from coopdrive.services.v2x.security.verifier import SecurityVerifier
+from coopdrive.v2x.geonet import BASIC_HEADER_SIZE
+from coopdrive.v2x.reasons import RejectReason
+from coopdrive.v2x.security.verifier import SecurityVerifier
 
 from .signed import cam_packet, now_tai_us
 

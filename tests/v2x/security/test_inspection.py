@@ -5,12 +5,12 @@ import random
 import pytest
 
 from coopdrive.recording.capture import read_gn_packets
-from coopdrive.services.v2x.reasons import RejectReason
-from coopdrive.services.v2x.security.inspection import UNSIGNED, PacketInspector, SecurityResult, mode_drop_reason
-from coopdrive.services.v2x.security.pki import create_untrusted_pki, tamper_packet
-from coopdrive.services.v2x.security.profile import SecurityMode
-from coopdrive.services.v2x.security.store import CertificateStore
-from coopdrive.services.v2x.timebase import US_PER_S
+from coopdrive.v2x.reasons import RejectReason
+from coopdrive.v2x.security.inspection import UNSIGNED, PacketInspector, SecurityResult, mode_drop_reason
+from coopdrive.v2x.security.pki import create_untrusted_pki, tamper_packet
+from coopdrive.v2x.security.profile import SecurityMode
+from coopdrive.v2x.security.store import CertificateStore
+from coopdrive.v2x.timebase import US_PER_S
 from tests.shared_data import shared_file
 
 from .signed import cam_packet, now_tai_us

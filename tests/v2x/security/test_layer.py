@@ -1,12 +1,12 @@
 import pytest
 
-from coopdrive.services.v2x.packet import V2xPacketCodec
-from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
-from coopdrive.services.v2x.security.layer import ModeSecurityLayer
-from coopdrive.services.v2x.security.pki import tamper_packet
-from coopdrive.services.v2x.security.profile import SecurityMode
-from coopdrive.services.v2x.security.verifier import SecurityVerifier
-from coopdrive.services.v2x.timebase import US_PER_S
+from coopdrive.v2x.packet import V2xPacketCodec
+from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.v2x.security.layer import ModeSecurityLayer
+from coopdrive.v2x.security.pki import tamper_packet
+from coopdrive.v2x.security.profile import SecurityMode
+from coopdrive.v2x.security.verifier import SecurityVerifier
+from coopdrive.v2x.timebase import US_PER_S
 
 from .signed import cam_packet, now_tai_us
 

@@ -1,11 +1,11 @@
 import hashlib
 import stat
 
-from coopdrive.services.v2x.security.certificate import Certificate
-from coopdrive.services.v2x.security.crypto import Curve, curve_of_key
-from coopdrive.services.v2x.security.pki import load_test_pki, pki_init
-from coopdrive.services.v2x.security.profile import TICKET_PSIDS
-from coopdrive.services.v2x.security.verifier import SecurityVerifier
+from coopdrive.v2x.security.certificate import Certificate
+from coopdrive.v2x.security.crypto import Curve, curve_of_key
+from coopdrive.v2x.security.pki import load_test_pki, pki_init
+from coopdrive.v2x.security.profile import TICKET_PSIDS
+from coopdrive.v2x.security.verifier import SecurityVerifier
 
 from .signed import cam_packet, now_tai_us
 

@@ -4,10 +4,10 @@ import io
 
 import pytest
 
-from coopdrive.services.v2x.geonet import BasicNextHeader, parse_basic_header, parse_gn, with_basic_next_header
-from coopdrive.services.v2x.packet import GnParams
-from coopdrive.services.v2x.pcap import PcapWriter
-from coopdrive.services.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.v2x.geonet import BasicNextHeader, parse_basic_header, parse_gn, with_basic_next_header
+from coopdrive.v2x.packet import GnParams
+from coopdrive.v2x.pcap import PcapWriter
+from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.services.v2x.capture_decode import CaptureDecoder
 
 from .signed import CODEC, cam, cam_packet

@@ -5,11 +5,11 @@ from dataclasses import dataclass
 
 import pytest
 
-from coopdrive.services.v2x.reasons import RejectReason
-from coopdrive.services.v2x.security.layer import ModeSecurityLayer
-from coopdrive.services.v2x.security.profile import SecurityMode
-from coopdrive.services.v2x.security.verifier import SecurityVerifier
-from coopdrive.services.v2x.security_verdict import (
+from coopdrive.v2x.reasons import RejectReason
+from coopdrive.v2x.security.layer import ModeSecurityLayer
+from coopdrive.v2x.security.profile import SecurityMode
+from coopdrive.v2x.security.verifier import SecurityVerifier
+from coopdrive.v2x.security_verdict import (
     UNSIGNED, SecurityVerdict, Sender, sender_of, verdict_of_opened, verdict_of_refusal)
 
 from .signed import cam_packet, now_tai_us

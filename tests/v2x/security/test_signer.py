@@ -1,10 +1,10 @@
 import pytest
 
-from coopdrive.services.v2x.security.envelope import parse_signed_data
-from coopdrive.services.v2x.security.profile import PSID_CAM, PSID_DENM, PSID_ICLCM
-from coopdrive.services.v2x.security.signer import PseudonymChangeRefused, SecuredPacketSigner
-from coopdrive.services.v2x.security.verifier import SecurityVerifier
-from coopdrive.services.v2x.timebase import US_PER_S
+from coopdrive.v2x.security.envelope import parse_signed_data
+from coopdrive.v2x.security.profile import PSID_CAM, PSID_DENM, PSID_ICLCM
+from coopdrive.v2x.security.signer import PseudonymChangeRefused, SecuredPacketSigner
+from coopdrive.v2x.security.verifier import SecurityVerifier
+from coopdrive.v2x.timebase import US_PER_S
 
 from .signed import cam_packet, denm_packet, iclcm_packet, now_tai_us
 

@@ -4,11 +4,11 @@ import subprocess
 
 import pytest
 
-from coopdrive.services.v2x.pcap import PcapWriter
-from coopdrive.services.v2x.reasons import RejectReason
+from coopdrive.v2x.pcap import PcapWriter
+from coopdrive.v2x.reasons import RejectReason
 from coopdrive.services.v2x.capture_decode import CaptureDecoder
-from coopdrive.services.v2x.security.pki import tamper_packet
-from coopdrive.services.v2x.timebase import unix_s_from_tai_ms
+from coopdrive.v2x.security.pki import tamper_packet
+from coopdrive.v2x.timebase import unix_s_from_tai_ms
 
 from ..test_tshark import tshark
 from .signed import cam_packet, denm_packet, iclcm_packet, now_tai_us

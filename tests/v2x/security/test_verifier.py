@@ -1,16 +1,16 @@
 import pytest
 
-from coopdrive.services.v2x.packet import decode_packet
-from coopdrive.services.v2x.reasons import RejectReason
-from coopdrive.services.v2x.security.certificate import CircularArea, issue_certificate
-from coopdrive.services.v2x.security.crypto import curve_of_key
-from coopdrive.services.v2x.security.envelope import build_signed_data
-from coopdrive.services.v2x.security.pki import create_untrusted_pki, issue_expired_ticket, tamper_packet
-from coopdrive.services.v2x.security.profile import PSID_CAM, PSID_DENM
-from coopdrive.services.v2x.security.signer import SecuredPacketSigner
-from coopdrive.services.v2x.security.store import CertificateStore
-from coopdrive.services.v2x.security.verifier import SecurityVerifier
-from coopdrive.services.v2x.timebase import US_PER_S
+from coopdrive.v2x.packet import decode_packet
+from coopdrive.v2x.reasons import RejectReason
+from coopdrive.v2x.security.certificate import CircularArea, issue_certificate
+from coopdrive.v2x.security.crypto import curve_of_key
+from coopdrive.v2x.security.envelope import build_signed_data
+from coopdrive.v2x.security.pki import create_untrusted_pki, issue_expired_ticket, tamper_packet
+from coopdrive.v2x.security.profile import PSID_CAM, PSID_DENM
+from coopdrive.v2x.security.signer import SecuredPacketSigner
+from coopdrive.v2x.security.store import CertificateStore
+from coopdrive.v2x.security.verifier import SecurityVerifier
+from coopdrive.v2x.timebase import US_PER_S
 
 from .signed import cam_packet, denm_packet, iclcm_packet, now_tai_us
 

@@ -20,13 +20,13 @@ from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from coopdrive.services.v2x.reasons import V2xDecodeError
+from coopdrive.v2x.reasons import V2xDecodeError
 from coopdrive.recording.capture import read_gn_packets
 from coopdrive.runtime.testing import MemoryContext
-from coopdrive.services.v2x.security.pki import create_test_pki, tamper_packet
-from coopdrive.services.v2x.geonet import is_secured
+from coopdrive.v2x.security.pki import create_test_pki, tamper_packet
+from coopdrive.v2x.geonet import is_secured
 from coopdrive.services.v2x.service import V2xService
-from coopdrive.services.v2x.timebase import generation_delta_time_ms, tai_ms_from_unix_s
+from coopdrive.v2x.timebase import generation_delta_time_ms, tai_ms_from_unix_s
 from tests.shared_data import shared_file
 from tests.v2x.security.signed import CODEC, cam, denm_packet, gn_params, iclcm_packet
 from tests.v2x.test_fuzz import mutate as mutate_gn, seeds as unsigned_seeds

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from coopdrive.services.v2x.packet import GnParams, encode_cam
-from coopdrive.services.v2x.timebase import ItsClock, generation_delta_time_ms
+from coopdrive.v2x.packet import GnParams, encode_cam
+from coopdrive.v2x.timebase import ItsClock, generation_delta_time_ms
 from coopdrive.v1 import its_pb2
 
 # 2016-05-28T10:00:00Z, the GCDC weekend: sim time 0 maps to this instant.

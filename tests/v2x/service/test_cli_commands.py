@@ -5,10 +5,10 @@ import pytest
 
 from coopdrive.services.v2x.capture_decode import decode_capture
 from coopdrive.services.v2x.send_file import SendFileError, load_send_file, packet_from_send_file, send_from_yaml
-from coopdrive.services.v2x.its_pdu import ItsMessageId
-from coopdrive.services.v2x.packet import decode_packet
-from coopdrive.services.v2x.pcap import PcapWriter
-from coopdrive.services.v2x.timebase import tai_ms_from_unix_s
+from coopdrive.v2x.its_pdu import ItsMessageId
+from coopdrive.v2x.packet import decode_packet
+from coopdrive.v2x.pcap import PcapWriter
+from coopdrive.v2x.timebase import tai_ms_from_unix_s
 from coopdrive.v1 import its_pb2
 
 from ..test_tshark import tshark

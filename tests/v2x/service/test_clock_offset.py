@@ -7,7 +7,7 @@ import pytest
 from coopdrive.services.v2x.clock_offset import ClockOffset, diagnose
 from coopdrive.services.v2x.config import PlausibilityLimits
 from coopdrive.services.v2x.reception import OwnIdentity, Reception
-from coopdrive.services.v2x.timebase import ItsClock
+from coopdrive.v2x.timebase import ItsClock
 
 from .streams import CLOCK, EPOCH_UNIX_S, REMOTE_STATION_ID, cam_packet, remote_cam
 

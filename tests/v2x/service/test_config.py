@@ -1,7 +1,8 @@
 import pytest
 from pydantic import ValidationError
 
-from coopdrive.services.v2x.config import CamMode, V2xConfig
+from coopdrive.services.v2x.config import V2xConfig
+from coopdrive.v2x.generation import CamMode
 from coopdrive.v1 import its_pb2
 
 

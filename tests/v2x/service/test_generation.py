@@ -4,9 +4,9 @@ import pymap3d
 import pytest
 
 from coopdrive.geodesy import GeodeticOrigin
-from coopdrive.services.v2x.config import CamMode, VehicleDimensions
-from coopdrive.services.v2x.generation import CamGenerator, CamTrigger, IclcmGenerator
-from coopdrive.services.v2x.timebase import ItsClock, generation_delta_time_ms, tai_ms_from_utc
+from coopdrive.v2x.generation import CamMode, VehicleDimensions
+from coopdrive.v2x.generation import CamGenerator, CamTrigger, IclcmGenerator
+from coopdrive.v2x.timebase import ItsClock, generation_delta_time_ms, tai_ms_from_utc
 from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2
 
 from .streams import CLOCK

@@ -6,7 +6,7 @@ import shutil
 import pytest
 
 from coopdrive.services.v2x.config import SecurityConfig
-from coopdrive.services.v2x.security.pki import create_test_pki
+from coopdrive.v2x.security.pki import create_test_pki
 from coopdrive.services.v2x.security_setup import SecuritySettingError, load_security_material
 
 

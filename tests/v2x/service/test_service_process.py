@@ -7,8 +7,8 @@ import time
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.launch.ports import free_udp_port
 from coopdrive.services.v2x.capture_decode import decode_capture
-from coopdrive.services.v2x.packet import decode_packet
-from coopdrive.services.v2x.timebase import ItsClock
+from coopdrive.v2x.packet import decode_packet
+from coopdrive.v2x.timebase import ItsClock
 from coopdrive.v1 import ego_pb2
 
 from .streams import REMOTE_STATION_ID, cam_packet, remote_cam

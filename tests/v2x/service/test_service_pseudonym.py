@@ -4,9 +4,9 @@ together, heard and verified by another station, and held while a manoeuvre is u
 import pytest
 from pydantic import ValidationError
 
-from coopdrive.services.v2x.packet import decode_packet
-from coopdrive.services.v2x.security.pki import load_test_pki
-from coopdrive.services.v2x.security.verifier import SecurityVerifier
+from coopdrive.v2x.packet import decode_packet
+from coopdrive.v2x.security.pki import load_test_pki
+from coopdrive.v2x.security.verifier import SecurityVerifier
 from coopdrive.services.v2x.service import V2xService
 from coopdrive.v1 import ego_pb2, planner_pb2
 

@@ -8,11 +8,11 @@ import dpkt
 import pytest
 from pydantic import ValidationError
 
-from coopdrive.services.v2x.geonet import BASIC_HEADER_SIZE
-from coopdrive.services.v2x.packet import decode_packet
-from coopdrive.services.v2x.reasons import RejectReason
-from coopdrive.services.v2x.security.profile import SecurityMode
-from coopdrive.services.v2x.security.run_setup import security_overrides
+from coopdrive.v2x.geonet import BASIC_HEADER_SIZE
+from coopdrive.v2x.packet import decode_packet
+from coopdrive.v2x.reasons import RejectReason
+from coopdrive.v2x.security.profile import SecurityMode
+from coopdrive.v2x.security.run_setup import security_overrides
 from coopdrive.services.v2x.service import V2xService
 from coopdrive.v1 import ego_pb2, v2x_pb2
 

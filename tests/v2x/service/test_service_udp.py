@@ -10,8 +10,8 @@ import pytest
 
 from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.v2x.capture_decode import decode_capture
-from coopdrive.services.v2x.geonet import GbcHeader
-from coopdrive.services.v2x.packet import decode_packet
+from coopdrive.v2x.geonet import GbcHeader
+from coopdrive.v2x.packet import decode_packet
 from coopdrive.services.v2x.send_file import send_from_yaml
 from coopdrive.services.v2x.service import V2xService
 from coopdrive.v1 import control_pb2, ego_pb2, its_pb2, planner_pb2, v2x_pb2
