@@ -5,6 +5,7 @@ from __future__ import annotations
 from pydantic import BaseModel, ConfigDict, Field
 
 from coopdrive.services.geolocation.motion_models import MotionModelKind
+from coopdrive.vehicle import VehicleDescription
 
 
 class GeolocatorConfig(BaseModel):
@@ -13,9 +14,10 @@ class GeolocatorConfig(BaseModel):
     vehicle_id: str = ""
     map_name: str = "a270"
     motion_model: MotionModelKind = MotionModelKind.CTRA
-    # Vehicle geometry: rear-wheel track for eq. 8, wheelbase for the bicycle model, antenna from the rear axle.
-    track_width_m: float = Field(1.6, gt=0.0)
-    wheelbase_m: float = Field(2.7, gt=0.0)
+    # Vehicle geometry: rear-wheel track for eq. 8, wheelbase for the bicycle model (None: the vehicle's
+    # description, coopdrive/vehicle; set for a car measured by hand), antenna from the rear axle.
+    track_width_m: float | None = Field(None, gt=0.0)
+    wheelbase_m: float | None = Field(None, gt=0.0)
     antenna_x_m: float = 1.0
     antenna_y_m: float = 0.0
     # Sensor noise (one sigma).
@@ -74,3 +76,8 @@ class GeolocatorConfig(BaseModel):
     gnss_heading_std_deg: float = Field(0.5, gt=0.0)
     # Fixes farther than this from the local frame's origin are refused (a wrong origin, not a drive).
     max_origin_distance_m: float = Field(100_000.0, gt=0.0)
+
+    def of_vehicle(self, vehicle: VehicleDescription) -> GeolocatorConfig:
+        """With the geometry this config leaves open taken from the vehicle's description."""
+        return self.model_copy(update={"track_width_m": self.track_width_m or vehicle.track_width_m,
+                                       "wheelbase_m": self.wheelbase_m or vehicle.wheelbase_m})

@@ -19,6 +19,7 @@ from coopdrive.can.adapter import OdometryOptions
 from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.roadmap import RoadMap
 from coopdrive.services.geolocation.config import GeolocatorConfig
+from coopdrive.vehicle import PASSENGER_CAR, VehicleDescription
 from coopdrive.services.geolocation.ekf import GeolocationEkf, UpdateKind, gnss_position_std_m
 from coopdrive.services.geolocation.gated_fixes import GatedFixes
 from coopdrive.services.geolocation.frames import RTK_FIX_MODES, LeverArm, ModeThresholds, localisation_mode
@@ -103,9 +104,11 @@ class _Bookkeeping:
 
 class Geolocator:
     def __init__(self, config: GeolocatorConfig, road_map: RoadMap | None = None,
-                 origin: tuple[float, float, float] | None = None, first_fix_origin: bool = False) -> None:
-        """The local frame's origin: the road map's, else origin, else (first_fix_origin) the first fix's."""
-        self.config = config
+                 origin: tuple[float, float, float] | None = None, first_fix_origin: bool = False,
+                 vehicle: VehicleDescription = PASSENGER_CAR) -> None:
+        """The local frame's origin: the road map's, else origin, else (first_fix_origin) the first fix's. vehicle:
+        the geometry the config leaves open."""
+        config = self.config = config.of_vehicle(vehicle)
         if road_map is None and origin is None and not first_fix_origin:
             road_map = RoadMap.load(config.map_name)
         self.road_map = road_map

@@ -19,6 +19,7 @@ from coopdrive.services.geolocation.geolocator import Geolocator
 from coopdrive.services.geolocation.gnss_serial import GnssSerial
 from coopdrive.services.geolocation.nmea_decoder import NmeaDecoder, SentenceType
 from coopdrive.v1 import gnss_pb2
+from coopdrive.vehicle import VehicleKind, vehicle_of
 
 
 class GnssInput(enum.Enum):
@@ -45,6 +46,8 @@ class SerialSync(enum.Enum):
 
 
 class GeolocationConfig(ServiceConfig):
+    # The vehicle whose geometry the motion model and the odometry take (where geolocator leaves it open).
+    vehicle: VehicleKind = VehicleKind.PASSENGER_CAR
     geolocator: GeolocatorConfig = GeolocatorConfig()
     # Lane map (a shipped name such as "a270" or a GeoJSON path) for lane matching; its origin is the local frame.
     # None: no lane matching (lane.matched stays false), e.g. a road no map holds.
@@ -112,12 +115,14 @@ class GeolocationService(Service):
         self.vehicle_bus: VehicleBusInput | None = None
         self._far_fix_logged = False
         logic_config = c.geolocator.model_copy(update={"vehicle_id": self.ctx.vehicle_id})
+        vehicle = vehicle_of(c.vehicle)
         if c.map_name is not None:
-            self.geolocator = Geolocator(logic_config, road_map=RoadMap.load(c.map_name))
+            self.geolocator = Geolocator(logic_config, road_map=RoadMap.load(c.map_name), vehicle=vehicle)
         elif c.origin is not None:
-            self.geolocator = Geolocator(logic_config, origin=(c.origin.lat_deg, c.origin.lon_deg, c.origin.alt_m))
+            self.geolocator = Geolocator(logic_config, origin=(c.origin.lat_deg, c.origin.lon_deg, c.origin.alt_m),
+                                         vehicle=vehicle)
         else:
-            self.geolocator = Geolocator(logic_config, first_fix_origin=True)
+            self.geolocator = Geolocator(logic_config, first_fix_origin=True, vehicle=vehicle)
         self.decoder = NmeaDecoder(self.on_decoded_fix, expected_sentences=c.gnss_sentences,
                                    receiver_latency_s=c.gnss_receiver_latency_s,
                                    vehicle_id=self.ctx.vehicle_id, sender=self.name)

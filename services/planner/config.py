@@ -7,6 +7,7 @@ import enum
 from pydantic import BaseModel, ConfigDict, Field
 
 from coopdrive.services.scene.unknowns import DEFAULT_LENGTH_M
+from coopdrive.vehicle import SPACING
 
 KPH = 1.0 / 3.6
 
@@ -25,8 +26,8 @@ class PlatoonConfig(BaseModel):
     platoon_a_speed_mps: float = Field(80.0 * KPH, gt=0)
     platoon_b_speed_mps: float = Field(60.0 * KPH, gt=0)
     # With V2V (CACC) and without it (ACC fallback, larger gap, Ploeg et al. 2015 degradation).
-    cacc_time_gap_s: float = Field(0.5, gt=0)
-    acc_time_gap_s: float = Field(1.5, gt=0)
+    cacc_time_gap_s: float = Field(SPACING.cacc_time_gap_s, gt=0)
+    acc_time_gap_s: float = Field(SPACING.acc_time_gap_s, gt=0)
     leave_time_gap_s: float = Field(2.5, gt=0)
     join_gap_tolerance_m: float = Field(3.0, gt=0)
     # A member may go this much faster than its own cruise speed to keep up with its partner: a follower
@@ -128,7 +129,7 @@ class PlannerLogicConfig(BaseModel):
     partner_silent_s: float = Field(0.4, gt=0)
     cruise_speed_mps: float = Field(25.0, gt=0)
     # (eq. 4) Heudiasyc spacing r + h v, standstill r.
-    standstill_m: float = Field(6.0, ge=0)
+    standstill_m: float = Field(SPACING.standstill_m, ge=0)
     platoon: PlatoonConfig = Field(default_factory=PlatoonConfig)
     merge: MergeConfig = Field(default_factory=MergeConfig)
     intersection: IntersectionConfig = Field(default_factory=IntersectionConfig)
