@@ -11,7 +11,7 @@ from rich.console import Console, Group
 from rich.live import Live
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
-from coopdrive.launch.batch import BatchOptions, BatchSummary, RunOutcome
+from coopdrive.launch.batch import BatchOptions, BatchSummary, RunOutcome, unfinished_line
 from coopdrive.launch.sweep_task import SweepJob
 from coopdrive.services.sim.scenario_config import ScenarioError
 

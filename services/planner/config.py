@@ -1,4 +1,4 @@
-"""Configuration of the planner's scenario logic (the integrator's service.py reads it)."""
+"""Configuration of the planner service (PlannerConfig) and of its scenario logic."""
 
 from __future__ import annotations
 
@@ -6,7 +6,9 @@ import enum
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from coopdrive.runtime.service import ServiceConfig
 from coopdrive.services.scene.unknowns import DEFAULT_LENGTH_M
+from coopdrive.v1 import planner_pb2
 from coopdrive.vehicle import SPACING
 
 KPH = 1.0 / 3.6
@@ -134,3 +136,22 @@ class PlannerLogicConfig(BaseModel):
     merge: MergeConfig = Field(default_factory=MergeConfig)
     intersection: IntersectionConfig = Field(default_factory=IntersectionConfig)
     emergency: EmergencyConfig = Field(default_factory=EmergencyConfig)
+
+
+class PlannerConfig(ServiceConfig):
+    rate_hz: float = Field(10.0, gt=0)
+    # Our ITS station id (as the v2x service sends it).
+    station_id: int = Field(1, gt=0)
+    # A coopdrive.v1.Scenario name, e.g. SCENARIO_FOLLOW, SCENARIO_MERGE.
+    scenario: str = "SCENARIO_FOLLOW"
+    # 1 platoon A, 2 platoon B; 0 when not in a platoon.
+    platoon_id: int = 0
+    partner_station_id: int = 0
+    logic: PlannerLogicConfig = Field(default_factory=PlannerLogicConfig)
+
+    def scenario_value(self) -> int:
+        try:
+            return planner_pb2.Scenario.Value(self.scenario)
+        except ValueError:
+            names = ", ".join(planner_pb2.Scenario.keys())
+            raise ValueError(f"scenario {self.scenario!r} is not one of {names}") from None
