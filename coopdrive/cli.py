@@ -4,81 +4,37 @@ from __future__ import annotations
 
 import argparse
 import json
-import logging
 import sys
-import tempfile
 import time
 from pathlib import Path
 
 from coopdrive.cli_deploy import add_commands as add_deploy_commands
 from coopdrive.cli_recording import add_commands as add_recording_commands
+from coopdrive.cli_service import add_commands as add_service_commands
+from coopdrive.cli_service import run_command
 from coopdrive.exit_status import EXIT_FAILED, EXIT_INCOMPLETE, EXIT_OK, EXIT_USAGE
 from coopdrive.launch.process_layout import ProcessLayout
-from coopdrive.launch.run_aborted import RunAborted
 from coopdrive.services.v2x.cli import add_commands as add_v2x_commands
 from coopdrive.runtime.config import ConfigError
-from coopdrive.runtime.priority import nice_session_as_asked
-from coopdrive.runtime.service import HardwareUnavailable
 
 # A run's start-up time is counted from here: the command as its user waits for it, less the interpreter's start.
 COMMAND_STARTED_MONOTONIC_S = time.monotonic()
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    logging.basicConfig(level=logging.WARNING if not getattr(args, "verbose", False) else logging.INFO,
-                        format="%(asctime)s %(name)s %(levelname)s %(message)s")
-    try:
-        nice_session_as_asked()
-        return args.handler(args)
-    except ConfigError as error:
-        print(f"coopdrive: {error}", file=sys.stderr)
-        return EXIT_USAGE
-    except (HardwareUnavailable, RunAborted) as error:
-        print(f"coopdrive: {error}", file=sys.stderr)
-        return EXIT_FAILED
-    except KeyboardInterrupt:
-        return EXIT_FAILED
+    return run_command(build_parser(), argv)
 
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="coopdrive", description="Cooperative automated driving stack")
     commands = parser.add_subparsers(dest="command", required=True)
-    _add_service_commands(commands)  # service, group
+    add_service_commands(commands)  # service, group
     _add_run_command(commands)
     _add_judging_commands(commands)  # score, analyze, scenarios, candump
     add_v2x_commands(commands)
     add_recording_commands(commands)  # record, import, replay, export
     add_deploy_commands(commands)  # health, router, foxglove
     return parser
-
-
-def _add_service_commands(commands) -> None:
-    service = commands.add_parser("service", help="run one service (what docker compose runs)")
-    service.add_argument("name")
-    service.add_argument("--config", type=Path, help="YAML or JSON config of the service")
-    service.add_argument("--vehicle", default="ego", help="vehicle id, the second level of every key")
-    service.add_argument("--connect", action="append", default=[], help="Zenoh endpoint to connect to")
-    service.add_argument("--listen", action="append", default=[], help="Zenoh endpoint to listen on")
-    service.add_argument("--zenoh-config", type=Path, help="Zenoh JSON5 config (TLS, access control)")
-    service.add_argument("--clock", choices=["wall", "sim"], default="wall")
-    service.add_argument("--clock-step", type=float, metavar="SECONDS",
-                         help="with --clock sim: the simulator's step, so only the clocks this service runs on come")
-    service.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="override a config key")
-    service.add_argument("--hardware-retry", type=float, metavar="SECONDS",
-                         help="a device that cannot be opened: say so once and try again this often (default: exit)")
-    service.add_argument("-v", "--verbose", action="store_true")
-    service.set_defaults(handler=_service)
-
-    group = commands.add_parser("group", help="run several services in one process (a whole stack in simulation)")
-    group.add_argument("spec", type=Path, help='JSON: [{"service": NAME, "vehicle": ID, "config": {...}}, ...]')
-    group.add_argument("--connect", action="append", default=[], help="Zenoh endpoint to connect to")
-    group.add_argument("--listen", action="append", default=[], help="Zenoh endpoint to listen on")
-    group.add_argument("--clock", choices=["wall", "sim"], default="wall")
-    group.add_argument("--clock-step", type=float, metavar="SECONDS", help="as for `coopdrive service`")
-    group.add_argument("-v", "--verbose", action="store_true")
-    group.set_defaults(handler=_group)
 
 
 def _add_run_command(commands) -> None:
@@ -167,60 +123,9 @@ def _add_judging_commands(commands) -> None:
     candump.set_defaults(handler=_candump)
 
 
-def _service(args) -> int:
-    from coopdrive.bus import BusConfig
-    from coopdrive.runtime.config import load_config
-    from coopdrive.runtime.hardware_wait import run_waiting_for_hardware
-    from coopdrive.runtime.launcher_watch import exit_with_launcher
-    from coopdrive.runtime.priority import lower_cpu_priority
-    from coopdrive.runtime.registry import service_class
-    from coopdrive.runtime.runner import ClockMode, ServiceRunner
-
-    try:
-        cls = service_class(args.name)
-    except KeyError as error:
-        print(f"coopdrive: {error.args[0]}", file=sys.stderr)
-        return EXIT_USAGE
-    config = load_config(cls.Config, args.config, args.set)
-    exit_with_launcher()
-    if config.cpu_nice:
-        lower_cpu_priority(config.cpu_nice)  # before the bus opens its threads, which inherit it
-    bus = BusConfig(connect=args.connect, listen=args.listen or ["tcp/127.0.0.1:0"],
-                    zenoh_config_file=str(args.zenoh_config) if args.zenoh_config else None)
-    if args.hardware_retry is not None and args.hardware_retry <= 0:
-        raise ConfigError(f"--hardware-retry {args.hardware_retry:g}: a time in seconds above 0")
-    run_waiting_for_hardware(
-        lambda: ServiceRunner(cls, config, args.vehicle, bus, ClockMode(args.clock), clock_step_s=args.clock_step),
-        args.hardware_retry, f"{args.vehicle}/{args.name}")
-    return EXIT_OK
-
-
-def _group(args) -> int:
-    from coopdrive.bus import BusConfig
-    from coopdrive.runtime.config import ConfigError, validate_config
-    from coopdrive.runtime.group import GroupMember, ServiceGroup
-    from coopdrive.runtime.launcher_watch import exit_with_launcher
-    from coopdrive.runtime.registry import service_class
-    from coopdrive.runtime.runner import ClockMode
-
-    try:
-        entries = json.loads(args.spec.read_text())
-        members = []
-        for index, entry in enumerate(entries):
-            cls = service_class(entry["service"])
-            members.append(GroupMember(cls, validate_config(cls.Config, entry.get("config", {}),
-                                                            f"{args.spec}[{index}]"), entry.get("vehicle", "ego")))
-    except (OSError, ValueError, KeyError, TypeError) as error:
-        raise ConfigError(f"{args.spec}: {error.args[0] if error.args else error}") from None
-    exit_with_launcher()
-    bus = BusConfig(connect=args.connect, listen=args.listen or ["tcp/127.0.0.1:0"])
-    group = ServiceGroup(members, bus, ClockMode(args.clock), clock_step_s=args.clock_step)
-    group.run()
-    return EXIT_FAILED if group.failed else EXIT_OK
-
-
 def _run(args) -> int:
-    from coopdrive.launch.run import RunOptions, build_specs
+    from coopdrive.launch.run import RunOptions
+    from coopdrive.launch.run_spec import RunSpec
     from coopdrive.services.sim.scenario_config import ScenarioError
 
     if args.scenario == "all" or args.seeds or args.faults or args.cluster:
@@ -230,37 +135,27 @@ def _run(args) -> int:
         print(f"coopdrive: {', '.join(sweep_flags)}: for a sweep (--seeds or all), not a single run (--report DIR "
               "writes one run's report)", file=sys.stderr)
         return EXIT_USAGE
-    options = RunOptions(scenario=args.scenario, seed=_seed(args), realtime=args.realtime, record=args.record,
-                         gateway_port=args.gateway, foxglove_port=args.foxglove, listen=tuple(args.listen),
-                         duration_s=args.duration,
-                         log_dir=args.logs, stacks=args.stacks,
-                         processes=_layout(args, RunOptions.processes),
-                         security=args.security, untrusted=tuple(args.untrusted), extra_faults=_extra_faults(args),
-                         world=args.world, started_monotonic_s=COMMAND_STARTED_MONOTONIC_S)
     if args.untrusted and args.security is None:
         print("coopdrive: --untrusted needs --security", file=sys.stderr)
         return EXIT_USAGE
-    if args.cacc_law is not None:
-        from coopdrive.launch.baseline import with_cacc_law
-        from coopdrive.services.control.longitudinal import CaccLaw
-
-        options = with_cacc_law(options, CaccLaw(args.cacc_law))
+    spec = _run_spec(args, scenario=args.scenario, seed=_seed(args), processes=_layout(args, RunSpec().processes),
+                     untrusted=tuple(args.untrusted))
+    options = RunOptions.of(spec, realtime=args.realtime, record=args.record, gateway_port=args.gateway,
+                            foxglove_port=args.foxglove, listen=tuple(args.listen), log_dir=args.logs,
+                            started_monotonic_s=COMMAND_STARTED_MONOTONIC_S)
     try:
-        with tempfile.TemporaryDirectory(prefix="coopdrive-check-") as check_dir:
-            build_specs(options, Path(check_dir))  # a bad scenario file stops here, before anything starts
+        # A run that cannot be built (a bad scenario file, --stacks, a fault) stops before anything starts.
+        if args.baseline is None:
+            return _run_and_tell(args, options)
+        result, recorded_to = _run_once(options, args.report, args.record)
     except ScenarioError as error:
         print(f"coopdrive: {error}", file=sys.stderr)
         return EXIT_USAGE
-    if args.baseline is None:
-        return _run_and_tell(args, options)
-    result, recorded_to = _run_once(options, args.report, args.record)
     return _compare_with_baseline(args, options, result, recorded_to)
 
 
 def _run_and_tell(args, options) -> int:
     """One run: its summary as JSON, or its story with a progress line while it runs."""
-    import dataclasses
-
     if args.json:
         from coopdrive.launch.summary import summary_dict
 
@@ -273,12 +168,33 @@ def _run_and_tell(args, options) -> int:
 
     progress = ProgressLine()
     try:
-        result, recorded_to = _run_once(dataclasses.replace(options, on_progress=progress.update), args.report,
+        result, recorded_to = _run_once(options.model_copy(update={"on_progress": progress.update}), args.report,
                                         args.record)
     finally:
         progress.close()
     tell(result, resolve_scenario(options.scenario).config.description, recorded_to, args.report)
     return EXIT_OK if result.success else EXIT_FAILED
+
+
+def _run_spec(args, **given):
+    """The run the arguments describe (what a single run and every run of a sweep share, and `given`), validated
+    here once: a bad value is one line naming its option."""
+    from pydantic import ValidationError
+
+    from coopdrive.launch.run_spec import RunSpec
+
+    fields = dict(duration_s=args.duration, stacks=args.stacks, world=args.world, security=args.security,
+                  cacc_law=args.cacc_law, extra_faults=_extra_faults(args), **given)
+    try:
+        return RunSpec(**fields)
+    except ValidationError as error:
+        first = error.errors()[0]
+        option = OPTION_OF_FIELD.get(str(first["loc"][0]), str(first["loc"][0]))
+        raise ConfigError(f"{option} {first.get('input')!r}: {first['msg'].lower()}") from None
+
+
+# The run-spec fields a user sets through an option of another name.
+OPTION_OF_FIELD = {"duration_s": "--duration", "stacks": "--stacks", "seed": "--seed", "cacc_law": "--cacc-law"}
 
 
 def _extra_faults(args) -> tuple[dict, ...]:
@@ -321,15 +237,13 @@ def _run_once(options, report: Path | None, record: Path | None):
 
 
 def _compare_with_baseline(args, options, result, recorded_to) -> int:
-    import dataclasses
-
     from coopdrive.launch.baseline import BaselineComparison, with_cacc_law
     from coopdrive.launch.summary import print_summary, summary_dict
     from coopdrive.services.control.longitudinal import CaccLaw
 
     law = CaccLaw(args.baseline)
-    baseline_options = dataclasses.replace(with_cacc_law(options, law), record=None, gateway_port=None,
-                                           foxglove_port=None, listen=())
+    baseline_options = with_cacc_law(options, law).model_copy(update={"record": None, "gateway_port": None,
+                                                                      "foxglove_port": None, "listen": ()})
     baseline_report = None if args.report is None else args.report / "baseline"
     baseline, baseline_recorded_to = _run_once(baseline_options, baseline_report, None)
     comparison = BaselineComparison.of(law, result, baseline)
@@ -350,13 +264,13 @@ def _compare_with_baseline(args, options, result, recorded_to) -> int:
 
 def _seed(args) -> int:
     """--seed, or a run's default seed."""
-    from coopdrive.launch.run import RunOptions
+    from coopdrive.launch.run_spec import RunSpec
 
-    return RunOptions.seed if args.seed is None else args.seed
+    return RunSpec().seed if args.seed is None else args.seed
 
 
 def _layout(args, default: ProcessLayout) -> ProcessLayout:
-    """--processes, or the default of a single run or a sweep (RunOptions', BatchOptions')."""
+    """--processes, or the default of a single run or a sweep (RunSpec's, BatchOptions')."""
     return default if args.processes is None else ProcessLayout(args.processes)
 
 
@@ -374,7 +288,8 @@ SWEEP_FLAGS = {"--out": lambda args: args.out is not None, "--no-reports": lambd
 
 
 def _batch(args) -> int:
-    from coopdrive.launch.batch import BatchOptions, parse_seeds, run_batch, scenario_names
+    from coopdrive.launch.batch import BatchOptions, parse_seeds, scenario_names
+    from coopdrive.launch.sweep import run_batch
     from coopdrive.launch.sweep_cluster import SweepError
     from coopdrive.launch.sweep_faults import NO_FAULTS, FaultsFileError, load_fault_variants
     from coopdrive.services.sim.scenario_config import ScenarioError
@@ -404,11 +319,11 @@ def _batch(args) -> int:
         print(f"coopdrive: {', '.join(single_run_flags)}: for a single run, not a sweep (--out DIR keeps each run's "
               "report and recording)", file=sys.stderr)
         return EXIT_USAGE
-    added = _extra_faults(args)  # --fault and --v2v-*: in every run, before each variant's own
-    options = BatchOptions(scenarios=scenarios, seeds=seeds, stacks=args.stacks, workers=args.workers,
-                           out_dir=args.out, duration_s=args.duration, security=args.security, world=args.world,
-                           processes=_layout(args, BatchOptions.processes), cacc_law=args.cacc_law,
-                           fault_variants={name: added + faults for name, faults in variants.items()},
+    # --fault and --v2v-* go in every run, before each variant's own faults.
+    run = _run_spec(args, processes=_layout(args, BatchOptions.run.processes))
+    options = BatchOptions(scenarios=scenarios, seeds=seeds, run=run.model_copy(update={"extra_faults": ()}),
+                           workers=args.workers, out_dir=args.out,
+                           fault_variants={name: run.extra_faults + faults for name, faults in variants.items()},
                            cluster=args.cluster, reports=args.reports, time_limit_s=args.time_limit)
     try:
         summary = run_batch(options)

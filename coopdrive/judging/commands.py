@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import json
 import sys
 from pathlib import Path
@@ -33,8 +32,8 @@ def run_with_report(options, report_dir: Path) -> sim_pb2.RunResult:
     report_dir.mkdir(parents=True, exist_ok=True)
     messages = RunMessages()
     # From the recording's thread, not Zenoh's: a report of a big run on a loaded host must not hold the stacks back.
-    options = dataclasses.replace(options, record=options.record or report_dir / RECORDING_FILE,
-                                  on_recorded=messages.add)
+    options = options.model_copy(update={"record": options.record or report_dir / RECORDING_FILE,
+                                         "on_recorded": messages.add})
     result = run_scenario(options)
     try:
         write_report(report_dir, messages, result, judging_parameters(options.scenario))

@@ -6,13 +6,12 @@ changes the control law and nothing else; ours passes only if it damps the speed
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 
 from rich.console import Console
 from rich.table import Table
 
-from coopdrive.launch.run import RunOptions, merged
+from coopdrive.launch.run import RunOptions
 from coopdrive.services.control.longitudinal import CaccLaw
 from coopdrive.v1 import sim_pb2
 
@@ -23,8 +22,7 @@ DECIDING_METRIC = "string_gain"
 
 def with_cacc_law(options: RunOptions, law: CaccLaw) -> RunOptions:
     """The same run with every stack's cooperative law replaced."""
-    overrides = merged(options.service_overrides, {"control": {"cacc_law": law.value}})
-    return dataclasses.replace(options, service_overrides=overrides)
+    return options.model_copy(update={"cacc_law": law})
 
 
 @dataclass(frozen=True)

@@ -26,7 +26,7 @@ LOCKSTEP_GEOLOCATION_KEYS = ("gnss_port", "serial_sync")
 def desk_stack() -> list[dict]:
     stack = []
     with tempfile.TemporaryDirectory(prefix="coopdrive-desk-") as run_dir:  # the lockstep run's files: not kept
-        specs = build_specs(RunOptions(DESK_SCENARIO, service_overrides=DESK_OVERRIDES), Path(run_dir))
+        specs = build_specs(RunOptions(scenario=DESK_SCENARIO, service_overrides=DESK_OVERRIDES), Path(run_dir))
     for spec in specs:
         if spec.service in NOT_AT_THE_DESK:
             continue

@@ -26,7 +26,7 @@ from coopdrive.bus.services import SERVICES
 from coopdrive.launch.run_aborted import RunAborted
 
 # What every forked service needs besides its service's own module: the command line and the group runtime.
-FRAMEWORK_MODULES = ("coopdrive.cli", "coopdrive.runtime.group", "coopdrive.runtime.runner")
+FRAMEWORK_MODULES = ("coopdrive.cli_service", "coopdrive.runtime.group", "coopdrive.runtime.runner")
 
 
 def preloaded_modules() -> list[str]:
@@ -100,7 +100,7 @@ def run_command(arguments: list[str], environment: dict[str, str], log_path: Pat
     os.environ.clear()
     os.environ.update(environment)
     _redirect_output(log_path, log_mode)
-    from coopdrive.cli import main  # preloaded in the server; at module level it would load the CLI into the launcher
+    from coopdrive.cli_service import main  # preloaded in the server; at module level it would load it into the launcher
 
     sys.exit(main(arguments))
 

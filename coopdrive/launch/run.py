@@ -9,11 +9,12 @@ import signal
 import tempfile
 import threading
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING, Any, Callable
 
 from google.protobuf.message import Message
+from pydantic import ConfigDict
 
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.bus.keys import WORLD_ID
@@ -22,7 +23,8 @@ from coopdrive.launch.ports import free_tcp_port, free_udp_ports, loopback_endpo
 from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.processes import ServiceProcesses, ServiceSpec
 from coopdrive.launch.run_aborted import RunAborted
-from coopdrive.launch.scenario_source import resolve_scenario
+from coopdrive.launch.run_spec import RunSpec, merged
+from coopdrive.launch.scenario_source import ScenarioSource, resolve_scenario
 from coopdrive.launch.stack_config import vehicle_overrides
 from coopdrive.recording.spool_merge import merge_spools, spool_paths
 from coopdrive.runtime.barrier import MESSAGES_GIVEN_UP_COUNTER
@@ -31,20 +33,20 @@ from coopdrive.runtime.registry import VEHICLE_STACK
 from coopdrive.services.sim.fault_config import TicketExpired
 from coopdrive.services.sim.radio_box import RadioPorts
 from coopdrive.services.sim.scenario_config import ScenarioConfig, ScenarioError, load_scenario
-from coopdrive.services.sim.world_profile import WorldProfile
 from coopdrive.services.sim.config import SimConfig
 from coopdrive.services.sim.service_crashes import crashed_participants
-from coopdrive.v2x.security.profile import SecurityMode
 from coopdrive.v1 import sim_pb2
 
 if TYPE_CHECKING:
     from coopdrive.recording.writer import McapRecorder
 
 
-@dataclass
-class RunOptions:
-    scenario: str = "follow"
-    seed: int = 1
+class RunOptions(RunSpec):
+    """A run (its RunSpec's fields) and what watches it: none of these change what the run computes."""
+
+    model_config = ConfigDict(arbitrary_types_allowed=True)
+
+    # --realtime paces the lockstep run to the wall clock: it is watchable and still deterministic.
     realtime: bool = False
     record: Path | None = None
     gateway_port: int | None = None
@@ -53,22 +55,7 @@ class RunOptions:
     # Zenoh endpoints the run's hub listens on besides its own, so other tools (coopdrive record, python-can's
     # coopdrive interface, a zenohd router) can join the run's bus.
     listen: tuple[str, ...] = ()
-    duration_s: float | None = None
-    # Scenario files: how many of the file's stack vehicles run a stack (None: all of them); the others are scripted.
-    stacks: int | None = None
-    # How the services are spread over processes (`--processes`).
-    processes: ProcessLayout = ProcessLayout.VEHICLE
     log_dir: Path | None = None
-    # V2X security of every stack (a SecurityMode value; None: the v2x default, off), and the stack vehicles
-    # holding a ticket from a root nobody else trusts.
-    security: str | None = None
-    untrusted: tuple[str, ...] = ()
-    # The world the scenario runs in: "real" (its file's, real unless it says otherwise) or "ideal".
-    world: str = "real"
-    # Faults added to the scenario file's own (fault_config models as dicts, e.g. every V2V link lossy).
-    extra_faults: tuple[dict, ...] = ()
-    # Extra config per service name, merged over the defaults (e.g. {"control": {...}}).
-    service_overrides: dict[str, dict] = field(default_factory=dict)
     # Called as observer(key, message) for every message on the bus, on Zenoh's thread as it arrives (benchmarks,
     # live tools): a slow one holds the senders back.
     observer: Callable[[str, Message], None] | None = None
@@ -85,6 +72,11 @@ class RunOptions:
     # gateway bench samples the gateway's memory).
     on_process_started: Callable[[str, int], None] | None = None
 
+    @classmethod
+    def of(cls, spec: RunSpec, **watching: Any) -> RunOptions:
+        """The run spec describes, watched as `watching` says."""
+        return cls(**dict(spec), **watching)
+
 
 MS_PER_S = 1000
 # Certificates of a secured run are valid from a while before the scenario's clock starts.
@@ -99,26 +91,14 @@ RECORDING_QUIET_S = 0.2
 RECORDING_SETTLE_LIMIT_S = 10.0
 
 
-def merged(base: dict, override: dict) -> dict:
-    result = dict(base)
-    for key, value in override.items():
-        result[key] = merged(result[key], value) if isinstance(value, dict) and isinstance(result.get(key), dict) else value
-    return result
-
-
 def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[ServiceSpec]:
     """Every service's spec. run_dir holds the run's files (GNSS port links, the test PKI); by default a new
     temporary folder the caller removes."""
-    source = resolve_scenario(options.scenario)
-    if options.extra_faults:
-        run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-")) if run_dir is None else run_dir
-        source = source.with_faults(options.extra_faults, run_dir)
+    run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-")) if run_dir is None else run_dir
+    source, stacks = checked_run(options, run_dir)
     # --realtime paces the lockstep run to the wall clock: it is watchable and still deterministic.
     sim = SimConfig(scenario=source.name, seed=options.seed, lockstep=True, paced=options.realtime,
-                    world_profile=options.world)
-    if options.security is None and any(isinstance(f, TicketExpired) for f in source.config.faults):
-        raise ScenarioError("ticket_expired needs --security: an unsecured run has no tickets to expire")
-    stacks = source.stack_vehicles(options.stacks)
+                    world_profile=options.world.value)
     ports = iter(free_udp_ports(2 * len(stacks)))
     radio = {vehicle_id: RadioPorts(next(ports), next(ports)) for vehicle_id in stacks}
     sim.scenario_file, sim.stacks = str(source.file), stacks
@@ -126,11 +106,10 @@ def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[Servic
     sim.duration_s, sim.step_s = source.config.duration_s, source.config.step_s
     world_needs = sim.stack_overrides()
     services = VEHICLE_STACK
-    run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-")) if run_dir is None else run_dir
     # Each stack's GNSS receiver is a pty the simulator writes NMEA to, found through a link in the run folder.
     sim.gnss_ports = {v: str(run_dir / f"{v}-gnss0") for v in stacks}
     # The stacks are told their sensors as they are in the run's world (latencies, the GNSS timing jitter).
-    world_config = source.config.in_world(WorldProfile(options.world))
+    world_config = source.config.in_world(options.world)
     per_vehicle = {v: merged(vehicle_overrides(world_config, v, radio[v]),
                              {"geolocation": {"gnss_port": sim.gnss_ports[v], "serial_sync": "marks"}})
                    for v in stacks}
@@ -141,12 +120,27 @@ def build_specs(options: RunOptions, run_dir: Path | None = None) -> list[Servic
     if options.duration_s is not None:
         sim.duration_s = options.duration_s
     specs = [ServiceSpec(name, vehicle, merged(merged(world_needs.get(name, {}), per_vehicle.get(vehicle, {}).get(name, {})),
-                                               options.service_overrides.get(name, {})))
+                                               options.overrides_of(name)))
              for vehicle in stacks for name in services]
     sim.participants = [spec.participant for spec in specs]
     sim_config = sim.model_dump(mode="json")
-    sim_config.update(options.service_overrides.get("sim", {}))
+    sim_config.update(options.overrides_of("sim"))
     return [ServiceSpec("sim", WORLD_ID, sim_config)] + specs
+
+
+def checked_run(spec: RunSpec, run_dir: Path) -> tuple[ScenarioSource, list[str]]:
+    """The run's scenario (with its extra faults, written to run_dir) and stack vehicles; ScenarioError, one line,
+    for a run that cannot be: what a sweep checks of each of its runs before any starts."""
+    source = resolve_scenario(spec.scenario)
+    if spec.extra_faults:
+        source = source.with_faults(spec.extra_faults, run_dir)
+    if spec.security is None and any(isinstance(f, TicketExpired) for f in source.config.faults):
+        raise ScenarioError("ticket_expired needs --security: an unsecured run has no tickets to expire")
+    stacks = source.stack_vehicles(spec.stacks)
+    strangers = sorted(set(spec.untrusted) - set(stacks))
+    if strangers:
+        raise ScenarioError(f"--untrusted {', '.join(strangers)}: not a stack vehicle of this run ({', '.join(stacks)})")
+    return source, stacks
 
 
 def secured_run(config: ScenarioConfig, stacks: list[str], options: RunOptions, pki_dir: Path) -> dict[str, dict]:
@@ -155,18 +149,11 @@ def secured_run(config: ScenarioConfig, stacks: list[str], options: RunOptions, 
     from coopdrive.v2x.security.run_setup import security_overrides
     from coopdrive.v2x.timebase import tai_ms_from_utc
 
-    try:
-        mode = SecurityMode(options.security)
-    except ValueError:
-        modes = ", ".join(m.value for m in SecurityMode)
-        raise ScenarioError(f"--security {options.security!r} is not one of {modes}") from None
-    strangers = sorted(set(options.untrusted) - set(stacks))
-    if strangers:
-        raise ScenarioError(f"--untrusted {', '.join(strangers)}: not a stack vehicle of this run ({', '.join(stacks)})")
     sim_senders = [v.vehicle_id for v in config.vehicles if v.vehicle_id not in stacks]
     sim_senders += [unit.unit_id for unit in config.roadside_units]
     valid_from_tai_s = tai_ms_from_utc(config.utc_epoch) // MS_PER_S - CERTIFICATE_BACKDATE_S
-    overrides = security_overrides(pki_dir, list(stacks) + sim_senders, mode, options.untrusted, valid_from_tai_s)
+    overrides = security_overrides(pki_dir, list(stacks) + sim_senders, options.security, options.untrusted,
+                                   valid_from_tai_s)
     _expire_tickets(config, pki_dir, options.untrusted, valid_from_tai_s)
     return {vehicle: overrides[vehicle] for vehicle in stacks}
 
@@ -185,15 +172,25 @@ def _expire_tickets(config: ScenarioConfig, pki_dir: Path, untrusted: tuple[str,
         issue_expiring_tickets(pki, fault.vehicle_id, epoch_tai_s + math.ceil(fault.start_s), valid_from_tai_s)
 
 
+def _built(options: RunOptions) -> tuple[Path, list[ServiceSpec]]:
+    """The run's folder and its services' specs; nothing left behind when it cannot be built."""
+    run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-"))
+    try:
+        return run_dir, build_specs(options, run_dir)
+    except BaseException:
+        shutil.rmtree(run_dir, ignore_errors=True)
+        raise
+
+
 def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
+    """ScenarioError (one line) for a run that cannot be built, before anything starts."""
     started = time.monotonic() if options.started_monotonic_s is None else options.started_monotonic_s
+    run_dir, specs = _built(options)
     endpoint = loopback_endpoint(free_tcp_port())
     hub = Bus(BusConfig(listen=[endpoint, *options.listen]))
     finished = threading.Event()
     stop_reason: list[str] = []
     results: list[sim_pb2.RunResult] = []
-    run_dir = Path(tempfile.mkdtemp(prefix="coopdrive-run-"))
-    specs = build_specs(options, run_dir)
 
     def on_result(envelope) -> None:
         results.append(envelope.message)

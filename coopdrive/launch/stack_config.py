@@ -7,11 +7,11 @@ what differs per vehicle: its ITS station id and MAC, its radio box's ports, its
 from __future__ import annotations
 
 from coopdrive.services.actuation.config import CAR_PEDAL_PROFILE, TRUCK_PEDAL_PROFILE
-from coopdrive.services.sim.profiles import PROFILES, ProfileName
 from coopdrive.services.sim.radio_box import RadioPorts
 from coopdrive.services.sim.scenario_builder import speed_profile_of
 from coopdrive.services.sim.scenario_config import ScenarioConfig, VehicleRole
 from coopdrive.services.sim.sensor_timing import mean_latency_s
+from coopdrive.vehicle import VehicleKind, vehicle_of
 
 MIN_CRUISE_SPEED_MPS = 5.0
 PROFILE_SAMPLE_S = 0.1
@@ -19,7 +19,7 @@ PROFILE_SAMPLE_S = 0.1
 BRAKE_RELEASE_TIME_CONSTANTS = 4.0
 # ... and to come within 5 % of a step.
 STEERING_RESPONSE_TIME_CONSTANTS = 3.0
-STATION_TYPE = {ProfileName.PASSENGER_CAR: "passenger_car", ProfileName.TRUCK: "heavy_truck"}
+STATION_TYPE = {VehicleKind.PASSENGER_CAR: "passenger_car", VehicleKind.TRUCK: "heavy_truck"}
 
 
 def station_mac(station_id: int) -> str:
@@ -38,14 +38,15 @@ def fastest_traffic_mps(config: ScenarioConfig) -> float:
 
 def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts | None) -> dict[str, dict]:
     vehicle = next(v for v in config.vehicles if v.vehicle_id == vehicle_id)
-    profile = PROFILES[vehicle.profile]
+    # The vehicle's one description: every service that needs its geometry or dynamics is told which vehicle it is.
+    description = vehicle_of(vehicle.profile)
     v2x: dict = {
         "station_id": vehicle.station_id,
         "vehicle_mac": station_mac(vehicle.station_id),
         "station_type": STATION_TYPE[vehicle.profile],
         "clock_epoch_utc": config.utc_epoch.isoformat(),
-        "vehicle": {"length_m": profile.length_m, "width_m": profile.width_m,
-                    "rear_axle_location_m": profile.length_m - profile.rear_overhang_m},
+        "vehicle": {"length_m": description.length_m, "width_m": description.width_m,
+                    "rear_axle_location_m": description.front_bumper_x_m},
     }
     if radio is not None:
         v2x["link"] = {"radio_port": radio.box_port, "listen_port": radio.stack_port, "sync": "marks"}
@@ -53,12 +54,12 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
     cruise_mps = max(vehicle.speed_mps, fastest_traffic_mps(config), MIN_CRUISE_SPEED_MPS)
     planner = {"station_id": vehicle.station_id, "scenario": f"SCENARIO_{config.mission.name}",
                "platoon_id": vehicle.platoon or 0,
-               "logic": {"cruise_speed_mps": cruise_mps, "merge": {"ego_length_m": profile.length_m},
+               "logic": {"cruise_speed_mps": cruise_mps, "merge": {"ego_length_m": description.length_m},
                          "intersection": {"organiser_station_ids": [v.station_id for v in config.vehicles
                                                                     if v.organiser]}}}
     sensors = config.sensors_of(vehicle)
-    geolocation = {"geolocator": {"track_width_m": profile.track_width_m, "wheelbase_m": profile.wheelbase_m,
-                                  "antenna_x_m": sensors.gnss.antenna_x_m, "antenna_y_m": sensors.gnss.antenna_y_m,
+    geolocation = {"vehicle": vehicle.profile.value,
+                   "geolocator": {"antenna_x_m": sensors.gnss.antenna_x_m, "antenna_y_m": sensors.gnss.antenna_y_m,
                                   "wheel_speed_std_mps": max(sensors.can_state.wheel_speed_sigma_mps, 1e-3),
                                   "gnss_time_jitter_s": sensors.gnss.timing.latency_jitter_s},
                    # The receiver's mean latency (its half-normal jitter included).
@@ -66,13 +67,14 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
                    "can_latency_s": sensors.can_state.timing.latency_s,
                    "imu_latency_s": sensors.imu.timing.latency_s}
     scene = {"radar_latency_s": sensors.radar.timing.latency_s}
-    truck = vehicle.profile is ProfileName.TRUCK
-    control = {"profile": "truck" if truck else "car"}
+    truck = vehicle.profile is VehicleKind.TRUCK
+    control = {"vehicle": vehicle.profile.value}
+    plant = vehicle.plant_profile()
     # The simulated brake pressure follows the actuator's lag: automation braking takes this long to fade
     # below the override threshold, and must not read as the driver's foot on the brake.
-    release_s = BRAKE_RELEASE_TIME_CONSTANTS * profile.accel_time_constant_s + profile.accel_dead_time_s
+    release_s = BRAKE_RELEASE_TIME_CONSTANTS * plant.response_time_constant_s + plant.response_dead_time_s
     # Likewise the wheels reach a steering command this long after it, and until then lag it, not the driver.
-    steering_s = STEERING_RESPONSE_TIME_CONSTANTS * profile.steer_time_constant_s + profile.steer_dead_time_s
+    steering_s = STEERING_RESPONSE_TIME_CONSTANTS * plant.steer_time_constant_s + plant.steer_dead_time_s
     actuation = {"actuator": {"pedal": (TRUCK_PEDAL_PROFILE if truck else CAR_PEDAL_PROFILE).model_dump(mode="json"),
                               "override": {"brake_release_grace_s": release_s, "steering_response_s": steering_s}}}
     return {"v2x": v2x, "planner": planner, "geolocation": geolocation, "scene": scene, "control": control,

@@ -13,33 +13,34 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from coopdrive.launch.batch import RunOutcome, run_label
-from coopdrive.launch.process_layout import ProcessLayout
+from coopdrive.launch.run_spec import RunSpec
 
 
 @dataclass(frozen=True)
 class SweepJob:
-    scenario: str
+    # The run, its fault variant's faults (and any --fault) among its extra faults.
+    run: RunSpec
+    # The fault variant's name.
     fault: str
-    seed: int
-    # The fault variant's faults (and any --fault), added to the scenario's own.
-    faults: tuple[dict, ...] = ()
-    stacks: int | None = None
-    duration_s: float | None = None
-    security: str | None = None
-    world: str = "real"
-    processes: ProcessLayout = ProcessLayout.ONE
-    cacc_law: str | None = None
     # Write the run's report (metrics, plots, index.html, recording) and send it back.
     report: bool = False
 
     @property
+    def scenario(self) -> str:
+        return self.run.scenario
+
+    @property
+    def seed(self) -> int:
+        return self.run.seed
+
+    @property
     def label(self) -> str:
-        return run_label(self.scenario, self.fault, self.seed)
+        return run_label(self.run.scenario, self.fault, self.run.seed)
 
     def stack_seconds(self) -> float:
         """What the run will cost, to start the costliest runs first: its stack vehicles times its simulated seconds
         (a run's CPU grows with both); 0 for a scenario that does not load, whose run says why itself."""
-        return _stack_seconds(self.scenario, self.stacks, self.duration_s)
+        return _stack_seconds(self.run.scenario, self.run.stacks, self.run.duration_s)
 
 
 @functools.cache
@@ -77,13 +78,7 @@ def run_one(job: SweepJob, report_dir: Path | None) -> RunOutcome:
     """One run; a run that cannot even start is a failed run, not a failed sweep."""
     from coopdrive.launch.run import RunOptions, run_scenario
 
-    options = RunOptions(scenario=job.scenario, seed=job.seed, stacks=job.stacks, duration_s=job.duration_s,
-                         security=job.security, world=job.world, extra_faults=job.faults, processes=job.processes)
-    if job.cacc_law is not None:
-        from coopdrive.launch.baseline import with_cacc_law
-        from coopdrive.services.control.longitudinal import CaccLaw
-
-        options = with_cacc_law(options, CaccLaw(job.cacc_law))
+    options = RunOptions.of(job.run)
     try:
         if report_dir is None:
             result = run_scenario(options)

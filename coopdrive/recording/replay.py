@@ -24,13 +24,14 @@ from coopdrive.recording.reader import (RecordedMessage, read_messages, read_met
                                         recording_start_ns)
 from coopdrive.recording.replay_config import ReplayError, missing_inputs_text, replay_config
 from coopdrive.recording.replay_wall import run_wall_clock
-from coopdrive.bus.publish_spool import NANOSECONDS
-from coopdrive.recording.writer import McapRecorder, config_metadata
+from coopdrive.bus.publish_spool import NANOSECONDS, message_time_ns
+from coopdrive.recording.writer import CONFIG_METADATA, McapRecorder, config_metadata
 from coopdrive.runtime.dispatcher import TIME_EPSILON_S, StepDispatcher
 from coopdrive.runtime.participants import ParticipantTracker
 from coopdrive.runtime.pipeline import WORLD_SERVICE
 from coopdrive.runtime.registry import service_class
 from coopdrive.runtime.testing import MemoryContext
+from coopdrive.visual import VisualChannels, recorded_road_map
 
 __all__ = ["ReplayContext", "ReplayError", "ReplayResult", "TimeWindow", "replay_service"]
 
@@ -109,7 +110,7 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
     cls = service_class(service_name)
     layout = KeyLayout()
     metadata = read_metadata(recording)
-    configs = metadata.get("coopdrive.config", {})
+    configs = metadata.get(CONFIG_METADATA, {})
     vehicle_id = vehicle_id or _only_vehicle_of(configs, service_name, recording)
     config_key = f"{vehicle_id}/{service_name}"
     config, notes = replay_config(cls, recording, config_key, configs, metadata, config_file, overrides)
@@ -125,7 +126,7 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
     log_times_ns = window.log_times_ns(start_ns) if window is not None and start_ns is not None else (None, None)
     messages = read_messages(recording, [t for t in topics if _may_concern(t, layout, ctx, vehicle_id)],
                              *log_times_ns)
-    inputs, recorded_outputs, clocks = _split(messages, layout, ctx, service_name, vehicle_id)
+    inputs, recorded_outputs, clocks, drawn = _split(messages, layout, ctx, service_name, vehicle_id)
     if not inputs:
         service.stop()
         if window is not None:
@@ -154,7 +155,7 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
     result = ReplayResult(outputs, [(t, m) for t, m, _ in recorded_outputs], steps,
                           "lockstep" if clocks else "wall", bool(config_file or overrides), notes, window)
     if out is not None:
-        _write_replay(out, inputs, outputs, {config_key: config.model_dump_json()}, metadata)
+        _write_replay(out, inputs + drawn, outputs, {config_key: config.model_dump_json()}, metadata)
     return result
 
 
@@ -170,9 +171,12 @@ def _may_concern(key: str, layout: KeyLayout, ctx: ReplayContext, vehicle_id: st
 
 
 def _split(messages: Iterable[RecordedMessage], layout: KeyLayout, ctx: ReplayContext, service_name: str,
-           vehicle_id: str) -> tuple[list[RecordedMessage], list[tuple[str, Message, int]], list[Message]]:
-    """(inputs: what the service subscribed to, recorded outputs with their log times, lockstep clocks)."""
-    inputs, recorded_outputs, clocks = [], [], []
+           vehicle_id: str) -> tuple[list[RecordedMessage], list[tuple[str, Message, int]], list[Message],
+                                     list[RecordedMessage]]:
+    """(inputs: what the service subscribed to, recorded outputs with their log times, lockstep clocks, what else
+    of the vehicle's the Foxglove channels draw from: the plan a replayed scene is drawn with)."""
+    inputs, recorded_outputs, clocks, drawn = [], [], [], []
+    visuals = VisualChannels(lambda *_: None)
     for item in messages:
         parsed = layout.parse(item.topic)
         if parsed is None:
@@ -185,7 +189,9 @@ def _split(messages: Iterable[RecordedMessage], layout: KeyLayout, ctx: ReplayCo
             inputs.append(item)
         elif header is not None and header.sender == service_name and vehicle == vehicle_id:
             recorded_outputs.append((item.topic, item.message, item.log_time_ns))
-    return inputs, recorded_outputs, clocks
+        elif vehicle == vehicle_id and visuals.draws(item.topic):
+            drawn.append(item)
+    return inputs, recorded_outputs, clocks, drawn
 
 
 def _is_input(ctx: ReplayContext, vehicle: str, topic: str, header, service_name: str) -> bool:
@@ -238,16 +244,21 @@ def _as_hardware_input(message: Message, service_name: str) -> Message:
     return hardware
 
 
-def _write_replay(out: str | Path, inputs: list[RecordedMessage], outputs: list[tuple[str, Message]],
+def _write_replay(out: str | Path, recorded: list[RecordedMessage], outputs: list[tuple[str, Message]],
                   configs: dict[str, str], metadata: dict[str, dict[str, str]]) -> None:
-    """The inputs at their recorded log times and the replayed outputs at their sent times, with the config used."""
-    kept = {name: values for name, values in metadata.items() if name != "coopdrive.config"}
-    recorder = McapRecorder(out, metadata={**kept, **config_metadata(configs)})
+    """The recorded messages kept (inputs, what the Foxglove channels draw from) at their log times and the replayed
+    outputs at their sent times, in time order as the run's recording was written, with the config used; its
+    Foxglove channels drawn on the recorded lane map."""
+    recorded_configs = metadata.get(CONFIG_METADATA, {})
+    kept = {name: values for name, values in metadata.items() if name != CONFIG_METADATA}
+    recorder = McapRecorder(out, metadata={**kept, **config_metadata(configs)},
+                            road_map=recorded_road_map(recorded_configs))
+    timeline = [(item.log_time_ns, item.topic, item.message) for item in recorded]
+    timeline += [(message_time_ns(message), topic, message) for topic, message in outputs]
+    timeline.sort(key=lambda entry: entry[0])
     try:
-        for item in inputs:
-            recorder.write(item.topic, item.message, log_time_ns=item.log_time_ns)
-        for topic, message in outputs:
-            recorder.write(topic, message)
+        for log_time_ns, topic, message in timeline:
+            recorder.write(topic, message, log_time_ns=log_time_ns)
     finally:
         recorder.close()
 

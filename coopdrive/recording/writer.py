@@ -19,6 +19,7 @@ from mcap_protobuf.writer import Writer
 from coopdrive.bus.publish_spool import message_time_ns
 from coopdrive.roadmap import RoadMap
 from coopdrive.visual import VisualChannels, recorded_road_map
+from coopdrive.visual.channels import RECORDING_REORDER_S
 
 log = logging.getLogger(__name__)
 CONFIG_METADATA = "coopdrive.config"
@@ -52,7 +53,8 @@ class McapRecorder:
             self.add_metadata(name, values)
         if road_map is None:
             road_map = recorded_road_map((metadata or {}).get(CONFIG_METADATA, {}))
-        self._visuals = VisualChannels(self._write_visual, road_map) if visuals else None
+        self._visuals = (VisualChannels(self._write_visual, road_map, reorder_s=RECORDING_REORDER_S) if visuals
+                         else None)
         # Derived on a thread of their own: a live recorder stamps each message's arrival in the bus's callback,
         # which must not wait for the scene drawn from the one before.
         self._to_derive: queue.SimpleQueue = queue.SimpleQueue()
@@ -108,6 +110,7 @@ class McapRecorder:
         # scene drawn while holding it would keep the bus's messages waiting.
         while (item := self._to_derive.get()) is not None:
             self._visuals.on_message(*item)
+        self._visuals.flush()  # the last step's
 
     def _write_visual(self, topic: str, message: Message, time_ns: int) -> None:
         """Called by the visual channels on the deriving thread, at the log time of the message they came from."""

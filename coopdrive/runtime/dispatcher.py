@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass
 
 from coopdrive.bus import Envelope
-from coopdrive.runtime.pipeline import PIPELINE_RANK
+from coopdrive.runtime.pipeline import PIPELINE_RANK, UNRANKED, step_order
 
 # Times are sums of step lengths; this absorbs their rounding.
 TIME_EPSILON_S = 1e-9
@@ -50,8 +50,7 @@ class StepDispatcher:
         if header.sent_time_s < self._start_s - TIME_EPSILON_S:
             return
         self._arrivals += 1
-        sort_key = (header.sent_time_s, PIPELINE_RANK.get(header.sender, 99), envelope.topic,
-                    envelope.vehicle_id, header.sequence, self._arrivals)
+        sort_key = (header.sent_time_s, *step_order(header, envelope.topic, envelope.vehicle_id), self._arrivals)
         heapq.heappush(self._pending, _Pending(sort_key, envelope))
 
     def __len__(self) -> int:
@@ -70,7 +69,7 @@ class StepDispatcher:
 
     def _may_handle(self, envelope: Envelope, step_time_s: float) -> bool:
         header = envelope.message.header
-        sender_rank = PIPELINE_RANK.get(header.sender, 99)
+        sender_rank = PIPELINE_RANK.get(header.sender, UNRANKED)
         if sender_rank < self._own_rank:
             return True  # upstream of us: same-step data is already complete
         # Feedback from downstream (or a peer): only what it published in earlier steps.

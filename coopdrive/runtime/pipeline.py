@@ -11,7 +11,17 @@ from coopdrive.bus.services import SERVICES, WORLD_SERVICE, service_entry
 PIPELINE_RANK: dict[str, int] = {entry.name: entry.pipeline_rank for entry in SERVICES}
 LOCKSTEP_SERVICES = tuple(entry.name for entry in SERVICES if entry.lockstep)
 
-__all__ = ["LOCKSTEP_SERVICES", "PIPELINE_RANK", "WORLD_SERVICE", "participant_name", "rank_of", "split_participant"]
+__all__ = ["LOCKSTEP_SERVICES", "PIPELINE_RANK", "WORLD_SERVICE", "participant_name", "rank_of", "split_participant",
+           "step_order"]
+# A sender outside the table (a tool, an import) comes after every service of the step.
+UNRANKED = 99
+
+
+def step_order(header, topic: str, vehicle_id: str) -> tuple:
+    """Where a message falls among the messages sent in its step: by its sender's place in the pipeline, then by
+    key and sequence. The dispatcher hands a service a step's inputs in this order, and the visual channels draw
+    in it, so neither depends on the order in which messages arrived."""
+    return PIPELINE_RANK.get(header.sender, UNRANKED), topic, vehicle_id, header.sequence
 
 
 def rank_of(service: str) -> int:

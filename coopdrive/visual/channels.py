@@ -11,11 +11,20 @@ more times. The channels (topic: Foxglove schema, from):
 - foxglove/transforms: foxglove.FrameTransforms, map -> <vehicle> at each ego estimate
 - foxglove/<vehicle>/scene: foxglove.SceneUpdate, one per scene: objects, the MIO, the ego, its planned path
 - foxglove/ground_truth: foxglove.SceneUpdate, one per simulator ground truth (namespace "truth/")
-- foxglove/map: foxglove.SceneUpdate, the lane map's centre lines, at the start and every MAP_PERIOD_S
+- foxglove/map: foxglove.SceneUpdate, the lane map's centre lines, at the start of every MAP_PERIOD_S of time that
+  has messages to draw
+
+What a message draws depends only on the messages, never on the order they arrived in: messages are held until
+one sent reorder_s later has arrived (or flush()), then drawn in time order and, within a step, in the order the
+pipeline handles them (runtime.pipeline.step_order). A scene is therefore drawn with the ego estimate its scene
+service was handed in that step and the plan of the step before, as the car saw them, in a recording and in any
+replay of it alike (a run's recording is written a step or two out of time order: its processes' spools interleave).
 """
 
 from __future__ import annotations
 
+import heapq
+import itertools
 import json
 import math
 from typing import Callable
@@ -29,6 +38,7 @@ from google.protobuf.message import Message
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.roadmap import RoadMap
 from coopdrive.gnss.nmea_decoder import NmeaDecoder
+from coopdrive.runtime.pipeline import step_order
 from coopdrive.visual.primitives import MAP_FRAME, NANOSECONDS, color, timestamp, yaw_quaternion
 from coopdrive.visual.scene_entities import lanes_update, scene_update, truth_update
 from coopdrive.v1 import ego_pb2, gnss_pb2, its_pb2, planner_pb2, scene_pb2, sim_pb2
@@ -40,6 +50,8 @@ GROUND_TRUTH_TOPIC = "foxglove/ground_truth"
 MAP_TOPIC = "foxglove/map"
 # The lane map again now and then, so a viewer that joins late (or seeks in a recording) has it.
 MAP_PERIOD_S = 1.0
+# How far out of time order a recording's messages may come (a run's: two steps) and still be drawn in order.
+RECORDING_REORDER_S = 1.0
 EGO_FIX_COLOR = color(0.2, 0.45, 1.0, 1.0)
 GNSS_FIX_COLOR = color(1.0, 0.85, 0.1, 1.0)
 STATION_FIX_COLOR = color(0.9, 0.2, 0.9, 1.0)
@@ -54,13 +66,20 @@ def vehicle_topic(vehicle_id: str, name: str) -> str:
 
 
 class VisualChannels:
-    def __init__(self, emit: Emit, road_map: RoadMap | None = None, layout: KeyLayout | None = None):
+    def __init__(self, emit: Emit, road_map: RoadMap | None = None, layout: KeyLayout | None = None,
+                 reorder_s: float = 0.0):
+        """reorder_s: how long a message is held for older ones to arrive (0: until a newer one does)."""
         self.emit = emit
         self.road_map = road_map
         self.layout = layout or KeyLayout()
         self._ego: dict[str, ego_pb2.EgoState] = {}
         self._behaviour: dict[str, planner_pb2.BehaviourRequest] = {}
-        self._map_sent_ns: int | None = None
+        self._map_period: int | None = None
+        # Messages not drawn yet, a heap of (time and step order, arrival, vehicle, topic, message, time_ns).
+        self._held: list[tuple] = []
+        self._arrivals = itertools.count()
+        self._newest_ns = 0
+        self._reorder_ns = round(reorder_s * NANOSECONDS)
         self._nmea: dict[str, NmeaDecoder] = {}
         # The log time of the NMEA chunk being decoded, for the fixes it completes.
         self._nmea_time_ns = 0
@@ -81,22 +100,40 @@ class VisualChannels:
 
     def on_message(self, key: str, message: Message, time_ns: int) -> None:
         parsed = self.layout.parse(key)
-        if parsed is None:
+        if parsed is None or parsed[1] not in self._handlers:
             return
         vehicle_id, topic = parsed
-        handler = self._handlers.get(topic)
-        if handler is None:
-            return
+        # A step's time in whole nanoseconds, as recordings stamp it: services sum their step lengths each
+        # their own way, so the same step's sent times may differ in their last bit.
+        sent_ns = round(message.header.sent_time_s * NANOSECONDS)
+        order = (sent_ns, *step_order(message.header, topic, vehicle_id))
+        heapq.heappush(self._held, (order, next(self._arrivals), vehicle_id, topic, message, time_ns))
+        self._newest_ns = max(self._newest_ns, sent_ns)
+        while self._held and self._held[0][0][0] < self._newest_ns - self._reorder_ns:
+            self._draw(heapq.heappop(self._held))
+
+    def flush(self) -> None:
+        """Draws every message held (a recording's last steps)."""
+        while self._held:
+            self._draw(heapq.heappop(self._held))
+
+    def _draw(self, held: tuple) -> None:
+        _, _, vehicle_id, topic, message, time_ns = held
         self._send_map(time_ns)
-        handler(vehicle_id, message, time_ns)
+        self._handlers[topic](vehicle_id, message, time_ns)
 
     def _send_map(self, time_ns: int) -> None:
+        """At the start of each period with something drawn in it: the same instants whichever messages a file
+        holds (a replay's file holds fewer than the run's)."""
         if self.road_map is None or not self.road_map.lanes:
             return
-        if self._map_sent_ns is not None and time_ns - self._map_sent_ns < MAP_PERIOD_S * NANOSECONDS:
+        period_ns = round(MAP_PERIOD_S * NANOSECONDS)
+        period = time_ns // period_ns
+        if period == self._map_period:
             return
-        self._map_sent_ns = time_ns
-        self.emit(MAP_TOPIC, lanes_update(self.road_map, time_ns / NANOSECONDS), time_ns)
+        self._map_period = period
+        start_ns = period * period_ns
+        self.emit(MAP_TOPIC, lanes_update(self.road_map, start_ns / NANOSECONDS), start_ns)
 
     def _on_ego(self, vehicle_id: str, ego: ego_pb2.EgoState, time_ns: int) -> None:
         self._ego[vehicle_id] = ego

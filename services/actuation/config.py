@@ -6,9 +6,14 @@ Bhatt et al. 2017 (Sect. 5.2). The others are ours and say so.
 
 from __future__ import annotations
 
+import enum
+
 from pydantic import BaseModel, ConfigDict, Field
 
 from coopdrive.bus.services import VEHICLE_STACK
+from coopdrive.can.adapter import VehicleCanPath
+from coopdrive.can.vehicle_port import VehicleCanPortConfig
+from coopdrive.runtime.service import ServiceConfig
 from coopdrive.v1 import ego_pb2
 
 
@@ -146,3 +151,44 @@ class ActuationConfig(BaseModel):
     # Longest step interval used for rate limits, so a stalled loop cannot cause a jump.
     max_step_s: float = Field(default=0.1, gt=0.0)
     vehicle_id: str = ""
+
+V2X_SERVICE = "v2x"
+
+
+class EngageMode(enum.Enum):
+    NONE = "none"
+    COOPERATIVE = "cooperative"
+    AUTONOMOUS = "autonomous"
+
+
+class ActuationServiceConfig(ServiceConfig):
+    actuator: ActuationConfig = ActuationConfig()
+    # Sim steps are 10 ms; a 20 ms cycle halves the steps this service takes part in.
+    rate_hz: float = Field(50.0, gt=0.0)
+    status_rate_hz: float = Field(10.0, gt=0.0)
+    # The mode requested on every cycle from the start until the actuator accepts it once, as a safety driver
+    # pressing "engage" would (simulation runs). On a vehicle it stays none: the driver engages via the gateway.
+    engage_on_start: EngageMode = EngageMode.NONE
+    # Whether the automated modes need a live v2x service with a healthy V2X status. A stack without a v2x
+    # service (the follow run follows by radar alone) sets it false, else no automated mode could be entered.
+    require_v2x: bool = True
+    # The vehicle's CAN bus (python-can): command frames go out on it and its feedback frames are the
+    # vehicle state; actuation owns the car's bus and puts every frame it reads on can/vehicle. None: frames
+    # only on can/command, the feedback from can/vehicle (simulation).
+    can_port: VehicleCanPortConfig | None = None
+    # The car's vehicle CAN adapter (coopdrive/can/adapter.py); None: the simulator's car.
+    vehicle_can: VehicleCanPath = None
+
+    def actuator_config(self, vehicle_id: str) -> ActuationConfig:
+        config = self.actuator.model_copy(update={"vehicle_id": vehicle_id})
+        if self.require_v2x:
+            return config
+        modes = config.modes.model_copy(update={"cooperative": _without_v2x(config.modes.cooperative),
+                                                "autonomous": _without_v2x(config.modes.autonomous)})
+        return config.model_copy(update={"modes": modes})
+
+
+def _without_v2x(requirements: ModeRequirements) -> ModeRequirements:
+    return requirements.model_copy(update={
+        "v2x_required": False,
+        "required_services": [name for name in requirements.required_services if name != V2X_SERVICE]})

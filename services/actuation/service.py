@@ -8,66 +8,18 @@ at 10 Hz.
 
 from __future__ import annotations
 
-import enum
-
-from pydantic import Field
-
 from coopdrive.bus import Envelope
-from coopdrive.can.adapter import VehicleCanPath
 from coopdrive.can.bus_input import VehicleBusInput
 from coopdrive.can.bus_reader import VehicleBusReader
-from coopdrive.can.vehicle_port import VehicleCanPortConfig
 from coopdrive.can.wire import to_protobuf
-from coopdrive.runtime.service import Service, ServiceConfig
+from coopdrive.runtime.service import Service
 from coopdrive.services.actuation.actuator import Actuator
-from coopdrive.services.actuation.config import ActuationConfig, ModeRequirements
+from coopdrive.services.actuation.config import ActuationServiceConfig, EngageMode
 from coopdrive.v1 import actuation_pb2, v2x_pb2, vehicle_pb2
 
-V2X_SERVICE = "v2x"
 ENGAGE_REQUESTER = "engage_on_start"
-
-
-class EngageMode(enum.Enum):
-    NONE = "none"
-    COOPERATIVE = "cooperative"
-    AUTONOMOUS = "autonomous"
-
-
 ENGAGE_MODES = {EngageMode.COOPERATIVE: actuation_pb2.DRIVING_MODE_COOPERATIVE,
                 EngageMode.AUTONOMOUS: actuation_pb2.DRIVING_MODE_AUTONOMOUS}
-
-
-class ActuationServiceConfig(ServiceConfig):
-    actuator: ActuationConfig = ActuationConfig()
-    # Sim steps are 10 ms; a 20 ms cycle halves the steps this service takes part in.
-    rate_hz: float = Field(50.0, gt=0.0)
-    status_rate_hz: float = Field(10.0, gt=0.0)
-    # The mode requested on every cycle from the start until the actuator accepts it once, as a safety driver
-    # pressing "engage" would (simulation runs). On a vehicle it stays none: the driver engages via the gateway.
-    engage_on_start: EngageMode = EngageMode.NONE
-    # Whether the automated modes need a live v2x service with a healthy V2X status. A stack without a v2x
-    # service (the follow run follows by radar alone) sets it false, else no automated mode could be entered.
-    require_v2x: bool = True
-    # The vehicle's CAN bus (python-can): command frames go out on it and its feedback frames are the
-    # vehicle state; actuation owns the car's bus and puts every frame it reads on can/vehicle. None: frames
-    # only on can/command, the feedback from can/vehicle (simulation).
-    can_port: VehicleCanPortConfig | None = None
-    # The car's vehicle CAN adapter (coopdrive/can/adapter.py); None: the simulator's car.
-    vehicle_can: VehicleCanPath = None
-
-    def actuator_config(self, vehicle_id: str) -> ActuationConfig:
-        config = self.actuator.model_copy(update={"vehicle_id": vehicle_id})
-        if self.require_v2x:
-            return config
-        modes = config.modes.model_copy(update={"cooperative": _without_v2x(config.modes.cooperative),
-                                                "autonomous": _without_v2x(config.modes.autonomous)})
-        return config.model_copy(update={"modes": modes})
-
-
-def _without_v2x(requirements: ModeRequirements) -> ModeRequirements:
-    return requirements.model_copy(update={
-        "v2x_required": False,
-        "required_services": [name for name in requirements.required_services if name != V2X_SERVICE]})
 
 
 def v2x_healthy(status: v2x_pb2.V2xStatus) -> bool:

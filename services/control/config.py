@@ -8,7 +8,9 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from .lateral.types import LateralLaw
 from .longitudinal.types import AccLaw, CaccLaw, SpeedLaw
-from .profiles import VehicleProfile, profile_by_name
+from coopdrive.vehicle import VehicleKind
+
+from .profiles import PROFILES, VehicleProfile
 
 
 class LaneSourceChoice(enum.Enum):
@@ -24,8 +26,9 @@ class LaneSourceChoice(enum.Enum):
 class ControlConfig(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
-    # "car" or "truck" (profiles.PROFILES); `profile_overrides` patches fields, e.g. {"engine_lag_s": 0.4}.
-    profile: str = "car"
+    # The vehicle driven (its profile, profiles.PROFILES); `profile_overrides` patches the profile's fields, e.g.
+    # {"vehicle": {"response_time_constant_s": 0.4}} or {"spacing": {"time_gap_s": 1.2}}.
+    vehicle: VehicleKind = VehicleKind.PASSENGER_CAR
     profile_overrides: dict = Field(default_factory=dict)
     cacc_law: CaccLaw = CaccLaw.OURS
     acc_law: AccLaw = AccLaw.OURS
@@ -37,7 +40,14 @@ class ControlConfig(BaseModel):
     scene_lane_max_age_s: float = Field(0.1, gt=0)
 
     def vehicle_profile(self) -> VehicleProfile:
-        base = profile_by_name(self.profile)
+        base = PROFILES[self.vehicle]
         if not self.profile_overrides:
             return base
-        return VehicleProfile.model_validate({**base.model_dump(), **self.profile_overrides})
+        return VehicleProfile.model_validate(_merged(base.model_dump(), self.profile_overrides))
+
+
+def _merged(base: dict, overrides: dict) -> dict:
+    """base with overrides on it, section by section."""
+    return {key: _merged(value, overrides[key]) if isinstance(value, dict) and isinstance(overrides.get(key), dict)
+            else overrides.get(key, value) for key, value in base.items()} | {
+        key: value for key, value in overrides.items() if key not in base}

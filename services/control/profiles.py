@@ -1,4 +1,5 @@
-"""Vehicle profiles for the control laws: physical parameters, actuator model, limits and gains.
+"""Vehicle profiles for the control laws: the vehicle's description (coopdrive/vehicle, the one the simulator and
+geolocation read too), the limits control keeps to and the laws' gains.
 
 Every field carries its unit. Gains named after the equation they belong to; the defaults of the
 reference laws are the published ones (Ploeg kp = 0.2, kd = 0.7; Rajamani lambda = 0.1; DRIVERTIVE
@@ -9,9 +10,8 @@ from __future__ import annotations
 
 from pydantic import BaseModel, ConfigDict, Field
 
-STANDARD_GRAVITY_MPS2 = 9.81
-AIR_DENSITY_KGPM3 = 1.225
-
+from coopdrive.vehicle import PASSENGER_CAR, SPACING, VehicleDescription, VehicleKind
+from coopdrive.vehicle import TRUCK as TRUCK_VEHICLE
 
 class _Model(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
@@ -81,12 +81,13 @@ class DcaccGains(_Model):
 
 
 class SpacingDefaults(_Model):
-    standstill_m: float = Field(6.0, ge=0)  # Heudiasyc r
-    time_gap_s: float = Field(0.7, gt=0)
+    """The planner requests the gap (coopdrive/vehicle/spacing.py's policy, where it gives none); these are how
+    this vehicle's control degrades it."""
+
     # V2V older than this is lost (GCDC: a station not heard for 400 ms is lost).
     v2v_timeout_s: float = Field(0.4, gt=0)
-    dcacc_time_gap_s: float = Field(1.0, gt=0)
-    acc_time_gap_s: float = Field(1.5, gt=0)
+    dcacc_time_gap_s: float = Field(SPACING.dcacc_time_gap_s, gt=0)
+    acc_time_gap_s: float = Field(SPACING.acc_time_gap_s, gt=0)
     # Added to the planner's time gap on fallback, then floored by the values above.
     fallback_time_gap_raise_s: float = Field(0.3, ge=0)
     time_gap_rate_sps: float = Field(0.2, gt=0)
@@ -122,18 +123,19 @@ class LateralGains(_Model):
     lane_change_duration_s: float = Field(6.0, gt=0)
 
 
-class VehicleProfile(_Model):
-    name: str
-    mass_kg: float = Field(gt=0)
-    wheelbase_m: float = Field(gt=0)
-    drag_area_m2: float = Field(gt=0, description="c_d * frontal area")
-    rolling_coefficient: float = Field(ge=0)
-    # Driveline: first-order lag tau and dead time (iCLCM responseTimeConstant / responseTimeDelay).
-    engine_lag_s: float = Field(gt=0)
-    actuation_delay_s: float = Field(ge=0)
-    max_steering_angle_rad: float = Field(gt=0)
-    max_steering_rate_radps: float = Field(gt=0)
+class SteeringLimits(_Model):
+    """What control commands at most: inside the steering's mechanical limits (the vehicle's description)."""
+
+    max_angle_rad: float = Field(gt=0)
+    max_rate_radps: float = Field(gt=0)
     max_lateral_accel_mps2: float = Field(2.0, gt=0)
+
+
+class VehicleProfile(_Model):
+    # "car" or "truck": what `coopdrive analyze string --profile` names.
+    name: str
+    vehicle: VehicleDescription
+    steering: SteeringLimits
     cacc: CaccGains = CaccGains()
     ploeg: PloegGains = PloegGains()
     acc: AccGains = AccGains()
@@ -145,44 +147,47 @@ class VehicleProfile(_Model):
     limits: LimitGains = LimitGains()
     lateral: LateralGains = LateralGains()
 
+    @property
+    def wheelbase_m(self) -> float:
+        return self.vehicle.wheelbase_m
+
+    @property
+    def engine_lag_s(self) -> float:
+        """The driveline's first-order lag (iCLCM responseTimeConstant), which the laws compensate."""
+        return self.vehicle.response_time_constant_s
+
+    @property
+    def actuation_delay_s(self) -> float:
+        """The driveline's dead time (iCLCM responseTimeDelay)."""
+        return self.vehicle.response_dead_time_s
+
     def resistance_accel_mps2(self, speed_mps: float) -> float:
-        """Deceleration from rolling and aerodynamic resistance (Heudiasyc eq. 2), m/s2, >= 0 forwards."""
-        aero_n = 0.5 * AIR_DENSITY_KGPM3 * self.drag_area_m2 * speed_mps * abs(speed_mps)
-        rolling_n = self.rolling_coefficient * self.mass_kg * STANDARD_GRAVITY_MPS2 if speed_mps > 0 else 0.0
-        return (aero_n + rolling_n) / self.mass_kg
+        return self.vehicle.resistance_accel_mps2(speed_mps)
+
+    def with_driveline(self, lag_s: float | None = None, dead_time_s: float | None = None) -> VehicleProfile:
+        """This profile on a vehicle whose driveline lags lag_s with dead_time_s (None: as described)."""
+        update = {"response_time_constant_s": lag_s, "response_dead_time_s": dead_time_s}
+        vehicle = self.vehicle.model_copy(update={k: v for k, v in update.items() if v is not None})
+        return self.model_copy(update={"vehicle": vehicle})
 
 
-CAR = VehicleProfile(
-    name="car",
-    mass_kg=1500.0,
-    wheelbase_m=2.7,
-    drag_area_m2=0.7,
-    rolling_coefficient=0.012,
-    engine_lag_s=0.3,
-    actuation_delay_s=0.05,
-    max_steering_angle_rad=0.5,
-    max_steering_rate_radps=0.4,
-)
+CAR = VehicleProfile(name="car", vehicle=PASSENGER_CAR, steering=SteeringLimits(max_angle_rad=0.5, max_rate_radps=0.4))
 
 TRUCK = VehicleProfile(
     name="truck",
-    mass_kg=18000.0,
-    wheelbase_m=4.5,
-    drag_area_m2=5.5,
-    rolling_coefficient=0.007,
-    engine_lag_s=0.5,
-    actuation_delay_s=0.1,
-    max_steering_angle_rad=0.6,
-    max_steering_rate_radps=0.25,
-    spacing=SpacingDefaults(time_gap_s=1.0, dcacc_time_gap_s=1.3, acc_time_gap_s=2.0),
+    vehicle=TRUCK_VEHICLE,
+    steering=SteeringLimits(max_angle_rad=0.6, max_rate_radps=0.25),
+    spacing=SpacingDefaults(dcacc_time_gap_s=1.3, acc_time_gap_s=2.0),
     limits=LimitGains(max_accel_mps2=1.0, max_decel_mps2=2.0, max_jerk_mps3=1.5, emergency_decel_mps2=4.5),
 )
 
-PROFILES: dict[str, VehicleProfile] = {p.name: p for p in (CAR, TRUCK)}
+PROFILES: dict[VehicleKind, VehicleProfile] = {profile.vehicle.kind: profile for profile in (CAR, TRUCK)}
 
 
 def profile_by_name(name: str) -> VehicleProfile:
-    try:
-        return PROFILES[name]
-    except KeyError:
-        raise ValueError(f"unknown vehicle profile {name!r}; known: {sorted(PROFILES)}") from None
+    """By its name ("car", "truck") or its vehicle's kind ("passenger_car")."""
+    for profile in PROFILES.values():
+        if name in (profile.name, profile.vehicle.kind.value):
+            return profile
+    known = sorted(p.name for p in PROFILES.values())
+    raise ValueError(f"unknown vehicle profile {name!r}; known: {known}") from None

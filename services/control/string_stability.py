@@ -24,6 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
+from coopdrive.vehicle import SPACING
+
 from .profiles import VehicleProfile
 
 DEFAULT_COMM_DELAY_S = 0.1
@@ -138,7 +140,8 @@ def analyze(
     actuation_delay_s: float | None = None,
     omega_radps: np.ndarray = DEFAULT_OMEGA_RADPS,
 ) -> StringStabilityResult:
-    h = profile.spacing.time_gap_s if time_gap_s is None else time_gap_s
+    # By default the gap the runs drive: the CACC gap the planner requests.
+    h = SPACING.cacc_time_gap_s if time_gap_s is None else time_gap_s
     hv = speed_transfer(law, profile, h, omega_radps, comm_delay_s, engine_lag_s, actuation_delay_s)
     s = 1j * omega_radps
     # E = X_p - (1 + h s) X  =>  E / V_p = (1 - (1 + h s) H) / s

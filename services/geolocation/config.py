@@ -1,10 +1,18 @@
-"""Configuration of the geolocation logic (units in the field names)."""
+"""Configuration of the geolocation service (GeolocationConfig) and of its logic (units in the field names)."""
 
 from __future__ import annotations
 
-from pydantic import BaseModel, ConfigDict, Field
+import enum
 
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from coopdrive.can.adapter import VehicleCanPath
+from coopdrive.can.vehicle_port import VehicleCanPortConfig
+from coopdrive.geodesy import GeodeticOrigin
+from coopdrive.runtime.service import ServiceConfig
 from coopdrive.services.geolocation.motion_models import MotionModelKind
+from coopdrive.services.geolocation.nmea_decoder import SentenceType
+from coopdrive.vehicle import VehicleDescription, VehicleKind
 
 
 class GeolocatorConfig(BaseModel):
@@ -13,9 +21,10 @@ class GeolocatorConfig(BaseModel):
     vehicle_id: str = ""
     map_name: str = "a270"
     motion_model: MotionModelKind = MotionModelKind.CTRA
-    # Vehicle geometry: rear-wheel track for eq. 8, wheelbase for the bicycle model, antenna from the rear axle.
-    track_width_m: float = Field(1.6, gt=0.0)
-    wheelbase_m: float = Field(2.7, gt=0.0)
+    # Vehicle geometry: rear-wheel track for eq. 8, wheelbase for the bicycle model (None: the vehicle's
+    # description, coopdrive/vehicle; set for a car measured by hand), antenna from the rear axle.
+    track_width_m: float | None = Field(None, gt=0.0)
+    wheelbase_m: float | None = Field(None, gt=0.0)
     antenna_x_m: float = 1.0
     antenna_y_m: float = 0.0
     # Sensor noise (one sigma).
@@ -74,3 +83,80 @@ class GeolocatorConfig(BaseModel):
     gnss_heading_std_deg: float = Field(0.5, gt=0.0)
     # Fixes farther than this from the local frame's origin are refused (a wrong origin, not a drive).
     max_origin_distance_m: float = Field(100_000.0, gt=0.0)
+
+    def of_vehicle(self, vehicle: VehicleDescription) -> GeolocatorConfig:
+        """With the geometry this config leaves open taken from the vehicle's description."""
+        return self.model_copy(update={"track_width_m": self.track_width_m or vehicle.track_width_m,
+                                       "wheelbase_m": self.wheelbase_m or vehicle.wheelbase_m})
+
+
+class GnssInput(enum.Enum):
+    """Where the GNSS data come from."""
+
+    # The port when gnss_port is set, else whichever of gnss/nmea (an imported log, another driver) and
+    # gnss/fix (the simulator) the bus carries.
+    AUTO = "auto"
+    # gnss_port (under replay, which opens no hardware: the gnss/nmea chunks the port delivered when recorded).
+    PORT = "port"
+    # NMEA bytes on the gnss/nmea topic, decoded here.
+    NMEA_TOPIC = "nmea_topic"
+    # Decoded fixes on the gnss/fix topic.
+    FIX_TOPIC = "fix_topic"
+
+
+class SerialSync(enum.Enum):
+    """How the GNSS port's bytes enter the service's step order."""
+
+    # Vehicle (wall clock): a reader thread hands chunks on as they arrive.
+    FREE = "free"
+    # Simulated clock: read up to each gnss/serial_mark from the simulator, so fixes land at the same step every run.
+    MARKS = "marks"
+
+
+class GeolocationConfig(ServiceConfig):
+    # The vehicle whose geometry the motion model and the odometry take (where geolocator leaves it open).
+    vehicle: VehicleKind = VehicleKind.PASSENGER_CAR
+    geolocator: GeolocatorConfig = GeolocatorConfig()
+    # Lane map (a shipped name such as "a270" or a GeoJSON path) for lane matching; its origin is the local frame.
+    # None: no lane matching (lane.matched stays false), e.g. a road no map holds.
+    map_name: str | None = None
+    # The local frame's origin, only when there is no map; None: the first fix's position (logged).
+    origin: GeodeticOrigin | None = None
+    output_rate_hz: float = Field(50.0, gt=0.0)
+    use_imu: bool = True
+    gnss_input: GnssInput = GnssInput.AUTO
+    # The GNSS receiver's NMEA port: a device or a pyserial URL (socket://host:port, rfc2217://host:port).
+    # Every chunk read from it is published on gnss/nmea, stamped on arrival, and decoded from that stream.
+    gnss_port: str | None = None
+    gnss_baudrate: int = Field(115200, gt=0)
+    serial_sync: SerialSync = SerialSync.FREE
+    gnss_open_timeout_s: float = Field(10.0, gt=0.0)  # the simulator may create the port after we start
+    serial_mark_timeout_s: float = Field(2.0, gt=0.0)
+    # A fix is emitted once all these sentences of an epoch arrived (else when the next epoch starts).
+    gnss_sentences: frozenset[SentenceType] = frozenset(
+        {SentenceType.GGA, SentenceType.RMC, SentenceType.GST, SentenceType.VTG})
+    # How long after its epoch the receiver puts a fix on the wire (its datasheet's output latency). A fix is
+    # fused at its arrival minus this: left at 0, the estimate trails the car by speed times the latency.
+    gnss_receiver_latency_s: float = Field(0.0, ge=0.0)
+    # An epoch with a position still lacking some sentence this long after its first one is emitted anyway.
+    gnss_epoch_wait_s: float = Field(0.5, gt=0.0)
+    # The vehicle's CAN bus (python-can) with the VEH_ odometry frames; None: the frames come from the
+    # can/vehicle topic (simulation, replay).
+    can_port: VehicleCanPortConfig | None = None
+    # The car's vehicle CAN adapter (coopdrive/can/adapter.py): where its bus carries wheel speeds, yaw rate,
+    # steering; None: the simulator's car.
+    vehicle_can: VehicleCanPath = None
+    # How long after measuring them the car puts wheel speeds and yaw rate on the bus, and the IMU its samples.
+    can_latency_s: float = Field(0.005, ge=0.0)
+    imu_latency_s: float = Field(0.005, ge=0.0)
+
+    @model_validator(mode="after")
+    def _one_source_of_the_frame(self) -> GeolocationConfig:
+        # Compared by value, not by which keys were given, so a recorded full config loads again.
+        if self.map_name is not None and self.origin is not None:
+            raise ValueError("origin is only used without a map: the map brings its own origin")
+        if self.gnss_input is GnssInput.PORT and self.gnss_port is None:
+            raise ValueError("gnss_input: port needs gnss_port")
+        if self.geolocator.map_name != GeolocatorConfig().map_name:
+            raise ValueError("geolocator.map_name is not read by the service: set map_name instead")
+        return self

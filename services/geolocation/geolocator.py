@@ -21,6 +21,7 @@ from coopdrive.roadmap import RoadMap
 from coopdrive.services.geolocation.bookkeeping import Bookkeeping, Fix, Imu, replaced
 from coopdrive.services.geolocation.config import GeolocatorConfig
 from coopdrive.services.geolocation.ego_output import EgoOutput, position_std_m_of
+from coopdrive.vehicle import PASSENGER_CAR, VehicleDescription
 from coopdrive.services.geolocation.ekf import GeolocationEkf, UpdateKind, gnss_position_std_m
 from coopdrive.services.geolocation.gated_fixes import GatedFixes
 from coopdrive.services.geolocation.initial_heading import UNKNOWN_HEADING_STD_RAD, enu_heading_rad, initial_heading
@@ -61,9 +62,11 @@ class InputEvent(enum.Enum):
 
 class Geolocator:
     def __init__(self, config: GeolocatorConfig, road_map: RoadMap | None = None,
-                 origin: tuple[float, float, float] | None = None, first_fix_origin: bool = False) -> None:
-        """The local frame's origin: the road map's, else origin, else (first_fix_origin) the first fix's."""
-        self.config = config
+                 origin: tuple[float, float, float] | None = None, first_fix_origin: bool = False,
+                 vehicle: VehicleDescription = PASSENGER_CAR) -> None:
+        """The local frame's origin: the road map's, else origin, else (first_fix_origin) the first fix's. vehicle:
+        the geometry the config leaves open."""
+        config = self.config = config.of_vehicle(vehicle)
         if road_map is None and origin is None and not first_fix_origin:
             road_map = RoadMap.load(config.map_name)
         self.road_map = road_map

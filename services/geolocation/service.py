@@ -2,93 +2,20 @@
 
 from __future__ import annotations
 
-import enum
-
-from pydantic import Field, model_validator
-
-from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.bus import Envelope
-from coopdrive.can.adapter import VehicleCanPath, load_adapter
+from coopdrive.can.adapter import load_adapter
 from coopdrive.can.bus_input import VehicleBusInput
 from coopdrive.can.bus_reader import VehicleBusReader
-from coopdrive.can.vehicle_port import VehicleCanPortConfig
 from coopdrive.roadmap import RoadMap
-from coopdrive.runtime.service import Service, ServiceConfig
-from coopdrive.services.geolocation.config import GeolocatorConfig
+from coopdrive.runtime.service import Service
+from coopdrive.services.geolocation.config import GeolocationConfig, GnssInput, SerialSync
 from coopdrive.services.geolocation.geolocator import Geolocator
 from coopdrive.services.geolocation.gnss_serial import GnssSerial
-from coopdrive.gnss.nmea_decoder import NmeaDecoder, SentenceType
+from coopdrive.gnss.nmea_decoder import NmeaDecoder
 from coopdrive.v1 import gnss_pb2
+from coopdrive.vehicle import vehicle_of
 
-
-class GnssInput(enum.Enum):
-    """Where the GNSS data come from."""
-
-    # The port when gnss_port is set, else whichever of gnss/nmea (an imported log, another driver) and
-    # gnss/fix (the simulator) the bus carries.
-    AUTO = "auto"
-    # gnss_port (under replay, which opens no hardware: the gnss/nmea chunks the port delivered when recorded).
-    PORT = "port"
-    # NMEA bytes on the gnss/nmea topic, decoded here.
-    NMEA_TOPIC = "nmea_topic"
-    # Decoded fixes on the gnss/fix topic.
-    FIX_TOPIC = "fix_topic"
-
-
-class SerialSync(enum.Enum):
-    """How the GNSS port's bytes enter the service's step order."""
-
-    # Vehicle (wall clock): a reader thread hands chunks on as they arrive.
-    FREE = "free"
-    # Simulated clock: read up to each gnss/serial_mark from the simulator, so fixes land at the same step every run.
-    MARKS = "marks"
-
-
-class GeolocationConfig(ServiceConfig):
-    geolocator: GeolocatorConfig = GeolocatorConfig()
-    # Lane map (a shipped name such as "a270" or a GeoJSON path) for lane matching; its origin is the local frame.
-    # None: no lane matching (lane.matched stays false), e.g. a road no map holds.
-    map_name: str | None = None
-    # The local frame's origin, only when there is no map; None: the first fix's position (logged).
-    origin: GeodeticOrigin | None = None
-    output_rate_hz: float = Field(50.0, gt=0.0)
-    use_imu: bool = True
-    gnss_input: GnssInput = GnssInput.AUTO
-    # The GNSS receiver's NMEA port: a device or a pyserial URL (socket://host:port, rfc2217://host:port).
-    # Every chunk read from it is published on gnss/nmea, stamped on arrival, and decoded from that stream.
-    gnss_port: str | None = None
-    gnss_baudrate: int = Field(115200, gt=0)
-    serial_sync: SerialSync = SerialSync.FREE
-    gnss_open_timeout_s: float = Field(10.0, gt=0.0)  # the simulator may create the port after we start
-    serial_mark_timeout_s: float = Field(2.0, gt=0.0)
-    # A fix is emitted once all these sentences of an epoch arrived (else when the next epoch starts).
-    gnss_sentences: frozenset[SentenceType] = frozenset(
-        {SentenceType.GGA, SentenceType.RMC, SentenceType.GST, SentenceType.VTG})
-    # How long after its epoch the receiver puts a fix on the wire (its datasheet's output latency). A fix is
-    # fused at its arrival minus this: left at 0, the estimate trails the car by speed times the latency.
-    gnss_receiver_latency_s: float = Field(0.0, ge=0.0)
-    # An epoch with a position still lacking some sentence this long after its first one is emitted anyway.
-    gnss_epoch_wait_s: float = Field(0.5, gt=0.0)
-    # The vehicle's CAN bus (python-can) with the VEH_ odometry frames; None: the frames come from the
-    # can/vehicle topic (simulation, replay).
-    can_port: VehicleCanPortConfig | None = None
-    # The car's vehicle CAN adapter (coopdrive/can/adapter.py): where its bus carries wheel speeds, yaw rate,
-    # steering; None: the simulator's car.
-    vehicle_can: VehicleCanPath = None
-    # How long after measuring them the car puts wheel speeds and yaw rate on the bus, and the IMU its samples.
-    can_latency_s: float = Field(0.005, ge=0.0)
-    imu_latency_s: float = Field(0.005, ge=0.0)
-
-    @model_validator(mode="after")
-    def _one_source_of_the_frame(self) -> GeolocationConfig:
-        # Compared by value, not by which keys were given, so a recorded full config loads again.
-        if self.map_name is not None and self.origin is not None:
-            raise ValueError("origin is only used without a map: the map brings its own origin")
-        if self.gnss_input is GnssInput.PORT and self.gnss_port is None:
-            raise ValueError("gnss_input: port needs gnss_port")
-        if self.geolocator.map_name != GeolocatorConfig().map_name:
-            raise ValueError("geolocator.map_name is not read by the service: set map_name instead")
-        return self
+__all__ = ["GeolocationConfig", "GeolocationService", "GnssInput", "SerialSync", "gnss_sources"]
 
 
 def gnss_sources(config: GeolocationConfig, opens_hardware: bool) -> set[GnssInput]:
@@ -112,12 +39,14 @@ class GeolocationService(Service):
         self.vehicle_bus: VehicleBusInput | None = None
         self._far_fix_logged = False
         logic_config = c.geolocator.model_copy(update={"vehicle_id": self.ctx.vehicle_id})
+        vehicle = vehicle_of(c.vehicle)
         if c.map_name is not None:
-            self.geolocator = Geolocator(logic_config, road_map=RoadMap.load(c.map_name))
+            self.geolocator = Geolocator(logic_config, road_map=RoadMap.load(c.map_name), vehicle=vehicle)
         elif c.origin is not None:
-            self.geolocator = Geolocator(logic_config, origin=(c.origin.lat_deg, c.origin.lon_deg, c.origin.alt_m))
+            self.geolocator = Geolocator(logic_config, origin=(c.origin.lat_deg, c.origin.lon_deg, c.origin.alt_m),
+                                         vehicle=vehicle)
         else:
-            self.geolocator = Geolocator(logic_config, first_fix_origin=True)
+            self.geolocator = Geolocator(logic_config, first_fix_origin=True, vehicle=vehicle)
         self.decoder = NmeaDecoder(self.on_decoded_fix, expected_sentences=c.gnss_sentences,
                                    receiver_latency_s=c.gnss_receiver_latency_s,
                                    vehicle_id=self.ctx.vehicle_id, sender=self.name)

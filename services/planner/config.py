@@ -1,4 +1,4 @@
-"""Configuration of the planner's scenario logic (the integrator's service.py reads it)."""
+"""Configuration of the planner service (PlannerConfig) and of its scenario logic."""
 
 from __future__ import annotations
 
@@ -7,6 +7,9 @@ import enum
 from pydantic import BaseModel, ConfigDict, Field
 
 from coopdrive.messages.unknowns import DEFAULT_LENGTH_M
+from coopdrive.runtime.service import ServiceConfig
+from coopdrive.v1 import planner_pb2
+from coopdrive.vehicle import SPACING
 
 KPH = 1.0 / 3.6
 
@@ -25,8 +28,8 @@ class PlatoonConfig(BaseModel):
     platoon_a_speed_mps: float = Field(80.0 * KPH, gt=0)
     platoon_b_speed_mps: float = Field(60.0 * KPH, gt=0)
     # With V2V (CACC) and without it (ACC fallback, larger gap, Ploeg et al. 2015 degradation).
-    cacc_time_gap_s: float = Field(0.5, gt=0)
-    acc_time_gap_s: float = Field(1.5, gt=0)
+    cacc_time_gap_s: float = Field(SPACING.cacc_time_gap_s, gt=0)
+    acc_time_gap_s: float = Field(SPACING.acc_time_gap_s, gt=0)
     leave_time_gap_s: float = Field(2.5, gt=0)
     join_gap_tolerance_m: float = Field(3.0, gt=0)
     # A member may go this much faster than its own cruise speed to keep up with its partner: a follower
@@ -128,8 +131,27 @@ class PlannerLogicConfig(BaseModel):
     partner_silent_s: float = Field(0.4, gt=0)
     cruise_speed_mps: float = Field(25.0, gt=0)
     # (eq. 4) Heudiasyc spacing r + h v, standstill r.
-    standstill_m: float = Field(6.0, ge=0)
+    standstill_m: float = Field(SPACING.standstill_m, ge=0)
     platoon: PlatoonConfig = Field(default_factory=PlatoonConfig)
     merge: MergeConfig = Field(default_factory=MergeConfig)
     intersection: IntersectionConfig = Field(default_factory=IntersectionConfig)
     emergency: EmergencyConfig = Field(default_factory=EmergencyConfig)
+
+
+class PlannerConfig(ServiceConfig):
+    rate_hz: float = Field(10.0, gt=0)
+    # Our ITS station id (as the v2x service sends it).
+    station_id: int = Field(1, gt=0)
+    # A coopdrive.v1.Scenario name, e.g. SCENARIO_FOLLOW, SCENARIO_MERGE.
+    scenario: str = "SCENARIO_FOLLOW"
+    # 1 platoon A, 2 platoon B; 0 when not in a platoon.
+    platoon_id: int = 0
+    partner_station_id: int = 0
+    logic: PlannerLogicConfig = Field(default_factory=PlannerLogicConfig)
+
+    def scenario_value(self) -> int:
+        try:
+            return planner_pb2.Scenario.Value(self.scenario)
+        except ValueError:
+            names = ", ".join(planner_pb2.Scenario.keys())
+            raise ValueError(f"scenario {self.scenario!r} is not one of {names}") from None

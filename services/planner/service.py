@@ -4,35 +4,14 @@ from __future__ import annotations
 
 import math
 
-from pydantic import Field
-
 from coopdrive.bus import Envelope
-from coopdrive.runtime.service import Service, ServiceConfig
-from coopdrive.services.planner.config import PlannerLogicConfig
+from coopdrive.runtime.service import Service
+from coopdrive.services.planner.config import PlannerConfig
 from coopdrive.services.planner.inputs import PlannerInputs, Received
 from coopdrive.services.planner.planner import Planner, PlannerInputError
 from coopdrive.v1 import planner_pb2
 
 V2X_TOPICS = {"v2x/iclcm": "iclcms", "v2x/cam": "cams", "v2x/denm": "denms"}
-
-
-class PlannerConfig(ServiceConfig):
-    rate_hz: float = Field(10.0, gt=0)
-    # Our ITS station id (as the v2x service sends it).
-    station_id: int = Field(1, gt=0)
-    # A coopdrive.v1.Scenario name, e.g. SCENARIO_FOLLOW, SCENARIO_MERGE.
-    scenario: str = "SCENARIO_FOLLOW"
-    # 1 platoon A, 2 platoon B; 0 when not in a platoon.
-    platoon_id: int = 0
-    partner_station_id: int = 0
-    logic: PlannerLogicConfig = Field(default_factory=PlannerLogicConfig)
-
-    def scenario_value(self) -> int:
-        try:
-            return planner_pb2.Scenario.Value(self.scenario)
-        except ValueError:
-            names = ", ".join(planner_pb2.Scenario.keys())
-            raise ValueError(f"scenario {self.scenario!r} is not one of {names}") from None
 
 
 class PlannerService(Service):

@@ -14,6 +14,10 @@ import math
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from coopdrive.can.adapter import VehicleCanPath
+from coopdrive.can.vehicle_port import VehicleCanPortConfig
+from coopdrive.geodesy import GeodeticOrigin
+from coopdrive.runtime.service import ServiceConfig
 from coopdrive.v1 import header_pb2
 
 
@@ -257,3 +261,20 @@ class SceneFusionConfig(BaseModel):
             return table[source]
         except KeyError:
             raise ValueError(f"no confidence settings for sensor source {source}") from None
+
+
+class SceneConfig(ServiceConfig):
+    output_rate_hz: float = 25.0
+    # Lanes come from this map when set; without one, lanes are bands along the ego heading.
+    map_name: str | None = None
+    # The local ENU frame's origin (used for V2V positions when no map is set).
+    origin: GeodeticOrigin = GeodeticOrigin()
+    # A station's iCLCM acceleration request older than this is not put on its object.
+    intended_accel_max_age_s: float = Field(default=0.4, gt=0)
+    fusion: SceneFusionConfig = Field(default_factory=SceneFusionConfig)
+    # The CAN bus the radar's object lists arrive on (python-can); None: the can/vehicle topic (simulation).
+    can_port: VehicleCanPortConfig | None = None
+    # How long after measuring an object list the radar sends it (its cycle's processing time).
+    radar_latency_s: float = Field(default=0.05, ge=0)
+    # The car's vehicle CAN adapter (coopdrive/can/adapter.py); None: the simulator's car.
+    vehicle_can: VehicleCanPath = None

@@ -2,41 +2,19 @@
 
 from __future__ import annotations
 
-from pydantic import Field
-
-from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.bus import Envelope
-from coopdrive.can.adapter import VehicleCanPath
 from coopdrive.can.bus_input import VehicleBusInput
 from coopdrive.can.bus_reader import VehicleBusReader
-from coopdrive.can.vehicle_port import VehicleCanPortConfig
 from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.roadmap import RoadMap
-from coopdrive.runtime.service import Service, ServiceConfig
-from coopdrive.services.scene.config import SceneFusionConfig
+from coopdrive.runtime.service import Service
+from coopdrive.services.scene.config import SceneConfig
 from coopdrive.services.scene.fusion import SceneFusion
 from coopdrive.services.scene.intended_accel import IntendedAccelerations
 from coopdrive.services.scene.measurement import V2vObservation
 from coopdrive.services.scene.road_lanes import EgoRoadLanes
 
 SENSOR_TOPICS = {"lidar/scan": "on_lidar", "camera/frame": "on_camera", "sonar/ranges": "on_sonar"}
-
-
-class SceneConfig(ServiceConfig):
-    output_rate_hz: float = 25.0
-    # Lanes come from this map when set; without one, lanes are bands along the ego heading.
-    map_name: str | None = None
-    # The local ENU frame's origin (used for V2V positions when no map is set).
-    origin: GeodeticOrigin = GeodeticOrigin()
-    # A station's iCLCM acceleration request older than this is not put on its object.
-    intended_accel_max_age_s: float = Field(default=0.4, gt=0)
-    fusion: SceneFusionConfig = Field(default_factory=SceneFusionConfig)
-    # The CAN bus the radar's object lists arrive on (python-can); None: the can/vehicle topic (simulation).
-    can_port: VehicleCanPortConfig | None = None
-    # How long after measuring an object list the radar sends it (its cycle's processing time).
-    radar_latency_s: float = Field(default=0.05, ge=0)
-    # The car's vehicle CAN adapter (coopdrive/can/adapter.py); None: the simulator's car.
-    vehicle_can: VehicleCanPath = None
 
 
 class SceneService(Service):

@@ -7,7 +7,6 @@ from typing import Protocol, Sequence
 from coopdrive.services.sim.cam_noise import CamNoise
 from coopdrive.services.sim.fault_schedule import FaultSchedule
 from coopdrive.services.sim.participants import EmergencyVehicle, ScriptedVehicle
-from coopdrive.services.sim.profiles import PROFILES
 from coopdrive.services.sim.radio_channel import RadioChannel
 from coopdrive.services.sim.road_geometry import LaneGeometry
 from coopdrive.services.sim.roadside_unit import RoadsideUnit
@@ -73,7 +72,7 @@ def build_scenario(config: ScenarioConfig, road_map: RoadMapLike) -> ScenarioObj
         road_lanes = _road_lanes(road_map, vehicle)
         lanes[vehicle.vehicle_id] = road_lanes
         real = config.world is WorldProfile.REAL
-        profile = PROFILES[vehicle.profile] if real else ideal(PROFILES[vehicle.profile])
+        profile = vehicle.plant_profile() if real else ideal(vehicle.plant_profile())
         if vehicle.role is VehicleRole.STACK:
             lane = next(lane for lane in road_lanes if lane.lane_index == vehicle.lane)
             x_m, y_m, heading = lane.pose_at(vehicle.station_m, vehicle.lateral_offset_m)

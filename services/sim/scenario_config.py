@@ -12,11 +12,12 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 
 from coopdrive.services.sim.channel_config import RadioChannelConfig
 from coopdrive.services.sim.fault_config import Fault
-from coopdrive.services.sim.profiles import ProfileName
+from coopdrive.services.sim.profiles import PLANT_PERTURBATIONS, PlantPerturbation, VehicleProfile, plant_profile
 from coopdrive.services.sim.roadside_unit import RsuEvent
 from coopdrive.services.sim.sensor_config import SensorSuiteConfig
 from coopdrive.services.sim.speed_profiles import LaneChange, SpeedProfile
 from coopdrive.services.sim.world_profile import WorldProfile, ideal
+from coopdrive.vehicle import VehicleKind, vehicle_of
 
 GCDC_2016_FINAL = dt.datetime(2016, 5, 28, 10, 0, 0, tzinfo=dt.timezone.utc)
 # Keys that select a member of a tagged union; pydantic puts their value in error paths.
@@ -50,7 +51,10 @@ class VehicleConfig(_Strict):
     vehicle_id: str = Field(min_length=1)
     station_id: int = Field(ge=0, lt=2 ** 32)
     role: VehicleRole = VehicleRole.STACK
-    profile: ProfileName = ProfileName.PASSENGER_CAR
+    profile: VehicleKind = VehicleKind.PASSENGER_CAR
+    # Where the simulated vehicle differs from its description on purpose (None: the kind's documented
+    # perturbation, profiles.PLANT_PERTURBATIONS): a controller tested against its own model exactly proves little.
+    plant: PlantPerturbation | None = None
     # Road id in the map; empty means the map's first road.
     road: str = ""
     lane: int = Field(ge=0)
@@ -67,6 +71,10 @@ class VehicleConfig(_Strict):
     siren: SirenConfig | None = None
     # Overrides the scenario-wide sensor suite for this vehicle.
     sensors: SensorSuiteConfig | None = None
+
+    def plant_profile(self) -> VehicleProfile:
+        """The simulated vehicle: its description with its plant's perturbation."""
+        return plant_profile(vehicle_of(self.profile), self.plant or PLANT_PERTURBATIONS[self.profile])
 
 
 class RoadsideUnitConfig(_Strict):

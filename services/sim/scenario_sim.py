@@ -50,12 +50,12 @@ class ScenarioSim:
         # Lockstep already delays each command by up to this many steps: the actuator's own dead time is
         # shortened, by as many whole steps as every stack vehicle's dead times hold (pipelined_steps).
         self.pipelined_steps = max(0, min([already_delayed_steps] + [
-            math.floor(min(model.profile.accel_dead_time_s, model.profile.steer_dead_time_s) / config.step_s + 1e-9)
+            math.floor(min(model.profile.response_dead_time_s, model.profile.steer_dead_time_s) / config.step_s + 1e-9)
             for model in self.objects.models.values()]))
         delay_s = self.pipelined_steps * config.step_s
         for vehicle_id, model in self.objects.models.items():
             profile = model.profile.model_copy(update={
-                "accel_dead_time_s": max(0.0, model.profile.accel_dead_time_s - delay_s),
+                "response_dead_time_s": max(0.0, model.profile.response_dead_time_s - delay_s),
                 "steer_dead_time_s": max(0.0, model.profile.steer_dead_time_s - delay_s)})
             self.objects.models[vehicle_id] = VehicleModel(profile, config.step_s, model.state)
         self.commands = {vehicle_id: StackCommand() for vehicle_id in self.stack_ids}

@@ -67,11 +67,11 @@ class VehicleModel:
         self.state = state or VehicleState()
         # Road grade, positive uphill (the maps are flat: 0 unless a caller sets it).
         self.grade_rad = 0.0
-        self._accel_alpha = lag_alpha(self.substep_s, profile.accel_time_constant_s)
+        self._accel_alpha = lag_alpha(self.substep_s, profile.response_time_constant_s)
         self._steer_alpha = lag_alpha(self.substep_s, profile.steer_time_constant_s)
         # The actuator starts where it holds the initial acceleration against the driving resistance.
         self.actuator_accel_mps2 = self.state.accel_mps2 + self.resistance_mps2(self.state.speed_mps)
-        self._accel_delay = _DeadTime(round(profile.accel_dead_time_s / self.substep_s), self.actuator_accel_mps2)
+        self._accel_delay = _DeadTime(round(profile.response_dead_time_s / self.substep_s), self.actuator_accel_mps2)
         self._steer_delay = _DeadTime(round(profile.steer_dead_time_s / self.substep_s), self.state.steer_rad)
         self.accel_request_mps2 = self.actuator_accel_mps2
         self.steer_request_rad = self.state.steer_rad

@@ -4,6 +4,8 @@ import json
 import subprocess
 import sys
 
+from coopdrive.vehicle import SPACING
+
 
 def analyze(*args):
     return subprocess.run([sys.executable, "-m", "coopdrive.cli", "analyze", "string", *args],
@@ -16,7 +18,9 @@ def test_our_cacc_is_predicted_string_stable_and_damps_the_excitation_more_than_
     figures = json.loads(result.stdout)
     ours, ploeg = figures["predicted"]["ours_cacc"], figures["predicted"]["ploeg_cacc"]
     assert ours["max_speed_gain"] <= 1.0 + 1e-6
-    assert ours["gain_at_excitation"] < ploeg["gain_at_excitation"] < 1.0
+    # At the 0.5 s the runs drive (0.91 against 1.09; at 0.7 s both damped it: 0.80 against 0.97).
+    assert ours["gain_at_excitation"] < 1.0 < ploeg["gain_at_excitation"]
+    assert ours["time_gap_s"] == ploeg["time_gap_s"] == SPACING.cacc_time_gap_s
     assert (tmp_path / "string_stability.png").stat().st_size > 10_000
 
 

@@ -71,7 +71,7 @@ def run_platoon(
     noise = random.Random(1)
     n = len(FOLLOWER_LAGS_S)
     base = CAR if comfort_limits else wide_limits(CAR)
-    ctrls = [LongitudinalController(base.model_copy(update={"engine_lag_s": lag}), cacc_law=law) for lag in FOLLOWER_LAGS_S]
+    ctrls = [LongitudinalController(base.with_driveline(lag_s=lag), cacc_law=law) for lag in FOLLOWER_LAGS_S]
     amp = amplitude_kmh / 3.6
     w = 2 * math.pi * frequency_hz
     x = [0.0]

@@ -11,6 +11,7 @@ from coopdrive.services.control.inputs import (lane_for_steering, offset_to_targ
 from coopdrive.services.control.longitudinal import CaccLaw
 from coopdrive.services.control.profiles import CAR, TRUCK, profile_by_name
 from coopdrive.v1 import ego_pb2, header_pb2, planner_pb2, scene_pb2
+from coopdrive.vehicle import TRUCK as TRUCK_VEHICLE
 
 
 def scene_object(object_id, gap_m, speed_mps, accel_mps2=None, v2v=True, v2v_time_s=10.0):
@@ -87,10 +88,12 @@ def test_the_spacing_comes_from_the_request_when_present():
 
 
 def test_the_config_selects_profile_laws_and_top_level_overrides():
-    config = ControlConfig(profile="truck", cacc_law="ploeg", profile_overrides={"engine_lag_s": 0.4})
+    config = ControlConfig(vehicle="truck", cacc_law="ploeg",
+                           profile_overrides={"vehicle": {"response_time_constant_s": 0.4}})
     assert config.cacc_law is CaccLaw.PLOEG
     profile = config.vehicle_profile()
-    assert profile.engine_lag_s == 0.4 and profile.mass_kg == TRUCK.mass_kg
+    assert profile.engine_lag_s == 0.4 and profile.vehicle.mass_kg == TRUCK.vehicle.mass_kg
+    assert profile.wheelbase_m == TRUCK_VEHICLE.wheelbase_m
 
 
 def test_the_config_rejects_unknown_fields_and_profiles():

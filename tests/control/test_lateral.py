@@ -71,14 +71,14 @@ def test_a_jump_of_the_target_lane_starts_a_lane_change_and_steers_within_the_li
     cmd = ctrl.step(DT_S, 20.0, -3.5, 0.0)
     assert cmd.mode == control_pb2.LATERAL_MODE_LANE_CHANGE
     assert cmd.reference_offset_m == pytest.approx(-3.5, abs=1e-3)
-    assert abs(cmd.steering_angle_rad) <= CAR.max_steering_rate_radps * DT_S * 2 + 1e-12
+    assert abs(cmd.steering_angle_rad) <= CAR.steering.max_rate_radps * DT_S * 2 + 1e-12
     assert cmd.curvature_1pm == pytest.approx(math.tan(cmd.steering_angle_rad) / CAR.wheelbase_m)
 
 
 def test_the_steering_angle_is_capped_by_the_lateral_acceleration_limit():
-    ctrl = LateralController(CAR.model_copy(update={"max_steering_rate_radps": 100.0}))
+    ctrl = LateralController(CAR.model_copy(update={"steering": CAR.steering.model_copy(update={"max_rate_radps": 100.0})}))
     cmd = ctrl.step(0.0, 30.0, -1.0, -0.3)
-    assert abs(cmd.steering_angle_rad) == pytest.approx(math.atan(CAR.wheelbase_m * CAR.max_lateral_accel_mps2 / 900.0))
+    assert abs(cmd.steering_angle_rad) == pytest.approx(math.atan(CAR.wheelbase_m * CAR.steering.max_lateral_accel_mps2 / 900.0))
 
 
 def test_a_non_finite_lateral_offset_raises_an_error_naming_it():

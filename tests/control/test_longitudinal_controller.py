@@ -14,6 +14,7 @@ from coopdrive.services.control.longitudinal import (
 )
 from coopdrive.services.control.profiles import CAR
 from coopdrive.v1 import control_pb2, planner_pb2
+from coopdrive.vehicle import SPACING as SPACING_POLICY
 
 DT = 0.02
 M = control_pb2
@@ -177,13 +178,13 @@ def test_a_non_finite_ego_speed_raises_an_error_naming_it():
         LongitudinalController(CAR).step(0.0, math.inf, 0.0, [], 25.0)
 
 
-def test_the_planner_spacing_policy_message_is_accepted_and_a_zero_time_gap_means_the_profile_default():
+def test_the_planner_spacing_policy_message_is_accepted_and_a_zero_time_gap_means_the_policy_s_cacc_gap():
     ctrl = LongitudinalController(CAR)
     far = steady_target(gap_m=60.0)
     cmd = ctrl.step(0.0, 20.0, 0.0, [far], 30.0, planner_pb2.SpacingPolicy(standstill_m=5.0, time_gap_s=0.6))
     assert cmd.time_gap_s == pytest.approx(0.6)
     cmd = LongitudinalController(CAR).step(0.0, 20.0, 0.0, [far], 30.0, planner_pb2.SpacingPolicy(standstill_m=5.0))
-    assert cmd.time_gap_s == pytest.approx(CAR.spacing.time_gap_s)
+    assert cmd.time_gap_s == pytest.approx(SPACING_POLICY.cacc_time_gap_s)
 
 
 def test_the_command_fills_the_control_command_message():

@@ -11,7 +11,7 @@ LAGS_S = [0.1, 0.3, 0.5]
 
 
 def with_lag(lag_s):
-    return CAR.model_copy(update={"engine_lag_s": lag_s})
+    return CAR.with_driveline(lag_s=lag_s)
 
 
 @pytest.mark.parametrize("time_gap_s", TIME_GAPS_S)
@@ -35,7 +35,7 @@ def test_our_cacc_damps_at_least_as_well_as_ploeg_at_the_same_time_gap(time_gap_
 @pytest.mark.parametrize("lag_s", LAGS_S)
 def test_fed_the_predecessors_command_as_ploeg_is_ours_damps_no_worse(time_gap_s, lag_s, dead_time_s):
     # The fair comparison when the iCLCM request is fresh: both laws feed forward the same delayed command.
-    profile = with_lag(lag_s).model_copy(update={"actuation_delay_s": dead_time_s})
+    profile = with_lag(lag_s).with_driveline(dead_time_s=dead_time_s)
     ours = analyze(FollowingLaw.OURS_CACC_COMMANDED, profile, time_gap_s)
     ploeg = analyze(FollowingLaw.PLOEG_CACC_COMMANDED, profile, time_gap_s)
     assert ours.max_speed_gain <= ploeg.max_speed_gain + 1e-9
@@ -48,14 +48,14 @@ def without_request_lead(profile):
 
 def test_without_delays_our_cacc_fed_the_command_is_the_ideal_transfer_for_any_lag():
     omega = np.array([0.1, 1.0, 5.0])
-    profile = without_request_lead(with_lag(0.5).model_copy(update={"actuation_delay_s": 0.0}))
+    profile = without_request_lead(with_lag(0.5).with_driveline(dead_time_s=0.0))
     h = speed_transfer(FollowingLaw.OURS_CACC_COMMANDED, profile, 0.5, omega, comm_delay_s=0.0)
     assert np.abs(h) == pytest.approx(1 / np.sqrt(1 + (0.5 * omega) ** 2))
 
 
 def test_a_request_lead_as_long_as_the_communication_delay_nearly_restores_the_ideal_transfer():
     wave = np.array([2 * np.pi * 0.2])  # the string scenario's 0.2 Hz
-    profile = with_lag(0.5).model_copy(update={"actuation_delay_s": 0.0})
+    profile = with_lag(0.5).with_driveline(dead_time_s=0.0)
     ideal = 1 / np.sqrt(1 + (0.5 * wave) ** 2)
     led = np.abs(speed_transfer(FollowingLaw.OURS_CACC_COMMANDED, profile, 0.5, wave, comm_delay_s=0.1))
     late = np.abs(speed_transfer(FollowingLaw.OURS_CACC_COMMANDED, without_request_lead(profile), 0.5, wave,
@@ -66,21 +66,21 @@ def test_a_request_lead_as_long_as_the_communication_delay_nearly_restores_the_i
 
 def test_without_delays_ploeg_fed_the_command_is_the_ideal_transfer_for_any_lag():
     omega = np.array([0.1, 1.0, 5.0])
-    profile = with_lag(0.5).model_copy(update={"actuation_delay_s": 0.0})
+    profile = with_lag(0.5).with_driveline(dead_time_s=0.0)
     h = speed_transfer(FollowingLaw.PLOEG_CACC_COMMANDED, profile, 0.5, omega, comm_delay_s=0.0)
     assert np.abs(h) == pytest.approx(1 / np.sqrt(1 + (0.5 * omega) ** 2))
 
 
 def test_without_delays_our_cacc_is_exactly_the_ideal_time_gap_transfer():
     omega = np.array([0.1, 1.0, 2 * np.pi * 0.2, 5.0])
-    profile = with_lag(0.4).model_copy(update={"actuation_delay_s": 0.0})
+    profile = with_lag(0.4).with_driveline(dead_time_s=0.0)
     h = speed_transfer(FollowingLaw.OURS_CACC, profile, 0.5, omega, comm_delay_s=0.0)
     assert np.abs(h) == pytest.approx(1 / np.sqrt(1 + (0.5 * omega) ** 2))
 
 
 def test_ploeg_fed_its_predecessors_command_without_lag_is_the_ideal_transfer_too():
     omega = np.array([0.1, 1.0, 5.0])
-    profile = with_lag(1e-9).model_copy(update={"actuation_delay_s": 0.0})
+    profile = with_lag(1e-9).with_driveline(dead_time_s=0.0)
     h = speed_transfer(FollowingLaw.PLOEG_CACC, profile, 0.5, omega, comm_delay_s=0.0)
     assert np.abs(h) == pytest.approx(1 / np.sqrt(1 + (0.5 * omega) ** 2), rel=1e-6)
 

@@ -9,9 +9,11 @@ import numpy as np
 import pymap3d
 
 from coopdrive.v1 import gnss_pb2, vehicle_pb2
+from coopdrive.vehicle import PASSENGER_CAR
 
 ORIGIN = (51.4715, 5.6010, 20.0)
-TRACK_WIDTH_M = 1.6
+# The car's, as the geolocator takes it where its config leaves the geometry open.
+TRACK_WIDTH_M = PASSENGER_CAR.track_width_m
 ODOMETRY_DT_S = 0.01
 GNSS_EVERY = 5  # odometry steps per GNSS fix: 20 Hz
 

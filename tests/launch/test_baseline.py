@@ -45,12 +45,12 @@ def result(string_gain: float) -> sim_pb2.RunResult:
 
 
 def test_the_baseline_changes_every_stacks_cacc_law_and_nothing_else(tmp_path):
-    options = RunOptions(scenario="string", stacks=2, service_overrides={"control": {"profile": "car"}})
+    options = RunOptions(scenario="string", stacks=2, service_overrides={"control": {"vehicle": "passenger_car"}})
     specs = build_specs(with_cacc_law(options, CaccLaw.PLOEG), tmp_path)
     controls = [spec.config for spec in specs if spec.service == "control"]
     assert len(controls) == 2
-    assert all(c["cacc_law"] == "ploeg" and c["profile"] == "car" for c in controls)
-    assert options.service_overrides == {"control": {"profile": "car"}}  # the caller's options are untouched
+    assert all(c["cacc_law"] == "ploeg" and c["vehicle"] == "passenger_car" for c in controls)
+    assert options.service_overrides == {"control": {"vehicle": "passenger_car"}}  # the caller's options are untouched
 
 
 def test_ours_passes_when_it_damps_at_least_as_well_as_the_baseline():

@@ -4,6 +4,7 @@ refused before anything runs, and the summary files with each run's folder."""
 import csv
 import io
 import json
+import pickle
 import re
 import subprocess
 import sys
@@ -15,13 +16,16 @@ from rich.console import Console
 
 from coopdrive.cli import sweep_exit_status
 from coopdrive.exit_status import EXIT_FAILED, EXIT_INCOMPLETE, EXIT_OK
-from coopdrive.launch.batch import (BatchOptions, BatchSummary, RunOutcome, SweepEnd, check_runs, parse_seeds,
-                                    run_batch, scenario_names, sweep_jobs)
+from coopdrive.launch.batch import BatchOptions, BatchSummary, RunOutcome, SweepEnd, parse_seeds, scenario_names
 from coopdrive.launch.process_layout import ProcessLayout
+from coopdrive.launch.run_spec import RunSpec
+from coopdrive.launch.sweep import check_runs, run_batch, sweep_jobs
 from coopdrive.launch.sweep_output import retried_lines, summary_table, write_run, write_summary
 from coopdrive.launch.sweep_task import run_one
 from coopdrive.services.control.longitudinal import CaccLaw
 from coopdrive.services.sim.scenario_config import ScenarioError
+from coopdrive.services.sim.world_profile import WorldProfile
+from coopdrive.v2x.security.profile import SecurityMode
 from coopdrive.v1 import sim_pb2
 
 pytestmark = pytest.mark.whole_run
@@ -48,42 +52,45 @@ def test_all_means_the_built_in_follow_and_every_packaged_scenario():
 
 
 def test_a_sweep_runs_every_scenario_fault_variant_and_seed_once():
-    jobs = sweep_jobs(BatchOptions(scenarios=["follow", "merge"], seeds=[1, 2, 1], duration_s=3.0,
+    jobs = sweep_jobs(BatchOptions(scenarios=["follow", "merge"], seeds=[1, 2, 1], run=RunSpec(duration_s=3.0),
                                    fault_variants={"none": (), "lossy": LOSSY}))
     assert [job.label for job in jobs] == [
         "follow/none/seed-1", "follow/none/seed-2", "follow/lossy/seed-1", "follow/lossy/seed-2",
         "merge/none/seed-1", "merge/none/seed-2", "merge/lossy/seed-1", "merge/lossy/seed-2"]
-    assert jobs[2].faults == LOSSY and jobs[0].faults == () and jobs[0].duration_s == 3.0
+    assert jobs[2].run.extra_faults == LOSSY and jobs[0].run.extra_faults == () and jobs[0].run.duration_s == 3.0
     assert not jobs[0].report  # a report only where there is an --out to write it to
     with_out = dict(scenarios=["follow"], seeds=[1], out_dir="out")
     assert sweep_jobs(BatchOptions(**with_out))[0].report
     assert not sweep_jobs(BatchOptions(**with_out, reports=False))[0].report
 
 
-def test_each_run_of_a_sweep_gets_the_process_layout_and_the_cooperative_law_the_sweep_was_given(monkeypatch):
+def test_each_run_of_a_sweep_is_the_run_the_sweep_was_given_with_its_scenario_seed_and_faults(monkeypatch):
     given = []
     monkeypatch.setattr("coopdrive.launch.run.run_scenario", lambda options: given.append(options) or RUN_RESULT)
-    jobs = sweep_jobs(BatchOptions(scenarios=["follow"], seeds=[1], processes=ProcessLayout.SERVICE,
-                                   cacc_law=CaccLaw.PLOEG.value))
-    run_one(jobs[0], None)
-    assert given[0].processes is ProcessLayout.SERVICE
-    assert given[0].service_overrides == {"control": {"cacc_law": CaccLaw.PLOEG.value}}
+    sweep_run = RunSpec(processes=ProcessLayout.SERVICE, cacc_law=CaccLaw.PLOEG, world=WorldProfile.IDEAL,
+                        security=SecurityMode.SIGN_ONLY, stacks=1, duration_s=2.0)
+    jobs = sweep_jobs(BatchOptions(scenarios=["merge"], seeds=[4], run=sweep_run, fault_variants={"lossy": LOSSY}))
+    job = pickle.loads(pickle.dumps(jobs[0]))  # as a remote Dask worker gets it
+    run_one(job, None)
+    assert RunSpec(**{name: getattr(given[0], name) for name in RunSpec.model_fields}) == sweep_run.model_copy(
+        update={"scenario": "merge", "seed": 4, "extra_faults": LOSSY})
+    assert given[0].overrides_of("control") == {"cacc_law": CaccLaw.PLOEG.value}
 
 
 def test_a_sweep_runs_each_run_in_one_process_unless_told_and_a_single_run_in_one_per_vehicle(monkeypatch):
     """A sweep's runs already fill the cores: one process per run spends less CPU on the same metrics."""
     from coopdrive import cli
-    from coopdrive.launch import batch, run
+    from coopdrive.launch import run, sweep
 
     swept, single = [], []
-    monkeypatch.setattr(batch, "run_batch", lambda options: swept.append(options.processes) or BatchSummary([]))
+    monkeypatch.setattr(sweep, "run_batch", lambda options: swept.append(options.run.processes) or BatchSummary([]))
     monkeypatch.setattr(run, "run_scenario", lambda options: single.append(options.processes) or RUN_RESULT)
     monkeypatch.setattr("coopdrive.launch.summary.print_summary", lambda *args, **kwargs: None)
     cli.main(["run", "follow", "--seeds", "1-2"])
     cli.main(["run", "follow", "--seeds", "1-2", "--processes", "vehicle"])
     cli.main(["run", "follow"])
     assert swept == [ProcessLayout.ONE, ProcessLayout.VEHICLE] and single == [ProcessLayout.VEHICLE]
-    assert sweep_jobs(BatchOptions(scenarios=["follow"], seeds=[1]))[0].processes is ProcessLayout.ONE
+    assert sweep_jobs(BatchOptions(scenarios=["follow"], seeds=[1]))[0].run.processes is ProcessLayout.ONE
 
 
 def test_flags_that_only_a_single_run_can_take_stop_a_sweep_in_one_line_naming_them(tmp_path):

@@ -1,8 +1,10 @@
 """`coopdrive run SCENARIO --security MODE [--untrusted VEHICLE]`: the specs a secured run starts with."""
 
 import pytest
+from pydantic import ValidationError
 
 from coopdrive.launch.run import RunOptions, build_specs
+from coopdrive.launch.run_spec import RunSpec
 from coopdrive.launch.scenario_source import resolve_scenario
 from coopdrive.services.sim.scenario_config import ScenarioError
 from coopdrive.v2x.security.pki import load_test_pki
@@ -36,13 +38,14 @@ def test_an_unsecured_run_has_no_pki(tmp_path):
     assert not (tmp_path / "pki").exists()
 
 
-@pytest.mark.parametrize("options, message", [
-    ({"security": "paranoid"}, "'paranoid' is not one of off, sign_only"),
-    ({"security": "verify_required", "untrusted": ("b3",)}, "--untrusted b3: not a stack vehicle"),
-], ids=["unknown mode", "untrusted vehicle without a stack"])
-def test_a_bad_security_option_is_refused_naming_it(tmp_path, options, message):
-    with pytest.raises(ScenarioError, match=message):
-        specs_of(tmp_path, **options)
+def test_an_unknown_security_mode_is_refused_where_the_run_is_described_naming_the_field():
+    with pytest.raises(ValidationError, match="security"):
+        RunSpec(security="paranoid")
+
+
+def test_a_stack_vehicle_the_run_lacks_is_refused_as_untrusted_naming_it(tmp_path):
+    with pytest.raises(ScenarioError, match="--untrusted b3: not a stack vehicle"):
+        specs_of(tmp_path, security="verify_required", untrusted=("b3",))
 
 
 def test_follow_is_a_scenario_file_like_any_other_so_its_stack_runs_v2x_with_security(tmp_path):

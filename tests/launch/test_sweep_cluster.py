@@ -13,10 +13,13 @@ import pytest
 from distributed import Client, KilledWorker
 from rich.console import Console
 
-from coopdrive.launch.batch import BatchOptions, run_batch
+from coopdrive.launch.batch import BatchOptions
 from coopdrive.launch.run import RunOptions, run_scenario
 from coopdrive.launch.batch import RunOutcome
 from coopdrive.launch.sweep_cluster import WORKER_SATURATION, SweepError, finished_run, sweep_client
+from coopdrive.launch.process_layout import ProcessLayout
+from coopdrive.launch.run_spec import RunSpec
+from coopdrive.launch.sweep import run_batch
 from coopdrive.launch.sweep_task import SweepJob
 
 pytestmark = pytest.mark.whole_run
@@ -40,7 +43,8 @@ def alone():
 
 
 def sweep(address: str, console: Console, seeds: list[int]):
-    return run_batch(BatchOptions(scenarios=["follow"], seeds=seeds, duration_s=DURATION_S, cluster=address),
+    return run_batch(BatchOptions(scenarios=["follow"], seeds=seeds, run=RunSpec(processes=ProcessLayout.ONE, duration_s=DURATION_S),
+                                  cluster=address),
                      console)
 
 
@@ -109,7 +113,8 @@ def started_runs(cluster, time_limit_s: float | None = None) -> list[str]:
     """Sweeps follow and platoon40 on seeds 1 and 2 (1 s each) and gives the labels of its runs as they started."""
     address, client = cluster
     earlier_sweeps = set(client.get_events())
-    summary = run_batch(BatchOptions(scenarios=["follow", "platoon40"], seeds=[1, 2], duration_s=1.0,
+    summary = run_batch(BatchOptions(scenarios=["follow", "platoon40"], seeds=[1, 2],
+                                     run=RunSpec(processes=ProcessLayout.ONE, duration_s=1.0),
                                      cluster=address, time_limit_s=time_limit_s), Console(record=True, width=200))
     assert len(summary.outcomes) == 4
     [topic] = [topic for topic in client.get_events() if topic.startswith("coopdrive-sweep-")
@@ -146,7 +151,7 @@ class Ended:
 
 
 def test_a_run_given_up_on_after_its_workers_died_is_a_failed_run_that_lost_each_of_them():
-    job = SweepJob("follow", "none", 3)
+    job = SweepJob(RunSpec(scenario="follow", seed=3), "none")
     gave_up = KilledWorker("coopdrive-run-follow/none/seed-3", SimpleNamespace(address="tcp://b:1"), 1)
     outcome, files = finished_run(Ended(error=gave_up), job, ["tcp://a:1", "tcp://b:1"])
     assert (outcome.seed, outcome.success, files) == (3, False, {})
@@ -156,7 +161,7 @@ def test_a_run_given_up_on_after_its_workers_died_is_a_failed_run_that_lost_each
 
 def test_a_run_that_ended_on_its_second_start_lost_only_the_first_worker():
     ran = RunOutcome("follow", 3, True, "", fault="none")
-    outcome, files = finished_run(Ended((ran, {"index.html": b""})), SweepJob("follow", "none", 3),
+    outcome, files = finished_run(Ended((ran, {"index.html": b""})), SweepJob(RunSpec(scenario="follow", seed=3), "none"),
                                   ["tcp://a:1", "tcp://b:1"])
     assert outcome.success and files == {"index.html": b""}
     assert outcome.retried and outcome.lost_workers == ["tcp://a:1"]
@@ -164,7 +169,7 @@ def test_a_run_that_ended_on_its_second_start_lost_only_the_first_worker():
 
 def test_a_task_that_raised_is_a_failed_run_in_one_line_and_not_a_retried_one():
     error = ModuleNotFoundError("No module named 'coopdrive'\n(on the worker)")
-    outcome, _ = finished_run(Ended(error=error), SweepJob("follow", "none", 1), ["tcp://a:1"])
+    outcome, _ = finished_run(Ended(error=error), SweepJob(RunSpec(scenario="follow", seed=1), "none"), ["tcp://a:1"])
     assert outcome.failure_reason == "not run: ModuleNotFoundError: No module named 'coopdrive' (on the worker)"
     assert not outcome.retried
 

@@ -2,10 +2,11 @@
 the sweep has a time limit."""
 
 from coopdrive.launch.sweep_order import start_order
+from coopdrive.launch.run_spec import RunSpec
 from coopdrive.launch.sweep_task import SweepJob
 
 # Stack vehicles times simulated seconds: follow 1 x 60, platoon40 3 x 60, merge 6 x 90.
-JOBS = [SweepJob(scenario, "none", seed) for scenario in ("follow", "merge", "platoon40") for seed in (1, 2)]
+JOBS = [SweepJob(RunSpec(scenario=scenario, seed=seed), "none") for scenario in ("follow", "merge", "platoon40") for seed in (1, 2)]
 
 
 def labels(jobs: list[SweepJob]) -> list[str]:
@@ -23,5 +24,5 @@ def test_with_a_time_limit_every_scenario_s_first_seed_starts_before_any_second_
 
 
 def test_seeds_go_in_the_order_the_sweep_lists_them():
-    jobs = [SweepJob("follow", "none", seed) for seed in (7, 3)] + [SweepJob("merge", "none", seed) for seed in (7, 3)]
+    jobs = [SweepJob(RunSpec(scenario="follow", seed=seed), "none") for seed in (7, 3)] + [SweepJob(RunSpec(scenario="merge", seed=seed), "none") for seed in (7, 3)]
     assert labels(start_order(jobs, time_limited=True)) == ["follow/7", "merge/7", "follow/3", "merge/3"]

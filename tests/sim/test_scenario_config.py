@@ -4,7 +4,7 @@ from pathlib import Path
 import pytest
 
 from coopdrive.services.sim.fault_config import FixDowngrade, V2vLoss
-from coopdrive.services.sim.profiles import ProfileName
+from coopdrive.vehicle import VehicleKind
 from coopdrive.services.sim.scenario_config import ScenarioError, load_scenario, parse_scenario
 from coopdrive.services.sim.sensor_config import FixModeName
 from coopdrive.services.sim.speed_profiles import SinusoidSpeed
@@ -29,7 +29,7 @@ def _error_of(change):
 
 def test_the_example_scenario_loads_with_its_profiles_and_faults():
     scenario = load_scenario(EXAMPLE)
-    assert scenario.vehicles[3].profile is ProfileName.TRUCK
+    assert scenario.vehicles[3].profile is VehicleKind.TRUCK
     assert isinstance(scenario.vehicles[0].speed_profile, SinusoidSpeed)
     assert isinstance(scenario.faults[0], FixDowngrade) and scenario.faults[0].fix_mode is FixModeName.SBAS
     assert isinstance(scenario.faults[1], V2vLoss) and scenario.faults[1].active(42.0)

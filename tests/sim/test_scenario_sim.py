@@ -75,8 +75,8 @@ def test_the_world_is_the_same_for_the_same_seed(a270):
 def test_the_lockstep_delay_is_taken_off_the_actuator_dead_time(a270):
     plain = ScenarioSim(scenario(), a270, ["a"])
     delayed = ScenarioSim(scenario(), a270, ["a"], already_delayed_steps=1)
-    assert delayed.objects.models["a"].profile.accel_dead_time_s == pytest.approx(
-        plain.objects.models["a"].profile.accel_dead_time_s - STEP_S)
+    assert delayed.objects.models["a"].profile.response_dead_time_s == pytest.approx(
+        plain.objects.models["a"].profile.response_dead_time_s - STEP_S)
 
 
 def test_no_more_lockstep_steps_are_taken_off_than_the_shortest_dead_time_holds(a270):

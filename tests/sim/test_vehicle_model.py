@@ -11,13 +11,13 @@ PASSENGER_CAR, TRUCK = ideal(profiles.PASSENGER_CAR), ideal(profiles.TRUCK)
 
 
 def _unlimited(profile, **changes):
-    base = dict(max_jerk_mps3=1e6, accel_dead_time_s=0.0, max_accel_mps2=10.0)
+    base = dict(max_jerk_mps3=1e6, response_dead_time_s=0.0, max_accel_mps2=10.0)
     base.update(changes)
     return profile.model_copy(update=base)
 
 
 def test_the_acceleration_step_response_follows_the_discrete_lag_formula():
-    profile = _unlimited(PASSENGER_CAR, accel_time_constant_s=0.5)
+    profile = _unlimited(PASSENGER_CAR, response_time_constant_s=0.5)
     model = VehicleModel(profile, dt_s=0.1, state=VehicleState(speed_mps=10.0), substeps=5)
     alpha = lag_alpha(0.02, 0.5)
     expected = 0.0
@@ -29,7 +29,7 @@ def test_the_acceleration_step_response_follows_the_discrete_lag_formula():
 
 
 def test_dead_time_holds_the_old_acceleration_for_the_configured_delay():
-    profile = _unlimited(PASSENGER_CAR, accel_dead_time_s=0.3)
+    profile = _unlimited(PASSENGER_CAR, response_dead_time_s=0.3)
     model = VehicleModel(profile, dt_s=0.1, state=VehicleState(speed_mps=10.0), substeps=10)
     for _ in range(3):
         model.step(2.0, 0.0)
@@ -69,7 +69,7 @@ def test_constant_steering_drives_a_circle_of_the_bicycle_radius():
 
 
 def test_command_frame_values_map_to_an_acceleration_request_like_actuations_pedal_map():
-    model = VehicleModel(_unlimited(PASSENGER_CAR, accel_time_constant_s=0.0), dt_s=0.1,
+    model = VehicleModel(_unlimited(PASSENGER_CAR, response_time_constant_s=0.0), dt_s=0.1,
                          state=VehicleState(speed_mps=10.0))
     assert model.command_to_accel_mps2(0.5, 0.0) == pytest.approx(5.0)
     assert model.command_to_accel_mps2(0.5, 0.25) == pytest.approx(-0.25 * PASSENGER_CAR.max_decel_mps2)

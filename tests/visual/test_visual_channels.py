@@ -40,7 +40,7 @@ def ego_state(time_s=1.0, x_m=10.0, y_m=2.0, heading_rad=0.0, road_map=None) -> 
 
 def scene_with(objects, mio_id=None, time_s=1.0) -> scene_pb2.Scene:
     scene = scene_pb2.Scene(has_mio=mio_id is not None, mio_id=mio_id or 0)
-    scene.header.sample_time_s = time_s
+    scene.header.sample_time_s = scene.header.sent_time_s = time_s
     for object_id, x_m, confidence, station in objects:
         obj = scene.objects.add(object_id=object_id)
         obj.position.x_m, obj.position.y_m, obj.position.confidence = x_m, 2.0, confidence
@@ -54,6 +54,7 @@ def test_each_ego_estimate_gives_one_location_fix_at_its_latitude_and_longitude_
     out = Collected()
     channels = VisualChannels(out)
     channels.on_message("coopdrive/a1/ego/state", ego_state(heading_rad=math.pi / 2), 5 * S)
+    channels.flush()
     [fix] = out.on("foxglove/a1/ego")
     assert (fix.latitude, fix.longitude, fix.frame_id) == (51.47, 5.62, "a1")
     assert fix.heading == pytest.approx(0.0)  # ENU north is compass 0
@@ -76,6 +77,7 @@ def test_raw_gnss_fixes_and_every_v2x_station_heard_become_location_fixes():
     heard.reference_position.latitude_deg, heard.reference_position.longitude_deg = 51.1, 5.1
     channels.on_message("coopdrive/a1/v2x/cam", heard, S)
     channels.on_message("coopdrive/a1/v2x/cam", its_pb2.CamContent(station_id=3003), S)  # position unavailable
+    channels.flush()
     [gnss] = out.on("foxglove/a1/gnss")
     assert (gnss.latitude, gnss.position_covariance_type) == (51.0, LocationFix.DIAGONAL_KNOWN)
     assert gnss.position_covariance[0] == pytest.approx(0.25)
@@ -95,6 +97,7 @@ def test_each_epoch_of_the_receiver_s_nmea_bytes_becomes_one_location_fix():
         chunk = gnss_pb2.NmeaChunk(data=("\r\n".join(lines) + "\r\n").encode())
         chunk.header.sample_time_s = float(second)
         channels.on_message("coopdrive/a1/gnss/nmea", chunk, second * S)
+    channels.flush()
     fixes = out.on("foxglove/a1/gnss")
     assert [round(f.latitude, 5) for f in fixes] == [round(51 + 28.548 / 60, 5), round(51 + 28.549 / 60, 5)]
     assert [time_ns for topic, _, time_ns in out.items if topic == "foxglove/a1/gnss"] == [10 * S, 11 * S]
@@ -105,6 +108,7 @@ def test_a_scene_becomes_one_update_with_a_box_per_object_shaded_by_confidence_l
     channels = VisualChannels(out)
     channels.on_message("coopdrive/a1/ego/state", ego_state(), S)
     channels.on_message("coopdrive/a1/scene", scene_with([(4, 30.0, 0.9, 3001), (7, 60.0, 0.2, 0)], mio_id=4), S)
+    channels.flush()
     [update] = out.on("foxglove/a1/scene")
     assert [d.type for d in update.deletions] == [SceneEntityDeletion.ALL]  # what the scene dropped goes
     objects = {e.id: e for e in update.entities if "/object/" in e.id}
@@ -131,6 +135,7 @@ def test_the_planned_path_follows_the_target_lane_of_the_behaviour_request_on_th
     channels.on_message("coopdrive/a1/planner/behaviour",
                         planner_pb2.BehaviourRequest(target_lane_index=other.lane_index), S)
     channels.on_message("coopdrive/a1/scene", scene_with([]), S)
+    channels.flush()
     [update] = out.on("foxglove/a1/scene")
     [path] = [e for e in update.entities if e.id == "a1/path"]
     end = path.lines[0].points[-1]
@@ -144,7 +149,9 @@ def test_ground_truth_goes_to_its_own_topic_and_namespace():
     out = Collected()
     truth = sim_pb2.GroundTruth(vehicles=[sim_pb2.VehicleTruth(vehicle_id="a1", station_id=3001, x_m=5.0,
                                                                length_m=4.0, width_m=1.8)])
-    VisualChannels(out).on_message("coopdrive/world/ground_truth", truth, S)
+    channels = VisualChannels(out)
+    channels.on_message("coopdrive/world/ground_truth", truth, S)
+    channels.flush()
     [update] = out.on(GROUND_TRUTH_TOPIC)
     assert [e.id for e in update.entities] == ["truth/a1"]
     assert update.entities[0].cubes[0].pose.position.x == pytest.approx(5.0 + 2.0 - 0.8)  # rear axle reference
@@ -155,6 +162,7 @@ def test_messages_foxglove_does_not_draw_and_keys_outside_the_stack_give_nothing
     channels = VisualChannels(out)
     channels.on_message("coopdrive/a1/control/command", ego_pb2.EgoState(), S)
     channels.on_message("elsewhere", ego_pb2.EgoState(), S)
+    channels.flush()
     assert out.items == []
 
 
@@ -169,6 +177,38 @@ def test_every_derived_message_is_a_foxglove_schema():
     channels = VisualChannels(out, RoadMap.load("a270"))
     channels.on_message("coopdrive/a1/ego/state", ego_state(), S)
     channels.on_message("coopdrive/a1/scene", scene_with([(1, 20.0, 0.5, 0)]), S)
+    channels.flush()
     names = {type(message).DESCRIPTOR.full_name for _, message, _ in out.items}
     assert names == {"foxglove.LocationFix", "foxglove.FrameTransforms", "foxglove.SceneUpdate"}
     assert all(isinstance(message, (LocationFix, FrameTransforms, SceneUpdate)) for _, message, _ in out.items)
+
+
+def drawn_scenes(arrivals) -> list[bytes]:
+    out = Collected()
+    channels = VisualChannels(out)
+    for key, message in arrivals:
+        channels.on_message(key, message, round(message.header.sent_time_s * S))
+    channels.flush()
+    return [update.SerializeToString(deterministic=True) for update in out.on("foxglove/a1/scene")]
+
+
+def test_a_scene_is_drawn_with_the_ego_estimate_of_its_own_step_in_any_arrival_order():
+    """The pipeline's order (geolocation, scene, planner), not arrival order: a replay, whose file holds the same
+    messages in another order, draws what the recording drew."""
+    step_messages = []
+    for step, x_m in ((1, 10.0), (2, 10.4)):
+        ego = ego_state(time_s=step * 0.02, x_m=x_m)
+        ego.header.sender = "geolocation"
+        scene = scene_with([], time_s=step * 0.02)
+        scene.header.sender = "scene"
+        plan = planner_pb2.BehaviourRequest(lateral_offset_m=step)
+        plan.header.sent_time_s, plan.header.sender = step * 0.02, "planner"
+        step_messages.append([("coopdrive/a1/ego/state", ego), ("coopdrive/a1/scene", scene),
+                              ("coopdrive/a1/planner/behaviour", plan)])
+    pipeline_order = [item for step in step_messages for item in step]
+    reversed_within_steps = [item for step in step_messages for item in reversed(step)]
+    drawn = drawn_scenes(pipeline_order)
+    assert drawn_scenes(reversed_within_steps) == drawn and len(drawn) == 2
+    [_, second] = [SceneUpdate.FromString(update) for update in drawn]
+    [path] = [e for e in second.entities if e.id == "a1/path"]
+    assert path.lines[0].points[0].x == pytest.approx(10.4)  # the ego of its own step, not the step before

@@ -95,11 +95,11 @@ class LateralController:
         p = PathState(speed_mps, lateral_offset_m, heading_error_rad, curvature_1pm, y_d, dy_d, ddy_d, preview)
         wanted = self.law.steering_rad(p)
 
-        wb, lim = self.profile.wheelbase_m, self.profile
+        wb, lim = self.profile.wheelbase_m, self.profile.steering
         v = max(speed_mps, self.profile.lateral.min_speed_mps)
-        max_angle = min(lim.max_steering_angle_rad, math.atan(wb * lim.max_lateral_accel_mps2 / v**2))
+        max_angle = min(lim.max_angle_rad, math.atan(wb * lim.max_lateral_accel_mps2 / v**2))
         wanted = min(max(wanted, -max_angle), max_angle)
-        step = lim.max_steering_rate_radps * dt
+        step = lim.max_rate_radps * dt
         self.steering_rad = min(max(wanted, self.steering_rad - step), self.steering_rad + step)
         return LateralCommand(
             steering_angle_rad=self.steering_rad,

@@ -13,6 +13,8 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from coopdrive.vehicle import SPACING
+
 from ..profiles import VehicleProfile
 from ..step_period import step_period_s
 from .acc import RadarAcc, RajamaniAcc
@@ -186,10 +188,10 @@ class LongitudinalController:
         return dt
 
     def _spacing(self, spacing: Spacing | None) -> Spacing:
-        """The planner's spacing policy; the profile's time gap where it gives none."""
-        sp = self.profile.spacing
+        """The planner's spacing; the spacing policy's where it gives none."""
         if spacing is None or spacing.time_gap_s <= 0:
-            return Spacing(sp.standstill_m if spacing is None else spacing.standstill_m, sp.time_gap_s)
+            standstill_m = SPACING.standstill_m if spacing is None else spacing.standstill_m
+            return Spacing(standstill_m, SPACING.cacc_time_gap_s)
         return Spacing(spacing.standstill_m, spacing.time_gap_s)
 
     def _accepted(self, t: Target) -> bool:
