@@ -11,7 +11,7 @@ from coopdrive.can.vehicle_port import VehicleCanPortConfig
 from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.runtime.service import ServiceConfig
 from coopdrive.services.geolocation.motion_models import MotionModelKind
-from coopdrive.services.geolocation.nmea_decoder import SentenceType
+from coopdrive.gnss.nmea_decoder import SentenceType
 from coopdrive.vehicle import VehicleDescription, VehicleKind
 
 
