@@ -78,6 +78,14 @@ def test_flexstacks_cams_reach_our_station_table_with_its_station_id_and_positio
     assert int(station_status(live["ours"], PEER)["messages_received"]) >= heard["count"]
 
 
+def test_a_standard_peer_at_its_own_cam_rate_shows_a_reception_ratio_near_one(live):
+    """FlexStack sends CAMs by EN 302 637-2's generation rules (about 10 Hz while it moves), not GCDC's 25 Hz: its
+    reception ratio is judged at its own rate (services/v2x/expected_period.py), so a clean wire shows about 1."""
+    station = station_status(live["ours"], PEER)
+    assert 1.0 <= station["expected_cam_rate_hz"] <= 10.5
+    assert station["reception_ratio"] >= 0.9
+
+
 def test_flexstack_decodes_our_cams_with_our_station_id_and_speed(live):
     heard = live["flexstack"]["cams"][str(OURS)]
     assert heard["count"] > 0 and heard["protocol_version"] == 2
