@@ -9,6 +9,7 @@ import time
 from pathlib import Path
 
 from coopdrive.cli_deploy import add_commands as add_deploy_commands
+from coopdrive.cli_judging import add_commands as add_judging_commands
 from coopdrive.cli_recording import add_commands as add_recording_commands
 from coopdrive.cli_service import add_commands as add_service_commands
 from coopdrive.cli_service import run_command
@@ -30,7 +31,7 @@ def build_parser() -> argparse.ArgumentParser:
     commands = parser.add_subparsers(dest="command", required=True)
     add_service_commands(commands)  # service, group
     _add_run_command(commands)
-    _add_judging_commands(commands)  # score, analyze, scenarios, candump
+    add_judging_commands(commands)  # score, analyze, scenarios, candump
     add_v2x_commands(commands)
     add_recording_commands(commands)  # record, import, replay, export
     add_deploy_commands(commands)  # health, router, foxglove
@@ -91,36 +92,6 @@ def _add_run_command(commands) -> None:
     run.add_argument("--report", type=Path, metavar="DIR",
                      help="write metrics.json, plots and index.html to DIR (records to DIR/run.mcap without --record)")
     run.set_defaults(handler=_run)
-
-
-def _add_judging_commands(commands) -> None:
-    score = commands.add_parser("score", help="judge a recording from its ground truth")
-    score.add_argument("file", type=Path, help="a run's recording (FILE.mcap, with its ground truth)")
-    score.add_argument("--scenario", help="judging settings of this scenario (default: the recorded one)")
-    score.add_argument("--json", action="store_true", help="print the metrics as JSON")
-    score.set_defaults(handler=_score)
-
-    analyze = commands.add_parser("analyze", help="analyses of controllers and runs")
-    analyses = analyze.add_subparsers(dest="analysis", required=True)
-    string = analyses.add_parser("string", help="predicted string gain per following law, beside a measured run")
-    string.add_argument("--law", action="append", dest="laws", metavar="LAW",
-                        help=f"one of {', '.join(law.value for law in _following_laws())} (default: all)")
-    string.add_argument("--profile", default="car", help="vehicle profile: car or truck")
-    string.add_argument("--time-gap", type=float, help="time gap h in s (default: the profile's)")
-    string.add_argument("--comm-delay", type=float, default=0.1, help="V2V delay in s")
-    string.add_argument("--recording", type=Path, metavar="FILE.mcap", help="a recorded string run to measure")
-    string.add_argument("--out", type=Path, metavar="DIR", help="write the Bode plot here")
-    string.add_argument("--json", action="store_true", help="print the figures as JSON")
-    string.set_defaults(handler=_analyze_string)
-
-    scenarios = commands.add_parser("scenarios", help="list the scenarios with a one-line description")
-    scenarios.set_defaults(handler=_scenarios)
-
-    candump = commands.add_parser("candump", help="a vehicle's CAN frames from a recording, as a candump .log")
-    candump.add_argument("file", type=Path, help="the recording (FILE.mcap)")
-    candump.add_argument("--vehicle", default="ego", help="whose CAN bus (default: ego)")
-    candump.add_argument("--out", type=Path, required=True, metavar="FILE.log", help="the candump log to write")
-    candump.set_defaults(handler=_candump)
 
 
 def _run(args) -> int:
@@ -361,49 +332,6 @@ def _following_laws():
     from coopdrive.services.control.string_stability import FollowingLaw
 
     return list(FollowingLaw)
-
-
-def _analyze_string(args) -> int:
-    from rich.console import Console
-
-    from coopdrive.analysis.string_command import StringAnalysisOptions, analyze_string
-    from coopdrive.judging.score import ScoreError
-    from coopdrive.services.control.string_stability import FollowingLaw
-
-    try:
-        laws = [FollowingLaw(name) for name in args.laws] if args.laws else list(FollowingLaw)
-        options = StringAnalysisOptions(laws, args.profile, args.time_gap, args.comm_delay, args.recording, args.out)
-        figures = analyze_string(options, Console(stderr=args.json))
-    except (ValueError, ScoreError, OSError) as error:
-        print(f"coopdrive: analyze string: {error}", file=sys.stderr)
-        return EXIT_USAGE
-    if args.json:
-        print(json.dumps(figures, indent=2))
-    return EXIT_OK
-
-
-def _score(args) -> int:
-    from coopdrive.judging.commands import score_command
-
-    return score_command(args.file, args.json, args.scenario)
-
-
-def _scenarios(args) -> int:
-    from coopdrive.judging.commands import scenarios_command
-
-    return scenarios_command()
-
-
-def _candump(args) -> int:
-    from coopdrive.recording.candump_export import CandumpExportError, export_candump
-
-    try:
-        count = export_candump(args.file, args.vehicle, args.out)
-    except (CandumpExportError, ValueError) as error:
-        print(f"coopdrive: {error}", file=sys.stderr)
-        return EXIT_USAGE
-    print(f"{count} frames of {args.vehicle} to {args.out}")
-    return EXIT_OK
 
 
 if __name__ == "__main__":

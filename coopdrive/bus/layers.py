@@ -19,8 +19,9 @@ class Layer:
 
 LAYERS = (
     Layer("messages", ("coopdrive.v1", "coopdrive.messages", "coopdrive.reasons", "coopdrive.exit_status",
-                       "coopdrive.geodesy"),
-          "the generated protobuf messages and what their values mean; reasons, exit statuses, geodesy"),
+                       "coopdrive.geodesy", "coopdrive.vehicle"),
+          "the generated protobuf messages and what their values mean; reasons, exit statuses, geodesy; the "
+          "vehicles' one description and the spacing policy"),
     Layer("bus and shared formats", ("coopdrive.bus", "coopdrive.gnss", "coopdrive.roadmap"),
           "Zenoh sessions, keys, topics, the services table, the publish spool; NMEA decoding; the lane map"),
     Layer("service runtime", ("coopdrive.runtime",),
@@ -34,8 +35,10 @@ LAYERS = (
     Layer("services", ("coopdrive.services",),
           "the services, each in services/<name> (installed as coopdrive.services.<name>)", framework=False),
     Layer("applications", ("coopdrive.launch", "coopdrive.judging", "coopdrive.analysis", "coopdrive.cli",
-                           "coopdrive.cli_deploy", "coopdrive.cli_recording"),
-          "starting runs, batches and sweeps; judging them; the command line", framework=False),
+                           "coopdrive.cli_deploy", "coopdrive.cli_judging", "coopdrive.cli_recording",
+                           "coopdrive.cli_service", "coopdrive.docs_reference"),
+          "starting runs, batches and sweeps; judging them; the command line and its generated reference",
+          framework=False),
 )
 # The package's own __init__ (which sets the environment up before numpy loads) stands below every layer.
 ROOT_PACKAGE = "coopdrive"

@@ -208,9 +208,7 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     give_ups = LockstepGiveUps()
     hub.subscribe_key(DIAGNOSTICS_KEYS, give_ups.observe)
     simulator = next(spec for spec in specs if spec.service == "sim")
-    if options.on_progress is not None:
-        report_progress, duration_s = options.on_progress, simulator.config["duration_s"]
-        hub.subscribe(WORLD_ID, "clock", lambda envelope: report_progress(envelope.message.time_s, duration_s))
+    _watch_progress(hub, options, simulator)
     spool_dir = run_dir / "spools" if recording is not None else None
     processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir,
                                  clock_step_s=simulator.config["step_s"], spool_dir=spool_dir,
@@ -243,6 +241,13 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         result.startup_time_s = result.clock_started_monotonic_s - started
     result.shutdown_time_s = time.monotonic() - ended
     return result
+
+
+def _watch_progress(hub: Bus, options: RunOptions, simulator: ServiceSpec) -> None:
+    """options.on_progress told the simulated time of each step of the simulator's clock."""
+    if options.on_progress is not None:
+        report_progress, duration_s = options.on_progress, simulator.config["duration_s"]
+        hub.subscribe(WORLD_ID, "clock", lambda envelope: report_progress(envelope.message.time_s, duration_s))
 
 
 def _tear_down(processes: ServiceProcesses, recording: Recording | None, spool_dir: Path | None,
