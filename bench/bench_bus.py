@@ -15,6 +15,7 @@ import numpy as np
 from rich.console import Console
 from rich.table import Table
 
+from bench.failure import BenchFailed
 from bench.figure import Figure, Unit, ratio
 from bench.sizes import sized
 from coopdrive.bus import Bus, BusConfig
@@ -22,17 +23,23 @@ from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
 
 ROUND_TRIPS = sized(2000, 20)
 WARMUP = sized(100, 5)
+# The echo process starts as a new interpreter: on a loaded machine that takes longer than any fixed sleep.
+ECHO_START_TIMEOUT_S = 60.0
+# After the echo has subscribed, Zenoh's routes between the two sessions settle before the first ping.
+ROUTE_SETTLE_S = 0.5
+ECHO_TIMEOUT_S = 5.0
 
 
 def _config(listen, connect) -> BusConfig:
     return BusConfig(listen=listen, connect=connect)
 
 
-def _echo(endpoint: str, typed: bool) -> None:
+def _echo(endpoint: str, typed: bool, ready) -> None:
     bus = Bus(_config(["tcp/127.0.0.1:0"], [endpoint]))
     if typed:
         inbox: queue.SimpleQueue = queue.SimpleQueue()
         bus.subscribe("bench", "ego/state", inbox.put)
+        ready.set()
         for _ in range(ROUND_TRIPS + WARMUP):
             envelope = inbox.get()
             bus.publish("bench", "ego/gnss", _fix_from(envelope.message))
@@ -40,6 +47,7 @@ def _echo(endpoint: str, typed: bool) -> None:
         inbox = queue.SimpleQueue()
         bus.session.declare_subscriber("bench/raw/ping", lambda s: inbox.put(s.payload.to_bytes()))
         publisher = bus.session.declare_publisher("bench/raw/pong")
+        ready.set()
         for _ in range(ROUND_TRIPS + WARMUP):
             publisher.put(inbox.get())
     time.sleep(0.5)
@@ -65,9 +73,14 @@ def _measure(typed: bool) -> np.ndarray:
     else:
         bus.session.declare_subscriber("bench/raw/pong", lambda s: inbox.put(s.payload.to_bytes()))
         raw_publisher = bus.session.declare_publisher("bench/raw/ping")
-    echo = multiprocessing.get_context("spawn").Process(target=_echo, args=(endpoint, typed))
+    context = multiprocessing.get_context("spawn")
+    ready = context.Event()
+    echo = context.Process(target=_echo, args=(endpoint, typed, ready), daemon=True)
     echo.start()
-    time.sleep(2.0)
+    path = "typed" if typed else "raw"
+    if not ready.wait(ECHO_START_TIMEOUT_S):
+        raise BenchFailed(f"the {path} echo process did not subscribe within {ECHO_START_TIMEOUT_S:.0f} s")
+    time.sleep(ROUTE_SETTLE_S)
     state = ego_pb2.EgoState(x_m=1.0, y_m=2.0, speed_mps=20.0, covariance=[0.1] * 36)
     payload = state.SerializeToString()
     samples = []
@@ -78,7 +91,10 @@ def _measure(typed: bool) -> np.ndarray:
             bus.publish("bench", "ego/state", state)
         else:
             raw_publisher.put(payload)
-        inbox.get(timeout=5)
+        try:
+            inbox.get(timeout=ECHO_TIMEOUT_S)
+        except queue.Empty:
+            raise BenchFailed(f"no {path} echo of message {index} within {ECHO_TIMEOUT_S:.0f} s") from None
         if index >= WARMUP:
             samples.append((time.perf_counter() - started) / 2)
     echo.join(timeout=10)
