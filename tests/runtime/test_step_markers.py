@@ -118,13 +118,14 @@ def test_a_follower_takes_a_marker_riding_on_data_as_its_upstream_finishing_the_
         time.sleep(0.5)
         sender.service.commands_per_step = 1
         sender.run_lockstep_step(6, 6 * STEP_S)
-        (data_kind, command), (done_kind, done) = receiver.next_event(DEADLINE_S), receiver.next_event(DEADLINE_S)
+        events = receiver.context.events
+        (data_kind, command), (done_kind, done) = events.next_event(DEADLINE_S), events.next_event(DEADLINE_S)
         assert (data_kind.name, command.topic) == ("DATA", "control/command")
         # Right behind the command, as if control had sent its own marker: step 6 done, one command counted.
         assert done_kind.name == "DONE"
         participant, step, next_step, sequences = done
         assert (participant, step, next_step, sequences) == ("ego/control", 6, 7, {"ego/control/command": 1})
-        assert receiver.next_event(QUIET_S) is None, "no separate marker follows"
+        assert events.next_event(QUIET_S) is None, "no separate marker follows"
     finally:
         sender.bus.close()
         receiver.bus.close()
