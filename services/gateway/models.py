@@ -36,11 +36,22 @@ class ServiceHealth(BaseModel):
     topics: list[str] = Field(description="The topics this service publishes (topic registry).")
 
 
+class StationReception(BaseModel):
+    """A remote ITS station's link as /health summarises it (the full row is in /v2x/stations)."""
+    station_id: int
+    active: bool = Field(description="Heard within the v2x service's link timeout.")
+    reception_ratio: float = Field(description="Received over expected messages, [0, 1].")
+    expected_cam_rate_hz: float = Field(description="The rate its CAMs are judged at: the profile's (GCDC: 25 Hz) or "
+                                        "the station's own median rate (EN 302 637-2 stations: 1-10 Hz).")
+
+
 class HealthResponse(BaseModel):
     status: HealthStatus
     vehicle_id: str
     clock_s: float | None = Field(description="The vehicle clock the ages are measured against (sim time in a run).")
     services: dict[str, ServiceHealth]
+    v2x_stations: list[StationReception] = Field(
+        default_factory=list, description="Each remote station's reception, from the latest v2x/status.")
 
 
 class MessageEntry(BaseModel):

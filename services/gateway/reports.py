@@ -13,6 +13,7 @@ from coopdrive.services.gateway.models import (
     ServiceHealth,
     ServiceStatus,
     StateResponse,
+    StationReception,
 )
 from coopdrive.services.gateway.state_store import LatestMessage, StoreSnapshot
 
@@ -42,7 +43,8 @@ def message_age_s(clock_s: float | None, sent_time_s: float | None) -> float | N
 
 
 def health_report(snapshot: StoreSnapshot, vehicle_id: str, topics_by_service: dict[str, list[str]],
-                  required: list[str], silent_after_s: float) -> HealthResponse:
+                  required: list[str], silent_after_s: float,
+                  v2x_stations: list[StationReception] | None = None) -> HealthResponse:
     services: dict[str, ServiceHealth] = {}
     for service, activity in snapshot.services.items():
         age_s = message_age_s(snapshot.clock_s, activity.last_sent_time_s)
@@ -63,7 +65,8 @@ def health_report(snapshot: StoreSnapshot, vehicle_id: str, topics_by_service: d
         overall = HealthStatus.DEGRADED
     else:
         overall = HealthStatus.DOWN
-    return HealthResponse(status=overall, vehicle_id=vehicle_id, clock_s=snapshot.clock_s, services=services)
+    return HealthResponse(status=overall, vehicle_id=vehicle_id, clock_s=snapshot.clock_s, services=services,
+                          v2x_stations=v2x_stations or [])
 
 
 def message_entry(latest: LatestMessage | None, clock_s: float | None) -> MessageEntry | None:

@@ -37,7 +37,7 @@ from coopdrive.services.gateway.reports import health_report, service_participan
 from coopdrive.services.gateway.server import HttpServerThread
 from coopdrive.services.gateway.state_store import StateStore
 from coopdrive.services.gateway.view_models import PlannerResponse, SceneResponse, V2xStationsResponse
-from coopdrive.services.gateway.views import live_frame, planner_view, scene_view, v2x_view
+from coopdrive.services.gateway.views import live_frame, planner_view, scene_view, v2x_reception, v2x_view
 
 # Simulator topics published under the world namespace rather than each vehicle's.
 WORLD_TOPICS = frozenset({"clock", "ground_truth", "result"})
@@ -126,8 +126,9 @@ class GatewayService(Service):
 
     def health(self) -> HealthResponse:
         config: GatewayConfig = self.config
-        return health_report(self._snapshot(), self.vehicle_id, self.topics, config.required_services,
-                             config.silent_after_s)
+        snapshot = self._snapshot()
+        return health_report(snapshot, self.vehicle_id, self.topics, config.required_services,
+                             config.silent_after_s, v2x_stations=v2x_reception(snapshot))
 
     def state(self) -> StateResponse:
         return state_report(self._snapshot(), self.vehicle_id)

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 
+from coopdrive.services.gateway.models import StationReception
 from coopdrive.services.gateway.reports import message_age_s
 from coopdrive.services.gateway.state_store import StoreSnapshot
 from coopdrive.services.gateway.view_models import (
@@ -73,6 +74,18 @@ def scene_trust(snapshot: StoreSnapshot) -> dict[int, float]:
     """The scene's trust in each V2V station it knows (the v2x service itself keeps none)."""
     scene, _ = _latest(snapshot, "scene")
     return {station.station_id: station.trust for station in scene.station_trust} if scene is not None else {}
+
+
+def station_reception(status: v2x_pb2.V2xStatus) -> list[StationReception]:
+    return [StationReception(station_id=s.station_id, active=s.state == v2x_pb2.LINK_STATE_ACTIVE,
+                             reception_ratio=s.reception_ratio, expected_cam_rate_hz=s.expected_cam_rate_hz)
+            for s in status.stations]
+
+
+def v2x_reception(snapshot: StoreSnapshot) -> list[StationReception]:
+    """/health's V2X part: each station's reception ratio at its expected rate."""
+    status, _ = _latest(snapshot, "v2x/status")
+    return station_reception(status) if status is not None else []
 
 
 def v2x_view(snapshot: StoreSnapshot, vehicle_id: str) -> V2xStationsResponse:

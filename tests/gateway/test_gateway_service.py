@@ -7,7 +7,7 @@ from coopdrive.launch.ports import free_tcp_port
 from coopdrive.runtime.registry import VEHICLE_STACK
 from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.gateway.service import GatewayService
-from coopdrive.v1 import ego_pb2, sim_pb2
+from coopdrive.v1 import ego_pb2, sim_pb2, v2x_pb2
 
 REQUEST_TIMEOUT_S = 20.0
 
@@ -76,3 +76,17 @@ def test_a_gateway_that_cannot_listen_asks_its_service_to_stop_instead_of_crashi
         assert second.counters["http_start_failures"] == 1
     finally:
         first.stop()
+
+
+def test_health_shows_each_v2x_station_s_reception_ratio_at_its_own_expected_rate(gateway):
+    """Issue 77: a standard station at 10 Hz and a GCDC one at 25 Hz, each judged at its own rate."""
+    ctx, client = gateway
+    status = v2x_pb2.V2xStatus()
+    status.stations.add(station_id=4242, state=v2x_pb2.LINK_STATE_ACTIVE, reception_ratio=0.97,
+                        expected_cam_rate_hz=10.0)
+    status.stations.add(station_id=7, state=v2x_pb2.LINK_STATE_LOST, reception_ratio=0.2, expected_cam_rate_hz=25.0)
+    ctx.deliver("v2x/status", status)
+    stations = {s["station_id"]: s for s in client.get("/health").json()["v2x_stations"]}
+    assert stations[4242] == {"station_id": 4242, "active": True, "reception_ratio": pytest.approx(0.97),
+                              "expected_cam_rate_hz": 10.0}
+    assert not stations[7]["active"] and stations[7]["expected_cam_rate_hz"] == 25.0

@@ -27,6 +27,7 @@ from google.protobuf import json_format
 
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
+from coopdrive.services.gateway.views import station_reception
 from coopdrive.services.v2x.config import V2xConfig
 from coopdrive.v1 import ego_pb2
 from tests.v2x.live.our_denm import DenmSender
@@ -50,6 +51,7 @@ class Collected:
         self.cams: dict[int, dict] = {}
         self.denms: dict[int, dict] = {}
         self.status: dict | None = None
+        self.health_v2x: list[dict] = []
         self.started = threading.Event()
 
     def on_cam(self, envelope) -> None:
@@ -74,6 +76,8 @@ class Collected:
     def on_status(self, envelope) -> None:
         with self.lock:
             self.status = json_format.MessageToDict(envelope.message, preserving_proto_field_name=True)
+            # What the gateway's /health would show of it (the same function serves it there).
+            self.health_v2x = [s.model_dump() for s in station_reception(envelope.message)]
         self.started.set()
 
 
@@ -134,7 +138,8 @@ def run(config_path: Path, duration_s: float, speed_mps: float, send_denm: bool,
                 "service_exited_early": returncode_while_running is not None, "service_stderr": stderr_tail,
                 "cams": {str(k): v for k, v in collected.cams.items()},
                 "denms": {str(k): v for k, v in collected.denms.items()},
-                "denms_sent": denms.sent if denms is not None else 0, "status": collected.status or {}}
+                "denms_sent": denms.sent if denms is not None else 0, "status": collected.status or {},
+                "health_v2x": collected.health_v2x}
 
 
 def wait_until_started(collected: Collected, process: subprocess.Popen) -> None:

@@ -84,6 +84,10 @@ def test_a_standard_peer_at_its_own_cam_rate_shows_a_reception_ratio_near_one(li
     station = station_status(live["ours"], PEER)
     assert 1.0 <= station["expected_cam_rate_hz"] <= 10.5
     assert station["reception_ratio"] >= 0.9
+    # The gateway's /health shows the same link (services/gateway/views.py station_reception).
+    health = next(s for s in live["ours"]["health_v2x"] if s["station_id"] == PEER)
+    assert health["active"] and health["reception_ratio"] >= 0.9
+    assert health["expected_cam_rate_hz"] == station["expected_cam_rate_hz"]
 
 
 def test_flexstack_decodes_our_cams_with_our_station_id_and_speed(live):
