@@ -16,7 +16,6 @@ from __future__ import annotations
 import hashlib
 import os
 import struct
-import time
 from collections.abc import Callable
 
 from cryptography.hazmat.primitives import hashes
@@ -26,6 +25,7 @@ from cryptography.hazmat.primitives.asymmetric.utils import Prehashed, encode_ds
 from bench.bench_v2x import GN, typical_cam
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
+from bench.turn_about import best_rates_per_s
 from coopdrive.v2x.btp import parse_btp_b
 from coopdrive.recording.capture import read_capture
 from coopdrive.v2x.geonet import BASIC_HEADER_SIZE, BasicNextHeader, parse_gn, with_basic_next_header
@@ -39,30 +39,6 @@ ROUNDS = sized(40, 1)
 BATCH = sized(20, 2)
 TARGET_RATIO = 1.3
 PREHASHED = ec.ECDSA(Prehashed(hashes.SHA256()))
-
-
-def rate_per_s(operation: Callable[[], object], seconds: float) -> float:
-    """Operations per CPU second of this process over about `seconds`."""
-    count, start = 0, time.process_time()
-    while True:
-        for _ in range(BATCH):
-            operation()
-        count += BATCH
-        now = time.process_time()
-        if now >= start + seconds:
-            return count / (now - start)
-
-
-def best_rates_per_s(operations: list[Callable[[], object]], seconds: float) -> list[float]:
-    """Best of ROUNDS per operation, the rounds interleaved so that a busy spell of the shared machine
-    slows every side alike rather than one of them."""
-    for operation in operations:
-        operation()
-    best = [0.0] * len(operations)
-    for _ in range(ROUNDS):
-        for index, operation in enumerate(operations):
-            best[index] = max(best[index], rate_per_s(operation, seconds / ROUNDS))
-    return best
 
 
 def bare_signed_cam(packet: bytes) -> Callable[[], object]:
@@ -129,7 +105,7 @@ def measure(seconds: float) -> list[tuple[str, int, float]]:
             ("unsigned CAM: bare asn1tools UPER", len(uper), lambda: cam_spec.decode("CAM", uper)),
             ("unsigned CAM: bare struct checks + asn1tools", len(unsigned), lambda: bare_unsigned(unsigned)),
             ("unsigned CAM: ours, GN+BTP+UPER", len(unsigned), lambda: codec.decode_frame(unsigned))]
-    rates = best_rates_per_s([operation for _, _, operation in rows], seconds)
+    rates = best_rates_per_s([operation for _, _, operation in rows], seconds, ROUNDS, BATCH)
     return [(path, size, rate) for (path, size, _), rate in zip(rows, rates)]
 
 

@@ -12,13 +12,13 @@ from __future__ import annotations
 import argparse
 import tempfile
 import time
-from collections.abc import Callable
 
 from cryptography.hazmat.primitives import hashes
 from cryptography.hazmat.primitives.asymmetric import ec
 
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
+from bench.turn_about import best_rates_per_s
 from coopdrive.v2x.packet import GnParams, SourcePosition, V2xPacketCodec
 from coopdrive.v2x.security.crypto import Curve
 from coopdrive.v2x.security.pki import create_test_pki
@@ -34,24 +34,6 @@ US_PER_MS = 1000
 CAM_PERIOD_US = 100_000
 ROUNDS = sized(3, 1)
 BATCH = sized(50, 2)
-
-
-def rate_per_s(operation: Callable[[], object], seconds: float) -> float:
-    """Operations per CPU second of this process (best of ROUNDS): a rate per core, whatever else runs."""
-    operation()
-    best = 0.0
-    for _ in range(ROUNDS):
-        count, start = 0, time.process_time()
-        deadline = start + seconds / ROUNDS
-        while True:
-            for _ in range(BATCH):
-                operation()
-            count += BATCH
-            now = time.process_time()
-            if now >= deadline:
-                break
-        best = max(best, count / (now - start))
-    return best
 
 
 def signed_cams(curve: Curve, directory: str) -> tuple[SecurityVerifier, int, bytes, bytes]:
@@ -82,9 +64,9 @@ def main() -> list[Figure]:
             key = ec.generate_private_key(curve.ec_curve())
             message = digest[4:]
             signature, public_key = key.sign(message, ec.ECDSA(hashes.SHA256())), key.public_key()
-            bare = rate_per_s(lambda: public_key.verify(signature, message, ec.ECDSA(hashes.SHA256())), seconds)
-            with_digest = rate_per_s(lambda: verifier.verify(digest, now), seconds)
-            with_certificate = rate_per_s(lambda: verifier.verify(full, now), seconds)
+            bare, with_digest, with_certificate = best_rates_per_s(
+                [lambda: public_key.verify(signature, message, ec.ECDSA(hashes.SHA256())),
+                 lambda: verifier.verify(digest, now), lambda: verifier.verify(full, now)], 3 * seconds, ROUNDS, BATCH)
             mix = 1 / (FULL_CERTIFICATE_SHARE / with_certificate + (1 - FULL_CERTIFICATE_SHARE) / with_digest)
             for path, size, rate in (("bare cryptography ECDSA verify", len(message), bare),
                                      ("signed CAM, digest signer", len(digest), with_digest),

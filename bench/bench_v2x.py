@@ -9,11 +9,11 @@ from __future__ import annotations
 import argparse
 import os
 import time
-from collections.abc import Callable
 from dataclasses import dataclass
 
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
+from bench.turn_about import best_rates_per_s
 from coopdrive.v2x.its_pdu import ItsCodec, ItsMessageId, PDU_TYPE_NAMES
 from coopdrive.v2x.mapping.cam import cam_to_asn
 from coopdrive.v2x.mapping.iclcm import iclcm_to_asn
@@ -21,6 +21,8 @@ from coopdrive.v2x.packet import GnParams, SourcePosition, V2xPacketCodec
 from coopdrive.v1 import its_pb2
 
 BARE = "bare asn1tools UPER"
+# Turns of the five operations of a message within its time (bench/turn_about.py).
+ROUNDS = sized(10, 1)
 STATIONS = 100
 RATE_HZ = 25.0
 GN = GnParams(source_mac=bytes.fromhex("020000000001"), time_tai_ms=391_478_404_000,
@@ -50,24 +52,6 @@ def typical_iclcm() -> its_pb2.IclcmContent:
         platoon_id=1, distance_travelled_cz_m=0.0, intention=its_pb2.INTENTION_STRAIGHT)
 
 
-def rate_per_s(operation: Callable[[], object], seconds: float) -> float:
-    operation()
-    count, start = 0, time.perf_counter()
-    deadline = start + seconds
-    while True:
-        for _ in range(100):
-            operation()
-        count += 100
-        now = time.perf_counter()
-        if now >= deadline:
-            return count / (now - start)
-
-
-def best_rate_per_s(operation: Callable[[], object], seconds: float, tries: int = 3) -> float:
-    """The best of a few short runs: a shared machine only ever slows a run down."""
-    return max(rate_per_s(operation, seconds / tries) for _ in range(tries))
-
-
 @dataclass
 class Row:
     message: str
@@ -88,14 +72,14 @@ def measure(seconds: float) -> list[Row]:
     for name, message_id, content, encode, to_asn in cases:
         packet, value, type_name = encode(content, GN), to_asn(content), PDU_TYPE_NAMES[message_id]
         uper = spec.encode(type_name, value)
-        rows += [
-            Row(name, BARE, len(uper), best_rate_per_s(lambda: spec.encode(type_name, value), seconds),
-                best_rate_per_s(lambda: spec.decode(type_name, uper), seconds)),
-            Row(name, "GN+BTP+UPER", len(packet), None,
-                best_rate_per_s(lambda: packet_codec.decode_frame(packet), seconds)),
-            Row(name, "GN+BTP+UPER+protobuf", len(packet), best_rate_per_s(lambda: encode(content, GN), seconds),
-                best_rate_per_s(lambda: packet_codec.decode_packet(packet), seconds)),
-        ]
+        # The five operations of a message turn about, so each ratio's sides share the machine's load alike.
+        bare_encode, bare_decode, frame_decode, full_encode, full_decode = best_rates_per_s(
+            [lambda: spec.encode(type_name, value), lambda: spec.decode(type_name, uper),
+             lambda: packet_codec.decode_frame(packet), lambda: encode(content, GN),
+             lambda: packet_codec.decode_packet(packet)], 5 * seconds, ROUNDS)
+        rows += [Row(name, BARE, len(uper), bare_encode, bare_decode),
+                 Row(name, "GN+BTP+UPER", len(packet), None, frame_decode),
+                 Row(name, "GN+BTP+UPER+protobuf", len(packet), full_encode, full_decode)]
     return rows
 
 

@@ -1,0 +1,56 @@
+"""Both sides of a ratio measured turn about, on this process's CPU clock.
+
+A ratio's sides measured one after the other drift apart when the shared machine's load comes and goes between
+them: two `make bench` runs of the same code flagged 17 of 41 ratios that way (docs/performance.md). Measured in
+short turns, side A then side B then A again, a busy spell weighs on both alike; the best turn of each side is
+kept (timeit's advice: the slower turns measure the machine's other work). Times are this process's CPU time,
+which does not count the time the scheduler gave to other processes.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Sequence
+
+# Operations between two reads of the clock: enough that reading it costs nothing beside them.
+DEFAULT_BATCH = 20
+
+
+def cpu_seconds(work: Callable[[], object]) -> float:
+    """This process's CPU seconds that one call of work took."""
+    start = time.process_time()
+    work()
+    return time.process_time() - start
+
+
+def least_of_turns(sides: Sequence[Callable[[], float]], rounds: int) -> list[float]:
+    """Each side's least measurement over `rounds` turns, the sides taking turns within each round. A side is a
+    callable that does its work and returns what it measured (seconds, us per call...)."""
+    least = [math.inf] * len(sides)
+    for _ in range(rounds):
+        for index, side in enumerate(sides):
+            least[index] = min(least[index], side())
+    return least
+
+
+def rate_per_s(operation: Callable[[], object], seconds: float, batch: int = DEFAULT_BATCH) -> float:
+    """Operations per CPU second of this process over about `seconds` of it."""
+    count, start = 0, time.process_time()
+    while True:
+        for _ in range(batch):
+            operation()
+        count += batch
+        now = time.process_time()
+        if now >= start + seconds:
+            return count / (now - start)
+
+
+def best_rates_per_s(operations: Sequence[Callable[[], object]], seconds: float, rounds: int,
+                     batch: int = DEFAULT_BATCH) -> list[float]:
+    """Each operation's best rate per CPU second over `rounds` turns of seconds / rounds each."""
+    for operation in operations:
+        operation()  # the first call fills caches (schemas, certificates) that later calls find ready
+    seconds_each = least_of_turns([lambda op=op: 1.0 / rate_per_s(op, seconds / rounds, batch) for op in operations],
+                               rounds)
+    return [1.0 / s for s in seconds_each]
