@@ -226,6 +226,8 @@ class GnPacket:
             parts += [_GBC_HEAD.pack(self.extended.sequence_number, 0), self.extended.source_position.pack(),
                       _GBC_AREA.pack(area.latitude_tenth_microdeg, area.longitude_tenth_microdeg, area.distance_a_m,
                                      area.distance_b_m, area.angle_deg, 0)]
+        elif isinstance(self.extended, BeaconHeader):
+            parts.append(self.extended.source_position.pack())
         else:
             parts += [self.extended.source_position.pack(), _SHB_TAIL.pack(self.extended.media_dependent)]
         parts.append(self.payload)

@@ -2,7 +2,8 @@ import pytest
 
 from coopdrive.v2x.btp import BtpBHeader, BtpParseError, BtpPort, parse_btp_b
 from coopdrive.v2x.geonet import (
-    GN_VERSION_GCDC, SHB_HEADER_SIZE, BasicHeader, CommonHeader, GbcHeader, GeoArea, GeoAreaShape, GnAddress,
+    BASIC_HEADER_SIZE, BEACON_HEADER_SIZE, COMMON_HEADER_SIZE, GN_VERSION_GCDC, SHB_HEADER_SIZE, BasicHeader,
+    BeaconHeader, CommonHeader, CommonNextHeader, GbcHeader, GeoArea, GeoAreaShape, GnAddress,
     GnPacket, GnParseError, HeaderType, LongPositionVector, ShbHeader, encode_lifetime, parse_gn)
 from coopdrive.v2x.reasons import RejectReason
 
@@ -78,3 +79,12 @@ def test_btp_b_ports_are_the_etsi_and_gcdc_ones_and_its_header_round_trips():
     assert header == BtpBHeader(2010, 7) and payload == b"uper"
     with pytest.raises(BtpParseError, match="truncated_btp_header"):
         parse_btp_b(b"\x07")
+
+
+def test_a_beacon_packs_to_its_position_vector_alone_and_parses_back():
+    vector = LongPositionVector(GnAddress(mid=b"\x02\x00\x00\x00\x00\x07"), 1234, 577089000, 119735000)
+    packet = GnPacket(BasicHeader(version=0), CommonHeader(next_header=CommonNextHeader.ANY), BeaconHeader(vector),
+                      b"").to_bytes()
+    assert len(packet) == BASIC_HEADER_SIZE + COMMON_HEADER_SIZE + BEACON_HEADER_SIZE
+    parsed = parse_gn(packet)
+    assert isinstance(parsed.extended, BeaconHeader) and parsed.extended.source_position == vector

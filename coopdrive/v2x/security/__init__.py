@@ -1,4 +1,5 @@
-"""Security envelope of V2X packets: IEEE 1609.2 signed data as profiled by ETSI TS 103 097 v1.3.1 (OER).
+"""Security envelope of V2X packets: IEEE 1609.2 signed data as profiled by ETSI TS 103 097 v1.3.1 (OER), and the
+older TS 103 097 v1.2.1 SecuredMessage of GN version 0 roadside units (v121_*.py, judged by inspection too).
 
 Public API (pure logic, no Zenoh):
 - `inspection.PacketInspector(store).inspect(packet, now_tai_us | None)` -> InspectedPacket(security:

@@ -24,53 +24,19 @@ A certificate whose packet signature verified is cached (bounded) so later diges
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
-from coopdrive.v2x.btp import parse_btp_b
 from coopdrive.v2x.geonet import (
-    BASIC_HEADER_SIZE, BasicNextHeader, CommonNextHeader, is_secured, parse_basic_header, parse_gn,
-    with_basic_next_header)
+    BASIC_HEADER_SIZE, BasicNextHeader, is_secured, parse_basic_header, with_basic_next_header)
 from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.v2x.security.certificate import Certificate, CertificateError
 from coopdrive.v2x.security.crypto import data_digest, hashed_id8, verify_digest
 from coopdrive.v2x.security.envelope import SignedEnvelope, parse_signed_data
 from coopdrive.v2x.security.profile import MAX_CLOCK_AHEAD_S, MAX_MESSAGE_AGE_S, PSID_OF_PORT, SecurityMode
+from coopdrive.v2x.security.result import (
+    UNSIGNED, InspectedPacket, SecurityResult, freshness_reason, sender_position)
 from coopdrive.v2x.security.store import CertificateStore
+from coopdrive.v2x.security.v121_inspection import V121Inspector
+from coopdrive.v2x.security.v121_message import is_v121
 from coopdrive.v2x.timebase import US_PER_S
-
-
-@dataclass(frozen=True, slots=True)
-class SecurityResult:
-    signed: bool
-    # "certificate" (sent in full) or "digest"; None unsigned or unreadable.
-    signer: str | None = None
-    # HashedId8 of the signer's certificate.
-    signer_digest: bytes | None = None
-    verified: bool | None = None
-    fresh: bool | None = None
-    trusted: bool | None = None
-    reason: RejectReason | None = None
-    psid: int | None = None
-    # TAI microseconds since 2004 (Time64), as signed.
-    generation_time_us: int | None = None
-
-    def as_dict(self) -> dict:
-        """JSON-ready (the `security` object of `coopdrive v2x decode --json`)."""
-        return {"signed": self.signed, "signer": self.signer,
-                "signer_digest": self.signer_digest.hex() if self.signer_digest else None,
-                "verified": self.verified, "fresh": self.fresh, "trusted": self.trusted,
-                "reason": self.reason.value if self.reason else None, "psid": self.psid,
-                "generation_time_us": self.generation_time_us}
-
-
-UNSIGNED = SecurityResult(signed=False)
-
-
-@dataclass(frozen=True, slots=True)
-class InspectedPacket:
-    security: SecurityResult
-    # The GN packet without its envelope (the packet itself when unsigned); None when it cannot be unwrapped.
-    unsecured_packet: bytes | None
 
 
 # A valid signature whose certificate chains to no configured root: verify_required drops it as `untrusted`
@@ -103,6 +69,8 @@ class PacketInspector:
         self.store = store
         self.max_age_us = round(max_age_s * US_PER_S)
         self.max_ahead_us = round(max_ahead_s * US_PER_S)
+        # TS 103 097 v1.2.1 packets (GN version 0 roadside units), with their own store of signers heard.
+        self.v121 = V121Inspector(store, max_age_s, max_ahead_s)
 
     def inspect(self, packet: bytes, now_tai_us: int | None = None) -> InspectedPacket:
         """Never raises: whatever the bytes, a result (unreadable envelopes are verified=False with the reason)."""
@@ -111,6 +79,8 @@ class PacketInspector:
             return InspectedPacket(UNSIGNED, packet)
         try:
             parse_basic_header(packet)
+            if is_v121(packet[BASIC_HEADER_SIZE:]):
+                return self.v121.inspect(packet, now_tai_us)
             envelope = parse_signed_data(packet[BASIC_HEADER_SIZE:])
         except V2xDecodeError as error:
             return InspectedPacket(SecurityResult(True, verified=False, reason=error.reason), None)
@@ -128,7 +98,7 @@ class PacketInspector:
                 "generation_time_us": envelope.generation_time_us}
         if certificate is None:
             return SecurityResult(**base, reason=RejectReason.UNKNOWN_SIGNER_DIGEST)
-        position = _sender_position(envelope, unsecured)
+        position = sender_position(envelope.location, unsecured)
         verified_reason = self._signature_reason(envelope, certificate, position[0])
         if verified_reason is not None:
             return SecurityResult(**base, verified=False, reason=verified_reason)
@@ -160,17 +130,7 @@ class PacketInspector:
         return None
 
     def _freshness_reason(self, envelope: SignedEnvelope, now_tai_us: int | None) -> RejectReason | None:
-        if now_tai_us is None:
-            return None
-        generated = envelope.generation_time_us
-        if generated is None:
-            return RejectReason.MISSING_GENERATION_TIME
-        if generated > now_tai_us + self.max_ahead_us:
-            return RejectReason.FUTURE_GENERATION_TIME
-        expiry = envelope.expiry_time_us
-        if now_tai_us - generated > self.max_age_us or (expiry is not None and now_tai_us > expiry):
-            return RejectReason.STALE_GENERATION_TIME
-        return None
+        return freshness_reason(envelope, now_tai_us, self.max_age_us, self.max_ahead_us)
 
     def _trust(self, envelope: SignedEnvelope, certificate: Certificate,
                position: tuple[int, int] | None) -> tuple[bool | None, RejectReason | None]:
@@ -186,18 +146,3 @@ class PacketInspector:
         except CertificateError as error:
             return False, error.reason
         return True, None
-
-
-def _sender_position(envelope: SignedEnvelope, unsecured: bytes) -> tuple[int | None, tuple[int, int] | None]:
-    """(BTP destination port, (latitude, longitude) in 0.1 microdegree) as far as the packet can be read."""
-    try:
-        gn = parse_gn(unsecured)
-        port = parse_btp_b(gn.payload)[0].destination_port if gn.common.next_header == CommonNextHeader.BTP_B \
-            else None
-        vector = gn.extended.source_position
-        position = (vector.latitude_tenth_microdeg, vector.longitude_tenth_microdeg)
-    except V2xDecodeError:
-        port, position = None, None
-    if envelope.location is not None:
-        position = (envelope.location.latitude, envelope.location.longitude)
-    return port, position

@@ -23,6 +23,7 @@ from coopdrive.v2x.security.crypto import data_digest, hashed_id8, verify_digest
 from coopdrive.v2x.security.envelope import SignedEnvelope, parse_signed_data
 from coopdrive.v2x.security.profile import MAX_CLOCK_AHEAD_S, MAX_MESSAGE_AGE_S, PSID_OF_PORT
 from coopdrive.v2x.security.store import CertificateStore
+from coopdrive.v2x.security.v121_message import is_v121, parse_secured_message
 from coopdrive.v2x.timebase import US_PER_S
 
 
@@ -92,6 +93,8 @@ class SecurityVerifier:
             raise _Rejected(error.reason, None) from None
         if basic.next_header != BasicNextHeader.SECURED_PACKET:
             raise _Rejected(RejectReason.UNSECURED_PACKET_REFUSED, None)
+        if is_v121(packet[BASIC_HEADER_SIZE:]):
+            return _unwrap_v121(packet, verify)
         try:
             envelope = parse_signed_data(packet[BASIC_HEADER_SIZE:])
         except V2xDecodeError as error:
@@ -166,3 +169,16 @@ class SecurityVerifier:
         if not verify_digest(certificate.public_key, envelope.signature,
                              data_digest(envelope.tbs_bytes, certificate.encoded)):
             raise _Rejected(RejectReason.INVALID_SIGNATURE, digest)
+
+
+def _unwrap_v121(packet: bytes, verify: bool) -> OpenedPacket:
+    """A TS 103 097 v1.2.1 packet unwrapped (to read its sender); its signature is judged by inspection.py only."""
+    if verify:
+        raise _Rejected(RejectReason.UNSUPPORTED_SECURED_CONTENT, None)
+    try:
+        message = parse_secured_message(packet[BASIC_HEADER_SIZE:])
+    except V2xDecodeError as error:
+        raise _Rejected(error.reason, None) from None
+    unsecured = with_basic_next_header(packet, BasicNextHeader.COMMON_HEADER, message.payload)
+    return OpenedPacket(VerificationResult(True, None, message.signer_digest), unsecured, message.psid,
+                        message.generation_time_us, message.certificate is not None, False)

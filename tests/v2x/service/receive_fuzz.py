@@ -17,6 +17,7 @@ import socket
 import tempfile
 import time
 from collections import Counter
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -46,6 +47,8 @@ MUTATE_GN_MIN_BYTES = 48
 TAMPER_SHARE = 0.25
 # Bits counted from the end of the signed facility message (tamper_packet).
 TAMPER_BITS = 64
+# CPU time of one packet above which the receive path is taken to stall.
+SLOWEST_PACKET_CPU_S = 0.1
 
 
 @dataclass
@@ -85,6 +88,9 @@ def signed_seeds(pki_dir: Path, now_s: float) -> list[bytes]:
             for packet in (fresh_cam, denm_packet(signer), iclcm_packet(signer), fresh_cam)]
 
 
+Mutation = Callable[[random.Random, bytes], bytes]
+
+
 def mutate(rng: random.Random, packet: bytes) -> bytes:
     """test_fuzz's mutations; a packet too short for its fixed offsets (a beacon) gets bit flips or a cut; one
     secured packet in four has one bit of its signed message flipped (a forgery the signature must catch)."""
@@ -121,11 +127,11 @@ def start_service(pki_dir: Path, pcap_path: Path, now_s: float) -> tuple[V2xServ
 
 
 def _feed(service: V2xService, ctx: MemoryContext, groups: list[list[bytes]], packets: int, rng: random.Random,
-          outcome: FuzzOutcome) -> None:
+          outcome: FuzzOutcome, mutation: Mutation) -> None:
     started, started_cpu = time.perf_counter(), time.thread_time()
     for index in range(packets):
         original = rng.choice(rng.choice(groups))
-        data = original if rng.random() < 0.05 else mutate(rng, original)
+        data = original if rng.random() < 0.05 else mutation(rng, original)
         before = time.thread_time()
         service.on_datagram(data)
         outcome.slowest_packet_cpu_s = max(outcome.slowest_packet_cpu_s, time.thread_time() - before)
@@ -137,7 +143,7 @@ def _feed(service: V2xService, ctx: MemoryContext, groups: list[list[bytes]], pa
 
 
 def fuzz(service: V2xService, ctx: MemoryContext, groups: list[list[bytes]], packets: int,
-         seed: int = SEED) -> FuzzOutcome:
+         seed: int = SEED, mutation: Mutation = mutate) -> FuzzOutcome:
     """Each packet a mutation (or, one time in twenty, the original) of a seed of a group drawn evenly."""
     rng = random.Random(seed)
     outcome = FuzzOutcome()
@@ -146,7 +152,7 @@ def fuzz(service: V2xService, ctx: MemoryContext, groups: list[list[bytes]], pac
     gc.collect()
     gc.freeze()
     try:
-        _feed(service, ctx, groups, packets, rng, outcome)
+        _feed(service, ctx, groups, packets, rng, outcome, mutation)
     finally:
         gc.unfreeze()
     reception = service.reception
@@ -166,23 +172,36 @@ def _flush(service: V2xService, ctx: MemoryContext, outcome: FuzzOutcome) -> Non
     ctx.outputs.clear()
 
 
-def run(packets: int, folder: Path) -> FuzzOutcome:
-    now_s = time.time()
-    groups = [real_seeds(), signed_seeds(folder / "pki", now_s), unsigned_seeds()]
+def run_in_service(folder: Path, now_s: float, groups: list[list[bytes]], packets: int,
+                   mutation: Mutation = mutate) -> FuzzOutcome:
+    """fuzz() against a service started on folder's PKI (ticket `ego`) at now_s, stopped afterwards."""
     service, ctx, radio = start_service(folder / "pki", folder / "fuzz.pcap", now_s)
     try:
-        return fuzz(service, ctx, groups, packets)
+        return fuzz(service, ctx, groups, packets, mutation=mutation)
     finally:
         service.stop()
         radio.close()
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def run(packets: int, folder: Path) -> FuzzOutcome:
+    now_s = time.time()
+    groups = [real_seeds(), signed_seeds(folder / "pki", now_s), unsigned_seeds()]
+    return run_in_service(folder, now_s, groups, packets)
+
+
+def assert_every_packet_counted(outcome: FuzzOutcome, packets: int) -> None:
+    """All packets passed, none stalled, each accepted, ignored as ours, taken as a beacon or rejected by reason."""
+    assert outcome.packets == packets
+    assert outcome.accepted + outcome.own + outcome.beacons + sum(outcome.rejected.values()) == packets
+    assert outcome.slowest_packet_cpu_s < SLOWEST_PACKET_CPU_S
+
+
+def main(run_fuzz: Callable[[int, Path], FuzzOutcome] = run, description: str = __doc__) -> None:
+    parser = argparse.ArgumentParser(description=description.splitlines()[0])
     parser.add_argument("--packets", type=int, default=100_000)
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as folder:
-        outcome = run(args.packets, Path(folder))
+        outcome = run_fuzz(args.packets, Path(folder))
     print(f"{outcome.packets} packets in {outcome.elapsed_s:.1f} s, {outcome.cpu_s:.1f} s of CPU "
           f"({outcome.packets / outcome.cpu_s:.0f}/s of CPU), slowest {outcome.slowest_packet_cpu_s * 1000:.1f} ms; "
           f"accepted {outcome.accepted}, own {outcome.own}, beacons {outcome.beacons}, "
