@@ -18,6 +18,7 @@ from coopdrive.v2x.asn1_package import PackageSpec
 from coopdrive.v2x.btp import BtpPort
 from coopdrive.v2x.its_pdu import PROTOCOL_VERSION_CURRENT, PROTOCOL_VERSION_GCDC, ItsHeader
 from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.v2x.recent_decodes import RECENT_DECODES
 
 SUPPORTED_PROTOCOL_VERSIONS = (PROTOCOL_VERSION_GCDC, PROTOCOL_VERSION_CURRENT)
 _SPEC = PackageSpec("coopdrive.v2x.asn1.dsrc", "dsrc")
@@ -62,12 +63,18 @@ class InfrastructureCodec:
         if header.protocol_version not in SUPPORTED_PROTOCOL_VERSIONS:
             raise V2xDecodeError(RejectReason.UNSUPPORTED_PROTOCOL_VERSION,
                                  f"{message.name} protocolVersion {header.protocol_version}")
-        # Not through RECENT_DECODES: its key is the bytes alone, and messageId 10 is an SSEM on port 2008 but
-        # an iCLCM on 2010. A roadside unit sends a few of these a second; there is little to share.
+        # Shared with every codec of the process (RECENT_DECODES), keyed by the type too: messageId 10 is an SSEM on
+        # port 2008 but an iCLCM on 2010. No ITS PDU's key starts so (its first octet, protocolVersion, is 1 or 2).
+        key = message.type_name.encode() + bytes(uper)
+        value = RECENT_DECODES.get(key)
+        if value is not None:
+            return value
         try:
-            return self.spec().decode(message.type_name, bytes(uper))
+            value = self.spec().decode(message.type_name, bytes(uper))
         except Exception as error:  # noqa: BLE001 -- asn1tools raises many types on garbage input
             raise V2xDecodeError(RejectReason.MALFORMED_ASN1, f"{type(error).__name__}: {error}") from None
+        RECENT_DECODES.keep(key, value)
+        return value
 
     def encode(self, message: InfrastructureMessage, value: dict) -> bytes:
         return self.spec().encode(message.type_name, value, check_constraints=True)

@@ -13,11 +13,12 @@ from pathlib import Path
 
 from coopdrive.recording.capture import read_gn_packets
 from coopdrive.v2x.btp import BtpPort
+from coopdrive.v2x.infrastructure import InfrastructureCodec
 from coopdrive.v2x.security.pki import create_test_pki
 from coopdrive.v2x.timebase import unix_s_from_tai_ms
 from tests.shared_data import shared_file
 from tests.v2x import infrastructure_messages as messages
-from tests.v2x.service.receive_fuzz import FuzzOutcome, fuzz, start_service
+from tests.v2x.service.receive_fuzz import FuzzOutcome, fuzz, print_outcome, start_service
 
 REAL_SPATEM_INDEX = 3
 # Its generation time (TAI ms since 2004, in its signed header); the service's clock starts just after, so that
@@ -39,6 +40,7 @@ def started_service(folder: Path):
     """receive_fuzz's service (security sign_and_verify with a test PKI of its own in folder), its clock just after
     the real SPATEM was sent."""
     create_test_pki(folder / "pki", ["ego"])
+    InfrastructureCodec.spec()  # compiled before the clock runs: a packet's time is its own work
     now_s = unix_s_from_tai_ms(REAL_SPATEM_GENERATION_TAI_MS) + AFTER_GENERATION_S
     return start_service(folder / "pki", folder / "rx.pcap", now_s)
 
@@ -61,14 +63,9 @@ def main() -> None:
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as folder:
         outcome, counters = run(args.packets, Path(folder))
-    print(f"{outcome.packets} packets in {outcome.elapsed_s:.1f} s, {outcome.cpu_s:.1f} s of CPU, slowest "
-          f"{outcome.slowest_packet_cpu_s * 1000:.1f} ms; accepted {outcome.accepted} ("
-          + ", ".join(f"{name.removeprefix('received_')} {count}" for name, count in sorted(counters.items())
-                      if name.startswith("received_"))
-          + f"), own {outcome.own}, beacons {outcome.beacons}, rejected {sum(outcome.rejected.values())}")
-    for reason, count in outcome.rejected.most_common():
-        print(f"  {reason}: {count}")
-
+    received = ", ".join(f"{name.removeprefix('received_')} {count}" for name, count in sorted(counters.items())
+                         if name.startswith("received_"))
+    print_outcome(outcome, f" ({received})")
 
 if __name__ == "__main__":
     main()
