@@ -15,19 +15,29 @@ from coopdrive.v2x.btp import BtpBHeader, BtpPort, parse_btp_b
 from coopdrive.v2x.geonet import (
     GN_VERSION_GCDC, MAC_SIZE_BYTES, SUPPORTED_GN_VERSIONS, BasicHeader, BeaconHeader, CommonHeader, CommonNextHeader,
     GbcHeader, GeoArea, GeoAreaShape, GnAddress, GnPacket, LongPositionVector, ShbHeader, encode_lifetime, parse_gn)
+from coopdrive.v2x.infrastructure import INFRASTRUCTURE_OF_PORT, InfrastructureCodec, InfrastructureMessage
 from coopdrive.v2x.its_pdu import ItsCodec, ItsHeader, ItsMessageId, peek_its_header
 from coopdrive.v2x.mapping.cam import cam_from_asn, cam_to_asn
 from coopdrive.v2x.mapping.denm import denm_from_asn, denm_to_asn
 from coopdrive.v2x.mapping.iclcm import iclcm_from_asn, iclcm_to_asn
+from coopdrive.v2x.mapping.mapem import mapem_from_asn
+from coopdrive.v2x.mapping.spatem import spatem_from_asn
+from coopdrive.v2x.mapping.srem import srem_from_asn
+from coopdrive.v2x.mapping.ssem import ssem_from_asn
 from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
-from coopdrive.v1 import its_pb2
+from coopdrive.v1 import infrastructure_pb2, its_pb2
 
 STATION_TYPE_PASSENGER_CAR = 5
 PORT_OF_MESSAGE = {ItsMessageId.CAM: BtpPort.CAM, ItsMessageId.DENM: BtpPort.DENM, ItsMessageId.ICLCM: BtpPort.ICLCM}
 MESSAGE_OF_PORT = {int(port): message for message, port in PORT_OF_MESSAGE.items()}
-_FROM_ASN = {ItsMessageId.CAM: cam_from_asn, ItsMessageId.DENM: denm_from_asn, ItsMessageId.ICLCM: iclcm_from_asn}
+_FROM_ASN = {ItsMessageId.CAM: cam_from_asn, ItsMessageId.DENM: denm_from_asn, ItsMessageId.ICLCM: iclcm_from_asn,
+             InfrastructureMessage.SPATEM: spatem_from_asn, InfrastructureMessage.MAPEM: mapem_from_asn,
+             InfrastructureMessage.SREM: srem_from_asn, InfrastructureMessage.SSEM: ssem_from_asn}
 
-Content = its_pb2.CamContent | its_pb2.DenmContent | its_pb2.IclcmContent
+Content = its_pb2.CamContent | its_pb2.DenmContent | its_pb2.IclcmContent | infrastructure_pb2.SpatemContent | \
+    infrastructure_pb2.MapemContent | infrastructure_pb2.SremContent | infrastructure_pb2.SsemContent
+# What a decoded packet is: an ITS PDU of its_pdu.py's codec or an infrastructure message of infrastructure.py's.
+MessageType = ItsMessageId | InfrastructureMessage
 
 
 @dataclass
@@ -84,7 +94,7 @@ class SecurityLayer(Protocol):
 class DecodedFrame:
     """A packet decoded down to the asn1tools dict of its ITS PDU (wire units)."""
 
-    message_type: ItsMessageId
+    message_type: MessageType
     its_header: ItsHeader
     value: dict
     gn: GnPacket = field(repr=False)
@@ -121,6 +131,7 @@ class V2xPacketCodec:
     def __init__(self, its_codec: ItsCodec | None = None, accepted_gn_versions: tuple[int, ...] = SUPPORTED_GN_VERSIONS,
                  security: SecurityLayer | None = None):
         self.its_codec = its_codec or ItsCodec()
+        self.infrastructure_codec = InfrastructureCodec()
         self.accepted_gn_versions = accepted_gn_versions
         # Without one, secured packets are still unwrapped and checked (mode off, no roots, no clock).
         self.security = security if security is not None else _unwrapping_layer()
@@ -162,6 +173,11 @@ class V2xPacketCodec:
         if gn.common.next_header != CommonNextHeader.BTP_B:
             raise V2xDecodeError(RejectReason.NOT_BTP_B, f"next header {gn.common.next_header.name}")
         btp, uper = parse_btp_b(gn.payload)
+        infrastructure = INFRASTRUCTURE_OF_PORT.get(btp.destination_port)
+        if infrastructure is not None:
+            its_header = peek_its_header(uper)
+            value = self.infrastructure_codec.decode(infrastructure, its_header, uper)
+            return DecodedFrame(infrastructure, its_header, value, gn, btp, security)
         message_type = MESSAGE_OF_PORT.get(btp.destination_port)
         if message_type is None:
             raise V2xDecodeError(RejectReason.UNKNOWN_BTP_PORT, str(btp.destination_port))

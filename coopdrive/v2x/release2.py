@@ -9,35 +9,15 @@ count them; nothing in the stack consumes them yet.
 
 from __future__ import annotations
 
-import threading
-from importlib import resources
-from pathlib import Path
-
-import asn1tools
-
-from coopdrive.v2x.its_pdu import default_cache_dir
-from coopdrive.v2x.security.asn import parsed_cached
+from coopdrive.v2x.asn1_package import PackageSpec
 
 TOP_TYPE_OF_MESSAGE = {"cpm": "CollectivePerceptionMessage", "vam": "VAM"}
-_lock = threading.Lock()
-_spec: asn1tools.compiler.Specification | None = None
-
-
-def _spec_once() -> asn1tools.compiler.Specification:
-    global _spec
-    if _spec is None:
-        with _lock:
-            if _spec is None:
-                package = resources.files("coopdrive.v2x.asn1.release2")
-                paths = sorted(str(package.joinpath(entry.name)) for entry in package.iterdir()
-                               if entry.name.endswith(".asn"))
-                _spec = asn1tools.compile_dict(parsed_cached(paths, Path(default_cache_dir()), "release2"), "uper")
-    return _spec
+_SPEC = PackageSpec("coopdrive.v2x.asn1.release2", "release2")
 
 
 def release2_content(message: str, uper: bytes) -> dict:
     """The decoded message as JSON-ready values; raises whatever asn1tools raises on bad input."""
-    return plain(_spec_once().decode(TOP_TYPE_OF_MESSAGE[message], uper))
+    return plain(_SPEC.get().decode(TOP_TYPE_OF_MESSAGE[message], uper))
 
 
 def plain(value):

@@ -141,6 +141,16 @@ ICLCM_LANE = LinearField(1.0, 1, 3, unavailable=4)
 # GeoNetworking long position vector: 15-bit signed speed, 16-bit heading without 'unavailable'.
 GN_SPEED_CMPS = LinearField(0.01, -16_384, 16_383)
 
+# DSRC types of TS 103 301 (MAPEM, SPATEM, SREM, SSEM). Node offsets (Offset-B10 to Offset-B16, DrivenLineOffset)
+# and lane widths count centimetres; the CHOICE of the node says the width, the scale is the same.
+DSRC_OFFSET_CM = LinearField(0.01, -32_768, 32_767)
+DSRC_LANE_WIDTH_CM = LinearField(0.01, 0, 32_767)
+DSRC_ELEVATION_DM = LinearField(0.1, -4095, 61_439, unavailable=-4096)
+# TimeMark: tenths of a second after the start of the UTC hour; 35991..36000 during a leap second, 36001 unknown.
+TIME_MARK_DS = LinearField(0.1, 0, 36_000, unavailable=36_001)
+# DSecond: milliseconds within the minute (60000..60999 during a leap second), 65535 unavailable.
+DSECOND_MS = LinearField(0.001, 0, 65_534, unavailable=65_535)
+
 HEADING_UNAVAILABLE_TENTH_DEG = 3601
 _TENTH_DEG_PER_TURN = 3600
 

@@ -10,7 +10,8 @@
 A record: index, time_s, link_type, source_mac, ethertype; `unreadable` (+ detail) for frames that carry no
 GeoNetworking; otherwise `gn` (version, header_type, station_type, position), message_type (`beacon`, or by
 BTP port: `cam`, `denm`, `iclcm`, `spatem`, `mapem`, `ivim`, `srem`, `ssem`, `cpm`, `vam`, ..., `btp_<port>`),
-btp_port, station_id, `content` for the types we decode (CAM/DENM/iCLCM in SI units, CPM/VAM as ASN.1 values),
+btp_port, station_id, `content` for the types we decode (CAM/DENM/iCLCM and SPATEM/MAPEM/SREM/SSEM in SI units as
+protobuf JSON, CPM/VAM as ASN.1 values),
 `error` (+ detail) when that failed, and `security` (security.inspection.SecurityResult.as_dict()).
 Freshness is judged against the capture time of each frame (freshness=False: not judged).
 """
@@ -38,7 +39,7 @@ from coopdrive.v2x.security.trust import trust_store
 from coopdrive.v2x.timebase import US_PER_MS, tai_ms_from_unix_s
 from coopdrive.v2x.units import TENTH_MICRODEG_PER_DEG
 
-MAPPED_MESSAGES = ("cam", "denm", "iclcm")
+MAPPED_MESSAGES = ("cam", "denm", "iclcm", "spatem", "mapem", "srem", "ssem")
 HEADER_TYPE_NAMES = {HeaderType.BEACON: "beacon", HeaderType.TOPOLOGICALLY_SCOPED_BROADCAST: "tsb_single_hop",
                      HeaderType.GEOBROADCAST: "geobroadcast"}
 # ItsPduHeader in UPER: protocolVersion and messageID (8 bits each), stationID (32 bits), octet-aligned.
@@ -170,7 +171,27 @@ def _content_text(content: dict) -> str:
     speed = content.get("high_frequency", {}).get("speed_mps")
     if speed is not None:
         text += f" {speed:.2f} m/s"
+    for intersection in content.get("intersections", ()):
+        if "id" in intersection:  # SPATEM and MAPEM; an SSEM's intersections name theirs `intersection`
+            text += _intersection_text(intersection)
     return text
+
+
+def _intersection_text(intersection: dict) -> str:
+    """A MAPEM's intersection with its lane count, a SPATEM's with each signal group's current phase."""
+    text = f" intersection {intersection['id'].get('id', 0)}"
+    if "lanes" in intersection:
+        text += f": {len(intersection['lanes'])} lanes"
+    groups = intersection.get("signal_groups", ())
+    if groups and isinstance(groups[0], dict):
+        phases = (f"{group.get('signal_group', 0)}={_phase(group)}" for group in groups)
+        text += ": " + " ".join(phases)
+    return text
+
+
+def _phase(group: dict) -> str:
+    events = group.get("events") or [{}]
+    return events[0].get("state", "MOVEMENT_PHASE_STATE_UNAVAILABLE").removeprefix("MOVEMENT_PHASE_STATE_").lower()
 
 
 def _security_text(security: dict | None) -> str:

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 from coopdrive.services.v2x.config import PlausibilityLimits
 from coopdrive.v2x.geonet import GnPacket
+from coopdrive.v2x.infrastructure import InfrastructureMessage
 from coopdrive.v2x.its_pdu import ItsMessageId
 from coopdrive.v2x.packet import BeaconPacket, DecodedPacket, V2xPacketCodec, default_codec
 from coopdrive.services.v2x.plausibility import Observation, PlausibilityChecker
@@ -137,6 +138,8 @@ class Reception:
         if mac == self.own.mac or decoded.station_id == self.own.station_id:
             self.own_packets_ignored += 1
             return Heard(receive_s, mac)
+        if isinstance(decoded.message_type, InfrastructureMessage):
+            return self._on_infrastructure(decoded, mac, receive_s)
         receive_tai_ms = self.clock.tai_ms(receive_s)
         time_tai_ms = message_time_tai_ms(decoded, receive_tai_ms)
         stats = self._stats(decoded.station_id)
@@ -154,6 +157,14 @@ class Reception:
             ItsClock.seconds_between(time_tai_ms, receive_tai_ms)
         stats.on_message(decoded.message_type, receive_s, None if delay_s is None else time_tai_ms, delay_s)
         return Heard(receive_s, mac, decoded, delay_s)
+
+    def _on_infrastructure(self, decoded: DecodedPacket, mac: bytes, receive_s: float) -> Heard:
+        """A roadside unit's SPATEM, MAPEM, SREM or SSEM: counted for its station and delivered. They carry no
+        generation time to judge a clock by (a minute of the year at most) and no motion to check."""
+        stats = self._stats(decoded.station_id)
+        stats.security.add(verdict_of_opened(decoded.security), refused=False)
+        stats.on_message(decoded.message_type, receive_s, None, None)
+        return Heard(receive_s, mac, decoded)
 
     def _on_beacon(self, gn: GnPacket, receive_s: float) -> None:
         """A beacon names no station id, only its GN address (MAC): its position is kept by MAC."""

@@ -1,5 +1,5 @@
-"""V2X service: GN packets to and from the radio box over UDP; CAM, iCLCM and DENM out; decoded content,
-raw packets and per-station link statistics onto the bus.
+"""V2X service: GN packets to and from the radio box over UDP; CAM, iCLCM and DENM out; decoded content (those
+three and the roadside units' SPATEM, MAPEM, SREM and SSEM), raw packets and per-station link statistics onto the bus.
 
 Socket input only updates state (through ctx.call_soon); everything is published from time triggers.
 """
@@ -13,7 +13,9 @@ from coopdrive.bus import Envelope
 from coopdrive.runtime.service import Service
 from coopdrive.services.v2x.config import GCDC_RATE_HZ, LinkSync, LinkType, SecurityConfig, V2xConfig
 from coopdrive.services.v2x.denm_manager import ActionId
+from coopdrive.v2x.infrastructure import InfrastructureMessage
 from coopdrive.v2x.its_pdu import ItsMessageId
+from coopdrive.v2x.packet import Content, MessageType
 from coopdrive.services.v2x.link import CaptureLog, RecordedLink, UdpLink
 from coopdrive.services.v2x.pseudonym import PseudonymChanger
 from coopdrive.services.v2x.raw_link import RawLink
@@ -30,15 +32,17 @@ from coopdrive.v1 import its_pb2, v2x_pb2
 
 # Source MAC in the pcap for a received packet whose GN header cannot be parsed.
 UNKNOWN_MAC = bytes(6)
-TOPIC_OF_MESSAGE = {ItsMessageId.CAM: "v2x/cam", ItsMessageId.DENM: "v2x/denm", ItsMessageId.ICLCM: "v2x/iclcm"}
+TOPIC_OF_MESSAGE = {ItsMessageId.CAM: "v2x/cam", ItsMessageId.DENM: "v2x/denm", ItsMessageId.ICLCM: "v2x/iclcm",
+                    InfrastructureMessage.SPATEM: "v2x/spatem", InfrastructureMessage.MAPEM: "v2x/mapem",
+                    InfrastructureMessage.SREM: "v2x/srem", InfrastructureMessage.SSEM: "v2x/ssem"}
 
 
 @dataclass
 class _Received:
     receive_s: float
     packet: v2x_pb2.GnPacket
-    message_type: ItsMessageId | None = None
-    content: its_pb2.CamContent | its_pb2.DenmContent | its_pb2.IclcmContent | None = None
+    message_type: MessageType | None = None
+    content: Content | None = None
     # When what the message describes was true: a CAM's or iCLCM's generation time, else the reception.
     sample_s: float | None = None
 

@@ -84,11 +84,12 @@ def test_every_seed_packet_decodes_unmutated():
 
 
 def test_a_structurally_valid_packet_on_an_unknown_port_names_the_port():
+    """2006 is IVIM's port: named by capture decoding, not decoded (its module is not ours)."""
     packet = bytearray(encode_cam(cam(False), GN))
-    struct.pack_into(">H", packet, 40, 2003)
+    struct.pack_into(">H", packet, 40, 2006)
     try:
         decode_packet(bytes(packet))
     except V2xDecodeError as error:
-        assert error.reason == RejectReason.UNKNOWN_BTP_PORT and "2003" in str(error)
+        assert error.reason == RejectReason.UNKNOWN_BTP_PORT and "2006" in str(error)
     else:
-        raise AssertionError("decoded a packet on port 2003")
+        raise AssertionError("decoded a packet on port 2006")

@@ -196,19 +196,24 @@ def assert_every_packet_counted(outcome: FuzzOutcome, packets: int) -> None:
     assert outcome.slowest_packet_cpu_s < SLOWEST_PACKET_CPU_S
 
 
+def print_outcome(outcome: FuzzOutcome, accepted_detail: str = "") -> None:
+    """The run's figures, then the rejections by reason, most frequent first."""
+    print(f"{outcome.packets} packets in {outcome.elapsed_s:.1f} s, {outcome.cpu_s:.1f} s of CPU "
+          f"({outcome.packets / outcome.cpu_s:.0f}/s of CPU), slowest {outcome.slowest_packet_cpu_s * 1000:.1f} ms; "
+          f"accepted {outcome.accepted}{accepted_detail}, own {outcome.own}, beacons {outcome.beacons}, "
+          f"rejected {sum(outcome.rejected.values())} under {len(outcome.rejected)} reasons; "
+          f"up to {outcome.stations_listed_max} stations listed")
+    for reason, count in outcome.rejected.most_common():
+        print(f"  {reason}: {count}")
+
+
 def main(run_fuzz: Callable[[int, Path], FuzzOutcome] = run, description: str = __doc__) -> None:
     parser = argparse.ArgumentParser(description=description.splitlines()[0])
     parser.add_argument("--packets", type=int, default=100_000)
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as folder:
         outcome = run_fuzz(args.packets, Path(folder))
-    print(f"{outcome.packets} packets in {outcome.elapsed_s:.1f} s, {outcome.cpu_s:.1f} s of CPU "
-          f"({outcome.packets / outcome.cpu_s:.0f}/s of CPU), slowest {outcome.slowest_packet_cpu_s * 1000:.1f} ms; "
-          f"accepted {outcome.accepted}, own {outcome.own}, beacons {outcome.beacons}, "
-          f"rejected {sum(outcome.rejected.values())} under {len(outcome.rejected)} reasons; "
-          f"up to {outcome.stations_listed_max} stations listed")
-    for reason, count in outcome.rejected.most_common():
-        print(f"  {reason}: {count}")
+    print_outcome(outcome)
     print("security layer: " + ", ".join(f"{name.removeprefix('security_')} {count}"
                                           for name, count in sorted(outcome.security.items())))
 
