@@ -6,6 +6,7 @@ Socket input only updates state (through ctx.call_soon); everything is published
 
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass
 from typing import Callable
 
@@ -13,7 +14,7 @@ from coopdrive.bus import Envelope
 from coopdrive.runtime.service import Service
 from coopdrive.services.v2x.config import GCDC_RATE_HZ, LinkSync, LinkType, SecurityConfig, V2xConfig
 from coopdrive.services.v2x.denm_manager import ActionId
-from coopdrive.v2x.infrastructure import InfrastructureMessage
+from coopdrive.v2x.infrastructure import InfrastructureCodec, InfrastructureMessage
 from coopdrive.v2x.its_pdu import ItsMessageId
 from coopdrive.v2x.packet import Content, MessageType
 from coopdrive.services.v2x.link import CaptureLog, RecordedLink, UdpLink
@@ -80,6 +81,9 @@ class V2xService(Service):
         self.security = build_security_layer(c.security, c.station_id, c.mac_bytes,
                                              lambda: self.clock.tai_ms(self.ctx.now_s()) * US_PER_MS)
         self.transmitter = Transmitter(c, self.clock, security=self.security)
+        # The roadside units' modules compile beside the start (about 0.2 s of CPU), not in the first SPATEM's
+        # reception; one that arrives sooner waits for them.
+        threading.Thread(target=InfrastructureCodec.spec, name="v2x-dsrc-compile", daemon=True).start()
         self.reception = Reception(OwnIdentity(c.mac_bytes, c.station_id), self.clock, c.plausibility,
                                    c.loss_timeout_s, c.expected_rate_hz, c.statistics_window_s,
                                    security=self.security, known_clock_offsets_s=c.known_clock_offsets_s)
