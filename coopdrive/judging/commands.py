@@ -11,7 +11,6 @@ from rich.table import Table
 
 from coopdrive.exit_status import EXIT_OK, EXIT_USAGE
 from coopdrive.judging.catalogue import judging_parameters, list_scenarios
-from coopdrive.judging.report import INDEX_FILE, write_report
 from coopdrive.judging.run_messages import RunMessages
 from coopdrive.judging.score import ScoreError, score_messages
 from coopdrive.recording.reader import RecordingError
@@ -26,6 +25,7 @@ def run_with_report(options, report_dir: Path) -> sim_pb2.RunResult:
     The report is scored from the messages the recording takes, as they are written (so it is what scoring the
     recording afterwards gives); the run's own RunResult (and so its success) is returned unchanged.
     """
+    from coopdrive.judging.report import write_report  # matplotlib: only a command that writes a report loads it
     from coopdrive.launch.run import run_scenario
 
     report_dir = Path(report_dir)
@@ -43,6 +43,7 @@ def run_with_report(options, report_dir: Path) -> sim_pb2.RunResult:
 
 
 def report_notice(report_dir: Path) -> None:
+    from coopdrive.judging.report import INDEX_FILE
     print(f"report: {Path(report_dir) / INDEX_FILE}", file=sys.stderr)
 
 

@@ -23,14 +23,14 @@ import math
 
 import numpy as np
 import pymap3d
-from scipy.stats import chi2
 
 from coopdrive.judging.run_messages import RunMessages
+from coopdrive.services.geolocation.ekf import chi2_quantile
 from coopdrive.services.sim.truth_series import TruthSeries
 from coopdrive.v1 import ego_pb2, gnss_pb2
 
 TWO_SIGMA_PROBABILITY = 0.9545
-NEES_BOUND = float(chi2.ppf(TWO_SIGMA_PROBABILITY, 2))
+NEES_BOUND = chi2_quantile(TWO_SIGMA_PROBABILITY, 2)
 # A fix further off the truth than this many of its reported sigmas, and at least JUMP_MIN_M, is a jump.
 JUMP_SIGMAS = 5.0
 JUMP_MIN_M = 2.0

@@ -1,14 +1,11 @@
 """`make bench` is `python -m bench`: every benchmark in bench/ in turn, or those named, each reporting its figures
-into bench/results.json. These tests check that each measures something and that one that measured nothing fails
-naming the figure, not how fast anything is (speed is the benchmarks' own business, never a test's). The first is
-CI's bench smoke: every benchmark at its quick size (bench/sizes.py)."""
+into bench/results.json. These tests check that one that measured nothing fails naming the figure, not how fast
+anything is (speed is the benchmarks' own business, never a test's). CI's bench smoke, every benchmark at its quick
+size, is in two halves beside this file (bench_smoke.py)."""
 
 import json
 import math
-import os
-import subprocess
 import sys
-from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
@@ -17,50 +14,28 @@ from bench import __main__ as bench_runner
 from bench import bench_gateway_ws
 from bench.bench_gateway_ws import DURATION_ENV
 from bench.figure import Figure, Unit
-from bench.sizes import QUICK_VARIABLE
+from tests.foundation.bench_smoke import SMOKE_HALVES, python_m_bench
 
 pytestmark = pytest.mark.whole_run
 
-REPO = Path(__file__).resolve().parents[2]
-# Every benchmark at its quick size took over five minutes when four other jobs shared this project's 2-core machine
-# (load average 20); about 85 s quiet before bench_gateway_ws measured again.
-RUN_TIMEOUT_S = 900
 GATEWAY_RUN_S = 1.0
 
 
-def python_m_bench(results: Path, *names: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "bench", "--results", str(results), *names], cwd=REPO,
-                          capture_output=True, text=True, timeout=RUN_TIMEOUT_S, env={**os.environ, QUICK_VARIABLE: "1"})
-
-
-@pytest.mark.timeout(RUN_TIMEOUT_S)
-def test_every_benchmark_of_make_bench_measures_finite_figures_into_results_json(tmp_path):
-    result = python_m_bench(tmp_path / "results.json")
-    assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
-    written = json.loads((tmp_path / "results.json").read_text())
-    assert written["quick"] is True and written["machine"]["cores"] >= 1 and len(written["commit"]["sha"]) == 40
-    assert list(written["benches"]) == bench_runner.benchmark_names()
-    for name, run in written["benches"].items():
-        assert run["failure"] is None and run["figures"], name
-        for figure in run["figures"]:
-            assert isinstance(figure["value"], float) and math.isfinite(figure["value"]), (name, figure)
-            assert (figure["unit"] == Unit.RATIO.value) == (figure["baseline"] is not None), (name, figure)
-        # each still prints its table for a person to read
-        table = result.stdout.split(f"=== {name}", 1)[1].split(f"({name}: ", 1)[0]
-        assert len(table.strip().splitlines()) >= 3, f"{name} printed no table: {table!r}"
-    gateway = {f["name"]: f["value"] for f in written["benches"]["bench_gateway_ws"]["figures"]}
-    assert {"0 clients: sensor -> command p99", "2 clients: sensor -> command p99"} <= set(gateway)
+def test_ci_s_bench_smoke_runs_every_benchmark_of_make_bench_in_one_of_its_two_halves():
+    assert sorted(SMOKE_HALVES["first"] + SMOKE_HALVES["second"]) == bench_runner.benchmark_names()
 
 
 def test_python_m_bench_with_names_runs_only_those_benchmarks_and_writes_only_theirs(tmp_path):
-    result = python_m_bench(tmp_path / "results.json", "geolocation", "sim")
+    # The two quickest: what is checked is the choosing, which any benchmark shows.
+    result = python_m_bench(tmp_path / "results.json", "control", "world_parts")
     assert result.returncode == 0, result.stdout[-3000:]
-    assert "=== bench_geolocation" in result.stdout and "=== bench_sim" in result.stdout
+    assert "=== bench_control" in result.stdout and "=== bench_world_parts" in result.stdout
     assert "=== bench_follow" not in result.stdout
-    assert list(json.loads((tmp_path / "results.json").read_text())["benches"]) == ["bench_geolocation", "bench_sim"]
-    # Each prints its table: the geolocation filter beside filterpy's, the simulator's CPU per simulated second.
-    assert "GeolocationEkf CTRA predict+gated update" in result.stdout
-    assert "CPU ms per simulated s" in result.stdout
+    assert list(json.loads((tmp_path / "results.json").read_text())["benches"]) == ["bench_control",
+                                                                                    "bench_world_parts"]
+    # Each prints its table: the control laws' call times, each world part beside the general path it replaced.
+    assert "law: our CACC" in result.stdout
+    assert "general path us" in result.stdout
 
 
 def fake_benchmarks(monkeypatch, mains: dict) -> list[str]:

@@ -30,7 +30,7 @@ SIGTERM_STOP_S = 3.0
 SPOOLED_BEFORE_THE_SIGNAL_BYTES = 1_000_000
 
 STANDSTILL_M = 6.0
-DURATION = "25"
+DURATION = "18"
 
 
 def run_follow(*extra: str) -> dict:

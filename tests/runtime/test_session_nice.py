@@ -78,7 +78,7 @@ def _descendants(root: int) -> set[int]:
 def test_every_process_of_a_run_started_with_the_variable_runs_in_a_session_at_that_nice_value():
     own_autogroup = Path("/proc/self/autogroup").read_text()
     run = subprocess.Popen([sys.executable, "-m", "coopdrive.cli", "run", "platoon40", "--stacks", "2",
-                            "--processes", "vehicle", "--duration", "4"],
+                            "--processes", "vehicle", "--duration", "1"],
                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True,
                            env={**os.environ, SESSION_NICE_VARIABLE: "19"})
     # pid -> "autogroup nice N command", as last read: a process sets its session's value as its command starts
