@@ -117,11 +117,16 @@ def test_flexstack_decodes_our_denms_with_our_station_id_and_event(live):
 def test_flexstacks_vams_are_refused_as_an_unknown_btp_port_as_our_service_takes_no_vams_yet(live):
     """Issue 71 wants its VAMs in our station table; the service publishes CAMs, DENMs and iCLCMs only (VAMs are
     decoded in captures, coopdrive/v2x/release2.py), so today each VAM is refused at BTP port 2018, and nothing
-    else on the wire is."""
-    refused = live["ours"]["status"]["rejected_by_reason"]
-    assert set(refused) == {"unknown_btp_port"}
-    assert 0 < int(refused["unknown_btp_port"]) <= live["flexstack"]["sent"]["vams"]
+    else on the wire is, but for a CAM that repeats its predecessor's time (below)."""
+    refused = dict(live["ours"]["status"]["rejected_by_reason"])
+    assert 0 < int(refused.pop("unknown_btp_port")) <= live["flexstack"]["sent"]["vams"]
     assert str(PEER_VRU) not in live["ours"]["cams"]
+    # FlexStack stamps a CAM with the time of the position it carries (EN 302 637-2 generationDeltaTime), and its
+    # T_CheckCamGen timer sends from the last position the peer script gave it: where that script was held up on a
+    # busy machine, two CAMs carry one time, and the second is rightly dropped as not newer (seen once in CI).
+    assert set(refused) <= {"not_newer"}
+    cams_taken = live["ours"]["cams"][str(PEER)]["count"]
+    assert int(refused.get("not_newer", 0)) <= live["flexstack"]["sent"]["cams"] - cams_taken
 
 
 def test_we_refuse_flexstacks_signed_cams_because_it_does_not_sign_as_ieee_1609_2_says(live):
