@@ -18,7 +18,7 @@ from coopdrive.v2x.security.pki import create_test_pki
 from coopdrive.v2x.timebase import unix_s_from_tai_ms
 from tests.shared_data import shared_file
 from tests.v2x import infrastructure_messages as messages
-from tests.v2x.service.receive_fuzz import FuzzOutcome, fuzz, print_outcome, start_service
+from tests.v2x.service.receive_fuzz import FuzzOutcome, print_outcome, run_in_service, start_service
 
 REAL_SPATEM_INDEX = 3
 # Its generation time (TAI ms since 2004, in its signed header); the service's clock starts just after, so that
@@ -36,25 +36,26 @@ def seeds() -> list[bytes]:
     return [real, *own]
 
 
-def started_service(folder: Path):
-    """receive_fuzz's service (security sign_and_verify with a test PKI of its own in folder), its clock just after
-    the real SPATEM was sent."""
+def prepared_clock_s(folder: Path) -> float:
+    """A test PKI of its own in folder (receive_fuzz's service signs and verifies with it) and the roadside modules
+    compiled before the clock runs (a packet's time is its own work); returns the service's clock: just after the
+    real SPATEM was sent."""
     create_test_pki(folder / "pki", ["ego"])
-    InfrastructureCodec.spec()  # compiled before the clock runs: a packet's time is its own work
-    now_s = unix_s_from_tai_ms(REAL_SPATEM_GENERATION_TAI_MS) + AFTER_GENERATION_S
-    return start_service(folder / "pki", folder / "rx.pcap", now_s)
+    InfrastructureCodec.spec()
+    return unix_s_from_tai_ms(REAL_SPATEM_GENERATION_TAI_MS) + AFTER_GENERATION_S
+
+
+def started_service(folder: Path):
+    """receive_fuzz's service on folder's PKI, its clock just after the real SPATEM was sent."""
+    return start_service(folder / "pki", folder / "rx.pcap", prepared_clock_s(folder))
 
 
 def run(packets: int, folder: Path) -> tuple[FuzzOutcome, dict[str, int]]:
-    """The outcome and the service's counters (received_spatem, ...)."""
-    service, ctx, radio = started_service(folder)
-    try:
-        all_seeds = seeds()
-        # One group per seed: each message kind is drawn as often as the others.
-        return fuzz(service, ctx, [[seed] for seed in all_seeds], packets), dict(service.counters)
-    finally:
-        service.stop()
-        radio.close()
+    """The outcome and what was delivered by kind (received_spatem, ...). One group per seed: each message kind is
+    drawn as often as the others."""
+    now_s = prepared_clock_s(folder)
+    outcome = run_in_service(folder, now_s, [[seed] for seed in seeds()], packets)
+    return outcome, outcome.received
 
 
 def main() -> None:

@@ -66,6 +66,8 @@ class FuzzOutcome:
     stations_listed_max: int = 0
     # The security layer's own counts (sign_and_verify delivers a packet that failed, marked): security_<reason>.
     security: dict = field(default_factory=dict)
+    # What was delivered, by kind: received_cam, received_spatem...
+    received: dict = field(default_factory=dict)
 
 
 def real_seeds() -> list[bytes]:
@@ -159,7 +161,8 @@ def fuzz(service: V2xService, ctx: MemoryContext, groups: list[list[bytes]], pac
     outcome.packets, outcome.own = reception.packets_received, reception.own_packets_ignored
     outcome.beacons = reception.beacons_received
     outcome.rejected = Counter(reception.rejected_by_reason)
-    outcome.accepted = sum(count for name, count in service.counters.items() if name.startswith("received_"))
+    outcome.received = {name: count for name, count in service.counters.items() if name.startswith("received_")}
+    outcome.accepted = sum(outcome.received.values())
     outcome.security = {name: count for name, count in service.counters.items() if name.startswith("security_")}
     return outcome
 
