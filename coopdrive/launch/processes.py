@@ -18,7 +18,7 @@ from pathlib import Path
 
 from coopdrive.launch.forked_process import ForkedProcess
 from coopdrive.bus.publish_spool import SPOOL_PATH_ENV
-from coopdrive.recording.spool_merge import SPOOL_SUFFIX
+from coopdrive.recording.spool_merge import SPOOL_SUFFIX, SpoolMerge
 from coopdrive.runtime.launcher_watch import launcher_environment
 
 TERMINATE_GRACE_S = 1.5
@@ -47,9 +47,10 @@ class ServiceSpec:
 class ServiceProcesses:
     def __init__(self, connect_endpoint: str, clock: str = "sim", log_dir: Path | None = None,
                  clock_step_s: float | None = None, spool_dir: Path | None = None,
-                 on_started: Callable[[str, int], None] | None = None):
+                 spool_merge: SpoolMerge | None = None, on_started: Callable[[str, int], None] | None = None):
         """`clock_step_s`: the simulator's step, told to every service (`--clock-step`). `spool_dir`: where each
-        process writes what it publishes for the run's recording (publish_spool.py), one file per process start.
+        process writes what it publishes for the run's recording (publish_spool.py), one file per process start;
+        `spool_merge` is told of each spool as its process starts, and once its process has ended.
         `on_started(name, pid)`: told of each process as it starts (RunOptions.on_process_started)."""
         self._on_started = on_started
         self._connect = connect_endpoint
@@ -64,7 +65,10 @@ class ServiceProcesses:
         # Process name -> what it was started with, to start it again.
         self._started_with: dict[str, tuple[list[ServiceSpec], list[str]]] = {}
         self._spool_dir = spool_dir
+        self._spool_merge = spool_merge
         self._starts: dict[str, int] = {}
+        # Process name -> the spool of its current start.
+        self._spool_of: dict[str, Path] = {}
 
     def start(self, spec: ServiceSpec) -> None:
         config_path = self._config_dir / f"{spec.vehicle_id}-{spec.service}.json"
@@ -112,12 +116,22 @@ class ServiceProcesses:
         environment.pop(SPOOL_PATH_ENV, None)
         if self._spool_dir is not None:
             start = self._starts[name] = self._starts.get(name, -1) + 1
-            environment[SPOOL_PATH_ENV] = str(self._spool_dir / f"{name.replace('/', '-')}-{start}{SPOOL_SUFFIX}")
+            spool = self._spool_of[name] = self._spool_dir / f"{name.replace('/', '-')}-{start}{SPOOL_SUFFIX}"
+            environment[SPOOL_PATH_ENV] = str(spool)
+            if self._spool_merge is not None:
+                self._spool_merge.add(spool)  # before the process can write it
         return environment
 
     def exited(self) -> dict[str, int]:
-        """Processes that have ended, with their exit codes."""
-        return {name: p.returncode for name, p in self.processes.items() if p.poll() is not None}
+        """Processes that have ended, with their exit codes; the merge learns that their spools are whole."""
+        ended = {name: p.returncode for name, p in self.processes.items() if p.poll() is not None}
+        for name in ended:
+            self._spool_ended(name)
+        return ended
+
+    def _spool_ended(self, name: str) -> None:
+        if self._spool_merge is not None and name in self._spool_of:
+            self._spool_merge.writer_gone(self._spool_of[name])
 
     def kill(self, participant: str) -> None:
         """Kills the process running a service abruptly (fault injection: a service crash)."""
@@ -131,6 +145,7 @@ class ServiceProcesses:
         if old.poll() is None:
             old.kill()
         old.wait()
+        self._spool_ended(name)
         self._spawn(name, *self._started_with[name], log_mode="ab")
 
     def stop_all(self) -> None:

@@ -26,7 +26,7 @@ from coopdrive.launch.run_aborted import RunAborted
 from coopdrive.launch.run_spec import RunSpec, merged
 from coopdrive.launch.scenario_source import ScenarioSource, resolve_scenario
 from coopdrive.launch.stack_config import vehicle_overrides
-from coopdrive.recording.spool_merge import merge_spools, spool_paths
+from coopdrive.recording.spool_merge import SpoolMerge, spool_paths
 from coopdrive.runtime.barrier import MESSAGES_GIVEN_UP_COUNTER
 from coopdrive.runtime.participants import SIMULATOR
 from coopdrive.runtime.registry import VEHICLE_STACK
@@ -210,9 +210,12 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     simulator = next(spec for spec in specs if spec.service == "sim")
     _watch_progress(hub, options, simulator)
     spool_dir = run_dir / "spools" if recording is not None else None
+    spool_merge = SpoolMerge(recording.write) if recording is not None else None
     processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir,
                                  clock_step_s=simulator.config["step_s"], spool_dir=spool_dir,
-                                 on_started=options.on_process_started)
+                                 spool_merge=spool_merge, on_started=options.on_process_started)
+    if spool_merge is not None:
+        spool_merge.follow()
     # The simulator says when (service_crash faults, in simulated time); the launcher owns the processes.
     hub.subscribe(WORLD_ID, "service_fault", lambda envelope: carry_out(processes, envelope.message))
     try:
@@ -223,7 +226,7 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         _wait_for_the_end(processes, finished)
     finally:
         ended = time.monotonic()
-        _tear_down(processes, recording, spool_dir, lambda: effective_configs(hub, specs),
+        _tear_down(processes, recording, spool_dir, spool_merge, lambda: effective_configs(hub, specs),
                    settle_before_stop=not (stop_reason and not results))
         shutil.rmtree(run_dir, ignore_errors=True)
         if bridge is not None:
@@ -251,10 +254,11 @@ def _watch_progress(hub: Bus, options: RunOptions, simulator: ServiceSpec) -> No
 
 
 def _tear_down(processes: ServiceProcesses, recording: Recording | None, spool_dir: Path | None,
-               configs: Callable[[], dict[str, str]], settle_before_stop: bool) -> None:
-    """Stops the services and closes the recording with all they published. At the end of a run the stacks
-    publish their last step after the result, so the spools settle before the services stop; stopped by a signal
-    the services would go on publishing, so they stop first. A stopped run leaves a whole recording either way."""
+               spool_merge: SpoolMerge | None, configs: Callable[[], dict[str, str]], settle_before_stop: bool) -> None:
+    """Stops the services and closes the recording with all they published: the spools were merged into it as
+    the run went, and what the last moments added is merged now. At the end of a run the stacks publish their last
+    step after the result, so the spools settle before the services stop; stopped by a signal the services would
+    go on publishing, so they stop first. A stopped run leaves a whole recording either way."""
     if recording is None:
         processes.stop_all()
         return
@@ -262,7 +266,7 @@ def _tear_down(processes: ServiceProcesses, recording: Recording | None, spool_d
         _settle(spool_dir)
     recording.recorder.add_configs(configs())
     processes.stop_all()
-    merge_spools(spool_dir, recording.write)  # which warns of each cut spool and each message it leaves out
+    spool_merge.finish()  # which warns of each cut spool and each message it leaves out
     recording.recorder.close()
 
 
@@ -280,7 +284,7 @@ class Recording:
 
 def _watch(options: RunOptions, hub: Bus, configs: dict[str, dict]):
     """What takes the run's messages besides the launcher: the recording (written from the processes' spools
-    after the run), the Foxglove bridge and the caller's observer (both live on the bus)."""
+    as the run goes), the Foxglove bridge and the caller's observer (both live on the bus)."""
     recording = bridge = None
     if options.record is not None or options.foxglove_port is not None:
         from coopdrive.visual import recorded_road_map

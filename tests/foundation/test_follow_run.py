@@ -191,6 +191,10 @@ def spooled_bytes(folder: Path) -> int:
     return sum(path.stat().st_size for path in folder.glob(f"coopdrive-run-*/spools/*{SPOOL_SUFFIX}"))
 
 
+def recorded_bytes(recording: Path) -> int:
+    return recording.stat().st_size if recording.exists() else 0
+
+
 def test_sigterm_ends_a_realtime_run_without_hanging_and_leaves_a_complete_recording(tmp_path):
     recording = tmp_path / "stopped.mcap"
     # The run's processes spool what they publish in its folder under TMPDIR; stopped once they have spooled some.
@@ -198,8 +202,11 @@ def test_sigterm_ends_a_realtime_run_without_hanging_and_leaves_a_complete_recor
                                 "--record", str(recording)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                env={**os.environ, "TMPDIR": str(tmp_path)})
     deadline = time.monotonic() + 60
-    while spooled_bytes(tmp_path) < SPOOLED_BEFORE_THE_SIGNAL_BYTES and time.monotonic() < deadline:
+    # The spools are merged into the recording as the run goes, so that a stop merges only its last moments.
+    while ((spooled_bytes(tmp_path) < SPOOLED_BEFORE_THE_SIGNAL_BYTES or recorded_bytes(recording) == 0)
+           and time.monotonic() < deadline):
         time.sleep(0.5)
+    assert recorded_bytes(recording) > 0
     stopped_at = time.monotonic()
     process.send_signal(signal.SIGTERM)
     process.wait(timeout=30)
