@@ -4,7 +4,8 @@ gateway's memory over the run.
 
 Interleaving the two conditions within one run compares them under the same machine load: on a shared
 machine two separate runs differ in p99 by more than the clients' effect. Latency is measured as bench_follow
-measures it. The clients get COOPDRIVE_BENCH_GATEWAY_S seconds in all (default 20; the acceptance of the gateway
+measures it. Each ratio carries the half-width of its 95 % bootstrap interval (bench/percentile_interval.py): a p99
+of a few hundred steps moves by a fifth between two runs of the same code. The clients get COOPDRIVE_BENCH_GATEWAY_S seconds in all (default 20; the acceptance of the gateway
 issue is 60), and the run lasts twice that. The gateway's process is the one the launcher says it started as
 "<vehicle>/gateway" (RunOptions.on_process_started); a gateway that never starts or never answers, or clients that
 never connect, fail the benchmark with the reason.
@@ -29,6 +30,7 @@ from rich.table import Table
 
 from bench.failure import BenchFailed, require_success
 from bench.figure import Better, Figure, Unit, ratio
+from bench.percentile_interval import percentile_ratio_spread
 from bench.sizes import sized
 from bench.step_latency import StepLatency
 from coopdrive.launch.ports import free_tcp_port
@@ -241,9 +243,10 @@ def latency_table(samples: np.ndarray, windows: Windows, clients_s: float) -> li
     for column in ("/ws clients", "windows", "steps", "sensor -> command p50 (ms)", "p99 (ms)", "p50 ratio",
                    "p99 ratio"):
         table.add_column(column, justify="right")
-    figures, baseline = [], None
+    figures, baseline, conditions = [], None, []
     for clients, intervals in ((0, windows.without_clients), (CLIENTS, windows.with_clients)):
         latencies_ms = latencies_in(samples, intervals) if samples.size else np.empty(0)
+        conditions.append(latencies_ms)
         p50, p99 = (np.percentile(latencies_ms, q) for q in (50, 99)) if latencies_ms.size else (float("nan"),) * 2
         baseline = baseline or (p50, p99)
         table.add_row(str(clients), str(len(intervals)), str(latencies_ms.size), f"{p50:.2f}", f"{p99:.2f}",
@@ -254,8 +257,13 @@ def latency_table(samples: np.ndarray, windows: Windows, clients_s: float) -> li
     rss = windows.rss_kib
     print(f"{windows.connections} client connections, {windows.frames} frames read; gateway RSS at the end of the "
           f"first and last window with clients: " + (f"{_mib(rss, 0):.1f} and {_mib(rss, -1):.1f} MiB" if rss else "-"))
+    spreads = ([percentile_ratio_spread(*conditions, q) for q in (50, 99)] if all(c.size for c in conditions)
+               else [None, None])
+    print("95 % bootstrap interval of the ratios: " + ", ".join(
+        f"p{q} +-{100 * spread:.0f} %" for q, spread in zip((50, 99), spreads) if spread is not None))
     return figures + [ratio(f"{CLIENTS} clients: p{q} to 0 clients'", figures[index + 2].value / figures[index].value,
-                            f"0 clients: sensor -> command p{q}", Better.LOWER) for index, q in enumerate((50, 99))]
+                            f"0 clients: sensor -> command p{q}", Better.LOWER, spreads[index])
+                      for index, q in enumerate((50, 99))]
 
 
 def _mib(rss_kib: list[int], index: int) -> float:

@@ -8,13 +8,15 @@ neither decoded nor put in time order); "every channel" is the same replay with 
 every replay read before. It reads them through the MCAP file's message indexes, parsing only their records
 (coopdrive/recording/channel_reader.py); "mcap's reader" is the same replay reading them as mcap's own reader does,
 every record of every chunk parsed and the others dropped, as replays read before. All compare the outputs as the
-command does. BENCH_REPLAY_STACKS and BENCH_REPLAY_DURATION_S set the recorded run (default 8 stacks, 10 simulated s).
+command does. Each is timed on this process's CPU clock (a replay runs in it), the three taking turns, and the least
+of ROUNDS turns is kept (bench/turn_about.py): a control replay takes a fraction of a second, where the medians of
+wall times two runs apart differed by 23 %. BENCH_REPLAY_STACKS and BENCH_REPLAY_DURATION_S set the recorded run
+(default 8 stacks, 10 simulated s).
 """
 
 from __future__ import annotations
 
 import os
-import statistics
 import tempfile
 import time
 from pathlib import Path
@@ -26,6 +28,7 @@ from rich.table import Table
 from bench.failure import require_success
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
+from bench.turn_about import least_of_turns
 from coopdrive.launch.run import RunOptions, run_scenario
 from coopdrive.recording import reader, replay
 from coopdrive.recording.replay_diff import compare_outputs
@@ -35,7 +38,7 @@ STACKS = int(os.environ.get("BENCH_REPLAY_STACKS", sized(8, 2)))
 DURATION_S = float(os.environ.get("BENCH_REPLAY_DURATION_S", sized(10.0, 1.0)))
 SERVICES = ("scene", "control")
 VEHICLE = "v1"
-ROUNDS = sized(3, 1)
+ROUNDS = sized(5, 1)
 
 
 # How each variant reads: (every channel, through mcap's reader).
@@ -43,8 +46,8 @@ EVERY_CHANNEL, MCAP_READER, NOW = (True, True), (False, True), (False, False)
 
 
 def replay_s(recording: Path, service: str, every_channel: bool, mcap_reader: bool) -> float:
-    """Wall seconds of one replay and its comparison, as `coopdrive replay` makes them."""
-    started_s = time.perf_counter()
+    """CPU seconds of one replay and its comparison, as `coopdrive replay` makes them."""
+    started_s = time.process_time()
     with mock.patch.object(replay, "_may_concern", (lambda *_: True) if every_channel else replay._may_concern), \
             mock.patch.object(reader, "indexes_every_chunk",
                               (lambda _: False) if mcap_reader else reader.indexes_every_chunk):
@@ -52,7 +55,7 @@ def replay_s(recording: Path, service: str, every_channel: bool, mcap_reader: bo
     compare_outputs(result.outputs, result.recorded_outputs)
     if result.mismatches():
         raise RuntimeError(f"{service} replayed unlike its recording: {result.mismatches()[:2]}")
-    return time.perf_counter() - started_s
+    return time.process_time() - started_s
 
 
 def main() -> list[Figure]:
@@ -62,18 +65,15 @@ def main() -> list[Figure]:
                                                 record=recording)), "the recorded run")
         size_mb = recording.stat().st_size / 1e6
         table = Table(title=f"replay of {VEHICLE}'s service from {SCENARIO} --stacks {STACKS} --duration "
-                            f"{DURATION_S:g} ({size_mb:.1f} MB), median of {ROUNDS} turn about")
+                            f"{DURATION_S:g} ({size_mb:.1f} MB), least CPU of {ROUNDS} turns about")
         for column in ("service", "every channel s", "its channels, mcap's reader s", "its channels, indexes s",
                        "indexes / mcap's reader", "indexes / every channel"):
             table.add_column(column, justify="right")
         figures = []
         for service in SERVICES:
-            variants = (EVERY_CHANNEL, MCAP_READER, NOW)
-            timings: dict[tuple[bool, bool], list[float]] = {variant: [] for variant in variants}
-            for _ in range(ROUNDS):
-                for variant, times in timings.items():
-                    times.append(replay_s(recording, service, *variant))
-            every_s, mcap_s, now_s = (statistics.median(timings[variant]) for variant in variants)
+            every_s, mcap_s, now_s = least_of_turns(
+                [lambda variant=variant: replay_s(recording, service, *variant)
+                 for variant in (EVERY_CHANNEL, MCAP_READER, NOW)], ROUNDS)
             table.add_row(service, f"{every_s:.2f}", f"{mcap_s:.2f}", f"{now_s:.2f}", f"{now_s / mcap_s:.2f}",
                           f"{now_s / every_s:.2f}")
             figures += [Figure(f"{service}: every channel", every_s, Unit.S),

@@ -3,7 +3,10 @@
     python -m bench.compare OLD.json NEW.json
 
 A ratio (the code against a baseline measured in the same run) compares between any two runs: it is flagged WORSE
-when it moved the wrong way by more than NOISE (10 %). An absolute figure (a time, a rate) says as much about the
+when it moved the wrong way by more than NOISE (10 %), and by more than its own sampling can move it where the
+benchmark estimates that (a figure's `spread`, the half-width of its 95 % interval: the two runs' spreads combine
+as independent errors do, root of the sum of squares); a change past 10 % but inside that is "within its
+interval". An absolute figure (a time, a rate) says as much about the
 machine as about the code: it is compared only between runs on the same kind of machine (bench/machine.py), and
 then marked "worse (absolute)" past NOISE without failing the comparison, since the load of a shared machine moves
 it too. A figure a benchmark no longer reports is flagged GONE, one whose benchmark failed NOT MEASURED. Exit
@@ -13,6 +16,7 @@ status: 0 nothing flagged, 1 something flagged, 2 a file that is not a results f
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from dataclasses import dataclass
 from enum import Enum
@@ -33,6 +37,7 @@ CONSOLE_WIDTH = 170
 class Verdict(Enum):
     BETTER = "better"
     WITHIN_NOISE = "within 10 %"
+    WITHIN_INTERVAL = "within its interval"
     WORSE = "WORSE"
     WORSE_ABSOLUTE = "worse (absolute)"
     OTHER_MACHINE = "not comparable (other machine)"
@@ -68,6 +73,8 @@ def direction_verdict(old: Figure, new: Figure) -> Verdict:
         return Verdict.WITHIN_NOISE if new.value == 0 else Verdict.WORSE
     relative = new.value / old.value - 1
     worse_by = relative if new.better is Better.LOWER else -relative
+    if abs(worse_by) > NOISE and abs(worse_by) <= math.hypot(old.spread or 0.0, new.spread or 0.0):
+        return Verdict.WITHIN_INTERVAL
     if worse_by > NOISE:
         return Verdict.WORSE
     return Verdict.BETTER if worse_by < -NOISE else Verdict.WITHIN_NOISE

@@ -39,12 +39,15 @@ HIGHER_IS_BETTER = frozenset({Unit.PER_S, Unit.REALTIME_FACTOR})
 class Figure:
     """`name` is unique within its benchmark and stable from commit to commit (compare matches figures by it).
     A ratio names its `baseline`, what it is divided by, and says which way it improves; an absolute figure's
-    direction follows from its unit."""
+    direction follows from its unit. `spread`: where the benchmark can estimate how far its own sampling may move
+    the figure (a percentile of a few hundred latencies), the half-width of its 95 % interval over the value
+    (0.2: the interval is the value +- 20 %); bench/compare.py flags a change only beyond it."""
     name: str
     value: float
     unit: Unit
     baseline: str | None = None
     better: Better | None = None
+    spread: float | None = None
 
     def __post_init__(self) -> None:
         if (self.unit is Unit.RATIO) != (self.baseline is not None):
@@ -73,12 +76,14 @@ class Figure:
     @classmethod
     def from_json(cls, row: dict) -> Figure:
         value = math.nan if row["value"] is None else float(row["value"])
-        return cls(row["name"], value, Unit(row["unit"]), row.get("baseline"), Better(row["better"]))
+        return cls(row["name"], value, Unit(row["unit"]), row.get("baseline"), Better(row["better"]),
+                   row.get("spread"))
 
 
-def ratio(name: str, value: float, baseline: str, better: Better = Better.LOWER) -> Figure:
+def ratio(name: str, value: float, baseline: str, better: Better = Better.LOWER,
+          spread: float | None = None) -> Figure:
     """A ratio figure: `value` is this figure over `baseline`'s, both measured in the same run."""
-    return Figure(name, value, Unit.RATIO, baseline, better)
+    return Figure(name, value, Unit.RATIO, baseline, better, spread)
 
 
 def shown(value: float) -> str:

@@ -24,7 +24,8 @@ class ReportError(Exception):
 
 
 def tables(results: BenchResults) -> str:
-    """One table per benchmark: each figure, its value and unit, and what a ratio is to."""
+    """One table per benchmark: each figure, its value and unit, the half-width of its 95 % interval where the
+    benchmark estimates one, and what a ratio is to."""
     sizes = "at the quick sizes, whose figures mean nothing," if results.quick else "at full size"
     lines = [f"Measured by `make bench` {sizes} on {results.machine.describe()}. Absolute figures are this "
              "machine's; ratios are to a baseline measured in the same run."]
@@ -33,10 +34,14 @@ def tables(results: BenchResults) -> str:
         if run.failure:
             lines.append(f"Failed: {run.failure}")
             continue
-        lines += ["| figure | value | unit | ratio to |", "|---|--:|---|---|"]
-        lines += [f"| {figure.name} | {shown(figure.value)} | {figure.unit.value} | {figure.baseline or ''} |"
-                  for figure in run.figures]
+        lines += ["| figure | value | 95 % interval | unit | ratio to |", "|---|--:|--:|---|---|"]
+        lines += [f"| {figure.name} | {shown(figure.value)} | {_interval(figure.spread)} | {figure.unit.value} "
+                  f"| {figure.baseline or ''} |" for figure in run.figures]
     return "\n".join(lines)
+
+
+def _interval(spread: float | None) -> str:
+    return "" if spread is None else f"+-{100 * spread:.0f} %"
 
 
 def with_tables(page: str, generated: str) -> str:

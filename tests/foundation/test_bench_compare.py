@@ -62,6 +62,26 @@ def test_ratios_within_10_percent_either_way_or_better_are_not_flagged_and_the_c
     assert bench_compare.main([str(old), str(new)]) == 0
 
 
+def gateway(p99_ratio: float, spread: float | None) -> dict:
+    """bench_gateway_ws's p99 ratio with the half-width of its 95 % interval."""
+    return {"seconds": 60.0, "failure": None, "figures": [
+        {**figure("50 clients: p99 to 0 clients'", p99_ratio, "ratio", "0 clients: sensor -> command p99"),
+         "spread": spread}]}
+
+
+def test_a_ratio_worse_by_more_than_10_percent_but_inside_both_runs_intervals_is_not_flagged(tmp_path):
+    # 24 % worse; the two runs' spreads of 20 % and 15 % combine to 25 %.
+    assert verdicts(tmp_path, {"bench_gateway_ws": gateway(1.00, 0.20)}, {"bench_gateway_ws": gateway(1.24, 0.15)}) == {
+        "50 clients: p99 to 0 clients'": Verdict.WITHIN_INTERVAL}
+
+
+def test_a_ratio_worse_beyond_its_combined_interval_is_flagged(tmp_path):
+    assert verdicts(tmp_path, {"bench_gateway_ws": gateway(1.00, 0.10)}, {"bench_gateway_ws": gateway(1.24, 0.15)}) == {
+        "50 clients: p99 to 0 clients'": Verdict.WORSE}
+    assert verdicts(tmp_path, {"bench_gateway_ws": gateway(1.00, None)}, {"bench_gateway_ws": gateway(1.24, None)}) == {
+        "50 clients: p99 to 0 clients'": Verdict.WORSE}
+
+
 def test_a_figure_where_higher_is_better_is_worse_when_it_falls(tmp_path):
     def v2x(decodes_per_s: float, times_bare: float) -> dict:
         return {"bench_v2x": {"seconds": 1.0, "failure": None, "figures": [

@@ -34,7 +34,7 @@ def test_the_report_replaces_only_what_lies_between_the_markers(tmp_path):
     written = page.read_text()
     assert written.startswith(f"# Title\n\nbefore\n{START_MARKER}\nMeasured by `make bench` at full size on ")
     assert written.endswith(f"\n{END_MARKER}\nafter\n") and "old table" not in written
-    assert "| figure | value | unit | ratio to |" in written
+    assert "| figure | value | 95 % interval | unit | ratio to |" in written
 
 
 def test_a_page_without_its_markers_is_refused_in_one_line_and_left_alone(tmp_path):
