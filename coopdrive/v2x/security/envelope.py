@@ -21,6 +21,11 @@ TBS_OFFSET_IN_ENVELOPE = 3
 # Choice tag + HashedId8; choice tag + SEQUENCE OF quantity (length byte, count byte) before the certificate.
 SIGNER_DIGEST_SIZE = 1 + 8
 SIGNER_CERTIFICATE_OVERHEAD = 3
+# `self` (NULL): the choice tag alone.
+SIGNER_SELF_SIZE = 1
+# TS 103 097 v1.3.1 clause 5.2 allows a digest or a certificate as the signer of a message; another stack's
+# "dummy" signing sends `self` with a zero signature, which carries a message but proves nothing.
+SIGNER_SELF = "self"
 CERTIFICATE_ENCODINGS_REMEMBERED = 1024
 _CERTIFICATE_ENCODINGS: dict[bytes, bytes] = {}
 
@@ -54,7 +59,7 @@ def build_signed_data(unsecured: bytes, psid: int, generation_time_us: int, tick
 @dataclass(frozen=True)
 class SignedEnvelope:
     signed: dict
-    # Byte spans of the envelope as received: what was hashed, and the signer's certificate (None: digest).
+    # Byte spans of the envelope as received: what was hashed, and the signer's certificate (None: digest, self).
     tbs_bytes: bytes
     certificate_bytes: bytes | None
     unsecured: bytes
@@ -94,10 +99,12 @@ def _certificate_encoding(value: dict, envelope: bytes, end: int) -> bytes:
 
 
 def _signer_span(envelope: bytes, signer: tuple[str, object], end_of_signer: int) -> tuple[int, bytes | None]:
-    """(where tbsData ends, the certificate's bytes or None for a digest signer)."""
+    """(where tbsData ends, the certificate's bytes or None for a digest or `self` signer)."""
     signer_kind, value = signer
     if signer_kind == "digest":
         return end_of_signer - SIGNER_DIGEST_SIZE, None
+    if signer_kind == SIGNER_SELF:
+        return end_of_signer - SIGNER_SELF_SIZE, None
     if signer_kind != "certificate" or len(value) != 1:
         raise V2xDecodeError(RejectReason.UNSUPPORTED_SIGNER, signer_kind)
     certificate = _certificate_encoding(value[0], envelope, end_of_signer)

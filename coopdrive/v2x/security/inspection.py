@@ -29,7 +29,7 @@ from coopdrive.v2x.geonet import (
 from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.v2x.security.certificate import Certificate, CertificateError
 from coopdrive.v2x.security.crypto import data_digest, hashed_id8, verify_digest
-from coopdrive.v2x.security.envelope import SignedEnvelope, parse_signed_data
+from coopdrive.v2x.security.envelope import SIGNER_SELF, SignedEnvelope, parse_signed_data
 from coopdrive.v2x.security.profile import MAX_CLOCK_AHEAD_S, MAX_MESSAGE_AGE_S, PSID_OF_PORT, SecurityMode
 from coopdrive.v2x.security.result import (
     UNSIGNED, InspectedPacket, SecurityResult, freshness_reason, sender_position)
@@ -89,6 +89,10 @@ class PacketInspector:
 
     def _judge(self, envelope: SignedEnvelope, unsecured: bytes, now_tai_us: int | None) -> SecurityResult:
         kind, _ = envelope.signer
+        if kind == SIGNER_SELF:
+            # No key to check it with: delivered where the mode delivers what is not verified (off, sign_only).
+            return SecurityResult(True, kind, None, None, reason=RejectReason.UNSUPPORTED_SIGNER, psid=envelope.psid,
+                                  generation_time_us=envelope.generation_time_us)
         try:
             certificate, digest = self._certificate(envelope)
         except CertificateError as error:

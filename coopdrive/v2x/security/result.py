@@ -18,7 +18,8 @@ from coopdrive.v2x.security.envelope import GenerationLocation
 @dataclass(frozen=True, slots=True)
 class SecurityResult:
     signed: bool
-    # "certificate" (sent in full), "digest", or (TS 103 097 v1.2.1) "certificate_chain"; None unsigned or unreadable.
+    # "certificate" (sent in full), "digest", "self" (never verified), or (TS 103 097 v1.2.1) "certificate_chain";
+    # None unsigned or unreadable.
     signer: str | None = None
     # HashedId8 of the signer's certificate.
     signer_digest: bytes | None = None

@@ -20,7 +20,7 @@ from coopdrive.v2x.geonet import (
 from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.v2x.security.certificate import Certificate, CertificateError
 from coopdrive.v2x.security.crypto import data_digest, hashed_id8, verify_digest
-from coopdrive.v2x.security.envelope import SignedEnvelope, parse_signed_data
+from coopdrive.v2x.security.envelope import SIGNER_SELF, SignedEnvelope, parse_signed_data
 from coopdrive.v2x.security.profile import MAX_CLOCK_AHEAD_S, MAX_MESSAGE_AGE_S, PSID_OF_PORT
 from coopdrive.v2x.security.store import CertificateStore
 from coopdrive.v2x.security.v121_message import is_v121, parse_secured_message
@@ -120,6 +120,10 @@ class SecurityVerifier:
                 return Certificate.from_value(signer[0]), digest
             except CertificateError as error:
                 raise _Rejected(error.reason, None) from None
+        if kind == SIGNER_SELF:
+            if verify:
+                raise _Rejected(RejectReason.UNSUPPORTED_SIGNER, None)
+            return None, None
         certificate = self.store.resolve(signer)
         if certificate is None and verify:
             raise _Rejected(RejectReason.UNKNOWN_SIGNER_DIGEST, signer)

@@ -2,6 +2,8 @@ import pytest
 
 from coopdrive.v2x.packet import V2xPacketCodec
 from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.v2x.geonet import BASIC_HEADER_SIZE
+from coopdrive.v2x.security import asn
 from coopdrive.v2x.security.layer import ModeSecurityLayer
 from coopdrive.v2x.security.pki import tamper_packet
 from coopdrive.v2x.security.profile import SecurityMode
@@ -96,3 +98,34 @@ def test_a_station_heard_for_the_first_time_makes_our_next_packet_carry_the_full
 def test_a_signing_mode_needs_a_signer(p256_pki):
     with pytest.raises(ValueError, match="sign_only needs a signer"):
         ModeSecurityLayer(SecurityMode.SIGN_ONLY, SecurityVerifier(p256_pki.store()))
+
+
+def dummy_signed(packet: bytes) -> bytes:
+    """`packet` re-signed as another stack's "dummy" signing does: signer `self`, a zero signature."""
+    envelope = asn.decode(asn.DATA_TYPE, packet[BASIC_HEADER_SIZE:])
+    signed = envelope["content"][1]
+    signed["signer"] = ("self", None)
+    signed["signature"] = ("ecdsaNistP256Signature", {"rSig": ("x-only", bytes(32)), "sSig": bytes(32)})
+    return packet[:BASIC_HEADER_SIZE] + asn.encode(asn.DATA_TYPE, envelope)
+
+
+def test_a_dummy_signed_packet_is_delivered_unverified_with_security_off_and_refused_where_verification_is_required(
+        p256_pki):
+    now = now_tai_us()
+    signer = p256_pki.signer("a")
+    packet = dummy_signed(signer.sign(cam_packet(signer), now))
+    off = ModeSecurityLayer(SecurityMode.OFF, SecurityVerifier(p256_pki.store()), clock_tai_us=lambda: now)
+    decoded = V2xPacketCodec(security=off).decode_packet(packet)
+    assert decoded.station_id == signer.station_id
+    assert (decoded.security.signer, decoded.security.verified, decoded.security.reason) == (
+        "self", None, RejectReason.UNSUPPORTED_SIGNER)
+    assert off.status["unsupported_signer"] == 1
+    refused(receiver(p256_pki, SecurityMode.VERIFY_REQUIRED, now)[1], packet, RejectReason.UNSUPPORTED_SIGNER)
+
+
+def test_the_verifier_refuses_a_dummy_signed_packet_as_an_unsupported_signer_and_unwraps_it_unchecked(p256_pki):
+    signer = p256_pki.signer("a")
+    packet = dummy_signed(signer.sign(cam_packet(signer), now_tai_us()))
+    verifier = SecurityVerifier(p256_pki.store())
+    assert verifier.verify(packet, now_tai_us()).reason == RejectReason.UNSUPPORTED_SIGNER
+    assert V2xPacketCodec().decode_packet(verifier.unwrap(packet).unsecured_packet).station_id == signer.station_id
