@@ -209,13 +209,7 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
     hub.subscribe_key(DIAGNOSTICS_KEYS, give_ups.observe)
     simulator = next(spec for spec in specs if spec.service == "sim")
     _watch_progress(hub, options, simulator)
-    spool_dir = run_dir / "spools" if recording is not None else None
-    spool_merge = SpoolMerge(recording.write) if recording is not None else None
-    processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir,
-                                 clock_step_s=simulator.config["step_s"], spool_dir=spool_dir,
-                                 spool_merge=spool_merge, on_started=options.on_process_started)
-    if spool_merge is not None:
-        spool_merge.follow()
+    processes, spool_dir, spool_merge = _service_processes(options, endpoint, simulator, run_dir, recording)
     # The simulator says when (service_crash faults, in simulated time); the launcher owns the processes.
     hub.subscribe(WORLD_ID, "service_fault", lambda envelope: carry_out(processes, envelope.message))
     try:
@@ -244,6 +238,19 @@ def run_scenario(options: RunOptions) -> sim_pb2.RunResult:
         result.startup_time_s = result.clock_started_monotonic_s - started
     result.shutdown_time_s = time.monotonic() - ended
     return result
+
+
+def _service_processes(options: RunOptions, endpoint: str, simulator: ServiceSpec, run_dir: Path,
+                       recording: Recording | None) -> tuple[ServiceProcesses, Path | None, SpoolMerge | None]:
+    """The run's processes; recorded, with the folder of their spools and the merge that follows them."""
+    spool_dir = run_dir / "spools" if recording is not None else None
+    spool_merge = SpoolMerge(recording.write) if recording is not None else None
+    processes = ServiceProcesses(endpoint, clock="sim", log_dir=options.log_dir,
+                                 clock_step_s=simulator.config["step_s"], spool_dir=spool_dir,
+                                 spool_merge=spool_merge, on_started=options.on_process_started)
+    if spool_merge is not None:
+        spool_merge.follow()
+    return processes, spool_dir, spool_merge
 
 
 def _watch_progress(hub: Bus, options: RunOptions, simulator: ServiceSpec) -> None:
