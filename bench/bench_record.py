@@ -6,7 +6,8 @@ MCAP as the run goes, drawing the Foxglove channels as it writes. Its CPU is thi
 too) from the command to its return, the merge included; the ratio column is the recorded run's real-time factor
 over the unrecorded one's (below 1: the cost while it runs), and the command's wall time, whose ratio is the other
 figure, adds what the merge has left when the run ends. The merge moved into the run on 2026-12-07: the
-real-time factor ratio fell from about 1.0 to 0.9 and the command's from 1.20 to 1.10.
+real-time factor ratio fell from 0.90-1.03 to 0.80-0.90, and the command's stayed about where it was (1.10-1.26
+in three runs, 1.20 in one run before).
 BENCH_RECORD_STACKS and BENCH_RECORD_DURATION_S set the stacks (default 8) and the simulated seconds (default 10).
 """
 
