@@ -13,6 +13,7 @@ from cryptography.hazmat.primitives.asymmetric import ec
 from coopdrive.reasons import ReasonedError
 from coopdrive.v2x.reasons import RejectReason
 from coopdrive.v2x.security import asn
+from coopdrive.v2x.security.canonical import canonical_certificate
 from coopdrive.v2x.security.crypto import (
     data_digest, hashed_id8, public_key_choice, public_key_from_choice, sign_digest, verify_digest)
 from coopdrive.v2x.units import EARTH_RADIUS_M, TENTH_MICRODEG_PER_DEG
@@ -50,10 +51,13 @@ class CircularArea:
 
 @dataclass(frozen=True, eq=False)
 class Certificate:
+    """`encoded`: as received (or issued); `canonical`: the form it is hashed in (canonical.py), the same bytes
+    unless a key or the signature's r came in another form; `digest`: its HashedId8, over `canonical`."""
     encoded: bytes
     value: dict
     digest: bytes
     public_key: ec.EllipticCurvePublicKey
+    canonical: bytes
 
     @classmethod
     def from_value(cls, value: dict) -> Certificate:
@@ -66,11 +70,13 @@ class Certificate:
             if key_choice != "verificationKey":
                 raise ValueError("no verification key")
             public_key = public_key_from_choice(key)
+            canonical_value = canonical_certificate(value)
+            canonical = encoded if canonical_value == value else asn.encode(asn.CERTIFICATE_TYPE, canonical_value)
         except CertificateError:
             raise
         except Exception as error:  # noqa: BLE001 -- asn1tools and OpenSSL raise many types on garbage
             raise CertificateError(RejectReason.INVALID_CERTIFICATE, f"{type(error).__name__}: {error}") from None
-        return cls(encoded, value, hashed_id8(encoded), public_key)
+        return cls(encoded, value, hashed_id8(canonical), public_key, canonical)
 
     @classmethod
     def from_bytes(cls, data: bytes) -> Certificate:
@@ -134,20 +140,21 @@ class Certificate:
         """The certificate signature checks against the issuer's key (None: self-signed)."""
         tbs = asn.encode(asn.TBS_CERTIFICATE_TYPE, self.tbs)
         key = issuer.public_key if issuer is not None else self.public_key
-        digest = data_digest(tbs, issuer.encoded if issuer is not None else None)
+        digest = data_digest(tbs, issuer.canonical if issuer is not None else None)
         return verify_digest(key, self.value["signature"], digest)
 
 
 def issue_certificate(name: str, subject_key: ec.EllipticCurvePublicKey, signing_key: ec.EllipticCurvePrivateKey,
                       issuer: Certificate | None = None, *, start_s: int, duration_hours: int, app_psids: tuple[int, ...] = (),
-                      min_chain_length: int | None = None, region: CircularArea | None = None) -> Certificate:
+                      min_chain_length: int | None = None, region: CircularArea | None = None,
+                      uncompressed_key: bool = False) -> Certificate:
     """Issue a certificate signed with signing_key: the issuer's key, or the subject's own for a root (issuer None).
 
     Tickets get appPermissions (psid with an empty bitmap SSP), authorities certIssuePermissions.
     """
     tbs: dict = {"id": ("name", name), "cracaId": NO_CRACA_ID, "crlSeries": NO_CRL_SERIES,
                  "validityPeriod": {"start": start_s, "duration": ("hours", duration_hours)},
-                 "verifyKeyIndicator": ("verificationKey", public_key_choice(subject_key))}
+                 "verifyKeyIndicator": ("verificationKey", public_key_choice(subject_key, uncompressed_key))}
     if region is not None:
         tbs["region"] = region.to_asn()
     if app_psids:
@@ -159,7 +166,7 @@ def issue_certificate(name: str, subject_key: ec.EllipticCurvePublicKey, signing
     if issuer is None:
         issuer_id, digest = ("self", "sha256"), data_digest(tbs_bytes, None)
     else:
-        issuer_id, digest = ("sha256AndDigest", issuer.digest), data_digest(tbs_bytes, issuer.encoded)
+        issuer_id, digest = ("sha256AndDigest", issuer.digest), data_digest(tbs_bytes, issuer.canonical)
     value = {"version": CERTIFICATE_VERSION, "type": "explicit", "issuer": issuer_id, "toBeSigned": tbs,
              "signature": sign_digest(signing_key, digest)}
     return Certificate.from_value(value)

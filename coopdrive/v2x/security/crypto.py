@@ -74,8 +74,13 @@ def curve_of_key(key: ec.EllipticCurvePrivateKey | ec.EllipticCurvePublicKey) ->
     raise ValueError(f"curve {name} is not allowed by TS 103 097 v1.3.1 here")
 
 
-def public_key_choice(key: ec.EllipticCurvePublicKey) -> tuple[str, tuple[str, bytes]]:
-    """PublicVerificationKey value for asn1tools: (curve choice, compressed EccP256CurvePoint)."""
+def public_key_choice(key: ec.EllipticCurvePublicKey, uncompressed: bool = False) -> tuple[str, tuple[str, object]]:
+    """PublicVerificationKey value for asn1tools: (curve choice, compressed EccP256CurvePoint); uncompressed, as
+    another stack sends its keys (a certificate's canonical form compresses it again, canonical.py)."""
+    if uncompressed:
+        point = key.public_bytes(serialization.Encoding.X962, serialization.PublicFormat.UncompressedPoint)
+        return curve_of_key(key).value, ("uncompressedP256", {"x": point[1:1 + COORDINATE_SIZE],
+                                                              "y": point[1 + COORDINATE_SIZE:]})
     point = key.public_bytes(serialization.Encoding.X962, serialization.PublicFormat.CompressedPoint)
     form = "compressed-y-0" if point[0] == _COMPRESSED_EVEN else "compressed-y-1"
     return curve_of_key(key).value, (form, point[1:])

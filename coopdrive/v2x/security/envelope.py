@@ -49,7 +49,7 @@ def build_signed_data(unsecured: bytes, psid: int, generation_time_us: int, tick
     tbs = {"payload": {"data": {"protocolVersion": SECURED_DATA_PROTOCOL_VERSION,
                                 "content": ("unsecuredData", unsecured)}},
            "headerInfo": header}
-    digest = data_digest(asn.encode(asn.TBS_DATA_TYPE, tbs), ticket.encoded)
+    digest = data_digest(asn.encode(asn.TBS_DATA_TYPE, tbs), ticket.canonical)
     signer = ("certificate", [ticket.value]) if full_certificate else ("digest", ticket.digest)
     signed = {"hashId": "sha256", "tbsData": tbs, "signer": signer, "signature": sign_digest(key, digest)}
     return asn.encode(asn.DATA_TYPE, {"protocolVersion": SECURED_DATA_PROTOCOL_VERSION,

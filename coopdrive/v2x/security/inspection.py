@@ -28,7 +28,7 @@ from coopdrive.v2x.geonet import (
     BASIC_HEADER_SIZE, BasicNextHeader, is_secured, parse_basic_header, with_basic_next_header)
 from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.v2x.security.certificate import Certificate, CertificateError
-from coopdrive.v2x.security.crypto import data_digest, hashed_id8, verify_digest
+from coopdrive.v2x.security.crypto import data_digest, verify_digest
 from coopdrive.v2x.security.envelope import SIGNER_SELF, SignedEnvelope, parse_signed_data
 from coopdrive.v2x.security.profile import MAX_CLOCK_AHEAD_S, MAX_MESSAGE_AGE_S, PSID_OF_PORT, SecurityMode
 from coopdrive.v2x.security.result import (
@@ -117,11 +117,8 @@ class PacketInspector:
         kind, signer = envelope.signer
         if kind != "certificate":
             return self.store.resolve(signer), signer
-        digest = hashed_id8(envelope.certificate_bytes)
-        known = self.store.resolve(digest)
-        if known is not None and known.encoded == envelope.certificate_bytes:
-            return known, digest
-        return Certificate.from_value(signer[0]), digest
+        certificate = self.store.sent_in_full(envelope.certificate_bytes, signer[0])
+        return certificate, certificate.digest
 
     @staticmethod
     def _signature_reason(envelope: SignedEnvelope, certificate: Certificate, port: int | None) -> RejectReason | None:
@@ -129,7 +126,7 @@ class PacketInspector:
         if expected_psid is not None and envelope.psid != expected_psid:
             return RejectReason.PSID_PORT_MISMATCH
         if not verify_digest(certificate.public_key, envelope.signature,
-                             data_digest(envelope.tbs_bytes, certificate.encoded)):
+                             data_digest(envelope.tbs_bytes, certificate.canonical)):
             return RejectReason.INVALID_SIGNATURE
         return None
 

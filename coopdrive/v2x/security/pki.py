@@ -59,11 +59,14 @@ class TestPki:
         return SecuredPacketSigner(self.tickets[vehicle], station_id, mac)
 
     def issue_ticket(self, name: str, *, start_s: int | None = None, duration_hours: int = TICKET_VALIDITY_HOURS,
-                     region: CircularArea | None = None, psids: tuple[int, ...] = TICKET_PSIDS) -> Ticket:
+                     region: CircularArea | None = None, psids: tuple[int, ...] = TICKET_PSIDS,
+                     uncompressed_key: bool = False) -> Ticket:
+        """uncompressed_key: the ticket carries its key uncompressed, as another open stack's tickets do."""
         key = generate_key(curve_of_key(self.authority_key))
         ticket = issue_certificate(name, key.public_key(), self.authority_key, self.authority,
                                    start_s=_now_tai_s() - BACKDATE_S if start_s is None else start_s,
-                                   duration_hours=duration_hours, app_psids=psids, region=region)
+                                   duration_hours=duration_hours, app_psids=psids, region=region,
+                                   uncompressed_key=uncompressed_key)
         return ticket, key
 
 

@@ -13,6 +13,7 @@ from collections.abc import Iterable
 
 from coopdrive.v2x.reasons import RejectReason
 from coopdrive.v2x.security.certificate import Certificate, CertificateError
+from coopdrive.v2x.security.crypto import hashed_id8
 
 DEFAULT_TICKET_CACHE_SIZE = 4096
 # root -> authority -> ticket; anything deeper is refused rather than walked.
@@ -58,6 +59,15 @@ class CertificateStore:
         if ticket is not None:
             self._tickets.move_to_end(digest)
         return ticket
+
+    def sent_in_full(self, encoded: bytes, value: dict) -> Certificate:
+        """The certificate a packet carries in full (`encoded` as sent, `value` decoded): the one remembered when
+        the same bytes came before, else parsed (CertificateError). A certificate in canonical form is found by the
+        digest of its bytes; one sent in another form is parsed each time."""
+        known = self.resolve(hashed_id8(encoded))
+        if known is not None and known.encoded == encoded:
+            return known
+        return Certificate.from_value(value)
 
     def remember(self, ticket: Certificate) -> None:
         self._tickets[ticket.digest] = ticket

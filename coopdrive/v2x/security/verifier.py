@@ -19,7 +19,7 @@ from coopdrive.v2x.geonet import (
     with_basic_next_header)
 from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.v2x.security.certificate import Certificate, CertificateError
-from coopdrive.v2x.security.crypto import data_digest, hashed_id8, verify_digest
+from coopdrive.v2x.security.crypto import data_digest, verify_digest
 from coopdrive.v2x.security.envelope import SIGNER_SELF, SignedEnvelope, parse_signed_data
 from coopdrive.v2x.security.profile import MAX_CLOCK_AHEAD_S, MAX_MESSAGE_AGE_S, PSID_OF_PORT
 from coopdrive.v2x.security.store import CertificateStore
@@ -112,14 +112,11 @@ class SecurityVerifier:
     def _signer(self, envelope: SignedEnvelope, verify: bool) -> tuple[Certificate | None, bytes]:
         kind, signer = envelope.signer
         if kind == "certificate":
-            digest = hashed_id8(envelope.certificate_bytes)
-            known = self.store.resolve(digest)
-            if known is not None and known.encoded == envelope.certificate_bytes:
-                return known, digest
             try:
-                return Certificate.from_value(signer[0]), digest
+                certificate = self.store.sent_in_full(envelope.certificate_bytes, signer[0])
             except CertificateError as error:
                 raise _Rejected(error.reason, None) from None
+            return certificate, certificate.digest
         if kind == SIGNER_SELF:
             if verify:
                 raise _Rejected(RejectReason.UNSUPPORTED_SIGNER, None)
@@ -171,7 +168,7 @@ class SecurityVerifier:
         if heard_in_full:
             self.store.remember(certificate)
         if not verify_digest(certificate.public_key, envelope.signature,
-                             data_digest(envelope.tbs_bytes, certificate.encoded)):
+                             data_digest(envelope.tbs_bytes, certificate.canonical)):
             raise _Rejected(RejectReason.INVALID_SIGNATURE, digest)
 
 
