@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import gc
 import json
 import sys
 import time
@@ -24,6 +25,16 @@ COMMAND_STARTED_MONOTONIC_S = time.monotonic()
 
 def main(argv: list[str] | None = None) -> int:
     return run_command(build_parser(), argv)
+
+
+def entry() -> int:
+    """The `coopdrive` command: main(), and then the interpreter's last garbage collection is left out (gc.freeze).
+    The command has closed what it opened by then, and that collection over every object of the stack was most of a
+    stopped run's exit: a realtime run with its gateway exited 0.52 s after SIGTERM, 0.22 s without it. Not in main,
+    which tests call in their own process."""
+    code = main()
+    gc.freeze()
+    return code
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -335,4 +346,4 @@ def _following_laws():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(entry())
