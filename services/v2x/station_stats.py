@@ -24,6 +24,8 @@ from coopdrive.v2x.timebase import MS_PER_S
 from coopdrive.v1 import v2x_pb2
 
 PERIODIC_TYPES = (ItsMessageId.CAM, ItsMessageId.ICLCM)
+# A station is lost after this many of its own CAM periods without a word, where that is longer than the setting.
+LOST_AFTER_MISSED_CAMS = 3
 
 
 class StreamWindow:
@@ -140,7 +142,20 @@ class StationStats:
         self.messages_rejected += 1
 
     def is_lost(self, now_s: float, loss_timeout_s: float) -> bool:
-        return self.last_heard_s is None or now_s - self.last_heard_s > loss_timeout_s
+        """Not heard for loss_timeout_s, or for LOST_AFTER_MISSED_CAMS of its own CAM periods where that is longer:
+        a standard station sends a CAM every 100-1000 ms (EN 302 637-2 6.1.3), and one heard every 400 ms is
+        not lost between two CAMs. At GCDC's 25 Hz the setting decides (0.4 s against 3 periods of 40 ms)."""
+        if self.last_heard_s is None:
+            return True
+        cam_period_ms = self._cam_period_ms()
+        if cam_period_ms:
+            loss_timeout_s = max(loss_timeout_s, LOST_AFTER_MISSED_CAMS * cam_period_ms / MS_PER_S)
+        return now_s - self.last_heard_s > loss_timeout_s
+
+    def _cam_period_ms(self) -> float | None:
+        """The period its CAMs are expected at (the profile's, or as measured), None before its first CAM."""
+        cam_stream = self._streams.get(ItsMessageId.CAM)
+        return cam_stream.expected.period_ms() if cam_stream is not None else None
 
     def reception_ratio(self, now_s: float) -> float:
         received = expected = 0
@@ -168,8 +183,7 @@ class StationStats:
             last_heard_s=self.last_heard_s or 0.0, reception_ratio=self.reception_ratio(now_s),
             messages_received=self.messages_received, messages_rejected=self.messages_rejected)
         stats.periodic_received_total, stats.periodic_expected_total = self.periodic_totals()
-        cam_stream = self._streams.get(ItsMessageId.CAM)
-        cam_period_ms = cam_stream.expected.period_ms() if cam_stream is not None else None
+        cam_period_ms = self._cam_period_ms()
         if cam_period_ms:
             stats.expected_cam_rate_hz = MS_PER_S / cam_period_ms
         offset_s = self.clock.offset_s()

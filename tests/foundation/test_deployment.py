@@ -108,7 +108,7 @@ def test_pip_builds_a_normal_wheel_with_one_top_level_package(tmp_path):
     for expected in ("coopdrive/services/control/service.py", "coopdrive/v1/ego_pb2.py", "coopdrive/cli.py"):
         assert expected in names
     entry_points = next(n for n in names if n.endswith("entry_points.txt"))
-    assert "coopdrive = coopdrive.cli:main" in zipfile.ZipFile(wheel).read(entry_points).decode()
+    assert "coopdrive = coopdrive.cli:entry" in zipfile.ZipFile(wheel).read(entry_points).decode()
 
 
 def test_the_desk_stack_is_configured_as_a_run_of_the_follow_scenario_configures_its_stack():

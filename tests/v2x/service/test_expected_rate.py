@@ -77,3 +77,24 @@ def test_the_observed_period_is_the_median_gap_and_rides_over_a_lost_message():
         period.observe(gap_ms)
     assert period.period_ms() == 100
     assert FixedPeriod(25.0).period_ms() == 40.0
+
+
+def active_after_silence(rx: Reception, last_heard_s: float, silence_s: float) -> bool:
+    return station(rx, last_heard_s + silence_s).state == v2x_pb2.LINK_STATE_ACTIVE
+
+
+def test_a_2_5_hz_standard_station_stays_active_between_its_cams_and_is_lost_after_three_missed():
+    rx = Reception(OWN, CLOCK, PlausibilityLimits(), loss_timeout_s=V2xConfig().loss_timeout_s, expected_rate_hz=None,
+                   window_s=DEFAULT_WINDOW_S)
+    last_heard_s = send(rx, np.arange(0.0, 10.0, 0.4))
+    assert active_after_silence(rx, last_heard_s, 0.6)  # past the 0.4 s setting, one CAM missed
+    assert active_after_silence(rx, last_heard_s, 1.1)
+    assert not active_after_silence(rx, last_heard_s, 1.3)  # three of its 400 ms periods
+
+
+def test_at_gcdc_s_25_hz_the_setting_decides_when_a_station_is_lost():
+    rx = Reception(OWN, CLOCK, PlausibilityLimits(), loss_timeout_s=V2xConfig().loss_timeout_s, expected_rate_hz=25.0,
+                   window_s=DEFAULT_WINDOW_S)
+    last_heard_s = send(rx, np.arange(0.0, 5.0, 0.04))
+    assert active_after_silence(rx, last_heard_s, 0.35)
+    assert not active_after_silence(rx, last_heard_s, 0.45)
