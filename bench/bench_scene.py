@@ -19,12 +19,14 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from types import ModuleType
 
 import numpy as np
 
 from bench import scene_before
-from bench.figure import Better, Figure, Unit, ratio
+from bench.figure import Better, Figure, Unit, instruction_ratio, ratio
+from bench.instructions_per_call import Workload, per_call
 from bench.sizes import sized
 from bench.turn_about import least_of_turns
 from coopdrive.services.scene import fusion as fusion_now
@@ -46,8 +48,16 @@ BEARING_NOISE_RAD = 0.003
 # The quick size leaves out 200 objects: the brute-force association alone takes seconds there.
 OBJECT_COUNTS = sized((10, 50, 200), (10, 50))
 BRUTE_FORCE_REPEATS = sized(3, 1)
+# Frames of our association per turn: 100 make a turn of some 60 ms, where 20 (12 ms) left the 200-object ratio to
+# a single preemption.
+ASSOCIATION_FRAMES = sized(100, 5)
 # Turns of ours and the brute force (bench/turn_about.py).
 ASSOCIATION_ROUNDS = sized(3, 1)
+# Frames of our association whose instructions are counted, and at which sizes: the brute force at 200 objects
+# executes 5.5 billion instructions, 10 minutes under callgrind on this machine.
+INSTRUCTION_FRAMES = 5
+INSTRUCTION_OBJECT_COUNTS = (10, 50)
+INSTRUCTION_WORKLOADS = "bench.bench_scene:instruction_workloads"
 
 
 def layout(count: int, rng: np.random.Generator) -> np.ndarray:
@@ -102,26 +112,57 @@ def run(fusion_modules: list[ModuleType], count: int) -> tuple[list[float], int]
     return [1e3 * float(np.median(timing)) for timing in timings], published
 
 
-def association_ms(count: int, brute_force: bool = False, repeats: int = 20) -> float:
-    """Mean ms of one frame's association of count measurements with count tracks: ours (association of the gated
-    pairs, frame_association.associate), or every pair's cost by the pair-by-pair loop and one assignment."""
+def association_calls(count: int, brute_force: bool = False, repeats: int = 20) -> list[Callable[[], object]]:
+    """`repeats` frames' association of count measurements with count tracks, one call each: ours (association of
+    the gated pairs, frame_association.associate), or every pair's cost by the pair-by-pair loop and one
+    assignment. The measurements' noise is drawn here, before any call."""
     rng = np.random.default_rng(SEED)
     xy = layout(count, rng)[:, :2]
     cov = np.repeat(np.eye(2)[None] * 0.1, count, axis=0)
     origins = np.zeros_like(xy)
     tracking = TrackingConfig()
+
+    def brute(meas_xy: np.ndarray) -> None:
+        d2, log_det = polar_cost_loop(meas_xy, cov, origins, xy, cov, tracking.angle_emphasis, with_log_det=True)
+        assign(likelihood_cost(d2, log_det), tracking.gate_chi2, gate_cost=d2)
+
+    def ours(meas_xy: np.ndarray) -> None:
+        associate(meas_xy, cov, origins, xy, cov, tracking)
+    associate_one = brute if brute_force else ours
+    return [lambda m=xy + rng.normal(0.0, 0.2, xy.shape): associate_one(m) for _ in range(repeats)]
+
+
+def association_ms(count: int, brute_force: bool = False, repeats: int = 20) -> float:
+    """Mean ms of this process's CPU per frame's association (association_calls)."""
+    calls = association_calls(count, brute_force, repeats)
     start = time.process_time()
-    for _ in range(repeats):
-        meas_xy = xy + rng.normal(0.0, 0.2, xy.shape)
-        if brute_force:
-            d2, log_det = polar_cost_loop(meas_xy, cov, origins, xy, cov, tracking.angle_emphasis, with_log_det=True)
-            assign(likelihood_cost(d2, log_det), tracking.gate_chi2, gate_cost=d2)
-        else:
-            associate(meas_xy, cov, origins, xy, cov, tracking)
+    for call in calls:
+        call()
     return 1e3 * (time.process_time() - start) / repeats
 
 
+def instruction_workloads() -> list[Workload]:
+    """Ours and the brute force at each counted size, for bench/instructions_per_call.py; the brute force runs one
+    frame, cold."""
+    workloads = []
+    for count in INSTRUCTION_OBJECT_COUNTS:
+        workloads += [Workload(f"{count} objects: association", association_calls(count, repeats=INSTRUCTION_FRAMES)),
+                      Workload(f"{count} objects: brute-force association",
+                               association_calls(count, brute_force=True, repeats=1), warm=False)]
+    return workloads
+
+
+def association_ratios(count: int, by_time: float, instructions: dict[str, float] | None) -> list[Figure]:
+    """Our association over the brute force's, in time and, where counted, in instructions (which guard it)."""
+    name, baseline = f"{count} objects: association to brute force", f"{count} objects: brute-force association"
+    counted = None if instructions is None or count not in INSTRUCTION_OBJECT_COUNTS else instruction_ratio(
+        name, instructions[f"{count} objects: association"] / instructions[baseline], baseline)
+    return ([] if counted is None else [counted]) + [
+        ratio(name, by_time, baseline, Better.LOWER, guarded_by=None if counted is None else counted.name)]
+
+
 def main() -> list[Figure]:
+    instructions = per_call(INSTRUCTION_WORKLOADS)
     before = scene_before.load(BEFORE_REVISION)
     print(f"scene update = radar frame with every object + scene(); median of {TIMED_FRAMES} frames, seed {SEED}; "
           f"before = services/scene at {BEFORE_REVISION[:12]}" + ("" if before else " (not available: no git)"))
@@ -134,7 +175,7 @@ def main() -> list[Figure]:
         before_ms = timings_ms[1] if before else math.nan
         (alone_ms,), _ = run([fusion_now], count)
         assoc_ms, brute_force_ms = least_of_turns(
-            [lambda: association_ms(count),
+            [lambda: association_ms(count, repeats=ASSOCIATION_FRAMES),
              lambda: association_ms(count, brute_force=True, repeats=BRUTE_FORCE_REPEATS)], ASSOCIATION_ROUNDS)
         growth = ""
         if count == OBJECT_COUNTS[-1]:
@@ -148,9 +189,8 @@ def main() -> list[Figure]:
               f"{alone_ms:>9.2f} {assoc_ms:>9.3f} {brute_force_ms:>21.2f} {growth:>17}")
         figures += [Figure(f"{count} objects: update, turn about", now_ms[count], Unit.MS),
                     Figure(f"{count} objects: update alone", alone_ms, Unit.MS),
-                    Figure(f"{count} objects: association", assoc_ms, Unit.MS),
-                    ratio(f"{count} objects: association to brute force", assoc_ms / brute_force_ms,
-                          f"{count} objects: brute-force association", Better.LOWER)]
+                    Figure(f"{count} objects: association", assoc_ms, Unit.MS)] + association_ratios(
+            count, assoc_ms / brute_force_ms, instructions)
         if before:  # without git the scene before is not there to measure
             figures.append(ratio(f"{count} objects: speed-up over before", before_ms / now_ms[count],
                                  f"{count} objects: update before", Better.HIGHER))

@@ -9,16 +9,18 @@ from __future__ import annotations
 import argparse
 import os
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
-from bench.figure import Better, Figure, Unit, ratio
+from bench.figure import Better, Figure, Unit, instruction_ratio, ratio
+from bench.instructions_per_call import Workload, per_call
 from bench.sizes import sized
 from bench.turn_about import best_rates_per_s
-from coopdrive.v2x.its_pdu import ItsCodec, ItsMessageId, PDU_TYPE_NAMES
+from coopdrive.v1 import its_pb2
+from coopdrive.v2x.its_pdu import PDU_TYPE_NAMES, ItsCodec, ItsMessageId
 from coopdrive.v2x.mapping.cam import cam_to_asn
 from coopdrive.v2x.mapping.iclcm import iclcm_to_asn
 from coopdrive.v2x.packet import GnParams, SourcePosition, V2xPacketCodec
-from coopdrive.v1 import its_pb2
 
 BARE = "bare asn1tools UPER"
 # Turns of the five operations of a message within its time (bench/turn_about.py).
@@ -61,25 +63,57 @@ class Row:
     decode_per_s: float
 
 
-def measure(seconds: float) -> list[Row]:
+# Calls of each operation whose instructions are counted (the same input each time).
+INSTRUCTION_CALLS = 200
+INSTRUCTION_WORKLOADS = "bench.bench_v2x:instruction_workloads"
+
+
+@dataclass(frozen=True)
+class MessageOperations:
+    """One typical message's five operations: bare asn1tools' encode and decode of its UPER payload, our decode of
+    the GeoNetworking frame, and our encode and decode of the whole packet to and from protobuf content."""
+    message: str
+    uper_bytes: int
+    packet_bytes: int
+    calls: tuple[Callable[[], object], ...]
+
+    NAMES = ("bare encode", "bare decode", "frame decode", "full encode", "full decode")
+    # Each table row's path, as the operations name it.
+    PATHS = {BARE: "bare", "GN+BTP+UPER": "frame", "GN+BTP+UPER+protobuf": "full"}
+
+
+def operations() -> list[MessageOperations]:
     packet_codec = V2xPacketCodec()
     spec = packet_codec.its_codec.spec(1)
     cases = [
         ("CAM", ItsMessageId.CAM, typical_cam(), packet_codec.encode_cam, cam_to_asn),
         ("iCLCM", ItsMessageId.ICLCM, typical_iclcm(), packet_codec.encode_iclcm, iclcm_to_asn),
     ]
-    rows = []
+    messages = []
     for name, message_id, content, encode, to_asn in cases:
         packet, value, type_name = encode(content, GN), to_asn(content), PDU_TYPE_NAMES[message_id]
         uper = spec.encode(type_name, value)
+        messages.append(MessageOperations(name, len(uper), len(packet), (
+            lambda t=type_name, v=value: spec.encode(t, v), lambda t=type_name, u=uper: spec.decode(t, u),
+            lambda p=packet: packet_codec.decode_frame(p), lambda c=content, e=encode: e(c, GN),
+            lambda p=packet: packet_codec.decode_packet(p))))
+    return messages
+
+
+def instruction_workloads() -> list[Workload]:
+    return [Workload(f"{message.message} {operation}", [call] * INSTRUCTION_CALLS)
+            for message in operations() for operation, call in zip(MessageOperations.NAMES, message.calls)]
+
+
+def measure(seconds: float) -> list[Row]:
+    rows = []
+    for message in operations():
         # The five operations of a message turn about, so each ratio's sides share the machine's load alike.
         bare_encode, bare_decode, frame_decode, full_encode, full_decode = best_rates_per_s(
-            [lambda: spec.encode(type_name, value), lambda: spec.decode(type_name, uper),
-             lambda: packet_codec.decode_frame(packet), lambda: encode(content, GN),
-             lambda: packet_codec.decode_packet(packet)], 5 * seconds, ROUNDS)
-        rows += [Row(name, BARE, len(uper), bare_encode, bare_decode),
-                 Row(name, "GN+BTP+UPER", len(packet), None, frame_decode),
-                 Row(name, "GN+BTP+UPER+protobuf", len(packet), full_encode, full_decode)]
+            message.calls, 5 * seconds, ROUNDS)
+        rows += [Row(message.message, BARE, message.uper_bytes, bare_encode, bare_decode),
+                 Row(message.message, "GN+BTP+UPER", message.packet_bytes, None, frame_decode),
+                 Row(message.message, "GN+BTP+UPER+protobuf", message.packet_bytes, full_encode, full_decode)]
     return rows
 
 
@@ -94,6 +128,7 @@ def main(argv: list[str] | None = None) -> list[Figure]:
     parser.add_argument("--seconds", type=float, default=float(os.environ.get("BENCH_V2X_SECONDS", sized(1.0, 0.05))),
                         help="time per measurement")
     seconds = parser.parse_args(argv if argv is not None else []).seconds
+    instructions = per_call(INSTRUCTION_WORKLOADS)
     rows = measure(seconds)
     bare = {row.message: row for row in rows if row.path == BARE}
     print(f"{'message':8} {'path':22} {'bytes':>5} {'encode/s':>9} {'decode/s':>9} {'encode x bare':>13} "
@@ -104,7 +139,7 @@ def main(argv: list[str] | None = None) -> list[Figure]:
         print(f"{row.message:8} {row.path:22} {row.size_bytes:5d} {encode:>9} {row.decode_per_s:9.0f} "
               f"{_times_bare(row.encode_per_s, bare[row.message].encode_per_s):>13} "
               f"{_times_bare(row.decode_per_s, bare[row.message].decode_per_s):>13}")
-        figures += row_figures(row, bare[row.message])
+        figures += row_figures(row, bare[row.message], instructions)
     full = [row for row in rows if row.path == "GN+BTP+UPER+protobuf"]
     core_share = sum(STATIONS * RATE_HZ / row.decode_per_s for row in full)
     print(f"\n{STATIONS} stations sending CAM and iCLCM at {RATE_HZ:.0f} Hz each: decoding them to protobuf takes "
@@ -116,17 +151,23 @@ def main(argv: list[str] | None = None) -> list[Figure]:
     return figures + [Figure("schema v1 load from the disk cache", load_ms, Unit.MS)]
 
 
-def row_figures(row: Row, bare: Row) -> list[Figure]:
-    """A row's rates, and beside the bare row's its time per message as a multiple of bare asn1tools'."""
+def row_figures(row: Row, bare: Row, instructions: dict[str, float] | None) -> list[Figure]:
+    """A row's rates, and beside the bare row's its time per message as a multiple of bare asn1tools', guarded by
+    the same multiple in instructions where they were counted."""
     figures = []
     for operation, rate, bare_rate in (("encode", row.encode_per_s, bare.encode_per_s),
                                        ("decode", row.decode_per_s, bare.decode_per_s)):
         if rate is None:
             continue
         figures.append(Figure(f"{row.message} {row.path} {operation}s", rate, Unit.PER_S))
-        if row is not bare:
-            figures.append(ratio(f"{row.message} {row.path} {operation}: time x bare", bare_rate / rate,
-                                 f"{row.message} {BARE} {operation}s", Better.LOWER))
+        if row is bare:
+            continue
+        name, baseline = f"{row.message} {row.path} {operation}: time x bare", f"{row.message} {BARE} {operation}s"
+        counted = None if instructions is None else instruction_ratio(
+            name, instructions[f"{row.message} {MessageOperations.PATHS[row.path]} {operation}"]
+            / instructions[f"{row.message} bare {operation}"], baseline)
+        figures += ([] if counted is None else [counted]) + [
+            ratio(name, bare_rate / rate, baseline, Better.LOWER, guarded_by=None if counted is None else counted.name)]
     return figures
 
 

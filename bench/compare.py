@@ -9,7 +9,9 @@ as independent errors do, root of the sum of squares); a change past 10 % but in
 interval". An absolute figure (a time, a rate) says as much about the
 machine as about the code: it is compared only between runs on the same kind of machine (bench/machine.py), and
 then marked "worse (absolute)" past NOISE without failing the comparison, since the load of a shared machine moves
-it too. A figure a benchmark no longer reports is flagged GONE, one whose benchmark failed NOT MEASURED. Exit
+it too. A ratio of CPU times whose sides its benchmark also counts in instructions (its `guarded_by` figure) is
+marked "worse in time" past NOISE without failing either: the count, which the load does not move, is flagged
+instead when it worsens. A figure a benchmark no longer reports is flagged GONE, one whose benchmark failed NOT MEASURED. Exit
 status: 0 nothing flagged, 1 something flagged, 2 a file that is not a results file.
 """
 
@@ -40,6 +42,7 @@ class Verdict(Enum):
     WITHIN_INTERVAL = "within its interval"
     WORSE = "WORSE"
     WORSE_ABSOLUTE = "worse (absolute)"
+    WORSE_IN_TIME = "worse in time (instructions guard it)"
     OTHER_MACHINE = "not comparable (other machine)"
     NEW_FIGURE = "new figure"
     NOT_RUN = "benchmark not run"
@@ -80,13 +83,18 @@ def direction_verdict(old: Figure, new: Figure) -> Verdict:
     return Verdict.BETTER if worse_by < -NOISE else Verdict.WITHIN_NOISE
 
 
-def verdict_of(old: Figure, new: Figure, same_machine: bool) -> Verdict:
+def verdict_of(old: Figure, new: Figure, same_machine: bool, guard_measured: bool = False) -> Verdict:
+    """guard_measured: NEW's run also measured the figure that guards `new` (its `guarded_by`)."""
     if not new.measured:
         return Verdict.NOT_MEASURED
     if not new.is_ratio and not same_machine:
         return Verdict.OTHER_MACHINE
     verdict = direction_verdict(old, new)
-    return Verdict.WORSE_ABSOLUTE if verdict is Verdict.WORSE and not new.is_ratio else verdict
+    if verdict is not Verdict.WORSE:
+        return verdict
+    if not new.is_ratio:
+        return Verdict.WORSE_ABSOLUTE
+    return Verdict.WORSE_IN_TIME if guard_measured else verdict
 
 
 def compare(old: BenchResults, new: BenchResults) -> list[Change]:
@@ -97,8 +105,9 @@ def compare(old: BenchResults, new: BenchResults) -> list[Change]:
     for (bench, name), figure in old_figures.items():
         now = new_figures.get((bench, name))
         if now is not None:
+            guard = new_figures.get((bench, now.guarded_by))
             changes.append(Change(bench, name, figure.unit.value, figure.value, now.value,
-                                  verdict_of(figure, now, same_machine)))
+                                  verdict_of(figure, now, same_machine, guard is not None and guard.measured)))
             continue
         run = new.benches.get(bench)
         verdict = Verdict.NOT_RUN if run is None else Verdict.NOT_MEASURED if run.failure else Verdict.GONE

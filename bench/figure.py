@@ -41,13 +41,16 @@ class Figure:
     A ratio names its `baseline`, what it is divided by, and says which way it improves; an absolute figure's
     direction follows from its unit. `spread`: where the benchmark can estimate how far its own sampling may move
     the figure (a percentile of a few hundred latencies), the half-width of its 95 % interval over the value
-    (0.2: the interval is the value +- 20 %); bench/compare.py flags a change only beyond it."""
+    (0.2: the interval is the value +- 20 %); bench/compare.py flags a change only beyond it. `guarded_by`: a
+    ratio of CPU times whose two sides the benchmark also counts in instructions (bench/instructions_per_call.py)
+    names that count's figure, which the machine's load does not move; compare flags the count, not the time."""
     name: str
     value: float
     unit: Unit
     baseline: str | None = None
     better: Better | None = None
     spread: float | None = None
+    guarded_by: str | None = None
 
     def __post_init__(self) -> None:
         if (self.unit is Unit.RATIO) != (self.baseline is not None):
@@ -77,13 +80,19 @@ class Figure:
     def from_json(cls, row: dict) -> Figure:
         value = math.nan if row["value"] is None else float(row["value"])
         return cls(row["name"], value, Unit(row["unit"]), row.get("baseline"), Better(row["better"]),
-                   row.get("spread"))
+                   row.get("spread"), row.get("guarded_by"))
 
 
 def ratio(name: str, value: float, baseline: str, better: Better = Better.LOWER,
-          spread: float | None = None) -> Figure:
+          spread: float | None = None, guarded_by: str | None = None) -> Figure:
     """A ratio figure: `value` is this figure over `baseline`'s, both measured in the same run."""
-    return Figure(name, value, Unit.RATIO, baseline, better, spread)
+    return Figure(name, value, Unit.RATIO, baseline, better, spread, guarded_by)
+
+
+def instruction_ratio(name: str, value: float, baseline: str, better: Better = Better.LOWER) -> Figure:
+    """A ratio of two instruction counts (bench/instructions_per_call.py): named as such, so that a reader of the
+    results tells it from a ratio of times."""
+    return ratio(f"{name}, instructions", value, f"{baseline}, instructions", better)
 
 
 def shown(value: float) -> str:

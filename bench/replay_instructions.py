@@ -22,7 +22,6 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import re
 import subprocess
 import sys
 import tempfile
@@ -33,17 +32,13 @@ from pathlib import Path
 from rich.console import Console
 from rich.table import Table
 
+from bench.callgrind import CallgrindError, collected, run_under_callgrind
 from bench.tree_at_revision import tree_at_revision
 from coopdrive.exit_status import EXIT_FAILED, EXIT_OK
 
 START_UP_WINDOW_S = 0.1
 WORKERS = 2
 REPLAY_RAN = (EXIT_OK, EXIT_FAILED)
-_COLLECTED = re.compile(r"Collected : (\d+)")
-
-
-class CallgrindError(RuntimeError):
-    pass
 
 
 def instructions(command: list[str], env: dict[str, str] | None = None, cwd: Path | None = None,
@@ -51,15 +46,8 @@ def instructions(command: list[str], env: dict[str, str] | None = None, cwd: Pat
     """Instructions the command's process executed (callgrind's total); CallgrindError with its output's end if it
     ended with another exit code or valgrind is missing."""
     with tempfile.TemporaryDirectory(prefix="callgrind-") as folder:
-        valgrind = ["valgrind", "--tool=callgrind", f"--callgrind-out-file={folder}/callgrind.out"]
-        try:
-            result = subprocess.run(valgrind + command, capture_output=True, text=True, env=env, cwd=cwd)
-        except FileNotFoundError:
-            raise CallgrindError("valgrind is not installed (Debian's package valgrind)") from None
-    found = _COLLECTED.search(result.stderr)
-    if result.returncode not in ok_exit_codes or found is None:
-        raise CallgrindError(f"{' '.join(command)} failed under callgrind: {result.stderr[-1500:]}")
-    return int(found.group(1))
+        return collected(run_under_callgrind(command, Path(folder) / "callgrind.out", env=env, cwd=cwd,
+                                             ok_exit_codes=ok_exit_codes))
 
 
 @dataclass(frozen=True)

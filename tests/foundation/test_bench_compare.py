@@ -158,3 +158,27 @@ def test_quick_and_full_sizes_are_refused_as_not_comparable(tmp_path, capsys):
     full = results(tmp_path, "full", {"bench_bus": bus(100.0, 1.5)})
     assert bench_compare.main([str(quick), str(full)]) == 2
     assert "quick sizes" in capsys.readouterr().err
+
+
+def world_parts(by_time: float, by_instructions: float | None) -> dict:
+    """bench_world_parts as the runner writes it: a speed-up in time, guarded by the same in instructions."""
+    counted = "intersection: speed-up, instructions"
+    figures = [{**figure("intersection: speed-up", by_time, "ratio", "general path", "higher"), "guarded_by": counted}]
+    if by_instructions is not None:
+        figures.append(figure(counted, by_instructions, "ratio", "general path, instructions", "higher"))
+    return {"seconds": 60.0, "failure": None, "figures": figures}
+
+
+def test_a_time_ratio_guarded_by_its_instruction_count_is_flagged_only_through_the_count(tmp_path):
+    # The turn-about speed-up moved from 21.1 to 14.0 between two quiet runs of one commit; the count did not.
+    assert verdicts(tmp_path, {"bench_world_parts": world_parts(21.1, 12.3)},
+                    {"bench_world_parts": world_parts(14.0, 12.3)}) == {
+        "intersection: speed-up": Verdict.WORSE_IN_TIME, "intersection: speed-up, instructions": Verdict.WITHIN_NOISE}
+    assert verdicts(tmp_path, {"bench_world_parts": world_parts(21.1, 12.3)},
+                    {"bench_world_parts": world_parts(14.0, 9.0)}) == {
+        "intersection: speed-up": Verdict.WORSE_IN_TIME, "intersection: speed-up, instructions": Verdict.WORSE}
+
+
+def test_a_guarded_time_ratio_whose_count_is_missing_is_flagged_by_itself(tmp_path):
+    assert verdicts(tmp_path, {"bench_world_parts": world_parts(21.1, 12.3)},
+                    {"bench_world_parts": world_parts(14.0, None)})["intersection: speed-up"] is Verdict.WORSE
