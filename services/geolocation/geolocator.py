@@ -60,6 +60,12 @@ class InputEvent(enum.Enum):
     FIX_FAR_FROM_ORIGIN = "fix_far_from_origin"
 
 
+# The events counted as the filter applies an input: an input fused again after a late one (latency.py) must not
+# count twice, so these counts go back with the filter's state. The others are counted once, as inputs arrive.
+APPLIED_EVENTS = (InputEvent.FIX_FUSED, InputEvent.FIX_GATED, InputEvent.GNSS_RESET, InputEvent.YAW_RATE_RESET,
+                  InputEvent.STANDSTILL)
+
+
 class Geolocator:
     def __init__(self, config: GeolocatorConfig, road_map: RoadMap | None = None,
                  origin: tuple[float, float, float] | None = None, first_fix_origin: bool = False,
@@ -165,11 +171,14 @@ class Geolocator:
 
     # --- fusion (called by the replay buffer, in time order) ------------------------------------
     def _snapshot(self) -> tuple:
-        return self.ekf.snapshot(), self._book
+        return self.ekf.snapshot(), self._book, {event: self.counters[event] for event in APPLIED_EVENTS}
 
     def _restore(self, snap: tuple) -> None:
-        ekf_snap, self._book = snap
+        ekf_snap, self._book, applied = snap
         self.ekf.restore(ekf_snap)
+        for event, count in applied.items():
+            self.counters[event] = count
+        self.counters += Counter()  # drops the zeros: an event that never happened is not listed
 
     def _apply(self, time_s: float, event: object) -> None:
         if isinstance(event, Fix):

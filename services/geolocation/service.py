@@ -80,6 +80,7 @@ class GeolocationService(Service):
     def stop(self) -> None:
         # Safe after a start that failed half way (a port that could not be opened).
         if getattr(self, "vehicle_bus", None) is not None:
+            self._update_counters()  # the final counts (a replay prints them)
             self.vehicle_bus.close()
         if getattr(self, "serial", None) is not None:
             self.serial.close()
@@ -130,6 +131,9 @@ class GeolocationService(Service):
     def publish_estimate(self, now_s: float) -> None:
         self.decoder.flush_stale(now_s, self.config.gnss_epoch_wait_s)
         self.ctx.publish("ego/state", self.geolocator.estimate(now_s), sample_time_s=now_s)
+        self._update_counters()
+
+    def _update_counters(self) -> None:
         # stats() are running totals, so they replace the counters rather than add to them.
         self.counters.update(self.geolocator.stats())
         self.counters.update(self.vehicle_bus.counts())
