@@ -21,6 +21,7 @@ from coopdrive.judging.reference_track import ReferenceTrack, compass_to_enu_rad
 from coopdrive.judging.run_messages import RunMessages
 from coopdrive.recording.reader import read_metadata
 from coopdrive.recording.writer import CONFIG_METADATA
+from coopdrive.services.geolocation.config import GeolocationConfig
 from coopdrive.services.geolocation.frames import LeverArm
 from coopdrive.services.geolocation.motion_models import HEADING, VEHICLE_STATE_DIM, E, N
 from coopdrive.v1 import ego_pb2
@@ -40,12 +41,12 @@ class ReferenceRequest:
 
 
 def recorded_antenna(recording: Path, vehicle_id: str) -> LeverArm:
-    """The GNSS antenna of the geolocation config the recording holds for the vehicle (none: the rear axle)."""
+    """The GNSS antenna of the geolocation config the recording holds for the vehicle (its keys, else its car's
+    file, else the default; no config: the rear axle)."""
     config = read_metadata(recording).get(CONFIG_METADATA, {}).get(f"{vehicle_id}/geolocation")
     if config is None:
         return LeverArm()
-    geolocator = json.loads(config).get("geolocator", {})
-    return LeverArm(geolocator.get("antenna_x_m", 0.0), geolocator.get("antenna_y_m", 0.0))
+    return LeverArm(*GeolocationConfig.model_validate_json(config).antenna_m())
 
 
 def estimate_series(states: list[ego_pb2.EgoState], lever_arm: LeverArm) -> TrackSeries:

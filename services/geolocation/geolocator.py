@@ -15,7 +15,7 @@ from dataclasses import replace
 import numpy as np
 from pymap3d.vincenty import vdist
 
-from coopdrive.can.adapter import OdometryOptions
+from coopdrive.can.adapter import MountPoint, OdometryOptions
 from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.roadmap import RoadMap
 from coopdrive.services.geolocation.bookkeeping import Bookkeeping, Fix, Imu, replaced
@@ -69,10 +69,11 @@ APPLIED_EVENTS = (InputEvent.FIX_FUSED, InputEvent.FIX_GATED, InputEvent.GNSS_RE
 class Geolocator:
     def __init__(self, config: GeolocatorConfig, road_map: RoadMap | None = None,
                  origin: tuple[float, float, float] | None = None, first_fix_origin: bool = False,
-                 vehicle: VehicleDescription = PASSENGER_CAR) -> None:
+                 vehicle: VehicleDescription = PASSENGER_CAR, antenna: MountPoint | None = None) -> None:
         """The local frame's origin: the road map's, else origin, else (first_fix_origin) the first fix's. vehicle:
-        the geometry the config leaves open."""
-        config = self.config = config.of_vehicle(vehicle)
+        the geometry the config leaves open; antenna: where the car's file puts it, when the config does not."""
+        config = self.config = config.of_vehicle(vehicle, antenna)
+        self._fix_std_by_mode_m = config.gnss_fix_std_m.by_mode()
         if road_map is None and origin is None and not first_fix_origin:
             road_map = RoadMap.load(config.map_name)
         self.road_map = road_map
@@ -105,7 +106,7 @@ class Geolocator:
     # --- inputs --------------------------------------------------------------------------------
     def on_gnss_fix(self, fix: gnss_pb2.GnssFix) -> Insertion | None:
         """A fix, fused at fix.header.sample_time_s. Returns how it was inserted, None if not usable."""
-        stds = gnss_position_std_m(fix.fix_mode, fix.std_east_m, fix.std_north_m)
+        stds = gnss_position_std_m(fix.fix_mode, fix.std_east_m, fix.std_north_m, self._fix_std_by_mode_m)
         if stds is None:
             self.counters[InputEvent.FIX_WITHOUT_POSITION] += 1
             return None
