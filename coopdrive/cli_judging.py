@@ -15,6 +15,16 @@ def add_commands(commands) -> None:
     score.add_argument("file", type=Path, help="a run's recording (FILE.mcap, with its ground truth)")
     score.add_argument("--scenario", help="judging settings of this scenario (default: the recorded one)")
     score.add_argument("--json", action="store_true", help="print the metrics as JSON")
+    score.add_argument("--reference", type=Path, metavar="REF.csv",
+                       help="judge a replay's ego/state (and its fixes) against this reference trajectory instead: "
+                            "CSV of time, lat, lon[, heading, speed]")
+    score.add_argument("--vehicle", default="ego", help="with --reference: whose estimate (default: ego)")
+    score.add_argument("--lever-arm", metavar="X,Y", help="with --reference: the compared point, metres ahead of "
+                                                          "and left of the rear axle (default: the GNSS antenna of "
+                                                          "the recorded geolocation config)")
+    score.add_argument("--max-offset", type=float, default=0.5, metavar="SECONDS",
+                       help="with --reference: search the best-fit time offset within +-this (default: 0.5)")
+    score.add_argument("--out", type=Path, metavar="FILE.json", help="with --reference: write the figures here")
     score.set_defaults(handler=_score)
 
     analyze = commands.add_parser("analyze", help="analyses of controllers and runs")
@@ -68,7 +78,28 @@ def _analyze_string(args) -> int:
 def _score(args) -> int:
     from coopdrive.judging.commands import score_command
 
+    if args.reference is not None:
+        return _score_reference(args)
     return score_command(args.file, args.json, args.scenario)
+
+
+def _score_reference(args) -> int:
+    from coopdrive.judging.reference_command import ReferenceRequest, reference_score_command
+    from coopdrive.services.geolocation.frames import LeverArm
+
+    lever_arm = None
+    if args.lever_arm is not None:
+        try:
+            lever_arm = LeverArm(*(float(part) for part in args.lever_arm.split(",", 1)))
+        except ValueError:
+            print(f"coopdrive: score: --lever-arm {args.lever_arm!r}: expected X,Y in metres, e.g. 1.2,0",
+                  file=sys.stderr)
+            return EXIT_USAGE
+    if args.max_offset < 0.0:
+        print(f"coopdrive: score: --max-offset {args.max_offset:g}: a search range is 0 s or more", file=sys.stderr)
+        return EXIT_USAGE
+    return reference_score_command(ReferenceRequest(args.file, args.reference, args.vehicle, lever_arm,
+                                                    args.max_offset, args.out, args.json))
 
 
 def _scenarios(args) -> int:

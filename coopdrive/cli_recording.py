@@ -127,6 +127,7 @@ def _replay(args) -> int:
 
     from coopdrive.recording.reader import RecordingError
     from coopdrive.recording.replay import ReplayError, TimeWindow, replay_service
+    from coopdrive.recording.replay_counts import replay_warnings
     from coopdrive.recording.replay_diff import compare_outputs
 
     try:
@@ -142,8 +143,10 @@ def _replay(args) -> int:
         print(f"coopdrive: replay: {args.file}: not a readable MCAP recording ({error})", file=sys.stderr)
         return EXIT_USAGE
     differences = compare_outputs(result.outputs, result.recorded_outputs)
+    warnings = replay_warnings(args.service, result.counters)
     summary = {"service": args.service, "mode": result.mode, "steps": result.steps, "outputs": len(result.outputs),
-               "recorded_outputs": len(result.recorded_outputs), "notes": result.notes,
+               "recorded_outputs": len(result.recorded_outputs), "notes": result.notes, "warnings": warnings,
+               "counters": result.counters,
                "window_s": None if result.window is None else [result.window.from_s, result.window.to_s],
                "topics": [d.as_dict() for d in differences]}
     if args.report is not None:
@@ -156,10 +159,13 @@ def _replay(args) -> int:
         print(json.dumps({**summary, "identical": exact and not problems}, indent=2))
     else:
         _print_replay(args, result, differences, problems, exact)
+    for warning in warnings:
+        print(f"coopdrive: replay: warning: {warning}", file=sys.stderr)
     return EXIT_FAILED if problems else EXIT_OK
 
 
 def _print_replay(args, result, differences, problems, exact: bool) -> None:
+    from coopdrive.recording.replay_counts import counter_lines
     from coopdrive.recording.replay_diff import table
 
     where = f" to {args.out}" if args.out else ""
@@ -169,12 +175,15 @@ def _print_replay(args, result, differences, problems, exact: bool) -> None:
         print(f"note: {note}")
     if exact and not problems:
         print("identical to the recorded outputs")
-        return
-    if problems:
-        print("differs from the recording: " + "; ".join(problems))
-    print(table(differences))
-    if args.report is not None:
-        print(f"report: {args.report}")
+    else:
+        if problems:
+            print("differs from the recording: " + "; ".join(problems))
+        print(table(differences))
+        if args.report is not None:
+            print(f"report: {args.report}")
+    if result.counters:
+        print(f"{args.service} counted:")
+        print("\n".join(f"  {line}" for line in counter_lines(result.counters)))
 
 
 def add_export_command(commands) -> None:

@@ -119,6 +119,26 @@ class OdometryOptions(BaseModel):
     wheel_speed_std_mps: float | None = Field(None, gt=0.0)
 
 
+class MountPoint(BaseModel):
+    """A point of the car in the vehicle frame: metres ahead of (x) and left of (y) the middle of the rear axle,
+    the reference point of the ego state geolocation publishes."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    x_m: float
+    y_m: float = 0.0
+
+
+class Mounting(BaseModel):
+    """Where the car's sensors sit (None: not given; the service's own default or config key applies)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    # The GNSS antenna's phase centre: geolocation's lever arm (its geolocator.antenna_x_m / antenna_y_m, when
+    # set, win over this).
+    gnss_antenna: MountPoint | None = None
+
+
 # The quantities a VehicleCanState carries (vehicle.proto), by adapter name.
 STATE_QUANTITIES = (
     "wheel_speed_front_left", "wheel_speed_front_right", "wheel_speed_rear_left", "wheel_speed_rear_right",
@@ -141,6 +161,7 @@ class VehicleCanAdapter(BaseModel):
     gear: GearSource | None = None
     integrity: Integrity = Integrity()
     odometry: OdometryOptions = OdometryOptions()
+    mounting: Mounting = Mounting()
     # The VehicleCanState goes out when this message arrives (default: the wheel speeds'), once it and these
     # messages have been seen; a quantity of a message not seen yet reads 0 (a blinker frame may come once in
     # seconds: the odometry need not wait for it).

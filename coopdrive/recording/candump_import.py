@@ -1,8 +1,9 @@
 """A candump `-l` log (`(t) can0 ID#DATA`) as CanFrames batches on can/vehicle (or can/NAME).
 
-Frames keep the log's own time (timestamp_s) and go out in batches of BATCH_S of it, in log order, each batch
-at the time of its last frame (when a reader would have had all of it). Every frame is imported, whatever its
-id: which ids a car's adapter knows is the replayed service's business, and it counts the others.
+Frames keep the log's own time (timestamp_s; the importer adds the log's --offset to it as to the batch's) and go
+out in batches of BATCH_S of it, in log order, each batch at the time of its last frame (when a reader would have
+had all of it). Every frame is imported, whatever its id: which ids a car's adapter knows is the replayed service's
+business, and it counts the others.
 """
 
 from __future__ import annotations

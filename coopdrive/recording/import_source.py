@@ -8,6 +8,8 @@ from pathlib import Path
 
 from google.protobuf.message import Message
 
+from coopdrive.v1 import vehicle_pb2
+
 
 class ImportFailure(ValueError):
     """A whole log cannot be imported (not a capture, no time in it); bad lines are counted instead."""
@@ -19,6 +21,14 @@ class TimedMessage:
     time_s: float
     topic: str
     message: Message
+
+    def shift(self, offset_s: float) -> None:
+        """Onto the recording's time base: the arrival time and, for a batch of CAN frames, each frame's own time
+        (a replayed frame is read at the time it was on the bus, not at its batch's arrival)."""
+        self.time_s += offset_s
+        if isinstance(self.message, vehicle_pb2.CanFrames):
+            for frame in self.message.frames:
+                frame.timestamp_s += offset_s
 
 
 @dataclass

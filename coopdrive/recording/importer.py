@@ -88,7 +88,7 @@ def _apply_offsets(sources: list[SourceReport], offsets_s: dict[str, float]) -> 
                 source.offset_s = offsets_s[name]
                 used.add(name)
         for message in source.messages:
-            message.time_s += source.offset_s
+            message.shift(source.offset_s)
     unknown = sorted(set(offsets_s) - used)
     if unknown:
         names = ", ".join(sorted({s.kind for s in sources} | {s.path.name for s in sources}))

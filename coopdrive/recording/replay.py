@@ -78,6 +78,8 @@ class ReplayResult:
     notes: list[str] = field(default_factory=list)
     # A part of the recording only: the service starts within it, its state not the recorded one.
     window: TimeWindow | None = None
+    # The service's counters when it stopped (replay_counts.py puts them in words).
+    counters: dict[str, float] = field(default_factory=dict)
 
     @property
     def exact(self) -> bool:
@@ -153,7 +155,8 @@ def replay_service(recording: str | Path, service_name: str, vehicle_id: str | N
         notes.append(f"replayed {window.describe()} of the recording: {service_name} started at {window.from_s:g} s "
                      f"with none of its recorded state, so its first outputs may differ while its estimates settle")
     result = ReplayResult(outputs, [(t, m) for t, m, _ in recorded_outputs], steps,
-                          "lockstep" if clocks else "wall", bool(config_file or overrides), notes, window)
+                          "lockstep" if clocks else "wall", bool(config_file or overrides), notes, window,
+                          dict(service.counters))
     if out is not None:
         _write_replay(out, inputs + drawn, outputs, {config_key: config.model_dump_json()}, metadata)
     return result

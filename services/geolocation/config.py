@@ -6,13 +6,38 @@ import enum
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from coopdrive.can.adapter import VehicleCanPath
+from coopdrive.can.adapter import MountPoint, VehicleCanPath, load_adapter
 from coopdrive.can.vehicle_port import VehicleCanPortConfig
 from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.runtime.service import ServiceConfig
+from coopdrive.services.geolocation.ekf import FIX_MODE_STD_M
 from coopdrive.services.geolocation.motion_models import MotionModelKind
+from coopdrive.v1 import gnss_pb2
 from coopdrive.gnss.nmea_decoder import SentenceType
-from coopdrive.vehicle import VehicleDescription, VehicleKind
+from coopdrive.vehicle import VehicleDescription, VehicleKind, vehicle_of
+
+
+# A roof antenna about a metre ahead of the rear axle: what the geolocator assumed before a car's file could say.
+DEFAULT_ANTENNA_X_M = 1.0
+
+
+class FixModeStd(BaseModel):
+    """A fix's horizontal noise by fix mode (GGA quality), one sigma, m. Defaults: Heudiasyc Table 1 (NovAtel
+    APN-051, "~x" read as one sigma, "< x" as two), a NovAtel receiver's figures: a receiver that does better
+    (a modern u-blox single fix is nearer 1-2 m; the RAV4's fixes lie 0.42 m RMS off comma's reference) wants its own."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    single_m: float = Field(FIX_MODE_STD_M[gnss_pb2.FIX_MODE_SINGLE], gt=0.0)
+    sbas_m: float = Field(FIX_MODE_STD_M[gnss_pb2.FIX_MODE_SBAS], gt=0.0)
+    dgps_m: float = Field(FIX_MODE_STD_M[gnss_pb2.FIX_MODE_DGPS], gt=0.0)
+    rtk_float_m: float = Field(FIX_MODE_STD_M[gnss_pb2.FIX_MODE_RTK_FLOAT], gt=0.0)
+    rtk_fixed_m: float = Field(FIX_MODE_STD_M[gnss_pb2.FIX_MODE_RTK_FIXED], gt=0.0)
+
+    def by_mode(self) -> dict[int, float]:
+        return {gnss_pb2.FIX_MODE_SINGLE: self.single_m, gnss_pb2.FIX_MODE_SBAS: self.sbas_m,
+                gnss_pb2.FIX_MODE_DGPS: self.dgps_m, gnss_pb2.FIX_MODE_RTK_FLOAT: self.rtk_float_m,
+                gnss_pb2.FIX_MODE_RTK_FIXED: self.rtk_fixed_m}
 
 
 class GeolocatorConfig(BaseModel):
@@ -22,11 +47,15 @@ class GeolocatorConfig(BaseModel):
     map_name: str = "a270"
     motion_model: MotionModelKind = MotionModelKind.CTRA
     # Vehicle geometry: rear-wheel track for eq. 8, wheelbase for the bicycle model (None: the vehicle's
-    # description, coopdrive/vehicle; set for a car measured by hand), antenna from the rear axle.
+    # description, coopdrive/vehicle; set for a car measured by hand).
     track_width_m: float | None = Field(None, gt=0.0)
     wheelbase_m: float | None = Field(None, gt=0.0)
-    antenna_x_m: float = 1.0
-    antenna_y_m: float = 0.0
+    # The GNSS antenna, metres ahead of and left of the middle of the rear axle (the published ego state's point).
+    # None: the car's vehicle CAN adapter file says (its mounting.gnss_antenna), else DEFAULT_ANTENNA_X_M ahead.
+    antenna_x_m: float | None = None
+    antenna_y_m: float | None = None
+    # A fix's position noise (one sigma) by its mode when the receiver sends no GST, and its floor when it does.
+    gnss_fix_std_m: FixModeStd = FixModeStd()
     # Sensor noise (one sigma).
     wheel_speed_std_mps: float = Field(0.01, gt=0.0)
     imu_yaw_rate_std_radps: float = Field(0.005, gt=0.0)
@@ -84,10 +113,15 @@ class GeolocatorConfig(BaseModel):
     # Fixes farther than this from the local frame's origin are refused (a wrong origin, not a drive).
     max_origin_distance_m: float = Field(100_000.0, gt=0.0)
 
-    def of_vehicle(self, vehicle: VehicleDescription) -> GeolocatorConfig:
-        """With the geometry this config leaves open taken from the vehicle's description."""
-        return self.model_copy(update={"track_width_m": self.track_width_m or vehicle.track_width_m,
-                                       "wheelbase_m": self.wheelbase_m or vehicle.wheelbase_m})
+    def of_vehicle(self, vehicle: VehicleDescription, antenna: MountPoint | None = None) -> GeolocatorConfig:
+        """With the geometry this config leaves open taken from the vehicle's description and, for the antenna,
+        from its vehicle CAN adapter's mounting (None: the default)."""
+        antenna = antenna or MountPoint(x_m=DEFAULT_ANTENNA_X_M)
+        return self.model_copy(update={
+            "track_width_m": self.track_width_m or vehicle.track_width_m,
+            "wheelbase_m": self.wheelbase_m or vehicle.wheelbase_m,
+            "antenna_x_m": antenna.x_m if self.antenna_x_m is None else self.antenna_x_m,
+            "antenna_y_m": antenna.y_m if self.antenna_y_m is None else self.antenna_y_m})
 
 
 class GnssInput(enum.Enum):
@@ -149,6 +183,13 @@ class GeolocationConfig(ServiceConfig):
     # How long after measuring them the car puts wheel speeds and yaw rate on the bus, and the IMU its samples.
     can_latency_s: float = Field(0.005, ge=0.0)
     imu_latency_s: float = Field(0.005, ge=0.0)
+
+    def antenna_m(self) -> tuple[float, float]:
+        """The GNSS antenna's lever arm (x, y) this config comes to: its geolocator keys, else the car's vehicle CAN
+        adapter file, else the default. VehicleCanAdapterError when the file cannot be read."""
+        resolved = self.geolocator.of_vehicle(vehicle_of(self.vehicle),
+                                              load_adapter(self.vehicle_can)[0].mounting.gnss_antenna)
+        return resolved.antenna_x_m, resolved.antenna_y_m
 
     @model_validator(mode="after")
     def _one_source_of_the_frame(self) -> GeolocationConfig:

@@ -63,10 +63,11 @@ class EkfSnapshot:
     rejected: Counter[UpdateKind]
 
 
-def gnss_position_std_m(fix_mode: int, gst_std_east_m: float = 0.0, gst_std_north_m: float = 0.0
-                        ) -> tuple[float, float] | None:
-    """(std_east_m, std_north_m) for a fix: the receiver's GST sigmas, never below the mode's table value."""
-    table_std_m = FIX_MODE_STD_M.get(fix_mode)
+def gnss_position_std_m(fix_mode: int, gst_std_east_m: float = 0.0, gst_std_north_m: float = 0.0,
+                        by_mode_m: dict[int, float] = FIX_MODE_STD_M) -> tuple[float, float] | None:
+    """(std_east_m, std_north_m) for a fix: the receiver's GST sigmas, never below the mode's value (by_mode_m: the
+    config's geolocator.gnss_fix_std_m)."""
+    table_std_m = by_mode_m.get(fix_mode)
     if table_std_m is None:
         return None
     return max(gst_std_east_m, table_std_m), max(gst_std_north_m, table_std_m)

@@ -15,7 +15,7 @@ from dataclasses import replace
 import numpy as np
 from pymap3d.vincenty import vdist
 
-from coopdrive.can.adapter import OdometryOptions
+from coopdrive.can.adapter import MountPoint, OdometryOptions
 from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.roadmap import RoadMap
 from coopdrive.services.geolocation.bookkeeping import Bookkeeping, Fix, Imu, replaced
@@ -60,13 +60,20 @@ class InputEvent(enum.Enum):
     FIX_FAR_FROM_ORIGIN = "fix_far_from_origin"
 
 
+# The events counted as the filter applies an input: an input fused again after a late one (latency.py) must not
+# count twice, so these counts go back with the filter's state. The others are counted once, as inputs arrive.
+APPLIED_EVENTS = (InputEvent.FIX_FUSED, InputEvent.FIX_GATED, InputEvent.GNSS_RESET, InputEvent.YAW_RATE_RESET,
+                  InputEvent.STANDSTILL)
+
+
 class Geolocator:
     def __init__(self, config: GeolocatorConfig, road_map: RoadMap | None = None,
                  origin: tuple[float, float, float] | None = None, first_fix_origin: bool = False,
-                 vehicle: VehicleDescription = PASSENGER_CAR) -> None:
+                 vehicle: VehicleDescription = PASSENGER_CAR, antenna: MountPoint | None = None) -> None:
         """The local frame's origin: the road map's, else origin, else (first_fix_origin) the first fix's. vehicle:
-        the geometry the config leaves open."""
-        config = self.config = config.of_vehicle(vehicle)
+        the geometry the config leaves open; antenna: where the car's file puts it, when the config does not."""
+        config = self.config = config.of_vehicle(vehicle, antenna)
+        self._fix_std_by_mode_m = config.gnss_fix_std_m.by_mode()
         if road_map is None and origin is None and not first_fix_origin:
             road_map = RoadMap.load(config.map_name)
         self.road_map = road_map
@@ -99,7 +106,7 @@ class Geolocator:
     # --- inputs --------------------------------------------------------------------------------
     def on_gnss_fix(self, fix: gnss_pb2.GnssFix) -> Insertion | None:
         """A fix, fused at fix.header.sample_time_s. Returns how it was inserted, None if not usable."""
-        stds = gnss_position_std_m(fix.fix_mode, fix.std_east_m, fix.std_north_m)
+        stds = gnss_position_std_m(fix.fix_mode, fix.std_east_m, fix.std_north_m, self._fix_std_by_mode_m)
         if stds is None:
             self.counters[InputEvent.FIX_WITHOUT_POSITION] += 1
             return None
@@ -165,11 +172,14 @@ class Geolocator:
 
     # --- fusion (called by the replay buffer, in time order) ------------------------------------
     def _snapshot(self) -> tuple:
-        return self.ekf.snapshot(), self._book
+        return self.ekf.snapshot(), self._book, {event: self.counters[event] for event in APPLIED_EVENTS}
 
     def _restore(self, snap: tuple) -> None:
-        ekf_snap, self._book = snap
+        ekf_snap, self._book, applied = snap
         self.ekf.restore(ekf_snap)
+        for event, count in applied.items():
+            self.counters[event] = count
+        self.counters += Counter()  # drops the zeros: an event that never happened is not listed
 
     def _apply(self, time_s: float, event: object) -> None:
         if isinstance(event, Fix):

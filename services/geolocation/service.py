@@ -39,14 +39,15 @@ class GeolocationService(Service):
         self.vehicle_bus: VehicleBusInput | None = None
         self._far_fix_logged = False
         logic_config = c.geolocator.model_copy(update={"vehicle_id": self.ctx.vehicle_id})
-        vehicle = vehicle_of(c.vehicle)
+        adapter = load_adapter(c.vehicle_can)[0]
+        car = {"vehicle": vehicle_of(c.vehicle), "antenna": adapter.mounting.gnss_antenna}
         if c.map_name is not None:
-            self.geolocator = Geolocator(logic_config, road_map=RoadMap.load(c.map_name), vehicle=vehicle)
+            self.geolocator = Geolocator(logic_config, road_map=RoadMap.load(c.map_name), **car)
         elif c.origin is not None:
             self.geolocator = Geolocator(logic_config, origin=(c.origin.lat_deg, c.origin.lon_deg, c.origin.alt_m),
-                                         vehicle=vehicle)
+                                         **car)
         else:
-            self.geolocator = Geolocator(logic_config, first_fix_origin=True, vehicle=vehicle)
+            self.geolocator = Geolocator(logic_config, first_fix_origin=True, **car)
         self.decoder = NmeaDecoder(self.on_decoded_fix, expected_sentences=c.gnss_sentences,
                                    receiver_latency_s=c.gnss_receiver_latency_s,
                                    vehicle_id=self.ctx.vehicle_id, sender=self.name)
@@ -61,7 +62,7 @@ class GeolocationService(Service):
                                   on_imu_sample=self.geolocator.on_imu if c.use_imu else None,
                                   vehicle_state_latency_s=c.can_latency_s, imu_latency_s=c.imu_latency_s,
                                   vehicle_can=c.vehicle_can)
-        self.geolocator.configure_odometry(load_adapter(c.vehicle_can)[0].odometry)
+        self.geolocator.configure_odometry(adapter.odometry)
         self.vehicle_bus = VehicleBusInput(self.ctx, reader, c.can_port)
         self.ctx.every(1.0 / c.output_rate_hz, self.publish_estimate)
 
@@ -80,6 +81,7 @@ class GeolocationService(Service):
     def stop(self) -> None:
         # Safe after a start that failed half way (a port that could not be opened).
         if getattr(self, "vehicle_bus", None) is not None:
+            self._update_counters()  # the final counts (a replay prints them)
             self.vehicle_bus.close()
         if getattr(self, "serial", None) is not None:
             self.serial.close()
@@ -130,6 +132,9 @@ class GeolocationService(Service):
     def publish_estimate(self, now_s: float) -> None:
         self.decoder.flush_stale(now_s, self.config.gnss_epoch_wait_s)
         self.ctx.publish("ego/state", self.geolocator.estimate(now_s), sample_time_s=now_s)
+        self._update_counters()
+
+    def _update_counters(self) -> None:
         # stats() are running totals, so they replace the counters rather than add to them.
         self.counters.update(self.geolocator.stats())
         self.counters.update(self.vehicle_bus.counts())

@@ -1,0 +1,101 @@
+"""`coopdrive score --reference`: a replay of the real RAV4 drive judged against comma's reference trajectory, and
+the figures' definitions held to what they mean."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from coopdrive.judging.reference_score import CONSISTENT_TWO_SIGMA_SHARE, TrackSeries, score_series
+from coopdrive.judging.reference_track import ReferenceTrack
+from tests.shared_data import shared_file
+
+RAV4_ADAPTER = "deploy/vehicles/toyota_rav4_2017.yaml"
+LOGGER_TO_UTC_S = 1533180079.849502  # shared/data/README.md
+REFERENCE = "gnss/comma2k19_rav4_reference_first20s.csv"
+
+
+def coopdrive(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "coopdrive.cli", *args], capture_output=True, text=True, timeout=300)
+
+
+@pytest.fixture(scope="module")
+def replayed(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("reference")
+    drive = folder / "drive.mcap"
+    result = coopdrive("import", "--out", str(drive), "--nmea", str(shared_file("gnss/comma2k19_rav4_ublox_first20s.nmea")),
+                       "--candump", str(shared_file("can/comma2k19_rav4_bus0_first20s.candump.log")),
+                       "--offset", f"candump={LOGGER_TO_UTC_S}")
+    assert result.returncode == 0, result.stderr
+    out = folder / "replayed.mcap"
+    result = coopdrive("replay", str(drive), "--service", "geolocation", "--set", f"vehicle_can={RAV4_ADAPTER}",
+                       "--out", str(out))
+    assert result.returncode == 0, result.stderr
+    return out
+
+
+def test_the_rav4_fixes_scored_against_the_reference_give_the_data_set_s_own_figures(replayed, tmp_path):
+    """shared/data/README.md: the fixes are 1.96 m RMS off at their stamped times, 0.42 m (max 0.66) against the
+    reference 0.111 s later."""
+    result = coopdrive("score", str(replayed), "--reference", str(shared_file(REFERENCE)), "--out",
+                       str(tmp_path / "score.json"))
+    assert result.returncode == 0, result.stderr
+    assert "2-sigma ellipse 86.5%" in result.stdout
+    figures = json.loads((tmp_path / "score.json").read_text())
+    fixes = next(score for score in figures["scores"] if score["name"] == "fixes")
+    assert fixes["best_fit_offset_s"] == pytest.approx(0.111, abs=0.003)
+    assert fixes["at_best_fit_offset"]["rms_m"] == pytest.approx(0.42, abs=0.01)
+    assert fixes["at_best_fit_offset"]["max_m"] == pytest.approx(0.66, abs=0.01)
+    assert fixes["at_stamped_times"]["rms_m"] == pytest.approx(1.96, abs=0.01)
+    assert fixes["at_stamped_times"]["max_m"] == pytest.approx(2.32, abs=0.01)
+
+
+def test_the_replayed_estimate_is_scored_at_its_antenna_with_every_figure_of_the_issue(replayed):
+    result = coopdrive("score", str(replayed), "--reference", str(shared_file(REFERENCE)), "--json")
+    assert result.returncode == 0, result.stderr
+    figures = json.loads(result.stdout)
+    assert figures["lever_arm_m"] == [1.0, 0.0]  # the recorded geolocation config's antenna
+    estimate = figures["scores"][0]
+    assert estimate["name"] == "estimate" and estimate["samples"] > 900
+    best = estimate["at_best_fit_offset"]
+    assert set(best) >= {"rms_m", "mean_abs_m", "p95_m", "max_m", "along_rms_m", "cross_rms_m", "heading_rms_deg",
+                         "speed_rms_mps", "two_sigma_share", "nees_mean"}
+    assert best["mean_abs_m"] <= best["rms_m"] <= best["max_m"] and best["p95_m"] <= best["max_m"]
+    assert best["rms_m"] ** 2 == pytest.approx(best["along_rms_m"] ** 2 + best["cross_rms_m"] ** 2)
+    assert best["rms_m"] < estimate["at_stamped_times"]["rms_m"]
+
+
+def test_a_consistent_estimate_holds_the_reference_in_its_two_sigma_ellipse_86_5_percent_of_the_time():
+    rng = np.random.default_rng(7)
+    samples = 20000
+    time_s = np.arange(samples) * 0.01
+    reference = ReferenceTrack(time_s, np.full(samples, 37.72) + time_s * 1e-5, np.full(samples, -122.47))
+    covariance = np.zeros((samples, 3, 3))
+    covariance[:, :2, :2] = [[0.25, 0.1], [0.1, 0.09]]
+    covariance[:, 2, 2] = 1e-4
+    error = rng.multivariate_normal([0.0, 0.0], covariance[0, :2, :2], samples)
+    lat, lon, _ = zip(*(reference.plane.to_geodetic(e + de, n + dn) for e, n, de, dn in
+                        zip(reference.east_m, reference.north_m, error[:, 0], error[:, 1])))
+    series = TrackSeries("estimate", time_s, np.array(lat), np.array(lon), covariance=covariance)
+    score = score_series(series, reference, max_offset_s=0.0)
+    assert score.stamped["two_sigma_share"] == pytest.approx(CONSISTENT_TWO_SIGMA_SHARE, abs=0.01)
+    assert score.stamped["nees_mean"] == pytest.approx(2.0, abs=0.05)
+
+
+def test_a_reference_without_a_longitude_column_is_one_line_naming_the_columns(replayed, tmp_path):
+    bad = tmp_path / "ref.csv"
+    bad.write_text("time,lat\n1,2\n2,3\n")
+    result = coopdrive("score", str(replayed), "--reference", str(bad))
+    assert result.returncode == 2
+    assert result.stderr.strip() == (f"coopdrive: score: {bad}: no column lon (columns: time, lat); expected time, lat, "
+                                     f"lon[, heading, speed]")
+
+
+def test_a_reference_on_another_clock_than_the_replay_is_one_line_saying_so(replayed, tmp_path):
+    shifted = tmp_path / "ref.csv"
+    shifted.write_text("time,lat,lon\n100,37.72,-122.47\n101,37.73,-122.47\n")
+    result = coopdrive("score", str(replayed), "--reference", str(shifted))
+    assert result.returncode == 2
+    assert "estimate: no sample within the reference's 100.000 to 101.000 s (give both on one time base)" in result.stderr
