@@ -7,6 +7,7 @@ what differs per vehicle: its ITS station id and MAC, its radio box's ports, its
 from __future__ import annotations
 
 from coopdrive.services.actuation.config import CAR_PEDAL_PROFILE, TRUCK_PEDAL_PROFILE
+from coopdrive.services.sim.intent_encoder import WORLD_V2X_PROFILE
 from coopdrive.services.sim.radio_box import RadioPorts
 from coopdrive.services.sim.scenario_builder import speed_profile_of
 from coopdrive.services.sim.scenario_config import ScenarioConfig, VehicleRole
@@ -41,6 +42,7 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
     # The vehicle's one description: every service that needs its geometry or dynamics is told which vehicle it is.
     description = vehicle_of(vehicle.profile)
     v2x: dict = {
+        "profile": WORLD_V2X_PROFILE.value,
         "station_id": vehicle.station_id,
         "vehicle_mac": station_mac(vehicle.station_id),
         "station_type": STATION_TYPE[vehicle.profile],

@@ -13,9 +13,10 @@ from typing import Callable
 
 from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.services.sim.participants import IntentKind, MessageIntent
-from coopdrive.v2x.generation import CamMode, VehicleDimensions
+from coopdrive.v2x.generation import VehicleDimensions
 from coopdrive.v2x.generation import CamGenerator
 from coopdrive.messages.vehicle_frame import rear_overhang_m
+from coopdrive.v2x.profile import PROFILE_DEFAULTS, V2xProfile
 from coopdrive.v2x.packet import DestinationArea, GnParams, SourcePosition, V2xPacketCodec
 from coopdrive.v2x.timebase import ItsClock, generation_delta_time_ms
 from coopdrive.v1 import ego_pb2, its_pb2
@@ -24,7 +25,11 @@ ToGeodetic = Callable[[float, float], tuple[float, float, float]]
 # The DENM reaches every vehicle within this distance of the event (geo-broadcast circle).
 DENM_AREA_RADIUS_M = 1000.0
 DENM_VALIDITY_S = 10.0
-ITS_PROTOCOL_VERSION = 1
+# The simulated world's stations speak GCDC 2016 (coopdrive/v2x/profile.py), and so do the stacks the launcher puts
+# among them (launch/stack_config.py). The iCLCM is protocolVersion 1 in every profile.
+WORLD_V2X_PROFILE = V2xProfile.GCDC
+WORLD_PROFILE = PROFILE_DEFAULTS[WORLD_V2X_PROFILE]
+ICLCM_PROTOCOL_VERSION = 1
 
 
 # Field keys each intent kind may carry; anything else is refused so a new participant field is never dropped.
@@ -42,7 +47,7 @@ def station_mac(station_id: int) -> bytes:
 
 
 class IntentEncoder:
-    def __init__(self, to_geodetic: ToGeodetic, utc_epoch: dt.datetime, gn_version: int = 0):
+    def __init__(self, to_geodetic: ToGeodetic, utc_epoch: dt.datetime, gn_version: int = WORLD_PROFILE.gn_version):
         self._to_geodetic = to_geodetic
         self._clock = ItsClock(utc_epoch.timestamp())
         self._codec = V2xPacketCodec()
@@ -65,7 +70,8 @@ class IntentEncoder:
             its_pb2.STATION_TYPE_PASSENGER_CAR
         generator = self._cams.get(intent.station_id)
         if generator is None:
-            generator = CamGenerator(CamMode.GCDC, intent.station_id, station_type, ITS_PROTOCOL_VERSION,
+            generator = CamGenerator(WORLD_PROFILE.cam_mode, intent.station_id, station_type,
+                                     WORLD_PROFILE.its_protocol_version,
                                      GeodeticOrigin(), VehicleDimensions(
                                          length_m=fields["length_m"], width_m=fields["width_m"],
                                          rear_axle_location_m=fields["length_m"] - rear_overhang_m(fields["length_m"])))
@@ -86,7 +92,7 @@ class IntentEncoder:
         # Road works come from a roadside unit (it names the closed lane); an emergency vehicle warns of itself.
         station_type = its_pb2.STATION_TYPE_ROAD_SIDE_UNIT if "closed_lane" in fields else \
             its_pb2.STATION_TYPE_SPECIAL_VEHICLES
-        event = its_pb2.DenmContent(protocol_version=ITS_PROTOCOL_VERSION, station_id=intent.station_id,
+        event = its_pb2.DenmContent(protocol_version=WORLD_PROFILE.its_protocol_version, station_id=intent.station_id,
                                     originating_station_id=intent.station_id, sequence_number=1,
                                     detection_time_tai_ms=self._clock.tai_ms(fields.get("since_s", intent.time_s)),
                                     reference_time_tai_ms=tai_ms,
@@ -104,7 +110,7 @@ class IntentEncoder:
 
     def _iclcm(self, intent: MessageIntent, tai_ms: int) -> bytes:
         fields = intent.fields
-        content = its_pb2.IclcmContent(protocol_version=ITS_PROTOCOL_VERSION, station_id=intent.station_id,
+        content = its_pb2.IclcmContent(protocol_version=ICLCM_PROTOCOL_VERSION, station_id=intent.station_id,
                                        generation_delta_time_ms=generation_delta_time_ms(tai_ms),
                                        has_low_frequency=True, end_of_scenario=bool(fields.get("end_of_scenario")))
         if "start_platoon" in fields:

@@ -11,7 +11,8 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator, model_valida
 from coopdrive.geodesy import GeodeticOrigin
 from coopdrive.runtime.service import ServiceConfig
 from coopdrive.v2x.generation import GCDC_RATE_HZ, CamMode, VehicleDimensions
-from coopdrive.v2x.geonet import GN_VERSION_GCDC, MAC_SIZE_BYTES, SUPPORTED_GN_VERSIONS
+from coopdrive.v2x.geonet import MAC_SIZE_BYTES, SUPPORTED_GN_VERSIONS
+from coopdrive.v2x.profile import PROFILE_DEFAULTS, V2xProfile
 from coopdrive.v2x.security.profile import SecurityMode
 from coopdrive.v1 import its_pb2
 
@@ -116,10 +117,13 @@ class V2xConfig(ServiceConfig):
     station_id: int = Field(1001, ge=0, le=2**32 - 1)
     # ETSI StationType: a code (5) or a name ("passenger_car", "road_side_unit").
     station_type: int = its_pb2.STATION_TYPE_PASSENGER_CAR
-    gn_version: int = GN_VERSION_GCDC
+    # What the station speaks (coopdrive/v2x/profile.py): etsi, as today's stations do, or gcdc (GCDC 2016). It
+    # sets the next three where they are not set themselves (and so the expected CAM rate).
+    profile: V2xProfile = V2xProfile.ETSI
+    gn_version: int = PROFILE_DEFAULTS[V2xProfile.ETSI].gn_version
     # ItsPduHeader.protocolVersion of CAM and DENM (1 GCDC, 2 current); the iCLCM is always 1.
-    its_protocol_version: int = Field(1, ge=1, le=2)
-    cam_mode: CamMode = CamMode.GCDC
+    its_protocol_version: int = Field(PROFILE_DEFAULTS[V2xProfile.ETSI].its_protocol_version, ge=1, le=2)
+    cam_mode: CamMode = PROFILE_DEFAULTS[V2xProfile.ETSI].cam_mode
     send_cam: bool = True
     send_iclcm: bool = True
     # Every packet sent and received, as Ethernet frames (ethertype 0x8947); None: no capture.
@@ -132,7 +136,7 @@ class V2xConfig(ServiceConfig):
     clock_epoch_utc: datetime | None = None
     loss_timeout_s: float = Field(0.4, gt=0.0)
     # Rate at which every remote station's CAMs and iCLCMs are expected, for the reception ratio. Unset: the
-    # profile's (cam_mode gcdc: 25 Hz); with cam_mode etsi, each station's own (services/v2x/expected_period.py),
+    # cam_mode's (gcdc: 25 Hz); with cam_mode etsi, each station's own (services/v2x/expected_period.py),
     # since EN 302 637-2 lets a CAM come every 100-1000 ms as the sender's dynamics trigger it.
     expected_rate_hz: float | None = Field(None, gt=0.0)
     statistics_window_s: float = Field(5.0, gt=0.0)
@@ -148,7 +152,11 @@ class V2xConfig(ServiceConfig):
     security: SecurityConfig = SecurityConfig()
 
     @model_validator(mode="after")
-    def _profile_rate(self) -> "V2xConfig":
+    def _profile_defaults(self) -> "V2xConfig":
+        defaults = PROFILE_DEFAULTS[self.profile]
+        for name in ("gn_version", "its_protocol_version", "cam_mode"):
+            if name not in self.model_fields_set:
+                setattr(self, name, getattr(defaults, name))
         if "expected_rate_hz" not in self.model_fields_set and self.cam_mode is CamMode.GCDC:
             self.expected_rate_hz = GCDC_RATE_HZ
         return self

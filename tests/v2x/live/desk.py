@@ -13,8 +13,9 @@ import sys
 import tempfile
 from pathlib import Path
 
+from coopdrive.services.v2x.config import V2xConfig
 from tests.v2x.live.exchange import ExchangeError, run_exchange
-from tests.v2x.live.stations import PEER_PYTHON, STANDARD_VERSIONS, flexstack_station, our_config, our_station
+from tests.v2x.live.stations import PEER_PYTHON, flexstack_station, our_config, our_station
 
 DESK_DURATION_S = 30.0
 FLEXSTACK_ID, FLEXSTACK_MAC = 4242, "02:00:00:00:42:42"
@@ -46,7 +47,7 @@ def main() -> None:
         if args.flexstack_interface:
             stations["flexstack"] = flexstack_station(args.flexstack_interface, FLEXSTACK_ID, FLEXSTACK_MAC,
                                                       "--denm", duration_s=args.duration_s)
-        print(f"v2x live: our station {args.station_id} on {args.interface} ({STANDARD_VERSIONS}) for "
+        print(f"v2x live: our station {args.station_id} on {args.interface} (profile {V2xConfig().profile.value}) for "
               f"{args.duration_s:.0f} s", file=sys.stderr)
         try:
             summaries = run_exchange(stations, Path(folder))

@@ -23,7 +23,6 @@ PEER_SCRIPT = Path(__file__).with_name("flexstack_peer.py")
 EXCHANGE_S = 10.0
 SPEED_MPS = 10.0
 CERTS_TIMEOUT_S = 120.0
-STANDARD_VERSIONS = {"gn_version": 1, "its_protocol_version": 2}
 
 
 def needs_peer_env() -> Path:
@@ -35,9 +34,10 @@ def needs_peer_env() -> Path:
 
 
 def our_config(folder: Path, interface: str, station_id: int, mac: str, **settings) -> Path:
-    """Our service's config on the interface: ETSI CAM generation, no iCLCM (GCDC's own message)."""
+    """Our service's config on the interface, with the default profile (etsi: GN 1, CAM v2, CAMs by dynamics) and
+    no iCLCM (GCDC's own message)."""
     config = {"link": {"type": "raw", "interface": interface}, "station_id": station_id,
-              "vehicle_mac": mac, "cam_mode": "etsi", "send_iclcm": False, **STANDARD_VERSIONS, **settings}
+              "vehicle_mac": mac, "send_iclcm": False, **settings}
     path = folder / f"v2x-{station_id}.yaml"
     path.write_text(yaml.safe_dump(config))
     return path

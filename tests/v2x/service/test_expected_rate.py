@@ -65,8 +65,9 @@ def test_a_station_that_slows_from_10_hz_to_1_hz_is_followed_within_a_few_of_its
 
 
 def test_the_gcdc_profile_expects_25_hz_and_the_etsi_profile_each_station_s_own_unless_a_rate_is_set():
-    assert V2xConfig().cam_mode is CamMode.GCDC and V2xConfig().expected_rate_hz == 25.0
-    assert V2xConfig(cam_mode="etsi").expected_rate_hz is None
+    assert V2xConfig(profile="gcdc").cam_mode is CamMode.GCDC and V2xConfig(profile="gcdc").expected_rate_hz == 25.0
+    assert V2xConfig(cam_mode="gcdc").expected_rate_hz == 25.0
+    assert V2xConfig().expected_rate_hz is None and V2xConfig(cam_mode="etsi").expected_rate_hz is None
     assert V2xConfig(cam_mode="etsi", expected_rate_hz=10.0).expected_rate_hz == 10.0
 
 
