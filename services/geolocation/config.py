@@ -56,6 +56,12 @@ class GeolocatorConfig(BaseModel):
     antenna_y_m: float | None = None
     # A fix's position noise (one sigma) by its mode when the receiver sends no GST, and its floor when it does.
     gnss_fix_std_m: FixModeStd = FixModeStd()
+    # The part of a fix's error that is time-correlated (satellite orbits and clocks, the atmosphere, slowly
+    # changing multipath): a first-order Gauss-Markov error of this steady-state std and correlation time, added
+    # to the white noise above (Groves sect. 9.4 and 14.2.7). 0: the fixes' errors are taken as white, and a
+    # filter averaging many fixes believes itself far better than a receiver's slowly wandering error allows.
+    gnss_error_std_m: float = Field(0.0, ge=0.0)
+    gnss_error_time_s: float = Field(60.0, gt=0.0)
     # Sensor noise (one sigma).
     wheel_speed_std_mps: float = Field(0.01, gt=0.0)
     imu_yaw_rate_std_radps: float = Field(0.005, gt=0.0)
@@ -109,6 +115,10 @@ class GeolocatorConfig(BaseModel):
     odometry_timeout_s: float = Field(1.0, gt=0.0)
     gnss_speed_std_mps: float = Field(0.1, gt=0.0)
     gnss_course_std_deg: float = Field(3.0, gt=0.0)
+    # With the wheels too, the receiver's course over ground (above min_course_speed_mps) is fused as well: it
+    # holds the heading where the fixes alone tell it slowly, and teaches the yaw-rate sensor's bias in seconds
+    # (on the RAV4 drive, heading RMS 0.25 -> 0.19 deg, docs/tutorials/score-a-drive.md).
+    course_with_odometry: bool = False
     gnss_heading_std_deg: float = Field(0.5, gt=0.0)
     # Fixes farther than this from the local frame's origin are refused (a wrong origin, not a drive).
     max_origin_distance_m: float = Field(100_000.0, gt=0.0)

@@ -20,7 +20,7 @@ from scipy.special import gammaincinv
 from coopdrive.services.geolocation.frames import LeverArm
 from coopdrive.services.geolocation.model_driven_ekf import ModelDrivenEkf
 from coopdrive.services.geolocation.motion_models import (
-    ACCEL, ACCEL_BIAS, HEADING, SPEED, STATE_DIM, YAW_RATE, YAW_RATE_BIAS, CtraModel, E, MotionModel, N,
+    ACCEL, ACCEL_BIAS, GNSS_ERROR_E, GNSS_ERROR_N, HEADING, SPEED, STATE_DIM, YAW_RATE, YAW_RATE_BIAS, CtraModel, E, MotionModel, N,
     ProcessNoise,
 )
 from coopdrive.v1 import gnss_pb2
@@ -199,11 +199,13 @@ class GeolocationEkf:
 
     def update_gnss_position(self, east_m: float, north_m: float, std_east_m: float, std_north_m: float,
                              lever_arm: LeverArm) -> bool:
-        """Antenna position = rear axle + R(heading) lever arm; z = [E, N] (eq. 7, first two rows)."""
+        """Antenna position = rear axle + R(heading) lever arm, plus the fixes' correlated error;
+        z = [E, N] (eq. 7, first two rows)."""
         x = self.kf.x
-        hx = np.array(lever_arm.antenna_position(x[E], x[N], x[HEADING]))
+        antenna_east_m, antenna_north_m = lever_arm.antenna_position(x[E], x[N], x[HEADING])
+        hx = np.array([antenna_east_m + x[GNSS_ERROR_E], antenna_north_m + x[GNSS_ERROR_N]])
         H = np.zeros((2, STATE_DIM))
-        H[0, E] = H[1, N] = 1.0
+        H[0, E] = H[1, N] = H[0, GNSS_ERROR_E] = H[1, GNSS_ERROR_N] = 1.0
         H[:, HEADING] = lever_arm.d_antenna_d_heading(x[HEADING])
         R = np.diag([std_east_m**2, std_north_m**2])
         return self._gated_update(UpdateKind.GNSS_POSITION, np.array([east_m, north_m]), H, hx, R)
@@ -230,6 +232,22 @@ class GeolocationEkf:
         H[0, HEADING] = 1.0
         return self._gated_update(UpdateKind.GNSS_HEADING, np.array([heading_rad]), H, self.kf.x[[HEADING]],
                                   np.array([[std_rad**2]]), angle_rows=(0,), soft=soft)
+
+    def update_course(self, course_rad: float, std_rad: float, lever_arm: LeverArm, soft: bool = False) -> bool:
+        """The receiver's course over ground, ENU radians: the direction the antenna moves, which is the heading
+        turned by the antenna's own sideways speed in a turn. The antenna moves at (v - r y, r x) in the vehicle
+        frame (rigid body, rear axle rolling without slip), so course = heading + atan2(r x, v - r y)."""
+        x = self.kf.x
+        along, across = x[SPEED] - x[YAW_RATE] * lever_arm.y_m, x[YAW_RATE] * lever_arm.x_m
+        squared = along**2 + across**2
+        H = np.zeros((1, STATE_DIM))
+        H[0, HEADING] = 1.0
+        if squared > 0.0:
+            H[0, SPEED] = -across / squared
+            H[0, YAW_RATE] = (lever_arm.x_m * along + lever_arm.y_m * across) / squared
+        hx = np.array([x[HEADING] + math.atan2(across, along)])
+        return self._gated_update(UpdateKind.GNSS_HEADING, np.array([course_rad]), H, hx, np.array([[std_rad**2]]),
+                                  angle_rows=(0,), soft=soft)
 
     def update_yaw_rate(self, yaw_rate_radps: float, std_radps: float) -> bool:
         """The inertial unit's yaw rate: the vehicle's plus the unit's bias, z = r + b_r."""
@@ -279,8 +297,16 @@ class GeolocationEkf:
         P[HEADING, HEADING] += heading_var
 
     def reset_position(self, east_m: float, north_m: float, std_m: float) -> None:
-        """Jump to a position when the gate has refused the GNSS for too long (the filter was wrong)."""
+        """Jump to a position when the gate has refused the GNSS for too long (the filter was wrong): the fix
+        less the correlated error the filter holds, uncertain by the fix's std and that error's."""
+        rows = [E, N, GNSS_ERROR_E, GNSS_ERROR_N]
+        error_var = self.kf.P[GNSS_ERROR_E, GNSS_ERROR_E]
         self.kf.x[E], self.kf.x[N] = east_m, north_m
-        self.kf.P[[E, N], :] = 0.0
-        self.kf.P[:, [E, N]] = 0.0
-        self.kf.P[E, E] = self.kf.P[N, N] = std_m**2
+        self.kf.x[[GNSS_ERROR_E, GNSS_ERROR_N]] = 0.0
+        self.kf.P[rows, :] = 0.0
+        self.kf.P[:, rows] = 0.0
+        self.kf.P[E, E] = self.kf.P[N, N] = std_m**2 + error_var
+        self.kf.P[GNSS_ERROR_E, GNSS_ERROR_E] = self.kf.P[GNSS_ERROR_N, GNSS_ERROR_N] = error_var
+        # The position is the fix less its error: what the error is, the position is off by (P0 below too).
+        self.kf.P[E, GNSS_ERROR_E] = self.kf.P[GNSS_ERROR_E, E] = -error_var
+        self.kf.P[N, GNSS_ERROR_N] = self.kf.P[GNSS_ERROR_N, N] = -error_var

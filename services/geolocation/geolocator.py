@@ -28,7 +28,7 @@ from coopdrive.services.geolocation.initial_heading import UNKNOWN_HEADING_STD_R
 from coopdrive.services.geolocation.frames import RTK_FIX_MODES, LeverArm, ModeThresholds
 from coopdrive.services.geolocation.latency import Insertion, ReplayBuffer
 from coopdrive.services.geolocation.motion_models import (
-    HEADING, SPEED, STATE_DIM, CtraModel, E, KinematicBicycleModel,
+    GNSS_ERROR_E, GNSS_ERROR_N, HEADING, SPEED, STATE_DIM, CtraModel, E, KinematicBicycleModel,
     MotionModelKind, N, ProcessNoise,
 )
 from coopdrive.services.geolocation.odometry import Odometry, OdometrySample
@@ -86,7 +86,7 @@ class Geolocator:
         self._last_fix_input_s: float | None = None
         noise = ProcessNoise(config.jerk_std_mps3, config.yaw_accel_std_radps2, config.position_process_std_mps,
                              config.steering_std_rad, config.imu_yaw_rate_bias_walk_radps,
-                             config.imu_accel_bias_walk_mps2)
+                             config.imu_accel_bias_walk_mps2, config.gnss_error_std_m, config.gnss_error_time_s)
         # The bicycle model turns by the steering angle: its yaw rate is not measured but follows the wheels.
         self._steered = config.motion_model is MotionModelKind.KINEMATIC_BICYCLE
         model = KinematicBicycleModel(noise, config.wheelbase_m) if self._steered else CtraModel(noise)
@@ -238,12 +238,18 @@ class Geolocator:
         if fix.heading_rad is not None:
             self.ekf.update_heading(fix.heading_rad, math.radians(config.gnss_heading_std_deg))
         odometry_s = book.last_odometry_time_s
-        if not fix.velocity_valid or (odometry_s is not None and time_s - odometry_s <= config.odometry_timeout_s):
+        if not fix.velocity_valid:
+            return
+        course_usable = fix.heading_rad is None and fix.speed_mps >= config.min_course_speed_mps and book.heading_known
+        if odometry_s is not None and time_s - odometry_s <= config.odometry_timeout_s:
+            if config.course_with_odometry and course_usable:
+                self.ekf.update_course(enu_heading_rad(fix.course_deg), math.radians(config.gnss_course_std_deg),
+                                       self.lever_arm)
             return
         self.ekf.update_speed(fix.speed_mps, config.gnss_speed_std_mps, UpdateKind.GNSS_SPEED, soft=True)
         if fix.heading_rad is None and fix.speed_mps >= config.min_course_speed_mps:
-            self.ekf.update_heading(enu_heading_rad(fix.course_deg), math.radians(config.gnss_course_std_deg),
-                                    soft=True)
+            self.ekf.update_course(enu_heading_rad(fix.course_deg), math.radians(config.gnss_course_std_deg),
+                                   self.lever_arm if book.heading_known else NO_LEVER_ARM, soft=True)
 
     def _try_initialise(self, time_s: float, fix: Fix) -> bool:
         """(Re)initialises the filter from this fix when it tells the heading, or at the first fix with the
@@ -285,9 +291,13 @@ class Geolocator:
             x0[HEADING] = heading_rad
             arm_var = (arm_m * heading_std_rad) ** 2
         x0[SPEED] = speed_mps
-        P0 = np.diag([fix.std_east_m**2 + arm_var, fix.std_north_m**2 + arm_var, heading_std_rad**2, speed_std**2,
-                      INITIAL_YAW_RATE_STD_RADPS**2, INITIAL_ACCEL_STD_MPS2**2,
-                      self.config.imu_yaw_rate_bias_std_radps**2, self.config.imu_accel_bias_std_mps2**2])
+        error_var = self.config.gnss_error_std_m**2
+        P0 = np.diag([fix.std_east_m**2 + arm_var + error_var, fix.std_north_m**2 + arm_var + error_var,
+                      heading_std_rad**2, speed_std**2, INITIAL_YAW_RATE_STD_RADPS**2, INITIAL_ACCEL_STD_MPS2**2,
+                      self.config.imu_yaw_rate_bias_std_radps**2, self.config.imu_accel_bias_std_mps2**2,
+                      error_var, error_var])
+        # The position is the fix less its correlated error (estimated 0): off by just what that error is.
+        P0[E, GNSS_ERROR_E] = P0[GNSS_ERROR_E, E] = P0[N, GNSS_ERROR_N] = P0[GNSS_ERROR_N, N] = -error_var
         self.ekf.initialise(time_s, x0, P0)
         self.counters[InputEvent.FIX_FUSED] += 1
         self._book = replaced(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, pending_fix=None,

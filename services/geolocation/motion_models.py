@@ -1,6 +1,8 @@
 """Motion models over the DRIVERTIVE state x = [E, N, heading, v, yaw_rate, a] (eq. 6), augmented with the
 inertial unit's yaw-rate and acceleration biases [b_r, b_a] (constant but for a slow random walk; Groves,
-"Principles of GNSS, Inertial, and Multisensor Integrated Navigation Systems", 2nd ed., sect. 14.2.6).
+"Principles of GNSS, Inertial, and Multisensor Integrated Navigation Systems", 2nd ed., sect. 14.2.6) and the
+GNSS position's time-correlated error [b_E, b_N] (first-order Gauss-Markov, Groves sect. 14.2.7 and 3.4.3:
+b(t + dt) = exp(-dt / tau) b(t) + w, var(w) = sigma^2 (1 - exp(-2 dt / tau))); sigma 0 leaves it out).
 
 Each model returns the propagated state, its Jacobian F and the process noise Q for one step dt, given the step's
 input (the road-wheel steering angle, held over the step; the filter owns it, see ekf.py).
@@ -18,8 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-E, N, HEADING, SPEED, YAW_RATE, ACCEL, YAW_RATE_BIAS, ACCEL_BIAS = range(8)
-STATE_DIM = 8
+E, N, HEADING, SPEED, YAW_RATE, ACCEL, YAW_RATE_BIAS, ACCEL_BIAS, GNSS_ERROR_E, GNSS_ERROR_N = range(10)
+STATE_DIM = 10
 # The vehicle's own state, the part the EgoState message carries (its covariance among it).
 VEHICLE_STATE_DIM = 6
 MAX_CACHED_STEPS = 64
@@ -41,6 +43,13 @@ class ProcessNoise:
     # Random walk of the inertial unit's biases (bias instability), per sqrt(s).
     yaw_rate_bias_walk_radps: float = 1e-4
     accel_bias_walk_mps2: float = 1e-3
+    # The GNSS fixes' time-correlated error: its steady-state std (0: none, the fixes' errors are white) and
+    # correlation time.
+    gnss_error_std_m: float = 0.0
+    gnss_error_time_s: float = 60.0
+
+    def gnss_error_decay(self, dt: float) -> float:
+        return math.exp(-dt / self.gnss_error_time_s)
 
 
 def _set_integrated_pair(Q: np.ndarray, integral: int, value: int, q: float, dt: float) -> None:
@@ -54,6 +63,15 @@ def _set_integrated_pair(Q: np.ndarray, integral: int, value: int, q: float, dt:
 def _add_bias_walk(Q: np.ndarray, noise: ProcessNoise, dt: float) -> None:
     Q[YAW_RATE_BIAS, YAW_RATE_BIAS] = noise.yaw_rate_bias_walk_radps**2 * dt
     Q[ACCEL_BIAS, ACCEL_BIAS] = noise.accel_bias_walk_mps2**2 * dt
+    Q[GNSS_ERROR_E, GNSS_ERROR_E] = Q[GNSS_ERROR_N, GNSS_ERROR_N] = (
+        noise.gnss_error_std_m**2 * -math.expm1(-2.0 * dt / noise.gnss_error_time_s))
+
+
+def _gnss_error_step(noise: ProcessNoise, x: np.ndarray, dt: float, F: np.ndarray, x_new: np.ndarray) -> None:
+    """The fixes' correlated error decays towards zero (Gauss-Markov), as it does in the simulator's receiver."""
+    decay = noise.gnss_error_decay(dt)
+    x_new[GNSS_ERROR_E], x_new[GNSS_ERROR_N] = decay * x[GNSS_ERROR_E], decay * x[GNSS_ERROR_N]
+    F[GNSS_ERROR_E, GNSS_ERROR_E] = F[GNSS_ERROR_N, GNSS_ERROR_N] = decay
 
 
 def _position_step(x: np.ndarray, yaw_rate: float, dt: float, F: np.ndarray, x_new: np.ndarray) -> None:
@@ -91,6 +109,7 @@ class CtraModel:
         F[HEADING, YAW_RATE] = dt
         x_new[SPEED] = x[SPEED] + x[ACCEL] * dt
         F[SPEED, ACCEL] = dt
+        _gnss_error_step(self.noise, x, dt, F, x_new)
         return x_new, F, self.process_noise(dt)
 
     def process_noise(self, dt: float) -> np.ndarray:
@@ -138,6 +157,7 @@ class KinematicBicycleModel:
         F[YAW_RATE, YAW_RATE] = 0.0
         F[YAW_RATE, SPEED] = d_yaw_rate_dv
         F[YAW_RATE, ACCEL] = d_yaw_rate_dv * dt
+        _gnss_error_step(self.noise, x, dt, F, x_new)
         return x_new, F, self.process_noise(x, dt, steering_angle_rad)
 
     def process_noise(self, x: np.ndarray, dt: float, steering_angle_rad: float) -> np.ndarray:
