@@ -5,6 +5,7 @@ function per command."""
 from __future__ import annotations
 
 import json
+import os
 import re
 import signal
 import sys
@@ -17,6 +18,8 @@ from coopdrive.services.v2x.cli import add_pki_commands as add_v2x_pki_commands
 
 DEFAULT_FOXGLOVE_PORT = 8765
 HEALTH_RETRY_S = 0.1
+# Zenoh's log filter (Rust's tracing syntax): set, the router logs what it selects (Zenoh writes it on stdout).
+ZENOH_LOG_VARIABLE = "RUST_LOG"
 
 
 def add_commands(commands) -> None:
@@ -71,7 +74,8 @@ def _health(args) -> int:
 
 
 def add_router_command(commands) -> None:
-    router = commands.add_parser("router", help="a Zenoh router (what the zenohd container runs) until Ctrl-C")
+    router = commands.add_parser("router", help="a Zenoh router (what the zenohd container runs) until Ctrl-C; "
+                                                f"{ZENOH_LOG_VARIABLE}=... selects Zenoh's log (on stdout)")
     router.add_argument("--listen", action="append", default=[], metavar="ENDPOINT",
                         help="e.g. tcp/0.0.0.0:7447 (default: the config's, else tcp/0.0.0.0:7447)")
     router.add_argument("--config", type=Path, help="zenohd's JSON5 config, e.g. deploy/config/zenohd.json5")
@@ -83,6 +87,9 @@ def _router(args) -> int:
 
     from coopdrive.runtime.config import ConfigError
 
+    if os.environ.get(ZENOH_LOG_VARIABLE):
+        # Zenoh's own log (e.g. the access control's decisions at trace level), on stdout, only when asked for.
+        zenoh.init_log_from_env_or("error")
     try:
         config = zenoh.Config.from_file(str(args.config)) if args.config else zenoh.Config()
         config.insert_json5("mode", '"router"')
