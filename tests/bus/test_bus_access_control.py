@@ -8,10 +8,7 @@ puts once more; that put reaches the reader, so a forged one the router had let 
 """
 
 import datetime
-import os
 import queue
-import subprocess
-import sys
 import time
 from pathlib import Path
 
@@ -20,67 +17,15 @@ import zenoh
 
 from coopdrive.bus import Bus, BusConfig, topic_named
 from coopdrive.bus.bus_authority import BusAuthority, write_pair
-from coopdrive.bus.bus_credentials import CERTIFICATE, CLIENT_CONFIG, KEY
-from coopdrive.launch.ports import free_tcp_port
-
-DEADLINE_S = 30.0
-VEHICLE = "ego"
-OBSERVER = "laptop"
-# The router's access control logs each decision at trace level: the tests read when it judged a put.
-ACL_TRACE = "zenoh::net::routing::interceptor::access_control=trace"
-
-
-def coopdrive(*args: str, **kwargs) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "coopdrive.cli", *args], capture_output=True, text=True, timeout=120,
-                          **kwargs)
-
-
-@pytest.fixture
-def router_endpoint() -> str:
-    return f"tls/127.0.0.1:{free_tcp_port()}"
-
-
-@pytest.fixture
-def credentials(tmp_path, router_endpoint) -> Path:
-    directory = tmp_path / "bus"
-    made = coopdrive("pki", "bus", str(directory), "--vehicle", VEHICLE, "--observer", OBSERVER,
-                     "--router", router_endpoint)
-    assert made.returncode == 0, made.stderr
-    return directory
-
-
-@pytest.fixture
-def router_log(spawn, credentials, router_endpoint, tmp_path) -> Path:
-    """Starts the router the credentials describe, listening on the test's port; the path of its output (Zenoh's log
-    goes to stdout, with the router's own lines)."""
-    log = tmp_path / "router.log"
-    with open(log, "w") as output:
-        spawn("router", "--config", str(credentials / "router" / "zenohd.json5"), "--listen", router_endpoint,
-              stdout=output, stderr=subprocess.STDOUT, env={**os.environ, "RUST_LOG": ACL_TRACE})
-    wait_for_log(log, "listening")
-    return log
-
-
-def client_config(credentials: Path, name: str) -> str:
-    return str(credentials / name / CLIENT_CONFIG)
-
-
-def open_as(credentials: Path, name: str) -> zenoh.Session:
-    """A raw session with `name`'s certificate: what a forger holding it could do, not what coopdrive's Bus does."""
-    return zenoh.open(zenoh.Config.from_file(client_config(credentials, name)))
+from coopdrive.bus.bus_credentials import CERTIFICATE, KEY
+from tests.bus.secure_bus import (DEADLINE_S, OBSERVER, VEHICLE, client_config, coopdrive, open_as, wait_for_log,
+                                  wait_until)
 
 
 def message(topic: str, sender: str):
     typed = topic_named(topic).message_type()
     typed.header.sender = sender
     return typed
-
-
-def wait_until(condition, what: str) -> None:
-    end = time.monotonic() + DEADLINE_S
-    while not condition():
-        assert time.monotonic() < end, f"never: {what}"
-        time.sleep(0.05)
 
 
 def publish_until_heard(owner: Bus, topic: str, sender: str, heard: queue.Queue) -> None:
@@ -102,10 +47,6 @@ def wait_for_sender(heard: queue.Queue, sender: str, timeout_s: float):
         item = heard.get(timeout=max(0.0, end - time.monotonic()))
         if item.message.header.sender == sender:
             return item
-
-
-def wait_for_log(log: Path, text: str) -> None:
-    wait_until(lambda: text in log.read_text(errors="replace"), f"the router logged {text!r}")
 
 
 def forged_puts_reach_nobody(credentials: Path, router_log: Path, forger: str, topic: str, owner: str,
