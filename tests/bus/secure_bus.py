@@ -8,6 +8,7 @@ from pathlib import Path
 
 import zenoh
 
+from coopdrive.bus import topic_named
 from coopdrive.bus.bus_credentials import CLIENT_CONFIG
 
 DEADLINE_S = 30.0
@@ -28,6 +29,13 @@ def client_config(credentials: Path, name: str) -> str:
 def open_as(credentials: Path, name: str) -> zenoh.Session:
     """A raw session with `name`'s certificate: what a forger holding it could do, not what coopdrive's Bus does."""
     return zenoh.open(zenoh.Config.from_file(client_config(credentials, name)))
+
+
+def message(topic: str, sender: str):
+    """An empty message of `topic`'s type, its header naming `sender`."""
+    typed = topic_named(topic).message_type()
+    typed.header.sender = sender
+    return typed
 
 
 def wait_until(condition, what: str) -> None:

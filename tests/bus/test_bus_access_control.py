@@ -15,17 +15,11 @@ from pathlib import Path
 import pytest
 import zenoh
 
-from coopdrive.bus import Bus, BusConfig, topic_named
+from coopdrive.bus import Bus, BusConfig
 from coopdrive.bus.bus_authority import BusAuthority, write_pair
 from coopdrive.bus.bus_credentials import CERTIFICATE, KEY
-from tests.bus.secure_bus import (DEADLINE_S, OBSERVER, VEHICLE, client_config, coopdrive, open_as, wait_for_log,
-                                  wait_until)
-
-
-def message(topic: str, sender: str):
-    typed = topic_named(topic).message_type()
-    typed.header.sender = sender
-    return typed
+from tests.bus.secure_bus import (DEADLINE_S, OBSERVER, VEHICLE, client_config, coopdrive, message, open_as,
+                                  wait_for_log, wait_until)
 
 
 def publish_until_heard(owner: Bus, topic: str, sender: str, heard: queue.Queue) -> None:
