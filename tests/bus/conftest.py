@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from coopdrive.launch.ports import free_tcp_port
-from tests.bus.secure_bus import ACL_TRACE, OBSERVER, VEHICLE, coopdrive, wait_for_log
+from tests.bus.secure_bus import ROUTER_LOG_FILTER, OBSERVER, VEHICLE, coopdrive, wait_for_log
 
 
 @pytest.fixture
@@ -32,6 +32,6 @@ def router_log(spawn, credentials, router_endpoint, tmp_path) -> Path:
     log = tmp_path / "router.log"
     with open(log, "w") as output:
         spawn("router", "--config", str(credentials / "router" / "zenohd.json5"), "--listen", router_endpoint,
-              stdout=output, stderr=subprocess.STDOUT, env={**os.environ, "RUST_LOG": ACL_TRACE})
+              stdout=output, stderr=subprocess.STDOUT, env={**os.environ, "RUST_LOG": ROUTER_LOG_FILTER})
     wait_for_log(log, "listening")
     return log

@@ -14,8 +14,9 @@ from coopdrive.bus.bus_credentials import CLIENT_CONFIG
 DEADLINE_S = 30.0
 VEHICLE = "ego"
 OBSERVER = "laptop"
-# The router's access control logs each decision at trace level: the tests read when it judged a put.
-ACL_TRACE = "zenoh::net::routing::interceptor::access_control=trace"
+# The router logs its warnings (a refused certificate, a link closed at its expiry) and its access control each
+# decision at trace level: the tests read when it judged a put.
+ROUTER_LOG_FILTER = "warn,zenoh::net::routing::interceptor::access_control=trace"
 
 
 def coopdrive(*args: str) -> subprocess.CompletedProcess:

@@ -21,6 +21,10 @@ from coopdrive.bus.bus_credentials import CERTIFICATE, KEY
 from tests.bus.secure_bus import (DEADLINE_S, OBSERVER, VEHICLE, client_config, coopdrive, message, open_as,
                                   wait_for_log, wait_until)
 
+# A certificate valid this long from its issue: long enough to connect on a loaded machine, short enough to wait for.
+CONNECTED_VALIDITY_S = 8.0
+SECONDS_PER_DAY = 86400.0
+
 
 def publish_until_heard(owner: Bus, topic: str, sender: str, heard: queue.Queue) -> None:
     """Puts until the reader has one (the owner's Bus puts only once the router has told it someone listens)."""
@@ -95,6 +99,7 @@ def test_a_client_with_a_certificate_from_another_ca_cannot_connect(credentials,
     config.insert_json5("transport/link/tls/connect_private_key", f'"{tmp_path / "rogue-key.pem"}"')
     with pytest.raises(zenoh.ZError, match="Unable to connect"):
         zenoh.open(config)
+    wait_for_log(router_log, "invalid peer certificate: UnknownIssuer")
 
 
 def test_an_observer_subscribes_but_its_commands_and_behaviours_reach_neither_actuation_nor_control(
@@ -127,9 +132,20 @@ def test_a_service_with_an_expired_certificate_is_refused_and_says_so_in_one_lin
     write_pair(*expired, credentials / "control" / CERTIFICATE, credentials / "control" / KEY)
     with pytest.raises(zenoh.ZError, match="Unable to connect"):
         open_as(credentials, "control")
+    wait_for_log(router_log, "invalid peer certificate: certificate expired")
     result = coopdrive("service", "control", "--vehicle", VEHICLE, "--zenoh-config",
                        client_config(credentials, "control"))
     assert result.returncode == 2
     assert result.stderr.count("\n") == 1, result.stderr
     assert f"certificate {credentials / 'control' / CERTIFICATE} expired on" in result.stderr
     assert "coopdrive pki bus DIR --vehicle ID" in result.stderr
+
+
+def test_a_session_whose_certificate_expires_while_connected_is_cut_off_by_the_router(credentials, router_log):
+    authority = BusAuthority.load(credentials / "ca" / "ca.pem", credentials / "ca" / "ca-key.pem")
+    write_pair(*authority.issue("control", days=CONNECTED_VALIDITY_S / SECONDS_PER_DAY),
+               credentials / "control" / CERTIFICATE, credentials / "control" / KEY)
+    with open_as(credentials, "control") as session:
+        assert list(session.info.routers_zid())
+        wait_until(lambda: not list(session.info.routers_zid()), "the router closed the expired certificate's link")
+    wait_for_log(router_log, "remote certificate chain expired")
