@@ -58,7 +58,8 @@ def write_bus_credentials(request: BusCredentialsRequest, now: datetime.datetime
 
     directory = request.directory
     grants = bus_grants(checked_name("vehicle id", request.vehicle_id), request.observers)
-    router_host = _endpoint_host(request.router_endpoint)
+    router_host = _tls_host("router endpoint", request.router_endpoint)
+    _tls_host("router listen endpoint", request.router_listen)
     if directory.exists() and any(directory.iterdir()):
         raise ValueError(f"{directory} is not empty: not overwriting credentials (remove it to make new ones)")
     mounted_at = request.mounted_at or directory.resolve()
@@ -119,10 +120,10 @@ def _folder(path: Path) -> Path:
     return path
 
 
-def _endpoint_host(endpoint: str) -> str:
-    """The host of a `tls/HOST:PORT` endpoint; ValueError for any other."""
+def _tls_host(what: str, endpoint: str) -> str:
+    """The host of a `tls/HOST:PORT` endpoint; ValueError naming `what` for any other."""
     protocol, _, address = endpoint.partition("/")
     host, _, port = address.rpartition(":")
     if protocol != "tls" or not host or not port.isdigit():
-        raise ValueError(f"router endpoint {endpoint!r} must be tls/HOST:PORT (the bus is TLS only)")
+        raise ValueError(f"{what} {endpoint!r} must be tls/HOST:PORT (the bus is TLS only)")
     return host.strip("[]")

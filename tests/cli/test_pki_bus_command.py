@@ -100,7 +100,8 @@ def test_it_refuses_to_overwrite_a_folder_of_credentials(made):
     (["--vehicle", "car/7"], "vehicle id 'car/7' must be"),
     (["--vehicle", "car7", "--observer", "control"], "observer name 'control' is taken"),
     (["--vehicle", "car7", "--days", "0"], "validity must be positive"),
-    (["--vehicle", "car7", "--router", "tcp/127.0.0.1:7447"], "must be tls/HOST:PORT"),
+    (["--vehicle", "car7", "--router", "tcp/127.0.0.1:7447"], "router endpoint 'tcp/127.0.0.1:7447' must be tls/"),
+    (["--vehicle", "car7", "--router-listen", "tcp/0.0.0.0:7447"], "router listen endpoint 'tcp/0.0.0.0:7447' must"),
 ])
 def test_a_bad_request_is_refused_in_one_line_and_writes_nothing(tmp_path, arguments, said):
     result = coopdrive("pki", "bus", str(tmp_path / "bus"), *arguments)
