@@ -1,9 +1,11 @@
 """The deployment commands of `coopdrive`: health (container healthchecks), router (a Zenoh router without the
-zenohd image) and foxglove (the live bus to Foxglove). One add_* function per command."""
+zenohd image), foxglove (the live bus to Foxglove) and pki (the vehicle's bus credentials; V2X's test PKI). One add_*
+function per command."""
 
 from __future__ import annotations
 
 import json
+import os
 import re
 import signal
 import sys
@@ -11,16 +13,20 @@ import threading
 import time
 from pathlib import Path
 
-from coopdrive.exit_status import EXIT_FAILED, EXIT_OK
+from coopdrive.exit_status import EXIT_FAILED, EXIT_OK, EXIT_USAGE
+from coopdrive.services.v2x.cli import add_pki_commands as add_v2x_pki_commands
 
 DEFAULT_FOXGLOVE_PORT = 8765
 HEALTH_RETRY_S = 0.1
+# Zenoh's log filter (Rust's tracing syntax): set, the router logs what it selects (Zenoh writes it on stdout).
+ZENOH_LOG_VARIABLE = "RUST_LOG"
 
 
 def add_commands(commands) -> None:
     add_health_command(commands)
     add_router_command(commands)
     add_foxglove_command(commands)
+    add_pki_command(commands)
 
 
 def wait_for_stop_signal() -> None:
@@ -68,7 +74,8 @@ def _health(args) -> int:
 
 
 def add_router_command(commands) -> None:
-    router = commands.add_parser("router", help="a Zenoh router (what the zenohd container runs) until Ctrl-C")
+    router = commands.add_parser("router", help="a Zenoh router (what the zenohd container runs) until Ctrl-C; "
+                                                f"{ZENOH_LOG_VARIABLE}=... selects Zenoh's log (on stdout)")
     router.add_argument("--listen", action="append", default=[], metavar="ENDPOINT",
                         help="e.g. tcp/0.0.0.0:7447 (default: the config's, else tcp/0.0.0.0:7447)")
     router.add_argument("--config", type=Path, help="zenohd's JSON5 config, e.g. deploy/config/zenohd.json5")
@@ -80,6 +87,9 @@ def _router(args) -> int:
 
     from coopdrive.runtime.config import ConfigError
 
+    if os.environ.get(ZENOH_LOG_VARIABLE):
+        # Zenoh's own log (e.g. the access control's decisions at trace level), on stdout, only when asked for.
+        zenoh.init_log_from_env_or("error")
     try:
         config = zenoh.Config.from_file(str(args.config)) if args.config else zenoh.Config()
         config.insert_json5("mode", '"router"')
@@ -137,4 +147,45 @@ def _foxglove(args) -> int:
     finally:
         bridge.close()
         bus.close()
+    return EXIT_OK
+
+
+def add_pki_command(commands) -> None:
+    from coopdrive.bus.bus_credentials import DEFAULT_DAYS, DEFAULT_ROUTER_ENDPOINT, DEFAULT_ROUTER_LISTEN
+
+    pki = commands.add_parser("pki", help="credentials: the vehicle's bus (mutual TLS), V2X's test PKI")
+    pki_commands = pki.add_subparsers(dest="pki_command", required=True)
+    bus = pki_commands.add_parser("bus", help="a CA, a certificate, key and Zenoh config per service, the gateway and "
+                                              "each observer, and the router's config with the access rules")
+    bus.add_argument("directory", type=Path, help="a new or empty folder")
+    bus.add_argument("--vehicle", required=True, help="the vehicle id the services run as (their keys' prefix)")
+    bus.add_argument("--observer", action="append", default=[], metavar="NAME",
+                     help="a certificate that may only subscribe (a team laptop, a recorder); repeat for several")
+    bus.add_argument("--days", type=float, default=DEFAULT_DAYS, help=f"validity (default {DEFAULT_DAYS} days)")
+    bus.add_argument("--router", default=DEFAULT_ROUTER_ENDPOINT, metavar="ENDPOINT",
+                     help=f"where the services reach the router (default {DEFAULT_ROUTER_ENDPOINT})")
+    bus.add_argument("--router-listen", default=DEFAULT_ROUTER_LISTEN, metavar="ENDPOINT",
+                     help=f"where the router listens (default {DEFAULT_ROUTER_LISTEN})")
+    bus.add_argument("--router-host", action="append", default=[], metavar="HOST",
+                     help="another name or address the router is reached at (another computer's view); repeatable")
+    bus.add_argument("--mounted-at", type=Path, metavar="PATH",
+                     help="where the containers see the folder: the configs name their files under it (default: "
+                          "the folder itself)")
+    bus.set_defaults(handler=_pki_bus)
+    add_v2x_pki_commands(pki_commands)
+
+
+def _pki_bus(args) -> int:
+    from coopdrive.bus.bus_credentials import BusCredentialsRequest, write_bus_credentials
+
+    request = BusCredentialsRequest(args.directory, args.vehicle, tuple(args.observer), args.days, args.router,
+                                    args.router_listen, tuple(args.router_host), args.mounted_at)
+    try:
+        names = write_bus_credentials(request)
+    except (OSError, ValueError) as error:
+        print(f"coopdrive: pki bus: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    print(f"bus credentials of vehicle {args.vehicle} in {args.directory}, valid {args.days:g} days: "
+          f"{', '.join(names)}")
+    print(f"router: coopdrive router --config {args.directory / 'router' / 'zenohd.json5'}")
     return EXIT_OK

@@ -10,6 +10,7 @@ import logging
 import sys
 from pathlib import Path
 
+from coopdrive.bus.credentials_error import BusCredentialsError
 from coopdrive.exit_status import EXIT_FAILED, EXIT_OK, EXIT_USAGE
 from coopdrive.launch.run_aborted import RunAborted
 from coopdrive.runtime.config import ConfigError
@@ -32,7 +33,7 @@ def run_command(parser: argparse.ArgumentParser, argv: list[str] | None) -> int:
     try:
         nice_session_as_asked()
         return args.handler(args)
-    except ConfigError as error:
+    except (ConfigError, BusCredentialsError) as error:
         print(f"coopdrive: {error}", file=sys.stderr)
         return EXIT_USAGE
     except (HardwareUnavailable, RunAborted) as error:

@@ -18,6 +18,7 @@ from typing import Any, Callable, NamedTuple
 import zenoh
 from google.protobuf.message import DecodeError, Message
 
+from coopdrive.bus.credentials_error import BusCredentialsError
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.bus.local_delivery import LocalDelivery
 from coopdrive.bus.remote_matching import RemoteMatching
@@ -44,8 +45,14 @@ class BusConfig:
 
     def to_zenoh(self) -> zenoh.Config:
         config = zenoh.Config.from_file(self.zenoh_config_file) if self.zenoh_config_file else zenoh.Config()
-        config.insert_json5("mode", json.dumps(self.mode))
         config.insert_json5("scouting/multicast/enabled", "false")
+        if json.loads(config.get_json("mode")) == "client":
+            # A client of the router (`coopdrive pki bus` writes these): it listens nowhere, so nothing reaches it but
+            # through the router's access control; its file names the router unless the command line does.
+            if self.connect:
+                config.insert_json5("connect/endpoints", json.dumps(self.connect))
+            return config
+        config.insert_json5("mode", json.dumps(self.mode))
         config.insert_json5("listen/endpoints", json.dumps(self.listen))
         config.insert_json5("connect/endpoints", json.dumps(self.connect))
         return config
@@ -64,7 +71,7 @@ class Envelope(NamedTuple):
 class Bus:
     def __init__(self, config: BusConfig, layout: KeyLayout | None = None):
         self.layout = layout or KeyLayout()
-        self._session = zenoh.open(config.to_zenoh())
+        self._session = _open(config.to_zenoh())
         self._owns_session = True
         self._local = LocalDelivery()
         # Where Zenoh takes a put and brings a sample: other sessions only, unless the baseline asks for Zenoh here too.
@@ -286,6 +293,19 @@ class Bus:
         self._publishers.clear()
         if self._owns_session and not self._session.is_closed():
             self._session.close()
+
+
+def _open(config: zenoh.Config) -> zenoh.Session:
+    """A session; when it cannot open and its TLS credentials say why, BusCredentialsError saying so in one line."""
+    try:
+        return zenoh.open(config)
+    except zenoh.ZError:
+        from coopdrive.bus.credential_check import credentials_problem  # X.509 only when a session did not open
+
+        problem = credentials_problem(config)
+        if problem is None:
+            raise
+        raise BusCredentialsError(problem) from None
 
 
 def _direct(callback: Callable[[Any], None]) -> zenoh.handlers.Callback:

@@ -1,4 +1,4 @@
-"""The v2x command line: `coopdrive v2x decode|send|replay ...` and `coopdrive pki init ...`.
+"""The v2x command line: `coopdrive v2x decode|send|replay ...` and `coopdrive pki init ...` (add_pki_commands).
 
 Arguments are parsed and results printed here; the work is done by the module each command is named for
 (capture_decode.py, send_file.py, capture_player.py, coopdrive/v2x/security/pki.py), imported only when its command runs so
@@ -39,9 +39,11 @@ def add_commands(commands) -> None:
     replay.add_argument("--rate", type=float, default=1.0, help="pace: 2.0 sends twice as fast as recorded")
     replay.set_defaults(handler=_replay)
 
-    pki = commands.add_parser("pki", help="test PKI for signed V2X (ETSI TS 103 097)")
-    pki_commands = pki.add_subparsers(dest="pki_command", required=True)
-    init = pki_commands.add_parser("init", help="create a root CA, an authorisation authority and tickets")
+
+def add_pki_commands(pki_commands) -> None:
+    """`coopdrive pki init`, under the `pki` command the deployment commands make (coopdrive/cli_deploy.py)."""
+    init = pki_commands.add_parser("init", help="a test PKI for signed V2X (ETSI TS 103 097): a root CA, an "
+                                                "authorisation authority and tickets")
     init.add_argument("directory", type=Path)
     init.add_argument("--vehicles", nargs="+", default=["ego", "leader"])
     init.set_defaults(handler=_pki_init)
