@@ -16,6 +16,7 @@ import enum
 
 from coopdrive.v2x.asn1_package import PackageSpec
 from coopdrive.v2x.btp import BtpPort
+from coopdrive.v2x.port_message import PortMessage
 from coopdrive.v2x.its_pdu import PROTOCOL_VERSION_CURRENT, PROTOCOL_VERSION_GCDC, ItsHeader
 from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
 from coopdrive.v2x.recent_decodes import RECENT_DECODES
@@ -24,7 +25,7 @@ SUPPORTED_PROTOCOL_VERSIONS = (PROTOCOL_VERSION_GCDC, PROTOCOL_VERSION_CURRENT)
 _SPEC = PackageSpec("coopdrive.v2x.asn1.dsrc", "dsrc")
 
 
-class InfrastructureMessage(enum.Enum):
+class InfrastructureMessage(PortMessage, enum.Enum):
     """Each message: (ItsPduHeader messageId of TS 102 894-2, BTP port, top ASN.1 type)."""
 
     SPATEM = (4, BtpPort.SPATEM, "SPATEM")
@@ -32,20 +33,31 @@ class InfrastructureMessage(enum.Enum):
     SREM = (9, BtpPort.SREM, "SREM")
     SSEM = (10, BtpPort.SSEM, "SSEM")
 
-    @property
-    def message_id(self) -> int:
-        return self.value[0]
-
-    @property
-    def port(self) -> BtpPort:
-        return self.value[1]
-
-    @property
-    def type_name(self) -> str:
-        return self.value[2]
-
 
 INFRASTRUCTURE_OF_PORT = {int(message.port): message for message in InfrastructureMessage}
+
+
+def decode_port_message(spec, message, protocol_versions: tuple[int, ...], header: ItsHeader, uper: bytes) -> dict:
+    """The asn1tools value of a message known by its BTP port (message: message_id, port, type_name, name), its
+    header peeked; V2xDecodeError with the reason for a header that does not fit or bytes that do not decode."""
+    if header.message_id != message.message_id:
+        raise V2xDecodeError(RejectReason.MESSAGE_ID_PORT_MISMATCH,
+                             f"messageID {header.message_id} on port {int(message.port)}")
+    if header.protocol_version not in protocol_versions:
+        raise V2xDecodeError(RejectReason.UNSUPPORTED_PROTOCOL_VERSION,
+                             f"{message.name} protocolVersion {header.protocol_version}")
+    # Shared with every codec of the process (RECENT_DECODES), keyed by the type too: messageId 10 is an SSEM on
+    # port 2008 but an iCLCM on 2010. No ITS PDU's key starts so (its first octet, protocolVersion, is 1 to 3).
+    key = message.type_name.encode() + bytes(uper)
+    value = RECENT_DECODES.get(key)
+    if value is not None:
+        return value
+    try:
+        value = spec.decode(message.type_name, bytes(uper))
+    except Exception as error:  # noqa: BLE001 -- asn1tools raises many types on garbage input
+        raise V2xDecodeError(RejectReason.MALFORMED_ASN1, f"{type(error).__name__}: {error}") from None
+    RECENT_DECODES.keep(key, value)
+    return value
 
 
 class InfrastructureCodec:
@@ -57,24 +69,7 @@ class InfrastructureCodec:
 
     def decode(self, message: InfrastructureMessage, header: ItsHeader, uper: bytes) -> dict:
         """The asn1tools value of a PDU whose header was peeked; raises V2xDecodeError with the reason."""
-        if header.message_id != message.message_id:
-            raise V2xDecodeError(RejectReason.MESSAGE_ID_PORT_MISMATCH,
-                                 f"messageID {header.message_id} on port {int(message.port)}")
-        if header.protocol_version not in SUPPORTED_PROTOCOL_VERSIONS:
-            raise V2xDecodeError(RejectReason.UNSUPPORTED_PROTOCOL_VERSION,
-                                 f"{message.name} protocolVersion {header.protocol_version}")
-        # Shared with every codec of the process (RECENT_DECODES), keyed by the type too: messageId 10 is an SSEM on
-        # port 2008 but an iCLCM on 2010. No ITS PDU's key starts so (its first octet, protocolVersion, is 1 or 2).
-        key = message.type_name.encode() + bytes(uper)
-        value = RECENT_DECODES.get(key)
-        if value is not None:
-            return value
-        try:
-            value = self.spec().decode(message.type_name, bytes(uper))
-        except Exception as error:  # noqa: BLE001 -- asn1tools raises many types on garbage input
-            raise V2xDecodeError(RejectReason.MALFORMED_ASN1, f"{type(error).__name__}: {error}") from None
-        RECENT_DECODES.keep(key, value)
-        return value
+        return decode_port_message(self.spec(), message, SUPPORTED_PROTOCOL_VERSIONS, header, uper)
 
     def encode(self, message: InfrastructureMessage, value: dict) -> bytes:
         return self.spec().encode(message.type_name, value, check_constraints=True)

@@ -24,7 +24,9 @@ from coopdrive.v2x.mapping.mapem import mapem_from_asn
 from coopdrive.v2x.mapping.spatem import spatem_from_asn
 from coopdrive.v2x.mapping.srem import srem_from_asn
 from coopdrive.v2x.mapping.ssem import ssem_from_asn
+from coopdrive.v2x.mapping.vam import vam_from_asn
 from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
+from coopdrive.v2x.vru import VRU_OF_PORT, VruCodec, VruMessage
 from coopdrive.v1 import infrastructure_pb2, its_pb2
 
 STATION_TYPE_PASSENGER_CAR = 5
@@ -32,12 +34,15 @@ PORT_OF_MESSAGE = {ItsMessageId.CAM: BtpPort.CAM, ItsMessageId.DENM: BtpPort.DEN
 MESSAGE_OF_PORT = {int(port): message for message, port in PORT_OF_MESSAGE.items()}
 _FROM_ASN = {ItsMessageId.CAM: cam_from_asn, ItsMessageId.DENM: denm_from_asn, ItsMessageId.ICLCM: iclcm_from_asn,
              InfrastructureMessage.SPATEM: spatem_from_asn, InfrastructureMessage.MAPEM: mapem_from_asn,
-             InfrastructureMessage.SREM: srem_from_asn, InfrastructureMessage.SSEM: ssem_from_asn}
+             InfrastructureMessage.SREM: srem_from_asn, InfrastructureMessage.SSEM: ssem_from_asn,
+             VruMessage.VAM: vam_from_asn}
 
 Content = its_pb2.CamContent | its_pb2.DenmContent | its_pb2.IclcmContent | infrastructure_pb2.SpatemContent | \
-    infrastructure_pb2.MapemContent | infrastructure_pb2.SremContent | infrastructure_pb2.SsemContent
-# What a decoded packet is: an ITS PDU of its_pdu.py's codec or an infrastructure message of infrastructure.py's.
-MessageType = ItsMessageId | InfrastructureMessage
+    infrastructure_pb2.MapemContent | infrastructure_pb2.SremContent | infrastructure_pb2.SsemContent | \
+    its_pb2.VamContent
+# What a decoded packet is: an ITS PDU of its_pdu.py's codec, an infrastructure message of infrastructure.py's or a
+# road user's of vru.py's.
+MessageType = ItsMessageId | InfrastructureMessage | VruMessage
 
 
 @dataclass
@@ -132,6 +137,7 @@ class V2xPacketCodec:
                  security: SecurityLayer | None = None):
         self.its_codec = its_codec or ItsCodec()
         self.infrastructure_codec = InfrastructureCodec()
+        self.vru_codec = VruCodec()
         self.accepted_gn_versions = accepted_gn_versions
         # Without one, secured packets are still unwrapped and checked (mode off, no roots, no clock).
         self.security = security if security is not None else _unwrapping_layer()
@@ -178,6 +184,10 @@ class V2xPacketCodec:
             its_header = peek_its_header(uper)
             value = self.infrastructure_codec.decode(infrastructure, its_header, uper)
             return DecodedFrame(infrastructure, its_header, value, gn, btp, security)
+        vru = VRU_OF_PORT.get(btp.destination_port)
+        if vru is not None:
+            its_header = peek_its_header(uper)
+            return DecodedFrame(vru, its_header, self.vru_codec.decode(vru, its_header, uper), gn, btp, security)
         message_type = MESSAGE_OF_PORT.get(btp.destination_port)
         if message_type is None:
             raise V2xDecodeError(RejectReason.UNKNOWN_BTP_PORT, str(btp.destination_port))

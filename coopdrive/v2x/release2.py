@@ -4,7 +4,7 @@
 
 The eight modules (asn1/release2, from Vanetza's patched ETSI set) are parsed once (about 5 s; the parse is
 cached on disk like the security modules) and compiled per process. We decode these messages to show and
-count them; nothing in the stack consumes them yet.
+count them; the v2x service takes VAMs (vru.py).
 """
 
 from __future__ import annotations
@@ -15,9 +15,14 @@ TOP_TYPE_OF_MESSAGE = {"cpm": "CollectivePerceptionMessage", "vam": "VAM"}
 _SPEC = PackageSpec("coopdrive.v2x.asn1.release2", "release2")
 
 
+def release2_spec():
+    """The compiled modules (compiled once per process, on first use)."""
+    return _SPEC.get()
+
+
 def release2_content(message: str, uper: bytes) -> dict:
     """The decoded message as JSON-ready values; raises whatever asn1tools raises on bad input."""
-    return plain(_SPEC.get().decode(TOP_TYPE_OF_MESSAGE[message], uper))
+    return plain(release2_spec().decode(TOP_TYPE_OF_MESSAGE[message], uper))
 
 
 def plain(value):

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 from coopdrive.services.v2x.config import PlausibilityLimits
 from coopdrive.v2x.its_pdu import ItsMessageId
+from coopdrive.v2x.packet import MessageType
 from coopdrive.v2x.timebase import MS_PER_S
 from coopdrive.v2x.units import EARTH_RADIUS_M
 
@@ -39,7 +40,7 @@ class Observation:
 
     source_mac: bytes | None
     station_id: int
-    message_type: ItsMessageId
+    message_type: MessageType
     # Generation time (CAM, iCLCM) or reference time (DENM), TAI ms.
     time_tai_ms: int
     latitude_deg: float | None = None

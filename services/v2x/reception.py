@@ -16,6 +16,7 @@ from coopdrive.services.v2x.config import PlausibilityLimits
 from coopdrive.v2x.geonet import GnPacket
 from coopdrive.v2x.infrastructure import InfrastructureMessage
 from coopdrive.v2x.its_pdu import ItsMessageId
+from coopdrive.v2x.mapping.common import optional
 from coopdrive.v2x.packet import BeaconPacket, DecodedPacket, V2xPacketCodec, default_codec
 from coopdrive.services.v2x.plausibility import Observation, PlausibilityChecker
 from coopdrive.v2x.reasons import RejectReason, V2xDecodeError
@@ -23,6 +24,7 @@ from coopdrive.v2x.security_verdict import sender_of, verdict_of_opened, verdict
 from coopdrive.services.v2x.station_stats import StationStats
 from coopdrive.v2x.timebase import MS_PER_S, ItsClock, leap_seconds_since_its_epoch, tai_ms_from_delta
 from coopdrive.v2x.units import TENTH_MICRODEG_PER_DEG
+from coopdrive.v2x.vru import VruMessage
 from coopdrive.v1 import v2x_pb2
 
 # A station silent this long leaves the status (it stays LOST in it until then).
@@ -84,6 +86,11 @@ def observation_of(decoded: DecodedPacket, mac: bytes, time_tai_ms: int) -> Obse
             position.longitude_deg if position.HasField("longitude_deg") else None,
             hf.speed_mps if has_hf and hf.HasField("speed_mps") else None,
             hf.longitudinal_acceleration_mps2 if has_hf and hf.HasField("longitudinal_acceleration_mps2") else None)
+    if decoded.message_type == VruMessage.VAM:
+        position = content.reference_position
+        return Observation(mac, decoded.station_id, decoded.message_type, time_tai_ms,
+                           optional(position, "latitude_deg"), optional(position, "longitude_deg"),
+                           optional(content, "speed_mps"), optional(content, "longitudinal_acceleration_mps2"))
     if decoded.message_type == ItsMessageId.DENM:
         return Observation(mac, decoded.station_id, decoded.message_type, time_tai_ms,
                            detection_tai_ms=content.detection_time_tai_ms, validity_s=content.validity_duration_s)

@@ -16,6 +16,7 @@ from coopdrive.services.v2x.config import GCDC_RATE_HZ, LinkSync, LinkType, Secu
 from coopdrive.services.v2x.denm_manager import ActionId
 from coopdrive.v2x.infrastructure import InfrastructureCodec, InfrastructureMessage
 from coopdrive.v2x.its_pdu import ItsMessageId
+from coopdrive.v2x.vru import VruMessage
 from coopdrive.v2x.packet import Content, MessageType
 from coopdrive.services.v2x.link import CaptureLog, RecordedLink, UdpLink
 from coopdrive.services.v2x.pseudonym import PseudonymChanger
@@ -35,7 +36,8 @@ from coopdrive.v1 import its_pb2, v2x_pb2
 UNKNOWN_MAC = bytes(6)
 TOPIC_OF_MESSAGE = {ItsMessageId.CAM: "v2x/cam", ItsMessageId.DENM: "v2x/denm", ItsMessageId.ICLCM: "v2x/iclcm",
                     InfrastructureMessage.SPATEM: "v2x/spatem", InfrastructureMessage.MAPEM: "v2x/mapem",
-                    InfrastructureMessage.SREM: "v2x/srem", InfrastructureMessage.SSEM: "v2x/ssem"}
+                    InfrastructureMessage.SREM: "v2x/srem", InfrastructureMessage.SSEM: "v2x/ssem",
+                    VruMessage.VAM: "v2x/vam"}
 
 
 @dataclass

@@ -16,6 +16,7 @@ PUBLISHES = (
     Topic("v2x/mapem", infrastructure_pb2.MapemContent, PUBLISHER),
     Topic("v2x/srem", infrastructure_pb2.SremContent, PUBLISHER),
     Topic("v2x/ssem", infrastructure_pb2.SsemContent, PUBLISHER),
+    Topic("v2x/vam", its_pb2.VamContent, PUBLISHER),
 )
 
 # v2x/rx only under replay (the recording stands in for the radio box); radio/mark only when a lockstep run

@@ -217,15 +217,24 @@ class Station:
         self.ca.cam_reception_management.add_application_callback(log.on_cam)
         self.den = DecentralizedEnvironmentalNotificationService(btp_router=self.btp, vehicle_data=self.vehicle)
         self.btp.register_indication_callback_btp(port=DENM_PORT, callback=self._on_denm)
-        self.vru = None
-        if args.vam_station_id is not None:
-            # A VRU beside the vehicle, sending VAMs (TS 103 300-3) through the same router.
-            self.vru = VRUAwarenessService(btp_router=self.btp, device_data_provider=DeviceDataProvider(
-                station_id=args.vam_station_id, station_type=STATION_TYPE_PEDESTRIAN))
         self.btp.btp_data_request = counted_by_port(log, self.btp.btp_data_request)
         self.btp.freeze_callbacks()
         self.link = RawLinkLayer(args.interface, mac, guarded(log, self.gn.gn_data_indicate))
         self.gn.link_layer = self.link
+        self.vru = self.vru_gn = None
+        if args.vam_station_id is not None:
+            # A pedestrian beside the vehicle, sending VAMs (TS 103 300-3) from a device of its own: its own GN
+            # address (MAC), router and link on the same interface. (Behind the vehicle's router its VAMs would
+            # come from the vehicle's GN address under another station id, which a receiver rightly refuses.)
+            vru_mac = bytes.fromhex(args.vam_mac.replace(":", ""))
+            self.vru_gn = GNRouter(mib=MIB(itsGnLocalGnAddr=GNAddress(m=M.GN_MULTICAST, st=ST.PEDESTRIAN,
+                                                                      mid=MID(vru_mac))))
+            vru_btp = BTPRouter(self.vru_gn)
+            self.vru = VRUAwarenessService(btp_router=vru_btp, device_data_provider=DeviceDataProvider(
+                station_id=args.vam_station_id, station_type=STATION_TYPE_PEDESTRIAN))
+            vru_btp.btp_data_request = counted_by_port(log, vru_btp.btp_data_request)
+            vru_btp.freeze_callbacks()
+            self.vru_gn.link_layer = RawLinkLayer(args.interface, vru_mac, guarded(log, self.vru_gn.gn_data_indicate))
 
     def _on_denm(self, indication) -> None:
         """FlexStack's own DENM reception (its log, its LDM when it has one), then ours of what it decoded."""
@@ -244,6 +253,7 @@ class Station:
             self.gn.refresh_ego_position_vector(tpv)
             self.ca.cam_transmission_management.location_service_callback(tpv)
             if self.vru is not None:
+                self.vru_gn.refresh_ego_position_vector(tpv)
                 self.vru.vam_transmission_management.location_service_callback(tpv)
             if self.args.denm and time.monotonic() >= next_denm_s:
                 next_denm_s += DENM_INTERVAL_S
@@ -267,6 +277,7 @@ def main() -> None:
     run.add_argument("--longitude", type=float, default=5.6247)
     run.add_argument("--denm", action="store_true")
     run.add_argument("--vam-station-id", type=int, help="also send VAMs of a pedestrian with this station id")
+    run.add_argument("--vam-mac", default="02:00:00:00:42:50", help="the pedestrian's device's GN address (MAC)")
     run.add_argument("--certs", type=Path, help="sign and verify with the chain make-certs wrote here")
     run.add_argument("--trust", type=Path, help="with --certs: also trust our PKI (root.cert, aa.cert) here")
     run.add_argument("--go-on-stdin", action="store_true", help="print 'ready', start when a line arrives on stdin")

@@ -6,7 +6,7 @@
 
 It opens a Bus on a free port of 127.0.0.1, starts `coopdrive service v2x --vehicle ego --config FILE` connected to
 it, publishes a moving ego/state at 10 Hz (so our CAMs carry a speed), optionally sends a DENM (see send_denms),
-collects v2x/cam, v2x/denm and v2x/status for the duration, stops the service and prints ONE JSON summary line.
+collects v2x/cam, v2x/denm, v2x/vam and v2x/status for the duration, stops the service and prints ONE JSON summary line.
 With --go-on-stdin it prints `ready` once the service runs and starts when a line arrives on stdin.
 """
 
@@ -50,17 +50,24 @@ class Collected:
         self.lock = threading.Lock()
         self.cams: dict[int, dict] = {}
         self.denms: dict[int, dict] = {}
+        self.vams: dict[int, dict] = {}
         self.status: dict | None = None
         self.health_v2x: list[dict] = []
         self.started = threading.Event()
 
+    @staticmethod
+    def _heard_at(table: dict[int, dict], message) -> dict:
+        """The station's entry, counted once more and at the message's reference position."""
+        heard = table.setdefault(message.station_id, {"count": 0})
+        heard["count"] += 1
+        heard["latitude_deg"] = message.reference_position.latitude_deg
+        heard["longitude_deg"] = message.reference_position.longitude_deg
+        return heard
+
     def on_cam(self, envelope) -> None:
         cam = envelope.message
         with self.lock:
-            heard = self.cams.setdefault(cam.station_id, {"count": 0})
-            heard["count"] += 1
-            heard["latitude_deg"] = cam.reference_position.latitude_deg
-            heard["longitude_deg"] = cam.reference_position.longitude_deg
+            heard = self._heard_at(self.cams, cam)
             heard["speed_mps"] = cam.high_frequency.speed_mps
             heard["protocol_version"] = cam.protocol_version
 
@@ -72,6 +79,11 @@ class Collected:
             heard["originating_station_id"] = denm.originating_station_id
             heard["termination"] = denm.termination
             heard["validity_duration_s"] = denm.validity_duration_s
+
+    def on_vam(self, envelope) -> None:
+        vam = envelope.message
+        with self.lock:
+            self._heard_at(self.vams, vam)["station_type"] = vam.station_type
 
     def on_status(self, envelope) -> None:
         with self.lock:
@@ -117,6 +129,7 @@ def run(config_path: Path, duration_s: float, speed_mps: float, send_denm: bool,
     collected = Collected()
     bus.subscribe(VEHICLE, "v2x/cam", collected.on_cam)
     bus.subscribe(VEHICLE, "v2x/denm", collected.on_denm)
+    bus.subscribe(VEHICLE, "v2x/vam", collected.on_vam)
     bus.subscribe(VEHICLE, "v2x/status", collected.on_status)
     process = start_service(config_path, endpoint)
     denms = None
@@ -138,6 +151,7 @@ def run(config_path: Path, duration_s: float, speed_mps: float, send_denm: bool,
                 "service_exited_early": returncode_while_running is not None, "service_stderr": stderr_tail,
                 "cams": {str(k): v for k, v in collected.cams.items()},
                 "denms": {str(k): v for k, v in collected.denms.items()},
+                "vams": {str(k): v for k, v in collected.vams.items()},
                 "denms_sent": denms.sent if denms is not None else 0, "status": collected.status or {},
                 "health_v2x": collected.health_v2x}
 

@@ -12,6 +12,7 @@ import json
 
 import pytest
 
+from coopdrive.v1 import its_pb2
 from coopdrive.v2x.security.pki import create_test_pki
 from tests.system_packages import needs
 from tests.v2x.live.exchange import run_exchange
@@ -114,13 +115,17 @@ def test_flexstack_decodes_our_denms_with_our_station_id_and_event(live):
     assert heard["cause_code"] == "stationaryVehicle94"
 
 
-def test_flexstacks_vams_are_refused_as_an_unknown_btp_port_as_our_service_takes_no_vams_yet(live):
-    """Issue 71 wants its VAMs in our station table; the service publishes CAMs, DENMs and iCLCMs only (VAMs are
-    decoded in captures, coopdrive/v2x/release2.py), so today each VAM is refused at BTP port 2018, and nothing
-    else on the wire is, but for a CAM that repeats its predecessor's time (below)."""
-    refused = dict(live["ours"]["status"]["rejected_by_reason"])
-    assert 0 < int(refused.pop("unknown_btp_port")) <= live["flexstack"]["sent"]["vams"]
-    assert str(PEER_VRU) not in live["ours"]["cams"]
+def test_flexstacks_vams_reach_our_station_table_with_the_pedestrian_s_station_id_and_position(live):
+    """The VRU beside FlexStack's vehicle (TS 103 300-3 VAMs, protocolVersion 3) is published on v2x/vam where it is,
+    and listed among the stations; nothing else on the wire is refused, but for a CAM that repeats its
+    predecessor's time (below)."""
+    heard = live["ours"]["vams"][str(PEER_VRU)]
+    assert heard["count"] > 0 and heard["station_type"] == its_pb2.STATION_TYPE_PEDESTRIAN
+    assert 0.0 <= heard["latitude_deg"] - PEER_START_DEG[0] < DRIVEN_DEG
+    assert heard["longitude_deg"] == pytest.approx(PEER_START_DEG[1], abs=1e-6)
+    assert int(station_status(live["ours"], PEER_VRU)["messages_received"]) >= heard["count"]
+    assert heard["count"] <= live["flexstack"]["sent"]["vams"]
+    refused = dict(live["ours"]["status"].get("rejected_by_reason", {}))
     # FlexStack stamps a CAM with the time of the position it carries (EN 302 637-2 generationDeltaTime), and its
     # T_CheckCamGen timer sends from the last position the peer script gave it: where that script was held up on a
     # busy machine, two CAMs carry one time, and the second is rightly dropped as not newer (seen once in CI).
