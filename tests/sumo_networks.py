@@ -65,3 +65,35 @@ def geo_referenced(path: Path, lat_deg: float, lon_deg: float) -> Path:
     assert count == 1, f"{path} has no location element"
     path.write_text(text, encoding="utf-8")
     return path
+
+
+def follow_scenario(map_text: str, duration_s: float = 30.0) -> str:
+    """The follow scenario's leader and stack on the straight road's eastbound edge, its map named as given."""
+    return f"""
+name: sumo-follow
+description: A scripted leader changes speed on a SUMO network; the ego stack follows.
+map: {map_text}
+seed: 1
+duration_s: {duration_s}
+vehicles:
+  - vehicle_id: leader
+    station_id: 1001
+    role: scripted
+    road: A0B0
+    lane: 0
+    station_m: 45
+    speed_mps: 15
+    speed_profile:
+      kind: piecewise
+      points:
+        - {{time_s: 0, speed_mps: 15}}
+        - {{time_s: 4, speed_mps: 15}}
+        - {{time_s: 10, speed_mps: 22}}
+        - {{time_s: 16, speed_mps: 22}}
+        - {{time_s: 20, speed_mps: 10}}
+  - {{vehicle_id: ego, station_id: 1002, road: A0B0, lane: 0, station_m: 0, speed_mps: 15}}
+judging:
+  platoon: [leader, ego]
+  standstill_m: 6.0
+  headway_s: 1.5
+"""

@@ -1,0 +1,71 @@
+"""The follow scenario run end to end on a SUMO network that netgenerate built at test time and that is laid in
+Sweden by its projection: the stack follows and passes, and where it says it is, in latitude and longitude, is on
+SUMO's lane by SUMO's own projection (sumolib's convertLonLat2XY), as are the leader's CAM positions."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import sumolib
+
+from coopdrive.recording.reader import read_messages
+from tests.scenario_report import FASTEST_LAYOUT
+from tests.sumo_networks import ASTAZERO_LAT_LON_DEG, follow_scenario, geo_referenced, straight_road
+
+pytestmark = pytest.mark.whole_run
+
+DURATION_S = 20.0
+# The eastbound edge's rightmost lane, where both vehicles drive: its centre line in the network's coordinates.
+LANE_ID = "A0B0_0"
+LANE_CENTRE_Y_M = -5.25
+LEADER_STATION_ID = 1001
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("sumo_follow")
+    network = geo_referenced(straight_road(folder / "astazero.net.xml"), *ASTAZERO_LAT_LON_DEG)
+    scenario = folder / "sumo-follow.yaml"
+    scenario.write_text(follow_scenario(network.name, DURATION_S))
+    recording = folder / "run.mcap"
+    result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", str(scenario), "--json", "--record",
+                             str(recording), *FASTEST_LAYOUT], capture_output=True, text=True, timeout=600)
+    assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
+    return json.loads(result.stdout), recording, sumolib.net.readNet(str(network))
+
+
+def on_the_lane_m(net, lat_deg: float, lon_deg: float) -> tuple[float, float]:
+    """(x_m along the road, offset from the lane's centre) of a geodetic point in the network's coordinates."""
+    x_m, y_m = net.convertLonLat2XY(lon_deg, lat_deg)
+    return x_m, y_m - LANE_CENTRE_Y_M
+
+
+def test_the_stack_follows_the_leader_on_the_sumo_network_and_passes(run):
+    summary, _, _ = run
+    assert summary["scenario"] == "sumo-follow" and summary["sim_time_s"] == pytest.approx(DURATION_S)
+    assert summary["success"] is True and summary["collisions"] == 0
+    assert summary["min_gap_m"] > 6.0
+
+
+def test_the_stack_s_latitude_and_longitude_lie_on_sumo_s_lane_by_sumo_s_projection(run):
+    _, recording, net = run
+    states = [item.message for item in read_messages(recording) if item.topic == "coopdrive/ego/ego/state"]
+    matched = [state for state in states if state.lane.matched]
+    assert len(matched) > 0.9 * len(states)
+    assert {state.lane.lane_id for state in matched} == {LANE_ID}
+    along_m, offset_m = np.array([on_the_lane_m(net, s.latitude_deg, s.longitude_deg) for s in matched]).T
+    # The stack keeps to its lane's centre (centimetres here); a frame off by the projection would be metres off.
+    assert np.max(np.abs(offset_m)) < 0.5
+    assert along_m[-1] - along_m[0] > 10.0 * DURATION_S
+
+
+def test_the_leader_s_cam_positions_lie_on_sumo_s_lane_too(run):
+    _, recording, net = run
+    cams = [item.message for item in read_messages(recording) if item.topic == "coopdrive/ego/v2x/cam"
+            and item.message.station_id == LEADER_STATION_ID]
+    assert cams
+    offset_m = np.array([on_the_lane_m(net, cam.reference_position.latitude_deg,
+                                       cam.reference_position.longitude_deg)[1] for cam in cams])
+    assert np.max(np.abs(offset_m)) < 0.5
