@@ -97,3 +97,20 @@ judging:
   standstill_m: 6.0
   headway_s: 1.5
 """
+
+
+def with_roads(folder: Path) -> Path:
+    """The folder, with roads/ beside where its scenario files go: the straight road, a network of footpaths only,
+    and a routes file."""
+    (folder / "roads").mkdir()
+    straight_road(folder / "roads" / "straight.net.xml")
+    footpaths_only(folder / "roads" / "footpaths.net.xml")
+    (folder / "roads" / "routes.rou.xml").write_text('<routes><vehicle id="a" depart="0"/></routes>\n')
+    return folder
+
+
+def scenario_file(folder: Path, map_text: str, name: str) -> Path:
+    """The follow scenario on the straight road's map named as given, written to folder/name."""
+    path = folder / name
+    path.write_text(follow_scenario(map_text))
+    return path

@@ -1,6 +1,7 @@
-"""The follow scenario run end to end on a SUMO network that netgenerate built at test time and that is laid in
-Sweden by its projection: the stack follows and passes, and where it says it is, in latitude and longitude, is on
-SUMO's lane by SUMO's own projection (sumolib's convertLonLat2XY), as are the leader's CAM positions."""
+"""`coopdrive run` on SUMO networks. The follow scenario end to end on a network that netgenerate built at test time
+and that is laid in Sweden by its projection: the stack follows and passes, and where it says it is, in latitude and
+longitude, is on SUMO's lane by SUMO's own projection (sumolib's convertLonLat2XY), as are the leader's CAM positions.
+A network that cannot be a map, or no sumolib: one line, and nothing starts."""
 
 import json
 import subprocess
@@ -12,7 +13,8 @@ import sumolib
 
 from coopdrive.recording.reader import read_messages
 from tests.scenario_report import FASTEST_LAYOUT
-from tests.sumo_networks import ASTAZERO_LAT_LON_DEG, follow_scenario, geo_referenced, straight_road
+from tests.sumo_networks import (ASTAZERO_LAT_LON_DEG, follow_scenario, geo_referenced, scenario_file,
+                                 straight_road, with_roads)
 
 pytestmark = pytest.mark.whole_run
 
@@ -69,3 +71,36 @@ def test_the_leader_s_cam_positions_lie_on_sumo_s_lane_too(run):
     offset_m = np.array([on_the_lane_m(net, cam.reference_position.latitude_deg,
                                        cam.reference_position.longitude_deg)[1] for cam in cams])
     assert np.max(np.abs(offset_m)) < 0.5
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory):
+    return with_roads(tmp_path_factory.mktemp("sumo_refused"))
+
+
+def coopdrive_run(scenario):
+    return subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", str(scenario)],
+                          capture_output=True, text=True, timeout=120)
+
+
+@pytest.mark.parametrize("map_text", ["roads/nowhere.net.xml", "roads/routes.rou.xml", "roads/footpaths.net.xml"],
+                         ids=["missing", "routes", "footpaths"])
+def test_coopdrive_run_on_a_network_that_cannot_be_a_map_says_so_in_one_line_and_starts_nothing(folder, map_text):
+    result = coopdrive_run(scenario_file(folder, map_text, "bad.yaml"))
+    assert result.returncode == 2
+    assert result.stderr.count("\n") == 1 and f"map: {(folder / map_text).resolve()}: " in result.stderr
+    assert result.stdout == ""
+
+
+def test_coopdrive_run_without_sumolib_says_in_one_line_what_to_install_and_starts_nothing(folder):
+    scenario = scenario_file(folder, "roads/straight.net.xml", "no_sumolib.yaml")
+    # sumolib is installed here: None in sys.modules makes `import sumolib` fail as it does where it is not, in the
+    # process that then runs the command.
+    result = subprocess.run([sys.executable, "-c", "import sys; sys.modules['sumolib'] = None; "
+                             "from coopdrive.cli import main; sys.exit(main())", "run", str(scenario)],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 2
+    assert result.stderr == (f"coopdrive: {scenario}: map: {(folder / 'roads' / 'straight.net.xml').resolve()}: "
+                             "reading a SUMO network needs sumolib, which is not installed "
+                             "(pip install 'sumolib>=1.28,<1.29')\n")
+    assert result.stdout == ""
