@@ -14,6 +14,7 @@ without a projection (netgenerate's) is taken as ENU metres about the default or
 
 from __future__ import annotations
 
+import functools
 import gzip
 import xml.etree.ElementTree as ElementTree
 from collections.abc import Callable, Sequence
@@ -72,6 +73,21 @@ def read_sumo_network(path: str | Path) -> MapParts:
     x_min, y_min, x_max, y_max = net.getBoundary()
     centre_xy = (0.5 * (x_min + x_max), 0.5 * (y_min + y_max))
     return map_parts_of(lanes, _projection_of(net, path), centre_xy, source=str(path))
+
+
+def check_sumo_network(path: str | Path) -> None:
+    """read_sumo_network's SumoNetworkError, if any, without keeping the map: a file already read whole in this
+    process is not read again while unchanged (a run's launcher loads its scenario file several times, and a city's
+    network takes seconds)."""
+    path = Path(path)
+    stat = path.stat() if path.is_file() else None
+    _read_once(str(path), stat.st_mtime_ns if stat else 0, stat.st_size if stat else 0)
+
+
+@functools.lru_cache(maxsize=16)
+def _read_once(path: str, mtime_ns: int, size: int) -> None:
+    """Cached by the file's path, time and size; an error is not cached, so a bad file is read again each time."""
+    read_sumo_network(path)
 
 
 def map_parts_of(lanes: Sequence[SumoLane], to_lon_lat: ToLonLat | None, centre_xy: tuple[float, float],

@@ -10,7 +10,7 @@ from typing import Any
 import yaml
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, model_validator
 
-from coopdrive.roadmap.sumo_network import SumoNetworkError, names_sumo_network, read_sumo_network
+from coopdrive.roadmap.sumo_network import SumoNetworkError, check_sumo_network, names_sumo_network
 from coopdrive.services.sim.channel_config import RadioChannelConfig
 from coopdrive.services.sim.fault_config import Fault
 from coopdrive.services.sim.profiles import PLANT_PERTURBATIONS, PlantPerturbation, VehicleProfile, plant_profile
@@ -159,7 +159,7 @@ class ScenarioConfig(_Strict):
             base_dir = Path((info.context or {}).get(BASE_DIR_CONTEXT, "."))
             path = (base_dir / Path(self.map).expanduser()).resolve()
             try:
-                read_sumo_network(path)
+                check_sumo_network(path)
             except SumoNetworkError as error:
                 raise ValueError(f"map: {error}") from None
             self.map = str(path)

@@ -10,7 +10,7 @@ import sumolib
 
 from coopdrive.roadmap import RoadMap
 from coopdrive.roadmap.sumo_lane import SumoLane
-from coopdrive.roadmap.sumo_network import SumoNetworkError, map_parts_of, read_sumo_network
+from coopdrive.roadmap.sumo_network import SumoNetworkError, check_sumo_network, map_parts_of, read_sumo_network
 from tests.sumo_networks import (ASTAZERO_LAT_LON_DEG, GRID_LANE_WIDTH_M, GRID_NODES, GRID_SPEED_MPS,
                                  STRAIGHT_LANE_WIDTH_M, STRAIGHT_LANES, STRAIGHT_LENGTH_M, STRAIGHT_SPEED_MPS,
                                  footpaths_only, geo_referenced, grid_with_sidewalks, straight_road)
@@ -184,3 +184,14 @@ def test_without_sumolib_a_network_is_one_line_naming_the_package_to_install(str
         read_sumo_network(straight)
     assert str(error.value) == (f"{straight}: reading a SUMO network needs sumolib, which is not installed "
                                 "(pip install 'sumolib>=1.28,<1.29')")
+
+
+def test_a_network_checked_once_is_not_read_again_until_its_file_changes(folder, monkeypatch):
+    path = straight_road(folder / "checked.net.xml")
+    check_sumo_network(path)
+    # Without sumolib a read would fail: the unchanged file is not read again, the rewritten one is.
+    monkeypatch.setitem(sys.modules, "sumolib", None)
+    check_sumo_network(path)
+    path.write_text(path.read_text(encoding="utf-8") + "<!-- changed -->\n", encoding="utf-8")
+    with pytest.raises(SumoNetworkError, match="needs sumolib"):
+        check_sumo_network(path)
