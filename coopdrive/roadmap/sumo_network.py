@@ -45,6 +45,11 @@ class SumoNetworkError(ValueError):
     """A SUMO network that cannot be a map; str() is one line naming the file and the problem."""
 
 
+class SumoNetworkMissing(SumoNetworkError, FileNotFoundError):
+    """No file where the SUMO network was named: an OSError too, as a missing GeoJSON map's is, so that what reports a
+    map file it cannot open (replaying a recording on another machine) reports this one alike."""
+
+
 def names_sumo_network(map_name: str) -> bool:
     """Whether a scenario's `map` names a SUMO network file (rather than a GeoJSON file or a shipped map)."""
     return str(map_name).endswith(SUMO_MAP_SUFFIXES)
@@ -55,7 +60,7 @@ def read_sumo_network(path: str | Path) -> MapParts:
     SUMO network, a network without drivable lanes, or sumolib (or pyproj, for a projected network) not installed."""
     path = Path(path)
     if not path.is_file():
-        raise SumoNetworkError(f"{path}: no such SUMO network file")
+        raise SumoNetworkMissing(f"{path}: no such SUMO network file")
     root = _root_element(path)
     if root != "net":
         raise SumoNetworkError(f"{path}: not a SUMO network (its root element is <{root}>, not <net>)")

@@ -150,9 +150,10 @@ def test_a_projection_puts_the_origin_at_the_network_s_centre_and_the_lanes_abou
     assert (start_y_m, end_y_m) == pytest.approx((0.0, 0.0), abs=0.001)
 
 
-def test_a_missing_file_is_one_line_naming_it(folder):
-    with pytest.raises(SumoNetworkError, match=r"nowhere\.net\.xml: no such SUMO network file$"):
+def test_a_missing_file_is_one_line_naming_it_and_an_os_error_as_a_missing_geojson_map_s_is(folder):
+    with pytest.raises(SumoNetworkError, match=r"nowhere\.net\.xml: no such SUMO network file$") as error:
         RoadMap.load(folder / "nowhere.net.xml")
+    assert isinstance(error.value, FileNotFoundError)
 
 
 @pytest.mark.parametrize("text, problem", [

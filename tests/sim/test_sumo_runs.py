@@ -1,7 +1,8 @@
-"""`coopdrive run` on SUMO networks. The follow scenario end to end on a network that netgenerate built at test time
-and that is laid in Sweden by its projection: the stack follows and passes, and where it says it is, in latitude and
-longitude, is on SUMO's lane by SUMO's own projection (sumolib's convertLonLat2XY), as are the leader's CAM positions.
-A network that cannot be a map, or no sumolib: one line, and nothing starts."""
+"""`coopdrive run` and `replay` on SUMO networks. The follow scenario end to end on a network that netgenerate built
+at test time and that is laid in Sweden by its projection: the stack follows and passes, and where it says it is, in
+latitude and longitude, is on SUMO's lane by SUMO's own projection (sumolib's convertLonLat2XY), as are the leader's
+CAM positions. Its recording replays on the same network, and says so in one line where the network is not. A
+network that cannot be a map, or no sumolib: one line, and nothing starts."""
 
 import json
 import subprocess
@@ -36,6 +37,10 @@ def run(tmp_path_factory):
                              str(recording), *FASTEST_LAYOUT], capture_output=True, text=True, timeout=600)
     assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
     return json.loads(result.stdout), recording, sumolib.net.readNet(str(network))
+
+
+def coopdrive(*args: str):
+    return subprocess.run([sys.executable, "-m", "coopdrive.cli", *args], capture_output=True, text=True, timeout=300)
 
 
 def on_the_lane_m(net, lat_deg: float, lon_deg: float) -> tuple[float, float]:
@@ -73,20 +78,36 @@ def test_the_leader_s_cam_positions_lie_on_sumo_s_lane_too(run):
     assert np.max(np.abs(offset_m)) < 0.5
 
 
+
+def test_the_run_s_geolocation_replays_over_its_recording_on_the_same_network(run, tmp_path):
+    _, recording, _ = run
+    result = coopdrive("replay", str(recording), "--service", "geolocation", "--out", str(tmp_path / "replayed.mcap"),
+                       "--json")
+    assert result.returncode == 0, result.stderr
+    assert json.loads(result.stdout)["counters"]["accepted_gnss_position"] > 0
+
+
+def test_replaying_the_run_where_its_network_is_not_says_so_in_one_line(run, tmp_path):
+    _, recording, _ = run
+    network = recording.parent / "astazero.net.xml"
+    network.rename(tmp_path / network.name)
+    try:
+        result = coopdrive("replay", str(recording), "--service", "control", "--out", str(tmp_path / "replayed.mcap"))
+    finally:
+        (tmp_path / network.name).rename(network)
+    assert result.returncode == 2
+    assert result.stderr == f"coopdrive: replay: {recording}: its map: {network}: no such SUMO network file\n"
+
+
 @pytest.fixture(scope="module")
 def folder(tmp_path_factory):
     return with_roads(tmp_path_factory.mktemp("sumo_refused"))
 
 
-def coopdrive_run(scenario):
-    return subprocess.run([sys.executable, "-m", "coopdrive.cli", "run", str(scenario)],
-                          capture_output=True, text=True, timeout=120)
-
-
 @pytest.mark.parametrize("map_text", ["roads/nowhere.net.xml", "roads/routes.rou.xml", "roads/footpaths.net.xml"],
                          ids=["missing", "routes", "footpaths"])
 def test_coopdrive_run_on_a_network_that_cannot_be_a_map_says_so_in_one_line_and_starts_nothing(folder, map_text):
-    result = coopdrive_run(scenario_file(folder, map_text, "bad.yaml"))
+    result = coopdrive("run", str(scenario_file(folder, map_text, "bad.yaml")))
     assert result.returncode == 2
     assert result.stderr.count("\n") == 1 and f"map: {(folder / map_text).resolve()}: " in result.stderr
     assert result.stdout == ""
