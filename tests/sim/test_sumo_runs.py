@@ -1,8 +1,8 @@
 """`coopdrive run` and `replay` on SUMO networks. The follow scenario end to end on a network that netgenerate built
 at test time and that is laid in Sweden by its projection: the stack follows and passes, and where it says it is, in
 latitude and longitude, is on SUMO's lane by SUMO's own projection (sumolib's convertLonLat2XY), as are the leader's
-CAM positions. Its recording replays on the same network, and says so in one line where the network is not. A
-network that cannot be a map, or no sumolib: one line, and nothing starts."""
+CAM positions, and Foxglove's channels draw them there. Its recording replays on the same network, and says so in
+one line where the network is not. A network that cannot be a map, or no sumolib: one line, and nothing starts."""
 
 import json
 import subprocess
@@ -16,6 +16,7 @@ from coopdrive.recording.reader import read_messages
 from tests.scenario_report import FASTEST_LAYOUT
 from tests.sumo_networks import (ASTAZERO_LAT_LON_DEG, follow_scenario, geo_referenced, scenario_file,
                                  straight_road, with_roads)
+from tests.visual.foxglove_mcap import foxglove_channels
 
 pytestmark = pytest.mark.whole_run
 
@@ -77,6 +78,19 @@ def test_the_leader_s_cam_positions_lie_on_sumo_s_lane_too(run):
                                        cam.reference_position.longitude_deg)[1] for cam in cams])
     assert np.max(np.abs(offset_m)) < 0.5
 
+
+
+def test_the_recording_draws_the_network_s_lanes_and_the_stack_on_them_for_foxglove(run):
+    _, recording, net = run
+    channels = foxglove_channels(recording)
+    # The lane map, drawn again every second for a viewer that joins late.
+    assert len(channels["foxglove/map"]) >= DURATION_S
+    for lanes in channels["foxglove/map"]:
+        assert sorted(entity.id for entity in lanes.entities) == [f"lane/{edge}_{index}" for edge in ("A0B0", "B0A0")
+                                                                  for index in range(2)]
+    fixes = channels["foxglove/ego/ego"]
+    assert fixes
+    assert max(abs(on_the_lane_m(net, fix.latitude, fix.longitude)[1]) for fix in fixes) < 0.5
 
 
 def test_the_run_s_geolocation_replays_over_its_recording_on_the_same_network(run, tmp_path):
