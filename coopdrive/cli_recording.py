@@ -129,12 +129,17 @@ def _replay(args) -> int:
     from coopdrive.recording.replay import ReplayError, TimeWindow, replay_service
     from coopdrive.recording.replay_counts import replay_warnings
     from coopdrive.recording.replay_diff import compare_outputs
+    from coopdrive.roadmap.sumo_network import SumoNetworkError
 
     try:
         window = None if args.from_s is None and args.to_s is None else TimeWindow(args.from_s or 0.0, args.to_s)
         result = replay_service(args.file, args.service, args.vehicle, args.out, args.config, args.set, window)
     except RecordingError as error:
         print(f"coopdrive: replay: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    except SumoNetworkError as error:
+        # A run on a SUMO network names its file: on another machine, or once moved, it is not there.
+        print(f"coopdrive: replay: {args.file}: its map: {error}", file=sys.stderr)
         return EXIT_USAGE
     except (ReplayError, KeyError) as error:
         print(f"coopdrive: {error.args[0] if error.args else error}", file=sys.stderr)

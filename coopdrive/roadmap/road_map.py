@@ -21,6 +21,7 @@ import pymap3d
 
 from coopdrive.geodesy import LocalTangentPlane
 from coopdrive.roadmap.lane import Lane, wrap_angle_rad
+from coopdrive.roadmap.sumo_network import names_sumo_network, read_sumo_network, sumo_map_name
 
 MAP_PACKAGE = "coopdrive.maps"
 MAP_SUFFIX = ".geojson"
@@ -66,12 +67,14 @@ def _inside_polygon(x_m: float, y_m: float, ring: tuple[tuple[float, float], ...
 
 class RoadMap:
     def __init__(self, origin: tuple[float, float, float], lanes: list[Lane], zones: dict[str, Zone] | None = None,
-                 name: str = "") -> None:
+                 name: str = "", successors: dict[str, tuple[str, ...]] | None = None) -> None:
         self.origin = origin
         self._plane = LocalTangentPlane(*origin)
         self.lanes = lanes
         self.zones = zones or {}
         self.name = name
+        # lane_id -> the lanes a vehicle may go on to from its end (a SUMO network's connections; GeoJSON has none).
+        self.successors = successors or {}
         ids = [lane.lane_id for lane in lanes]
         if len(set(ids)) != len(ids):
             raise ValueError(f"map {name!r} has duplicate lane_id values")
@@ -80,8 +83,12 @@ class RoadMap:
     # --- loading -------------------------------------------------------------------------------
     @classmethod
     def load(cls, path_or_name: str | Path) -> RoadMap:
-        """A file path, or a bare name ("a270") of a map shipped in coopdrive.maps."""
+        """A file path (GeoJSON, or a SUMO network: sumo_network.py), or a bare name ("a270") of a map shipped in
+        coopdrive.maps."""
         text_path = str(path_or_name)
+        if names_sumo_network(text_path):
+            origin, lanes, successors = read_sumo_network(text_path)
+            return cls(origin, lanes, name=sumo_map_name(text_path), successors=successors)
         if isinstance(path_or_name, Path) or "/" in text_path or text_path.endswith(MAP_SUFFIX):
             data = json.loads(Path(text_path).read_text())
             name = Path(text_path).stem

@@ -8,8 +8,9 @@ from pathlib import Path
 from typing import Any
 
 import yaml
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, model_validator
 
+from coopdrive.roadmap.sumo_network import SumoNetworkError, check_sumo_network, names_sumo_network
 from coopdrive.services.sim.channel_config import RadioChannelConfig
 from coopdrive.services.sim.fault_config import Fault
 from coopdrive.services.sim.profiles import PLANT_PERTURBATIONS, PlantPerturbation, VehicleProfile, plant_profile
@@ -24,6 +25,8 @@ GCDC_2016_FINAL = dt.datetime(2016, 5, 28, 10, 0, 0, tzinfo=dt.timezone.utc)
 _TAG_KEYS = ("type", "kind")
 
 
+# The validation context's key for the folder a scenario file's relative paths are from.
+BASE_DIR_CONTEXT = "base_dir"
 # The package that holds the scenario files coopdrive ships (scenarios/*.yaml).
 SCENARIO_PACKAGE = "coopdrive.scenarios"
 
@@ -121,6 +124,8 @@ class ScenarioConfig(_Strict):
     name: str = Field(min_length=1)
     description: str = ""
     mission: Mission = Mission.FOLLOW
+    # A shipped map's name, a GeoJSON file, or a SUMO network (.net.xml; a relative path is from the scenario file's
+    # folder, and the loaded scenario holds it absolute, for every process of the run).
     map: str = "a270"
     seed: int = Field(default=0, ge=0)
     duration_s: float = Field(gt=0)
@@ -145,6 +150,19 @@ class ScenarioConfig(_Strict):
             for vehicle in self.vehicles:
                 if vehicle.sensors is not None:
                     vehicle.sensors = ideal(vehicle.sensors)
+        return self
+
+    @model_validator(mode="after")
+    def _sumo_network_read(self, info: ValidationInfo) -> ScenarioConfig:
+        """A SUMO network is read here, so that a missing or unusable one stops the run before anything starts."""
+        if names_sumo_network(self.map):
+            base_dir = Path((info.context or {}).get(BASE_DIR_CONTEXT, "."))
+            path = (base_dir / Path(self.map).expanduser()).resolve()
+            try:
+                check_sumo_network(path)
+            except SumoNetworkError as error:
+                raise ValueError(f"map: {error}") from None
+            self.map = str(path)
         return self
 
     @model_validator(mode="after")
@@ -197,9 +215,10 @@ def _one_line(text: str) -> str:
     return " ".join(text.split())
 
 
-def parse_scenario(data: Any, source: str = "<scenario>") -> ScenarioConfig:
+def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None = None) -> ScenarioConfig:
+    """base_dir: the folder the file's relative paths (a SUMO network) are from; else the working directory."""
     try:
-        return ScenarioConfig.model_validate(data)
+        return ScenarioConfig.model_validate(data, context={BASE_DIR_CONTEXT: str(base_dir or ".")})
     except ValidationError as error:
         first = error.errors()[0]
         path = _key_path(tuple(first["loc"]), data)
@@ -222,4 +241,4 @@ def load_scenario(path: str | Path) -> ScenarioConfig:
         mark = getattr(error, "problem_mark", None)
         where = f"line {mark.line + 1}" if mark is not None else "?"
         raise ScenarioError(_one_line(f"{path}: invalid YAML at {where}: {getattr(error, 'problem', error)}")) from None
-    return parse_scenario(data, str(path))
+    return parse_scenario(data, str(path), path.parent)
