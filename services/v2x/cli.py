@@ -32,10 +32,13 @@ def add_commands(commands) -> None:
     send.add_argument("--address", default="127.0.0.1")
     send.add_argument("--port", type=int, default=4401)
     send.set_defaults(handler=_send)
-    replay = v2x_commands.add_parser("replay", help="send a capture's GN packets to a radio-box UDP port at their pace")
+    replay = v2x_commands.add_parser("replay", help="send a capture's GN packets at their pace to a radio-box UDP port "
+                                                    "or onto a network interface")
     replay.add_argument("file", type=Path)
     replay.add_argument("--address", default="127.0.0.1")
     replay.add_argument("--port", type=int, default=4401, help="the v2x service's listen port (link.listen_port)")
+    replay.add_argument("--interface", help="send onto this network interface instead (an OCB interface: Ethernet "
+                                            "frames of ethertype 0x8947 from each sender's MAC; needs CAP_NET_RAW)")
     replay.add_argument("--rate", type=float, default=1.0, help="pace: 2.0 sends twice as fast as recorded")
     replay.set_defaults(handler=_replay)
 
@@ -76,15 +79,18 @@ def _send(args: argparse.Namespace) -> int:
 
 
 def _replay(args: argparse.Namespace) -> int:
-    from coopdrive.services.v2x.capture_player import ReplayError, replay_capture
+    from coopdrive.runtime.service import HardwareUnavailable
+    from coopdrive.services.v2x.capture_player import RawSink, ReplayError, UdpSink, replay_capture
 
     try:
-        summary = replay_capture(args.file, (args.address, args.port), args.rate)
-    except (OSError, ReplayError) as error:
+        sink = RawSink(args.interface) if args.interface else UdpSink((args.address, args.port))
+        summary = replay_capture(args.file, sink, args.rate)
+    except (OSError, ReplayError, HardwareUnavailable) as error:
         print(f"coopdrive: {error}", file=sys.stderr)
         return EXIT_USAGE
     skipped = ", ".join(f"{count} {why}" for why, count in sorted(summary.skipped.items()))
-    print(f"sent {summary.sent} GN packets to {args.address}:{args.port} in {summary.duration_s:.2f} s"
+    target = f"onto {args.interface}" if args.interface else f"to {args.address}:{args.port}"
+    print(f"sent {summary.sent} GN packets {target} in {summary.duration_s:.2f} s"
           + (f"; skipped frames: {skipped}" if skipped else "")
           + (f"; {summary.send_errors} send errors" if summary.send_errors else ""))
     return EXIT_OK if summary.send_errors == 0 else EXIT_FAILED
