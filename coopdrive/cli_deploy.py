@@ -79,17 +79,36 @@ def add_router_command(commands) -> None:
     router.add_argument("--listen", action="append", default=[], metavar="ENDPOINT",
                         help="e.g. tcp/0.0.0.0:7447 (default: the config's, else tcp/0.0.0.0:7447)")
     router.add_argument("--config", type=Path, help="zenohd's JSON5 config, e.g. deploy/config/zenohd.json5")
+    router.add_argument("--count-denials", action="store_true",
+                        help="count the messages the access control refuses and print the count when it changes "
+                             "(traces every access decision: some CPU)")
     router.set_defaults(handler=_router)
 
 
 def _router(args) -> int:
     import zenoh
 
-    from coopdrive.runtime.config import ConfigError
+    from coopdrive.bus.router_denials import RouterDenials
 
+    denials = RouterDenials(os.environ.get(ZENOH_LOG_VARIABLE)) if args.count_denials else None
+    if denials is not None:
+        denials.start()
+        os.environ[ZENOH_LOG_VARIABLE] = denials.log_filter
     if os.environ.get(ZENOH_LOG_VARIABLE):
         # Zenoh's own log (e.g. the access control's decisions at trace level), on stdout, only when asked for.
         zenoh.init_log_from_env_or("error")
+    try:
+        return _serve_router(args)
+    finally:
+        if denials is not None:
+            denials.close()
+
+
+def _serve_router(args) -> int:
+    import zenoh
+
+    from coopdrive.runtime.config import ConfigError
+
     try:
         config = zenoh.Config.from_file(str(args.config)) if args.config else zenoh.Config()
         config.insert_json5("mode", '"router"')

@@ -18,6 +18,7 @@ from typing import Any, Callable, NamedTuple
 import zenoh
 from google.protobuf.message import DecodeError, Message
 
+from coopdrive.bus.bus_mode import bus_mode
 from coopdrive.bus.credentials_error import BusCredentialsError
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.bus.local_delivery import LocalDelivery
@@ -71,7 +72,10 @@ class Envelope(NamedTuple):
 class Bus:
     def __init__(self, config: BusConfig, layout: KeyLayout | None = None):
         self.layout = layout or KeyLayout()
-        self._session = _open(config.to_zenoh())
+        zenoh_config = config.to_zenoh()
+        # "mtls", "plain-loopback" or "plain" (bus_mode.py): what the diagnostics and the gateway's /health tell.
+        self.mode = bus_mode(zenoh_config)
+        self._session = _open(zenoh_config)
         self._owns_session = True
         self._local = LocalDelivery()
         # Where Zenoh takes a put and brings a sample: other sessions only, unless the baseline asks for Zenoh here too.
@@ -97,6 +101,7 @@ class Bus:
         a socket. Its close() undeclares only its own entities; the session closes with this Bus."""
         shared = object.__new__(Bus)
         shared.layout = self.layout
+        shared.mode = self.mode
         shared._session = self._session
         shared._owns_session = False
         shared._local = self._local

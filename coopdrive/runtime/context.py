@@ -31,6 +31,7 @@ class RunnerContext:
         self.vehicle_id = vehicle_id
         self.log = log
         self.bus = bus
+        self.bus_mode = bus.mode
         self._clock = clock
         self._steps = steps
         self._ledger = ledger

@@ -11,6 +11,7 @@ from typing import Callable
 from google.protobuf.message import Message
 
 from coopdrive.bus import Bus
+from coopdrive.bus.bus_mode import MTLS
 from coopdrive.runtime.service import Service
 from coopdrive.runtime.timers import TriggerSet
 from coopdrive.v1 import diagnostics_pb2
@@ -50,11 +51,13 @@ class RunnerDiagnostics:
 
     def message(self, triggers: TriggerSet) -> diagnostics_pb2.Diagnostics:
         """The service's counters, the bus's errors, the triggers' overruns and the worker's CPU."""
-        message = diagnostics_pb2.Diagnostics(level=diagnostics_pb2.HEALTH_LEVEL_OK)
+        # How its session reaches the others: "bus mtls" (authenticated), "bus plain-loopback" or "bus plain".
+        message = diagnostics_pb2.Diagnostics(level=diagnostics_pb2.HEALTH_LEVEL_OK, message=f"bus {self._bus.mode}")
         for name, value in self.service.counters.items():
             message.counters[name] = value
         message.counters["bus_decode_errors"] = self._bus.decode_errors
         message.counters["bus_callback_errors"] = self._bus.callback_errors
+        message.counters["bus_authenticated"] = 1.0 if self._bus.mode == MTLS else 0.0
         for name, overruns in triggers.overruns().items():
             message.counters[f"overruns_{name}"] = overruns
         # CPU the service's own worker thread has used (handlers and triggers): where a run's time goes.

@@ -28,6 +28,8 @@ class ServiceContext(Protocol):
     # False under replay: a service's hardware inputs (serial ports, CAN interfaces, the radio box) then come
     # from the topics its driver side published when the drive was recorded (gnss/nmea, can/vehicle, v2x/rx).
     opens_hardware: bool
+    # How the service's bus session reaches the others: "mtls", "plain-loopback" or "plain" (bus/bus_mode.py).
+    bus_mode: str
 
     def now_s(self) -> float: ...
 

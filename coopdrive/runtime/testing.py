@@ -39,6 +39,7 @@ class MemoryContext:
         self.log = log or logging.getLogger(f"coopdrive.memory.{service_name}")
         self.clock = clock if clock is not None else SimulationClock()
         self.opens_hardware = opens_hardware
+        self.bus_mode = "none"  # no bus at all
         self.layout = KeyLayout()
         self.triggers = TriggerSet()
         self.handlers: dict[str, list[tuple[str, Callable[[Envelope], None]]]] = defaultdict(list)

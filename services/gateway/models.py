@@ -52,6 +52,8 @@ class HealthResponse(BaseModel):
     services: dict[str, ServiceHealth]
     v2x_stations: list[StationReception] = Field(
         default_factory=list, description="Each remote station's reception, from the latest v2x/status.")
+    bus_mode: str = Field(default="", description="How the gateway's bus session reaches the others: 'mtls' "
+                          "(authenticated by its certificate), 'plain-loopback' (this computer only) or 'plain'.")
 
 
 class MessageEntry(BaseModel):

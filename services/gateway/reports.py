@@ -44,7 +44,7 @@ def message_age_s(clock_s: float | None, sent_time_s: float | None) -> float | N
 
 def health_report(snapshot: StoreSnapshot, vehicle_id: str, topics_by_service: dict[str, list[str]],
                   required: list[str], silent_after_s: float,
-                  v2x_stations: list[StationReception] | None = None) -> HealthResponse:
+                  v2x_stations: list[StationReception] | None = None, bus_mode: str = "") -> HealthResponse:
     services: dict[str, ServiceHealth] = {}
     for service, activity in snapshot.services.items():
         age_s = message_age_s(snapshot.clock_s, activity.last_sent_time_s)
@@ -66,7 +66,7 @@ def health_report(snapshot: StoreSnapshot, vehicle_id: str, topics_by_service: d
     else:
         overall = HealthStatus.DOWN
     return HealthResponse(status=overall, vehicle_id=vehicle_id, clock_s=snapshot.clock_s, services=services,
-                          v2x_stations=v2x_stations or [])
+                          v2x_stations=v2x_stations or [], bus_mode=bus_mode)
 
 
 def message_entry(latest: LatestMessage | None, clock_s: float | None) -> MessageEntry | None:

@@ -128,7 +128,7 @@ class GatewayService(Service):
         config: GatewayConfig = self.config
         snapshot = self._snapshot()
         return health_report(snapshot, self.vehicle_id, self.topics, config.required_services,
-                             config.silent_after_s, v2x_stations=v2x_reception(snapshot))
+                             config.silent_after_s, v2x_stations=v2x_reception(snapshot), bus_mode=self.ctx.bus_mode)
 
     def state(self) -> StateResponse:
         return state_report(self._snapshot(), self.vehicle_id)

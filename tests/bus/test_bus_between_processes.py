@@ -54,7 +54,8 @@ def test_a_running_service_shows_a_liveliness_token_and_answers_its_info_query(h
     assert '"period_s":0.05' in info.config_json.replace(" ", "")
 
 
-def test_a_malformed_payload_is_counted_and_the_service_keeps_running(hub, endpoint, spawn):
+def test_a_malformed_payload_is_counted_and_the_service_keeps_running_on_its_plain_loopback_session(
+        hub, endpoint, spawn):
     diagnostics: queue.Queue = queue.Queue()
     hub.subscribe("ego", "diagnostics/planner", diagnostics.put)
     spawn("service", "planner", "--vehicle", "ego", "--connect", endpoint)
@@ -64,6 +65,7 @@ def test_a_malformed_payload_is_counted_and_the_service_keeps_running(hub, endpo
         garbage.put(b"\xff\xff\xff\x0f not a protobuf")
     report = wait_for(diagnostics, lambda e: e.message.counters["bus_decode_errors"] >= 3)
     assert report.message.header.sender == "planner"
+    assert (report.message.message, report.message.counters["bus_authenticated"]) == ("bus plain-loopback", 0.0)
     # each time trigger's missed periods are in the diagnostics too
     assert "overruns__publish_diagnostics" in report.message.counters
 

@@ -109,3 +109,10 @@ def test_the_state_carries_each_message_as_proto_json_with_proto_field_names():
     assert state.scene.message["forward_mio_id"] == 7
     assert state.scene.message["has_mio"] is False  # defaults are spelled out, not omitted
     assert state.planner_state is None
+
+
+def test_health_shows_the_bus_mode_it_is_given():
+    store = StateStore(["scene"], rate_window_s=5.0)
+    health = health_report(store.snapshot(1.0), "ego", {"scene": ["scene"]}, ["scene"], SILENT_AFTER_S,
+                           bus_mode="plain-loopback")
+    assert health.bus_mode == "plain-loopback"
