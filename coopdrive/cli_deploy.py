@@ -42,6 +42,7 @@ def wait_for_stop_signal() -> None:
 def add_health_command(commands) -> None:
     health = commands.add_parser("health", help="exit 0 when a service is alive on the bus (container healthcheck)")
     health.add_argument("--connect", action="append", default=[])
+    health.add_argument("--zenoh-config", type=Path, help="Zenoh JSON5 config (the vehicle's bus credentials)")
     health.add_argument("--vehicle", default="ego")
     health.add_argument("--service", action="append", required=True,
                         help="repeat for several (a group's): all must be alive")
@@ -52,7 +53,8 @@ def add_health_command(commands) -> None:
 def _health(args) -> int:
     from coopdrive.bus import Bus, BusConfig
 
-    bus = Bus(BusConfig(connect=args.connect, listen=[]))
+    bus = Bus(BusConfig(connect=args.connect, listen=[],
+                        zenoh_config_file=str(args.zenoh_config) if args.zenoh_config else None))
     wanted = {service: bus.layout.liveliness(args.vehicle, service) for service in args.service}
     # A session just opened may be answered before it has learned the bus's tokens (an empty or partial reply
     # at once): ask again until every one is there or the time is up.
@@ -109,6 +111,10 @@ def _serve_router(args) -> int:
 
     from coopdrive.runtime.config import ConfigError
 
+    from coopdrive.bus.credentials_error import REMEDY
+
+    if args.config and not args.config.is_file():
+        raise ConfigError(f"router --config {args.config}: no such file (the vehicle's router: {REMEDY})")
     try:
         config = zenoh.Config.from_file(str(args.config)) if args.config else zenoh.Config()
         config.insert_json5("mode", '"router"')
@@ -138,6 +144,8 @@ def add_foxglove_command(commands) -> None:
     fox.add_argument("--host", default="0.0.0.0", help="address to serve on")
     fox.add_argument("--map", metavar="NAME", help="lane map to draw (default: the one geolocation reports)")
     fox.add_argument("--vehicle", default="ego", help="vehicle id of the bridge's liveliness token")
+    fox.add_argument("--zenoh-config", type=Path, help="Zenoh JSON5 config (an observer's bus credentials): then "
+                                                       "the bridge serves --vehicle's topics only")
     fox.set_defaults(handler=_foxglove)
 
 
@@ -151,9 +159,9 @@ def _foxglove(args) -> int:
         road_map = RoadMap.load(args.map) if args.map else None
     except (OSError, ValueError) as error:
         raise ConfigError(f"foxglove --map {args.map}: {error}") from None
-    bus = Bus(BusConfig(connect=args.connect))
+    bus = Bus(BusConfig(connect=args.connect, zenoh_config_file=str(args.zenoh_config) if args.zenoh_config else None))
     try:
-        bridge = FoxgloveBridge(bus, args.port, args.host, road_map)
+        bridge = FoxgloveBridge(bus, args.port, args.host, road_map, args.vehicle if args.zenoh_config else "*")
     except RuntimeError as error:
         bus.close()
         print(f"coopdrive: foxglove: cannot serve on {args.host}:{args.port}: {error}", file=sys.stderr)

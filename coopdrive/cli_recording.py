@@ -22,7 +22,10 @@ def add_record_command(commands) -> None:
     record = commands.add_parser("record", help="record a live bus to MCAP (with every service's config) until Ctrl-C")
     record.add_argument("file", help="FILE.mcap, or a folder (ending in /) for drive-<UTC time>.mcap")
     record.add_argument("--connect", action="append", default=[])
-    record.add_argument("--key", default="coopdrive/**")
+    record.add_argument("--key", help="what to record (default: coopdrive/** or, with --vehicle, its topics)")
+    record.add_argument("--vehicle", help="only this vehicle's topics and services' configs (what its bus "
+                                          "credentials may read)")
+    record.add_argument("--zenoh-config", type=Path, help="Zenoh JSON5 config, e.g. an observer's bus credentials")
     record.add_argument("--duration", type=float, metavar="SECONDS", help="stop after this long")
     record.set_defaults(handler=_record)
 
@@ -30,7 +33,9 @@ def add_record_command(commands) -> None:
 def _record(args) -> int:
     from coopdrive.launch.live_record import record_live
 
-    recording = record_live(args.file, args.connect, args.key, args.duration)
+    key = args.key or (f"coopdrive/{args.vehicle}/**" if args.vehicle else "coopdrive/**")
+    recording = record_live(args.file, args.connect, key, args.duration,
+                            str(args.zenoh_config) if args.zenoh_config else None, args.vehicle or "*")
     print(f"recorded {recording.messages} messages to {recording.path}; configs of: "
           f"{', '.join(recording.services) or 'no service'}")
     if recording.failure is not None:

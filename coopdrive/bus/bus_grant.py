@@ -84,15 +84,17 @@ def stands_in_for_the_world(entry: ServiceEntry) -> tuple[str, ...]:
 
 
 def observer_grant(name: str, vehicle_id: str, layout: KeyLayout | None = None) -> BusGrant:
-    """An observer (a team laptop, a recorder): subscribes to every topic of the vehicle and asks the services'
-    info; puts nothing, declares nothing others would see."""
+    """An observer (a team laptop, a recorder, the Foxglove bridge): subscribes to every topic of the vehicle and asks
+    the services' info; puts nothing, declares nothing but its presence (a liveliness token of its name, which
+    healthchecks look for)."""
     layout = layout or KeyLayout()
     checked_name("vehicle id", vehicle_id)
     taken = {entry.name for entry in SERVICES} | {ROUTER_NAME, AUTHORITY_NAME}
     if checked_name("observer name", name) in taken:
         raise ValueError(f"observer name {name!r} is taken (by a service or the bus itself): "
                          f"choose another than {', '.join(sorted(taken))}")
-    return BusGrant(subject=name, puts=(), subscriptions=(layout.all_topics(vehicle_id),), tokens=(), queryables=(),
+    return BusGrant(subject=name, puts=(), subscriptions=(layout.all_topics(vehicle_id),),
+                    tokens=(layout.liveliness(vehicle_id, name),), queryables=(),
                     queries=(layout.service_info(vehicle_id, "*"),))
 
 

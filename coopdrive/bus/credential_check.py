@@ -16,7 +16,8 @@ from cryptography import x509
 from cryptography.exceptions import InvalidSignature
 from cryptography.hazmat.primitives.asymmetric import ec
 
-REMEDY = "make the vehicle's bus credentials with `coopdrive pki bus DIR --vehicle ID`"
+from coopdrive.bus.credentials_error import REMEDY
+
 
 
 def credentials_problem(config: zenoh.Config, now: datetime.datetime | None = None) -> str | None:

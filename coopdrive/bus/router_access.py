@@ -7,7 +7,9 @@ Two things every holder of the vehicle's CA gets, being needed by the runtime an
 - egress subscriber declarations under the vehicle: a publisher learns whether anyone hears it (coopdrive.bus.session
   puts only then);
 - presence: liveliness tokens of the bus (watching them, asking for them), as the gateway, actuation and
-  `coopdrive health` do.
+  `coopdrive health` do;
+- being asked for its info by a query on every service's (`_info/*`, as the recorder asks): the query carries nothing,
+  and only what a grant's queryables answer comes back.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from coopdrive.bus.keys import KeyLayout
 
 HEARS_SUBSCRIBERS = "hears who subscribes"
 SEES_PRESENCE = "sees who is alive"
+IS_ASKED_WITH_OTHERS = "is asked for its info with the others"
 
 
 def access_control(grants: list[BusGrant], vehicle_id: str, layout: KeyLayout | None = None) -> dict:
@@ -27,6 +30,7 @@ def access_control(grants: list[BusGrant], vehicle_id: str, layout: KeyLayout | 
         _rule(SEES_PRESENCE, "ingress", ["declare_liveliness_subscriber", "liveliness_query"],
               (layout.all_liveliness(),)),
         _rule(f"{SEES_PRESENCE} (tokens)", "egress", ["liveliness_token"], (layout.all_liveliness(),)),
+        _rule(IS_ASKED_WITH_OTHERS, "egress", ["query"], (layout.service_info(vehicle_id, "*"),)),
     ]
     subjects, policies = [], []
     for grant in grants:
@@ -34,7 +38,7 @@ def access_control(grants: list[BusGrant], vehicle_id: str, layout: KeyLayout | 
         rules += own
         subjects.append({"id": grant.subject, "cert_common_names": [grant.subject]})
         policies.append({"id": grant.subject, "subjects": [grant.subject],
-                         "rules": [HEARS_SUBSCRIBERS, SEES_PRESENCE, f"{SEES_PRESENCE} (tokens)",
+                         "rules": [HEARS_SUBSCRIBERS, SEES_PRESENCE, f"{SEES_PRESENCE} (tokens)", IS_ASKED_WITH_OTHERS,
                                    *(rule["id"] for rule in own)]})
     return {"enabled": True, "default_permission": "deny", "rules": rules, "subjects": subjects,
             "policies": policies}

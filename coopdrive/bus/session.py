@@ -18,8 +18,8 @@ from typing import Any, Callable, NamedTuple
 import zenoh
 from google.protobuf.message import DecodeError, Message
 
-from coopdrive.bus.bus_mode import bus_mode
-from coopdrive.bus.credentials_error import BusCredentialsError
+from coopdrive.bus.bus_mode import MTLS, bus_mode
+from coopdrive.bus.credentials_error import REMEDY, REQUIRED_MODE_VARIABLE, BusCredentialsError
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.bus.local_delivery import LocalDelivery
 from coopdrive.bus.remote_matching import RemoteMatching
@@ -45,6 +45,8 @@ class BusConfig:
     zenoh_config_file: str | None = None
 
     def to_zenoh(self) -> zenoh.Config:
+        if self.zenoh_config_file and not os.path.isfile(self.zenoh_config_file):
+            raise BusCredentialsError(f"no bus config {self.zenoh_config_file}: {REMEDY}")
         config = zenoh.Config.from_file(self.zenoh_config_file) if self.zenoh_config_file else zenoh.Config()
         config.insert_json5("scouting/multicast/enabled", "false")
         if json.loads(config.get_json("mode")) == "client":
@@ -75,6 +77,7 @@ class Bus:
         zenoh_config = config.to_zenoh()
         # "mtls", "plain-loopback" or "plain" (bus_mode.py): what the diagnostics and the gateway's /health tell.
         self.mode = bus_mode(zenoh_config)
+        _check_required_mode(self.mode)
         self._session = _open(zenoh_config)
         self._owns_session = True
         self._local = LocalDelivery()
@@ -311,6 +314,14 @@ def _open(config: zenoh.Config) -> zenoh.Session:
         if problem is None:
             raise
         raise BusCredentialsError(problem) from None
+
+
+def _check_required_mode(mode: str) -> None:
+    """BusCredentialsError when the process must be on an authenticated bus (REQUIRED_MODE_VARIABLE) and is not."""
+    required = os.environ.get(REQUIRED_MODE_VARIABLE)
+    if required == MTLS and mode != MTLS:
+        raise BusCredentialsError(f"this vehicle's bus takes only authenticated sessions ({REQUIRED_MODE_VARIABLE}="
+                                  f"{required}) and this one has no credentials (--zenoh-config): {REMEDY}")
 
 
 def _direct(callback: Callable[[Any], None]) -> zenoh.handlers.Callback:

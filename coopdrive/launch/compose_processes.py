@@ -1,6 +1,6 @@
 """A compose profile's services as local processes, each with exactly the command, config and environment compose
 would give its container: the image's entrypoint (`coopdrive`) is this Python's `-m coopdrive.cli`, a mounted
-folder is its place in the work tree, and the zenohd image is `coopdrive router` with zenohd's arguments.
+folder is its place in the work tree (or the host folder a variable names), and the zenohd image is `coopdrive router` with zenohd's arguments.
 
 `make desk` runs the desk profile this way without Docker (`python -m coopdrive.launch.compose_processes`);
 tests/foundation/test_compose_processes.py runs it and checks every healthcheck, the gateway's /health, the
@@ -98,12 +98,13 @@ def compose_processes(profiles: list[str], environment: Mapping[str, str],
 
 
 def _mounts(name: str, volumes: list[str], root: Path) -> dict[str, Path]:
-    """Container path -> host folder, for the bind mounts of the work tree."""
+    """Container path -> host folder, for the bind mounts of the work tree and of absolute host folders (the bus
+    credentials a test made)."""
     mounts = {}
     for volume in volumes:
         host, _, rest = volume.partition(":")
         container = rest.split(":")[0]
-        if host.startswith("."):
+        if host.startswith((".", "/")):
             path = (root / host).resolve()
             if not path.exists():
                 raise ComposeError(f"{name}: mounts {host}, which is not in {root}")

@@ -39,16 +39,18 @@ class LiveRecording:
 
 
 def record_live(path: str | Path, connect: list[str], key_expr: str = "coopdrive/**",
-                duration_s: float | None = None) -> LiveRecording:
-    """Records until a signal, the duration, or a file that cannot be written any more."""
+                duration_s: float | None = None, zenoh_config: str | None = None,
+                vehicle_id: str = "*") -> LiveRecording:
+    """Records until a signal, the duration, or a file that cannot be written any more. `zenoh_config`: the
+    recorder's Zenoh config (a vehicle's bus credentials); `vehicle_id`: whose services' configs it asks."""
     stop = threading.Event()
     if threading.current_thread() is threading.main_thread():
         for signum in (signal.SIGINT, signal.SIGTERM):
             signal.signal(signum, lambda *_: stop.set())
     path = recording_path(path)
-    bus = Bus(BusConfig(connect=connect))
+    bus = Bus(BusConfig(connect=connect, zenoh_config_file=zenoh_config))
     recorder = McapRecorder(path, chunk_bytes=LIVE_CHUNK_BYTES, on_failure=lambda _: stop.set())
-    configs = ServiceConfigCollector(bus, recorder.learn_config)
+    configs = ServiceConfigCollector(bus, recorder.learn_config, vehicle_id)
 
     def on_message(key: str, message) -> None:
         if is_recorded(key):

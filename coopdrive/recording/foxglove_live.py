@@ -24,16 +24,18 @@ SERVER_NAME = "coopdrive"
 
 
 class FoxgloveBridge:
-    def __init__(self, bus: Bus, port: int = 8765, host: str = "0.0.0.0", road_map: RoadMap | None = None):
-        """port 0: any free port (see .port)."""
+    def __init__(self, bus: Bus, port: int = 8765, host: str = "0.0.0.0", road_map: RoadMap | None = None,
+                 vehicle_id: str = "*"):
+        """port 0: any free port (see .port). `vehicle_id`: whose topics it serves ("*": every vehicle's)."""
         self._bus = bus
         self._context = foxglove.Context()
         self._server = foxglove.start_server(name=SERVER_NAME, host=host, port=port, context=self._context)
         self._channels: dict[str, foxglove.Channel] = {}
         self._lock = threading.Lock()
         self._visuals = VisualChannels(self._log, road_map)
-        self._configs = None if road_map is not None else ServiceConfigCollector(bus, self._learn_config)
-        bus.subscribe_key(bus.layout.all_topics(), self._on_bus)
+        self._configs = None if road_map is not None else ServiceConfigCollector(
+            bus, self._learn_config, vehicle_id)
+        bus.subscribe_key(bus.layout.all_topics(vehicle_id), self._on_bus)
         if self._configs is not None:
             self._configs.start()
 

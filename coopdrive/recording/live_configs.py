@@ -17,9 +17,11 @@ QUERY_TIMEOUT_S = 1.0
 
 
 class ServiceConfigCollector:
-    def __init__(self, bus: Bus, on_config: Callable[[str, str], None] | None = None):
-        """on_config(participant, config JSON): called for each config first seen or changed."""
+    def __init__(self, bus: Bus, on_config: Callable[[str, str], None] | None = None, vehicle_id: str = "*"):
+        """on_config(participant, config JSON): called for each config first seen or changed. `vehicle_id`: whose
+        services are asked ("*": every vehicle's; a vehicle's bus credentials may ask only their own)."""
         self._bus = bus
+        self._vehicle_id = vehicle_id
         self._on_config = on_config
         self._lock = threading.Lock()
         self._configs: dict[str, str] = {}
@@ -40,7 +42,7 @@ class ServiceConfigCollector:
             return dict(self._configs)
 
     def collect(self) -> None:
-        pattern = self._bus.layout.service_info("*", "*")
+        pattern = self._bus.layout.service_info(self._vehicle_id, "*")
         for info in self._bus.query(pattern, diagnostics_pb2.ServiceInfo, timeout_s=QUERY_TIMEOUT_S):
             if info.service and info.vehicle_id and info.config_json:
                 participant = f"{info.vehicle_id}/{info.service}"

@@ -53,9 +53,10 @@ def test_the_simulator_gets_no_certificate_since_there_is_no_world_on_a_car():
     assert "sim" not in [grant.subject for grant in bus_grants("ego")]
 
 
-def test_an_observer_only_subscribes_and_asks_the_services_info():
+def test_an_observer_only_subscribes_asks_the_services_info_and_shows_its_presence():
     grant = observer_grant("laptop", "ego")
-    assert (grant.puts, grant.tokens, grant.queryables) == ((), (), ())
+    assert (grant.puts, grant.queryables) == ((), ())
+    assert grant.tokens == ("coopdrive/ego/_alive/laptop",)
     assert grant.subscriptions == ("coopdrive/ego/**",)
     assert grant.queries == ("coopdrive/ego/_info/*",)
 

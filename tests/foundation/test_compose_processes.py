@@ -58,10 +58,12 @@ def healthchecks_failing(processes) -> list[str]:
     return failing
 
 
-def test_the_desk_profile_runs_the_simulator_one_stack_the_gateway_and_the_foxglove_bridge(desk_environment):
+def test_the_desk_profile_runs_the_simulator_one_stack_the_gateway_and_the_foxglove_bridge(desk_environment,
+                                                                                          tmp_path):
     names = [process.name for process in compose_processes(["desk"], desk_environment)]
-    assert names == ["zenohd", "desk-sim", "desk-stack", "desk-gateway", "desk-foxglove"]
-    vehicle = [process.name for process in compose_processes(["vehicle"], desk_environment)]
+    assert names == ["desk-zenohd", "desk-sim", "desk-stack", "desk-gateway", "desk-foxglove"]
+    on_the_vehicle = {**desk_environment, "COOPDRIVE_BUS_CREDENTIALS": str(tmp_path)}  # the folder must exist
+    vehicle = [process.name for process in compose_processes(["vehicle"], on_the_vehicle)]
     assert "desk-sim" not in vehicle and {"geolocation", "actuation", "gateway", "foxglove"} <= set(vehicle)
 
 

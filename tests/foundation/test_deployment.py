@@ -20,12 +20,49 @@ def compose_services() -> dict:
     return {name: spec for name, spec in services.items() if spec.get("profiles", ["vehicle"]) == ["vehicle"]}
 
 
-def test_the_vehicle_profile_is_the_default_and_the_router_serves_every_profile():
+def test_the_vehicle_profile_is_the_default_and_each_profile_has_its_router():
     assert "COMPOSE_PROFILES=vehicle" in (ROOT / ".env").read_text().splitlines()
     services = yaml.safe_load((ROOT / "docker-compose.yml").read_text())["services"]
-    assert "profiles" not in services["zenohd"]
+    assert services["zenohd"]["profiles"] == ["vehicle"]
     assert {name for name, spec in services.items() if spec.get("profiles") == ["desk"]} == \
-        {"desk-sim", "desk-stack", "desk-gateway", "desk-foxglove"}
+        {"desk-zenohd", "desk-sim", "desk-stack", "desk-gateway", "desk-foxglove"}
+
+
+def test_on_the_vehicle_the_router_takes_only_mutual_tls_with_the_generated_rules_and_counts_its_refusals():
+    router = compose_services()["zenohd"]
+    command = router["command"]
+    assert command[:3] == ["router", "--config", "/credentials/router/zenohd.json5"]
+    assert command[command.index("--listen") + 1].endswith(":-tls/0.0.0.0:7447}") and "--count-denials" in command
+    assert router["volumes"] == ["${COOPDRIVE_BUS_CREDENTIALS:-./credentials}:/credentials:ro"]
+
+
+def test_on_the_vehicle_every_process_connects_with_its_own_credentials_mounted_read_only():
+    for name, spec in compose_services().items():
+        if name == "zenohd":
+            continue
+        holder = {"record": "recorder"}.get(name, name)
+        own = f"/credentials/{holder}/zenoh.json5"
+        assert "--connect" not in spec["command"] and spec["command"][spec["command"].index("--zenoh-config") + 1] \
+            == own, name
+        assert "${COOPDRIVE_BUS_CREDENTIALS:-./credentials}:/credentials:ro" in spec["volumes"], name
+        assert spec["environment"]["COOPDRIVE_BUS_SECURITY"] == "mtls", name
+        if "healthcheck" in spec and not spec["healthcheck"].get("disable"):
+            assert own in spec["healthcheck"]["test"], name
+
+
+def test_on_the_desk_the_bus_is_plain_tcp_on_loopback_only():
+    services = yaml.safe_load((ROOT / "docker-compose.yml").read_text())["services"]
+    assert services["desk-zenohd"]["command"][-1] == "${COOPDRIVE_ZENOH_LISTEN:-tcp/127.0.0.1:7447}"
+    assert '"tcp/127.0.0.1:7447"' in (ROOT / "deploy" / "config" / "zenohd.json5").read_text()
+    for name, spec in services.items():
+        if spec.get("profiles") == ["desk"] and name != "desk-zenohd":
+            assert "COOPDRIVE_BUS_SECURITY" not in spec["environment"], name
+
+
+def test_the_bus_credentials_never_enter_the_image():
+    assert "credentials/" in (ROOT / ".dockerignore").read_text().splitlines()
+    copied = [line.split()[1:-1] for line in (ROOT / "Dockerfile").read_text().splitlines() if line.startswith("COPY")]
+    assert not any("credentials" in source or source == "." for sources in copied for source in sources)
 
 
 def test_on_the_vehicle_a_service_without_its_device_waits_for_it_instead_of_restarting():
@@ -46,7 +83,7 @@ def test_compose_records_the_bus_to_a_mounted_folder_only_when_the_record_profil
 def test_every_compose_service_runs_a_real_coopdrive_service():
     for name, spec in compose_services().items():
         if name == "zenohd":
-            assert spec["image"].startswith("eclipse/zenoh")
+            assert spec["image"].startswith("coopdrive") and spec["command"][0] == "router"
             continue
         command = spec["command"]
         if name == "foxglove":

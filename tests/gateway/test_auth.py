@@ -63,10 +63,19 @@ def test_the_example_gateway_config_is_valid():
     assert {entry.role for entry in config.tokens.values()} == {Role.OPERATOR, Role.OBSERVER}
 
 
-def test_the_example_zenoh_config_with_tls_and_access_control_parses():
+def test_the_example_zenoh_config_is_what_the_pki_bus_command_writes_for_the_vehicle_profile(tmp_path):
+    import subprocess
+    import sys
+
     import zenoh
 
     example = Path(__file__).resolve().parents[2] / "services" / "gateway" / "examples" / "zenoh-secure.json5"
+    made = subprocess.run([sys.executable, "-m", "coopdrive.cli", "pki", "bus", str(tmp_path / "credentials"),
+                           "--vehicle", "ego", "--observer", "foxglove", "--observer", "recorder",
+                           "--mounted-at", "/credentials"], capture_output=True, text=True, timeout=120)
+    assert made.returncode == 0, made.stderr
+    written = (tmp_path / "credentials" / "router" / "zenohd.json5").read_text()
+    assert example.read_text().split("\n", 3)[3] == written
     config = zenoh.Config.from_file(str(example))
     assert config.get_json("access_control/default_permission") == '"deny"'
     assert config.get_json("transport/link/tls/enable_mtls") == "true"
