@@ -195,6 +195,9 @@ def add_pki_command(commands) -> None:
                      help=f"where the router listens (default {DEFAULT_ROUTER_LISTEN})")
     bus.add_argument("--router-host", action="append", default=[], metavar="HOST",
                      help="another name or address the router is reached at (another computer's view); repeatable")
+    bus.add_argument("--simulated", action="store_true",
+                     help="a simulated vehicle (the desk): a certificate for the simulator too, and everyone hears the "
+                          "world and the lockstep's markers")
     bus.add_argument("--mounted-at", type=Path, metavar="PATH",
                      help="where the containers see the folder: the configs name their files under it (default: "
                           "the folder itself)")
@@ -206,7 +209,7 @@ def _pki_bus(args) -> int:
     from coopdrive.bus.bus_credentials import BusCredentialsRequest, write_bus_credentials
 
     request = BusCredentialsRequest(args.directory, args.vehicle, tuple(args.observer), args.days, args.router,
-                                    args.router_listen, tuple(args.router_host), args.mounted_at)
+                                    args.router_listen, tuple(args.router_host), args.mounted_at, args.simulated)
     try:
         names = write_bus_credentials(request)
     except (OSError, ValueError) as error:

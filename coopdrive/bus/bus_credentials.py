@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 
 from coopdrive.bus.bus_grant import AUTHORITY_NAME, ROUTER_NAME, bus_grants, checked_name
 from coopdrive.bus.router_access import access_control
+from coopdrive.bus.simulated_grant import heard_on_a_simulated_bus, simulated_grants
 
 if TYPE_CHECKING:  # the X.509 work is loaded only when credentials are made, not by every command's parser
     from coopdrive.bus.bus_authority import BusAuthority
@@ -49,6 +50,8 @@ class BusCredentialsRequest:
     router_listen: str = DEFAULT_ROUTER_LISTEN
     router_hosts: tuple[str, ...] = ()
     mounted_at: Path | None = None
+    # A simulated vehicle (the desk): the simulator gets a certificate, and everyone hears the world and the lockstep.
+    simulated: bool = False
 
 
 def write_bus_credentials(request: BusCredentialsRequest, now: datetime.datetime | None = None) -> list[str]:
@@ -57,7 +60,10 @@ def write_bus_credentials(request: BusCredentialsRequest, now: datetime.datetime
     from coopdrive.bus.bus_authority import BusAuthority
 
     directory = request.directory
-    grants = bus_grants(checked_name("vehicle id", request.vehicle_id), request.observers)
+    vehicle_id = checked_name("vehicle id", request.vehicle_id)
+    grants = (simulated_grants(vehicle_id, request.observers) if request.simulated
+              else bus_grants(vehicle_id, request.observers))
+    heard = heard_on_a_simulated_bus(vehicle_id) if request.simulated else ()
     router_host = _tls_host("router endpoint", request.router_endpoint)
     _tls_host("router listen endpoint", request.router_listen)
     if directory.exists() and any(directory.iterdir()):
@@ -70,7 +76,7 @@ def write_bus_credentials(request: BusCredentialsRequest, now: datetime.datetime
     hosts = tuple(dict.fromkeys((router_host, *request.router_hosts, *LOCAL_HOSTS)))
     _issue(authority, directory, ROUTER_NAME, request.days, hosts, now)
     router = router_config(mounted_at / ROUTER_NAME, request.router_listen,
-                           access_control(grants, request.vehicle_id))
+                           access_control(grants, request.vehicle_id, heard=heard))
     (directory / ROUTER_NAME / ROUTER_CONFIG).write_text(HEADER + json.dumps(router, indent=2) + "\n")
     for grant in grants:
         _issue(authority, directory, grant.subject, request.days, (), now)

@@ -22,11 +22,13 @@ SEES_PRESENCE = "sees who is alive"
 IS_ASKED_WITH_OTHERS = "is asked for its info with the others"
 
 
-def access_control(grants: list[BusGrant], vehicle_id: str, layout: KeyLayout | None = None) -> dict:
-    """The `access_control` section of the router's config."""
+def access_control(grants: list[BusGrant], vehicle_id: str, layout: KeyLayout | None = None,
+                   heard: tuple[str, ...] = ()) -> dict:
+    """The `access_control` section of the router's config; `heard`: keys besides the vehicle's whose subscribers
+    every holder may learn of (a simulated bus's world and step markers)."""
     layout = layout or KeyLayout()
     rules = [
-        _rule(HEARS_SUBSCRIBERS, "egress", ["declare_subscriber"], (layout.all_topics(vehicle_id),)),
+        _rule(HEARS_SUBSCRIBERS, "egress", ["declare_subscriber"], (layout.all_topics(vehicle_id), *heard)),
         _rule(SEES_PRESENCE, "ingress", ["declare_liveliness_subscriber", "liveliness_query"],
               (layout.all_liveliness(),)),
         _rule(f"{SEES_PRESENCE} (tokens)", "egress", ["liveliness_token"], (layout.all_liveliness(),)),
