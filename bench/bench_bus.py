@@ -1,4 +1,5 @@
-"""Bus latency: coopdrive's typed layer against raw Zenoh put/subscribe, two processes, same run.
+"""Bus latency: coopdrive's typed layer against raw Zenoh put/subscribe, two processes, same run; and the typed
+bus over the vehicle's mutual TLS against plain TCP, through a router (bench/bus_over_mtls.py).
 
 A pinger publishes, an echo process sends each message straight back; one-way latency is half
 the round trip. The raw path sends bytes with a plain callback; the typed path goes through
@@ -16,7 +17,8 @@ from rich.console import Console
 from rich.table import Table
 
 from bench.failure import BenchFailed
-from bench.figure import Figure, Unit, ratio
+from bench.bus_over_mtls import measure_both, one_way_latencies_us
+from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
@@ -27,7 +29,6 @@ WARMUP = sized(100, 5)
 ECHO_START_TIMEOUT_S = 60.0
 # After the echo has subscribed, Zenoh's routes between the two sessions settle before the first ping.
 ROUTE_SETTLE_S = 0.5
-ECHO_TIMEOUT_S = 5.0
 
 
 def _config(listen, connect) -> BusConfig:
@@ -83,23 +84,18 @@ def _measure(typed: bool) -> np.ndarray:
     time.sleep(ROUTE_SETTLE_S)
     state = ego_pb2.EgoState(x_m=1.0, y_m=2.0, speed_mps=20.0, covariance=[0.1] * 36)
     payload = state.SerializeToString()
-    samples = []
-    for index in range(ROUND_TRIPS + WARMUP):
-        started = time.perf_counter()
+
+    def send(index: int) -> None:
         if typed:
             state.header.sequence = index + 1
             bus.publish("bench", "ego/state", state)
         else:
             raw_publisher.put(payload)
-        try:
-            inbox.get(timeout=ECHO_TIMEOUT_S)
-        except queue.Empty:
-            raise BenchFailed(f"no {path} echo of message {index} within {ECHO_TIMEOUT_S:.0f} s") from None
-        if index >= WARMUP:
-            samples.append((time.perf_counter() - started) / 2)
+
+    samples = one_way_latencies_us(send, inbox, path, ROUND_TRIPS, WARMUP)
     echo.join(timeout=10)
     bus.close()
-    return np.array(samples) * 1e6
+    return samples
 
 
 def main() -> list[Figure]:
@@ -115,7 +111,31 @@ def main() -> list[Figure]:
         table.add_row(name, f"{p50:.0f}", f"{p99:.0f}", f"{p50 / raw_p50:.2f}")
         figures += [Figure(f"{name} p50", p50, Unit.US), Figure(f"{name} p99", p99, Unit.US)]
     Console().print(table)
-    return figures + [ratio("coopdrive typed p50 to raw", np.percentile(typed, 50) / raw_p50, "raw zenoh bytes p50")]
+    return (figures + [ratio("coopdrive typed p50 to raw", np.percentile(typed, 50) / raw_p50, "raw zenoh bytes p50")]
+            + _security_figures())
+
+
+def _security_figures() -> list[Figure]:
+    """The typed bus through a router, over mTLS with the access rules and over plain TCP, in one table."""
+    paths = measure_both()
+    table = Table(title="typed bus through a router, 2 client processes: mTLS + access control vs plain TCP")
+    for column in ("link", "p50 (us)", "p99 (us)", "throughput (msg/s)"):
+        table.add_column(column, justify="right")
+    figures = []
+    for name, measured in paths.items():
+        p50, p99 = np.percentile(measured.latency_us, 50), np.percentile(measured.latency_us, 99)
+        table.add_row(name, f"{p50:.0f}", f"{p99:.0f}", f"{measured.throughput_per_s:,.0f}")
+        figures += [Figure(f"routed {name} p50", p50, Unit.US), Figure(f"routed {name} p99", p99, Unit.US),
+                    Figure(f"routed {name} throughput", measured.throughput_per_s, Unit.PER_S)]
+    Console().print(table)
+    plain, mtls = paths["plain tcp"], paths["mtls"]
+    return figures + [
+        ratio("routed mtls p50 to plain tcp", np.percentile(mtls.latency_us, 50) / np.percentile(plain.latency_us, 50),
+              "routed plain tcp p50"),
+        ratio("routed mtls p99 to plain tcp", np.percentile(mtls.latency_us, 99) / np.percentile(plain.latency_us, 99),
+              "routed plain tcp p99"),
+        ratio("routed mtls throughput to plain tcp", mtls.throughput_per_s / plain.throughput_per_s,
+              "routed plain tcp throughput", Better.HIGHER)]
 
 
 if __name__ == "__main__":
