@@ -63,7 +63,7 @@ def write_bus_credentials(request: BusCredentialsRequest, now: datetime.datetime
     vehicle_id = checked_name("vehicle id", request.vehicle_id)
     grants = (simulated_grants(vehicle_id, request.observers) if request.simulated
               else bus_grants(vehicle_id, request.observers))
-    heard = heard_on_a_simulated_bus(vehicle_id) if request.simulated else ()
+    heard = heard_on_a_simulated_bus() if request.simulated else ()
     router_host = _tls_host("router endpoint", request.router_endpoint)
     _tls_host("router listen endpoint", request.router_listen)
     if directory.exists() and any(directory.iterdir()):

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from coopdrive.bus.keys import KeyLayout
 from coopdrive.bus.services import SERVICES, WORLD_SERVICE, ServiceEntry
 from coopdrive.bus.topic import EVERY_OTHER_TOPIC
-from coopdrive.bus.topics import declarations_of, diagnostics_topic, published_by, topic_named
+from coopdrive.bus.topics import declarations_of, diagnostics_topic, published_by, topic_named, topic_registry
 
 # A vehicle id and an observer's name are one chunk of a key expression and a file name: no "/", no wildcards.
 NAME_PATTERN = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]*")
@@ -62,11 +62,16 @@ def service_grant(entry: ServiceEntry, vehicle_id: str, layout: KeyLayout | None
     published = ([topic.name for topic in published_by(entry)] + [diagnostics_topic(entry.name).name]
                  + list(stands_in_for_the_world(entry)))
     read = declarations_of(entry).SUBSCRIBES
+    read_names = ([name for name in topic_registry() if name not in published] if EVERY_OTHER_TOPIC in read
+                  else sorted(read))
     subscriptions = ((layout.all_topics(vehicle_id),) if EVERY_OTHER_TOPIC in read
-                     else tuple(layout.topic(vehicle_id, name) for name in sorted(read)))
+                     else tuple(layout.topic(vehicle_id, name) for name in read_names))
+    # The runtime's step markers ("@step/<topic>", which "**" does not match): a service puts those of its topics and
+    # listens for those of what it reads (only a lockstep run sends any; the listening is declared in every run).
     return BusGrant(subject=entry.name,
-                    puts=tuple(layout.topic(vehicle_id, name) for name in published),
-                    subscriptions=subscriptions,
+                    puts=tuple(layout.topic(vehicle_id, name) for name in published)
+                    + tuple(layout.step_done(vehicle_id, name) for name in published),
+                    subscriptions=subscriptions + tuple(layout.step_done(vehicle_id, name) for name in read_names),
                     tokens=(layout.liveliness(vehicle_id, entry.name),),
                     queryables=(layout.service_info(vehicle_id, entry.name),),
                     queries=())

@@ -28,7 +28,8 @@ def access_control(grants: list[BusGrant], vehicle_id: str, layout: KeyLayout | 
     every holder may learn of (a simulated bus's world and step markers)."""
     layout = layout or KeyLayout()
     rules = [
-        _rule(HEARS_SUBSCRIBERS, "egress", ["declare_subscriber"], (layout.all_topics(vehicle_id), *heard)),
+        _rule(HEARS_SUBSCRIBERS, "egress", ["declare_subscriber"],
+              (layout.all_topics(vehicle_id), layout.step_done(vehicle_id, "**"), *heard)),
         _rule(SEES_PRESENCE, "ingress", ["declare_liveliness_subscriber", "liveliness_query"],
               (layout.all_liveliness(),)),
         _rule(f"{SEES_PRESENCE} (tokens)", "egress", ["liveliness_token"], (layout.all_liveliness(),)),

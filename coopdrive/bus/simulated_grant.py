@@ -4,9 +4,9 @@ runs the vehicle's stack against the simulator, on the same authenticated bus as
 - The simulator gets a certificate of its own (common name "sim"): it puts the world's topics (under the world's id,
   with its lockstep clocks) and, in the car's place, the topics it declares it publishes under the vehicle (GNSS
   fixes, the CAN bus, the sensors); it reads what it declares it reads of the vehicle (CAN commands, radio frames).
-- Every service also hears the world (its clock, ground truth, results) and the lockstep's step markers: it puts a
-  marker for each topic it publishes ("@step/<topic>", coopdrive.runtime.stepping) and hears those of each topic it
-  reads. Markers and clocks are verbatim chunks ("@step", "@clock") that a "**" does not match: named here one by one.
+- Every service (and observer) also hears the world: its topics, its lockstep clocks and markers. Those are verbatim
+  chunks ("@clock", "@step") that a "**" does not match: named one by one. (The step markers of the vehicle's own
+  topics are in every service's grant: coopdrive.bus.bus_grant.)
 """
 
 from __future__ import annotations
@@ -16,8 +16,7 @@ from dataclasses import replace
 from coopdrive.bus.bus_grant import BusGrant, bus_services, observer_grant, service_grant
 from coopdrive.bus.keys import WORLD_ID, KeyLayout
 from coopdrive.bus.services import SERVICES, WORLD_SERVICE, ServiceEntry
-from coopdrive.bus.topic import EVERY_OTHER_TOPIC
-from coopdrive.bus.topics import declarations_of, diagnostics_topic, published_by, topic_registry
+from coopdrive.bus.topics import declarations_of, published_by
 
 WORLD_ONLY_TOPICS = ("clock", "ground_truth", "result", "service_fault")
 
@@ -28,16 +27,10 @@ def world_keys(layout: KeyLayout) -> tuple[str, ...]:
 
 
 def simulated_service_grant(entry: ServiceEntry, vehicle_id: str, layout: KeyLayout | None = None) -> BusGrant:
-    """`entry`'s grant on the vehicle, with the world and the markers of its topics."""
+    """`entry`'s grant on the vehicle (with the markers of its topics), and the world."""
     layout = layout or KeyLayout()
     grant = service_grant(entry, vehicle_id, layout)
-    read = declarations_of(entry).SUBSCRIBES
-    read_names = ([topic for topic in topic_registry() if topic not in _own(entry)] if EVERY_OTHER_TOPIC in read
-                  else sorted(read))
-    return replace(grant,
-                   puts=grant.puts + tuple(layout.step_done(vehicle_id, topic) for topic in _own(entry)),
-                   subscriptions=grant.subscriptions + world_keys(layout)
-                   + tuple(layout.step_done(vehicle_id, topic) for topic in read_names))
+    return replace(grant, subscriptions=grant.subscriptions + world_keys(layout))
 
 
 def world_grant(vehicle_id: str, layout: KeyLayout | None = None) -> BusGrant:
@@ -70,12 +63,6 @@ def simulated_grants(vehicle_id: str, observers: tuple[str, ...] = (),
             + [replace(grant, subscriptions=grant.subscriptions + world_keys(layout)) for grant in observing])
 
 
-def heard_on_a_simulated_bus(vehicle_id: str, layout: KeyLayout | None = None) -> tuple[str, ...]:
-    """Besides the vehicle's topics, whose subscribers every publisher may learn of: the step markers and the world
-    (a lockstep publisher puts a marker only when someone hears it)."""
-    layout = layout or KeyLayout()
-    return (layout.step_done(vehicle_id, "**"),) + world_keys(layout)
-
-
-def _own(entry: ServiceEntry) -> list[str]:
-    return [topic.name for topic in published_by(entry)] + [diagnostics_topic(entry.name).name]
+def heard_on_a_simulated_bus(layout: KeyLayout | None = None) -> tuple[str, ...]:
+    """Besides the vehicle's topics and markers, whose subscribers every publisher may learn of: the world's."""
+    return world_keys(layout or KeyLayout())

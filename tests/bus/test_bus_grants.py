@@ -18,12 +18,14 @@ def rule_keys(section: dict, rule_id: str) -> list[str]:
     return rule["key_exprs"]
 
 
-def test_a_service_may_put_exactly_the_topics_it_declares_and_its_diagnostics_under_its_vehicle():
+def test_a_service_may_put_exactly_the_topics_it_declares_and_its_diagnostics_under_its_vehicle_with_their_markers():
     grant = service_grant(service_entry("control"), "car7")
     assert grant.subject == "control"
-    assert grant.puts == ("coopdrive/car7/control/command", "coopdrive/car7/diagnostics/control")
+    assert grant.puts == ("coopdrive/car7/control/command", "coopdrive/car7/diagnostics/control",
+                          "coopdrive/car7/@step/control/command", "coopdrive/car7/@step/diagnostics/control")
     assert grant.subscriptions == ("coopdrive/car7/ego/state", "coopdrive/car7/planner/behaviour",
-                                   "coopdrive/car7/scene")
+                                   "coopdrive/car7/scene", "coopdrive/car7/@step/ego/state",
+                                   "coopdrive/car7/@step/planner/behaviour", "coopdrive/car7/@step/scene")
     assert grant.tokens == ("coopdrive/car7/_alive/control",)
     assert grant.queryables == ("coopdrive/car7/_info/control",)
 
@@ -39,8 +41,10 @@ def test_the_gateway_may_put_only_its_command_topics_and_reads_the_whole_vehicle
     grant = service_grant(entry, "ego")
     commands = [f"coopdrive/ego/{topic.name}" for topic in published_by(entry)]
     assert commands and all("/gateway/" in key for key in commands)
-    assert grant.puts == (*commands, "coopdrive/ego/diagnostics/gateway")
-    assert grant.subscriptions == ("coopdrive/ego/**",)
+    topics = (*commands, "coopdrive/ego/diagnostics/gateway")
+    assert grant.puts == (*topics, *(key.replace("coopdrive/ego/", "coopdrive/ego/@step/") for key in topics))
+    assert grant.subscriptions[0] == "coopdrive/ego/**"
+    assert all(key.startswith("coopdrive/ego/@step/") for key in grant.subscriptions[1:])
 
 
 def test_actuation_may_put_the_cars_can_frames_in_the_simulators_place_and_nobody_else_may():

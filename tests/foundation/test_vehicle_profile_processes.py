@@ -75,7 +75,7 @@ def wait_healthy(vehicle) -> None:
         time.sleep(1.0)
 
 
-def test_on_the_vehicle_profile_the_router_services_and_bridge_pass_their_healthchecks_with_their_certificates(
+def test_on_the_vehicle_profile_the_router_services_and_bridge_pass_their_healthchecks_and_nothing_is_refused(
         vehicle, credentials):
     wait_healthy(vehicle)
     folder, _ = credentials
@@ -86,6 +86,8 @@ def test_on_the_vehicle_profile_the_router_services_and_bridge_pass_their_health
         assert reports.get(timeout=60).message.message == "bus mtls"
     finally:
         observer.close()
+    _, _, logs = vehicle
+    assert "access control denials" not in (logs / "zenohd.log").read_text()  # what the stack does, it may
 
 
 def test_the_recorder_of_the_record_profile_records_the_services_configs_and_no_key_nor_credentials_path(
