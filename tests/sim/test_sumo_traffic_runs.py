@@ -1,0 +1,70 @@
+"""`coopdrive run` among SUMO's traffic: the follow scenario on a network netgenerate built at test time, with a flow of
+20 SUMO cars written at test time beside it. The stack follows and passes, no collision with SUMO's cars, SUMO's cars
+were in the run and the summary says what SUMO counted of them; the same seed gives the same metrics in one process
+and in a process per service. SUMO traffic that cannot run: one line, and nothing starts."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from coopdrive.launch.summary import WALL_CLOCK_KEYS
+from tests.scenario_report import FASTEST_LAYOUT
+from tests.sumo_networks import among_traffic, flow_routes, follow_scenario, straight_road
+
+pytestmark = pytest.mark.whole_run
+
+DURATION_S = 12.0
+SUMO_CARS = 20
+
+
+def coopdrive(*args: str):
+    return subprocess.run([sys.executable, "-m", "coopdrive.cli", *args], capture_output=True, text=True, timeout=600)
+
+
+@pytest.fixture(scope="module")
+def scenario(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("sumo_traffic")
+    straight_road(folder / "road.net.xml")
+    # All 20 depart within the run, from the road's start behind the stack and its leader, on either lane.
+    flow_routes(folder / "flow.rou.xml", number=SUMO_CARS, begin_s=1.0, end_s=DURATION_S - 1.0)
+    path = folder / "sumo-traffic.yaml"
+    path.write_text(among_traffic(follow_scenario("road.net.xml", DURATION_S), "{routes: [flow.rou.xml]}"))
+    return path
+
+
+@pytest.fixture(scope="module")
+def summary(scenario):
+    result = coopdrive("run", str(scenario), "--seed", "1", "--json", *FASTEST_LAYOUT)
+    assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
+    return json.loads(result.stdout)
+
+
+def test_the_stack_follows_among_sumo_s_cars_and_passes_without_a_collision_with_any(summary):
+    assert summary["success"] is True and summary["sim_time_s"] == pytest.approx(DURATION_S)
+    assert summary["collisions"] == 0 and summary["sumo_collisions_with_ours"] == 0
+    assert summary["min_gap_m"] > 6.0
+
+
+def test_the_summary_reports_sumo_s_cars_in_the_run_and_what_sumo_counted_of_them(summary):
+    assert summary["sumo_vehicles"] == SUMO_CARS
+    for key in ("sumo_emergency_braking", "sumo_emergency_stops", "sumo_collisions", "sumo_teleports"):
+        assert summary[key] >= 0
+    assert summary["sumo_collisions"] == 0
+
+
+def test_the_same_seed_gives_identical_metrics_among_sumo_s_traffic_in_a_process_per_service(scenario, summary):
+    again = coopdrive("run", str(scenario), "--seed", "1", "--json", "--processes", "service")
+    assert again.returncode == 0, again.stdout[-2000:] + again.stderr[-2000:]
+    assert {k: v for k, v in json.loads(again.stdout).items() if k not in WALL_CLOCK_KEYS} == \
+        {k: v for k, v in summary.items() if k not in WALL_CLOCK_KEYS}
+
+
+def test_coopdrive_run_with_a_missing_sumo_configuration_says_so_in_one_line_and_starts_nothing(scenario):
+    bad = scenario.parent / "no-config.yaml"
+    bad.write_text(among_traffic(follow_scenario("road.net.xml"), "{config: nowhere.sumocfg}"))
+    result = coopdrive("run", str(bad))
+    assert result.returncode == 2 and result.stdout == ""
+    assert result.stderr == (f"coopdrive: {bad}: sumo_traffic: {scenario.parent / 'nowhere.sumocfg'}: "
+                             "no such SUMO configuration file\n")
