@@ -18,7 +18,7 @@ from typing import Mapping, Sequence
 
 from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.roadmap.sumo_frame import SumoFrame
-from coopdrive.services.sim.road_geometry import LaneGeometry, match_lane
+from coopdrive.services.sim.road_geometry import LaneGeometry
 from coopdrive.services.sim.sumo_traffic_config import SumoTrafficConfig
 from coopdrive.services.sim.vehicle_truth import NO_LANE
 from coopdrive.v1 import sensors_pb2, sim_pb2
@@ -68,11 +68,11 @@ def rear_axle_xy(x_m: float, y_m: float, heading_rad: float, length_m: float) ->
 
 class SumoTraffic:
     def __init__(self, traffic: SumoTrafficConfig, network_path: str, frame: SumoFrame, seed: int, step_s: float,
-                 road_lanes: Mapping[str, Sequence[LaneGeometry]], our_edges: Mapping[str, str]) -> None:
-        """road_lanes: our map's lanes of a SUMO edge id (lanes_of_road); our_edges: each of our vehicles' edge."""
+                 lanes: Mapping[str, LaneGeometry], our_edges: Mapping[str, str]) -> None:
+        """lanes: our map's lanes by their ids (SUMO's lane ids); our_edges: each of our vehicles' SUMO edge."""
         self.frame = frame
         self.step_s = step_s
-        self._road_lanes = road_lanes
+        self._lanes = lanes
         self._our_edges = dict(our_edges)
         self._mirrored: set[str] = set()
         self._station_ids: dict[str, int] = {}
@@ -140,9 +140,10 @@ class SumoTraffic:
             speed_mps=vehicle.getSpeed(vehicle_id), accel_mps2=vehicle.getAcceleration(vehicle_id),
             yaw_rate_radps=0.0 if last is None else math.remainder(heading - last, math.tau) / self.step_s,
             length_m=length_m, width_m=width_m, automated=False, lane_index=NO_LANE)
-        matched = match_lane(self._road_lanes.get(vehicle.getRoadID(vehicle_id), ()), x_m, y_m, heading)
-        if matched is not None:
-            lane, truth.station_m, truth.lateral_offset_m = matched
+        # On the lane SUMO drives it on, if that is one of ours (not a junction's internal lane).
+        lane = self._lanes.get(vehicle.getLaneID(vehicle_id))
+        if lane is not None:
+            truth.station_m, truth.lateral_offset_m = lane.project(x_m, y_m)[:2]
             truth.lane_index = lane.lane_index
         return truth
 
@@ -178,6 +179,5 @@ def sumo_traffic_of(traffic: SumoTrafficConfig, network_path: str, road_map, see
                     our_edges: Mapping[str, str]) -> SumoTraffic:
     """SumoTraffic on the scenario's network, laid in the frame its road map was read in."""
     frame = SumoFrame.of_network(Path(network_path), road_map)
-    edges = {edge for edge in (lane.road_id for lane in road_map.lanes)}
-    road_lanes = {edge: road_map.lanes_of_road(edge) for edge in edges}
-    return SumoTraffic(traffic, network_path, frame, seed, step_s, road_lanes, our_edges)
+    lanes = {lane.lane_id: lane for lane in road_map.lanes}
+    return SumoTraffic(traffic, network_path, frame, seed, step_s, lanes, our_edges)
