@@ -162,8 +162,12 @@ class ScenarioSim:
         return positions
 
     def traffic_metrics(self) -> dict[str, float]:
-        """SUMO's figures of its vehicles in the run (none without SUMO traffic)."""
-        return self.traffic.metrics() if self.traffic is not None else {}
+        """SUMO's figures of its vehicles in the run (none without SUMO traffic), and how many of them the stacks'
+        cameras detected or radars tracked (sumo_vehicles_seen)."""
+        if self.traffic is None:
+            return {}
+        seen = set().union(*(suite.seen_vehicle_ids() for suite in self.objects.sensor_suites.values()))
+        return {**self.traffic.metrics(), "sumo_vehicles_seen": float(len(seen & self.traffic.vehicle_ids()))}
 
     def close(self) -> None:
         """Ends SUMO's simulation, if the run has one (libsumo holds one per process)."""

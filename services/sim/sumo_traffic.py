@@ -125,6 +125,10 @@ class SumoTraffic:
     def truths(self) -> list[sim_pb2.VehicleTruth]:
         return list(self._truths)
 
+    def vehicle_ids(self) -> set[str]:
+        """SUMO's vehicles that have driven in our world so far."""
+        return set(self._station_ids)
+
     def object_classes(self) -> dict[str, int]:
         return dict(self._classes)
 

@@ -51,6 +51,8 @@ def test_the_stack_follows_among_sumo_s_cars_and_passes_without_a_collision_with
 def test_the_summary_reports_sumo_s_cars_in_the_run_and_what_sumo_counted_of_them(summary):
     # SUMO holds back a departure until it has room: most, not always all, are on the road by the end.
     assert SUMO_CARS / 2 <= summary["sumo_vehicles"] <= SUMO_CARS
+    # Those that overtook the stack on the other lane passed before its camera and radar.
+    assert 1 <= summary["sumo_vehicles_seen"] <= summary["sumo_vehicles"]
     for key in ("sumo_emergency_braking", "sumo_emergency_stops", "sumo_collisions", "sumo_teleports"):
         assert summary[key] >= 0
     assert summary["sumo_collisions"] == 0
