@@ -146,12 +146,14 @@ class ScenarioSim:
         return outputs
 
     def intents(self, now_s: float) -> list[MessageIntent]:
-        """What the scripted participants and roadside units broadcast now."""
+        """What the scripted participants, roadside units and SUMO's equipped vehicles broadcast now."""
         intents = []
         for participant in self.objects.participants.values():
             intents.extend(participant.messages_due(now_s))
         for unit in self.objects.roadside_units:
             intents.extend(unit.messages_due(now_s))
+        if self.traffic is not None:
+            intents.extend(self.traffic.messages_due(now_s))
         return self.station_faults.apply(intents, now_s, self.truths())
 
     def radio_positions(self) -> dict[str, tuple[float, float]]:

@@ -13,11 +13,13 @@ from __future__ import annotations
 
 import math
 import os
+import random
 from pathlib import Path
 from typing import Mapping, Sequence
 
 from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.roadmap.sumo_frame import SumoFrame
+from coopdrive.services.sim.participants import IntentKind, MessageIntent, RateGate, cam_fields_of
 from coopdrive.services.sim.road_geometry import LaneGeometry
 from coopdrive.services.sim.sumo_traffic_config import SumoTrafficConfig
 from coopdrive.services.sim.vehicle_truth import NO_LANE
@@ -79,6 +81,12 @@ class SumoTraffic:
         self._classes: dict[str, int] = {}
         self._last_heading: dict[str, float] = {}
         self._truths: list[sim_pb2.VehicleTruth] = []
+        self._seed = seed
+        self._equipped_share = traffic.equipped_share
+        self._cam_rate_hz = traffic.cam_rate_hz
+        # The equipped vehicles' CAM timing, each from when it first drove in our world.
+        self._cam_gates: dict[str, RateGate] = {}
+        self.time_s = 0.0
         # (collider, victim) pairs SUMO saw collide, one of them ours: a lasting contact counts once.
         self._contacts_with_ours: set[tuple[str, str]] = set()
         self.sumo = _libsumo()
@@ -98,6 +106,7 @@ class SumoTraffic:
         for truth in ours:
             self._mirror(truth)
         self.sumo.simulationStep(now_s)
+        self.time_s = now_s
         for vehicle_id in self.sumo.simulation.getArrivedIDList():
             self._mirrored.discard(vehicle_id)
         self._contacts_with_ours.update((c.collider, c.victim) for c in self.sumo.simulation.getCollisions()
@@ -155,13 +164,20 @@ class SumoTraffic:
         if vehicle_id not in self._station_ids:
             self._station_ids[vehicle_id] = FIRST_SUMO_STATION_ID + len(self._station_ids)
             self._classes[vehicle_id] = _object_class(self.sumo.vehicle.getVehicleClass(vehicle_id))
+            if random.Random(f"{self._seed}/{vehicle_id}").random() < self._equipped_share:
+                self._cam_gates[vehicle_id] = RateGate(self._cam_rate_hz, self.time_s)
         return self._station_ids[vehicle_id]
+
+    def messages_due(self, now_s: float) -> list[MessageIntent]:
+        """The CAMs the equipped vehicles send now: their truth, as a scripted vehicle's CAM in the ideal world."""
+        return [MessageIntent(IntentKind.CAM, t.vehicle_id, t.station_id, now_s, cam_fields_of(t)) for t in self._truths
+                if t.vehicle_id in self._cam_gates and self._cam_gates[t.vehicle_id].due(now_s)]
 
     # ----- the run's figures ---------------------------------------------------------------------
     def metrics(self) -> dict[str, float]:
         """SUMO's vehicles that drove in our world, and SUMO's own count of their emergency braking, emergency
         stops, collisions (theirs among themselves and with ours) and teleports; collisions SUMO saw with ours."""
-        figures = {"sumo_vehicles": float(len(self._station_ids)),
+        figures = {"sumo_vehicles": float(len(self._station_ids)), "sumo_equipped": float(len(self._cam_gates)),
                    "sumo_collisions_with_ours": float(len(self._contacts_with_ours))}
         for key, name in SUMO_STATISTICS.items():
             figures[name] = float(self.sumo.simulation.getParameter("", key))

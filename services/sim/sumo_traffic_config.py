@@ -19,6 +19,9 @@ class SumoTrafficConfig(BaseModel):
     routes: list[str] = []
     # SUMO's own step is the simulator's (lockstep); SUMO's collisions are reported, and the vehicles kept.
     collision_action: str = Field(default="warn", pattern="^(warn|none|teleport|remove)$")
+    # The share of SUMO's vehicles that are equipped and send CAMs (each drawn once, from the run's seed and its id).
+    equipped_share: float = Field(default=0.0, ge=0.0, le=1.0)
+    cam_rate_hz: float = Field(default=10.0, gt=0.0)
 
     @model_validator(mode="after")
     def _one_source(self) -> SumoTrafficConfig:

@@ -175,3 +175,28 @@ def test_sumo_traffic_on_a_map_that_is_not_a_sumo_network_is_one_line(road):
 
 def test_sumo_traffic_naming_both_a_configuration_and_routes_is_one_line(road):
     assert "not both or none" in refusal(road, "{config: a.sumocfg, routes: [b.rou.xml]}")
+
+
+def test_an_equipped_share_of_sumo_s_cars_send_cams_of_where_they_are_at_their_rate(tmp_path):
+    straight_road(tmp_path / "road.net.xml")
+    flow_routes(tmp_path / "flow.rou.xml", number=10, begin_s=0.5, end_s=3.0)
+    sim = world(tmp_path, among_traffic(follow_scenario("road.net.xml"),
+                                        "{routes: [flow.rou.xml], equipped_share: 0.5, cam_rate_hz: 10}"))
+    try:
+        run_for(sim, 5.0)
+        sent = {}
+        for step in range(1, 51):
+            sim.step(5.0 + step * STEP_S)
+            truths = {t.vehicle_id: t for t in sim.truths()}
+            for intent in sim.intents(sim.time_s):
+                if intent.station_id >= 900_000:
+                    sent.setdefault(intent.sender_id, []).append(intent)
+                    assert intent.fields["x_m"] == truths[intent.sender_id].x_m
+        figures = sim.traffic_metrics()
+    finally:
+        sim.close()
+    assert figures["sumo_vehicles"] == 10 and 1 <= figures["sumo_equipped"] <= 9
+    assert len(sent) == figures["sumo_equipped"]
+    # At 10 Hz, after the first (the gate's missed periods are skipped, not caught up).
+    for cams in sent.values():
+        assert np.diff([cam.time_s for cam in cams[1:]]) == pytest.approx([0.1] * (len(cams) - 2))

@@ -30,7 +30,8 @@ def scenario(tmp_path_factory):
     # All 20 depart within the run's first half, from the road's start behind the stack and its leader, on either lane.
     flow_routes(folder / "flow.rou.xml", number=SUMO_CARS, begin_s=0.5, end_s=DURATION_S / 2.0)
     path = folder / "sumo-traffic.yaml"
-    path.write_text(among_traffic(follow_scenario("road.net.xml", DURATION_S), "{routes: [flow.rou.xml]}"))
+    path.write_text(among_traffic(follow_scenario("road.net.xml", DURATION_S),
+                                  "{routes: [flow.rou.xml], equipped_share: 0.5}"))
     return path
 
 
@@ -53,6 +54,7 @@ def test_the_summary_reports_sumo_s_cars_in_the_run_and_what_sumo_counted_of_the
     assert SUMO_CARS / 2 <= summary["sumo_vehicles"] <= SUMO_CARS
     # Those that overtook the stack on the other lane passed before its camera and radar.
     assert 1 <= summary["sumo_vehicles_seen"] <= summary["sumo_vehicles"]
+    assert 1 <= summary["sumo_equipped"] < summary["sumo_vehicles"]
     for key in ("sumo_emergency_braking", "sumo_emergency_stops", "sumo_collisions", "sumo_teleports"):
         assert summary[key] >= 0
     assert summary["sumo_collisions"] == 0
