@@ -1,7 +1,8 @@
 """`coopdrive run` among SUMO's traffic: the follow scenario on a network netgenerate built at test time, with a flow of
-20 SUMO cars written at test time beside it. The stack follows and passes, no collision with SUMO's cars, SUMO's cars
-were in the run and the summary says what SUMO counted of them; the same seed gives the same metrics in one process
-and in a process per service. SUMO traffic that cannot run: one line, and nothing starts."""
+20 SUMO cars written at test time beside it, half of them equipped. The stack follows and passes, no collision with
+SUMO's cars; SUMO's cars were in the run, the stack saw some and heard the equipped ones' CAMs, and the summary says
+what SUMO counted of them; the same seed gives the same metrics in one process and in a process per service. SUMO
+traffic that cannot run: one line, and nothing starts."""
 
 import json
 import subprocess
@@ -10,6 +11,8 @@ import sys
 import pytest
 
 from coopdrive.launch.summary import WALL_CLOCK_KEYS
+from coopdrive.recording.reader import read_messages
+from coopdrive.services.sim.sumo_traffic import FIRST_SUMO_STATION_ID
 from tests.scenario_report import FASTEST_LAYOUT
 from tests.sumo_networks import among_traffic, flow_routes, follow_scenario, straight_road
 
@@ -36,10 +39,16 @@ def scenario(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def summary(scenario):
-    result = coopdrive("run", str(scenario), "--seed", "1", "--json", *FASTEST_LAYOUT)
+def recorded(scenario):
+    recording = scenario.parent / "run.mcap"
+    result = coopdrive("run", str(scenario), "--seed", "1", "--json", "--record", str(recording), *FASTEST_LAYOUT)
     assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
-    return json.loads(result.stdout)
+    return json.loads(result.stdout), recording
+
+
+@pytest.fixture(scope="module")
+def summary(recorded):
+    return recorded[0]
 
 
 def test_the_stack_follows_among_sumo_s_cars_and_passes_without_a_collision_with_any(summary):
@@ -58,6 +67,13 @@ def test_the_summary_reports_sumo_s_cars_in_the_run_and_what_sumo_counted_of_the
     for key in ("sumo_emergency_braking", "sumo_emergency_stops", "sumo_collisions", "sumo_teleports"):
         assert summary[key] >= 0
     assert summary["sumo_collisions"] == 0
+
+
+def test_the_stack_s_v2x_service_hears_the_cams_of_sumo_s_equipped_cars(recorded):
+    summary, recording = recorded
+    senders = {item.message.station_id for item in read_messages(recording) if item.topic == "coopdrive/ego/v2x/cam"}
+    sumo_senders = {station_id for station_id in senders if station_id >= FIRST_SUMO_STATION_ID}
+    assert 1 <= len(sumo_senders) <= summary["sumo_equipped"]
 
 
 def test_the_same_seed_gives_identical_metrics_among_sumo_s_traffic_in_a_process_per_service(scenario, summary):
