@@ -25,6 +25,8 @@ def add_commands(commands) -> None:
     score.add_argument("--max-offset", type=float, default=0.5, metavar="SECONDS",
                        help="with --reference: search the best-fit time offset within +-this (default: 0.5)")
     score.add_argument("--out", type=Path, metavar="FILE.json", help="with --reference: write the figures here")
+    score.add_argument("--report", type=Path, metavar="DIR", help="with --reference: a page (DIR/index.html) with the "
+                                                                  "errors over time inside the 2-sigma bounds")
     score.set_defaults(handler=_score)
 
     analyze = commands.add_parser("analyze", help="analyses of controllers and runs")
@@ -99,7 +101,7 @@ def _score_reference(args) -> int:
         print(f"coopdrive: score: --max-offset {args.max_offset:g}: a search range is 0 s or more", file=sys.stderr)
         return EXIT_USAGE
     return reference_score_command(ReferenceRequest(args.file, args.reference, args.vehicle, lever_arm,
-                                                    args.max_offset, args.out, args.json))
+                                                    args.max_offset, args.out, args.json, args.report))
 
 
 def _scenarios(args) -> int:

@@ -114,3 +114,38 @@ def scenario_file(folder: Path, map_text: str, name: str) -> Path:
     path = folder / name
     path.write_text(follow_scenario(map_text))
     return path
+
+
+# SUMO's traffic of the tests: cars of a size of their own (not SUMO's default 5 m x 1.8 m), so that the truth is
+# seen to take it from their type.
+SUMO_CAR_LENGTH_M = 4.2
+SUMO_CAR_WIDTH_M = 1.9
+
+
+def flow_routes(path: Path, number: int = 20, edges: str = "A0B0", lane: str = "random", begin_s: float = 0.0,
+                end_s: float = 20.0, speed: str = "max") -> Path:
+    """A routes file with one flow of `number` cars over `edges`, departing evenly from begin_s to end_s."""
+    path.write_text(f"""<routes>
+    <vType id="car" length="{SUMO_CAR_LENGTH_M}" width="{SUMO_CAR_WIDTH_M}"/>
+    <route id="through" edges="{edges}"/>
+    <flow id="traffic" type="car" route="through" begin="{begin_s}" end="{end_s}" number="{number}"
+          departLane="{lane}" departSpeed="{speed}"/>
+</routes>
+""", encoding="utf-8")
+    return path
+
+
+def sumo_config(path: Path, routes_name: str) -> Path:
+    """A SUMO configuration (.sumocfg) that lists the routes file beside it."""
+    path.write_text(f"""<configuration>
+    <input>
+        <route-files value="{routes_name}"/>
+    </input>
+</configuration>
+""", encoding="utf-8")
+    return path
+
+
+def among_traffic(scenario_text: str, traffic_yaml: str) -> str:
+    """The scenario with SUMO traffic (the YAML of its sumo_traffic mapping, e.g. "{routes: [flow.rou.xml]}")."""
+    return scenario_text + f"sumo_traffic: {traffic_yaml}\n"

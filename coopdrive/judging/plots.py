@@ -26,7 +26,7 @@ FIGURES = {
 }
 
 
-def _save(figure, path: Path) -> None:
+def save_figure(figure, path: Path) -> None:
     figure.tight_layout()
     figure.savefig(path, dpi=DPI)
     plt.close(figure)
@@ -40,7 +40,7 @@ def _per_vehicle(series: TruthSeries, name: str, ylabel: str, path: Path) -> Non
     axes.set_ylabel(ylabel)
     axes.grid(True, alpha=0.3)
     axes.legend(loc="best")
-    _save(figure, path)
+    save_figure(figure, path)
 
 
 def _gaps(series: TruthSeries, path: Path, standstill_m: float, headway_s: float) -> None:
@@ -61,7 +61,7 @@ def _gaps(series: TruthSeries, path: Path, standstill_m: float, headway_s: float
     axes.grid(True, alpha=0.3)
     if pairs:
         axes.legend(loc="best")
-    _save(figure, path)
+    save_figure(figure, path)
 
 
 def _trajectories(series: TruthSeries, path: Path) -> None:
@@ -77,7 +77,7 @@ def _trajectories(series: TruthSeries, path: Path) -> None:
     axes.set_ylabel("north [m]")
     axes.grid(True, alpha=0.3)
     axes.legend(loc="best")
-    _save(figure, path)
+    save_figure(figure, path)
 
 
 def write_figures(series: TruthSeries, folder: Path, standstill_m: float = judge_metrics.DEFAULT_STANDSTILL_M,

@@ -15,6 +15,7 @@ from rich.console import Console
 from rich.table import Table
 
 from coopdrive.exit_status import EXIT_OK, EXIT_USAGE
+from coopdrive.judging.reference_report import write_reference_report
 from coopdrive.judging.reference_score import (CONSISTENT_TWO_SIGMA_SHARE, ReferenceScore, TrackSeries,
                                                score_series)
 from coopdrive.judging.reference_track import ReferenceTrack, compass_to_enu_rad
@@ -38,6 +39,7 @@ class ReferenceRequest:
     max_offset_s: float = 0.5
     out: Path | None = None
     as_json: bool = False
+    report: Path | None = None  # a folder for the report page
 
 
 def recorded_antenna(recording: Path, vehicle_id: str) -> LeverArm:
@@ -122,4 +124,12 @@ def reference_score_command(request: ReferenceRequest) -> int:
         print(json.dumps(figures, indent=2))
     else:
         print_table(request, scores)
+    if request.report is not None:
+        try:
+            page = write_reference_report(request.report,
+                                          f"{request.recording.name} against {request.reference.name}", scores)
+        except OSError as error:
+            print(f"coopdrive: score: --report {request.report}: {error.strerror or error}", file=sys.stderr)
+            return EXIT_USAGE
+        print(f"report: {page}", file=sys.stderr if request.as_json else sys.stdout)
     return EXIT_OK

@@ -23,7 +23,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from coopdrive.judging.reference_track import ReferenceTrack, wrap_rad
+from coopdrive.judging.reference_errors import ErrorSeries, error_series
+from coopdrive.judging.reference_track import ReferenceTrack
 from coopdrive.services.geolocation.frames import LeverArm
 
 TWO_SIGMA_NEES = 2.0**2
@@ -54,6 +55,7 @@ class ReferenceScore:
     offset_s: float
     best_fit: dict[str, float]
     stamped: dict[str, float]
+    errors: ErrorSeries | None = None  # sample by sample at the best-fit offset, for the report page
 
     def as_dict(self) -> dict:
         return {"name": self.name, "samples": self.samples, "best_fit_offset_s": self.offset_s,
@@ -104,30 +106,27 @@ def best_fit_offset_s(points: np.ndarray, series: TrackSeries, reference: Refere
     return float(offsets_s[int(np.argmin(rms_m))])
 
 
-def _figures(points: np.ndarray, covariance: np.ndarray | None, series: TrackSeries, reference: ReferenceTrack,
-             offset_s: float) -> dict[str, float]:
-    keep = _inside(series, reference, offset_s)
-    if not keep.any():
+def _figures(errors: ErrorSeries) -> dict[str, float]:
+    if not len(errors.time_s):
         return {"samples": 0}
-    at = reference.at(series.time_s[keep] + offset_s)
-    error = points[keep] - np.column_stack((at["east_m"], at["north_m"]))
-    length = np.hypot(error[:, 0], error[:, 1])
-    c, s = np.cos(at["heading_rad"]), np.sin(at["heading_rad"])
-    along, cross = error[:, 0] * c + error[:, 1] * s, -error[:, 0] * s + error[:, 1] * c
-    figures = {"samples": int(keep.sum()), "rms_m": float(np.sqrt(np.mean(length**2))),
+    length = errors.horizontal_m
+    figures = {"samples": len(errors.time_s), "rms_m": float(np.sqrt(np.mean(length**2))),
                "mean_abs_m": float(np.mean(length)), "p95_m": float(np.percentile(length, P95)),
-               "max_m": float(np.max(length)), "along_rms_m": float(np.sqrt(np.mean(along**2))),
-               "cross_rms_m": float(np.sqrt(np.mean(cross**2)))}
-    if series.heading_rad is not None and reference.has_heading:
-        heading_error = wrap_rad(series.heading_rad[keep] - at["heading_rad"])
-        figures["heading_rms_deg"] = float(np.degrees(np.sqrt(np.mean(heading_error**2))))
-    if series.speed_mps is not None and "speed_mps" in at:
-        figures["speed_rms_mps"] = float(np.sqrt(np.mean((series.speed_mps[keep] - at["speed_mps"]) ** 2)))
-    if covariance is not None:
-        nees = np.einsum("ni,nij,nj->n", error, np.linalg.inv(covariance[keep]), error)
-        figures["two_sigma_share"] = float(np.mean(nees <= TWO_SIGMA_NEES))
-        figures["nees_mean"] = float(np.mean(nees))
+               "max_m": float(np.max(length)), "along_rms_m": float(np.sqrt(np.mean(errors.along_m**2))),
+               "cross_rms_m": float(np.sqrt(np.mean(errors.cross_m**2)))}
+    if errors.heading_error_rad is not None:
+        figures["heading_rms_deg"] = float(np.degrees(np.sqrt(np.mean(errors.heading_error_rad**2))))
+    if errors.speed_error_mps is not None:
+        figures["speed_rms_mps"] = float(np.sqrt(np.mean(errors.speed_error_mps**2)))
+    if errors.nees is not None:
+        figures["two_sigma_share"] = float(np.mean(errors.nees <= TWO_SIGMA_NEES))
+        figures["nees_mean"] = float(np.mean(errors.nees))
     return figures
+
+
+def _errors(points: np.ndarray, covariance: np.ndarray | None, series: TrackSeries, reference: ReferenceTrack,
+            offset_s: float) -> ErrorSeries:
+    return error_series(points, covariance, series, reference, _inside(series, reference, offset_s), offset_s)
 
 
 def score_series(series: TrackSeries, reference: ReferenceTrack,
@@ -139,6 +138,7 @@ def score_series(series: TrackSeries, reference: ReferenceTrack,
                          f"(give both on one time base)")
     points, covariance = _compared_points(series, reference)
     offset_s = best_fit_offset_s(points, series, reference, max_offset_s)
-    best = _figures(points, covariance, series, reference, offset_s)
+    errors = _errors(points, covariance, series, reference, offset_s)
+    best = _figures(errors)
     return ReferenceScore(series.name, best["samples"], offset_s, best,
-                          _figures(points, covariance, series, reference, 0.0))
+                          _figures(_errors(points, covariance, series, reference, 0.0)), errors)

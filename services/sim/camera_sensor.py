@@ -34,6 +34,10 @@ class CameraSensor(TimedSensor[sensors_pb2.CameraFrame]):
         super().__init__(config.timing, rng, vehicle_id)
         self._detection_ids: dict[str, int] = {}
 
+    def detected_ids(self) -> set[str]:
+        """The vehicles the camera has detected so far in the run."""
+        return set(self._detection_ids)
+
     def poll(self, now_s: float, world: WorldView) -> list[sensors_pb2.CameraFrame]:
         return self._deliver(now_s, lambda: self._measure(world))
 

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from typing import Callable, Mapping, Sequence
+from typing import Callable, Collection, Mapping, Sequence
 
 import numpy as np
 
@@ -46,14 +46,21 @@ def _centre(v: sim_pb2.VehicleTruth) -> np.ndarray:
     return _corners(v).mean(axis=0)
 
 
-def _onsets(truth: TruthSeries, condition: Callable[[sim_pb2.VehicleTruth, sim_pb2.VehicleTruth], bool]) -> int:
+def _judged(a: sim_pb2.VehicleTruth, b: sim_pb2.VehicleTruth, ours: Collection[str] | None) -> bool:
+    """Whether a pair is ours to judge: any pair, or (ours given: the scenario's vehicles among SUMO's traffic) a pair
+    with one of ours in it; two of SUMO's vehicles are SUMO's to judge (its own collision count)."""
+    return ours is None or a.vehicle_id in ours or b.vehicle_id in ours
+
+
+def _onsets(truth: TruthSeries, condition: Callable[[sim_pb2.VehicleTruth, sim_pb2.VehicleTruth], bool],
+            ours: Collection[str] | None = None) -> int:
     """How many times a pair of vehicles starts to satisfy `condition` (a lasting contact counts once)."""
     active: set[tuple[str, str]] = set()
     count = 0
     for _, vehicles in truth.frames:
         now = set()
         for a, b in itertools.combinations(sorted(vehicles, key=lambda v: v.vehicle_id), 2):
-            if condition(a, b):
+            if _judged(a, b, ours) and condition(a, b):
                 now.add((a.vehicle_id, b.vehicle_id))
         count += len(now - active)
         active = now
@@ -74,22 +81,24 @@ def _footprints_overlap(a: sim_pb2.VehicleTruth, b: sim_pb2.VehicleTruth) -> boo
     return geometry.rectangles_overlap(_corners(a), _corners(b))
 
 
-def collisions(truth: TruthSeries) -> int:
-    return _onsets(truth, _footprints_overlap)
+def collisions(truth: TruthSeries, ours: Collection[str] | None = None) -> int:
+    return _onsets(truth, _footprints_overlap, ours)
 
 
-def safety_circle_violations(truth: TruthSeries, radius_m: float = DEFAULT_SAFETY_RADIUS_M) -> int:
+def safety_circle_violations(truth: TruthSeries, radius_m: float = DEFAULT_SAFETY_RADIUS_M,
+                             ours: Collection[str] | None = None) -> int:
     """Onsets of two vehicle centres closer than radius_m (the organisers' safety circle)."""
-    return _onsets(truth, lambda a, b: float(np.hypot(*(_centre(a) - _centre(b)))) < radius_m)
+    return _onsets(truth, lambda a, b: float(np.hypot(*(_centre(a) - _centre(b)))) < radius_m, ours)
 
 
-def crossing_circle_violations(truth: TruthSeries, radius_m: float = DEFAULT_SAFETY_RADIUS_M) -> int:
+def crossing_circle_violations(truth: TruthSeries, radius_m: float = DEFAULT_SAFETY_RADIUS_M,
+                               ours: Collection[str] | None = None) -> int:
     """Safety-circle onsets between vehicles whose paths cross (headings more than 30 degrees from parallel):
     at an intersection, unlike two cars passing in their own lanes or following each other."""
     def crossing_too_close(a: sim_pb2.VehicleTruth, b: sim_pb2.VehicleTruth) -> bool:
         crossing = abs(math.sin(a.heading_rad - b.heading_rad)) > CROSSING_SIN
         return crossing and float(np.hypot(*(_centre(a) - _centre(b)))) < radius_m
-    return _onsets(truth, crossing_too_close)
+    return _onsets(truth, crossing_too_close, ours)
 
 
 def bumper_gap_m(leader: sim_pb2.VehicleTruth, follower: sim_pb2.VehicleTruth) -> float:
@@ -127,10 +136,12 @@ def following_pairs(vehicles: Sequence[sim_pb2.VehicleTruth]) -> list[Pair]:
     return pairs
 
 
-def gaps(truth: TruthSeries) -> dict[str, float]:
+def gaps(truth: TruthSeries, ours: Collection[str] | None = None) -> dict[str, float]:
     min_gap, min_time_gap = math.inf, math.inf
     for _, vehicles in truth.frames:
         for leader, follower in following_pairs(vehicles):
+            if not _judged(leader, follower, ours):
+                continue
             gap = bumper_gap_m(leader, follower)
             min_gap = min(min_gap, gap)
             if follower.speed_mps > MIN_SPEED_FOR_TIME_GAP_MPS:
@@ -332,17 +343,19 @@ def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[s
           safety_radius_m: float = DEFAULT_SAFETY_RADIUS_M, standstill_m: float = DEFAULT_STANDSTILL_M,
           headway_s: float = DEFAULT_HEADWAY_S, string_start_s: float = 0.0,
           string_frequency_hz: float | None = None, string_end_s: float = math.inf,
-          position_estimates: Mapping[str, tuple[np.ndarray, np.ndarray]] | None = None) -> dict[str, float]:
+          position_estimates: Mapping[str, tuple[np.ndarray, np.ndarray]] | None = None,
+          ours: Collection[str] | None = None) -> dict[str, float]:
     """The run's metrics; `platoon` lists vehicle ids leader first for the string gain, the spacing error and,
     unless `reference_speed_mps` says otherwise, the speed error (each judged follower against its predecessor;
     without a platoon neither error is reported);
-    `position_estimates` maps a vehicle id to (time_s (N,), xy_m (N, 2)) of the stack's own estimate."""
+    `position_estimates` maps a vehicle id to (time_s (N,), xy_m (N, 2)) of the stack's own estimate;
+    `ours`: the scenario's own vehicles among SUMO's traffic (None: every vehicle is), for the pairs judged."""
     judged = list(automated) if automated is not None else sorted(truth.automated) or truth.vehicle_ids
     metrics: dict[str, float] = {
-        "collisions": float(collisions(truth)),
-        "safety_circle_violations": float(safety_circle_violations(truth, safety_radius_m)),
-        "crossing_circle_violations": float(crossing_circle_violations(truth, safety_radius_m))}
-    metrics.update(gaps(truth))
+        "collisions": float(collisions(truth, ours)),
+        "safety_circle_violations": float(safety_circle_violations(truth, safety_radius_m, ours)),
+        "crossing_circle_violations": float(crossing_circle_violations(truth, safety_radius_m, ours))}
+    metrics.update(gaps(truth, ours))
     metrics.update(comfort(truth, judged))
     metrics.update(hard_brakes(truth, judged))
     metrics.update(spacing_error(truth, platoon, judged, standstill_m, headway_s))

@@ -31,6 +31,8 @@ class MissionJudge:
         self.stack_ids = list(stack_ids)
         self.frames: list[tuple[float, list[sim_pb2.VehicleTruth]]] = []
         self.collisions = 0
+        # Pairs of SUMO's vehicles (in the truth, not in the scenario) are not judged: one of ours must be in a pair.
+        self.ours = frozenset(v.vehicle_id for v in config.vehicles) if config.sumo_traffic is not None else None
         self._metrics: dict[str, float] | None = None
         # Stack vehicles whose actuation once drove them, and when each first gave the car back to its driver.
         self._automated: set[str] = set()
@@ -43,8 +45,9 @@ class MissionJudge:
         self.frames.append((time_s, list(truth.vehicles)))
         self._metrics = None
         # Onsets in the newest pair of frames, less the contacts already there in the older one.
-        newest = judging.collisions(TruthSeries.from_frames(self.frames[-2:]))
-        older = judging.collisions(TruthSeries.from_frames(self.frames[-2:-1])) if len(self.frames) >= 2 else 0
+        newest = judging.collisions(TruthSeries.from_frames(self.frames[-2:]), self.ours)
+        older = (judging.collisions(TruthSeries.from_frames(self.frames[-2:-1]), self.ours)
+                 if len(self.frames) >= 2 else 0)
         self.collisions += newest - older
 
     def observe_automation(self, vehicle_id: str, longitudinal_active: bool, time_s: float) -> None:
@@ -68,7 +71,7 @@ class MissionJudge:
                 standstill_m=judging_config.standstill_m, headway_s=judging_config.headway_s,
                 string_start_s=judging_config.string_start_s,
                 string_frequency_hz=judging_config.string_frequency_hz,
-                string_end_s=judging_config.string_end_s).items() if math.isfinite(value)}
+                string_end_s=judging_config.string_end_s, ours=self.ours).items() if math.isfinite(value)}
             self._metrics["collisions"] = float(self.collisions)
             self._metrics["automation_lost"] = float(len(self.automation_lost_s))
             self._metrics["safe_stops"] = float(sum(map(len, self.safe_stop_onsets_s.values())))

@@ -32,6 +32,13 @@ KEEP_MAX_ACCEL_MPS2 = 2.0
 KEEP_LATERAL_MARGIN_M = 0.3
 
 
+def cam_fields_of(t: sim_pb2.VehicleTruth) -> dict[str, Any]:
+    """A CAM's fields of a vehicle's truth (what it would send knowing exactly where it is)."""
+    return {"x_m": t.x_m, "y_m": t.y_m, "heading_rad": t.heading_rad, "speed_mps": t.speed_mps,
+            "accel_mps2": t.accel_mps2, "yaw_rate_radps": t.yaw_rate_radps, "length_m": t.length_m,
+            "width_m": t.width_m, "lane": t.lane_index}
+
+
 class IntentKind(enum.Enum):
     CAM = "cam"
     DENM = "denm"
@@ -218,10 +225,7 @@ class ScriptedVehicle:
         )
 
     def cam_fields(self) -> dict[str, Any]:
-        t = self._truth
-        return {"x_m": t.x_m, "y_m": t.y_m, "heading_rad": t.heading_rad, "speed_mps": t.speed_mps,
-                "accel_mps2": t.accel_mps2, "yaw_rate_radps": t.yaw_rate_radps, "length_m": t.length_m,
-                "width_m": t.width_m, "lane": t.lane_index}
+        return cam_fields_of(self._truth)
 
     def messages_due(self, now_s: float) -> list[MessageIntent]:
         if not self._cam_gate.due(now_s):

@@ -38,6 +38,10 @@ class RadarSensor(TimedSensor[sensors_pb2.RadarTracks]):
     def poll(self, now_s: float, world: WorldView) -> list[sensors_pb2.RadarTracks]:
         return self._deliver(now_s, lambda: self._measure(world))
 
+    def tracked_ids(self) -> set[str]:
+        """The vehicles the radar has tracked so far in the run."""
+        return set(self._track_ids)
+
     def _new_track_id(self) -> int:
         self._next_track_id += 1
         return self._next_track_id - 1

@@ -17,6 +17,8 @@ from coopdrive.services.sim.profiles import PLANT_PERTURBATIONS, PlantPerturbati
 from coopdrive.services.sim.roadside_unit import RsuEvent
 from coopdrive.services.sim.sensor_config import SensorSuiteConfig
 from coopdrive.services.sim.speed_profiles import LaneChange, SpeedProfile
+from coopdrive.services.sim.sumo_routes import SumoTrafficError
+from coopdrive.services.sim.sumo_traffic_config import SumoTrafficConfig
 from coopdrive.services.sim.world_profile import WorldProfile, ideal
 from coopdrive.vehicle import VehicleKind, vehicle_of
 
@@ -141,6 +143,8 @@ class ScenarioConfig(_Strict):
     # The real world (every sensor's and the radio's error sources, driving resistance, scripted vehicles'
     # CAMs from their own GNSS) or the ideal one for tests needing exact answers (world_profile.py).
     world: WorldProfile = WorldProfile.REAL
+    # SUMO's vehicles driving among ours on the scenario's SUMO network (docs/how-to/sumo-network.md).
+    sumo_traffic: SumoTrafficConfig | None = None
 
     @model_validator(mode="after")
     def _world_applied(self) -> ScenarioConfig:
@@ -163,6 +167,21 @@ class ScenarioConfig(_Strict):
             except SumoNetworkError as error:
                 raise ValueError(f"map: {error}") from None
             self.map = str(path)
+        return self
+
+    @model_validator(mode="after")
+    def _sumo_traffic_read(self, info: ValidationInfo) -> ScenarioConfig:
+        """SUMO traffic's files are checked here against the network, so that nothing starts on a bad one."""
+        if self.sumo_traffic is None:
+            return self
+        if not names_sumo_network(self.map):
+            raise ValueError(f"sumo_traffic: SUMO traffic needs a SUMO network as the map, not {self.map!r}")
+        traffic = self.sumo_traffic.resolved(Path((info.context or {}).get(BASE_DIR_CONTEXT, ".")))
+        try:
+            traffic.check(Path(self.map))
+        except SumoTrafficError as error:
+            raise ValueError(f"sumo_traffic: {error}") from None
+        self.sumo_traffic = traffic
         return self
 
     @model_validator(mode="after")

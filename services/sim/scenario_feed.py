@@ -145,12 +145,15 @@ class ScenarioFeed:
                                    clock_started_monotonic_s=self.service.wall_start_s)
         for key, value in self.judge.metrics().items():
             result.metrics[key] = value
+        for key, value in self.sim.traffic_metrics().items():
+            result.metrics[key] = value
         for counter in ("participants_lost", "service_crashes", "service_restarts"):
             result.metrics[counter] = self.service.counters.get(counter, 0)
         self.ctx.publish_for(WORLD_ID, "result", result)
         self.ctx.request_stop("scenario finished")
 
     def close(self) -> None:
+        self.sim.close()
         self.box.close()
         for line in self.gnss_lines.values():
             line.close()

@@ -18,6 +18,7 @@ from coopdrive.services.sim.scenario_builder import RoadMapLike, ScenarioObjects
 from coopdrive.services.sim.scenario_config import ScenarioConfig, VehicleRole
 from coopdrive.services.sim.sensor_suite import SensorOutputs
 from coopdrive.services.sim.station_faults import StationFaults
+from coopdrive.services.sim.sumo_traffic import SumoTraffic, sumo_traffic_of
 from coopdrive.services.sim.vehicle_model import VehicleModel, VehicleState
 from coopdrive.services.sim.vehicle_truth import vehicle_truth
 from coopdrive.services.sim.world_view import world_views
@@ -69,6 +70,11 @@ class ScenarioSim:
         # A modelled vehicle's truth with the state it was made from: the scripted participants step after the
         # models, and the world's truths are taken again then, while most models have not moved since.
         self._model_truths: dict[str, tuple[VehicleState, sim_pb2.VehicleTruth]] = {}
+        self.traffic: SumoTraffic | None = None
+        if self.config.sumo_traffic is not None:
+            edges = {vehicle_id: lanes[0].road_id for vehicle_id, lanes in self.objects.lanes.items()}
+            self.traffic = sumo_traffic_of(self.config.sumo_traffic, self.config.map, road_map, self.config.seed,
+                                           config.step_s, edges)
 
     # ----- stepping ---------------------------------------------------------------------------
     def apply_command(self, vehicle_id: str, command: StackCommand) -> None:
@@ -91,6 +97,9 @@ class ScenarioSim:
         for participant in self.objects.participants.values():
             participant.step(now_s, before)
         self._truths = None
+        if self.traffic is not None:
+            self.traffic.step(now_s, self._current_truths(with_traffic=False))
+            self._truths = None
         self.objects.faults.update(now_s, self.objects.sensor_suites, self.objects.channel)
         self.time_s = now_s
 
@@ -101,7 +110,8 @@ class ScenarioSim:
             self._truths = self._current_truths()
         return list(self._truths)
 
-    def _current_truths(self) -> list[sim_pb2.VehicleTruth]:
+    def _current_truths(self, with_traffic: bool = True) -> list[sim_pb2.VehicleTruth]:
+        """Ours (the scenario's vehicles) first, then SUMO's."""
         truths = []
         for vehicle in self.config.vehicles:
             vehicle_id = vehicle.vehicle_id
@@ -115,6 +125,8 @@ class ScenarioSim:
                 truths.append(made[1])
             else:
                 truths.append(self.objects.participants[vehicle_id].truth())
+        if with_traffic and self.traffic is not None:
+            truths.extend(self.traffic.truths())
         return truths
 
     def ground_truth(self, collisions: int = 0) -> sim_pb2.GroundTruth:
@@ -123,6 +135,8 @@ class ScenarioSim:
     def sensor_outputs(self, now_s: float) -> dict[str, SensorOutputs]:
         truths = self.truths()
         classes = {vid: p.object_class for vid, p in self.objects.participants.items()}
+        if self.traffic is not None:
+            classes.update(self.traffic.object_classes())
         egos = [truth for truth in truths if truth.vehicle_id in self.objects.sensor_suites]
         outputs = {}
         for view in world_views(truths, egos, classes):
@@ -132,12 +146,14 @@ class ScenarioSim:
         return outputs
 
     def intents(self, now_s: float) -> list[MessageIntent]:
-        """What the scripted participants and roadside units broadcast now."""
+        """What the scripted participants, roadside units and SUMO's equipped vehicles broadcast now."""
         intents = []
         for participant in self.objects.participants.values():
             intents.extend(participant.messages_due(now_s))
         for unit in self.objects.roadside_units:
             intents.extend(unit.messages_due(now_s))
+        if self.traffic is not None:
+            intents.extend(self.traffic.messages_due(now_s))
         return self.station_faults.apply(intents, now_s, self.truths())
 
     def radio_positions(self) -> dict[str, tuple[float, float]]:
@@ -146,6 +162,20 @@ class ScenarioSim:
             positions[unit.unit_id] = (unit.x_m, unit.y_m)
         positions.update(self.station_faults.positions(self.time_s, self.truths()))
         return positions
+
+    def traffic_metrics(self) -> dict[str, float]:
+        """SUMO's figures of its vehicles in the run (none without SUMO traffic), and how many of them the stacks'
+        cameras detected or radars tracked (sumo_vehicles_seen)."""
+        if self.traffic is None:
+            return {}
+        seen = set().union(*(suite.seen_vehicle_ids() for suite in self.objects.sensor_suites.values()))
+        return {**self.traffic.metrics(), "sumo_vehicles_seen": float(len(seen & self.traffic.vehicle_ids()))}
+
+    def close(self) -> None:
+        """Ends SUMO's simulation, if the run has one (libsumo holds one per process)."""
+        if self.traffic is not None:
+            self.traffic.close()
+            self.traffic = None
 
     def finished_early(self) -> str | None:
         """A reason to end the run before its duration (none yet: runs last their duration)."""

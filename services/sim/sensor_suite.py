@@ -52,6 +52,10 @@ class SensorSuite:
                          SensorName.RADAR: self.radar, SensorName.LIDAR: self.lidar,
                          SensorName.CAMERA: self.camera, SensorName.SONAR: self.sonar}
 
+    def seen_vehicle_ids(self) -> set[str]:
+        """The vehicles this vehicle's camera detected or its radar tracked so far in the run."""
+        return self.camera.detected_ids() | self.radar.tracked_ids()
+
     def set_dropout(self, sensor: SensorName, active: bool) -> None:
         self._by_name[sensor].set_dropout(active)
 

@@ -16,6 +16,7 @@ from coopdrive.services.v2x.config import GCDC_RATE_HZ, LinkSync, LinkType, Secu
 from coopdrive.services.v2x.denm_manager import ActionId
 from coopdrive.v2x.infrastructure import InfrastructureCodec, InfrastructureMessage
 from coopdrive.v2x.its_pdu import ItsMessageId
+from coopdrive.v2x.release2 import release2_spec
 from coopdrive.v2x.vru import VruMessage
 from coopdrive.v2x.packet import Content, MessageType
 from coopdrive.services.v2x.link import CaptureLog, RecordedLink, UdpLink
@@ -38,6 +39,11 @@ TOPIC_OF_MESSAGE = {ItsMessageId.CAM: "v2x/cam", ItsMessageId.DENM: "v2x/denm", 
                     InfrastructureMessage.SPATEM: "v2x/spatem", InfrastructureMessage.MAPEM: "v2x/mapem",
                     InfrastructureMessage.SREM: "v2x/srem", InfrastructureMessage.SSEM: "v2x/ssem",
                     VruMessage.VAM: "v2x/vam"}
+
+
+def _compile_port_message_modules() -> None:
+    InfrastructureCodec.spec()
+    release2_spec()
 
 
 @dataclass
@@ -83,9 +89,9 @@ class V2xService(Service):
         self.security = build_security_layer(c.security, c.station_id, c.mac_bytes,
                                              lambda: self.clock.tai_ms(self.ctx.now_s()) * US_PER_MS)
         self.transmitter = Transmitter(c, self.clock, security=self.security)
-        # The roadside units' modules compile beside the start (about 0.2 s of CPU), not in the first SPATEM's
-        # reception; one that arrives sooner waits for them.
-        threading.Thread(target=InfrastructureCodec.spec, name="v2x-dsrc-compile", daemon=True).start()
+        # The roadside units' and road users' modules compile beside the start (0.3 s of CPU each), not in the
+        # first SPATEM's or VAM's reception; one that arrives sooner waits for them.
+        threading.Thread(target=_compile_port_message_modules, name="v2x-modules-compile", daemon=True).start()
         self.reception = Reception(OwnIdentity(c.mac_bytes, c.station_id), self.clock, c.plausibility,
                                    c.loss_timeout_s, c.expected_rate_hz, c.statistics_window_s,
                                    security=self.security, known_clock_offsets_s=c.known_clock_offsets_s)

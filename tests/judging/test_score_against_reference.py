@@ -2,6 +2,7 @@
 the figures' definitions held to what they mean."""
 
 import json
+import re
 import subprocess
 import sys
 
@@ -131,3 +132,42 @@ def test_course_over_ground_beside_the_wheels_brings_the_heading_below_the_recei
                    *COURSE)["estimate"]
     assert fused["heading_rms_deg"] < alone["heading_rms_deg"]
     assert 0.80 <= fused["two_sigma_share"] <= 0.95
+
+
+def test_the_report_page_draws_each_error_over_time_inside_the_estimate_s_own_two_sigma_bounds(replayed, tmp_path):
+    folder = tmp_path / "report"
+    result = coopdrive("score", str(replayed), "--reference", str(shared_file(REFERENCE)), "--report", str(folder))
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.splitlines()[-1] == f"report: {folder / 'index.html'}"
+    page = (folder / "index.html").read_text()
+    images = re.findall(r'<img src="([^"]+)"', page)
+    assert images == ["along.png", "cross.png", "heading.png", "nees.png"]
+    for name in images:
+        assert (folder / name).read_bytes().startswith(b"\x89PNG")
+    assert "<td>two_sigma_share</td>" in page and "86.5%" in page
+
+
+def test_a_report_folder_that_cannot_be_made_is_one_line(replayed, tmp_path):
+    occupied = tmp_path / "a-file"
+    occupied.write_text("")
+    result = coopdrive("score", str(replayed), "--reference", str(shared_file(REFERENCE)), "--report", str(occupied))
+    assert result.returncode == 2
+    assert result.stderr.count("\n") == 1 and result.stderr.startswith(f"coopdrive: score: --report {occupied}: ")
+
+
+@pytest.mark.parametrize(("heading_deg", "along_std_m", "cross_std_m"), [(90.0, 0.5, 0.2), (0.0, 0.2, 0.5)])
+def test_the_bounds_along_and_across_the_track_are_the_covariance_seen_in_those_directions(heading_deg, along_std_m,
+                                                                                         cross_std_m):
+    """East std 0.5 m, north 0.2 m: along an eastward track (compass 90 deg) the bound is the east one."""
+    samples = 50
+    time_s = np.arange(samples) * 0.1
+    reference = ReferenceTrack(time_s, np.full(samples, 37.72), np.full(samples, -122.47),
+                               heading_deg=np.full(samples, heading_deg))
+    covariance = np.zeros((samples, 3, 3))
+    covariance[:, 0, 0], covariance[:, 1, 1], covariance[:, 2, 2] = 0.25, 0.04, 1e-4
+    series = TrackSeries("estimate", time_s, np.full(samples, 37.72), np.full(samples, -122.47),
+                         heading_rad=np.zeros(samples), covariance=covariance)
+    errors = score_series(series, reference, max_offset_s=0.0).errors
+    assert errors.along_std_m == pytest.approx(np.full(samples, along_std_m))
+    assert errors.cross_std_m == pytest.approx(np.full(samples, cross_std_m))
+    assert errors.heading_std_rad == pytest.approx(np.full(samples, 0.01))

@@ -24,6 +24,8 @@ from pathlib import Path
 from coopdrive.v2x.reasons import V2xDecodeError
 from coopdrive.recording.capture import read_gn_packets
 from coopdrive.runtime.testing import MemoryContext
+from coopdrive.v2x.infrastructure import InfrastructureCodec
+from coopdrive.v2x.release2 import release2_spec
 from coopdrive.v2x.security.pki import create_test_pki, tamper_packet
 from coopdrive.v2x.geonet import is_secured
 from coopdrive.services.v2x.service import V2xService
@@ -115,6 +117,10 @@ def mutate(rng: random.Random, packet: bytes) -> bytes:
 
 
 def start_service(pki_dir: Path, pcap_path: Path, now_s: float) -> tuple[V2xService, MemoryContext, socket.socket]:
+    # The roadside and road-user modules are compiled once per process, on the first such packet: compiled here, a
+    # packet's time is its own work (a mutated port makes any packet one of theirs).
+    InfrastructureCodec.spec()
+    release2_spec()
     radio = loopback_udp_socket()
     ctx = MemoryContext(queue_calls=True, opens_hardware=True)
     ctx.clock.set(now_s)
