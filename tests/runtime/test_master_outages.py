@@ -93,7 +93,7 @@ def test_a_restart_that_never_comes_back_leaves_the_run_going_without_it(monkeyp
     runner.service = Launcher(runner, [Outage("v/control", crash_step=2, restart_step=5)])
     runner.service.on_outage = lambda participant, restart: None  # the launcher does nothing
     settings = runner.service.clock_settings()
-    settings.startup_timeout_s = 0.2
+    settings.restart_timeout_s = 0.2
     runner.service.clock_settings = lambda: settings
     monkeypatch.setattr("coopdrive.runtime.master.CRASH_TIMEOUT_S", 0.2)
     master_of(runner).run()
