@@ -12,7 +12,8 @@ import pytest
 import yaml
 from foxglove_schemas_protobuf.LocationFix_pb2 import LocationFix
 
-from coopdrive.launch.compose_processes import command_of, compose_processes, interpolate, start_all, stop
+from coopdrive.launch.compose_processes import compose_processes, interpolate, start_all, stop
+from tests.foundation.compose_checks import failing_healthchecks, kill_all
 from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
 from tests.system_packages import needs
 from tests.visual.foxglove_ws_client import watch
@@ -41,21 +42,8 @@ def desk(desk_environment, desk_logs):
     processes = compose_processes(["desk"], desk_environment)
     running = start_all(processes, desk_logs)
     yield processes, running
-    for process in processes:
-        if running[process.name].poll() is None:
-            running[process.name].kill()
-            running[process.name].wait()
+    kill_all(running)
 
-
-def healthchecks_failing(processes) -> list[str]:
-    failing = []
-    for process in processes:
-        if process.healthcheck is None:
-            continue
-        result = subprocess.run(command_of(process.healthcheck), capture_output=True, text=True, timeout=60)
-        if result.returncode != 0:
-            failing.append(f"{process.name}: {result.stdout.strip()} {result.stderr.strip()}")
-    return failing
 
 
 def test_the_desk_profile_runs_the_simulator_one_stack_the_gateway_and_the_foxglove_bridge(desk_environment,
@@ -71,7 +59,7 @@ def test_every_desk_process_passes_its_healthcheck_and_the_gateway_lists_every_s
                                                                                                desk_environment):
     processes, running = desk
     deadline = time.monotonic() + HEALTHY_TIMEOUT_S
-    while (failing := healthchecks_failing(processes)) and time.monotonic() < deadline:
+    while (failing := failing_healthchecks(processes)) and time.monotonic() < deadline:
         assert all(p.poll() is None for p in running.values()), _ended(running, desk_logs)
         time.sleep(1.0)
     assert not failing

@@ -16,6 +16,7 @@ from mcap.reader import make_reader
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.launch.compose_processes import command_of, compose_processes, start_all
 from coopdrive.launch.ports import free_tcp_port
+from tests.foundation.compose_checks import failing_healthchecks, kill_all
 
 VEHICLE = "car7"
 WITHOUT_CAR = ("zenohd", "planner", "control", "foxglove")
@@ -48,21 +49,8 @@ def vehicle(credentials, tmp_path_factory):
                  if p.name in WITHOUT_CAR]
     running = start_all(processes, logs)
     yield processes, running, logs
-    for process in processes:
-        if running[process.name].poll() is None:
-            running[process.name].kill()
-            running[process.name].wait()
+    kill_all(running)
 
-
-def failing_healthchecks(processes) -> list[str]:
-    failing = []
-    for process in processes:
-        if process.healthcheck is not None:
-            result = subprocess.run(command_of(process.healthcheck), capture_output=True, text=True, timeout=60,
-                                    env={**os.environ, **process.environment})
-            if result.returncode != 0:
-                failing.append(f"{process.name}: {result.stdout.strip()} {result.stderr.strip()}")
-    return failing
 
 
 def wait_healthy(vehicle) -> None:
