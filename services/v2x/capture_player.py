@@ -15,7 +15,6 @@ recorded, signatures intact.
 from __future__ import annotations
 
 import socket
-import struct
 import time
 from collections import Counter
 from collections.abc import Callable
@@ -24,9 +23,7 @@ from pathlib import Path
 from typing import Protocol
 
 from coopdrive.recording.capture import CaptureFormatError, CapturedFrame, read_capture
-from coopdrive.recording.link_types import ETHERTYPE_GEONETWORKING
-from coopdrive.services.v2x.raw_link import open_packet_socket
-from coopdrive.v2x.pcap import BROADCAST_MAC
+from coopdrive.services.v2x.raw_link import frame_header, open_packet_socket
 
 # The sender's MAC where the capture shows none (a capture of GN packets without a link header): locally
 # administered, unicast.
@@ -75,10 +72,9 @@ class RawSink:
     def __init__(self, interface: str):
         self.interface = interface
         self._socket = open_packet_socket(interface)
-        self._type = struct.pack(">H", ETHERTYPE_GEONETWORKING)
 
     def send(self, frame: CapturedFrame) -> None:
-        self._socket.send(BROADCAST_MAC + (frame.source_mac or UNKNOWN_SENDER_MAC) + self._type + frame.gn_packet)
+        self._socket.send(frame_header(frame.source_mac or UNKNOWN_SENDER_MAC) + frame.gn_packet)
 
     def close(self) -> None:
         self._socket.close()

@@ -48,6 +48,11 @@ def open_packet_socket(interface: str) -> socket.socket:
     return packet_socket
 
 
+def frame_header(source_mac: bytes) -> bytes:
+    """The Ethernet header of a GN frame from source_mac: broadcast destination, ethertype 0x8947."""
+    return BROADCAST_MAC + source_mac + struct.pack(">H", ETHERTYPE_GEONETWORKING)
+
+
 class RawLink(LinkReader):
     """Sends GN packets as broadcast frames from our MAC and reads the others' frames on a daemon thread."""
 
@@ -56,7 +61,7 @@ class RawLink(LinkReader):
             raise RawLinkError(f"v2x raw link on {interface}: a MAC address has {MAC_BYTES} bytes, not "
                                f"{len(source_mac)}")
         self.interface = interface
-        self._header = BROADCAST_MAC + source_mac + struct.pack(">H", ETHERTYPE_GEONETWORKING)
+        self._header = frame_header(source_mac)
         self._source_mac = source_mac
         self._on_packet = on_packet
         super().__init__(open_packet_socket(interface), f"v2x-raw-{interface}")
