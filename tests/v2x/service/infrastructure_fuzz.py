@@ -18,7 +18,7 @@ from coopdrive.v2x.security.pki import create_test_pki
 from coopdrive.v2x.timebase import unix_s_from_tai_ms
 from tests.shared_data import shared_file
 from tests.v2x import infrastructure_messages as messages
-from tests.v2x.service.receive_fuzz import FuzzOutcome, print_outcome, run_in_service, start_service
+from tests.v2x.service.receive_fuzz import FuzzOutcome, print_outcome, run_in_service, signing_with, start_service
 
 REAL_SPATEM_INDEX = 3
 # Its generation time (TAI ms since 2004, in its signed header); the service's clock starts just after, so that
@@ -47,7 +47,7 @@ def prepared_clock_s(folder: Path) -> float:
 
 def started_service(folder: Path):
     """receive_fuzz's service on folder's PKI, its clock just after the real SPATEM was sent."""
-    return start_service(folder / "pki", folder / "rx.pcap", prepared_clock_s(folder))
+    return start_service(folder / "rx.pcap", prepared_clock_s(folder), signing_with(folder / "pki"))
 
 
 def run(packets: int, folder: Path) -> tuple[FuzzOutcome, dict[str, int]]:

@@ -116,7 +116,14 @@ def mutate(rng: random.Random, packet: bytes) -> bytes:
     return bytes(data)
 
 
-def start_service(pki_dir: Path, pcap_path: Path, now_s: float) -> tuple[V2xService, MemoryContext, socket.socket]:
+def signing_with(pki_dir: Path) -> dict:
+    """The security block of a service that signs and verifies with pki_dir's ticket `ego`."""
+    return {"mode": "sign_and_verify", "pki_dir": str(pki_dir), "ticket": "ego"}
+
+
+def start_service(pcap_path: Path, now_s: float, security: dict | None = None
+                  ) -> tuple[V2xService, MemoryContext, socket.socket]:
+    """A v2x service on a loopback radio, its clock at now_s; security: the config's block (None: off)."""
     # The roadside and road-user modules are compiled once per process, on the first such packet: compiled here, a
     # packet's time is its own work (a mutated port makes any packet one of theirs).
     InfrastructureCodec.spec()
@@ -124,12 +131,11 @@ def start_service(pki_dir: Path, pcap_path: Path, now_s: float) -> tuple[V2xServ
     radio = loopback_udp_socket()
     ctx = MemoryContext(queue_calls=True, opens_hardware=True)
     ctx.clock.set(now_s)
-    config = V2xService.Config.model_validate({
-        "link": {"radio_port": radio.getsockname()[1], "listen_port": 0}, "station_id": 1001,
-        "vehicle_mac": "02:00:00:00:10:01",
-        "pcap_path": str(pcap_path), "send_iclcm": False,
-        "security": {"mode": "sign_and_verify", "pki_dir": str(pki_dir), "ticket": "ego"}})
-    service = V2xService(config, ctx)
+    config = {"link": {"radio_port": radio.getsockname()[1], "listen_port": 0}, "station_id": 1001,
+              "vehicle_mac": "02:00:00:00:10:01", "pcap_path": str(pcap_path), "send_iclcm": False}
+    if security is not None:
+        config["security"] = security
+    service = V2xService(V2xService.Config.model_validate(config), ctx)
     service.start()
     return service, ctx, radio
 
@@ -184,7 +190,7 @@ def _flush(service: V2xService, ctx: MemoryContext, outcome: FuzzOutcome) -> Non
 def run_in_service(folder: Path, now_s: float, groups: list[list[bytes]], packets: int,
                    mutation: Mutation = mutate) -> FuzzOutcome:
     """fuzz() against a service started on folder's PKI (ticket `ego`) at now_s, stopped afterwards."""
-    service, ctx, radio = start_service(folder / "pki", folder / "fuzz.pcap", now_s)
+    service, ctx, radio = start_service(folder / "fuzz.pcap", now_s, signing_with(folder / "pki"))
     try:
         return fuzz(service, ctx, groups, packets, mutation=mutation)
     finally:

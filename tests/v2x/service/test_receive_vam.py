@@ -8,7 +8,8 @@ import pytest
 from coopdrive.services.v2x.plausibility import PlausibilityReason
 from coopdrive.v2x.reasons import RejectReason
 
-from .vam_fuzz import capture_vams, run, started_service
+from .receive_fuzz import start_service
+from .vam_fuzz import capture_vams, run
 
 FLEXSTACK_VRU_STATION = 2
 FLEXSTACK_VRU_POSITION_DEG = (41.387304, 2.112485)  # the capture's GN position vector of that station
@@ -18,7 +19,7 @@ PACKETS = 3000
 @pytest.fixture
 def service(tmp_path):
     vams = capture_vams()
-    service, ctx, radio = started_service(tmp_path, vams[0][0])
+    service, ctx, radio = start_service(tmp_path / "rx.pcap", vams[0][0])
     yield service, ctx, vams
     service.stop()
     radio.close()

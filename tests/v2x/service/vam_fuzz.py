@@ -8,20 +8,15 @@ full run is
 from __future__ import annotations
 
 import argparse
-import socket
 import tempfile
 from pathlib import Path
 
 from coopdrive.recording.capture import read_gn_packets
-from coopdrive.runtime.testing import MemoryContext
-from coopdrive.services.v2x.service import V2xService
 from coopdrive.v2x.btp import BtpPort, parse_btp_b
 from coopdrive.v2x.geonet import parse_gn
 from coopdrive.v2x.reasons import V2xDecodeError
-from coopdrive.v2x.release2 import release2_spec
 from tests.shared_data import shared_file
-from tests.v2x.service.receive_fuzz import FuzzOutcome, fuzz, print_outcome
-from tests.v2x.udp_socket import loopback_udp_socket
+from tests.v2x.service.receive_fuzz import FuzzOutcome, fuzz, print_outcome, start_service
 
 CAPTURE = "v2x/flexstack_cam_vam_beacons.pcap"
 
@@ -39,24 +34,11 @@ def capture_vams() -> list[tuple[float, bytes]]:
             if _is_vam(frame.gn_packet)]
 
 
-def started_service(folder: Path, now_s: float) -> tuple[V2xService, MemoryContext, socket.socket]:
-    """A v2x service with security off (FlexStack's VAMs are unsigned), its clock at now_s."""
-    release2_spec()  # compiled before the clock runs: a packet's time is its own work
-    radio = loopback_udp_socket()
-    ctx = MemoryContext(queue_calls=True, opens_hardware=True)
-    ctx.clock.set(now_s)
-    config = V2xService.Config.model_validate({
-        "link": {"radio_port": radio.getsockname()[1], "listen_port": 0}, "station_id": 1001,
-        "vehicle_mac": "02:00:00:00:10:01", "pcap_path": str(folder / "rx.pcap"), "send_iclcm": False})
-    service = V2xService(config, ctx)
-    service.start()
-    return service, ctx, radio
-
-
 def run(packets: int, folder: Path) -> FuzzOutcome:
     vams = capture_vams()
-    # The clock just after the last VAM: it is fresh, the older ones too old (both paths are taken).
-    service, ctx, radio = started_service(folder, vams[-1][0])
+    # The clock just after the last VAM: it is fresh, the older ones too old (both paths are taken). Security off:
+    # FlexStack's VAMs are unsigned.
+    service, ctx, radio = start_service(folder / "rx.pcap", vams[-1][0])
     try:
         return fuzz(service, ctx, [[vam] for _, vam in vams], packets)
     finally:
