@@ -5,8 +5,8 @@
   projects a network it builds from OpenStreetMap. The edge `approach` (1 km, 3 lanes) and the on-ramp `ramp` (one
   lane) meet at junction `j`, where the ramp gives way; the edge `motorway` (3 km, 3 lanes) goes on from there.
   120 km/h on the motorway, 80 km/h on the ramp.
-- motorway.rou.xml: dense traffic: the approach and the motorway's two left lanes filled in the first seconds, then a
-  steady flow on the motorway and onto it from the ramp (SUMO routes the flows' own edges).
+- motorway.rou.xml: dense traffic: the approach, the ramp and the motorway's two left lanes filled in the first
+  seconds (98 cars), then a steady flow on the motorway and onto it from the ramp.
 - grid.net.xml and grid.rou.xml: a small urban grid by netgenerate (4 x 4 junctions 150 m apart, two lanes each way
   at 50 km/h, traffic lights), with flows across it.
 
@@ -52,14 +52,16 @@ MOTORWAY_ROUTES = """<routes>
     <route id="through" edges="approach motorway"/>
     <route id="onto" edges="ramp motorway"/>
     <route id="ahead" edges="motorway"/>
-    <!-- The approach filled in the first seconds, and the motorway's two left lanes beside and ahead of the
-         scenario's vehicles, which drive on its right lane. -->
+    <!-- The approach and the ramp filled in the first seconds, and the motorway's two left lanes beside and ahead
+         of the scenario's vehicles, which drive on its right lane. -->
     <flow id="approach_fill" type="car" route="through" begin="0.5" end="3" number="60" departLane="random"
           departPos="random_free" departSpeed="max"/>
     <flow id="ahead_1" type="car" route="ahead" begin="0.5" end="3" number="15" departLane="1"
           departPos="random_free" departSpeed="max"/>
     <flow id="ahead_2" type="car" route="ahead" begin="0.5" end="3" number="15" departLane="2"
           departPos="random_free" departSpeed="max"/>
+    <flow id="ramp_fill" type="car" route="onto" begin="0.5" end="3" number="8" departPos="random_free"
+          departSpeed="max"/>
     <!-- 900 cars an hour from the ramp, from the start; then (SUMO reads flows in the order they begin) a steady flow
          of 3000 cars and 300 trucks an hour on the motorway. -->
     <flow id="merging" type="car" route="onto" begin="0.5" end="3600" vehsPerHour="900" departSpeed="max"/>

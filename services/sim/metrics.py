@@ -119,13 +119,14 @@ def side_by_side(a: sim_pb2.VehicleTruth, b: sim_pb2.VehicleTruth) -> bool:
 
 def following_pairs(vehicles: Sequence[sim_pb2.VehicleTruth]) -> list[Pair]:
     """(leader, follower): each vehicle and the nearest one ahead in its lane that it could run into. Every
-    road numbers its lanes from 0, so a lane is told apart by its direction too: cars on crossing or opposite
-    roads never follow one another."""
+    road numbers its lanes from 0, and measures stations from its own start, so a lane is told apart by its road
+    (a SUMO network's edges one after the other) and its direction too: cars on crossing or opposite roads, or on
+    the approach to a junction and past it, never follow one another."""
     pairs = []
-    by_lane: dict[tuple[int, int, int], list[sim_pb2.VehicleTruth]] = {}
+    by_lane: dict[tuple[str, int, int, int], list[sim_pb2.VehicleTruth]] = {}
     for vehicle in vehicles:
         direction = (round(math.cos(vehicle.heading_rad)), round(math.sin(vehicle.heading_rad)))
-        by_lane.setdefault((vehicle.lane_index, *direction), []).append(vehicle)
+        by_lane.setdefault((vehicle.road_id, vehicle.lane_index, *direction), []).append(vehicle)
     for lane_vehicles in by_lane.values():
         ordered = sorted(lane_vehicles, key=lambda v: v.station_m, reverse=True)
         for index, follower in enumerate(ordered[1:], start=1):

@@ -158,6 +158,7 @@ class SumoTraffic:
         if lane is not None:
             truth.station_m, truth.lateral_offset_m = lane.project(x_m, y_m)[:2]
             truth.lane_index = lane.lane_index
+            truth.road_id = lane.road_id
         return truth
 
     def _station_id(self, vehicle_id: str) -> int:
