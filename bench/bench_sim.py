@@ -45,11 +45,12 @@ BEFORE_ISSUE_MS_PER_SIMULATED_S = 1645.0
 
 
 class SimulatorAlone:
-    """The simulator service of a string run with `stacks` stack vehicles, in memory; each stack's radio box
-    port has a socket that is never read (the kernel drops what overflows it, as a busy stack would not)."""
+    """The simulator service of a string run (or another scenario, by name or file) with `stacks` stack vehicles, in
+    memory; each stack's radio box port has a socket that is never read (the kernel drops what overflows it, as a
+    busy stack would not)."""
 
-    def __init__(self, stacks: int):
-        config = SimConfig(scenario=SCENARIO)
+    def __init__(self, stacks: int, scenario: str = SCENARIO, scenario_file: str = ""):
+        config = SimConfig(scenario=scenario, scenario_file=scenario_file)
         scenario = load_scenario(config.scenario_path())
         stack_ids = [v.vehicle_id for v in scenario.vehicles if v.role.value == "stack"][:stacks]
         ports = iter(free_udp_ports(2 * len(stack_ids)))
@@ -92,17 +93,22 @@ def cpu_ms_per_simulated_s(stack_counts: tuple[int, ...]) -> list[float]:
     comes and goes weighs on all alike; one world after the other moved the 8-to-1 ratio by 21 % between two
     quiet runs of the same code)."""
     simulators = [SimulatorAlone(stacks) for stacks in stack_counts]
-    spent_s = [0.0] * len(simulators)
     try:
-        steps = simulators[0].steps_in(DURATION_S)
-        bounds = [round(turn * steps / TURNS) for turn in range(TURNS + 1)]
-        for first_step, end_step in zip(bounds, bounds[1:]):
-            for index, simulator in enumerate(simulators):
-                spent_s[index] += cpu_seconds(lambda s=simulator: s.run(first_step, end_step))
+        return cpu_ms_in_turns(simulators, DURATION_S, TURNS)
     finally:
         for simulator in simulators:
             simulator.close()
-    return [1000.0 * spent / DURATION_S for spent in spent_s]
+
+
+def cpu_ms_in_turns(simulators: list[SimulatorAlone], duration_s: float, turns: int) -> list[float]:
+    """Each simulator's CPU ms per simulated second over duration_s, stepped in `turns` turns about."""
+    spent_s = [0.0] * len(simulators)
+    steps = simulators[0].steps_in(duration_s)
+    bounds = [round(turn * steps / turns) for turn in range(turns + 1)]
+    for first_step, end_step in zip(bounds, bounds[1:]):
+        for index, simulator in enumerate(simulators):
+            spent_s[index] += cpu_seconds(lambda s=simulator: s.run(first_step, end_step))
+    return [1000.0 * spent / duration_s for spent in spent_s]
 
 
 def main(argv: list[str] | None = None) -> list[Figure] | None:

@@ -28,7 +28,9 @@ def scenario_files() -> dict[str, ScenarioConfig | ScenarioError]:
         if not entry.name.endswith((".yaml", ".yml")):
             continue
         try:
-            loaded[entry.name] = parse_scenario(yaml.safe_load(entry.read_text(encoding="utf-8")), entry.name)
+            # A SUMO network a file names is beside it (scenarios/sumo/): found from the file's own folder.
+            loaded[entry.name] = parse_scenario(yaml.safe_load(entry.read_text(encoding="utf-8")), entry.name,
+                                                Path(str(entry)).parent)
         except yaml.YAMLError as error:
             loaded[entry.name] = ScenarioError(f"{entry.name}: invalid YAML: {' '.join(str(error).split())}")
         except ScenarioError as error:

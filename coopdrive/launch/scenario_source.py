@@ -32,8 +32,10 @@ class ScenarioSource:
         """The same scenario with faults added to its own, written to folder: the simulator loads a file."""
         data = yaml.safe_load(self.file.read_text(encoding="utf-8"))
         data["faults"] = list(data.get("faults") or []) + list(faults)
-        # The map as loaded: a SUMO network's path absolute, since the copy is in another folder.
+        # The map and SUMO's traffic files as loaded: their paths absolute, since the copy is in another folder.
         data["map"] = self.config.map
+        if self.config.sumo_traffic is not None:
+            data["sumo_traffic"] = self.config.sumo_traffic.model_dump(mode="json")
         path = Path(folder) / f"{self.name}.yaml"
         path.write_text(yaml.safe_dump(data, sort_keys=False), encoding="utf-8")
         return ScenarioSource(self.name, path.resolve(), load_scenario(path))

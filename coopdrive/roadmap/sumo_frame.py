@@ -11,9 +11,15 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Protocol
 
+import numpy as np
+import pymap3d
+
 
 class GeodeticPlane(Protocol):
     """What SumoFrame needs of the road map laid from the network (coopdrive.roadmap.RoadMap)."""
+
+    # The plane's geodetic origin (lat_deg, lon_deg, alt_m).
+    origin: tuple[float, float, float]
 
     def to_enu(self, lat_deg: float, lon_deg: float, alt_m: float = 0.0) -> tuple[float, float, float]:
         ...
@@ -40,11 +46,18 @@ class SumoFrame:
         return cls(plane, net if net.hasGeoProj() else None)
 
     def to_local(self, x_m: float, y_m: float) -> tuple[float, float]:
-        if self._net is None:
-            return x_m, y_m
-        lon_deg, lat_deg = self._net.convertXY2LonLat(x_m, y_m)
-        east_m, north_m, _ = self._plane.to_enu(float(lat_deg), float(lon_deg))
+        east_m, north_m = self.to_local_many(np.array([[x_m, y_m]], dtype=float))[0]
         return float(east_m), float(north_m)
+
+    def to_local_many(self, points_xy: np.ndarray) -> np.ndarray:
+        """to_local of N points (N x 2) at once: a hundred SUMO vehicles a step cost one projection call, not a
+        hundred."""
+        if self._net is None or len(points_xy) == 0:
+            return np.asarray(points_xy, dtype=float).reshape(-1, 2)
+        lon_deg, lat_deg = self._net.convertXY2LonLat(points_xy[:, 0].copy(), points_xy[:, 1].copy())
+        east_m, north_m, _ = pymap3d.geodetic2enu(np.asarray(lat_deg), np.asarray(lon_deg), np.zeros(len(points_xy)),
+                                                  *self._plane.origin)
+        return np.column_stack((np.atleast_1d(east_m), np.atleast_1d(north_m)))
 
     def to_network(self, x_m: float, y_m: float) -> tuple[float, float]:
         if self._net is None:

@@ -221,7 +221,7 @@ class ScriptedVehicle:
             vehicle_id=self.vehicle_id, station_id=self.station_id, x_m=x_m, y_m=y_m, heading_rad=heading,
             speed_mps=self._speed_mps, accel_mps2=self._accel_mps2, yaw_rate_radps=yaw_rate,
             length_m=self.profile.length_m, width_m=self.profile.width_m, lane_index=self.lane_index,
-            station_m=station_m, lateral_offset_m=lateral_m, automated=False,
+            road_id=getattr(current, "road_id", ""), station_m=station_m, lateral_offset_m=lateral_m, automated=False,
         )
 
     def cam_fields(self) -> dict[str, Any]:

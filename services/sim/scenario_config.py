@@ -4,6 +4,7 @@ from __future__ import annotations
 import datetime as dt
 import enum
 import math
+import re
 from pathlib import Path
 from typing import Any
 
@@ -11,6 +12,7 @@ import yaml
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, model_validator
 
 from coopdrive.roadmap.sumo_network import SumoNetworkError, check_sumo_network, names_sumo_network
+from coopdrive.roadmap.sumo_placement import SumoPlacementError, station_on_sumo_lane
 from coopdrive.services.sim.channel_config import RadioChannelConfig
 from coopdrive.services.sim.fault_config import Fault
 from coopdrive.services.sim.profiles import PLANT_PERTURBATIONS, PlantPerturbation, VehicleProfile, plant_profile
@@ -25,6 +27,8 @@ from coopdrive.vehicle import VehicleKind, vehicle_of
 GCDC_2016_FINAL = dt.datetime(2016, 5, 28, 10, 0, 0, tzinfo=dt.timezone.utc)
 # Keys that select a member of a tagged union; pydantic puts their value in error paths.
 _TAG_KEYS = ("type", "kind")
+# A validator's message that starts with the key path it is about ("station_m: ...", "vehicles.2.edge: ...").
+_OWN_KEY = re.compile(r"^[a-z_][a-z0-9_]*(\.[a-z0-9_]+)*: ")
 
 
 # The validation context's key for the folder a scenario file's relative paths are from.
@@ -63,7 +67,11 @@ class VehicleConfig(_Strict):
     # Road id in the map; empty means the map's first road.
     road: str = ""
     lane: int = Field(ge=0)
-    station_m: float
+    # Metres along the lane; on a SUMO network, `edge` and `pos_m` may place the vehicle instead (as SUMO places one:
+    # pos_m from the start of the edge's lane, by SUMO's length), and the scenario's loading sets station_m.
+    station_m: float | None = None
+    edge: str | None = Field(default=None, min_length=1)
+    pos_m: float | None = None
     speed_mps: float = Field(ge=0)
     speed_profile: SpeedProfile | None = None
     lane_changes: list[LaneChange] = []
@@ -76,6 +84,24 @@ class VehicleConfig(_Strict):
     siren: SirenConfig | None = None
     # Overrides the scenario-wide sensor suite for this vehicle.
     sensors: SensorSuiteConfig | None = None
+
+    @model_validator(mode="after")
+    def _placed_once(self) -> VehicleConfig:
+        """Either road and station_m, or edge and pos_m (road is then the edge)."""
+        if self.edge is None:
+            if self.pos_m is not None:
+                raise ValueError("pos_m: a position on a SUMO edge needs the edge (edge: ID)")
+            if self.station_m is None:
+                raise ValueError("station_m: Field required")
+            return self
+        if self.road not in ("", self.edge):
+            raise ValueError(f"edge: give either road or edge, not both (road {self.road!r}, edge {self.edge!r})")
+        if self.pos_m is None:
+            raise ValueError("pos_m: a vehicle placed on a SUMO edge needs its position on it (pos_m)")
+        if self.station_m is not None:
+            raise ValueError("station_m: give either station_m or pos_m on the edge, not both")
+        self.road = self.edge
+        return self
 
     def plant_profile(self) -> VehicleProfile:
         """The simulated vehicle: its description with its plant's perturbation."""
@@ -185,6 +211,22 @@ class ScenarioConfig(_Strict):
         return self
 
     @model_validator(mode="after")
+    def _sumo_positions_placed(self) -> ScenarioConfig:
+        """Vehicles placed by SUMO edge and position get their station on our lane here, and one that is not on the
+        network stops the run before anything starts."""
+        for index, vehicle in enumerate(self.vehicles):
+            if vehicle.edge is None:
+                continue
+            if not names_sumo_network(self.map):
+                raise ValueError(f"vehicles.{index}.edge: placing by SUMO edge needs a SUMO network as the map, "
+                                 f"not {self.map!r}")
+            try:
+                vehicle.station_m = station_on_sumo_lane(self.map, vehicle.edge, vehicle.lane, vehicle.pos_m)
+            except SumoPlacementError as error:
+                raise ValueError(f"vehicles.{index}: {error}") from None
+        return self
+
+    @model_validator(mode="after")
     def _references_resolve(self) -> ScenarioConfig:
         ids = [v.vehicle_id for v in self.vehicles]
         for index, vehicle_id in enumerate(ids):
@@ -242,9 +284,11 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
         first = error.errors()[0]
         path = _key_path(tuple(first["loc"]), data)
         message = first["msg"]
-        if not path and message.startswith("Value error, ") and ": " in message:
-            # Cross-reference errors carry their own key path.
-            path, message = message.removeprefix("Value error, ").split(": ", 1)
+        own_key = _OWN_KEY.match(message.removeprefix("Value error, ")) or (not path and ": " in message)
+        if message.startswith("Value error, ") and own_key:
+            # Cross-reference errors carry their own key path, below where they were raised.
+            own, message = message.removeprefix("Value error, ").split(": ", 1)
+            path = f"{path}.{own}" if path else own
         more = error.error_count() - 1
         suffix = f" (and {more} more error{'s' if more > 1 else ''})" if more else ""
         raise ScenarioError(_one_line(f"{source}: {path or '<root>'}: {message}{suffix}")) from None

@@ -17,6 +17,8 @@ import random
 from pathlib import Path
 from typing import Mapping, Sequence
 
+import numpy as np
+
 from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.roadmap.sumo_frame import SumoFrame
 from coopdrive.services.sim.participants import IntentKind, MessageIntent, RateGate, cam_fields_of
@@ -111,8 +113,10 @@ class SumoTraffic:
             self._mirrored.discard(vehicle_id)
         self._contacts_with_ours.update((c.collider, c.victim) for c in self.sumo.simulation.getCollisions()
                                         if c.collider in self._our_edges or c.victim in self._our_edges)
-        self._truths = [self._truth_of(vehicle_id) for vehicle_id in self.sumo.vehicle.getIDList()
-                        if vehicle_id not in self._our_edges]
+        theirs = [vehicle_id for vehicle_id in self.sumo.vehicle.getIDList() if vehicle_id not in self._our_edges]
+        fronts = self.frame.to_local_many(np.array([self.sumo.vehicle.getPosition(vehicle_id) for vehicle_id in theirs],
+                                                   dtype=float).reshape(-1, 2))
+        self._truths = [self._truth_of(vehicle_id, front) for vehicle_id, front in zip(theirs, fronts)]
 
     def _mirror(self, truth: sim_pb2.VehicleTruth) -> None:
         vehicle = self.sumo.vehicle
@@ -141,11 +145,12 @@ class SumoTraffic:
     def object_classes(self) -> dict[str, int]:
         return dict(self._classes)
 
-    def _truth_of(self, vehicle_id: str) -> sim_pb2.VehicleTruth:
+    def _truth_of(self, vehicle_id: str, front_xy: np.ndarray) -> sim_pb2.VehicleTruth:
+        """The vehicle's truth, its front bumper (SUMO's position) at front_xy in our frame."""
         vehicle = self.sumo.vehicle
         length_m, width_m = vehicle.getLength(vehicle_id), vehicle.getWidth(vehicle_id)
         heading = sumo_heading_rad(vehicle.getAngle(vehicle_id))
-        x_m, y_m = rear_axle_xy(*self.frame.to_local(*vehicle.getPosition(vehicle_id)), heading, length_m)
+        x_m, y_m = rear_axle_xy(float(front_xy[0]), float(front_xy[1]), heading, length_m)
         last = self._last_heading.get(vehicle_id)
         self._last_heading[vehicle_id] = heading
         truth = sim_pb2.VehicleTruth(
@@ -158,6 +163,7 @@ class SumoTraffic:
         if lane is not None:
             truth.station_m, truth.lateral_offset_m = lane.project(x_m, y_m)[:2]
             truth.lane_index = lane.lane_index
+            truth.road_id = lane.road_id
         return truth
 
     def _station_id(self, vehicle_id: str) -> int:

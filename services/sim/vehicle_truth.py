@@ -23,4 +23,5 @@ def vehicle_truth(vehicle_id: str, station_id: int, state: VehicleState, profile
     if matched is not None:
         lane, truth.station_m, truth.lateral_offset_m = matched
         truth.lane_index = lane.lane_index
+        truth.road_id = getattr(lane, "road_id", "")
     return truth

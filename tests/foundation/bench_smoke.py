@@ -21,7 +21,7 @@ SMOKE_HALVES = {
     "first": ["bench_decode", "bench_follow", "bench_geolocation", "bench_record", "bench_security", "bench_startup",
               "bench_v2x", "bench_bus"],
     "second": ["bench_actuation", "bench_control", "bench_gateway_ws", "bench_replay", "bench_scene", "bench_sim",
-               "bench_stacks", "bench_world_parts"],
+               "bench_stacks", "bench_world_parts", "bench_sumo"],
 }
 
 

@@ -51,3 +51,8 @@ def test_a_scenario_run_from_its_file_is_judged_with_that_files_judging_section(
     path.write_text(GOOD)
     assert catalogue.judging_parameters(str(path)).headway_s == 1.0
     assert catalogue.judging_parameters(str(tmp_path / "missing.yaml")) == JudgingParameters()
+
+
+def test_the_shipped_sumo_motorway_is_listed_with_its_network_found_beside_it():
+    [entry] = [e for e in catalogue.list_scenarios() if e.name == "sumo-motorway"]
+    assert entry.error == "" and "SUMO" in entry.description

@@ -113,6 +113,18 @@ def test_cars_in_lane_0_of_opposite_roads_do_not_follow_one_another():
         ("east", "behind")]
 
 
+def test_cars_in_lane_0_of_a_road_and_of_the_road_before_it_do_not_follow_one_another():
+    # A SUMO network's approach to a junction and the edge past it: each measures its stations from its own start.
+    past = _truth("past", 20.0)
+    past.road_id = "motorway"
+    approaching = _truth("approaching", 300.0)
+    approaching.road_id = "approach"
+    behind_past = _truth("behind", 5.0)
+    behind_past.road_id = "motorway"
+    assert [(a.vehicle_id, b.vehicle_id) for a, b in metrics.following_pairs([past, approaching, behind_past])] == [
+        ("past", "behind")]
+
+
 def test_a_vehicle_passing_beside_another_in_the_corridor_is_not_following_it():
     # The ambulance is matched to lane 0 but drives 2 m left of the car that moved aside (widths 1.8 m).
     moved_aside = _truth("car", 50.0, lateral=-1.0)

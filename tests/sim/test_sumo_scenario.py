@@ -36,6 +36,14 @@ def test_a_run_with_faults_added_keeps_finding_the_network_from_its_copy_in_anot
     assert copy.config.map == source.config.map
 
 
+def test_a_run_with_faults_added_keeps_finding_sumo_s_traffic_from_its_copy_in_another_folder(tmp_path):
+    source = resolve_scenario("sumo-motorway")
+    copy = source.with_faults([{"type": "v2v_loss", "start_s": 1, "loss_probability": 0.5}], tmp_path)
+    assert copy.file.parent == tmp_path
+    assert copy.config.sumo_traffic == source.config.sumo_traffic
+    assert [v.station_m for v in copy.config.vehicles] == [v.station_m for v in source.config.vehicles]
+
+
 @pytest.mark.parametrize("map_text, problem", [
     ("roads/nowhere.net.xml", "no such SUMO network file"),
     ("roads/routes.rou.xml", "not a SUMO network (its root element is <routes>, not <net>)"),
