@@ -1,7 +1,7 @@
 """Scripted road users: vehicles following a speed profile and lane changes, and an emergency vehicle.
 
 They drive themselves (no stack inside) and say what they would broadcast as plain intents; the integrator
-turns intents into CAM / DENM / iCLCM messages.
+turns intents into CAM / DENM / iCLCM messages (and a signalised intersection's roadside unit's into MAPEM / SPATEM).
 """
 from __future__ import annotations
 
@@ -14,6 +14,7 @@ from coopdrive.services.sim.cam_noise import CamNoise
 from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.services.sim.profiles import VehicleProfile
 from coopdrive.services.sim.road_geometry import LaneGeometry
+from coopdrive.services.sim.stop_line import StopLine
 from coopdrive.services.sim.speed_profiles import ConstantSpeed, LaneChange, SpeedProfile, smoothstep
 from coopdrive.v1 import sensors_pb2, sim_pb2
 
@@ -43,6 +44,8 @@ class IntentKind(enum.Enum):
     CAM = "cam"
     DENM = "denm"
     ICLCM = "iclcm"
+    MAPEM = "mapem"
+    SPATEM = "spatem"
 
 
 @dataclass(frozen=True)
@@ -112,6 +115,8 @@ class ScriptedVehicle:
         self._source_lane = lane_index
         self._last_heading: float | None = None
         self._truth = self._compute_truth(0.0)
+        # The signalised intersections' stop lines (scenario_builder sets them): it obeys those on its lane.
+        self.stop_lines: Sequence[StopLine] = ()
 
     def speed_at(self, time_s: float) -> float:
         return self.speed_profile.speed_at(time_s)

@@ -13,6 +13,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationIn
 from coopdrive.roadmap.sumo_network import SumoNetworkError, check_sumo_network, names_sumo_network
 from coopdrive.services.sim.channel_config import RadioChannelConfig
 from coopdrive.services.sim.fault_config import Fault
+from coopdrive.services.sim.intersection_config import SignalisedIntersection
 from coopdrive.services.sim.profiles import PLANT_PERTURBATIONS, PlantPerturbation, VehicleProfile, plant_profile
 from coopdrive.services.sim.roadside_unit import RsuEvent
 from coopdrive.services.sim.sensor_config import SensorSuiteConfig
@@ -89,6 +90,8 @@ class RoadsideUnitConfig(_Strict):
     y_m: float
     rate_hz: float = Field(default=25.0, gt=0)
     events: list[RsuEvent] = []
+    # The signalised intersection whose MAPEM and SPATEM the unit sends, with its signal controller.
+    intersection: SignalisedIntersection | None = None
 
 
 class JudgingConfig(_Strict):

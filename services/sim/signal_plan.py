@@ -16,11 +16,13 @@ DEFAULT_RED_AMBER_S = 1.0
 DEFAULT_ALL_RED_S = 2.0
 
 
-class _Strict(BaseModel):
+class StrictFrozen(BaseModel):
+    """A scenario file's part that takes no unknown key and does not change once read."""
+
     model_config = ConfigDict(extra="forbid", frozen=True)
 
 
-class SignalStage(_Strict):
+class SignalStage(StrictFrozen):
     # The signal groups (SPATEM/MAPEM signalGroup ids, 1..255) green in this stage.
     groups: list[int] = Field(min_length=1)
     green_s: float = Field(gt=0)
@@ -34,7 +36,7 @@ class SignalStage(_Strict):
         return self
 
 
-class SignalPlan(_Strict):
+class SignalPlan(StrictFrozen):
     stages: list[SignalStage] = Field(min_length=1)
     # Where the cycle starts (the first stage's green) on the run's clock: coordinated intersections differ by it.
     offset_s: float = 0.0
