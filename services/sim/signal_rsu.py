@@ -92,10 +92,13 @@ class SignalBroadcaster:
         return round(self._utc_s(time_s) % SECONDS_PER_HOUR, 1)
 
     def signal_truths(self, now_s: float) -> list[sim_pb2.SignalTruth]:
+        """Each approach's stop line and its group's state now."""
         truths = []
-        for group in self.controller.groups:
-            phase = self.controller.phases(group, now_s, count=1)[0]
+        for line in self.stop_lines:
+            phase = self.controller.phases(line.signal_group, now_s, count=1)[0]
+            x_m, y_m, heading_rad = line.lane.pose_at(line.station_m, 0.0)
             truths.append(sim_pb2.SignalTruth(
-                intersection_id=self.config.intersection_id, signal_group=group, state=int(phase.aspect),
-                phase_end_s=phase.min_end_s, amber_end_s=self.controller.next_red_s(group, now_s)))
+                intersection_id=self.config.intersection_id, signal_group=line.signal_group, state=int(phase.aspect),
+                phase_end_s=phase.min_end_s, amber_end_s=line.amber_end_s(now_s), stop_x_m=x_m, stop_y_m=y_m,
+                heading_rad=heading_rad, lane_width_m=line.lane.width_m))
         return truths
