@@ -6,8 +6,9 @@ from pydantic import Field, model_validator
 
 from coopdrive.services.sim.signal_plan import SignalPlan, StrictFrozen
 
-# MAPEM 1 Hz and SPATEM 10 Hz: the rates deployed roadside units use (a SPATEM at 10 Hz changes with every
-# tenth-of-a-second TimeMark step; the map changes rarely).
+# MAPEM 1 Hz (the Berlin roadside unit of the issue sent 987 in 17 minutes) and SPATEM 10 Hz, as often as its
+# TimeMarks (tenths of a second) can change; deployments differ (the same Berlin unit sent SPATEM about 0.5 Hz), so
+# both are the scenario's to set.
 DEFAULT_MAPEM_RATE_HZ = 1.0
 DEFAULT_SPATEM_RATE_HZ = 10.0
 # A MAPEM's ingress lane reaches this far back from its stop line: far enough to slow down from 50 km/h and for
