@@ -16,8 +16,8 @@ from typing import Collection
 from coopdrive.services.sim.signal_plan import SignalPlan
 from coopdrive.v1 import infrastructure_pb2 as pb
 
-# Positions on the cycle closer than this are the same instant (float sums of durations).
-_SAME_S = 1e-9
+# Positions on the cycle closer than this are the same instant (float sums of durations and of time steps).
+_SAME_S = 1e-6
 
 
 class SignalAspect(enum.IntEnum):
@@ -102,7 +102,7 @@ class SignalController:
         ahead_s = (self._green_ends_s[stage] - self.cycle_position_s(now_s)) % self.cycle_s
         allowed_s = self.plan.stages[stage].max_extension_s - self._extended_s
         called = any(group in calling_groups for group in self.plan.stages[stage].groups)
-        if called and ahead_s <= dt_s and allowed_s > 0.0:
+        if called and ahead_s <= dt_s + _SAME_S and allowed_s > 0.0:
             # The green would end within this step: hold the cycle clock instead.
             hold_s = min(dt_s, allowed_s)
             self.held_s += hold_s

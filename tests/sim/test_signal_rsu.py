@@ -22,6 +22,7 @@ from coopdrive.v2x.security.pki import create_test_pki
 from coopdrive.v2x.security.verifier import SecurityVerifier
 from coopdrive.v2x.timebase import ItsClock, tai_ms_from_utc
 from coopdrive.v1 import infrastructure_pb2 as pb
+from coopdrive.v1 import sim_pb2
 from tests.v2x import infrastructure_messages as messages
 
 EPOCH = dt.datetime(2016, 5, 28, 10, 0, tzinfo=dt.timezone.utc)
@@ -176,3 +177,20 @@ def test_a_vehicles_ticket_may_not_sign_a_spatem(broadcaster, road_map, tmp_path
     signed = SenderSigning(tmp_path, EPOCH).seal(intent, packet)
     opened = SecurityVerifier(pki.store()).open(signed, ItsClock(EPOCH.timestamp()).tai_ms(2.05) * 1000)
     assert opened.result.reason is RejectReason.PSID_NOT_PERMITTED
+
+
+def test_a_vehicle_on_an_actuated_approachs_detector_holds_its_green_and_the_spatem_says_so(road_map):
+    actuated = INTERSECTION.model_copy(update={"plan": SignalPlan(stages=[
+        SignalStage(groups=[1, 2], green_s=20.0, max_extension_s=6.0), SignalStage(groups=[3], green_s=10.0)])})
+    unit = SignalBroadcaster(actuated, RSU_STATION, road_map.lanes_of_road, road_map.to_geodetic, EPOCH)
+    # Rear axle 30 m before the eastbound stop line (x = -10 m), driving east.
+    waiting = sim_pb2.VehicleTruth(vehicle_id="car", x_m=-40.0, y_m=-1.75, heading_rad=0.0, length_m=4.5,
+                                   width_m=1.8)
+    for tenth in range(1, 231):
+        unit.step(tenth * 0.1, [waiting])
+    spatem = unit.spatem(23.0)
+    assert spatem.intersections[0].status.traffic_dependent_operation
+    green = spatem.intersections[0].signal_groups[0].events[0]
+    assert green.state == pb.MOVEMENT_PHASE_STATE_PROTECTED_MOVEMENT_ALLOWED
+    # Held 3 s past its 20 s so far, it may last 3 s more.
+    assert green.max_end_time_s == pytest.approx(26.0, abs=0.2)
