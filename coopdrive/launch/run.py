@@ -137,6 +137,7 @@ def checked_run(spec: RunSpec, run_dir: Path) -> tuple[ScenarioSource, list[str]
     if spec.security is None and any(isinstance(f, TicketExpired) for f in source.config.faults):
         raise ScenarioError("ticket_expired needs --security: an unsecured run has no tickets to expire")
     stacks = source.stack_vehicles(spec.stacks)
+    source.check_roads()
     strangers = sorted(set(spec.untrusted) - set(stacks))
     if strangers:
         raise ScenarioError(f"--untrusted {', '.join(strangers)}: not a stack vehicle of this run ({', '.join(stacks)})")

@@ -6,6 +6,7 @@ from typing import Protocol, Sequence
 
 from coopdrive.services.sim.cam_noise import CamNoise
 from coopdrive.services.sim.fault_schedule import FaultSchedule
+from coopdrive.services.sim.intersection_map import approach_lane
 from coopdrive.services.sim.participants import EmergencyVehicle, ScriptedVehicle
 from coopdrive.services.sim.radio_channel import RadioChannel
 from coopdrive.services.sim.road_geometry import LaneGeometry
@@ -61,6 +62,16 @@ def _road_lanes(road_map: RoadMapLike, vehicle: VehicleConfig) -> list[LaneGeome
     if vehicle.lane not in {lane.lane_index for lane in lanes}:
         raise ValueError(f"vehicle {vehicle.vehicle_id}: road {road!r} has no lane {vehicle.lane}")
     return lanes
+
+
+def check_roads(config: ScenarioConfig, road_map: RoadMapLike) -> None:
+    """ValueError naming the first vehicle or signal approach on a road or lane the map does not have: what
+    build_scenario would refuse, checked before a run starts anything."""
+    for vehicle in config.vehicles:
+        _road_lanes(road_map, vehicle)
+    for unit in config.roadside_units:
+        for approach in unit.intersection.approaches if unit.intersection is not None else ():
+            approach_lane(road_map.lanes_of_road, approach)
 
 
 def _signals(config: ScenarioConfig, unit: RoadsideUnitConfig, road_map: RoadMapLike) -> SignalBroadcaster | None:
