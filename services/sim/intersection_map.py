@@ -50,9 +50,11 @@ def _nodes(lane: LaneGeometry, stations_m: list[float], reference_xy: tuple[floa
     return nodes
 
 
-def intersection_map(config: SignalisedIntersection, lanes_of_road: LanesOfRoad,
-                     to_geodetic: ToGeodetic) -> pb.MapIntersection:
-    latitude_deg, longitude_deg, _ = to_geodetic(config.x_m, config.y_m)
+def intersection_map(config: SignalisedIntersection, lanes_of_road: LanesOfRoad, to_geodetic: ToGeodetic,
+                     misplaced_m: tuple[float, float] = (0.0, 0.0)) -> pb.MapIntersection:
+    """misplaced_m: (east, north) the reference point is stated off where it is, every lane with it (a fault)."""
+    east_m, north_m = misplaced_m
+    latitude_deg, longitude_deg, _ = to_geodetic(config.x_m + east_m, config.y_m + north_m)
     intersection = pb.MapIntersection(revision=config.revision, name=config.name,
                                       reference_latitude_deg=latitude_deg, reference_longitude_deg=longitude_deg)
     intersection.id.id = config.intersection_id

@@ -196,10 +196,14 @@ class ScenarioConfig(_Strict):
         stations = [v.station_id for v in self.vehicles] + [u.station_id for u in self.roadside_units]
         if len(set(stations)) != len(stations):
             raise ValueError("station_id: every vehicle and roadside unit needs its own station_id")
+        signalised = [u.unit_id for u in self.roadside_units if u.intersection is not None]
         for index, fault in enumerate(self.faults):
             vehicle_id = getattr(fault, "vehicle_id", None)
             if vehicle_id is not None and vehicle_id not in ids:
                 raise ValueError(f"faults.{index}.vehicle_id: unknown vehicle {vehicle_id!r}")
+            unit_id = getattr(fault, "unit_id", None)
+            if unit_id is not None and unit_id not in signalised:
+                raise ValueError(f"faults.{index}.unit_id: no roadside unit {unit_id!r} with an intersection")
         for index, vehicle_id in enumerate(self.judging.platoon):
             if vehicle_id not in ids:
                 raise ValueError(f"judging.platoon.{index}: unknown vehicle {vehicle_id!r}")

@@ -101,8 +101,11 @@ class ScenarioSim:
         if self.traffic is not None:
             self.traffic.step(now_s, self._current_truths(with_traffic=False))
             self._truths = None
-        for signals in self.signals():
-            signals.step(now_s, self.truths())
+        active = self.objects.faults.active(now_s)
+        for unit in self.objects.roadside_units:
+            if unit.signals is not None:
+                unit.signals.set_faults([f for f in active if getattr(f, "unit_id", None) == unit.unit_id])
+                unit.signals.step(now_s, self.truths())
         self.objects.faults.update(now_s, self.objects.sensor_suites, self.objects.channel)
         self.time_s = now_s
 

@@ -7,8 +7,9 @@ start of the current UTC hour, so an end past the hour wraps to its start as on 
 from __future__ import annotations
 
 import datetime as dt
-from typing import Collection
+from typing import Collection, Sequence
 
+from coopdrive.services.sim.fault_config import Fault, MapLaneOffset, SpatLoss, SpatTimeJump
 from coopdrive.services.sim.intersection_config import SignalisedIntersection
 from coopdrive.services.sim.intersection_map import LanesOfRoad, ToGeodetic, approach_lane, intersection_map
 from coopdrive.services.sim.participants import IntentKind, MessageIntent, RateGate
@@ -35,12 +36,31 @@ class SignalBroadcaster:
         self.stop_lines = [StopLine(config.intersection_id, a.signal_group, a.road, approach_lane(lanes_of_road, a),
                                     a.stop_station_m, a.box_length_m, self.controller)
                            for a in config.approaches]
-        self.mapem = pb.MapemContent(protocol_version=PROTOCOL_VERSION_CURRENT, station_id=station_id,
-                                     message_revision=config.revision)
-        self.mapem.intersections.append(intersection_map(config, lanes_of_road, to_geodetic))
+        self._lanes_of_road, self._to_geodetic = lanes_of_road, to_geodetic
+        self.mapem = self._mapem((0.0, 0.0))
+        # What the unit's faults make of its messages (set_faults).
+        self.spat_silent = False
+        self.time_jump_s = 0.0
+        self._misplaced_m = (0.0, 0.0)
         self._mapem_gate = RateGate(config.mapem_rate_hz)
         self._spatem_gate = RateGate(config.spatem_rate_hz)
         self._actuated = any(stage.max_extension_s > 0 for stage in config.plan.stages)
+
+    def _mapem(self, misplaced_m: tuple[float, float]) -> pb.MapemContent:
+        mapem = pb.MapemContent(protocol_version=PROTOCOL_VERSION_CURRENT, station_id=self.station_id,
+                                message_revision=self.config.revision)
+        mapem.intersections.append(intersection_map(self.config, self._lanes_of_road, self._to_geodetic, misplaced_m))
+        return mapem
+
+    def set_faults(self, faults: Sequence[Fault]) -> None:
+        """The unit's active faults (fault_config.SIGNAL_FAULTS naming it); none restores its messages."""
+        self.spat_silent = any(isinstance(f, SpatLoss) for f in faults)
+        self.time_jump_s = sum(f.jump_s for f in faults if isinstance(f, SpatTimeJump))
+        offsets = [(f.east_m, f.north_m) for f in faults if isinstance(f, MapLaneOffset)]
+        misplaced_m = (sum(e for e, _ in offsets), sum(n for _, n in offsets))
+        if misplaced_m != self._misplaced_m:
+            self._misplaced_m = misplaced_m
+            self.mapem = self._mapem(misplaced_m)
 
     def step(self, now_s: float, truths: Collection[sim_pb2.VehicleTruth]) -> None:
         """Advance the controller; a vehicle within the detector's reach of a stop line calls for its group."""
@@ -58,7 +78,7 @@ class SignalBroadcaster:
         if self._mapem_gate.due(now_s):
             intents.append(MessageIntent(IntentKind.MAPEM, unit_id, self.station_id, now_s,
                                          {"x_m": x_m, "y_m": y_m, "content": self.mapem}))
-        if self._spatem_gate.due(now_s):
+        if self._spatem_gate.due(now_s) and not self.spat_silent:
             intents.append(MessageIntent(IntentKind.SPATEM, unit_id, self.station_id, now_s,
                                          {"x_m": x_m, "y_m": y_m, "content": self.spatem(now_s)}))
         return intents
@@ -82,9 +102,10 @@ class SignalBroadcaster:
         for group in self.controller.groups:
             state = intersection.signal_groups.add(signal_group=group)
             for phase in self.controller.phases(group, now_s, ANNOUNCED_PHASES):
-                state.events.add(state=int(phase.aspect), min_end_time_s=self._of_hour(phase.min_end_s),
-                                 max_end_time_s=self._of_hour(phase.max_end_s),
-                                 likely_time_s=self._of_hour(phase.likely_end_s))
+                jump_s = self.time_jump_s
+                state.events.add(state=int(phase.aspect), min_end_time_s=self._of_hour(phase.min_end_s + jump_s),
+                                 max_end_time_s=self._of_hour(phase.max_end_s + jump_s),
+                                 likely_time_s=self._of_hour(phase.likely_end_s + jump_s))
         return content
 
     def _of_hour(self, time_s: float) -> float:

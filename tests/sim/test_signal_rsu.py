@@ -8,6 +8,7 @@ import datetime as dt
 import pytest
 
 from coopdrive.roadmap import RoadMap
+from coopdrive.services.sim.fault_config import MapLaneOffset, SpatLoss, SpatTimeJump
 from coopdrive.services.sim.intent_encoder import IntentEncoder
 from coopdrive.services.sim.intersection_config import SignalApproach, SignalisedIntersection
 from coopdrive.services.sim.participants import IntentKind
@@ -194,3 +195,28 @@ def test_a_vehicle_on_an_actuated_approachs_detector_holds_its_green_and_the_spa
     assert green.state == pb.MOVEMENT_PHASE_STATE_PROTECTED_MOVEMENT_ALLOWED
     # Held 3 s past its 20 s so far, it may last 3 s more.
     assert green.max_end_time_s == pytest.approx(26.0, abs=0.2)
+
+
+def test_a_spat_loss_silences_the_spatem_and_leaves_the_mapem(broadcaster):
+    broadcaster.set_faults([SpatLoss(type="spat_loss", unit_id="rsu_west", start_s=0.0)])
+    kinds = {intent.kind for intent in broadcaster.messages_due(0.0, "rsu_west", 0.0, 0.0)}
+    assert kinds == {IntentKind.MAPEM}
+    broadcaster.set_faults([])
+    assert IntentKind.SPATEM in {intent.kind for intent in broadcaster.messages_due(0.1, "rsu_west", 0.0, 0.0)}
+
+
+def test_a_spat_time_jump_moves_every_stated_end_and_not_the_lights(broadcaster):
+    broadcaster.set_faults([SpatTimeJump(type="spat_time_jump", unit_id="rsu_west", start_s=0.0, jump_s=10.0)])
+    green = broadcaster.spatem(5.0).intersections[0].signal_groups[0].events[0]
+    assert (green.min_end_time_s, green.likely_time_s) == (pytest.approx(30.0), pytest.approx(30.0))
+    assert broadcaster.controller.phases(1, 5.0)[0].min_end_s == pytest.approx(20.0)
+
+
+def test_a_map_lane_offset_moves_the_reference_point_and_every_lane_with_it(broadcaster, road_map):
+    broadcaster.set_faults([MapLaneOffset(type="map_lane_offset", unit_id="rsu_west", start_s=0.0, north_m=3.5)])
+    moved, = broadcaster.mapem.intersections
+    latitude_deg, longitude_deg, _ = road_map.to_geodetic(0.0, 3.5)
+    assert (moved.reference_latitude_deg, moved.reference_longitude_deg) == \
+        (pytest.approx(latitude_deg, abs=1e-9), pytest.approx(longitude_deg, abs=1e-9))
+    assert (moved.lanes[0].nodes[0].east_m, moved.lanes[0].nodes[0].north_m) == \
+        (pytest.approx(-10.0), pytest.approx(-1.75))
