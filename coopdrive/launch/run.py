@@ -137,6 +137,7 @@ def checked_run(spec: RunSpec, run_dir: Path) -> tuple[ScenarioSource, list[str]
     if spec.security is None and any(isinstance(f, TicketExpired) for f in source.config.faults):
         raise ScenarioError("ticket_expired needs --security: an unsecured run has no tickets to expire")
     stacks = source.stack_vehicles(spec.stacks)
+    source.check_roads()
     strangers = sorted(set(spec.untrusted) - set(stacks))
     if strangers:
         raise ScenarioError(f"--untrusted {', '.join(strangers)}: not a stack vehicle of this run ({', '.join(stacks)})")
@@ -150,10 +151,10 @@ def secured_run(config: ScenarioConfig, stacks: list[str], options: RunOptions, 
     from coopdrive.v2x.timebase import tai_ms_from_utc
 
     sim_senders = [v.vehicle_id for v in config.vehicles if v.vehicle_id not in stacks]
-    sim_senders += [unit.unit_id for unit in config.roadside_units]
+    roadside_units = [unit.unit_id for unit in config.roadside_units]
     valid_from_tai_s = tai_ms_from_utc(config.utc_epoch) // MS_PER_S - CERTIFICATE_BACKDATE_S
-    overrides = security_overrides(pki_dir, list(stacks) + sim_senders, options.security, options.untrusted,
-                                   valid_from_tai_s)
+    overrides = security_overrides(pki_dir, list(stacks) + sim_senders + roadside_units, options.security,
+                                   options.untrusted, valid_from_tai_s, roadside_units)
     _expire_tickets(config, pki_dir, options.untrusted, valid_from_tai_s)
     return {vehicle: overrides[vehicle] for vehicle in stacks}
 

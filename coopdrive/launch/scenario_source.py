@@ -9,6 +9,8 @@ from typing import Sequence
 
 import yaml
 
+from coopdrive.roadmap import RoadMap
+from coopdrive.services.sim.scenario_builder import check_roads
 from coopdrive.services.sim.scenario_config import (SCENARIO_PACKAGE, ScenarioConfig, ScenarioError, VehicleRole,
                                                     load_scenario)
 
@@ -27,6 +29,14 @@ class ScenarioSource:
                 raise ScenarioError(f"{self.file}: --stacks {stacks}: the scenario has {len(ids)} stack vehicles")
             ids = ids[:stacks]
         return ids
+
+    def check_roads(self) -> None:
+        """ScenarioError naming a vehicle or signal approach on a road or lane the map does not have, before
+        anything starts (the simulator would stop on it)."""
+        try:
+            check_roads(self.config, RoadMap.load(self.config.map))
+        except (ValueError, OSError) as error:
+            raise ScenarioError(f"{self.file}: {error}") from None
 
     def with_faults(self, faults: Sequence[dict], folder: Path) -> ScenarioSource:
         """The same scenario with faults added to its own, written to folder: the simulator loads a file."""

@@ -41,6 +41,14 @@ INTERSECTION_SPEED_LIMIT_MPS = 50.0 / 3.6
 # The competition-zone radius of GCDC 2016 is not in the seed papers; this value is an assumption.
 COMPETITION_ZONE_RADIUS_M = 100.0
 
+# Signalised corridor: a two-way main road east-west through two crossroads 300 m apart (an urban block), each
+# crossed by a two-way side road; 50 km/h everywhere. The first crossroads is the origin.
+CORRIDOR_ORIGIN = (51.4450, 5.4800, 20.0)
+CORRIDOR_CROSSINGS_X_M = (0.0, 300.0)
+CORRIDOR_WEST_M = 400.0
+CORRIDOR_EAST_M = 1100.0
+CORRIDOR_SIDE_M = 300.0
+
 
 def reference_line(start_xy: tuple[float, float], heading_rad: float,
                    pieces: list[tuple[float, float]]) -> np.ndarray:
@@ -126,7 +134,26 @@ def build_intersection() -> dict:
     return collection("intersection", o, features)
 
 
-BUILDERS = {"a270": build_a270, "intersection": build_intersection}
+def build_corridor() -> dict:
+    """Right-hand traffic; each crossroads' reference point is where the centre lines cross. Lanes run straight
+    through the crossroads (their stop lines and boxes are the scenario's: scenarios/signals.yaml)."""
+    half = 0.5 * LANE_WIDTH_M
+    o = CORRIDOR_ORIGIN
+    speed = INTERSECTION_SPEED_LIMIT_MPS
+    features = [
+        lane_feature(np.array([[-CORRIDOR_WEST_M, -half], [CORRIDOR_EAST_M, -half]]), o, "main_eastbound", 0, speed),
+        lane_feature(np.array([[CORRIDOR_EAST_M, half], [-CORRIDOR_WEST_M, half]]), o, "main_westbound", 0, speed)]
+    for name, x_m in zip("ab", CORRIDOR_CROSSINGS_X_M):
+        features += [
+            lane_feature(np.array([[x_m + half, -CORRIDOR_SIDE_M], [x_m + half, CORRIDOR_SIDE_M]]), o,
+                         f"side_{name}_northbound", 0, speed),
+            lane_feature(np.array([[x_m - half, CORRIDOR_SIDE_M], [x_m - half, -CORRIDOR_SIDE_M]]), o,
+                         f"side_{name}_southbound", 0, speed),
+            zone_feature(x_m, 0.0, o, f"crossroads_{name}", "reference_point", 0.0)]
+    return collection("corridor", o, features)
+
+
+BUILDERS = {"a270": build_a270, "intersection": build_intersection, "corridor": build_corridor}
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -20,8 +20,8 @@ from coopdrive.v2x.its_pdu import ItsCodec, ItsHeader, ItsMessageId, peek_its_he
 from coopdrive.v2x.mapping.cam import cam_from_asn, cam_to_asn
 from coopdrive.v2x.mapping.denm import denm_from_asn, denm_to_asn
 from coopdrive.v2x.mapping.iclcm import iclcm_from_asn, iclcm_to_asn
-from coopdrive.v2x.mapping.mapem import mapem_from_asn
-from coopdrive.v2x.mapping.spatem import spatem_from_asn
+from coopdrive.v2x.mapping.mapem import mapem_from_asn, mapem_to_asn
+from coopdrive.v2x.mapping.spatem import spatem_from_asn, spatem_to_asn
 from coopdrive.v2x.mapping.srem import srem_from_asn
 from coopdrive.v2x.mapping.ssem import ssem_from_asn
 from coopdrive.v2x.mapping.vam import vam_from_asn
@@ -161,6 +161,14 @@ class V2xPacketCodec:
         uper = self.its_codec.encode(ItsMessageId.ICLCM, iclcm_to_asn(content), check_ranges=False)
         return self._wrap(ItsMessageId.ICLCM, uper, gn_params)
 
+    def encode_mapem(self, content: infrastructure_pb2.MapemContent, gn_params: GnParams) -> bytes:
+        uper = self.infrastructure_codec.encode(InfrastructureMessage.MAPEM, mapem_to_asn(content))
+        return self._wrap(InfrastructureMessage.MAPEM, uper, gn_params)
+
+    def encode_spatem(self, content: infrastructure_pb2.SpatemContent, gn_params: GnParams) -> bytes:
+        uper = self.infrastructure_codec.encode(InfrastructureMessage.SPATEM, spatem_to_asn(content))
+        return self._wrap(InfrastructureMessage.SPATEM, uper, gn_params)
+
     def decode_packet(self, data: bytes) -> DecodedPacket:
         frame = self.decode_frame(data)
         try:
@@ -198,7 +206,7 @@ class V2xPacketCodec:
         value = self.its_codec.decode_with_header(its_header, uper)
         return DecodedFrame(message_type, its_header, value, gn, btp, security)
 
-    def _wrap(self, message_type: ItsMessageId, uper: bytes, params: GnParams) -> bytes:
+    def _wrap(self, message_type: ItsMessageId | InfrastructureMessage, uper: bytes, params: GnParams) -> bytes:
         if params.source_position is None:
             raise ValueError("GnParams.source_position is required for this message type")
         multiplier, base = encode_lifetime(params.lifetime_s)
@@ -214,7 +222,8 @@ class V2xPacketCodec:
                 units.LONGITUDE_TENTH_MICRODEG.to_wire(area.longitude_deg),
                 _u16(area.distance_a_m), _u16(area.distance_b_m),
                 units.heading_enu_rad_to_etsi_tenth_deg(area.angle_rad) // 10))
-        payload = BtpBHeader(PORT_OF_MESSAGE[message_type]).pack() + uper
+        port = message_type.port if isinstance(message_type, InfrastructureMessage) else PORT_OF_MESSAGE[message_type]
+        payload = BtpBHeader(port).pack() + uper
         return GnPacket(basic, common, extended, payload).to_bytes()
 
 

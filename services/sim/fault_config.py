@@ -203,7 +203,37 @@ class TicketExpired(_Fault):
     vehicle_id: str
 
 
+class SpatLoss(_Fault):
+    """The roadside unit of a signalised intersection sends no SPATEM (its MAPEM goes on): a stale signal state."""
+
+    type: Literal["spat_loss"]
+    unit_id: str
+
+
+class SpatTimeJump(_Fault):
+    """The unit's SPATEMs state every phase end jump_s later than the controller will end it (negative: earlier):
+    timing that jumps, as a controller's clock stepping or a plan changed under the announcement would."""
+
+    type: Literal["spat_time_jump"]
+    unit_id: str
+    jump_s: float = 10.0
+
+
+class MapLaneOffset(_Fault):
+    """The unit's MAPEM places its lanes east_m/north_m off the road (its reference point moved, every node with
+    it): a map whose lanes do not match the vehicles' paths (3.5 m north puts the eastbound lanes on the
+    westbound ones)."""
+
+    type: Literal["map_lane_offset"]
+    unit_id: str
+    east_m: float = 0.0
+    north_m: float = 3.5
+
+
+# Faults of a signalised intersection's roadside unit (signal_rsu.py carries them out).
+SIGNAL_FAULTS = (SpatLoss, SpatTimeJump, MapLaneOffset)
+
 Fault = Annotated[Union[GnssOutage, GnssJump, GnssMultipath, RadarClutter, LidarClutter, FixDowngrade, V2vLoss,
                         V2vCorruption, SensorDropout, CanErrorBurst, PartnerSilent, IclcmDrop, GhostVehicle,
-                        PositionOffset, ServiceCrash, TicketExpired],
+                        PositionOffset, ServiceCrash, TicketExpired, SpatLoss, SpatTimeJump, MapLaneOffset],
                  Field(discriminator="type")]

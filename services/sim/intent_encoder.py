@@ -3,7 +3,8 @@
 Participants say what they would send (participants.MessageIntent, SI values in the local frame); this turns
 each into the bytes a radio would carry, through the stack's own V2X code: CAMs from the v2x service's CAM
 generator fed with the participant's state, DENMs and iCLCMs filled like the v2x service fills them, all
-wrapped by V2xPacketCodec (BTP-B, GCDC ports, single-hop or geo-broadcast).
+a signalised intersection's MAPEMs and SPATEMs as TS 103 301 has them (BTP ports 2003 and 2004), all wrapped by
+V2xPacketCodec (BTP-B, single-hop or geo-broadcast).
 """
 
 from __future__ import annotations
@@ -39,6 +40,9 @@ KNOWN_FIELDS = {
     IntentKind.DENM: {"cause_code", "x_m", "y_m", "heading_rad", "speed_mps", "lane", "closed_lane", "length_m", "validity_s",
                       "since_s"},
     IntentKind.ICLCM: {"start_platoon", "end_of_scenario"},
+    # A roadside unit's position, and the message's content as the v2x service decodes it (signal_rsu.py).
+    IntentKind.MAPEM: {"x_m", "y_m", "content"},
+    IntentKind.SPATEM: {"x_m", "y_m", "content"},
 }
 
 
@@ -54,7 +58,8 @@ class IntentEncoder:
         self._gn_version = gn_version
         self._cams: dict[int, CamGenerator] = {}
         self._sequence: dict[int, int] = {}
-        self._encoders = {IntentKind.CAM: self._cam, IntentKind.DENM: self._denm, IntentKind.ICLCM: self._iclcm}
+        self._encoders = {IntentKind.CAM: self._cam, IntentKind.DENM: self._denm, IntentKind.ICLCM: self._iclcm,
+                          IntentKind.MAPEM: self._mapem, IntentKind.SPATEM: self._spatem}
 
     def encode(self, intent: MessageIntent) -> bytes | None:
         """The packet for this intent; None when there is nothing to send yet (a CAM inside its period)."""
@@ -116,6 +121,14 @@ class IntentEncoder:
         if "start_platoon" in fields:
             content.start_platoon = fields["start_platoon"]
         return self._codec.encode_iclcm(content, self._params(intent, tai_ms, its_pb2.STATION_TYPE_ROAD_SIDE_UNIT))
+
+    def _mapem(self, intent: MessageIntent, tai_ms: int) -> bytes:
+        params = self._params(intent, tai_ms, its_pb2.STATION_TYPE_ROAD_SIDE_UNIT)
+        return self._codec.encode_mapem(intent.fields["content"], params)
+
+    def _spatem(self, intent: MessageIntent, tai_ms: int) -> bytes:
+        params = self._params(intent, tai_ms, its_pb2.STATION_TYPE_ROAD_SIDE_UNIT)
+        return self._codec.encode_spatem(intent.fields["content"], params)
 
     def _params(self, intent: MessageIntent, tai_ms: int, station_type: int) -> GnParams:
         fields = intent.fields

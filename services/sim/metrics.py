@@ -10,6 +10,7 @@ import numpy as np
 from coopdrive.roadmap.build_maps import LANE_WIDTH_M
 from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.services.sim import geometry
+from coopdrive.services.sim.signal_metrics import signal_metrics
 from coopdrive.services.sim.truth_series import TruthSeries
 from coopdrive.v1 import sim_pb2
 
@@ -375,6 +376,7 @@ def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[s
     metrics.update(hard_brakes(truth, judged))
     metrics.update(spacing_error(truth, platoon, judged, standstill_m, headway_s))
     metrics.update(lateral_error(truth, judged))
+    metrics.update(signal_metrics(truth.signal_frames(), judged))
     if reference_speed_mps is None:
         reference_speed_mps = predecessor_speed_references(truth, platoon, judged)
     if reference_speed_mps:

@@ -14,6 +14,7 @@ from coopdrive.services.sim import metrics as judging
 from coopdrive.services.sim.fault_config import ServiceCrash, V2vLoss
 from coopdrive.services.sim.roadside_unit import RsuEventKind
 from coopdrive.services.sim.scenario_config import Mission, ScenarioConfig, VehicleRole
+from coopdrive.services.sim.signal_metrics import Crossing, crossings
 from coopdrive.services.sim.truth_series import TruthSeries
 from coopdrive.v1 import actuation_pb2, sim_pb2
 
@@ -30,6 +31,8 @@ class MissionJudge:
         self.config = config
         self.stack_ids = list(stack_ids)
         self.frames: list[tuple[float, list[sim_pb2.VehicleTruth]]] = []
+        # Each frame's signalised approaches (none in a world without traffic lights).
+        self.signals: list[list[sim_pb2.SignalTruth]] = []
         self.collisions = 0
         # Pairs of SUMO's vehicles (in the truth, not in the scenario) are not judged: one of ours must be in a pair.
         self.ours = frozenset(v.vehicle_id for v in config.vehicles) if config.sumo_traffic is not None else None
@@ -43,6 +46,8 @@ class MissionJudge:
 
     def observe(self, time_s: float, truth: sim_pb2.GroundTruth) -> None:
         self.frames.append((time_s, list(truth.vehicles)))
+        if truth.signals:
+            self.signals.append(list(truth.signals))
         self._metrics = None
         # Onsets in the newest pair of frames, less the contacts already there in the older one.
         newest = judging.collisions(TruthSeries.from_frames(self.frames[-2:]), self.ours)
@@ -62,7 +67,7 @@ class MissionJudge:
     def metrics(self) -> dict[str, float]:
         if self._metrics is None:
             judging_config = self.config.judging
-            series = TruthSeries.from_frames(self.frames) if self.frames else None
+            series = TruthSeries.from_frames(self.frames, self.signals) if self.frames else None
             if series is None:
                 return {"collisions": 0.0}
             platoon = [v for v in judging_config.platoon if v in series.vehicle_ids]
@@ -135,6 +140,11 @@ class MissionJudge:
         if stopped:
             return False, "safe stop: " + ", ".join(f"{v} at {t:.1f} s"
                                                      for v, t in sorted(stopped.items(), key=lambda kv: kv[1]))
+        ran_red = self.red_light_crossings()
+        if ran_red:
+            return False, "red-light violation: " + ", ".join(
+                f"{c.vehicle_id} at {c.time_s:.1f} s (intersection {c.intersection_id}, group {c.signal_group})"
+                for c in ran_red)
         mission = self.config.mission
         if mission is Mission.PLATOON:
             gain = self.metrics().get("string_gain")
@@ -148,6 +158,11 @@ class MissionJudge:
         elif mission is Mission.EMERGENCY:
             return self._emergency_verdict()
         return True, ""
+
+    def red_light_crossings(self) -> list[Crossing]:
+        """The stacks' crossings of a stop line on red (signal_metrics.py)."""
+        frames = [(t, vehicles, signals) for (t, vehicles), signals in zip(self.frames, self.signals)]
+        return [c for c in crossings(frames) if c.red and c.vehicle_id in self.stack_ids]
 
     def _v2v_cut_while_judging_string(self) -> bool:
         """Every V2V packet of every vehicle lost during the judged oscillation. The platoon then runs on its

@@ -1,7 +1,7 @@
 """Scripted road users: vehicles following a speed profile and lane changes, and an emergency vehicle.
 
 They drive themselves (no stack inside) and say what they would broadcast as plain intents; the integrator
-turns intents into CAM / DENM / iCLCM messages.
+turns intents into CAM / DENM / iCLCM messages (and a signalised intersection's roadside unit's into MAPEM / SPATEM).
 """
 from __future__ import annotations
 
@@ -14,6 +14,8 @@ from coopdrive.services.sim.cam_noise import CamNoise
 from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.services.sim.profiles import VehicleProfile
 from coopdrive.services.sim.road_geometry import LaneGeometry
+from coopdrive.services.sim.signal_controller import SignalAspect
+from coopdrive.services.sim.stop_line import StopLine
 from coopdrive.services.sim.speed_profiles import ConstantSpeed, LaneChange, SpeedProfile, smoothstep
 from coopdrive.v1 import sensors_pb2, sim_pb2
 
@@ -30,6 +32,11 @@ KEEP_SPEED_GAIN_PER_S = 0.5
 KEEP_MAX_DECEL_MPS2 = 6.0
 KEEP_MAX_ACCEL_MPS2 = 2.0
 KEEP_LATERAL_MARGIN_M = 0.3
+# At a traffic light it stops with its front bumper this far before the stop line, braking at this deceleration;
+# on amber it stops only when it can at this deceleration, else it goes on (the dilemma-zone rule of ITE's
+# kinematic amber, whose deceleration is 3.0 m/s2, 10 ft/s2).
+STOP_LINE_MARGIN_M = 1.0
+SIGNAL_STOP_DECEL_MPS2 = 3.0
 
 
 def cam_fields_of(t: sim_pb2.VehicleTruth) -> dict[str, Any]:
@@ -43,6 +50,8 @@ class IntentKind(enum.Enum):
     CAM = "cam"
     DENM = "denm"
     ICLCM = "iclcm"
+    MAPEM = "mapem"
+    SPATEM = "spatem"
 
 
 @dataclass(frozen=True)
@@ -112,6 +121,10 @@ class ScriptedVehicle:
         self._source_lane = lane_index
         self._last_heading: float | None = None
         self._truth = self._compute_truth(0.0)
+        # The signalised intersections' stop lines (scenario_builder sets them): it obeys those on its lane.
+        self.stop_lines: Sequence[StopLine] = ()
+        # The stop lines it decided to stop at (on amber, it keeps to its decision until green).
+        self._stopping_at: set[int] = set()
 
     def speed_at(self, time_s: float) -> float:
         return self.speed_profile.speed_at(time_s)
@@ -136,11 +149,11 @@ class ScriptedVehicle:
     def _next_speed(self, now_s: float, dt_s: float, leader: tuple[float, float] | None) -> tuple[float, float]:
         """(speed, accel): the profile's while nothing blocks, else the spacing law, within accel limits."""
         profile_mps = self.speed_at(now_s)
-        safe_mps = math.inf
+        safe_mps = self._signal_limit_mps(now_s, dt_s)
         if leader is not None:
             gap_m, leader_speed_mps = leader
             spacing_m = KEEP_STANDSTILL_M + KEEP_TIME_GAP_S * self._speed_mps
-            safe_mps = max(0.0, leader_speed_mps + KEEP_SPEED_GAIN_PER_S * (gap_m - spacing_m))
+            safe_mps = min(safe_mps, max(0.0, leader_speed_mps + KEEP_SPEED_GAIN_PER_S * (gap_m - spacing_m)))
         if self._on_profile and profile_mps <= safe_mps:
             return profile_mps, self.accel_at(now_s)
         wanted_mps = min(profile_mps, safe_mps)
@@ -151,6 +164,32 @@ class ScriptedVehicle:
         speed_mps = max(0.0, min(max(wanted_mps, low), high))
         self._on_profile = speed_mps >= profile_mps - 1e-9
         return speed_mps, (speed_mps - self._speed_mps) / dt_s
+
+    def _signal_limit_mps(self, now_s: float, dt_s: float) -> float:
+        """The speed from which it still stops at the stop line ahead whose light tells it to: red or red-amber,
+        or amber when it can stop at SIGNAL_STOP_DECEL_MPS2 (v^2 <= 2 a d)."""
+        limit_mps = math.inf
+        for line in self.stop_lines:
+            distance_m = line.front_distance_m(self._truth)
+            if distance_m is None or distance_m < 0.0:
+                continue
+            key = id(line)
+            room_m = max(distance_m - STOP_LINE_MARGIN_M, 0.0)
+            aspect = line.aspect(now_s)
+            if aspect is SignalAspect.GREEN:
+                self._stopping_at.discard(key)
+            elif aspect.must_stop or key in self._stopping_at or \
+                    self._speed_mps ** 2 <= 2.0 * SIGNAL_STOP_DECEL_MPS2 * room_m:
+                self._stopping_at.add(key)
+                limit_mps = min(limit_mps, self._stopping_speed_mps(room_m, dt_s))
+        return limit_mps
+
+    def _stopping_speed_mps(self, room_m: float, dt_s: float) -> float:
+        """The speed v' after this step from which braking at a stops within room_m: the step's trapezoid
+        (v + v') dt / 2 plus v'^2 / 2a fit in it, so the braking stays at a down to standstill."""
+        a_dt = SIGNAL_STOP_DECEL_MPS2 * dt_s
+        discriminant = a_dt ** 2 - 4.0 * (a_dt * self._speed_mps - 2.0 * SIGNAL_STOP_DECEL_MPS2 * room_m)
+        return max(0.0, 0.5 * (-a_dt + math.sqrt(discriminant))) if discriminant > 0.0 else 0.0
 
     def _leader(self, others: Sequence[sim_pb2.VehicleTruth]) -> tuple[float, float] | None:
         """(bumper gap, speed) of the nearest vehicle ahead in the path, along the current lane."""

@@ -1,4 +1,5 @@
-"""The roadside unit: starts and ends the scenario (iCLCM) and announces road works (DENM)."""
+"""The roadside unit: starts and ends the scenario (iCLCM), announces road works (DENM), and at a signalised
+intersection sends its map and signal states (MAPEM, SPATEM: signal_rsu.py)."""
 from __future__ import annotations
 
 import enum
@@ -8,6 +9,7 @@ from typing import Sequence
 from pydantic import BaseModel, ConfigDict, Field
 
 from coopdrive.services.sim.participants import IntentKind, MessageIntent, RateGate
+from coopdrive.services.sim.signal_rsu import SignalBroadcaster
 
 DEFAULT_RSU_RATE_HZ = 25.0
 # DENM cause code of road works (ETSI EN 302 637-3).
@@ -41,22 +43,25 @@ class RsuEvent(BaseModel):
 
 class RoadsideUnit:
     def __init__(self, unit_id: str, station_id: int, x_m: float, y_m: float, events: Sequence[RsuEvent],
-                 rate_hz: float = DEFAULT_RSU_RATE_HZ) -> None:
+                 rate_hz: float = DEFAULT_RSU_RATE_HZ, signals: SignalBroadcaster | None = None) -> None:
         self.unit_id = unit_id
         self.station_id = station_id
         self.x_m = x_m
         self.y_m = y_m
         self.events = list(events)
         self._gate = RateGate(rate_hz)
+        self.signals = signals
         self.silent = False
 
     def active_events(self, now_s: float) -> list[RsuEvent]:
         return [e for e in self.events if e.time_s <= now_s < e.until_s]
 
     def messages_due(self, now_s: float) -> list[MessageIntent]:
-        if not self._gate.due(now_s) or self.silent:
+        if self.silent:
             return []
-        intents = []
+        intents = [] if self.signals is None else self.signals.messages_due(now_s, self.unit_id, self.x_m, self.y_m)
+        if not self._gate.due(now_s):
+            return intents
         iclcm: dict[str, object] = {}
         for event in self.active_events(now_s):
             if event.kind is RsuEventKind.ROADWORKS:

@@ -6,11 +6,13 @@ from typing import Protocol, Sequence
 
 from coopdrive.services.sim.cam_noise import CamNoise
 from coopdrive.services.sim.fault_schedule import FaultSchedule
+from coopdrive.services.sim.intersection_map import approach_lane
 from coopdrive.services.sim.participants import EmergencyVehicle, ScriptedVehicle
 from coopdrive.services.sim.radio_channel import RadioChannel
 from coopdrive.services.sim.road_geometry import LaneGeometry
 from coopdrive.services.sim.roadside_unit import RoadsideUnit
-from coopdrive.services.sim.scenario_config import ScenarioConfig, VehicleConfig, VehicleRole
+from coopdrive.services.sim.signal_rsu import SignalBroadcaster
+from coopdrive.services.sim.scenario_config import RoadsideUnitConfig, ScenarioConfig, VehicleConfig, VehicleRole
 from coopdrive.services.sim.sensor_suite import SensorSuite
 from coopdrive.services.sim.sensor_timing import sensor_rng
 from coopdrive.services.sim.speed_profiles import ConstantSpeed, SpeedProfile
@@ -62,6 +64,23 @@ def _road_lanes(road_map: RoadMapLike, vehicle: VehicleConfig) -> list[LaneGeome
     return lanes
 
 
+def check_roads(config: ScenarioConfig, road_map: RoadMapLike) -> None:
+    """ValueError naming the first vehicle or signal approach on a road or lane the map does not have: what
+    build_scenario would refuse, checked before a run starts anything."""
+    for vehicle in config.vehicles:
+        _road_lanes(road_map, vehicle)
+    for unit in config.roadside_units:
+        for approach in unit.intersection.approaches if unit.intersection is not None else ():
+            approach_lane(road_map.lanes_of_road, approach)
+
+
+def _signals(config: ScenarioConfig, unit: RoadsideUnitConfig, road_map: RoadMapLike) -> SignalBroadcaster | None:
+    if unit.intersection is None:
+        return None
+    return SignalBroadcaster(unit.intersection, unit.station_id, road_map.lanes_of_road, road_map.to_geodetic,
+                             config.utc_epoch)
+
+
 def build_scenario(config: ScenarioConfig, road_map: RoadMapLike) -> ScenarioObjects:
     """Raises ValueError naming the vehicle when its road or lane is not in the map."""
     lanes: dict[str, list[LaneGeometry]] = {}
@@ -96,6 +115,10 @@ def build_scenario(config: ScenarioConfig, road_map: RoadMapLike) -> ScenarioObj
         if real:
             participants[vehicle.vehicle_id].cam_noise = CamNoise(
                 config.sensors_of(vehicle).gnss, sensor_rng(config.seed, vehicle.vehicle_id, CAM_GNSS_RNG_NAME))
-    units = [RoadsideUnit(u.unit_id, u.station_id, u.x_m, u.y_m, u.events, u.rate_hz) for u in config.roadside_units]
+    units = [RoadsideUnit(u.unit_id, u.station_id, u.x_m, u.y_m, u.events, u.rate_hz, _signals(config, u, road_map))
+             for u in config.roadside_units]
+    stop_lines = [line for unit in units if unit.signals is not None for line in unit.signals.stop_lines]
+    for participant in participants.values():
+        participant.stop_lines = stop_lines
     channel = RadioChannel(config.channel, sensor_rng(config.seed, "", CHANNEL_RNG_NAME))
     return ScenarioObjects(config, lanes, models, suites, participants, units, channel, FaultSchedule(config.faults))

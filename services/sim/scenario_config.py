@@ -15,6 +15,7 @@ from coopdrive.roadmap.sumo_network import SumoNetworkError, check_sumo_network,
 from coopdrive.roadmap.sumo_placement import SumoPlacementError, station_on_sumo_lane
 from coopdrive.services.sim.channel_config import RadioChannelConfig
 from coopdrive.services.sim.fault_config import Fault
+from coopdrive.services.sim.intersection_config import SignalisedIntersection
 from coopdrive.services.sim.profiles import PLANT_PERTURBATIONS, PlantPerturbation, VehicleProfile, plant_profile
 from coopdrive.services.sim.roadside_unit import RsuEvent
 from coopdrive.services.sim.sensor_config import SensorSuiteConfig
@@ -115,6 +116,8 @@ class RoadsideUnitConfig(_Strict):
     y_m: float
     rate_hz: float = Field(default=25.0, gt=0)
     events: list[RsuEvent] = []
+    # The signalised intersection whose MAPEM and SPATEM the unit sends, with its signal controller.
+    intersection: SignalisedIntersection | None = None
 
 
 class JudgingConfig(_Strict):
@@ -235,10 +238,14 @@ class ScenarioConfig(_Strict):
         stations = [v.station_id for v in self.vehicles] + [u.station_id for u in self.roadside_units]
         if len(set(stations)) != len(stations):
             raise ValueError("station_id: every vehicle and roadside unit needs its own station_id")
+        signalised = [u.unit_id for u in self.roadside_units if u.intersection is not None]
         for index, fault in enumerate(self.faults):
             vehicle_id = getattr(fault, "vehicle_id", None)
             if vehicle_id is not None and vehicle_id not in ids:
                 raise ValueError(f"faults.{index}.vehicle_id: unknown vehicle {vehicle_id!r}")
+            unit_id = getattr(fault, "unit_id", None)
+            if unit_id is not None and unit_id not in signalised:
+                raise ValueError(f"faults.{index}.unit_id: no roadside unit {unit_id!r} with an intersection")
         for index, vehicle_id in enumerate(self.judging.platoon):
             if vehicle_id not in ids:
                 raise ValueError(f"judging.platoon.{index}: unknown vehicle {vehicle_id!r}")

@@ -17,6 +17,7 @@ from coopdrive.services.sim.participants import MessageIntent
 from coopdrive.services.sim.scenario_builder import RoadMapLike, ScenarioObjects, build_scenario
 from coopdrive.services.sim.scenario_config import ScenarioConfig, VehicleRole
 from coopdrive.services.sim.sensor_suite import SensorOutputs
+from coopdrive.services.sim.signal_rsu import SignalBroadcaster
 from coopdrive.services.sim.station_faults import StationFaults
 from coopdrive.services.sim.sumo_traffic import SumoTraffic, sumo_traffic_of
 from coopdrive.services.sim.vehicle_model import VehicleModel, VehicleState
@@ -100,6 +101,11 @@ class ScenarioSim:
         if self.traffic is not None:
             self.traffic.step(now_s, self._current_truths(with_traffic=False))
             self._truths = None
+        active = self.objects.faults.active(now_s)
+        for unit in self.objects.roadside_units:
+            if unit.signals is not None:
+                unit.signals.set_faults([f for f in active if getattr(f, "unit_id", None) == unit.unit_id])
+                unit.signals.step(now_s, self.truths())
         self.objects.faults.update(now_s, self.objects.sensor_suites, self.objects.channel)
         self.time_s = now_s
 
@@ -129,8 +135,13 @@ class ScenarioSim:
             truths.extend(self.traffic.truths())
         return truths
 
+    def signals(self) -> list[SignalBroadcaster]:
+        """The signalised intersections' roadside units' signal parts."""
+        return [unit.signals for unit in self.objects.roadside_units if unit.signals is not None]
+
     def ground_truth(self, collisions: int = 0) -> sim_pb2.GroundTruth:
-        return sim_pb2.GroundTruth(vehicles=self.truths(), collisions=collisions)
+        signals = [truth for unit in self.signals() for truth in unit.signal_truths(self.time_s)]
+        return sim_pb2.GroundTruth(vehicles=self.truths(), collisions=collisions, signals=signals)
 
     def sensor_outputs(self, now_s: float) -> dict[str, SensorOutputs]:
         truths = self.truths()

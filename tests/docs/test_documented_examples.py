@@ -1,5 +1,5 @@
-"""The YAML examples of the how-to guides are what the code accepts: the scenario file and its faults, the vehicle
-CAN adapter (against the RAV4's DBC it names) and the gateway's secure config."""
+"""The YAML examples of the how-to guides are what the code accepts: the scenario file, its faults and its traffic
+lights, the vehicle CAN adapter (against the RAV4's DBC it names) and the gateway's secure config."""
 
 import re
 from pathlib import Path
@@ -20,10 +20,12 @@ def yaml_blocks(page: str) -> list:
 
 
 def test_the_scenario_guide_s_file_and_its_faults_are_a_valid_scenario():
-    scenario, faults = yaml_blocks("how-to/scenario-file.md")
-    parsed = parse_scenario({**scenario, **faults}, "docs/how-to/scenario-file.md")
+    scenario, faults, signals = yaml_blocks("how-to/scenario-file.md")
+    parsed = parse_scenario({**scenario, **faults, **signals}, "docs/how-to/scenario-file.md")
     assert parsed.name == "my-follow"
     assert [fault.type for fault in parsed.faults] == ["gnss_outage", "gnss_jump", "radar_clutter", "partner_silent"]
+    plan = parsed.roadside_units[0].intersection.plan
+    assert (plan.cycle_s, plan.stages[1].max_extension_s) == (55.0, 10.0)
 
 
 def test_the_can_guide_s_adapter_loads_against_the_rav4_dbc(tmp_path):

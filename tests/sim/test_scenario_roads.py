@@ -7,7 +7,8 @@ from coopdrive.roadmap import RoadMap
 from coopdrive.services.sim.config import packaged_scenario_file
 from coopdrive.services.sim.scenario_config import VehicleRole, load_scenario
 
-SCENARIOS = ["follow", "string", "merge", "platoon40", "emergency", "intersection", "localisation", "sumo-motorway"]
+SCENARIOS = ["follow", "string", "merge", "platoon40", "emergency", "intersection", "localisation", "signals",
+             "sumo-motorway"]
 
 
 def fastest_scripted_mps(vehicle, duration_s: float) -> float:

@@ -19,6 +19,26 @@ def header_into(value: dict, content: Message) -> None:
     content.protocol_version, content.station_id = header["protocolVersion"], header["stationId"]
 
 
+def header_to_asn(content: Message, message_id: int) -> dict:
+    """A content message's protocol_version and station_id as the ItsPduHeader of an infrastructure message."""
+    return {"protocolVersion": content.protocol_version, "messageId": message_id, "stationId": content.station_id}
+
+
+def intersection_to_asn(reference: infrastructure_pb2.IntersectionReference) -> dict:
+    value = {"id": reference.id}
+    if reference.HasField("region"):
+        value["region"] = reference.region
+    return value
+
+
+def identified_to_asn(intersection: Message) -> dict:
+    """The id, revision and (when set) name of a MAPEM's IntersectionGeometry or a SPATEM's IntersectionState."""
+    value = {"id": intersection_to_asn(intersection.id), "revision": intersection.revision}
+    if intersection.name:
+        value["name"] = intersection.name
+    return value
+
+
 def intersection_into(value: dict, reference: infrastructure_pb2.IntersectionReference) -> None:
     """IntersectionReferenceID."""
     reference.id = value["id"]
@@ -42,6 +62,11 @@ def stamp_into(value: dict, content: Message) -> None:
 def time_mark_s(value: int | None) -> float | None:
     """TimeMark (0.1 s after the start of the hour) in seconds; None when absent or unknown (36001)."""
     return None if value is None else units.TIME_MARK_DS.to_si(value)
+
+
+def time_mark_to_asn(seconds_of_hour: float | None) -> int:
+    """Seconds after the start of the hour as a TimeMark (tenths); None is unknown (36001)."""
+    return units.TIME_MARK_DS.to_wire(seconds_of_hour)
 
 
 def dsecond_s(value: int | None) -> float | None:

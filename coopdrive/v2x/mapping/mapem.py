@@ -4,8 +4,11 @@ connections with their signal groups. Road segments, restriction classes and reg
 from __future__ import annotations
 
 from coopdrive.v2x import units
-from coopdrive.v2x.mapping.common import bits_to_bools, set_optional
-from coopdrive.v2x.mapping.dsrc_common import header_into, identified_into, intersection_into
+from coopdrive.v2x.infrastructure import InfrastructureMessage
+from coopdrive.v2x.mapping.common import bits_to_bools, bools_to_bits, set_optional
+from coopdrive.v2x.mapping.dsrc_common import (
+    header_into, header_to_asn, identified_into, identified_to_asn, intersection_into, intersection_to_asn)
+from coopdrive.v2x.reasons import V2xEncodeError
 from coopdrive.v1 import infrastructure_pb2 as pb
 
 LANE_TYPE_OF_ALTERNATIVE = {
@@ -15,6 +18,11 @@ LANE_TYPE_OF_ALTERNATIVE = {
 # NodeOffsetPointXY alternatives given as x/y offsets (Node-XY-20b to Node-XY-32b): all count centimetres.
 _XY_NODES = ("node-XY1", "node-XY2", "node-XY3", "node-XY4", "node-XY5", "node-XY6")
 _LATLON_NODE = "node-LatLon"
+# The largest offset (cm) each of _XY_NODES holds: Offset-B10 to Offset-B16 (TS 103 301, ISO TS 19091).
+_XY_NODE_LIMITS_CM = (511, 1023, 2047, 4095, 8191, 32767)
+LANE_SHARING_BITS = 10
+LANE_VEHICLE_ATTRIBUTE_BITS = 8
+_ALTERNATIVE_OF_LANE_TYPE = {number: name for name, number in LANE_TYPE_OF_ALTERNATIVE.items()}
 
 
 def mapem_from_asn(value: dict) -> pb.MapemContent:
@@ -94,3 +102,64 @@ def _connection_into(value: dict, connection: pb.LaneConnection) -> None:
         intersection_into(value["remoteIntersection"], connection.remote_intersection)
     set_optional(connection, "signal_group", value.get("signalGroup"))
     set_optional(connection, "connection_id", value.get("connectionID"))
+
+
+def mapem_to_asn(content: pb.MapemContent) -> dict:
+    """The asn1tools value of a MAPEM whose lanes are node lists of x/y offsets (what the simulator's roadside unit
+    sends); a lane given otherwise is refused with V2xEncodeError."""
+    data = {"msgIssueRevision": content.message_revision,
+            "intersections": [_intersection_to_asn(i) for i in content.intersections]}
+    if content.HasField("minute_of_year"):
+        data["timeStamp"] = content.minute_of_year
+    return {"header": header_to_asn(content, InfrastructureMessage.MAPEM.message_id), "map": data}
+
+
+def _intersection_to_asn(intersection: pb.MapIntersection) -> dict:
+    value = identified_to_asn(intersection)
+    value["refPoint"] = {"lat": units.LATITUDE_TENTH_MICRODEG.to_wire(intersection.reference_latitude_deg),
+                         "long": units.LONGITUDE_TENTH_MICRODEG.to_wire(intersection.reference_longitude_deg)}
+    if intersection.HasField("lane_width_m"):
+        value["laneWidth"] = units.DSRC_LANE_WIDTH_CM.to_wire(intersection.lane_width_m)
+    value["laneSet"] = [_lane_to_asn(lane) for lane in intersection.lanes]
+    return value
+
+
+def _lane_to_asn(lane: pb.Lane) -> dict:
+    kind = _ALTERNATIVE_OF_LANE_TYPE.get(lane.lane_type)
+    if kind is None or len(lane.nodes) < 2:
+        raise V2xEncodeError(f"lane {lane.lane_id}: only lanes of a known type with two nodes or more are encoded")
+    value = {"laneID": lane.lane_id, "laneAttributes": {
+        "directionalUse": bools_to_bits([lane.ingress_path, lane.egress_path]),
+        "sharedWith": bools_to_bits([False] * LANE_SHARING_BITS),
+        "laneType": (kind, bools_to_bits([False] * LANE_VEHICLE_ATTRIBUTE_BITS))},
+        "nodeList": ("nodes", [{"delta": _node_to_asn(lane, node)} for node in lane.nodes])}
+    for field, wire_name in (("name", "name"), ("ingress_approach", "ingressApproach"),
+                             ("egress_approach", "egressApproach")):
+        if field == "name" and lane.name or field != "name" and lane.HasField(field):
+            value[wire_name] = getattr(lane, field)
+    if lane.connections:
+        value["connectsTo"] = [_connection_to_asn(c) for c in lane.connections]
+    return value
+
+
+def _node_to_asn(lane: pb.Lane, node: pb.LaneNode) -> tuple[str, dict]:
+    """The smallest Node-XY alternative that holds the offset (each node from the one before, the first from the
+    reference point)."""
+    if not (node.HasField("east_m") and node.HasField("north_m")):
+        raise V2xEncodeError(f"lane {lane.lane_id}: a node without an x/y offset")
+    x_cm, y_cm = round(node.east_m * 100.0), round(node.north_m * 100.0)
+    for name, limit_cm in zip(_XY_NODES, _XY_NODE_LIMITS_CM):
+        if max(abs(x_cm), abs(y_cm)) <= limit_cm:
+            return name, {"x": x_cm, "y": y_cm}
+    raise V2xEncodeError(f"lane {lane.lane_id}: a node offset of ({node.east_m}, {node.north_m}) m exceeds 327.67 m")
+
+
+def _connection_to_asn(connection: pb.LaneConnection) -> dict:
+    value: dict = {"connectingLane": {"lane": connection.to_lane_id}}
+    if connection.HasField("remote_intersection"):
+        value["remoteIntersection"] = intersection_to_asn(connection.remote_intersection)
+    if connection.HasField("signal_group"):
+        value["signalGroup"] = connection.signal_group
+    if connection.HasField("connection_id"):
+        value["connectionID"] = connection.connection_id
+    return value

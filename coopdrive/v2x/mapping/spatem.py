@@ -4,8 +4,12 @@ and regional data are not mapped."""
 
 from __future__ import annotations
 
-from coopdrive.v2x.mapping.common import bits_to_flags, set_optional
-from coopdrive.v2x.mapping.dsrc_common import dsecond_s, enum_code, header_into, identified_into, time_mark_s
+from coopdrive.v2x import units
+from coopdrive.v2x.infrastructure import InfrastructureMessage
+from coopdrive.v2x.mapping.common import bits_to_flags, flags_to_bits, set_optional
+from coopdrive.v2x.mapping.dsrc_common import (
+    dsecond_s, enum_code, header_into, header_to_asn, identified_into, identified_to_asn, time_mark_s,
+    time_mark_to_asn)
 from coopdrive.v1 import infrastructure_pb2 as pb
 
 # MovementPhaseState names in wire-code order (the protobuf enum's numbers are the codes).
@@ -18,6 +22,8 @@ INTERSECTION_STATUS_BITS = (
     "signal_priority_is_active", "fixed_time_operation", "traffic_dependent_operation", "standby_operation",
     "failure_mode", "off", "recent_map_message_update", "recent_change_in_map_assigned_lanes_ids_used",
     "no_valid_map_is_available_at_this_time", "no_valid_spat_is_available_at_this_time")
+# IntersectionStatusObject is 16 bits, of which the standard names the first 14.
+STATUS_BITS = 16
 # TimeChangeDetails fields holding a TimeMark, and where each goes.
 _TIME_MARKS = (("startTime", "start_time_s"), ("minEndTime", "min_end_time_s"), ("maxEndTime", "max_end_time_s"),
                ("likelyTime", "likely_time_s"), ("nextTime", "next_time_s"))
@@ -54,3 +60,45 @@ def _event_into(value: dict, event: pb.MovementEvent) -> None:
     for wire_name, field in _TIME_MARKS:
         set_optional(event, field, time_mark_s(timing.get(wire_name)))
     set_optional(event, "confidence", timing.get("confidence"))
+
+
+def spatem_to_asn(content: pb.SpatemContent) -> dict:
+    """The asn1tools value of a SPATEM (what the simulator's roadside unit sends); times in seconds of the hour."""
+    spat: dict = {"intersections": [_intersection_to_asn(i) for i in content.intersections]}
+    if content.HasField("minute_of_year"):
+        spat["timeStamp"] = content.minute_of_year
+    if content.name:
+        spat["name"] = content.name
+    return {"header": header_to_asn(content, InfrastructureMessage.SPATEM.message_id), "spat": spat}
+
+
+def _intersection_to_asn(intersection: pb.SpatIntersection) -> dict:
+    value = identified_to_asn(intersection)
+    status, _ = flags_to_bits(intersection.status, INTERSECTION_STATUS_BITS)
+    value["status"] = (status, STATUS_BITS)
+    if intersection.HasField("minute_of_year"):
+        value["moy"] = intersection.minute_of_year
+    if intersection.HasField("second_of_minute_s"):
+        value["timeStamp"] = units.DSECOND_MS.to_wire(intersection.second_of_minute_s)
+    value["states"] = [_group_to_asn(group) for group in intersection.signal_groups]
+    return value
+
+
+def _group_to_asn(group: pb.SignalGroupState) -> dict:
+    value = {"signalGroup": group.signal_group, "state-time-speed": [_event_to_asn(e) for e in group.events]}
+    if group.movement_name:
+        value["movementName"] = group.movement_name
+    return value
+
+
+def _event_to_asn(event: pb.MovementEvent) -> dict:
+    value: dict = {"eventState": MOVEMENT_PHASE_STATES[event.state]}
+    if not event.HasField("min_end_time_s"):
+        return value
+    # minEndTime is the one time TimeChangeDetails must carry; the others go when known.
+    timing = {wire_name: time_mark_to_asn(getattr(event, field)) for wire_name, field in _TIME_MARKS
+              if event.HasField(field)}
+    if event.HasField("confidence"):
+        timing["confidence"] = event.confidence
+    value["timing"] = timing
+    return value

@@ -24,7 +24,7 @@ from coopdrive.v2x.security.certificate import (
 from coopdrive.v2x.security.crypto import (
     Curve, curve_of_key, generate_key, load_private_key_pem, private_key_pem)
 from coopdrive.v2x.security.envelope import parse_signed_data
-from coopdrive.v2x.security.profile import TICKET_PSIDS
+from coopdrive.v2x.security.profile import ROADSIDE_TICKET_PSIDS, TICKET_PSIDS
 from coopdrive.v2x.security.signer import SecuredPacketSigner
 from coopdrive.v2x.security.store import CertificateStore
 from coopdrive.v2x.timebase import MS_PER_S, tai_ms_from_unix_s
@@ -72,8 +72,10 @@ class TestPki:
 
 def create_test_pki(directory: str | Path, vehicles: Sequence[str] = (), curve: Curve = Curve.NIST_P256,
                     tickets_per_vehicle: int = DEFAULT_TICKETS_PER_VEHICLE,
-                    region: CircularArea | None = None, valid_from_tai_s: int | None = None) -> TestPki:
-    """Create and write a root, an authority and tickets_per_vehicle tickets per vehicle (region: tickets').
+                    region: CircularArea | None = None, valid_from_tai_s: int | None = None,
+                    roadside_units: Sequence[str] = ()) -> TestPki:
+    """Create and write a root, an authority and tickets_per_vehicle tickets per vehicle (region: tickets'); those
+    of vehicles named in roadside_units permit SPATEM and MAPEM as well.
 
     Everything is valid from valid_from_tai_s (TAI seconds since 2004; default an hour ago): a simulated run
     whose clock starts in 2016 needs certificates valid then.
@@ -96,7 +98,8 @@ def create_test_pki(directory: str | Path, vehicles: Sequence[str] = (), curve: 
         folder.mkdir(parents=True, exist_ok=True)
         pki.tickets[vehicle] = []
         for index in range(tickets_per_vehicle):
-            ticket = pki.issue_ticket(f"{vehicle}-{index}", start_s=start_s, region=region)
+            ticket = pki.issue_ticket(f"{vehicle}-{index}", start_s=start_s, region=region, psids=ROADSIDE_TICKET_PSIDS
+                                      if vehicle in roadside_units else TICKET_PSIDS)
             _write(folder, f"ticket-{index}", *ticket)
             pki.tickets[vehicle].append(ticket)
     return pki

@@ -21,6 +21,8 @@ PSID_OF_PORT = {int(BtpPort.CAM): PSID_CAM, int(BtpPort.DENM): PSID_DENM, int(Bt
                 int(BtpPort.SREM): PSID_SREM, int(BtpPort.SSEM): PSID_SSEM, int(BtpPort.VAM): PSID_VAM,
                 int(BtpPort.CPM): PSID_CPM}
 TICKET_PSIDS = (PSID_CAM, PSID_DENM, PSID_ICLCM)
+# A roadside unit's ticket also permits the intersection's map and signal states; a vehicle's does not.
+ROADSIDE_TICKET_PSIDS = TICKET_PSIDS + (PSID_SPATEM, PSID_MAPEM)
 
 # Accept messages generated at most this long ago / ahead of our clock (GNSS-disciplined on both sides).
 MAX_MESSAGE_AGE_S = 2.0

@@ -21,11 +21,13 @@ UNTRUSTED_SUBDIR = "untrusted"
 
 
 def security_overrides(pki_dir: Path, vehicle_ids: Sequence[str], mode: SecurityMode,
-                       untrusted: Sequence[str] = (), valid_from_tai_s: int | None = None) -> dict[str, dict]:
+                       untrusted: Sequence[str] = (), valid_from_tai_s: int | None = None,
+                       roadside_units: Sequence[str] = ()) -> dict[str, dict]:
     """Create the PKI(s) in pki_dir and return per vehicle id the `{"security": {...}}` of its v2x config.
 
     vehicle_ids may also name the simulator's own senders (scripted vehicles, roadside units): they get
-    tickets like any vehicle and sign with them (`load_test_pki(pki_dir).signer(name)`)."""
+    tickets like any vehicle and sign with them (`load_test_pki(pki_dir).signer(name)`); the roadside_units among
+    them may sign SPATEMs and MAPEMs too."""
     pki_dir = Path(pki_dir)
     unknown = sorted(set(untrusted) - set(vehicle_ids))
     if unknown:
@@ -33,7 +35,7 @@ def security_overrides(pki_dir: Path, vehicle_ids: Sequence[str], mode: Security
     if UNTRUSTED_SUBDIR in vehicle_ids:
         raise ValueError(f"vehicle id {UNTRUSTED_SUBDIR!r} is reserved for the untrusted PKI's directory")
     trusted = [vehicle for vehicle in vehicle_ids if vehicle not in untrusted]
-    create_test_pki(pki_dir, trusted, valid_from_tai_s=valid_from_tai_s)
+    create_test_pki(pki_dir, trusted, valid_from_tai_s=valid_from_tai_s, roadside_units=roadside_units)
     untrusted_dir = pki_dir / UNTRUSTED_SUBDIR
     if untrusted:
         create_untrusted_pki(untrusted_dir, list(untrusted), valid_from_tai_s=valid_from_tai_s)
