@@ -17,9 +17,12 @@ def test_each_transition_is_logged_once_with_its_reason(caplog):
                                                               reason="drill"))
         service.plan(0.2)
         service.plan(0.3)
-    lines = [record.getMessage() for record in caplog.records]
+    logged = [record.getMessage() for record in caplog.records]
+    lines = [line for line in logged if line.startswith("emergency:")]
     # Started; forced; and, the emergency vehicle being unheard, straight back to normal in the same step.
     assert len(lines) == len(set(lines)) == 3
+    # The traffic lights' machine beside it: started, once.
+    assert [line for line in logged if line not in lines] == ["traffic_lights:  -> IDLE at 0.10 s on START: machine started"]
     assert "machine started" in lines[0]
     assert "NORMAL -> SLOW_SAFE" in lines[1] and "forced by alice: drill" in lines[1]
     assert "SLOW_SAFE -> NORMAL" in lines[2] and "no longer heard" in lines[2]
