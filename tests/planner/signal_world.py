@@ -1,7 +1,7 @@
 """A signalised intersection as the v2x service publishes it (MapemContent, SpatemContent) and an ego on its
-approach: the reference point at 50 N 5 E; ingress lane 1 comes from the west along y = -1.75 m, its stop line
-10 m west of the reference point; it connects straight on to lane 2 (signal group 1), left to lane 3 (group 2) and
-right to lane 4 (group 3). The planner's default clock is unix time, so stack times below an hour are TimeMarks."""
+approach: the reference point at 50 N 5 E; ingress lane 1 comes from the west along y = -1.75 m from x = -310 m to
+its stop line 10 m west of the reference point; it connects straight on to lane 2 (signal group 1), left to lane 3
+(group 2) and right to lane 4 (group 3). The planner's default clock is unix time, so stack times below an hour are TimeMarks."""
 
 from __future__ import annotations
 
@@ -81,3 +81,20 @@ def ego_at(x_m: float, speed_mps: float = 13.9, y_m: float = LANE_Y_M, heading_r
 
 def heard(message, at_s: float) -> dict[int, Received]:
     return {RSU: Received(message, at_s)}
+
+
+def fixed_time(t: float, green_s: float, amber_s: float, red_s: float, offset_s: float = 0.0
+               ) -> tuple[tuple[int, float], ...]:
+    """A fixed-time plan for group 1 seen at t: green from offset_s, then amber, then red, repeated; the phase at t
+    and the three after it, each with its end."""
+    plan = ((GREEN, green_s), (AMBER, amber_s), (RED, red_s))
+    cycle_s = green_s + amber_s + red_s
+    start_s = offset_s + ((t - offset_s) // cycle_s) * cycle_s
+    phases, index = [], 0
+    while len(phases) < 4:
+        state, length_s = plan[index % 3]
+        if start_s + length_s > t:
+            phases.append((state, start_s + length_s))
+        start_s += length_s
+        index += 1
+    return tuple(phases)

@@ -3,7 +3,7 @@
 Stop on red; on amber stop when the stop line is beyond the stopping distance v t_r + v^2 / (2 a) at the
 comfort deceleration (ITE's amber-interval kinematics), else proceed: the dilemma zone, which an amber timed for
 that deceleration lets a vehicle clear. GLOSA (green light optimal speed advisory): when a green the ego could not
-reach at the road's limit comes later, arrive at its start (plus a margin) at the constant speed d / (t_green - t),
+reach at the road's limit (nor in the amber after it) comes later, arrive at its start (plus a margin) at the constant speed d / (t_green - t),
 no slower than a minimum; otherwise stop as without it.
 """
 
@@ -56,8 +56,8 @@ def advise(timing: GroupTiming, approach: Approach, config: SignalConfig, glosa:
     if light is Light.UNKNOWN:
         return Advised(Advice.UNKNOWN, limit)
     if light is Light.GO:
-        end_s = current.end_s
-        lasts = end_s is None or limit <= 0.0 or end_s > approach.now_s + approach.to_stop_line_m / limit
+        until_s = _passable_until_s(timing, approach.now_s, config)
+        lasts = until_s is None or limit <= 0.0 or until_s > approach.now_s + approach.to_stop_line_m / limit
         if lasts or later_green is None:
             return Advised(Advice.GO, limit)
         return Advised(Advice.GLOSA, later_green)
@@ -66,6 +66,17 @@ def advise(timing: GroupTiming, approach: Approach, config: SignalConfig, glosa:
     if later_green is not None:
         return Advised(Advice.GLOSA, later_green)
     return Advised(Advice.STOP, limit)
+
+
+def _passable_until_s(timing: GroupTiming, now_s: float, config: SignalConfig) -> float | None:
+    """Until when the current green lets the ego through: its end, or where amber follows, the amber's end less
+    the GLOSA margin (the amber decision will proceed then: the line lies within the stopping distance); None
+    when the green's end is unknown."""
+    windows = timing.windows(now_s)
+    until_s = windows[0][2]
+    if until_s is not None and len(windows) > 1 and windows[1][0] is Light.AMBER and windows[1][2] is not None:
+        until_s = max(until_s, windows[1][2] - config.glosa_margin_s)
+    return until_s
 
 
 def _later_green_speed_mps(timing: GroupTiming, approach: Approach, config: SignalConfig) -> float | None:
