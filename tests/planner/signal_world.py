@@ -31,12 +31,15 @@ def _lane(lane_id: int, offsets: list[tuple[float, float]], ingress: bool) -> pb
     return lane
 
 
-def mapem(lane_shift_m: float = 0.0) -> pb.MapemContent:
+def mapem(lane_shift_m: float = 0.0, intersection_id: int = INTERSECTION, region: int | None = None
+          ) -> pb.MapemContent:
     """The intersection; lane_shift_m moves ingress lane 1 north (a MAP that does not match the road)."""
     content = pb.MapemContent(station_id=RSU)
     intersection = content.intersections.add(reference_latitude_deg=REFERENCE[0],
                                              reference_longitude_deg=REFERENCE[1], lane_width_m=3.5)
-    intersection.id.id = INTERSECTION
+    intersection.id.id = intersection_id
+    if region is not None:
+        intersection.id.region = region
     ingress = _lane(1, [(STOP_LINE_X_M, LANE_Y_M + lane_shift_m), (-100.0, 0.0), (-200.0, 0.0)], ingress=True)
     for to_lane, group in ((2, STRAIGHT), (3, LEFT), (4, RIGHT)):
         ingress.connections.add(to_lane_id=to_lane, signal_group=group)
