@@ -133,6 +133,10 @@ class SignalConfig(BaseModel):
     lane_half_width_m: float = Field(1.75, gt=0)
     match_margin_m: float = Field(0.5, ge=0)
     heading_tolerance_deg: float = Field(30.0, gt=0, lt=90)
+    # Matched to no lane, the ego still stops safely at a signalised lane's stop line ahead within this distance
+    # sideways (its own lane missing from the MAP, or the MAP not where the road is), while it is within the lane's
+    # length of it.
+    mismatch_lateral_m: float = Field(10.0, gt=0)
     # An ingress lane is followed this far past its stop line (the intersection box) before the match is lost.
     box_length_m: float = Field(40.0, gt=0)
     # Deceleration a stop at the line may take: ITE's amber-interval practice (Institute of Transportation

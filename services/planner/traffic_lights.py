@@ -4,7 +4,8 @@ whatever the scenario asks for.
 Each step it reads the MAPEMs and SPATEMs heard (services/planner/signals/), matches the ego to an ingress lane and
 its signal group, and asks `advise` what the phases call for. It stops at the line on red and on amber it can stop
 for comfortably, proceeds on amber it cannot (the dilemma zone), goes on green, slows to arrive on green (GLOSA), and
-stops safely when the SPaT of a signalised approach is stale, contradicts itself or gives no rule. Past the stop
+stops safely when the SPaT of a signalised approach is stale, contradicts itself or gives no rule, and when the ego
+matches no lane of a MAP whose signalised stop line lies ahead near its path. Past the stop
 line it is committed: it clears the box whatever the light.
 """
 
@@ -34,6 +35,7 @@ class LightState(enum.Enum):
 
 class LightEvent(enum.Enum):
     NO_SIGNAL = enum.auto()
+    MAP_MISMATCH = enum.auto()
     CLEARED = enum.auto()
     PASSED_STOP_LINE = enum.auto()
     SPAT_UNUSABLE = enum.auto()
@@ -77,9 +79,11 @@ class TrafficLights:
                 self.awareness.on_spatem(message, received_s)
 
     def to_stop_line_m(self) -> float | None:
-        """From the front bumper to the matched lane's stop line (negative past it)."""
-        match = self.view.match
-        return None if match is None else match.to_stop_line_m - self.config.rear_axle_to_front_m
+        """From the front bumper to the matched lane's stop line (negative past it), or matched to none, to the
+        signalised stop line ahead of us."""
+        match, ahead_m = self.view.match, self.view.unmatched_stop_line_m
+        rear_m = match.to_stop_line_m if match is not None else ahead_m
+        return None if rear_m is None else rear_m - self.config.rear_axle_to_front_m
 
     def _lane_key(self) -> tuple[tuple[int, int], int] | None:
         match = self.view.match
@@ -98,7 +102,8 @@ class TrafficLights:
         if self._lane_key() != self.committed_to:
             events.append(E.CLEARED)
         if not self.view.on_signalised_lane:
-            return [*events, E.NO_SIGNAL]
+            mismatch = self.view.unmatched_stop_line_m is not None and self.to_stop_line_m() >= 0.0
+            return [*events, E.MAP_MISMATCH if mismatch else E.NO_SIGNAL]
         if self.to_stop_line_m() < 0.0:
             return [*events, E.PASSED_STOP_LINE]
         if self.view.status is not SignalStatus.OK:
@@ -161,6 +166,8 @@ def build_spec() -> MachineSpec:
         Transition(S.GO, E.SPAT_UNUSABLE, S.COMMITTED, guard=Ctx.cannot_stop_comfortably, action=Ctx.commit,
                    reason="SPaT lost on green within the comfortable stopping distance: proceed"),
         *from_each(approaching, E.SPAT_UNUSABLE, S.SAFE_STOP, reason="SPaT unusable on a signalised approach"),
+        *from_each(approaching, E.MAP_MISMATCH, S.SAFE_STOP,
+                   reason="on no lane of the MAP, a signalised stop line ahead near our path"),
         Transition(S.SAFE_STOP, E.SPAT_USABLE, S.IDLE, reason="SPaT usable again"),
         *from_each([*approaching, S.SAFE_STOP], E.PASSED_STOP_LINE, S.COMMITTED, action=Ctx.commit,
                    reason="past the stop line: clear the box"),

@@ -27,10 +27,12 @@ GREEN_ENDING_SOON = ((GREEN, 5.0), (AMBER, 8.0), (RED, 20.0), (GREEN, 50.0))
 AMBER_NOW = ((AMBER, 3.0), (RED, 30.0))
 
 
-def world(t, x_m, phases=GREEN_LONG, spat_at_s=None, spat=True):
-    """The MAP and (unless spat is False) group 1's phases, heard at spat_at_s (default now)."""
+def world(t, x_m, phases=GREEN_LONG, spat_at_s=None, spat=True, map_shift_m=0.0):
+    """The MAP (heard at 0 s, or now when its lane is shifted north by map_shift_m) and (unless spat is False)
+    group 1's phases, heard at spat_at_s (default now)."""
     spatems = heard(light(*phases), t if spat_at_s is None else spat_at_s) if spat else {}
-    return inputs(planner_pb2.SCENARIO_FOLLOW, ego=ego_at(x_m), mapems=heard(mapem(), 0.0), spatems=spatems)
+    mapems = heard(mapem(map_shift_m), t if map_shift_m else 0.0)
+    return inputs(planner_pb2.SCENARIO_FOLLOW, ego=ego_at(x_m), mapems=mapems, spatems=spatems)
 
 
 @dataclass(frozen=True)
@@ -57,6 +59,8 @@ SAFE_STOP = LightsReach(world, ((0.0, {"x_m": FAR_X_M, "spat": False}),), config
 COMMITTED = IDLE.then(0.1, x_m=IN_THE_BOX_X_M)
 REACH = {"IDLE": IDLE, "GO": GO, "GLOSA": GLOSA, "STOP": STOP, "SAFE_STOP": SAFE_STOP}
 STALE_AT_S = 1.5
+# The MAP's lane this far north of the road: two lanes' widths off.
+MISMATCH_M = 4.0
 
 DRIVERS: dict[Key, Driver] = {
     (MACHINE, "IDLE", "GREEN", "GO"): on_event(IDLE, x_m=FAR_X_M),
@@ -76,6 +80,9 @@ DRIVERS: dict[Key, Driver] = {
     **{(MACHINE, source, "SPAT_UNUSABLE", "SAFE_STOP"): on_event(REACH[source], STALE_AT_S, spat_at_s=0.0)
        for source in ("GO", "GLOSA", "STOP")},
     (MACHINE, "SAFE_STOP", "SPAT_USABLE", "IDLE"): on_event(SAFE_STOP, spat=True),
+    (MACHINE, "IDLE", "MAP_MISMATCH", "SAFE_STOP"): on_event(IDLE, x_m=FAR_X_M, map_shift_m=MISMATCH_M),
+    **{(MACHINE, source, "MAP_MISMATCH", "SAFE_STOP"): on_event(REACH[source], map_shift_m=MISMATCH_M)
+       for source in ("GO", "GLOSA", "STOP")},
     (MACHINE, "IDLE", "PASSED_STOP_LINE", "COMMITTED"): on_event(IDLE, x_m=IN_THE_BOX_X_M),
     **{(MACHINE, source, "PASSED_STOP_LINE", "COMMITTED"): on_event(REACH[source], x_m=IN_THE_BOX_X_M)
        for source in ("GO", "GLOSA", "STOP", "SAFE_STOP")},

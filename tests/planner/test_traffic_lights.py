@@ -108,9 +108,23 @@ def test_spat_contradicting_itself_brings_a_safe_stop(first, then, why):
 def test_the_ego_off_every_ingress_lane_is_matched_to_none():
     for ego in ({"y_m": LANE_Y_M + 3.0}, {"heading_rad": math.pi}, {"heading_rad": math.radians(40.0)}):
         p = planner()
-        request = step(p, 0.0, -180.0, light((RED, 60.0), (GREEN, 90.0)), **ego)
-        assert p.lights.view.status.name == "NO_LANE" and p.lights_machine.state.name == "IDLE"
-        assert not request.has_stop_line
+        step(p, 0.0, -180.0, light((RED, 60.0), (GREEN, 90.0)), **ego)
+        assert p.lights.view.status.name == "NO_LANE"
+
+
+def test_going_another_way_than_every_signalised_lane_the_scenario_drives_on():
+    for heading_deg in (180.0, 40.0):
+        p = planner()
+        request = step(p, 0.0, -180.0, light((RED, 60.0), (GREEN, 90.0)), heading_rad=math.radians(heading_deg))
+        assert p.lights_machine.state.name == "IDLE" and not request.has_stop_line
+
+
+def test_a_map_whose_lane_misses_the_egos_path_brings_a_safe_stop_at_its_stop_line():
+    p = planner()
+    request, _ = p.step(0.0, inputs(planner_pb2.SCENARIO_FOLLOW, ego=ego_at(-180.0), mapems=heard(mapem(4.0), 0.0),
+                                    spatems=heard(light((GREEN, 60.0)), 0.0)))
+    assert p.lights.view.status.name == "NO_LANE" and p.lights_machine.state.name == "SAFE_STOP"
+    assert request.has_stop_line and request.stop_line_distance_m == pytest.approx(front_to_line_m(-180.0), abs=0.05)
 
 
 def drive(p: Planner, plan, x_m: float = -300.0, duration_s: float = 50.0) -> list[tuple[float, float, int]]:

@@ -41,6 +41,9 @@ class SignalView:
     signal_group: int | None = None
     timing: GroupTiming | None = None
     why: str = ""
+    # Matched to no lane: the rear axle's distance along the heading to the nearest signalised stop line ahead of it
+    # with our direction of travel and near our path (the MAP does not match the road), if any.
+    unmatched_stop_line_m: float | None = None
 
     @property
     def on_signalised_lane(self) -> bool:
@@ -80,13 +83,32 @@ class SignalAwareness:
                            if (m := match_on_lane(lane, (east_m, north_m), heading_rad, self.tolerance)) is not None]
         return nearest_match(candidates)
 
+    def unmatched_stop_line_m(self, latitude_deg: float, longitude_deg: float, heading_rad: float) -> float | None:
+        """Along the heading to the nearest stop line ahead of a signalised lane that runs our way, within
+        mismatch_lateral_m of our path and at most the lane's length away."""
+        ux, uy = math.cos(heading_rad), math.sin(heading_rad)
+        ahead = []
+        for mapped in self.intersections.values():
+            east_m, north_m, _ = mapped.plane.to_enu(latitude_deg, longitude_deg)
+            for lane in mapped.lanes:
+                dx, dy = lane.stop_line[0] - east_m, lane.stop_line[1] - north_m
+                along_m, aside_m = dx * ux + dy * uy, abs(dy * ux - dx * uy)
+                turned = abs(math.remainder(lane.heading_at_stop_line_rad() - heading_rad, math.tau))
+                if (lane.signalised and 0.0 < along_m <= lane.length_m and aside_m <= self.config.mismatch_lateral_m
+                        and turned <= self.tolerance.heading_rad):
+                    ahead.append(along_m)
+        return min(ahead, default=None)
+
     def view(self, now_s: float, latitude_deg: float, longitude_deg: float, heading_rad: float,
              intention: Intention = Intention.STRAIGHT) -> SignalView:
         if not self.intersections:
             return SignalView(SignalStatus.NO_MAP, why="no MAPEM heard")
         match = self.match(latitude_deg, longitude_deg, heading_rad)
         if match is None:
-            return SignalView(SignalStatus.NO_LANE, why="on no ingress lane of the MAP")
+            ahead_m = self.unmatched_stop_line_m(latitude_deg, longitude_deg, heading_rad)
+            why = "on no ingress lane of the MAP" + ("" if ahead_m is None else
+                                                      f", a signalised stop line {ahead_m:.0f} m ahead")
+            return SignalView(SignalStatus.NO_LANE, why=why, unmatched_stop_line_m=ahead_m)
         group = match.lane.signal_group(intention)
         lane = f"intersection {match.lane.intersection[1]} lane {match.lane.lane_id}"
         if group is None:

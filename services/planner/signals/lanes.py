@@ -44,6 +44,14 @@ class IngressLane:
     def stop_line(self) -> Point:
         return self.nodes[0]
 
+    @property
+    def length_m(self) -> float:
+        return sum(math.dist(a, b) for a, b in zip(self.nodes, self.nodes[1:]))
+
+    @property
+    def signalised(self) -> bool:
+        return any(m.signal_group is not None for m in self.movements)
+
     def heading_at_stop_line_rad(self) -> float:
         (x0, y0), (x1, y1) = self.nodes[0], self.nodes[1]
         return math.atan2(y0 - y1, x0 - x1)
