@@ -4,9 +4,14 @@ protobuf equivalent gives; the real roadside unit's signed SPATEM (shared/data/v
 
 from __future__ import annotations
 
+import json
+import subprocess
+import sys
+
 import pytest
 from planner_world import inputs
-from signal_world import AMBER, GREEN, LEFT, RED, RIGHT, STRAIGHT, ego_at, heard, light, mapem
+from signal_messages import asn_mapem, asn_spatem, decoded
+from signal_world import AMBER, GREEN, PLANE, RED, ego_at, heard, light, mapem
 
 from coopdrive.recording.capture import read_gn_packets
 from coopdrive.services.planner.config import PlannerLogicConfig, SignalConfig
@@ -16,56 +21,13 @@ from coopdrive.services.planner.signals.spat_tracker import SpatTracker
 from coopdrive.services.planner.signals.time_mark import unix_s_of_minute_of_year
 from coopdrive.v2x.btp import BtpPort
 from coopdrive.v2x.packet import decode_packet
+from coopdrive.v2x.pcap import PcapWriter
 from coopdrive.v2x.timebase import ItsClock
 from coopdrive.v1 import planner_pb2
 from tests.shared_data import shared_file
 from tests.v2x import infrastructure_messages as messages
 
 LIMIT_MPS = 13.9
-STATE_NAME = {GREEN: "protected-Movement-Allowed", AMBER: "protected-clearance", RED: "stop-And-Remain"}
-# NodeOffsetPointXY alternatives, the smallest first, and the largest offset (cm) each holds.
-NODE_SIZES = (("node-XY1", 511), ("node-XY2", 1023), ("node-XY3", 2047), ("node-XY4", 4095), ("node-XY5", 8191),
-              ("node-XY6", 32767))
-UNKNOWN_TIME_MARK = 36001
-
-
-def asn_lane(lane_id: int, offsets_m: list[tuple[float, float]], ingress: bool, connections=()) -> dict:
-    nodes = []
-    for east_m, north_m in offsets_m:
-        x, y = round(east_m * 100), round(north_m * 100)
-        kind = next(name for name, largest in NODE_SIZES if max(abs(x), abs(y)) <= largest)
-        nodes.append({"delta": (kind, {"x": x, "y": y})})
-    lane = {"laneID": lane_id, "laneAttributes": {"directionalUse": (b"\x80" if ingress else b"\x40", 2),
-                                                  "sharedWith": messages.NO_SHARING,
-                                                  "laneType": messages.VEHICLE_LANE},
-            "nodeList": ("nodes", nodes)}
-    if connections:
-        lane["connectsTo"] = [{"connectingLane": {"lane": to}, "signalGroup": group} for to, group in connections]
-    return lane
-
-
-def asn_mapem() -> dict:
-    """signal_world's intersection, written as TS 103 301's MAPEM."""
-    lanes = [asn_lane(1, [(-10.0, -1.75), (-100.0, 0.0), (-200.0, 0.0)], True,
-                      [(2, STRAIGHT), (3, LEFT), (4, RIGHT)]),
-             asn_lane(2, [(10.0, -1.75), (100.0, 0.0)], False), asn_lane(3, [(1.75, 10.0), (0.0, 100.0)], False),
-             asn_lane(4, [(-1.75, -10.0), (0.0, -100.0)], False)]
-    intersection = {"id": {"id": 12}, "revision": 1, "refPoint": {"lat": 500_000_000, "long": 50_000_000},
-                    "laneWidth": 350, "laneSet": lanes}
-    return {"header": messages.header(2, 5), "map": {"msgIssueRevision": 1, "intersections": [intersection]}}
-
-
-def asn_spatem(phases) -> dict:
-    """Group 1 through (state, likely end in seconds of the hour), minEndTime unknown, as signal_world.light."""
-    events = [{"eventState": STATE_NAME[state],
-               "timing": {"minEndTime": UNKNOWN_TIME_MARK, "likelyTime": round(end_s * 10)}} for state, end_s in phases]
-    intersection = {"id": {"id": 12}, "revision": 1, "status": (b"\x00\x00", 16),
-                    "states": [{"signalGroup": 1, "state-time-speed": events}]}
-    return {"header": messages.header(2, 4), "spat": {"intersections": [intersection]}}
-
-
-def decoded(kind: str, value: dict):
-    return decode_packet(messages.gn_packet(BtpPort[kind], messages.encoded(kind, value))).content
 
 
 def decision(map_content, spat_content, x_m: float, speed_mps: float = LIMIT_MPS, glosa: bool = True):
@@ -134,3 +96,36 @@ def test_the_real_rsus_spatem_reaches_the_planner_on_a_lane_of_its_intersection(
                                       spatems=heard(content, now_s)))
     assert p.lights.view.status.name == "OK" and p.lights_machine.state.name == "GLOSA"
     assert request.desired_speed_mps == pytest.approx(150.0 / 14.544, rel=1e-3) and request.has_stop_line
+
+
+def advise_command(capture, *options: str) -> list[str]:
+    result = subprocess.run([sys.executable, "-m", "coopdrive.cli", "v2x", "advise", str(capture), *options],
+                            capture_output=True, text=True, timeout=120, check=True)
+    return result.stdout.splitlines()
+
+
+def test_the_desk_tool_advises_on_the_real_rsus_spatem_for_a_signal_group_and_a_distance():
+    (line,) = advise_command(shared_file("v2x/considerit_signed_testvectors.pcap"), "--intersection", "63",
+                             "--group", "1", "--distance", "150", "--json")
+    record = json.loads(line)
+    assert (record["status"], record["light"], record["advice"]) == ("OK", "STOP", "GLOSA")
+    assert (record["ends_in_s"], record["speed_mps"]) == (pytest.approx(11.544), pytest.approx(150.0 / 14.544))
+
+
+# The start of a UTC hour: the capture's times are TimeMarks' seconds of the hour plus this.
+HOUR_START_S = 1_700_002_800.0
+
+
+def test_the_desk_tool_runs_the_planner_on_a_capture_of_another_encoders_mapem_and_spatems(tmp_path):
+    capture = tmp_path / "rsu.pcap"
+    with capture.open("wb") as stream:
+        writer = PcapWriter(stream, messages.RSU_MAC)
+        writer.write(messages.gn_packet(BtpPort.MAPEM, messages.encoded("MAPEM", asn_mapem())), HOUR_START_S)
+        for t, phases in ((0.1, ((RED, 15.0), (GREEN, 45.0))), (15.2, ((GREEN, 45.0),))):
+            uper = messages.encoded("SPATEM", asn_spatem(phases))
+            writer.write(messages.gn_packet(BtpPort.SPATEM, uper), HOUR_START_S + t)
+    latitude_deg, longitude_deg, _ = PLANE.to_geodetic(-180.0, -1.75)
+    glosa, green = (json.loads(line) for line in advise_command(
+        capture, "--lat", str(latitude_deg), "--lon", str(longitude_deg), "--heading", "90", "--json"))
+    assert (glosa["state"], glosa["light"], green["state"]) == ("GLOSA", "STOP", "GO")
+    assert glosa["speed_mps"] == pytest.approx(166.2 / 15.9, rel=1e-3)
