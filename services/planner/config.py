@@ -137,6 +137,10 @@ class SignalConfig(BaseModel):
     # sideways (its own lane missing from the MAP, or the MAP not where the road is), while it is within the lane's
     # length of it.
     mismatch_lateral_m: float = Field(10.0, gt=0)
+    # Do not block the box: on green the ego stays at the line while the vehicle ahead, no faster than
+    # queue_speed_mps, leaves less than box_clear_m past the stop line (the box and our own length).
+    queue_speed_mps: float = Field(1.0, ge=0)
+    box_clear_m: float = Field(25.0, gt=0)
     # An ingress lane is followed this far past its stop line (the intersection box) before the match is lost.
     box_length_m: float = Field(40.0, gt=0)
     # Deceleration a stop at the line may take: ITE's amber-interval practice (Institute of Transportation

@@ -3,7 +3,8 @@ whatever the scenario asks for.
 
 Each step it reads the MAPEMs and SPATEMs heard (services/planner/signals/), matches the ego to an ingress lane and
 its signal group, and asks `advise` what the phases call for. It stops at the line on red and on amber it can stop
-for comfortably, proceeds on amber it cannot (the dilemma zone), goes on green, slows to arrive on green (GLOSA), and
+for comfortably, proceeds on amber it cannot (the dilemma zone), goes on green unless the queue ahead leaves no room
+past the box (it would strand there), slows to arrive on green (GLOSA), and
 stops safely when the SPaT of a signalised approach is stale, contradicts itself or gives no rule, and when the ego
 matches no lane of a MAP whose signalised stop line lies ahead near its path. Past the stop
 line it is committed: it clears the box whatever the light.
@@ -44,6 +45,7 @@ class LightEvent(enum.Enum):
     GREEN_LATER = enum.auto()
     STOP_REQUIRED = enum.auto()
     AMBER_TOO_CLOSE = enum.auto()
+    EXIT_BLOCKED = enum.auto()
 
 
 EVENT_OF_ADVICE = {Advice.GO: LightEvent.GREEN, Advice.GLOSA: LightEvent.GREEN_LATER,
@@ -111,7 +113,18 @@ class TrafficLights:
             return [*events, E.SPAT_UNUSABLE]
         approach = Approach(sit.now_s, self.to_stop_line_m(), sit.ego_speed_mps(), limit_mps)
         self.advised = advise(self.view.timing, approach, self.config, self.glosa)
-        return [*events, E.SPAT_USABLE, EVENT_OF_ADVICE[self.advised.advice]]
+        event = EVENT_OF_ADVICE[self.advised.advice]
+        if event in (E.GREEN, E.GREEN_LATER) and self.exit_blocked() and self.can_stop_comfortably():
+            event = E.EXIT_BLOCKED
+        return [*events, E.SPAT_USABLE, event]
+
+    def exit_blocked(self) -> bool:
+        """The vehicle ahead stands (or crawls) with less room behind it past the stop line than it takes us to
+        leave the box: entering on green would strand us in it."""
+        mio = self.sit.forward_mio()
+        if mio is None or mio.speed_mps.value > self.config.queue_speed_mps:
+            return False
+        return mio.longitudinal_gap_m - self.to_stop_line_m() < self.config.box_clear_m
 
     # --- guards and actions
     def can_stop_comfortably(self) -> bool:
@@ -161,6 +174,8 @@ def build_spec() -> MachineSpec:
         Transition(S.STOP, E.GREEN, S.GO, reason="green"),
         *from_each([S.IDLE, S.GO, S.STOP], E.GREEN_LATER, S.GLOSA, reason="GLOSA: a later green can be reached"),
         *from_each([S.IDLE, S.GO, S.GLOSA], E.STOP_REQUIRED, S.STOP, reason="red, or amber with room to stop"),
+        *from_each([S.IDLE, S.GO, S.GLOSA], E.EXIT_BLOCKED, S.STOP,
+                   reason="green, but the queue ahead leaves no room past the box: do not enter"),
         *from_each([S.IDLE, S.GO, S.GLOSA], E.AMBER_TOO_CLOSE, S.COMMITTED, action=Ctx.commit,
                    reason="amber within the comfortable stopping distance: proceed"),
         Transition(S.GO, E.SPAT_UNUSABLE, S.COMMITTED, guard=Ctx.cannot_stop_comfortably, action=Ctx.commit,

@@ -6,7 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from drivers import Driven, Driver, Key, Reach, on_event
-from planner_world import inputs
+from planner_world import inputs, obj, scene
 from signal_world import AMBER, DARK, GREEN, RED, ego_at, heard, light, mapem
 
 from coopdrive.services.planner.planner import Planner
@@ -27,12 +27,13 @@ GREEN_ENDING_SOON = ((GREEN, 5.0), (AMBER, 8.0), (RED, 20.0), (GREEN, 50.0))
 AMBER_NOW = ((AMBER, 3.0), (RED, 30.0))
 
 
-def world(t, x_m, phases=GREEN_LONG, spat_at_s=None, spat=True, map_shift_m=0.0):
+def world(t, x_m, phases=GREEN_LONG, spat_at_s=None, spat=True, map_shift_m=0.0, queue_gap_m=None):
     """The MAP (heard at 0 s, or now when its lane is shifted north by map_shift_m) and (unless spat is False)
-    group 1's phases, heard at spat_at_s (default now)."""
+    group 1's phases, heard at spat_at_s (default now); a car standing queue_gap_m ahead, if given."""
     spatems = heard(light(*phases), t if spat_at_s is None else spat_at_s) if spat else {}
     mapems = heard(mapem(map_shift_m), t if map_shift_m else 0.0)
-    return inputs(planner_pb2.SCENARIO_FOLLOW, ego=ego_at(x_m), mapems=mapems, spatems=spatems)
+    ahead = scene() if queue_gap_m is None else scene(obj(QUEUE, gap_m=queue_gap_m, speed_mps=0.0), forward_mio=QUEUE)
+    return inputs(planner_pb2.SCENARIO_FOLLOW, ego=ego_at(x_m), mapems=mapems, spatems=spatems, scene=ahead)
 
 
 @dataclass(frozen=True)
@@ -59,6 +60,7 @@ SAFE_STOP = LightsReach(world, ((0.0, {"x_m": FAR_X_M, "spat": False}),), config
 COMMITTED = IDLE.then(0.1, x_m=IN_THE_BOX_X_M)
 REACH = {"IDLE": IDLE, "GO": GO, "GLOSA": GLOSA, "STOP": STOP, "SAFE_STOP": SAFE_STOP}
 STALE_AT_S = 1.5
+QUEUE = 7
 # The MAP's lane this far north of the road: two lanes' widths off.
 MISMATCH_M = 4.0
 
@@ -72,6 +74,9 @@ DRIVERS: dict[Key, Driver] = {
     (MACHINE, "IDLE", "STOP_REQUIRED", "STOP"): on_event(IDLE, x_m=FAR_X_M, phases=RED_LONG),
     (MACHINE, "GO", "STOP_REQUIRED", "STOP"): on_event(GO, phases=RED_LONG),
     (MACHINE, "GLOSA", "STOP_REQUIRED", "STOP"): on_event(GLOSA, phases=RED_LONG),
+    (MACHINE, "IDLE", "EXIT_BLOCKED", "STOP"): on_event(IDLE, x_m=-60.0, queue_gap_m=60.0),
+    (MACHINE, "GO", "EXIT_BLOCKED", "STOP"): on_event(GO, queue_gap_m=170.0),
+    (MACHINE, "GLOSA", "EXIT_BLOCKED", "STOP"): on_event(GLOSA, queue_gap_m=170.0),
     (MACHINE, "IDLE", "AMBER_TOO_CLOSE", "COMMITTED"): on_event(IDLE, x_m=CLOSE_X_M, phases=AMBER_NOW),
     (MACHINE, "GO", "AMBER_TOO_CLOSE", "COMMITTED"): on_event(GO_CLOSE, x_m=CLOSE_X_M, phases=AMBER_NOW),
     (MACHINE, "GLOSA", "AMBER_TOO_CLOSE", "COMMITTED"): on_event(GLOSA_ON_GREEN, x_m=CLOSE_X_M, phases=AMBER_NOW),

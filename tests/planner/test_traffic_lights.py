@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 
 import pytest
-from planner_world import inputs
+from planner_world import inputs, obj, scene
 from signal_world import (AMBER, GREEN, LANE_Y_M, RED, STOP_LINE_X_M, ego_at, event, fixed_time, heard, light, mapem,
                           spatem)
 
@@ -83,6 +83,19 @@ def test_a_green_lasting_until_the_ego_arrives_adds_nothing_to_the_scenarios_req
     request = step(p, 0.0, -180.0, light((GREEN, 60.0)))
     assert p.lights_machine.state.name == "GO"
     assert not request.has_stop_line and request.desired_speed_mps == LIMIT_MPS
+
+
+def test_the_ego_waits_at_the_line_on_green_while_the_queue_ahead_leaves_no_room_past_the_box():
+    p = planner()
+    queue = scene(obj(7, gap_m=60.0, speed_mps=0.0), forward_mio=7)
+    request, _ = p.step(0.0, inputs(planner_pb2.SCENARIO_FOLLOW, ego=ego_at(-60.0), scene=queue,
+                                    mapems=heard(mapem(), 0.0), spatems=heard(light((GREEN, 60.0)), 0.0)))
+    # 46.2 m to the line, the queue's end 13.8 m past it: less than the 25 m it takes to leave the box.
+    assert p.lights_machine.state.name == "STOP" and request.has_stop_line
+    moving = scene(obj(7, gap_m=60.0, speed_mps=3.0), forward_mio=7)
+    request, _ = p.step(0.1, inputs(planner_pb2.SCENARIO_FOLLOW, ego=ego_at(-58.6), scene=moving,
+                                    mapems=heard(mapem(), 0.0), spatems=heard(light((GREEN, 60.0)), 0.1)))
+    assert p.lights_machine.state.name == "GO" and not request.has_stop_line
 
 
 def test_stale_spat_brings_a_safe_stop_at_the_stop_line():
