@@ -53,6 +53,13 @@ def test_the_ego_proceeds_on_amber_when_it_cannot_stop_within_the_comfort_decele
     assert request.desired_speed_mps == LIMIT_MPS
 
 
+def test_on_amber_ending_before_the_ego_could_reach_the_line_it_stops_even_beyond_comfort():
+    # 16.2 m at 13.9 m/s is 1.17 s; the amber ends in 1.0 s.
+    p = planner()
+    request = step(p, 0.0, -30.0, light((AMBER, 1.0), (RED, 30.0)))
+    assert p.lights_machine.state.name == "STOP" and request.has_stop_line
+
+
 def test_the_ego_stops_on_amber_when_the_line_is_beyond_the_comfortable_stopping_distance():
     p = planner()
     request = step(p, 0.0, -80.0, light((AMBER, 3.0), (RED, 30.0)))

@@ -2,7 +2,8 @@
 
 Stop on red; on amber stop when the stop line is beyond the stopping distance v t_r + v^2 / (2 a) at the
 comfort deceleration (ITE's amber-interval kinematics), else proceed: the dilemma zone, which an amber timed for
-that deceleration lets a vehicle clear. GLOSA (green light optimal speed advisory): when a green the ego could not
+that deceleration lets a vehicle clear; but where the SPaT says the amber ends before the ego would reach the line,
+stop all the same: never enter on red. GLOSA (green light optimal speed advisory): when a green the ego could not
 reach at the road's limit (nor in the amber after it) comes later, arrive at its start (plus a margin) at the constant speed d / (t_green - t),
 no slower than a minimum; otherwise stop as without it.
 """
@@ -61,11 +62,20 @@ def advise(timing: GroupTiming, approach: Approach, config: SignalConfig, glosa:
         if lasts or later_green is None:
             return Advised(Advice.GO, limit)
         return Advised(Advice.GLOSA, later_green)
-    if light is Light.AMBER and approach.to_stop_line_m < stopping_distance_m(approach.speed_mps, config):
+    if light is Light.AMBER and approach.to_stop_line_m < stopping_distance_m(approach.speed_mps, config) \
+            and not _red_before_the_line(current.earliest_end_s, approach):
         return Advised(Advice.PROCEED, limit)
     if later_green is not None:
         return Advised(Advice.GLOSA, later_green)
     return Advised(Advice.STOP, limit)
+
+
+def _red_before_the_line(amber_end_s: float | None, approach: Approach) -> bool:
+    """At its speed the ego would reach the line after the amber's soonest end: proceeding would enter on red, so it
+    stops, harder than comfort (a shorter amber than ITE's, or SPaT that says so)."""
+    if amber_end_s is None:
+        return False
+    return approach.speed_mps <= 0.0 or approach.now_s + approach.to_stop_line_m / approach.speed_mps > amber_end_s
 
 
 def _passable_until_s(timing: GroupTiming, now_s: float, config: SignalConfig) -> float | None:

@@ -47,6 +47,11 @@ class Phase:
         """When it most likely ends: likelyTime, else minEndTime, else maxEndTime."""
         return next((t for t in (self.likely_end_s, self.min_end_s, self.max_end_s) if t is not None), None)
 
+    @property
+    def earliest_end_s(self) -> float | None:
+        """The soonest it may end: minEndTime, else likelyTime, else maxEndTime."""
+        return next((t for t in (self.min_end_s, self.likely_end_s, self.max_end_s) if t is not None), None)
+
     def contradiction(self, tolerance_s: float) -> str:
         """Why its own timing cannot be true, or ''."""
         low, likely, high = self.min_end_s, self.likely_end_s, self.max_end_s
