@@ -8,8 +8,8 @@ import math
 
 import pytest
 from planner_world import inputs, obj, scene
-from signal_world import (AMBER, GREEN, LANE_Y_M, RED, STOP_LINE_X_M, ego_at, event, fixed_time, heard, light, mapem,
-                          spatem)
+from signal_world import (AMBER, GREEN, LANE_Y_M, RED, RED_AMBER, STOP_LINE_X_M, ego_at, event, fixed_time, heard,
+                          light, mapem, spatem)
 
 from coopdrive.services.planner.config import PlannerLogicConfig
 from coopdrive.services.planner.planner import Planner
@@ -76,6 +76,16 @@ def test_glosa_slows_to_arrive_on_green_and_never_exceeds_the_limit():
     for green_s in (1.0, 5.0, 12.0, 20.0, 28.0):
         speed = step(planner(), 0.0, -180.0, light((RED, green_s), (GREEN, green_s + 30.0))).desired_speed_mps
         assert PlannerLogicConfig().signals.glosa_min_speed_mps <= speed <= LIMIT_MPS
+
+
+def test_glosa_holds_on_when_the_green_is_due_but_its_spatem_has_not_come_yet():
+    # The SPaT heard at 29.95 s said red-amber until 30.0 s, then green; at 30.0 s the ego still slows for it.
+    p = planner()
+    step(p, 29.9, -180.0, light((RED_AMBER, 30.0), (GREEN, 60.0)))
+    request = step(p, 30.0, -178.6, light((RED_AMBER, 30.0), (GREEN, 60.0)), spat_at_s=29.95)
+    # Not a stop: GLOSA at the limit (the green is on by the time it arrives), the stop line kept until it is.
+    assert p.lights_machine.state.name == "GLOSA" and request.has_stop_line
+    assert request.desired_speed_mps == pytest.approx(LIMIT_MPS)
 
 
 def test_without_glosa_the_ego_keeps_the_limit_and_stops_on_red():

@@ -90,15 +90,16 @@ def _passable_until_s(timing: GroupTiming, now_s: float, config: SignalConfig) -
 
 
 def _later_green_speed_mps(timing: GroupTiming, approach: Approach, config: SignalConfig) -> float | None:
-    """The constant speed that arrives at the first green starting after now that can be reached between the
-    limit and the minimum speed, or None."""
+    """The constant speed that arrives at the first green after the current phase that can be reached between the
+    limit and the minimum speed, or None. A green the SPaT of a moment ago said starts by now (the SPATEM saying it
+    has not come yet) counts from its start."""
     now_s, distance_m = approach.now_s, approach.to_stop_line_m
     if distance_m <= 0.0 or approach.limit_mps < config.glosa_min_speed_mps:
         return None
     earliest_s = now_s + distance_m / approach.limit_mps
     latest_s = now_s + distance_m / config.glosa_min_speed_mps
-    for light, start_s, end_s in timing.windows(now_s):
-        if light is not Light.GO or start_s <= now_s:
+    for light, start_s, end_s in timing.windows(now_s)[1:]:
+        if light is not Light.GO:
             continue
         arrive_s = max(earliest_s, start_s + config.glosa_margin_s)
         if arrive_s > latest_s:
