@@ -16,6 +16,7 @@ from coopdrive.cli_service import add_commands as add_service_commands
 from coopdrive.cli_service import run_command
 from coopdrive.exit_status import EXIT_FAILED, EXIT_INCOMPLETE, EXIT_OK, EXIT_USAGE
 from coopdrive.launch.process_layout import ProcessLayout
+from coopdrive.services.planner.cli import add_v2x_commands as add_planner_v2x_commands
 from coopdrive.services.v2x.cli import add_commands as add_v2x_commands
 from coopdrive.runtime.config import ConfigError
 
@@ -43,7 +44,7 @@ def build_parser() -> argparse.ArgumentParser:
     add_service_commands(commands)  # service, group
     _add_run_command(commands)
     add_judging_commands(commands)  # score, analyze, scenarios, candump
-    add_v2x_commands(commands)
+    add_planner_v2x_commands(add_v2x_commands(commands))  # v2x decode, send, replay; advise
     add_recording_commands(commands)  # record, import, replay, export
     add_deploy_commands(commands)  # health, router, foxglove
     return parser

@@ -55,8 +55,9 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
     # A stack may drive as fast as the traffic it follows ever goes; never slower than it starts.
     cruise_mps = max(vehicle.speed_mps, fastest_traffic_mps(config), MIN_CRUISE_SPEED_MPS)
     planner = {"station_id": vehicle.station_id, "scenario": f"SCENARIO_{config.mission.name}",
-               "platoon_id": vehicle.platoon or 0,
+               "platoon_id": vehicle.platoon or 0, "clock_epoch_utc": config.utc_epoch.isoformat(),
                "logic": {"cruise_speed_mps": cruise_mps, "merge": {"ego_length_m": description.length_m},
+                         "signals": {"rear_axle_to_front_m": description.front_bumper_x_m},
                          "intersection": {"organiser_station_ids": [v.station_id for v in config.vehicles
                                                                     if v.organiser]}}}
     sensors = config.sensors_of(vehicle)

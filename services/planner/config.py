@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import enum
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import AwareDatetime, BaseModel, ConfigDict, Field
 
 from coopdrive.messages.unknowns import DEFAULT_LENGTH_M
 from coopdrive.runtime.service import ServiceConfig
@@ -121,6 +121,47 @@ class EmergencyConfig(BaseModel):
     lost_after_s: float = Field(3.0, gt=0)
 
 
+class SignalConfig(BaseModel):
+    """Traffic lights: the MAPEM's ingress lanes and signal groups, the SPATEM's phases (services/planner/signals/)."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    # The movement the ego takes at a signalised intersection, whose signal group it obeys.
+    intention: Intention = Intention.STRAIGHT
+    # Matching the ego to an ingress lane: its centre line this close sideways (when the MAP gives no lane width;
+    # else half its width plus match_margin_m), its direction of travel this close to the ego heading.
+    lane_half_width_m: float = Field(1.75, gt=0)
+    match_margin_m: float = Field(0.5, ge=0)
+    heading_tolerance_deg: float = Field(30.0, gt=0, lt=90)
+    # Matched to no lane, the ego still stops safely at a signalised lane's stop line ahead within this distance
+    # sideways (its own lane missing from the MAP, or the MAP not where the road is), while it is within the lane's
+    # length of it.
+    mismatch_lateral_m: float = Field(10.0, gt=0)
+    # Do not block the box: on green the ego stays at the line while the vehicle ahead, no faster than
+    # queue_speed_mps, leaves less than box_clear_m past the stop line (the box and our own length).
+    queue_speed_mps: float = Field(1.0, ge=0)
+    box_clear_m: float = Field(25.0, gt=0)
+    # An ingress lane is followed this far past its stop line (the intersection box) before the match is lost.
+    box_length_m: float = Field(40.0, gt=0)
+    # Deceleration a stop at the line may take: ITE's amber-interval practice (Institute of Transportation
+    # Engineers, "Guidelines for Determining Traffic Signal Change and Clearance Intervals", 2020) designs amber for
+    # 10 ft/s2 = 3.05 m/s2; a vehicle that would need more on amber is in the dilemma zone and proceeds.
+    comfort_decel_mps2: float = Field(3.0, gt=0)
+    # From a decision to braking (planner period, control, actuator lag), in the stopping distance v t + v2/(2 a).
+    reaction_time_s: float = Field(0.5, ge=0)
+    # The rear axle (the ego position) to the front bumper: stop line distances are the front bumper's.
+    rear_axle_to_front_m: float = Field(3.8, ge=0)
+    # GLOSA arrives this long after a green starts (the red-amber and the queue's start), never slower than this.
+    glosa_margin_s: float = Field(1.0, ge=0)
+    glosa_min_speed_mps: float = Field(20.0 * KPH, gt=0)
+    # No SPATEM for the ego's signal group this long is stale SPaT: a safe stop at the line.
+    spat_stale_s: float = Field(1.0, gt=0)
+    # SPaT that contradicted itself (minEndTime after maxEndTime, an end time jumping back, a phase ending before
+    # its minEndTime) is not trusted for this long after the last contradiction; end times may wander this much.
+    contradiction_hold_s: float = Field(5.0, gt=0)
+    timing_tolerance_s: float = Field(0.5, ge=0)
+
+
 class PlannerLogicConfig(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
@@ -136,6 +177,7 @@ class PlannerLogicConfig(BaseModel):
     merge: MergeConfig = Field(default_factory=MergeConfig)
     intersection: IntersectionConfig = Field(default_factory=IntersectionConfig)
     emergency: EmergencyConfig = Field(default_factory=EmergencyConfig)
+    signals: SignalConfig = Field(default_factory=SignalConfig)
 
 
 class PlannerConfig(ServiceConfig):
@@ -147,6 +189,12 @@ class PlannerConfig(ServiceConfig):
     # 1 platoon A, 2 platoon B; 0 when not in a platoon.
     platoon_id: int = 0
     partner_station_id: int = 0
+    # GLOSA (green light optimal speed advisory): slow down on a signalised approach to arrive on green rather than
+    # stop; false: only stop on amber and red and go on green.
+    glosa: bool = True
+    # The service clock plus this instant is UTC, which SPaT times count in. None: the clock already is unix time
+    # (the wall clock); in simulation the UTC instant of sim time 0, as the v2x service's clock_epoch_utc.
+    clock_epoch_utc: AwareDatetime | None = None
     logic: PlannerLogicConfig = Field(default_factory=PlannerLogicConfig)
 
     def scenario_value(self) -> int:
@@ -155,3 +203,7 @@ class PlannerConfig(ServiceConfig):
         except ValueError:
             names = ", ".join(planner_pb2.Scenario.keys())
             raise ValueError(f"scenario {self.scenario!r} is not one of {names}") from None
+
+    @property
+    def clock_epoch_unix_s(self) -> float:
+        return 0.0 if self.clock_epoch_utc is None else self.clock_epoch_utc.timestamp()

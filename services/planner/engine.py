@@ -181,6 +181,7 @@ class Machine(Generic[C]):
 
 
 def from_each(sources: list[enum.Enum], event: enum.Enum, target: enum.Enum, reason: str,
-              guard: Guard | None = None) -> tuple[Transition, ...]:
+              guard: Guard | None = None, action: Action | None = None) -> tuple[Transition, ...]:
     """The same transition from several states (scenario end, lost partner)."""
-    return tuple(Transition(s, event, target, guard=guard, reason=reason) for s in sources if s is not target)
+    return tuple(Transition(s, event, target, guard=guard, action=action, reason=reason)
+                 for s in sources if s is not target)

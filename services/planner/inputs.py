@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Generic, TypeVar
 
-from coopdrive.v1 import ego_pb2, its_pb2, planner_pb2, scene_pb2
+from coopdrive.v1 import ego_pb2, infrastructure_pb2, its_pb2, planner_pb2, scene_pb2
 
 M = TypeVar("M")
 
@@ -35,6 +35,9 @@ class PlannerInputs:
     iclcms: dict[int, Received[its_pb2.IclcmContent]] = field(default_factory=dict)
     cams: dict[int, Received[its_pb2.CamContent]] = field(default_factory=dict)
     denms: dict[int, Received[its_pb2.DenmContent]] = field(default_factory=dict)
+    # Roadside units' intersection topology and signal phases (traffic lights), by sending station.
+    mapems: dict[int, Received[infrastructure_pb2.MapemContent]] = field(default_factory=dict)
+    spatems: dict[int, Received[infrastructure_pb2.SpatemContent]] = field(default_factory=dict)
     # Platooning: the station to join behind; 0 = whoever is the forward MIO.
     partner_station_id: int = 0
     # Platooning: the operator or the mission asks to leave the platoon.

@@ -9,6 +9,7 @@ import enum
 import math
 
 from coopdrive.v1 import planner_pb2
+from coopdrive.v2x.timebase import ItsClock
 
 from .config import PlannerLogicConfig
 from .emergency import EmergencyScenario
@@ -20,6 +21,7 @@ from .merge import MergeScenario
 from .platooning import PlatooningScenario
 from .scenario import ScenarioLogic
 from .situation import Situation
+from .traffic_lights import TrafficLights
 
 # Transitions one step may chain (IDLE -> APPROACH -> CROSSING when the RSU starts us inside the zone).
 MAX_TRANSITIONS_PER_STEP = 8
@@ -42,11 +44,18 @@ def make_scenario(scenario: int, config: PlannerLogicConfig) -> ScenarioLogic:
 
 
 class Planner:
-    def __init__(self, config: PlannerLogicConfig | None = None) -> None:
+    """The scenario's machine, and beside it the traffic lights' (`traffic_lights.py`), which adds the signalised
+    stop line and GLOSA's speed to the scenario's request. `clock` reads SPaT times (UTC) on the step's clock."""
+
+    def __init__(self, config: PlannerLogicConfig | None = None, glosa: bool = True,
+                 clock: ItsClock | None = None) -> None:
         self.config = config or PlannerLogicConfig()
         self.logic: ScenarioLogic | None = None
         self.machine: Machine | None = None
+        self.lights = TrafficLights(self.config.signals, clock or ItsClock(), glosa)
+        self.lights_machine = Machine(self.lights.spec, self.lights, history_length=self.config.history_length)
         self._graph_sent_s: float | None = None
+        self._lights_graph_sent_s: float | None = None
         self._last: tuple[float, PlannerInputs] | None = None
         # Steps refused for bad inputs (PlannerInputError), for the service's counters.
         self.input_errors = 0
@@ -71,7 +80,19 @@ class Planner:
         machine.tick(now_s)
         self._last = (now_s, inputs)
         request = self.logic.behaviour(machine.state)
+        self._step_lights(now_s, sit, request)
         return request, self.state(now_s)
+
+    def _step_lights(self, now_s: float, sit: Situation, request: planner_pb2.BehaviourRequest) -> None:
+        """The traffic lights' machine, with the scenario's speed as the road's limit; then its additions."""
+        machine = self.lights_machine
+        if not machine.started:
+            machine.start(now_s)
+        for _ in range(MAX_TRANSITIONS_PER_STEP):
+            if not machine.dispatch_first(self.lights.observe(sit, request.desired_speed_mps), now_s):
+                break
+        machine.tick(now_s)
+        self.lights.apply(machine.state, request)
 
     def _check(self, now_s: float, inputs: PlannerInputs) -> None:
         problem = ""
@@ -105,14 +126,25 @@ class Planner:
         return self.machine.state if self.machine is not None else None
 
     def state(self, now_s: float) -> planner_pb2.PlannerState:
-        machine = self.machine
+        message = self._state_of(self.machine, now_s, self._graph_sent_s)
+        if message.graph_mermaid:
+            self._graph_sent_s = now_s
+        return message
+
+    def lights_state(self, now_s: float) -> planner_pb2.PlannerState:
+        """The traffic lights' machine as a PlannerState (after a step)."""
+        message = self._state_of(self.lights_machine, now_s, self._lights_graph_sent_s)
+        if message.graph_mermaid:
+            self._lights_graph_sent_s = now_s
+        return message
+
+    def _state_of(self, machine: Machine, now_s: float, graph_sent_s: float | None) -> planner_pb2.PlannerState:
         message = planner_pb2.PlannerState(
             scenario=self.logic.scenario, machine=machine.spec.name, state=machine.state.name,
             time_in_state_s=machine.time_in_state_s(now_s), recent_transitions=list(machine.history))
         message.header.sample_time_s = now_s
-        if self._graph_sent_s is None or now_s - self._graph_sent_s >= self.config.graph_period_s:
+        if graph_sent_s is None or now_s - graph_sent_s >= self.config.graph_period_s:
             message.graph_mermaid = to_mermaid(machine.spec)
-            self._graph_sent_s = now_s
         return message
 
     def _ensure_machine(self, now_s: float, scenario: int) -> None:

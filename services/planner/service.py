@@ -10,8 +10,10 @@ from coopdrive.services.planner.config import PlannerConfig
 from coopdrive.services.planner.inputs import PlannerInputs, Received
 from coopdrive.services.planner.planner import Planner, PlannerInputError
 from coopdrive.v1 import planner_pb2
+from coopdrive.v2x.timebase import ItsClock
 
-V2X_TOPICS = {"v2x/iclcm": "iclcms", "v2x/cam": "cams", "v2x/denm": "denms"}
+V2X_TOPICS = {"v2x/iclcm": "iclcms", "v2x/cam": "cams", "v2x/denm": "denms", "v2x/mapem": "mapems",
+              "v2x/spatem": "spatems"}
 
 
 class PlannerService(Service):
@@ -20,11 +22,12 @@ class PlannerService(Service):
 
     def start(self) -> None:
         config: PlannerConfig = self.config
-        self.planner = Planner(config.logic)
+        self.planner = Planner(config.logic, glosa=config.glosa, clock=ItsClock(config.clock_epoch_unix_s))
         self.inputs = PlannerInputs(station_id=config.station_id, scenario=config.scenario_value(),
                                     platoon_id=config.platoon_id, partner_station_id=config.partner_station_id)
         self.pending_force: list[planner_pb2.PlannerForce] = []
-        self.logged_until_s = -math.inf
+        # Per machine (the scenario's, the traffic lights'): the last transition time logged.
+        self.logged_until_s: dict[str, float] = {}
         self.ctx.subscribe("ego/state", lambda envelope: setattr(self.inputs, "ego", envelope.message))
         self.ctx.subscribe("scene", lambda envelope: setattr(self.inputs, "scene", envelope.message))
         for topic, field_name in V2X_TOPICS.items():
@@ -48,16 +51,20 @@ class PlannerService(Service):
             return
         self.ctx.publish("planner/behaviour", request)
         self.ctx.publish("planner/state", state)
+        lights = self.planner.lights_state(now_s)
+        self.ctx.publish("planner/lights", lights)
         self._log_new_transitions(state)
+        self._log_new_transitions(lights)
 
     def _log_new_transitions(self, state: planner_pb2.PlannerState) -> None:
         """Each transition once in the service log, with why it fired (a guard, a timeout, an escape)."""
+        logged_until_s = self.logged_until_s.get(state.machine, -math.inf)
         for transition in state.recent_transitions:
-            if transition.time_s > self.logged_until_s:
+            if transition.time_s > logged_until_s:
                 self.ctx.log.info("%s: %s -> %s at %.2f s on %s: %s", state.machine, transition.from_state,
                                   transition.to_state, transition.time_s, transition.event, transition.reason)
         if state.recent_transitions:
-            self.logged_until_s = max(self.logged_until_s, state.recent_transitions[-1].time_s)
+            self.logged_until_s[state.machine] = max(logged_until_s, state.recent_transitions[-1].time_s)
 
     def _apply_forced_states(self, now_s: float) -> None:
         for force in self.pending_force:

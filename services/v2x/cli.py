@@ -15,7 +15,9 @@ from pathlib import Path
 from coopdrive.exit_status import EXIT_FAILED, EXIT_OK, EXIT_USAGE
 
 
-def add_commands(commands) -> None:
+def add_commands(commands):
+    """Adds `v2x` and its subcommands; returns its subcommands, for the application to add those of other
+    services (the planner's `advise`)."""
     v2x = commands.add_parser("v2x", help="V2X tools: decode captures, inject messages")
     v2x_commands = v2x.add_subparsers(dest="v2x_command", required=True)
     decode = v2x_commands.add_parser("decode", help="print every frame of a pcap or pcapng capture, and a summary")
@@ -41,6 +43,7 @@ def add_commands(commands) -> None:
                                             "frames of ethertype 0x8947 from each sender's MAC; needs CAP_NET_RAW)")
     replay.add_argument("--rate", type=float, default=1.0, help="pace: 2.0 sends twice as fast as recorded")
     replay.set_defaults(handler=_replay)
+    return v2x_commands
 
 
 def add_pki_commands(pki_commands) -> None:

@@ -8,6 +8,7 @@ transition fails the second.
 
 import emergency_drivers
 import intersection_drivers
+import lights_drivers
 import merge_drivers
 import platoon_drivers
 import pytest
@@ -17,7 +18,7 @@ from coopdrive.services.planner.engine import MachineSpec
 from coopdrive.services.planner.export_graphs import machine_specs
 
 DRIVERS = {**platoon_drivers.DRIVERS, **merge_drivers.DRIVERS, **intersection_drivers.DRIVERS,
-           **emergency_drivers.DRIVERS}
+           **emergency_drivers.DRIVERS, **lights_drivers.DRIVERS}
 
 
 def declared(spec: MachineSpec) -> set[Key]:
