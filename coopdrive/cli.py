@@ -92,6 +92,9 @@ def _add_run_command(commands) -> None:
     run.add_argument("--fault", action="append", default=[], metavar="YAML",
                      help="add a fault to the scenario's, as in its faults list, e.g. "
                           "'{type: iclcm_drop, vehicle_id: a2, flag: merge_request, start_s: 0}'")
+    run.add_argument("--set", action="append", default=[], metavar="SERVICE.KEY=VALUE", dest="settings",
+                     help="change a config key of a service in every stack (or of the simulator: sim.KEY), e.g. "
+                          "planner.glosa=false; checked against the service's config before anything starts")
     run.add_argument("--realtime", action="store_true", help="pace the simulation to wall time")
     run.add_argument("--record", type=Path, metavar="FILE.mcap")
     run.add_argument("--gateway", type=int, metavar="PORT", help="serve the gateway HTTP API on this port")
@@ -159,6 +162,24 @@ def _run_and_tell(args, options) -> int:
     return EXIT_OK if result.success else EXIT_FAILED
 
 
+def service_settings(assignments: list[str]) -> dict[str, dict]:
+    """--set SERVICE.KEY=VALUE as {service: overrides}, each service's overrides validated against its config."""
+    from coopdrive.bus.services import SERVICE_NAMES
+    from coopdrive.runtime.config import apply_override, validate_config
+    from coopdrive.runtime.registry import service_class
+
+    overrides: dict[str, dict] = {}
+    for assignment in assignments:
+        service, _, setting = assignment.partition(".")
+        if service not in SERVICE_NAMES or not setting:
+            raise ConfigError(f"--set {assignment!r}: expected SERVICE.KEY=VALUE, SERVICE one of "
+                              f"{', '.join(SERVICE_NAMES)}")
+        apply_override(overrides.setdefault(service, {}), setting)
+    for service, data in overrides.items():
+        validate_config(service_class(service).Config, data, f"--set {service}")
+    return overrides
+
+
 def _run_spec(args, **given):
     """The run the arguments describe (what a single run and every run of a sweep share, and `given`), validated
     here once: a bad value is one line naming its option."""
@@ -167,7 +188,8 @@ def _run_spec(args, **given):
     from coopdrive.launch.run_spec import RunSpec
 
     fields = dict(duration_s=args.duration, stacks=args.stacks, world=args.world, security=args.security,
-                  cacc_law=args.cacc_law, extra_faults=_extra_faults(args), **given)
+                  cacc_law=args.cacc_law, extra_faults=_extra_faults(args),
+                  service_overrides=service_settings(args.settings), **given)
     try:
         return RunSpec(**fields)
     except ValidationError as error:
