@@ -1,6 +1,7 @@
-"""`coopdrive run signals`, a few seconds of it with one stack verifying every packet: the roadside units' signed
-MAPEMs and SPATEMs reach the stack's v2x/mapem and v2x/spatem topics, decoded to the crossroads' lanes and signal
-states, and a scripted car waits at its red stop line until its green."""
+"""`coopdrive run signals`, its first 34 s with one stack verifying every packet: the roadside units' signed MAPEMs and
+SPATEMs reach the stack's v2x/mapem and v2x/spatem topics, decoded to the crossroads' lanes and signal states; a
+scripted car waits at its red stop line until its green; the stack, by GLOSA, reaches the first crossroads on its
+green without stopping."""
 
 import json
 import subprocess
@@ -14,7 +15,10 @@ from coopdrive.v1 import infrastructure_pb2 as pb
 
 pytestmark = pytest.mark.whole_run
 
-DURATION_S = 12
+# Through the first crossroads: its main road turns green at 30 s, when the stack, 310 m from its stop line at
+# 13.9 m/s, would long have been there.
+DURATION_S = 34
+MAIN_GREEN_S = 30.0
 RSU_A, RSU_B = 6100, 6200
 # The first crossroads' side road turns green at 10 s (its plan: main road green from 30 s in a 55 s cycle).
 SIDE_GREEN_S = 10.0
@@ -63,6 +67,16 @@ def test_the_stacks_spatems_say_what_the_controller_shows(run):
     truth = {(s.intersection_id, s.signal_group): s.state for s in messages["ground_truth"][-1].signals}
     last = {g.signal_group: g.events[0].state for g in spatems[-1].intersections[0].signal_groups}
     assert last == {group: truth[(1, group)] for group in (1, 2, 3, 4)}
+
+
+def test_the_stack_arrives_at_the_first_crossroads_on_green_without_stopping_and_never_enters_on_red(run):
+    summary, messages = run
+    assert summary["signal_red_light_violations"] == 0
+    frames = [(m.header.sample_time_s, m.vehicles, m.signals) for m in messages["ground_truth"]]
+    (crossing,) = [c for c in crossings(frames) if c.vehicle_id == "car1"]
+    assert crossing.time_s >= MAIN_GREEN_S and not crossing.red and crossing.stops == 0
+    # GLOSA: slowed to arrive on green, never stood.
+    assert min(v.speed_mps for _, vehicles, _ in frames for v in vehicles if v.vehicle_id == "car1") > 1.0
 
 
 def test_the_scripted_car_on_the_side_road_stops_at_its_red_and_crosses_on_green(run):
