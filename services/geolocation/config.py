@@ -62,6 +62,10 @@ class GeolocatorConfig(BaseModel):
     # filter averaging many fixes believes itself far better than a receiver's slowly wandering error allows.
     gnss_error_std_m: float = Field(0.01, ge=0.0)
     gnss_error_time_s: float = Field(60.0, gt=0.0)
+    # When the fix mode changes, the correlated error starts again as a new one of the larger of the std above and
+    # the new fix's (ekf.py): an RTK-float episode's error is then not averaged into the position as if it were
+    # white (on a 10 s episode 0.4 m off: 0.36 m error and NEES 18 without, 2 cm and NEES 0.1 with).
+    gnss_error_by_fix_mode: bool = True
     # The error of the fixes' time stamps (receiver latency as configured against as it is, the host's arrival
     # time resolution): a first-order Gauss-Markov error of this steady-state std and correlation time, which
     # puts a fix behind or ahead of the car by speed times it (ekf.py). 0: the stamps are taken as exact.

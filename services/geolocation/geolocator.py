@@ -88,7 +88,7 @@ class Geolocator:
         # The bicycle model turns by the steering angle: its yaw rate is not measured but follows the wheels.
         self._steered = config.motion_model is MotionModelKind.KINEMATIC_BICYCLE
         model = KinematicBicycleModel(noise, config.wheelbase_m) if self._steered else CtraModel(noise)
-        self.ekf = GeolocationEkf(model, config.gate_probability)
+        self.ekf = GeolocationEkf(model, config.gate_probability, config.gnss_error_by_fix_mode)
         self.odometry = Odometry(config.track_width_m, config.wheel_speed_std_mps)
         self.lever_arm = LeverArm(config.antenna_x_m, config.antenna_y_m)
         self.thresholds = ModeThresholds(config.precise_std_m, config.lost_std_m, config.gnss_timeout_s)
@@ -194,7 +194,7 @@ class Geolocator:
         # noise pass for a heading.
         lever_arm = self.lever_arm if book.heading_known else NO_LEVER_ARM
         if self.ekf.update_gnss_position(fix.east_m, fix.north_m, fix.std_east_m, fix.std_north_m, lever_arm,
-                                         fix.time_jitter_s):
+                                         fix.time_jitter_s, new_mode=fix.fix_mode != book.last_fix_mode):
             self.counters[InputEvent.FIX_FUSED] += 1
             self._book = replaced(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None,
                                   fused_fix_std_m=_fix_std_m(fix))
