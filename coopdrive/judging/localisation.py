@@ -1,11 +1,17 @@
 """How well each stack knew where it was: its ego states and GNSS fixes against the simulator's truth.
 
-Figures, pooled over the stack vehicles:
-- position_rmse_precise_m: the estimate's horizontal RMS error while it fused RTK-fixed solutions;
-  gnss_fix_rmse_m the raw RTK-fixed fixes' own, and gnss_noise_rms_m the noise the receiver reported for them
-  (GST sigmas, 2D RMS); position_rmse_over_gnss_noise the ratio of the first and the last.
-- position_nees_2sigma_fraction: share of estimates whose true position lies inside their 2-sigma ellipse
-  (normalised estimation error squared within the chi-square bound of probability 0.9545, two degrees of freedom).
+Figures, pooled over the stack vehicles (errors are horizontal, estimate minus truth; RMS of their length):
+- position_rmse_precise_m: the estimate's RMS error while it fused RTK-fixed solutions.
+- gnss_fix_rmse_m: the raw fixes' own RMS error, every fix with a position (none left out), at the time the stack
+  stamped them; gnss_fix_rmse_<mode>_m and position_rmse_<mode>_m the same per fix mode (for the estimate: the
+  mode of the last fix it fused), for each mode the run saw (rtk_fixed, rtk_float, dgps, sbas, single).
+- position_rmse_over_gnss_fix_rmse: the judge's position_rmse_m over gnss_fix_rmse_m, both against the truth:
+  below 1, fusion makes the receiver better. gnss_noise_rms_m: the noise the receiver claimed for its RTK-fixed
+  fixes (GST sigmas, 2D RMS), to set beside their real error.
+- position_2sigma_share, position_nees_mean, position_nees_mean_1hz, position_nees_samples_1hz and the bounds
+  position_nees_lower_95 / position_nees_upper_95: the 2-D position NEES and its chi-square test
+  (coopdrive/judging/consistency.py): a consistent estimate has 86.5 % inside its 2-sigma ellipse and an
+  average NEES of 2, within the bounds.
 - outage_position_error_max_m: the largest error while the receiver reported no fix.
 - gnss_jump_position_error_max_m: the largest error while fixes were off by far more than their noise (multipath)
   and for a second after.
@@ -24,13 +30,14 @@ import math
 import numpy as np
 import pymap3d
 
+from coopdrive.judging.consistency import consistency_figures, decimated, nees
 from coopdrive.judging.run_messages import RunMessages
-from coopdrive.services.geolocation.ekf import chi2_quantile
 from coopdrive.services.sim.truth_series import TruthSeries
 from coopdrive.v1 import ego_pb2, gnss_pb2
 
-TWO_SIGMA_PROBABILITY = 0.9545
-NEES_BOUND = chi2_quantile(TWO_SIGMA_PROBABILITY, 2)
+# The fix modes figures are given for, by their names in the keys.
+FIX_MODE_NAMES = {gnss_pb2.FIX_MODE_RTK_FIXED: "rtk_fixed", gnss_pb2.FIX_MODE_RTK_FLOAT: "rtk_float",
+                  gnss_pb2.FIX_MODE_DGPS: "dgps", gnss_pb2.FIX_MODE_SBAS: "sbas", gnss_pb2.FIX_MODE_SINGLE: "single"}
 # A fix further off the truth than this many of its reported sigmas, and at least JUMP_MIN_M, is a jump.
 JUMP_SIGMAS = 5.0
 JUMP_MIN_M = 2.0
@@ -93,6 +100,18 @@ def _in_spans(time_s: np.ndarray, spans: list[tuple[float, float]]) -> np.ndarra
     return inside
 
 
+def _add_nees(states: list[ego_pb2.EgoState], time_s: np.ndarray, error: np.ndarray, known: np.ndarray,
+              pool: _Pool) -> None:
+    """Every estimate's NEES, and those of the estimates a second apart (consistency.py)."""
+    with_covariance = [index for index in np.flatnonzero(known)
+                       if len(states[index].covariance) == STATE_SIZE * STATE_SIZE]
+    covariance = np.array([np.array(states[i].covariance).reshape(STATE_SIZE, STATE_SIZE)[:2, :2]
+                           for i in with_covariance]).reshape(-1, 2, 2)
+    values = nees(error[with_covariance], covariance)
+    pool.add("nees", values)
+    pool.add("nees_1hz", values[decimated(time_s[with_covariance])])
+
+
 def _vehicle(series: TruthSeries, vehicle_id: str, states: list[ego_pb2.EgoState],
              fixes: list[gnss_pb2.GnssFix], pool: _Pool) -> None:
     states = sorted((s for s in states if s.mode != ego_pb2.LOCALISATION_MODE_LOST),
@@ -109,12 +128,10 @@ def _vehicle(series: TruthSeries, vehicle_id: str, states: list[ego_pb2.EgoState
                         and s.last_fix_mode == gnss_pb2.FIX_MODE_RTK_FIXED for s in states])
     pool.add("precise_error", distance[known & precise])
 
-    nees = []
-    for row, state in zip(error[known], np.array(states, dtype=object)[known]):
-        if len(state.covariance) == STATE_SIZE * STATE_SIZE:
-            position_cov = np.array(state.covariance).reshape(STATE_SIZE, STATE_SIZE)[:2, :2]
-            nees.append(float(row @ np.linalg.solve(position_cov, row)))
-    pool.add("nees", np.array(nees))
+    _add_nees(states, time_s, error, known, pool)
+    last_mode = np.array([s.last_fix_mode for s in states])
+    for mode, name in FIX_MODE_NAMES.items():
+        pool.add(f"position_error_{name}", distance[known & (last_mode == mode)])
 
     fixes = sorted(fixes, key=lambda f: f.header.sample_time_s)
     fix_time_s = np.array([f.header.sample_time_s for f in fixes])
@@ -131,9 +148,12 @@ def _vehicle(series: TruthSeries, vehicle_id: str, states: list[ego_pb2.EgoState
         fix_error = _fix_xy(valid, states, time_s) - _truth_xy_at(series, vehicle_id, valid_time_s)
         fix_distance = np.hypot(fix_error[:, 0], fix_error[:, 1])
         sigma_2d = np.array([math.hypot(f.std_east_m, f.std_north_m) for f in valid])
-        rtk = np.array([f.fix_mode == gnss_pb2.FIX_MODE_RTK_FIXED for f in valid]) & np.isfinite(fix_distance)
+        modes = np.array([f.fix_mode for f in valid])
+        rtk = (modes == gnss_pb2.FIX_MODE_RTK_FIXED) & np.isfinite(fix_distance)
         jumped = fix_distance > np.maximum(JUMP_SIGMAS * sigma_2d, JUMP_MIN_M)
-        pool.add("fix_error", fix_distance[rtk & ~jumped])
+        pool.add("fix_error", fix_distance[np.isfinite(fix_distance)])
+        for mode, name in FIX_MODE_NAMES.items():
+            pool.add(f"fix_error_{name}", fix_distance[np.isfinite(fix_distance) & (modes == mode)])
         pool.add("fix_sigma", sigma_2d[rtk & ~jumped & (sigma_2d > 0)])
         jump_spans = [(t, t + JUMP_AFTERMATH_S) for t in valid_time_s[jumped]]
         pool.add("jump_count", np.array([float(np.count_nonzero(jumped))]))
@@ -149,21 +169,33 @@ def _vehicle(series: TruthSeries, vehicle_id: str, states: list[ego_pb2.EgoState
     pool.add("lane_correct", (matched[judged] & (estimated_lane[judged] == true_lane[judged])).astype(float))
 
 
-def localisation_metrics(series: TruthSeries, messages: RunMessages) -> dict[str, float]:
-    """The figures of the module docstring; a figure with nothing to measure is NaN."""
+def _per_fix_mode(pool: _Pool) -> dict[str, float]:
+    figures = {}
+    for name in FIX_MODE_NAMES.values():
+        fix_error = pool.joined(f"fix_error_{name}")
+        if fix_error.size:
+            figures[f"gnss_fix_rmse_{name}_m"] = _rms(fix_error)
+            figures[f"position_rmse_{name}_m"] = _rms(pool.joined(f"position_error_{name}"))
+    return figures
+
+
+def localisation_metrics(series: TruthSeries, messages: RunMessages,
+                         position_rmse_m: float = math.nan) -> dict[str, float]:
+    """The figures of the module docstring; a figure with nothing to measure is NaN. position_rmse_m: the judge's
+    (services/sim/metrics.py), set beside the fixes'."""
     pool = _Pool()
     for vehicle_id, states in messages.ego_states.items():
         if vehicle_id in series.values:
             _vehicle(series, vehicle_id, states, messages.gnss_fixes.get(vehicle_id, []), pool)
-    nees = pool.joined("nees")
     outage, jump, lanes = pool.joined("outage_error"), pool.joined("jump_error"), pool.joined("lane_correct")
-    precise_rmse, noise_rms = _rms(pool.joined("precise_error")), _rms(pool.joined("fix_sigma"))
+    fix_rmse = _rms(pool.joined("fix_error"))
     return {
-        "position_rmse_precise_m": precise_rmse,
-        "gnss_fix_rmse_m": _rms(pool.joined("fix_error")),
-        "gnss_noise_rms_m": noise_rms,
-        "position_rmse_over_gnss_noise": precise_rmse / noise_rms if noise_rms > 0 else math.nan,
-        "position_nees_2sigma_fraction": float(np.mean(nees <= NEES_BOUND)) if nees.size else math.nan,
+        "position_rmse_precise_m": _rms(pool.joined("precise_error")),
+        "gnss_fix_rmse_m": fix_rmse,
+        "gnss_noise_rms_m": _rms(pool.joined("fix_sigma")),
+        "position_rmse_over_gnss_fix_rmse": position_rmse_m / fix_rmse if fix_rmse > 0 else math.nan,
+        **_per_fix_mode(pool),
+        **consistency_figures(pool.joined("nees"), pool.joined("nees_1hz"), 2, "position"),
         "outage_position_error_max_m": float(outage.max()) if outage.size else math.nan,
         "gnss_jumps": float(pool.joined("jump_count").sum()),
         "gnss_jump_position_error_max_m": float(jump.max()) if jump.size else math.nan,

@@ -15,9 +15,9 @@ from rich.console import Console
 from rich.table import Table
 
 from coopdrive.exit_status import EXIT_OK, EXIT_USAGE
+from coopdrive.judging.consistency import CONSISTENT_TWO_SIGMA_SHARE
 from coopdrive.judging.reference_report import write_reference_report
-from coopdrive.judging.reference_score import (CONSISTENT_TWO_SIGMA_SHARE, ReferenceScore, TrackSeries,
-                                               score_series)
+from coopdrive.judging.reference_score import ReferenceScore, TrackSeries, score_series
 from coopdrive.judging.reference_track import ReferenceTrack, compass_to_enu_rad
 from coopdrive.judging.run_messages import RunMessages
 from coopdrive.recording.reader import read_metadata

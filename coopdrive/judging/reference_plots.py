@@ -7,9 +7,9 @@ from pathlib import Path
 
 import numpy as np
 
+from coopdrive.judging.consistency import TWO_SIGMA_NEES
 from coopdrive.judging.plots import plt, save_figure
 from coopdrive.judging.reference_errors import ErrorSeries
-from coopdrive.judging.reference_score import TWO_SIGMA_NEES
 
 FIGURE_SIZE_IN = (8.0, 3.2)
 # file name -> caption, in the order the page shows them.

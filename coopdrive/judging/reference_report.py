@@ -6,8 +6,9 @@ from __future__ import annotations
 import html
 from pathlib import Path
 
+from coopdrive.judging.consistency import CONSISTENT_TWO_SIGMA_SHARE
 from coopdrive.judging.reference_plots import FIGURES, write_reference_figures
-from coopdrive.judging.reference_score import CONSISTENT_TWO_SIGMA_SHARE, ReferenceScore
+from coopdrive.judging.reference_score import ReferenceScore
 
 
 def _cell(value) -> str:

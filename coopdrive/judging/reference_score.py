@@ -7,7 +7,8 @@ Figures, as the literature defines them (horizontal = the east-north plane; erro
 - two_sigma_share: share of estimates whose own 2-sigma ellipse holds the reference (normalised estimation error
   squared, NEES = e' P^-1 e, at most 2^2 = 4); for a consistent 2-D estimate it is 1 - exp(-2) = 86.5 % (95.45 % is
   the one-dimensional figure); nees_mean: its mean, 2 for a consistent 2-D estimate (Bar-Shalom, Li and Kirubarajan,
-  Estimation with Applications to Tracking and Navigation, 5.4.2).
+  Estimation with Applications to Tracking and Navigation, 5.4.2), and nees_lower_95 / nees_upper_95 its chi-square
+  95 % bounds for the samples at least a second apart (coopdrive/judging/consistency.py).
 
 Two sources need not share a clock to the millisecond (a receiver's output latency, a logger's clock): the figures
 are given at the best-fit time offset, the one of least horizontal RMS within +-max_offset_s (the reference taken
@@ -23,12 +24,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from coopdrive.judging.consistency import TWO_SIGMA_NEES, decimated, mean_nees_bounds
 from coopdrive.judging.reference_errors import ErrorSeries, error_series
 from coopdrive.judging.reference_track import ReferenceTrack
 from coopdrive.services.geolocation.frames import LeverArm
 
-TWO_SIGMA_NEES = 2.0**2
-CONSISTENT_TWO_SIGMA_SHARE = 1.0 - float(np.exp(-2.0))
 DEFAULT_MAX_OFFSET_S = 0.5
 OFFSET_STEP_S = 0.001
 P95 = 95.0
@@ -121,7 +121,13 @@ def _figures(errors: ErrorSeries) -> dict[str, float]:
     if errors.nees is not None:
         figures["two_sigma_share"] = float(np.mean(errors.nees <= TWO_SIGMA_NEES))
         figures["nees_mean"] = float(np.mean(errors.nees))
+        figures["nees_lower_95"], figures["nees_upper_95"] = mean_nees_bounds(_independent(errors.time_s), 2)
     return figures
+
+
+def _independent(time_s: np.ndarray) -> int:
+    """How many of the samples are at least INDEPENDENT_INTERVAL_S apart (consistency.py: N of the NEES bounds)."""
+    return len(decimated(time_s))
 
 
 def _errors(points: np.ndarray, covariance: np.ndarray | None, series: TrackSeries, reference: ReferenceTrack,

@@ -143,7 +143,7 @@ def score_series(series: TruthSeries, parameters: JudgingParameters = JudgingPar
         string_frequency_hz=parameters.string_frequency_hz, string_end_s=parameters.string_end_s,
         position_estimates=_position_estimates(series, messages))
     if messages.ego_states:
-        scored.update(localisation_metrics(series, messages))
+        scored.update(localisation_metrics(series, messages, scored.get("position_rmse_m", math.nan)))
     if messages.scenes:
         scored.update(tracking_metrics(series, messages, ASSOCIATION_GATE_M))
     scored.update(v2x_metrics(messages))

@@ -11,6 +11,7 @@ from coopdrive.services.sim.intent_encoder import WORLD_V2X_PROFILE
 from coopdrive.services.sim.radio_box import RadioPorts
 from coopdrive.services.sim.scenario_builder import speed_profile_of
 from coopdrive.services.sim.scenario_config import ScenarioConfig, VehicleRole
+from coopdrive.services.sim.sensor_config import GnssConfig
 from coopdrive.services.sim.sensor_timing import mean_latency_s
 from coopdrive.vehicle import VehicleKind, vehicle_of
 
@@ -35,6 +36,17 @@ def fastest_traffic_mps(config: ScenarioConfig) -> float:
     steps = int(config.duration_s / PROFILE_SAMPLE_S) + 1
     return max((speed_profile_of(v).speed_at(k * PROFILE_SAMPLE_S) for v in config.vehicles
                 if v.role is not VehicleRole.EMERGENCY for k in range(steps)), default=0.0)
+
+
+def _receiver_errors(gnss: GnssConfig) -> dict[str, float]:
+    """What the stack is told of its receiver beyond the geolocator's defaults: a receiver with white errors (the
+    ideal world's) has no correlated error to model, and one with a fixed latency stamps its fixes exactly."""
+    errors = {}
+    if gnss.error_correlation_time_s == 0.0:
+        errors["gnss_error_std_m"] = 0.0
+    if gnss.timing.latency_jitter_s == 0.0:
+        errors["gnss_time_error_std_s"] = 0.0
+    return errors
 
 
 def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts | None) -> dict[str, dict]:
@@ -64,7 +76,8 @@ def vehicle_overrides(config: ScenarioConfig, vehicle_id: str, radio: RadioPorts
     geolocation = {"vehicle": vehicle.profile.value,
                    "geolocator": {"antenna_x_m": sensors.gnss.antenna_x_m, "antenna_y_m": sensors.gnss.antenna_y_m,
                                   "wheel_speed_std_mps": max(sensors.can_state.wheel_speed_sigma_mps, 1e-3),
-                                  "gnss_time_jitter_s": sensors.gnss.timing.latency_jitter_s},
+                                  "gnss_time_jitter_s": sensors.gnss.timing.latency_jitter_s,
+                                  **_receiver_errors(sensors.gnss)},
                    # The receiver's mean latency (its half-normal jitter included).
                    "gnss_receiver_latency_s": mean_latency_s(sensors.gnss.timing),
                    "can_latency_s": sensors.can_state.timing.latency_s,

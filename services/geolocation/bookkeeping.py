@@ -21,6 +21,7 @@ class Fix:
     course_deg: float
     velocity_valid: bool = False
     heading_rad: float | None = None  # dual-antenna heading, ENU
+    time_jitter_s: float = 0.0  # the white spread of the fix's time stamp (geolocator.gnss_time_jitter_s)
 
 
 @dataclass(frozen=True)

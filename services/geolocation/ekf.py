@@ -20,8 +20,8 @@ from scipy.special import gammaincinv
 from coopdrive.services.geolocation.frames import LeverArm
 from coopdrive.services.geolocation.model_driven_ekf import ModelDrivenEkf
 from coopdrive.services.geolocation.motion_models import (
-    ACCEL, ACCEL_BIAS, GNSS_ERROR_E, GNSS_ERROR_N, HEADING, SPEED, STATE_DIM, YAW_RATE, YAW_RATE_BIAS, CtraModel, E, MotionModel, N,
-    ProcessNoise,
+    ACCEL, ACCEL_BIAS, GNSS_ERROR_E, GNSS_ERROR_N, GNSS_TIME_ERROR, HEADING, SPEED, STATE_DIM, YAW_RATE,
+    YAW_RATE_BIAS, CtraModel, E, MotionModel, N, ProcessNoise,
 )
 from coopdrive.v1 import gnss_pb2
 
@@ -101,8 +101,10 @@ def chi2_quantile(probability: float, dof: int) -> float:
 class GeolocationEkf:
     """The filter proper: predict to a time, then gated updates; knows nothing of messages or frames."""
 
-    def __init__(self, model: MotionModel | None = None, gate_probability: float = 0.999) -> None:
+    def __init__(self, model: MotionModel | None = None, gate_probability: float = 0.999,
+                 error_by_fix_mode: bool = False) -> None:
         self.model = model or CtraModel(ProcessNoise())
+        self.error_by_fix_mode = error_by_fix_mode
         self.kf = ModelDrivenEkf(self.model)
         self.time_s: float | None = None
         # The road-wheel steering angle, held until the next odometry sample (only the bicycle model reads it).
@@ -198,17 +200,38 @@ class GeolocationEkf:
         return True
 
     def update_gnss_position(self, east_m: float, north_m: float, std_east_m: float, std_north_m: float,
-                             lever_arm: LeverArm) -> bool:
-        """Antenna position = rear axle + R(heading) lever arm, plus the fixes' correlated error;
-        z = [E, N] (eq. 7, first two rows)."""
+                             lever_arm: LeverArm, time_jitter_s: float = 0.0, new_mode: bool = False) -> bool:
+        """Antenna position = rear axle + R(heading) lever arm, plus the fixes' correlated error, less the way the
+        antenna went in the time the fix's stamp is late (x[GNSS_TIME_ERROR]); z = [E, N] (eq. 7, first two rows).
+        time_jitter_s: the white part of the stamp's error, a noise along the track of speed times it (it has no
+        sideways part, so it is not added to both axes). new_mode: the fix's mode is not the last fused one's."""
+        if new_mode and self.error_by_fix_mode:
+            self._restart_gnss_error(max(std_east_m, std_north_m))
         x = self.kf.x
         antenna_east_m, antenna_north_m = lever_arm.antenna_position(x[E], x[N], x[HEADING])
-        hx = np.array([antenna_east_m + x[GNSS_ERROR_E], antenna_north_m + x[GNSS_ERROR_N]])
+        cos_h, sin_h = math.cos(x[HEADING]), math.sin(x[HEADING])
+        late_m = x[SPEED] * x[GNSS_TIME_ERROR]
+        hx = np.array([antenna_east_m + x[GNSS_ERROR_E] - late_m * cos_h,
+                       antenna_north_m + x[GNSS_ERROR_N] - late_m * sin_h])
         H = np.zeros((2, STATE_DIM))
         H[0, E] = H[1, N] = H[0, GNSS_ERROR_E] = H[1, GNSS_ERROR_N] = 1.0
-        H[:, HEADING] = lever_arm.d_antenna_d_heading(x[HEADING])
-        R = np.diag([std_east_m**2, std_north_m**2])
+        H[:, HEADING] = lever_arm.d_antenna_d_heading(x[HEADING]) + late_m * np.array([sin_h, -cos_h])
+        H[:, SPEED] = -x[GNSS_TIME_ERROR] * np.array([cos_h, sin_h])
+        H[:, GNSS_TIME_ERROR] = -x[SPEED] * np.array([cos_h, sin_h])
+        along = np.array([cos_h, sin_h])
+        R = np.diag([std_east_m**2, std_north_m**2]) + (x[SPEED] * time_jitter_s) ** 2 * np.outer(along, along)
         return self._gated_update(UpdateKind.GNSS_POSITION, np.array([east_m, north_m]), H, hx, R)
+
+    def _restart_gnss_error(self, fix_std_m: float) -> None:
+        """A receiver that changes its fix mode computes another solution, whose correlated error is a new one of
+        that mode's size (an RTK-float error correlated over a minute is not the RTK-fixed one's centimetre): the
+        error state starts again at 0, uncorrelated, with the larger of the configured std and the fix's."""
+        rows = [GNSS_ERROR_E, GNSS_ERROR_N]
+        self.kf.x[rows] = 0.0
+        self.kf.P[rows, :] = 0.0
+        self.kf.P[:, rows] = 0.0
+        self.kf.P[GNSS_ERROR_E, GNSS_ERROR_E] = self.kf.P[GNSS_ERROR_N, GNSS_ERROR_N] = max(
+            self.model.noise.gnss_error_std_m, fix_std_m) ** 2
 
     def update_odometry(self, speed_mps: float, yaw_rate_radps: float, speed_std_mps: float,
                         yaw_rate_std_radps: float) -> bool:

@@ -28,8 +28,8 @@ from coopdrive.services.geolocation.initial_heading import UNKNOWN_HEADING_STD_R
 from coopdrive.services.geolocation.frames import RTK_FIX_MODES, LeverArm, ModeThresholds
 from coopdrive.services.geolocation.latency import Insertion, ReplayBuffer
 from coopdrive.services.geolocation.motion_models import (
-    GNSS_ERROR_E, GNSS_ERROR_N, HEADING, SPEED, STATE_DIM, CtraModel, E, KinematicBicycleModel,
-    MotionModelKind, N, ProcessNoise,
+    GNSS_ERROR_E, GNSS_ERROR_N, GNSS_TIME_ERROR, HEADING, SPEED, STATE_DIM, CtraModel, E, KinematicBicycleModel,
+    MotionModelKind, N,
 )
 from coopdrive.services.geolocation.odometry import Odometry, OdometrySample
 from coopdrive.v1 import ego_pb2, gnss_pb2, vehicle_pb2
@@ -84,13 +84,11 @@ class Geolocator:
         # The receiver's fix interval (shortest seen): a 1 Hz receiver's fix is fresh for more than 0.5 s.
         self._fix_interval_s: float | None = None
         self._last_fix_input_s: float | None = None
-        noise = ProcessNoise(config.jerk_std_mps3, config.yaw_accel_std_radps2, config.position_process_std_mps,
-                             config.steering_std_rad, config.imu_yaw_rate_bias_walk_radps,
-                             config.imu_accel_bias_walk_mps2, config.gnss_error_std_m, config.gnss_error_time_s)
+        noise = config.process_noise()
         # The bicycle model turns by the steering angle: its yaw rate is not measured but follows the wheels.
         self._steered = config.motion_model is MotionModelKind.KINEMATIC_BICYCLE
         model = KinematicBicycleModel(noise, config.wheelbase_m) if self._steered else CtraModel(noise)
-        self.ekf = GeolocationEkf(model, config.gate_probability)
+        self.ekf = GeolocationEkf(model, config.gate_probability, config.gnss_error_by_fix_mode)
         self.odometry = Odometry(config.track_width_m, config.wheel_speed_std_mps)
         self.lever_arm = LeverArm(config.antenna_x_m, config.antenna_y_m)
         self.thresholds = ModeThresholds(config.precise_std_m, config.lost_std_m, config.gnss_timeout_s)
@@ -129,11 +127,9 @@ class Geolocator:
         # Producers older than velocity_valid (the simulator's gnss/fix) leave it false but fill the speed.
         velocity_valid = fix.velocity_valid or fix.speed_mps > 0.0
         heading_rad = enu_heading_rad(fix.heading_deg) if fix.heading_valid else None
-        # A fix's time is known only to the spread of its latency: it is off along the track by up to speed
-        # times that, which its noise must allow for (else a 1 cm RTK fix late by 4 ms at 80 km/h is refused).
-        timing_std_m = fix.speed_mps * self.config.gnss_time_jitter_s
-        event = Fix(east_m, north_m, math.hypot(stds[0], timing_std_m), math.hypot(stds[1], timing_std_m),
-                     fix.fix_mode, fix.speed_mps, fix.course_deg, velocity_valid, heading_rad)
+        # Its stamp's spread is a noise along the track (else a 1 cm RTK fix 4 ms late at 80 km/h is refused).
+        event = Fix(east_m, north_m, stds[0], stds[1], fix.fix_mode, fix.speed_mps, fix.course_deg, velocity_valid,
+                    heading_rad, self.config.gnss_time_jitter_s)
         return self._add(fix.header.sample_time_s, event)
 
     def _learn_fix_interval(self, time_s: float) -> None:
@@ -197,7 +193,8 @@ class Geolocator:
         # Without a heading the state is the antenna itself (see _initialise): a lever arm would let position
         # noise pass for a heading.
         lever_arm = self.lever_arm if book.heading_known else NO_LEVER_ARM
-        if self.ekf.update_gnss_position(fix.east_m, fix.north_m, fix.std_east_m, fix.std_north_m, lever_arm):
+        if self.ekf.update_gnss_position(fix.east_m, fix.north_m, fix.std_east_m, fix.std_north_m, lever_arm,
+                                         fix.time_jitter_s, new_mode=fix.fix_mode != book.last_fix_mode):
             self.counters[InputEvent.FIX_FUSED] += 1
             self._book = replaced(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, gated=None,
                                   fused_fix_std_m=_fix_std_m(fix))
@@ -295,9 +292,10 @@ class Geolocator:
         P0 = np.diag([fix.std_east_m**2 + arm_var + error_var, fix.std_north_m**2 + arm_var + error_var,
                       heading_std_rad**2, speed_std**2, INITIAL_YAW_RATE_STD_RADPS**2, INITIAL_ACCEL_STD_MPS2**2,
                       self.config.imu_yaw_rate_bias_std_radps**2, self.config.imu_accel_bias_std_mps2**2,
-                      error_var, error_var])
+                      error_var, error_var, self.config.gnss_time_error_std_s**2])
         # The position is the fix less its correlated error (estimated 0): off by just what that error is.
         P0[E, GNSS_ERROR_E] = P0[GNSS_ERROR_E, E] = P0[N, GNSS_ERROR_N] = P0[GNSS_ERROR_N, N] = -error_var
+        _add_stamp_error(P0, speed_mps, heading_rad, self.config.gnss_time_error_std_s, fix.time_jitter_s)
         self.ekf.initialise(time_s, x0, P0)
         self.counters[InputEvent.FIX_FUSED] += 1
         self._book = replaced(book, last_fix_time_s=time_s, last_fix_mode=fix.fix_mode, pending_fix=None,
@@ -366,6 +364,22 @@ class Geolocator:
     def estimate(self, time_s: float) -> ego_pb2.EgoState:
         """The ego state predicted to time_s (the filter itself is not moved)."""
         return self._output.estimate(time_s, self.ekf, self._book, self.plane, self.road_map, self.thresholds)
+
+
+def _add_stamp_error(P0: np.ndarray, speed_mps: float, heading_rad: float | None, time_error_std_s: float,
+                     jitter_s: float) -> None:
+    """The first fix's time stamp is off too: the position taken from it is the antenna's speed times that error
+    behind or ahead (correlated with the time error state, which the next fixes share: else they would learn the
+    first fix's own stamp error as everyone's). Heading unknown: as far either way, along both axes."""
+    along_m = abs(speed_mps) * math.hypot(time_error_std_s, jitter_s)
+    if heading_rad is None:
+        P0[E, E] += along_m**2
+        P0[N, N] += along_m**2
+        return
+    along = np.array([math.cos(heading_rad), math.sin(heading_rad)])
+    P0[E:N + 1, E:N + 1] += along_m**2 * np.outer(along, along)
+    # The position is the fix plus speed times the time error (a fix stamped late shows where the car was).
+    P0[[E, N], GNSS_TIME_ERROR] = P0[GNSS_TIME_ERROR, [E, N]] = speed_mps * time_error_std_s**2 * along
 
 
 def _fix_std_m(fix: Fix) -> float:

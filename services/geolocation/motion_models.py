@@ -2,7 +2,11 @@
 inertial unit's yaw-rate and acceleration biases [b_r, b_a] (constant but for a slow random walk; Groves,
 "Principles of GNSS, Inertial, and Multisensor Integrated Navigation Systems", 2nd ed., sect. 14.2.6) and the
 GNSS position's time-correlated error [b_E, b_N] (first-order Gauss-Markov, Groves sect. 14.2.7 and 3.4.3:
-b(t + dt) = exp(-dt / tau) b(t) + w, var(w) = sigma^2 (1 - exp(-2 dt / tau))); sigma 0 leaves it out).
+b(t + dt) = exp(-dt / tau) b(t) + w, var(w) = sigma^2 (1 - exp(-2 dt / tau))); sigma 0 leaves it out) and the
+error of the fixes' time stamps [dt_fix] (the receiver's latency as configured against as it is, plus the host's
+arrival-time resolution: a fix stamped dt_fix late shows where the antenna was dt_fix earlier), Gauss-Markov
+alike: a Schmidt-style nuisance state the filter estimates only where the speed changes, and otherwise carries
+as the along-track uncertainty it is.
 
 Each model returns the propagated state, its Jacobian F and the process noise Q for one step dt, given the step's
 input (the road-wheel steering angle, held over the step; the filter owns it, see ekf.py).
@@ -20,8 +24,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-E, N, HEADING, SPEED, YAW_RATE, ACCEL, YAW_RATE_BIAS, ACCEL_BIAS, GNSS_ERROR_E, GNSS_ERROR_N = range(10)
-STATE_DIM = 10
+(E, N, HEADING, SPEED, YAW_RATE, ACCEL, YAW_RATE_BIAS, ACCEL_BIAS, GNSS_ERROR_E, GNSS_ERROR_N,
+ GNSS_TIME_ERROR) = range(11)
+STATE_DIM = 11
 # The vehicle's own state, the part the EgoState message carries (its covariance among it).
 VEHICLE_STATE_DIM = 6
 MAX_CACHED_STEPS = 64
@@ -47,9 +52,15 @@ class ProcessNoise:
     # correlation time.
     gnss_error_std_m: float = 0.0
     gnss_error_time_s: float = 60.0
+    # The fixes' time-stamp error: its steady-state std (0: the stamps are taken as exact) and correlation time.
+    gnss_time_error_std_s: float = 0.0
+    gnss_time_error_time_s: float = 600.0
 
     def gnss_error_decay(self, dt: float) -> float:
         return math.exp(-dt / self.gnss_error_time_s)
+
+    def gnss_time_error_decay(self, dt: float) -> float:
+        return math.exp(-dt / self.gnss_time_error_time_s)
 
 
 def _set_integrated_pair(Q: np.ndarray, integral: int, value: int, q: float, dt: float) -> None:
@@ -65,13 +76,18 @@ def _add_bias_walk(Q: np.ndarray, noise: ProcessNoise, dt: float) -> None:
     Q[ACCEL_BIAS, ACCEL_BIAS] = noise.accel_bias_walk_mps2**2 * dt
     Q[GNSS_ERROR_E, GNSS_ERROR_E] = Q[GNSS_ERROR_N, GNSS_ERROR_N] = (
         noise.gnss_error_std_m**2 * -math.expm1(-2.0 * dt / noise.gnss_error_time_s))
+    Q[GNSS_TIME_ERROR, GNSS_TIME_ERROR] = noise.gnss_time_error_std_s**2 * -math.expm1(
+        -2.0 * dt / noise.gnss_time_error_time_s)
 
 
 def _gnss_error_step(noise: ProcessNoise, x: np.ndarray, dt: float, F: np.ndarray, x_new: np.ndarray) -> None:
-    """The fixes' correlated error decays towards zero (Gauss-Markov), as it does in the simulator's receiver."""
+    """The fixes' correlated error and their time stamps' error decay towards zero (Gauss-Markov)."""
     decay = noise.gnss_error_decay(dt)
     x_new[GNSS_ERROR_E], x_new[GNSS_ERROR_N] = decay * x[GNSS_ERROR_E], decay * x[GNSS_ERROR_N]
     F[GNSS_ERROR_E, GNSS_ERROR_E] = F[GNSS_ERROR_N, GNSS_ERROR_N] = decay
+    time_decay = noise.gnss_time_error_decay(dt)
+    x_new[GNSS_TIME_ERROR] = time_decay * x[GNSS_TIME_ERROR]
+    F[GNSS_TIME_ERROR, GNSS_TIME_ERROR] = time_decay
 
 
 def _position_step(x: np.ndarray, yaw_rate: float, dt: float, F: np.ndarray, x_new: np.ndarray) -> None:

@@ -42,4 +42,5 @@ def test_a_quality_1_fix_without_gst_is_taken_with_the_configured_noise_not_the_
     fix = gnss_pb2.GnssFix(latitude_deg=37.72, longitude_deg=-122.47, fix_mode=gnss_pb2.FIX_MODE_SINGLE)
     fix.header.sample_time_s = 100.0
     geolocator.on_gnss_fix(fix)
-    assert geolocator.ekf.P[0, 0] == pytest.approx(1.5**2 + DEFAULT_ANTENNA_X_M**2 / 2.0)
+    correlated_var = GeolocatorConfig().gnss_error_std_m**2
+    assert geolocator.ekf.P[0, 0] == pytest.approx(1.5**2 + DEFAULT_ANTENNA_X_M**2 / 2.0 + correlated_var)

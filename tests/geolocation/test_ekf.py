@@ -12,13 +12,13 @@ from coopdrive.services.geolocation.motion_models import (
 from coopdrive.v1 import gnss_pb2
 
 # [E, N, heading, v, yaw rate, a], the inertial unit's yaw-rate and acceleration biases and the fixes' correlated
-# error (none here).
-STATE = np.array([10.0, 5.0, 0.3, 20.0, 0.05, 0.5, 0.0, 0.0, 0.0, 0.0])
+# error and their stamps' error (none here).
+STATE = np.array([10.0, 5.0, 0.3, 20.0, 0.05, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0])
 
 
 def started_ekf(model=None) -> GeolocationEkf:
     ekf = GeolocationEkf(model or CtraModel(ProcessNoise()))
-    ekf.initialise(0.0, STATE, np.diag([0.01, 0.01, 1e-4, 0.01, 1e-4, 0.1, 1e-4, 1e-2, 0.0, 0.0]))
+    ekf.initialise(0.0, STATE, np.diag([0.01, 0.01, 1e-4, 0.01, 1e-4, 0.1, 1e-4, 1e-2, 0.0, 0.0, 0.0]))
     return ekf
 
 
@@ -42,7 +42,7 @@ def test_ctra_follows_the_exact_constant_turn_rate_and_acceleration_path():
     east = 10.0 + quad(lambda t: speed(t) * math.cos(heading(t)), 0.0, 0.1)[0]
     north = 5.0 + quad(lambda t: speed(t) * math.sin(heading(t)), 0.0, 0.1)[0]
     assert ekf.x[:2] == pytest.approx([east, north], abs=1e-5)
-    assert ekf.x[2:] == pytest.approx([0.305, 20.05, 0.05, 0.5, 0.0, 0.0, 0.0, 0.0])
+    assert ekf.x[2:] == pytest.approx([0.305, 20.05, 0.05, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0])
 
 
 @pytest.mark.parametrize("model", [CtraModel(ProcessNoise()), KinematicBicycleModel(ProcessNoise(), 2.7)])
@@ -60,7 +60,7 @@ def test_the_model_jacobian_matches_finite_differences(model):
 
 def test_the_bicycle_model_turns_at_v_tan_delta_over_wheelbase():
     model = KinematicBicycleModel(ProcessNoise(), wheelbase_m=2.7)
-    x, _, _ = model.step(np.array([0.0, 0.0, 0.0, 10.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]), 0.01, math.atan(0.27))
+    x, _, _ = model.step(np.array([0.0, 0.0, 0.0, 10.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]), 0.01, math.atan(0.27))
     assert x[4] == pytest.approx(1.0)
     assert x[2] == pytest.approx(0.01)
 
@@ -97,8 +97,8 @@ def test_predicting_ahead_does_not_move_the_filter():
 
 def test_a_heading_across_the_wrap_pulls_the_estimate_the_short_way():
     ekf = GeolocationEkf()
-    ekf.initialise(0.0, np.array([0.0, 0.0, math.pi - 0.01, 20.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
-                   np.diag([0.01, 0.01, 1e-2, 0.01, 0.1, 1, 1e-4, 1e-2, 0.0, 0.0]))
+    ekf.initialise(0.0, np.array([0.0, 0.0, math.pi - 0.01, 20.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
+                   np.diag([0.01, 0.01, 1e-2, 0.01, 0.1, 1, 1e-4, 1e-2, 0.0, 0.0, 0.0]))
     assert ekf.update_heading(-math.pi + 0.01, 0.01)
     assert abs(ekf.x[2]) > math.pi - 0.01
 
@@ -128,8 +128,8 @@ def test_a_snapshot_from_before_the_start_leaves_the_filter_uninitialised():
 def test_an_inertial_units_constant_bias_is_learnt_while_the_wheels_tell_the_truth(update, row, bias_row, bias):
     """The inertial unit reads the truth plus its bias; the wheels read the truth. The filter splits the two."""
     ekf = GeolocationEkf()
-    truth = np.array([0.0, 0.0, 0.0, 20.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
-    ekf.initialise(0.0, truth, np.diag([0.01, 0.01, 1e-4, 0.01, 1e-2, 0.1, 0.005**2, 0.1**2, 0.0, 0.0]))
+    truth = np.array([0.0, 0.0, 0.0, 20.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    ekf.initialise(0.0, truth, np.diag([0.01, 0.01, 1e-4, 0.01, 1e-2, 0.1, 0.005**2, 0.1**2, 0.0, 0.0, 0.0]))
     for k in range(1, 3001):
         ekf.predict_to(k * 0.01)
         getattr(ekf, update)(bias, 0.005 if row == YAW_RATE else 0.1)
@@ -150,10 +150,10 @@ def _two_sigma_shares(gnss_error_std_m: float, runs: int = 8, seconds: float = 6
         ekf = GeolocationEkf(CtraModel(ProcessNoise(gnss_error_std_m=gnss_error_std_m, gnss_error_time_s=time_s)))
         error_m = rng.normal(0.0, correlated_std_m, 2)
         error_var = gnss_error_std_m**2
-        P0 = np.diag([white_std_m**2 + error_var] * 2 + [1e-4, 0.01, 1e-4, 0.1, 1e-4, 1e-2] + [error_var] * 2)
+        P0 = np.diag([white_std_m**2 + error_var] * 2 + [1e-4, 0.01, 1e-4, 0.1, 1e-4, 1e-2] + [error_var] * 2 + [0.0])
         P0[0, 8] = P0[8, 0] = P0[1, 9] = P0[9, 1] = -error_var
         fix = error_m + rng.normal(0.0, white_std_m, 2)
-        ekf.initialise(0.0, np.array([fix[0], fix[1], 0.0, 20.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]), P0)
+        ekf.initialise(0.0, np.array([fix[0], fix[1], 0.0, 20.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]), P0)
         for step in range(1, int(seconds / fix_dt_s) + 1):
             t = step * fix_dt_s
             for k in (1, 2):

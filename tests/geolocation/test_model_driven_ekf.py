@@ -52,7 +52,7 @@ def _measurement(rng, x):
 def test_the_filter_gives_filterpys_state_and_covariance_to_the_bit(model, seed):
     rng = np.random.default_rng(seed)
     ours, reference = ModelDrivenEkf(model), FilterpyModelDriven(model)
-    x0 = np.array([10.0, -5.0, 0.3, 20.0, 0.05, 0.5, 0.001, 0.02, 0.3, -0.2])
+    x0 = np.array([10.0, -5.0, 0.3, 20.0, 0.05, 0.5, 0.001, 0.02, 0.3, -0.2, 0.004])
     ours.x, reference.x = x0.copy(), x0.copy()
     ours.P = np.diag(rng.uniform(0.1, 2.0, STATE_DIM))
     reference.P = ours.P.copy()

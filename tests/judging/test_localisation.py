@@ -46,7 +46,7 @@ def fix(t, east_error_m, mode=gnss_pb2.FIX_MODE_RTK_FIXED, sigma_m=0.01):
     return message
 
 
-def run(state_error, fix_error=lambda t: 0.02, lane=lambda t: 0):
+def _messages(state_error, fix_error=lambda t: 0.02, lane=lambda t: 0) -> RunMessages:
     messages = RunMessages()
     for t in np.arange(0.0, 6.0, 0.02):
         messages.add("coopdrive/ego/ego/state", ego_state(t, state_error(t), lane=lane(t)))
@@ -55,7 +55,11 @@ def run(state_error, fix_error=lambda t: 0.02, lane=lambda t: 0):
             messages.add("coopdrive/ego/ego/gnss", fix(t, 0.0, gnss_pb2.FIX_MODE_NO_FIX))
         else:
             messages.add("coopdrive/ego/ego/gnss", fix(t, fix_error(t)))
-    return localisation_metrics(truth(), messages)
+    return messages
+
+
+def run(state_error, fix_error=lambda t: 0.02, lane=lambda t: 0):
+    return localisation_metrics(truth(), _messages(state_error, fix_error, lane))
 
 
 def test_the_rms_errors_of_estimate_and_fixes_and_the_receivers_noise_are_measured():
@@ -63,13 +67,33 @@ def test_the_rms_errors_of_estimate_and_fixes_and_the_receivers_noise_are_measur
     assert figures["position_rmse_precise_m"] == pytest.approx(0.005, abs=1e-4)
     assert figures["gnss_fix_rmse_m"] == pytest.approx(0.02, abs=1e-4)
     assert figures["gnss_noise_rms_m"] == pytest.approx(math.hypot(0.01, 0.01))
-    assert figures["position_rmse_over_gnss_noise"] == pytest.approx(0.005 / math.hypot(0.01, 0.01), rel=0.02)
 
 
-def test_the_2_sigma_fraction_counts_errors_inside_the_ellipse_of_their_covariance():
-    # sigma 0.1 m: 0.2 m is d2 = 4, inside the bound 6.18; 0.3 m is d2 = 9, outside.
-    figures = run(state_error=lambda t: 0.2 if t < 4.5 else 0.3)
-    assert figures["position_nees_2sigma_fraction"] == pytest.approx(4.5 / 6.0, abs=0.01)
+def test_the_estimate_s_error_is_set_beside_the_raw_fixes_every_one_of_them_per_fix_mode():
+    # A fix 3 m off is no longer left out of the fixes' RMS: no outlier is dropped silently.
+    figures = localisation_metrics(truth(), _messages(lambda t: 0.005, lambda t: 3.0 if JUMP_S[0] <= t < JUMP_S[1]
+                                                      else 0.02), position_rmse_m=0.005)
+    fix_errors = np.array([3.0 if JUMP_S[0] <= t < JUMP_S[1] else 0.02 for t in np.arange(0.0, 6.0, 0.05)
+                           if not OUTAGE_S[0] <= t < OUTAGE_S[1]])
+    assert figures["gnss_fix_rmse_m"] == pytest.approx(np.sqrt(np.mean(fix_errors**2)), rel=1e-3)
+    assert figures["gnss_fix_rmse_rtk_fixed_m"] == figures["gnss_fix_rmse_m"]
+    assert figures["position_rmse_rtk_fixed_m"] == pytest.approx(0.005, abs=1e-4)
+    assert figures["position_rmse_over_gnss_fix_rmse"] == pytest.approx(0.005 / figures["gnss_fix_rmse_m"])
+    assert "gnss_fix_rmse_dgps_m" not in figures and "position_rmse_over_gnss_noise" not in figures
+
+
+def test_the_2_sigma_share_counts_errors_inside_the_ellipse_of_their_covariance():
+    # sigma 0.1 m: 0.19 m is NEES 3.61, inside the 2-sigma ellipse (NEES 4); 0.3 m is NEES 9, outside.
+    figures = run(state_error=lambda t: 0.19 if t < 4.5 else 0.3)
+    assert figures["position_2sigma_share"] == pytest.approx(4.5 / 6.0, abs=0.01)
+    assert figures["position_nees_mean"] == pytest.approx((4.5 * 3.61 + 1.5 * 9.0) / 6.0, rel=0.01)
+
+
+def test_the_nees_bounds_are_for_samples_a_second_apart_and_hold_the_nees_of_a_consistent_estimate():
+    figures = run(state_error=lambda t: 0.1 * math.sqrt(2.0))
+    assert figures["position_nees_samples_1hz"] == 6
+    assert figures["position_nees_mean_1hz"] == pytest.approx(2.0)
+    assert figures["position_nees_lower_95"] < 2.0 < figures["position_nees_upper_95"]
 
 
 def test_the_outage_error_is_the_largest_while_the_receiver_reports_no_fix():
@@ -82,7 +106,6 @@ def test_fixes_far_beyond_their_noise_are_a_jump_and_the_estimate_error_after_th
                   fix_error=lambda t: 5.0 if JUMP_S[0] <= t < JUMP_S[1] else 0.02)
     assert figures["gnss_jumps"] == 4
     assert figures["gnss_jump_position_error_max_m"] == pytest.approx(0.15)
-    assert figures["gnss_fix_rmse_m"] == pytest.approx(0.02, abs=1e-4)  # the jumped fixes are left out
 
 
 def test_the_lane_index_accuracy_counts_matched_samples_on_the_true_lane():

@@ -35,6 +35,9 @@ def test_each_stack_reads_its_nmea_fixes_from_the_simulated_receiver_and_knows_i
     # estimate trailed its car by 0.5 m at 90 km/h.
     assert geolocation["gnss_receiver_latency_s"] == pytest.approx(0.02 + math.sqrt(2.0 / math.pi) * 0.005)
     assert geolocation["geolocator"]["gnss_time_jitter_s"] == pytest.approx(0.005)
+    # Its correlated error and its stamps' error are the geolocator's defaults (a receiver's figures).
+    assert "gnss_error_std_m" not in geolocation["geolocator"]
+    assert "gnss_time_error_std_s" not in geolocation["geolocator"]
 
 
 def test_in_the_ideal_world_the_simulator_runs_it_and_the_stacks_are_told_fixed_latencies(tmp_path):
@@ -44,3 +47,6 @@ def test_in_the_ideal_world_the_simulator_runs_it_and_the_stacks_are_told_fixed_
     geolocation = specs[(next(v for v, service in specs if v != "world"), "geolocation")]
     assert geolocation["gnss_receiver_latency_s"] == pytest.approx(0.02)
     assert geolocation["geolocator"]["gnss_time_jitter_s"] == 0.0
+    # A white receiver with a fixed latency: no correlated error to model, and exact stamps.
+    assert geolocation["geolocator"]["gnss_error_std_m"] == 0.0
+    assert geolocation["geolocator"]["gnss_time_error_std_s"] == 0.0
