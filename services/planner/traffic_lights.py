@@ -45,7 +45,7 @@ class LightEvent(enum.Enum):
     GREEN_LATER = enum.auto()
     STOP_REQUIRED = enum.auto()
     AMBER_TOO_CLOSE = enum.auto()
-    EXIT_BLOCKED = enum.auto()
+    BOX_EXIT_BLOCKED = enum.auto()
 
 
 EVENT_OF_ADVICE = {Advice.GO: LightEvent.GREEN, Advice.GLOSA: LightEvent.GREEN_LATER,
@@ -115,7 +115,7 @@ class TrafficLights:
         self.advised = advise(self.view.timing, approach, self.config, self.glosa)
         event = EVENT_OF_ADVICE[self.advised.advice]
         if event in (E.GREEN, E.GREEN_LATER) and self.exit_blocked() and self.can_stop_comfortably():
-            event = E.EXIT_BLOCKED
+            event = E.BOX_EXIT_BLOCKED
         return [*events, E.SPAT_USABLE, event]
 
     def exit_blocked(self) -> bool:
@@ -174,7 +174,7 @@ def build_spec() -> MachineSpec:
         Transition(S.STOP, E.GREEN, S.GO, reason="green"),
         *from_each([S.IDLE, S.GO, S.STOP], E.GREEN_LATER, S.GLOSA, reason="GLOSA: a later green can be reached"),
         *from_each([S.IDLE, S.GO, S.GLOSA], E.STOP_REQUIRED, S.STOP, reason="red, or amber with room to stop"),
-        *from_each([S.IDLE, S.GO, S.GLOSA], E.EXIT_BLOCKED, S.STOP,
+        *from_each([S.IDLE, S.GO, S.GLOSA], E.BOX_EXIT_BLOCKED, S.STOP,
                    reason="green, but the queue ahead leaves no room past the box: do not enter"),
         *from_each([S.IDLE, S.GO, S.GLOSA], E.AMBER_TOO_CLOSE, S.COMMITTED, action=Ctx.commit,
                    reason="amber within the comfortable stopping distance: proceed"),

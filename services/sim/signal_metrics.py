@@ -8,9 +8,9 @@ its direction); its instant is interpolated between the two truth samples around
 - red-light violation: a crossing while the group shows red or red-amber (both forbid passing the stop line,
   Vienna Convention on Road Signs and Signals, art. 23), or after the amber seen before it ended;
 - stops: falls of the speed below STOPPED_MPS from above MOVING_MPS on the approach's last APPROACH_M;
-- time lost: the HCM's control delay, the time taken from APPROACH_M before the stop line to EXIT_M past it less
-  the time at free flow, the speed at which the vehicle entered that stretch (a crossing whose stretch the truth
-  does not hold whole is left out of it);
+- time lost: the HCM's control delay, the time taken from APPROACH_M before the stop line to BEYOND_LINE_M past
+  it less the time at free flow, the speed at which the vehicle entered that stretch (a crossing whose stretch the
+  truth does not hold whole is left out of it);
 - positive acceleration: the sum of the speed's increases over the same stretch (the integral of a+ dt, m/s), a
   proxy of the energy spent that braking does not give back;
 - amber margin: for crossings not on red, how long before the group's red began (the end of its amber) the vehicle
@@ -28,7 +28,7 @@ from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.v1 import infrastructure_pb2, sim_pb2
 
 APPROACH_M = 200.0
-EXIT_M = 50.0
+BEYOND_LINE_M = 50.0
 STOPPED_MPS = 0.5
 MOVING_MPS = 3.0
 HEADING_GATE_RAD = math.radians(45.0)
@@ -102,15 +102,15 @@ def _crossing(vehicle_id: str, track: list, index: int, time_s: float, seen: sim
     while start > 0 and along[start - 1] <= along[start] and along[start - 1] >= -APPROACH_M:
         start -= 1
     end = index
-    while end + 1 < len(track) and along[end + 1] >= along[end] and along[end] <= EXIT_M:
+    while end + 1 < len(track) and along[end + 1] >= along[end] and along[end] <= BEYOND_LINE_M:
         end += 1
     stops = _stops(speeds[start:index])
     lost_s = accel_mps = None
-    whole = start > 0 and along[start - 1] < -APPROACH_M and along[end] >= EXIT_M and speeds[start] > STOPPED_MPS
+    whole = start > 0 and along[start - 1] < -APPROACH_M and along[end] >= BEYOND_LINE_M and speeds[start] > STOPPED_MPS
     if whole:
         t_in = float(np.interp(-APPROACH_M, along[start - 1:end + 1], times[start - 1:end + 1]))
-        t_out = float(np.interp(EXIT_M, along[start:end + 1], times[start:end + 1]))
-        lost_s = (t_out - t_in) - (APPROACH_M + EXIT_M) / speeds[start]
+        t_out = float(np.interp(BEYOND_LINE_M, along[start:end + 1], times[start:end + 1]))
+        lost_s = (t_out - t_in) - (APPROACH_M + BEYOND_LINE_M) / speeds[start]
         accel_mps = float(np.sum(np.clip(np.diff(speeds[start:end + 1]), 0.0, None)))
     return Crossing(vehicle_id, seen.intersection_id, seen.signal_group, time_s, red,
                     None if red else seen.amber_end_s - time_s, stops, lost_s, accel_mps)

@@ -10,6 +10,9 @@ from coopdrive.cli import service_settings
 from coopdrive.launch.run import RunOptions, build_specs
 from coopdrive.runtime.config import ConfigError
 
+# It starts `coopdrive run`, if only to see it refuse a setting before the run begins.
+pytestmark = pytest.mark.whole_run
+
 
 def test_settings_are_grouped_by_service_with_their_values_typed():
     assert service_settings(["planner.glosa=false", "geolocation.geolocator.gnss_error_std_m=0.3",

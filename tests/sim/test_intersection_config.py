@@ -25,7 +25,8 @@ def signals(change) -> dict:
 def test_an_approach_whose_signal_group_is_in_no_stage_is_refused_naming_the_intersection_and_the_group():
     def group_9(intersection):
         intersection["approaches"][0]["signal_group"] = 9
-    with pytest.raises(ScenarioError, match=r"roadside_units\.0\.intersection: .*signal groups \[9\] are in no stage"):
+    with pytest.raises(ScenarioError,
+                       match=r"roadside_units\.0\.intersection\.approaches: signal groups \[9\] are in no stage"):
         parse_scenario(signals(group_9), "signals.yaml")
 
 
