@@ -18,6 +18,7 @@ from pathlib import Path
 from coopdrive.recording.capture import read_gn_packets
 from coopdrive.v1 import ego_pb2, planner_pb2
 from coopdrive.v1 import infrastructure_pb2 as pb
+from coopdrive.v2x.dsrc_time import unix_s_of_minute_of_year
 from coopdrive.v2x.infrastructure import InfrastructureMessage
 from coopdrive.v2x.packet import decode_packet
 from coopdrive.v2x.reasons import V2xDecodeError
@@ -29,7 +30,6 @@ from .planner import Planner
 from .signals.advice import Approach, advise
 from .signals.phases import Light
 from .signals.spat_tracker import SpatTracker
-from .signals.time_mark import unix_s_of_minute_of_year
 
 DESK_STATION_ID = 1
 

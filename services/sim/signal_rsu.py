@@ -15,12 +15,11 @@ from coopdrive.services.sim.intersection_map import LanesOfRoad, ToGeodetic, app
 from coopdrive.services.sim.participants import IntentKind, MessageIntent, RateGate
 from coopdrive.services.sim.signal_controller import SignalController
 from coopdrive.services.sim.stop_line import StopLine
+from coopdrive.v2x.dsrc_time import SECONDS_PER_HOUR, SECONDS_PER_MINUTE
 from coopdrive.v2x.its_pdu import PROTOCOL_VERSION_CURRENT
 from coopdrive.v1 import infrastructure_pb2 as pb
 from coopdrive.v1 import sim_pb2
 
-SECONDS_PER_HOUR = 3600.0
-SECONDS_PER_MINUTE = 60.0
 # The current phase and the three after it: a whole cycle ahead, what a speed advisory needs.
 ANNOUNCED_PHASES = 4
 

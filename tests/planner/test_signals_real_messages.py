@@ -18,7 +18,7 @@ from coopdrive.services.planner.config import PlannerLogicConfig, SignalConfig
 from coopdrive.services.planner.planner import Planner
 from coopdrive.services.planner.signals.advice import Advice, Approach, advise
 from coopdrive.services.planner.signals.spat_tracker import SpatTracker
-from coopdrive.services.planner.signals.time_mark import unix_s_of_minute_of_year
+from coopdrive.v2x.dsrc_time import unix_s_of_minute_of_year
 from coopdrive.v2x.btp import BtpPort
 from coopdrive.v2x.packet import decode_packet
 from coopdrive.v2x.pcap import PcapWriter

@@ -5,13 +5,10 @@ the next (the previous) hour."""
 
 from __future__ import annotations
 
-import calendar
 import math
 
+from coopdrive.v2x.dsrc_time import SECONDS_PER_HOUR
 from coopdrive.v2x.timebase import ItsClock
-
-SECONDS_PER_HOUR = 3600.0
-SECONDS_PER_MINUTE = 60.0
 
 
 def stack_time_of_mark_s(mark_s: float, now_s: float, clock: ItsClock) -> float:
@@ -22,7 +19,3 @@ def stack_time_of_mark_s(mark_s: float, now_s: float, clock: ItsClock) -> float:
     offset_s = math.remainder(candidate_s - unix_now_s, SECONDS_PER_HOUR)
     return now_s + offset_s
 
-
-def unix_s_of_minute_of_year(year: int, minute_of_year: int, second_of_minute_s: float) -> float:
-    """A SPATEM's own time stamp (MinuteOfTheYear, DSecond) as unix time, in the year given."""
-    return calendar.timegm((year, 1, 1, 0, 0, 0)) + minute_of_year * SECONDS_PER_MINUTE + second_of_minute_s
