@@ -52,6 +52,8 @@ class Collected:
         self.denms: dict[int, dict] = {}
         self.vams: dict[int, dict] = {}
         self.status: dict | None = None
+        # Each station's VAMs heard when the last status arrived: the station table that status lists counts those.
+        self.vams_at_status: dict[str, int] = {}
         self.health_v2x: list[dict] = []
         self.started = threading.Event()
 
@@ -88,6 +90,7 @@ class Collected:
     def on_status(self, envelope) -> None:
         with self.lock:
             self.status = json_format.MessageToDict(envelope.message, preserving_proto_field_name=True)
+            self.vams_at_status = {str(k): v["count"] for k, v in self.vams.items()}
             # What the gateway's /health would show of it (the same function serves it there).
             self.health_v2x = [s.model_dump() for s in station_reception(envelope.message)]
         self.started.set()
@@ -153,6 +156,7 @@ def run(config_path: Path, duration_s: float, speed_mps: float, send_denm: bool,
                 "denms": {str(k): v for k, v in collected.denms.items()},
                 "vams": {str(k): v for k, v in collected.vams.items()},
                 "denms_sent": denms.sent if denms is not None else 0, "status": collected.status or {},
+                "vams_at_status": collected.vams_at_status,
                 "health_v2x": collected.health_v2x}
 
 
