@@ -5,12 +5,12 @@
 # so a slower hour loses seed-2 runs (whichever the limit finds unfinished) before any scenario's seed 1, and a
 # seed's long scenarios before its short ones. The runs it does not finish are listed in the pass table and do not
 # fail CI (the sweep's exit status 4). With under a minute left the sweep is skipped, and says so.
-# BESIDE=1: the sweep runs beside the test suite (.ci/run), behind it, in the cores the suite leaves idle and
-# then in all of them. The script must then lead a session of its own (`setsid`): it sets that session's nice value
-# to 19 and has every session its runs start do the same (COOPDRIVE_SESSION_NICE), since Linux shares the cores
-# between sessions (autogroups) before it looks at a thread's nice value. Its threads get nice 19 too (what counts
-# on a kernel without autogroups) and the idle scheduling policy, SCHED_IDLE, so that a test's thread that wakes
-# takes the core from them at once: with nice alone the suite took up to a tenth longer beside the sweep.
+# BESIDE=1: the sweep runs beside other work (a test suite, as .ci/run once ran it), behind it, in the cores it
+# leaves idle and then in all of them. The script must then lead a session of its own (`setsid`): it sets that
+# session's nice value to 19 and has every session its runs start do the same (COOPDRIVE_SESSION_NICE), since Linux
+# shares the cores between sessions (autogroups) before it looks at a thread's nice value. Its threads get nice 19
+# too (what counts on a kernel without autogroups) and the idle scheduling policy, SCHED_IDLE, so that a test's
+# thread that wakes takes the core from them at once: with nice alone the suite took up to a tenth longer beside it.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 left_s=${1:?usage: tools/ci_sweep.sh SECONDS_LEFT}

@@ -28,7 +28,7 @@ def lower_cpu_priority(by: int) -> None:
             pass  # a thread that ended meanwhile; raising a priority back is not what this does
 
 
-# CI's sweep runs beside the test suite with this set to MAX_NICE (.ci/run, tools/ci_sweep.sh).
+# A sweep run beside other work sets this to MAX_NICE (tools/ci_sweep.sh with BESIDE=1).
 SESSION_NICE_VARIABLE = "COOPDRIVE_SESSION_NICE"
 AUTOGROUP = Path("/proc/self/autogroup")
 MIN_NICE = -20
