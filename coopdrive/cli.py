@@ -9,6 +9,7 @@ import sys
 import time
 from pathlib import Path
 
+from coopdrive.cli_baseline import SUMO_PLEXE, baseline_choices, compare_with_law, compare_with_plexe, plexe_setup
 from coopdrive.cli_deploy import add_commands as add_deploy_commands
 from coopdrive.cli_judging import add_commands as add_judging_commands
 from coopdrive.cli_recording import add_commands as add_recording_commands
@@ -83,9 +84,10 @@ def _add_run_command(commands) -> None:
                      help="with --security: this stack vehicle holds a ticket from a root nobody trusts")
     run.add_argument("--cacc-law", choices=[law.value for law in _cacc_laws()],
                      help="the cooperative law of every stack (default: each stack's control config, ours)")
-    run.add_argument("--baseline", choices=[law.value for law in _cacc_laws()], metavar="LAW",
-                     help="run again with every stack on this CACC law (e.g. ploeg) and compare: "
-                          "ours must damp at least as well")
+    run.add_argument("--baseline", choices=baseline_choices(), metavar="NAME",
+                     help="run again with every stack on this CACC law (e.g. ploeg), or the platoon under Plexe's "
+                          f"controllers in SUMO ({SUMO_PLEXE}), and compare: ours must damp at least as well "
+                          f"(choices: {', '.join(baseline_choices())})")
     run.add_argument("--v2v-loss", type=float, metavar="P",
                      help="lose every V2V packet with probability P (0-1), independently, on top of the scenario")
     run.add_argument("--v2v-cut-at", type=float, metavar="SECONDS", help="cut every V2V link from this time on")
@@ -112,6 +114,7 @@ def _add_run_command(commands) -> None:
 def _run(args) -> int:
     from coopdrive.launch.run import RunOptions
     from coopdrive.launch.run_spec import RunSpec
+    from coopdrive.launch.plexe_files import PlexeBaselineError
     from coopdrive.services.sim.scenario_config import ScenarioError
 
     if args.scenario == "all" or args.seeds or args.faults or args.cluster:
@@ -130,14 +133,17 @@ def _run(args) -> int:
                             foxglove_port=args.foxglove, listen=tuple(args.listen), log_dir=args.logs,
                             started_monotonic_s=COMMAND_STARTED_MONOTONIC_S)
     try:
-        # A run that cannot be built (a bad scenario file, --stacks, a fault) stops before anything starts.
+        # A run that cannot be built (a bad scenario file, --stacks, a fault, a baseline) stops before anything starts.
+        plexe = plexe_setup(options) if args.baseline == SUMO_PLEXE else None
         if args.baseline is None:
             return _run_and_tell(args, options)
         result, recorded_to = _run_once(options, args.report, args.record)
-    except ScenarioError as error:
+    except (ScenarioError, PlexeBaselineError) as error:
         print(f"coopdrive: {error}", file=sys.stderr)
         return EXIT_USAGE
-    return _compare_with_baseline(args, options, result, recorded_to)
+    if plexe is not None:
+        return compare_with_plexe(args, result, recorded_to, plexe)
+    return compare_with_law(args, options, result, recorded_to, _run_once)
 
 
 def _run_and_tell(args, options) -> int:
@@ -239,32 +245,6 @@ def _run_once(options, report: Path | None, record: Path | None):
     result = run_with_report(options, report)
     report_notice(report)
     return result, record or report / RECORDING_FILE
-
-
-def _compare_with_baseline(args, options, result, recorded_to) -> int:
-    from coopdrive.launch.baseline import BaselineComparison, with_cacc_law
-    from coopdrive.launch.summary import print_summary, summary_dict
-    from coopdrive.services.control.longitudinal import CaccLaw
-
-    law = CaccLaw(args.baseline)
-    baseline_options = with_cacc_law(options, law).model_copy(update={"record": None, "gateway_port": None,
-                                                                      "foxglove_port": None, "listen": ()})
-    baseline_report = None if args.report is None else args.report / "baseline"
-    baseline, baseline_recorded_to = _run_once(baseline_options, baseline_report, None)
-    comparison = BaselineComparison.of(law, result, baseline)
-    passed = result.success and comparison.ours_no_worse
-    if args.json:
-        summary = summary_dict(result)
-        summary["baseline"] = {**comparison.as_dict(), "run": summary_dict(baseline)}
-        summary["success"] = passed
-        if not comparison.ours_no_worse:
-            summary["failure_reason"] = comparison.failure_reason()
-        print(json.dumps(summary, indent=2))
-    else:
-        print_summary(result, recording=recorded_to)
-        print_summary(baseline, recording=baseline_recorded_to, label=f", every stack on the {law.value} CACC")
-        comparison.print()
-    return EXIT_OK if passed else EXIT_FAILED
 
 
 def _seed(args) -> int:

@@ -35,8 +35,8 @@ LAYERS = (
     Layer("services", ("coopdrive.services",),
           "the services, each in services/<name> (installed as coopdrive.services.<name>)", framework=False),
     Layer("applications", ("coopdrive.launch", "coopdrive.judging", "coopdrive.analysis", "coopdrive.cli",
-                           "coopdrive.cli_deploy", "coopdrive.cli_judging", "coopdrive.cli_recording",
-                           "coopdrive.cli_service", "coopdrive.docs_reference"),
+                           "coopdrive.cli_baseline", "coopdrive.cli_deploy", "coopdrive.cli_judging",
+                           "coopdrive.cli_recording", "coopdrive.cli_service", "coopdrive.docs_reference"),
           "starting runs, batches and sweeps; judging them; the command line and its generated reference",
           framework=False),
 )

@@ -11,12 +11,12 @@ from coopdrive.roadmap.build_maps import LANE_WIDTH_M
 from coopdrive.messages.vehicle_frame import rear_overhang_m
 from coopdrive.services.sim import geometry
 from coopdrive.services.sim.signal_metrics import signal_metrics
+from coopdrive.services.sim.string_gain import judged_string_gains
 from coopdrive.services.sim.truth_series import TruthSeries
 from coopdrive.v1 import sim_pb2
 
 KMH_PER_MPS = 3.6
 DEFAULT_SAFETY_RADIUS_M = 7.5
-MIN_STRING_AMPLITUDE_MPS = 0.05
 # Paths cross when headings are more than 30 degrees from parallel (or antiparallel).
 CROSSING_SIN = math.sin(math.radians(30.0))
 # Time gaps are meaningless near standstill.
@@ -285,50 +285,6 @@ def lateral_error(truth: TruthSeries, vehicle_ids: Sequence[str]) -> dict[str, f
     return error_stats(np.concatenate(errors), "lateral_error", "m") if errors else {}
 
 
-def speed_amplitude(speed_mps: np.ndarray, time_s: np.ndarray | None = None,
-                    frequency_hz: float | None = None) -> float:
-    """Amplitude of the detrended speed.
-
-    With the excitation frequency known, a least-squares fit of offset, linear trend and sinusoid gives the
-    exact amplitude of a sinusoid on a trend; otherwise half the peak-to-peak of the linearly detrended speed
-    (a detrended whole number of sine periods keeps a small slope bias that cancels in ratios).
-    """
-    values = np.asarray(speed_mps, dtype=float)
-    times = np.arange(values.size, dtype=float) if time_s is None else np.asarray(time_s, dtype=float)
-    valid = np.isfinite(values)
-    values, times = values[valid], times[valid]
-    if values.size < 2:
-        return 0.0
-    if frequency_hz is not None:
-        omega = 2.0 * math.pi * frequency_hz
-        basis = np.column_stack((np.ones_like(times), times - times.mean(), np.sin(omega * times),
-                                 np.cos(omega * times)))
-        coefficients, *_ = np.linalg.lstsq(basis, values, rcond=None)
-        return float(math.hypot(coefficients[2], coefficients[3]))
-    slope, offset = np.polyfit(times, values, 1)
-    detrended = values - (slope * times + offset)
-    return float(detrended.max() - detrended.min()) / 2.0
-
-
-def string_gain(speeds_mps: Sequence[np.ndarray], time_s: np.ndarray | None = None,
-                frequency_hz: float | None = None) -> float:
-    """Max over consecutive vehicles (leader first) of the ratio of follower to predecessor speed amplitude."""
-    amplitudes = [speed_amplitude(s, time_s, frequency_hz) for s in speeds_mps]
-    # A vehicle whose speed hardly varies excites nothing: the ratio to it would be noise over noise.
-    ratios = [b / a for a, b in zip(amplitudes, amplitudes[1:]) if a > MIN_STRING_AMPLITUDE_MPS]
-    return max(ratios) if ratios else math.nan
-
-
-def _covers(time_s: np.ndarray, end_s: float) -> bool:
-    """Whether the truth reaches end_s to within its own sample period. A run cut short (`--duration`) inside the
-    judged oscillation has seen only its onset, where a follower's transient can outswing its predecessor: its
-    ratio is not the string gain (string 20 s of 60: 1.075, where the whole window gives below 1)."""
-    if not math.isfinite(end_s):
-        return True
-    period_s = float(time_s[-1] - time_s[-2]) if len(time_s) >= 2 else 0.0
-    return len(time_s) > 0 and time_s[-1] + period_s >= end_s
-
-
 def position_rmse_m(estimate_time_s: np.ndarray, estimate_xy_m: np.ndarray, true_time_s: np.ndarray,
                     true_xy_m: np.ndarray) -> float:
     """RMS horizontal error of the estimates against the truth interpolated at the estimates' times."""
@@ -381,10 +337,8 @@ def judge(truth: TruthSeries, platoon: Sequence[str] = (), automated: Sequence[s
         reference_speed_mps = predecessor_speed_references(truth, platoon, judged)
     if reference_speed_mps:
         metrics.update(speed_error(truth, reference_speed_mps))
-    if len(platoon) >= 2 and _covers(truth.time_s, string_end_s):
-        window = (truth.time_s >= string_start_s) & (truth.time_s < string_end_s)
-        metrics["string_gain"] = string_gain([truth.get(vid, "speed_mps")[window] for vid in platoon],
-                                             truth.time_s[window], string_frequency_hz)
+    metrics.update(judged_string_gains(truth.time_s, [truth.get(vid, "speed_mps") for vid in platoon],
+                                       string_start_s, string_end_s, string_frequency_hz))
     if position_estimates:
         squared, count = 0.0, 0
         for vid, (time_s, xy_m) in position_estimates.items():

@@ -12,29 +12,12 @@ from coopdrive.recording.reader import read_metadata
 from coopdrive.recording.writer import CONFIG_METADATA
 from coopdrive.services.control.longitudinal import CaccLaw
 from coopdrive.v1 import sim_pb2
-from tests.scenario_report import FASTEST_LAYOUT
+from tests.scenario_report import FASTEST_LAYOUT, tiny_string
 
 pytestmark = pytest.mark.whole_run
 
 # A scripted leader oscillating from 1 s and one stack behind it: the smallest run with a string gain.
-TINY_STRING = """
-name: tiny_string
-mission: platoon
-map: a270
-duration_s: 12
-vehicles:
-  - {vehicle_id: leader, station_id: 501, role: scripted, lane: 0, station_m: 300, speed_mps: 22.2,
-     speed_profile: {kind: sinusoid, mean_speed_mps: 22.2, amplitude_mps: 2.78, frequency_hz: 0.2, start_s: 1}}
-  - {vehicle_id: f1, station_id: 502, lane: 0, station_m: 278, speed_mps: 22.2, platoon: 1}
-roadside_units:
-  - {unit_id: rsu, station_id: 590, x_m: 250, y_m: 30,
-     events: [{kind: start_platoon, time_s: 0.2, until_s: 4, platoon: 0}]}
-judging:
-  platoon: [leader, f1]
-  headway_s: 0.5
-  string_start_s: 2
-  string_frequency_hz: 0.2
-"""
+TINY_STRING = tiny_string(followers=1, duration_s=12)
 
 
 def result(string_gain: float) -> sim_pb2.RunResult:
