@@ -37,7 +37,9 @@ from coopdrive.launch.ports import free_tcp_port
 from coopdrive.launch.run import RunOptions, run_scenario
 
 DURATION_ENV = "COOPDRIVE_BENCH_GATEWAY_S"
-DEFAULT_DURATION_S = sized(20.0, 3.0)
+# Quick: long enough for one window with clients after a gateway that starts slowly on a loaded host (at 3 s the
+# smoke once ended before its first window with clients).
+DEFAULT_DURATION_S = sized(20.0, 6.0)
 CLIENTS = sized(50, 2)
 WINDOW_S = sized(5.0, 1.0)
 # Latencies this soon after a window starts are left out: the clients are still (dis)connecting.
