@@ -8,7 +8,7 @@ from tests.scenario_report import run_scenario_report
 
 pytestmark = pytest.mark.whole_run
 
-DURATION_S = 30
+DURATION_S = 20
 # Heudiasyc's figures of steady platooning at 40 km/h (their average errors, which are also mean absolute errors
 # as ours are, and the largest lateral error), by the metric of ours that measures each: paper_figures.py.
 HEUDIASYC = {figure.metric: figure.value for figure in PAPER_FIGURES if figure.scenario == "platoon40"}

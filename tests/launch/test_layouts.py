@@ -17,7 +17,7 @@ pytestmark = pytest.mark.whole_run
 
 SCENARIO = "platoon40"
 STACKS = 2
-DURATION_S = 8.0
+DURATION_S = 5.0
 SWEEP_WAIT_S = 240
 
 
