@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import multiprocessing
 import queue
+import statistics
 import time
 
 import numpy as np
@@ -20,6 +21,7 @@ from bench.failure import BenchFailed
 from bench.bus_over_mtls import measure_both, one_way_latencies_us
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
+from bench.turn_spread import turn_ratio_spread
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.launch.ports import free_tcp_port, loopback_endpoint
 
@@ -116,27 +118,36 @@ def main() -> list[Figure]:
 
 
 def _security_figures() -> list[Figure]:
-    """The typed bus through a router, over mTLS with the access rules and over plain TCP, in one table."""
+    """The typed bus through a router, over mTLS with the access rules and over plain TCP, in one table: latency
+    percentiles of every round's samples together, throughput the mean of the rounds' bursts; each ratio's interval
+    from its rounds."""
     paths = measure_both()
-    table = Table(title="typed bus through a router, 2 client processes: mTLS + access control vs plain TCP")
+    table = Table(title=f"typed bus through a router, 2 client processes: mTLS + access control vs plain TCP "
+                        f"({len(paths['mtls'])} rounds, turn about)")
     for column in ("link", "p50 (us)", "p99 (us)", "throughput (msg/s)"):
         table.add_column(column, justify="right")
-    figures = []
-    for name, measured in paths.items():
-        p50, p99 = np.percentile(measured.latency_us, 50), np.percentile(measured.latency_us, 99)
-        table.add_row(name, f"{p50:.0f}", f"{p99:.0f}", f"{measured.throughput_per_s:,.0f}")
+    figures, pooled, throughput = [], {}, {}
+    for name, rounds in paths.items():
+        pooled[name] = np.concatenate([measured.latency_us for measured in rounds])
+        throughput[name] = [measured.throughput_per_s for measured in rounds]
+        p50, p99 = np.percentile(pooled[name], 50), np.percentile(pooled[name], 99)
+        table.add_row(name, f"{p50:.0f}", f"{p99:.0f}", f"{statistics.fmean(throughput[name]):,.0f}")
         figures += [Figure(f"routed {name} p50", p50, Unit.US), Figure(f"routed {name} p99", p99, Unit.US),
-                    Figure(f"routed {name} throughput", measured.throughput_per_s, Unit.PER_S)]
+                    Figure(f"routed {name} throughput", statistics.fmean(throughput[name]), Unit.PER_S)]
     Console().print(table)
-    plain, mtls = paths["plain tcp"], paths["mtls"]
+
+    def percentile_ratio(percentile: float) -> tuple[float, float | None]:
+        per_round = [[np.percentile(measured.latency_us, percentile) for measured in paths[name]]
+                     for name in ("mtls", "plain tcp")]
+        return (np.percentile(pooled["mtls"], percentile) / np.percentile(pooled["plain tcp"], percentile),
+                turn_ratio_spread(*per_round))
+
+    p50_ratio, p50_spread = percentile_ratio(50)
+    p99_ratio, p99_spread = percentile_ratio(99)
     return figures + [
-        ratio("routed mtls p50 to plain tcp", np.percentile(mtls.latency_us, 50) / np.percentile(plain.latency_us, 50),
-              "routed plain tcp p50"),
-        ratio("routed mtls p99 to plain tcp", np.percentile(mtls.latency_us, 99) / np.percentile(plain.latency_us, 99),
-              "routed plain tcp p99"),
-        ratio("routed mtls throughput to plain tcp", mtls.throughput_per_s / plain.throughput_per_s,
-              "routed plain tcp throughput", Better.HIGHER)]
-
-
-if __name__ == "__main__":
-    main()
+        ratio("routed mtls p50 to plain tcp", p50_ratio, "routed plain tcp p50", spread=p50_spread),
+        ratio("routed mtls p99 to plain tcp", p99_ratio, "routed plain tcp p99", spread=p99_spread),
+        ratio("routed mtls throughput to plain tcp",
+              statistics.fmean(throughput["mtls"]) / statistics.fmean(throughput["plain tcp"]),
+              "routed plain tcp throughput", Better.HIGHER,
+              spread=turn_ratio_spread(throughput["mtls"], throughput["plain tcp"]))]

@@ -1,5 +1,7 @@
 """What recording costs a multi-stack run: `string --stacks 8` in lockstep with `--record` against the same run
-without, turn about (unrecorded, recorded, twice), so a load that comes and goes weighs on both alike.
+without, turn about (unrecorded, recorded, three times), so a load that comes and goes weighs on both alike; the
+turns' own ratios give each ratio its interval (bench/turn_spread.py: two quiet runs of one commit moved both ratios
+by 10-11 %).
 
 Each process of a recorded run spools what it publishes, and the launcher (this process) merges the spools into the
 MCAP as the run goes, drawing the Foxglove channels as it writes. Its CPU is this process's (every thread, Zenoh's
@@ -25,12 +27,13 @@ from rich.table import Table
 from bench.failure import require_success
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
+from bench.turn_spread import turn_ratio_spread
 from coopdrive.launch.run import RunOptions, run_scenario
 
 SCENARIO = "string"
 STACKS = int(os.environ.get("BENCH_RECORD_STACKS", sized(8, 2)))
 DURATION_S = float(os.environ.get("BENCH_RECORD_DURATION_S", sized(10.0, 1.0)))
-ROUNDS = sized(2, 1)
+ROUNDS = sized(3, 1)
 
 
 def run(record: Path | None) -> tuple[float, float, float]:
@@ -70,10 +73,12 @@ def main() -> list[Figure]:
                     Figure(f"{name}: command", statistics.mean(command_s[recorded]), Unit.S)]
     Console().print(table)
     return figures + [ratio("--record: real-time factor to unrecorded", statistics.mean(factors[True]) / unrecorded,
-                            "unrecorded: real-time factor", Better.HIGHER),
+                            "unrecorded: real-time factor", Better.HIGHER,
+                            spread=turn_ratio_spread(factors[True], factors[False])),
                       ratio("--record: command to unrecorded",
                             statistics.mean(command_s[True]) / statistics.mean(command_s[False]),
-                            "unrecorded: command", Better.LOWER)]
+                            "unrecorded: command", Better.LOWER,
+                            spread=turn_ratio_spread(command_s[True], command_s[False]))]
 
 
 if __name__ == "__main__":

@@ -28,7 +28,8 @@ from rich.table import Table
 from bench.failure import require_success
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
-from bench.turn_about import least_of_turns
+from bench.turn_about import turns
+from bench.turn_spread import turn_ratio_spread
 from coopdrive.launch.run import RunOptions, run_scenario
 from coopdrive.recording import reader, replay
 from coopdrive.recording.replay_diff import compare_outputs
@@ -71,18 +72,20 @@ def main() -> list[Figure]:
             table.add_column(column, justify="right")
         figures = []
         for service in SERVICES:
-            every_s, mcap_s, now_s = least_of_turns(
+            every_turns, mcap_turns, now_turns = turns(
                 [lambda variant=variant: replay_s(recording, service, *variant)
                  for variant in (EVERY_CHANNEL, MCAP_READER, NOW)], ROUNDS)
+            every_s, mcap_s, now_s = min(every_turns), min(mcap_turns), min(now_turns)
             table.add_row(service, f"{every_s:.2f}", f"{mcap_s:.2f}", f"{now_s:.2f}", f"{now_s / mcap_s:.2f}",
                           f"{now_s / every_s:.2f}")
             figures += [Figure(f"{service}: every channel", every_s, Unit.S),
                         Figure(f"{service}: its channels, mcap's reader", mcap_s, Unit.S),
                         Figure(f"{service}: its channels, indexes", now_s, Unit.S),
                         ratio(f"{service}: indexes to mcap's reader", now_s / mcap_s,
-                              f"{service}: its channels, mcap's reader", Better.LOWER),
+                              f"{service}: its channels, mcap's reader", Better.LOWER,
+                              spread=turn_ratio_spread(now_turns, mcap_turns)),
                         ratio(f"{service}: indexes to every channel", now_s / every_s, f"{service}: every channel",
-                              Better.LOWER)]
+                              Better.LOWER, spread=turn_ratio_spread(now_turns, every_turns))]
         Console(highlight=False).print(table)
     return figures
 

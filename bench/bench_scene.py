@@ -28,7 +28,8 @@ from bench import scene_before
 from bench.figure import Better, Figure, Unit, instruction_ratio, ratio
 from bench.instructions_per_call import Workload, per_call
 from bench.sizes import sized
-from bench.turn_about import least_of_turns
+from bench.turn_about import turns
+from bench.turn_spread import turn_ratio_spread
 from coopdrive.services.scene import fusion as fusion_now
 from coopdrive.services.scene.association import assign, likelihood_cost, polar_cost_loop
 from coopdrive.services.scene.config import TrackingConfig
@@ -152,13 +153,16 @@ def instruction_workloads() -> list[Workload]:
     return workloads
 
 
-def association_ratios(count: int, by_time: float, instructions: dict[str, float] | None) -> list[Figure]:
-    """Our association over the brute force's, in time and, where counted, in instructions (which guard it)."""
+def association_ratios(count: int, by_time: float, instructions: dict[str, float] | None,
+                       spread: float | None = None) -> list[Figure]:
+    """Our association over the brute force's, in time and, where counted, in instructions (which guard it); the
+    time ratio's `spread` from its turns (bench/turn_spread.py)."""
     name, baseline = f"{count} objects: association to brute force", f"{count} objects: brute-force association"
     counted = None if instructions is None or count not in INSTRUCTION_OBJECT_COUNTS else instruction_ratio(
         name, instructions[f"{count} objects: association"] / instructions[baseline], baseline)
     return ([] if counted is None else [counted]) + [
-        ratio(name, by_time, baseline, Better.LOWER, guarded_by=None if counted is None else counted.name)]
+        ratio(name, by_time, baseline, Better.LOWER, spread=spread,
+              guarded_by=None if counted is None else counted.name)]
 
 
 def main() -> list[Figure]:
@@ -174,9 +178,10 @@ def main() -> list[Figure]:
         now_ms[count] = timings_ms[0]
         before_ms = timings_ms[1] if before else math.nan
         (alone_ms,), _ = run([fusion_now], count)
-        assoc_ms, brute_force_ms = least_of_turns(
+        assoc_turns, brute_force_turns = turns(
             [lambda: association_ms(count, repeats=ASSOCIATION_FRAMES),
              lambda: association_ms(count, brute_force=True, repeats=BRUTE_FORCE_REPEATS)], ASSOCIATION_ROUNDS)
+        assoc_ms, brute_force_ms = min(assoc_turns), min(brute_force_turns)
         growth = ""
         if count == OBJECT_COUNTS[-1]:
             fewer = OBJECT_COUNTS[-2]
@@ -190,7 +195,7 @@ def main() -> list[Figure]:
         figures += [Figure(f"{count} objects: update, turn about", now_ms[count], Unit.MS),
                     Figure(f"{count} objects: update alone", alone_ms, Unit.MS),
                     Figure(f"{count} objects: association", assoc_ms, Unit.MS)] + association_ratios(
-            count, assoc_ms / brute_force_ms, instructions)
+            count, assoc_ms / brute_force_ms, instructions, turn_ratio_spread(assoc_turns, brute_force_turns))
         if before:  # without git the scene before is not there to measure
             figures.append(ratio(f"{count} objects: speed-up over before", before_ms / now_ms[count],
                                  f"{count} objects: update before", Better.HIGHER))

@@ -3,7 +3,10 @@
 Each stack runs as one process (`coopdrive group`), its services on one shared worker thread; the last rows run
 8 stacks with a thread per service, as before the shared worker, and the simulator and 8 stacks in one process
 (`--processes one`), its messages to itself handed over by the bus (coopdrive/bus/local_delivery.py) and, turn
-about, through Zenoh as before, in the same bench. The per-service figures are the CPU seconds of each service's own handling
+about, through Zenoh as before, in the same bench. These last comparisons run in TURNS rounds of shorter runs, each
+round all four (8 stacks as the rows above run them, a thread per service, through Zenoh, by the bus), so that each
+ratio gets its interval from its rounds (bench/turn_spread.py): measured once each, two quiet runs of one commit
+moved them by 10-14 %. The per-service figures are the CPU seconds of each service's own handling
 (its handlers and triggers), from the last diagnostics every service published.
 BENCH_STACKS_DURATION_S sets the simulated seconds per run (default 10).
 """
@@ -11,6 +14,7 @@ BENCH_STACKS_DURATION_S sets the simulated seconds per run (default 10).
 from __future__ import annotations
 
 import os
+import statistics
 from collections import defaultdict
 
 from rich.console import Console
@@ -20,16 +24,22 @@ from bench import baselines
 from bench.failure import require_success
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
+from bench.turn_about import turns
+from bench.turn_spread import turn_ratio_spread
 from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.run import RunOptions, run_scenario
 
 SCENARIO = "string"
 STACK_COUNTS = sized((1, 4, 8), (1, 2))
 DURATION_S = float(os.environ.get("BENCH_STACKS_DURATION_S", sized(10.0, 1.0)))
+# The rounds of the comparisons of 8 stacks, and their runs' simulated seconds: a real-time factor counts the
+# stepping only, not the start, so half the rows' length measures the same thing in half the time.
+TURNS = sized(3, 1)
+TURN_DURATION_S = DURATION_S / 2
 
 
 def run(stacks: int, thread_per_service: bool = False, processes: ProcessLayout = ProcessLayout.VEHICLE,
-        local_by_zenoh: bool = False) -> tuple[float, dict[str, dict[str, float]]]:
+        local_by_zenoh: bool = False, duration_s: float = DURATION_S) -> tuple[float, dict[str, dict[str, float]]]:
     """`thread_per_service`: each stack's group gives each service its own thread, as before the shared worker;
     `local_by_zenoh`: a process's messages to its own services go through Zenoh, as before the bus's own delivery."""
     worker_cpu_s: dict[str, dict[str, float]] = defaultdict(dict)
@@ -40,7 +50,7 @@ def run(stacks: int, thread_per_service: bool = False, processes: ProcessLayout 
             worker_cpu_s[parts[1]][parts[3]] = message.counters["worker_cpu_s"]
 
     with baselines.thread_per_service(thread_per_service), baselines.local_by_zenoh(local_by_zenoh):
-        result = run_scenario(RunOptions(scenario=SCENARIO, stacks=stacks, duration_s=DURATION_S, observer=observe,
+        result = run_scenario(RunOptions(scenario=SCENARIO, stacks=stacks, duration_s=duration_s, observer=observe,
                                          processes=processes))
     require_success(result, f"the run of {stacks} stacks ({processes.value})")
     return result.sim_time_s / max(result.wall_time_s, 1e-9), worker_cpu_s
@@ -60,19 +70,23 @@ def main() -> list[Figure]:
         breakdown = cpu
     threads, by_zenoh, by_bus = (f"{most}, a thread per service (before)", f"{most}, all in one process, its "
                                  "messages through Zenoh (before)", f"{most}, all in one process, handed over by the bus")
-    factors[threads] = run(most, thread_per_service=True)[0]
-    # Turn about, so a load that comes and goes weighs on both.
-    factors[by_zenoh] = run(most, processes=ProcessLayout.ONE, local_by_zenoh=True)[0]
-    factors[by_bus] = run(most, processes=ProcessLayout.ONE, local_by_zenoh=False)[0]
-    for label in (threads, by_zenoh, by_bus):
+    # Turn about, so a load that comes and goes weighs on all four.
+    most_turns, threads_turns, zenoh_turns, bus_turns = turns([
+        lambda: run(most, duration_s=TURN_DURATION_S)[0],
+        lambda: run(most, thread_per_service=True, duration_s=TURN_DURATION_S)[0],
+        lambda: run(most, processes=ProcessLayout.ONE, local_by_zenoh=True, duration_s=TURN_DURATION_S)[0],
+        lambda: run(most, processes=ProcessLayout.ONE, local_by_zenoh=False, duration_s=TURN_DURATION_S)[0]], TURNS)
+    for label, measured in ((threads, threads_turns), (by_zenoh, zenoh_turns), (by_bus, bus_turns)):
+        factors[label] = statistics.fmean(measured)
         summary.add_row(label, *ratio_cells(factors, label), "")
     console.print(summary)
     print_breakdown(console, breakdown)
     return [Figure(f"{label}: real-time factor", factor, Unit.REALTIME_FACTOR) for label, factor in factors.items()] + [
-        ratio(f"{most} stacks: real-time factor to a thread per service", factors[f"{most} stacks"] / factors[threads],
-              f"{threads}: real-time factor", Better.HIGHER),
+        ratio(f"{most} stacks: real-time factor to a thread per service",
+              statistics.fmean(most_turns) / factors[threads], f"{threads}: real-time factor", Better.HIGHER,
+              spread=turn_ratio_spread(most_turns, threads_turns)),
         ratio(f"{most} in one process: the bus's hand-over to Zenoh's", factors[by_bus] / factors[by_zenoh],
-              f"{by_zenoh}: real-time factor", Better.HIGHER),
+              f"{by_zenoh}: real-time factor", Better.HIGHER, spread=turn_ratio_spread(bus_turns, zenoh_turns)),
         ratio(f"{most} stacks: real-time factor to 1 stack's", factors[f"{most} stacks"] / factors["1 stacks"],
               "1 stacks: real-time factor", Better.HIGHER)]
 

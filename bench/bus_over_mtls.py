@@ -23,12 +23,15 @@ import numpy as np
 
 from bench.failure import BenchFailed
 from bench.sizes import sized
+from bench.turn_about import turns
 from coopdrive.bus import Bus, BusConfig
 from coopdrive.launch.ports import free_tcp_port
 
 ROUND_TRIPS = sized(2000, 20)
 WARMUP = sized(100, 5)
 BURST = sized(20000, 200)
+# Turns of the two paths: measured once each, two quiet runs of one commit moved the p50 ratio by 21 %.
+ROUNDS = sized(3, 1)
 VEHICLE = "bench"
 START_TIMEOUT_S = 60.0
 ECHO_TIMEOUT_S = 5.0
@@ -56,8 +59,10 @@ class PathFigures:
     throughput_per_s: float
 
 
-def measure_both() -> dict[str, PathFigures]:
-    """{"plain tcp": ..., "mtls": ...}, each through its own router, measured one after the other."""
+def measure_both(rounds: int = ROUNDS) -> dict[str, list[PathFigures]]:
+    """{"plain tcp": [...], "mtls": [...]}: each through its own router (started for each measurement), turn about in
+    `rounds` rounds, so that a load that comes and goes weighs on both and each ratio gets its interval from its
+    rounds (bench/turn_spread.py)."""
     with tempfile.TemporaryDirectory(prefix="bench-bus-mtls-") as folder:
         plain_endpoint = f"tcp/127.0.0.1:{free_tcp_port()}"
         tls_endpoint = f"tls/127.0.0.1:{free_tcp_port()}"
@@ -66,7 +71,8 @@ def measure_both() -> dict[str, PathFigures]:
         paths = [BusPath("plain tcp", ("--listen", plain_endpoint), plain_endpoint, None),
                  BusPath("mtls", ("--config", str(credentials / "router" / "zenohd.json5"), "--listen", tls_endpoint),
                          tls_endpoint, credentials)]
-        return {path.name: _measure(path) for path in paths}
+        measured = turns([lambda path=path: _measure(path) for path in paths], rounds)
+        return {path.name: figures for path, figures in zip(paths, measured)}
 
 
 def _run_cli(*arguments: str) -> None:

@@ -9,7 +9,6 @@ which does not count the time the scheduler gave to other processes.
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Callable, Sequence
 
@@ -24,14 +23,19 @@ def cpu_seconds(work: Callable[[], object]) -> float:
     return time.process_time() - start
 
 
-def least_of_turns(sides: Sequence[Callable[[], float]], rounds: int) -> list[float]:
-    """Each side's least measurement over `rounds` turns, the sides taking turns within each round. A side is a
-    callable that does its work and returns what it measured (seconds, us per call...)."""
-    least = [math.inf] * len(sides)
+def turns(sides: Sequence[Callable[[], float]], rounds: int) -> list[list[float]]:
+    """Each side's measurement in each of `rounds` rounds, the sides taking turns within each round: [side][round].
+    A side is a callable that does its work and returns what it measured (seconds, us per call...)."""
+    measured: list[list[float]] = [[] for _ in sides]
     for _ in range(rounds):
         for index, side in enumerate(sides):
-            least[index] = min(least[index], side())
-    return least
+            measured[index].append(side())
+    return measured
+
+
+def least_of_turns(sides: Sequence[Callable[[], float]], rounds: int) -> list[float]:
+    """Each side's least measurement over `rounds` turns (turns())."""
+    return [min(side) for side in turns(sides, rounds)]
 
 
 def rate_per_s(operation: Callable[[], object], seconds: float, batch: int = DEFAULT_BATCH) -> float:
