@@ -13,6 +13,8 @@ more times. The channels (topic: Foxglove schema, from):
 - foxglove/ground_truth: foxglove.SceneUpdate, one per simulator ground truth (namespace "truth/")
 - foxglove/map: foxglove.SceneUpdate, the lane map's centre lines, at the start of every MAP_PERIOD_S of time that
   has messages to draw
+- foxglove/<vehicle>/signals: foxglove.GeoJSON, the intersections the vehicle heard of (v2x/mapem), their signalised
+  movements coloured by the newest SPaT (v2x/spatem), one per MAPEM or SPATEM heard (signal_lanes.py)
 
 What a message draws depends only on the messages, never on the order they arrived in: messages are held until
 one sent reorder_s later has arrived (or flush()), then drawn in time order and, within a step, in the order the
@@ -41,7 +43,8 @@ from coopdrive.gnss.nmea_decoder import NmeaDecoder
 from coopdrive.runtime.pipeline import step_order
 from coopdrive.visual.primitives import MAP_FRAME, NANOSECONDS, color, timestamp, yaw_quaternion
 from coopdrive.visual.scene_entities import lanes_update, scene_update, truth_update
-from coopdrive.v1 import ego_pb2, gnss_pb2, its_pb2, planner_pb2, scene_pb2, sim_pb2
+from coopdrive.visual.signal_lanes import SignalLanes
+from coopdrive.v1 import ego_pb2, gnss_pb2, infrastructure_pb2, its_pb2, planner_pb2, scene_pb2, sim_pb2
 
 Emit = Callable[[str, Message, int], None]
 
@@ -86,7 +89,9 @@ class VisualChannels:
         self._handlers: dict[str, Callable[[str, Message, int], None]] = {
             "ego/state": self._on_ego, "gnss/nmea": self._on_nmea, "gnss/fix": self._on_gnss, "v2x/cam": self._on_cam,
             "scene": self._on_scene, "planner/behaviour": self._on_behaviour, "ground_truth": self._on_truth,
+            "v2x/mapem": self._on_mapem, "v2x/spatem": self._on_spatem,
         }
+        self._signal_lanes: dict[str, SignalLanes] = {}
         self._draws_key: dict[str, bool] = {}
 
     def draws(self, key: str) -> bool:
@@ -179,6 +184,19 @@ class VisualChannels:
                   LocationFix(timestamp=timestamp(cam.header.sample_time_s), frame_id=f"station {cam.station_id}",
                               latitude=position.latitude_deg, longitude=position.longitude_deg,
                               color=STATION_FIX_COLOR), time_ns)
+
+    def _on_mapem(self, vehicle_id: str, mapem: infrastructure_pb2.MapemContent, time_ns: int) -> None:
+        self._signal_lanes.setdefault(vehicle_id, SignalLanes()).on_mapem(mapem)
+        self._send_signal_lanes(vehicle_id, time_ns)
+
+    def _on_spatem(self, vehicle_id: str, spatem: infrastructure_pb2.SpatemContent, time_ns: int) -> None:
+        self._signal_lanes.setdefault(vehicle_id, SignalLanes()).on_spatem(spatem, time_ns / NANOSECONDS)
+        self._send_signal_lanes(vehicle_id, time_ns)
+
+    def _send_signal_lanes(self, vehicle_id: str, time_ns: int) -> None:
+        drawn = self._signal_lanes[vehicle_id].geojson(time_ns / NANOSECONDS)
+        if drawn is not None:
+            self.emit(vehicle_topic(vehicle_id, "signals"), drawn, time_ns)
 
     def _on_behaviour(self, vehicle_id: str, behaviour: planner_pb2.BehaviourRequest, time_ns: int) -> None:
         self._behaviour[vehicle_id] = behaviour

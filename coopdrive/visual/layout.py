@@ -43,8 +43,10 @@ def drive_layout(vehicle_id: str = "ego") -> fl.Layout:
     fixes = [vehicle_topic(vehicle_id, name) for name in ("ego", "gnss", "v2x_stations")]
     map_panel = fl.MapPanel(title="Map", config=fl.MapConfig(
         follow_topic=fixes[0], zoom_level=MAP_ZOOM_LEVEL,
-        topic_config={topic: fl.MapTopicSettings(history_mode="previous", time_window_seconds=30.0,
-                                                 show_heading=topic == fixes[0]) for topic in fixes}))
+        topic_config={**{topic: fl.MapTopicSettings(history_mode="previous", time_window_seconds=30.0,
+                                                    show_heading=topic == fixes[0]) for topic in fixes},
+                      # The intersections' lanes as they stand now: the newest message only.
+                      vehicle_topic(vehicle_id, "signals"): fl.MapTopicSettings(history_mode="none")}))
     scene_topics = [vehicle_topic(vehicle_id, "scene"), GROUND_TRUTH_TOPIC, MAP_TOPIC]
     three_dee = fl.ThreeDeePanel(title="3D", config=fl.ThreeDeeConfig(
         follow_tf=vehicle_id, fixed_frame=MAP_FRAME, follow_mode="follow-heading",

@@ -10,7 +10,8 @@ from signal_world import GREEN, LEFT, RED, RIGHT, STRAIGHT, ego_at, event, light
 
 from coopdrive.services.planner.config import Intention, SignalConfig
 from coopdrive.services.planner.signals.awareness import SignalAwareness, SignalStatus
-from coopdrive.services.planner.signals.lanes import ingress_lanes, reference_plane
+from coopdrive.roadmap.intersection_lanes import reference_plane
+from coopdrive.services.planner.signals.lanes import ingress_lanes
 from coopdrive.services.planner.signals.time_mark import stack_time_of_mark_s
 from coopdrive.v2x.timebase import ItsClock
 

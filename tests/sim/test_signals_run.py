@@ -12,6 +12,8 @@ import pytest
 from coopdrive.recording.reader import read_messages
 from coopdrive.services.sim.signal_metrics import crossings
 from coopdrive.v1 import infrastructure_pb2 as pb
+from coopdrive.visual.signal_lanes import STATE_COLORS
+from tests.visual.foxglove_mcap import foxglove_channels
 
 pytestmark = pytest.mark.whole_run
 
@@ -35,17 +37,17 @@ def run(tmp_path_factory):
     for item in read_messages(recording):
         if item.topic.endswith(("car1/v2x/mapem", "car1/v2x/spatem", "world/ground_truth")):
             messages.setdefault(item.topic.rsplit("/", 1)[-1], []).append(item.message)
-    return json.loads(result.stdout), messages
+    return json.loads(result.stdout), messages, recording
 
 
 def test_the_run_passes_and_no_scripted_car_runs_a_red_light(run):
-    summary, _ = run
+    summary, _, _ = run
     assert summary["success"] is True and summary["collisions"] == 0
     assert summary["signal_red_light_violations_scripted"] == 0
 
 
 def test_both_roadside_units_mapems_reach_the_stack_with_ingress_lanes_starting_at_their_stop_lines(run):
-    _, messages = run
+    _, messages, _ = run
     mapems = {m.station_id: m for m in messages["mapem"]}
     assert set(mapems) == {RSU_A, RSU_B}
     intersection = mapems[RSU_A].intersections[0]
@@ -56,7 +58,7 @@ def test_both_roadside_units_mapems_reach_the_stack_with_ingress_lanes_starting_
 
 
 def test_the_stacks_spatems_say_what_the_controller_shows(run):
-    _, messages = run
+    _, messages, _ = run
     spatems = [m for m in messages["spatem"] if m.station_id == RSU_A]
     assert len(spatems) > 10 * DURATION_S / 2
     # 10:00:00 UTC at the start: seconds of the hour are the run's. The main road is green until 5 s, then amber.
@@ -70,7 +72,7 @@ def test_the_stacks_spatems_say_what_the_controller_shows(run):
 
 
 def test_the_stack_arrives_at_the_first_crossroads_on_green_without_stopping_and_never_enters_on_red(run):
-    summary, messages = run
+    summary, messages, _ = run
     assert summary["signal_red_light_violations"] == 0
     frames = [(m.header.sample_time_s, m.vehicles, m.signals) for m in messages["ground_truth"]]
     (crossing,) = [c for c in crossings(frames) if c.vehicle_id == "car1"]
@@ -80,10 +82,25 @@ def test_the_stack_arrives_at_the_first_crossroads_on_green_without_stopping_and
 
 
 def test_the_scripted_car_on_the_side_road_stops_at_its_red_and_crosses_on_green(run):
-    _, messages = run
+    _, messages, _ = run
     frames = [(m.header.sample_time_s, m.vehicles, m.signals) for m in messages["ground_truth"]]
     speeds = [v.speed_mps for time_s, vehicles, _ in frames for v in vehicles
               if v.vehicle_id == "north_car" and time_s < SIDE_GREEN_S]
     assert min(speeds) < 0.1
     (crossing,) = [c for c in crossings(frames) if c.vehicle_id == "north_car"]
     assert crossing.time_s >= SIDE_GREEN_S and not crossing.red
+
+
+def test_foxglove_draws_both_crossroads_lanes_with_each_movement_in_the_colour_of_the_last_spat(run):
+    _, messages, recording = run
+    drawn = foxglove_channels(recording)["foxglove/car1/signals"]
+    assert len(drawn) >= len(messages["spatem"])
+    movements = {f["properties"]["name"]: f["properties"]["style"]["color"]
+                 for f in json.loads(drawn[-1].geojson)["features"] if "signal group" in f["properties"]["name"]}
+    assert {name.split(" lane")[0] for name in movements} == {"intersection 0/1", "intersection 0/2"}
+    last = {g.signal_group: g.events[0].state
+            for g in [m for m in messages["spatem"] if m.station_id == RSU_A][-1].intersections[0].signal_groups}
+    for name, colour in movements.items():
+        if name.startswith("intersection 0/1"):
+            group = int(name.split("signal group ")[1].split(":")[0])
+            assert colour == STATE_COLORS[last[group]], name

@@ -4,12 +4,13 @@ from collections import defaultdict
 from pathlib import Path
 
 from foxglove_schemas_protobuf.FrameTransforms_pb2 import FrameTransforms
+from foxglove_schemas_protobuf.GeoJSON_pb2 import GeoJSON
 from foxglove_schemas_protobuf.LocationFix_pb2 import LocationFix
 from foxglove_schemas_protobuf.SceneUpdate_pb2 import SceneUpdate
 from google.protobuf.descriptor_pb2 import FileDescriptorSet
 from mcap.reader import make_reader
 
-FOXGLOVE_CLASSES = {cls.DESCRIPTOR.full_name: cls for cls in (LocationFix, FrameTransforms, SceneUpdate)}
+FOXGLOVE_CLASSES = {cls.DESCRIPTOR.full_name: cls for cls in (LocationFix, FrameTransforms, SceneUpdate, GeoJSON)}
 
 
 def foxglove_channels(path: Path) -> dict[str, list]:

@@ -13,12 +13,13 @@ import math
 from dataclasses import dataclass
 
 from coopdrive.geodesy import LocalTangentPlane
+from coopdrive.roadmap.intersection_lanes import intersection_key, reference_plane
 from coopdrive.v1 import infrastructure_pb2 as pb
 from coopdrive.v2x.timebase import ItsClock
 
 from ..config import Intention, SignalConfig
 from .lane_match import LaneMatch, MatchTolerance, match_on_lane, nearest_match
-from .lanes import IngressLane, ingress_lanes, intersection_key, reference_plane
+from .lanes import IngressLane, ingress_lanes
 from .phases import GroupTiming
 from .spat_tracker import SpatTracker
 

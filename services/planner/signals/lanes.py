@@ -1,11 +1,5 @@
-"""A MAPEM intersection's ingress lanes in a plane about its reference point, each with its stop line and the
-signal group of each movement it connects to.
-
-ISO TS 19091 / SAE J2735 node lists: the first node lies at the stop line (the end of the lane nearest the
-intersection) and is given from the reference point; each later node is given from the one before, further from
-the intersection (so traffic on an ingress lane runs from the last node towards the first, and on an egress lane
-from the first node away). A node-LatLon is absolute.
-"""
+"""A MAPEM intersection's ingress lanes in a plane about its reference point (coopdrive/roadmap/intersection_lanes.py),
+each with its stop line and the signal group of each movement it connects to."""
 
 from __future__ import annotations
 
@@ -13,11 +7,11 @@ import math
 from dataclasses import dataclass
 
 from coopdrive.geodesy import LocalTangentPlane
+from coopdrive.roadmap.intersection_lanes import Point, intersection_key, lane_points
 from coopdrive.v1 import infrastructure_pb2 as pb
 
 from ..config import Intention
 
-Point = tuple[float, float]
 # A movement turning less than this from the ingress direction goes straight on; more (up to U_TURN_DEG) turns.
 STRAIGHT_DEG = 45.0
 U_TURN_DEG = 150.0
@@ -74,21 +68,9 @@ def turn_of(entry_rad: float, exit_rad: float) -> Intention | None:
     return Intention.LEFT if turn_deg > 0 else Intention.RIGHT
 
 
-def intersection_key(reference: pb.IntersectionReference) -> tuple[int, int]:
-    """(region, id); region 0 when the id is unique on its own."""
-    return (reference.region if reference.HasField("region") else 0), reference.id
-
-
-def reference_plane(intersection: pb.MapIntersection) -> LocalTangentPlane | None:
-    """The plane about the reference point; None when the MAP left its position unavailable."""
-    if not all(map(math.isfinite, (intersection.reference_latitude_deg, intersection.reference_longitude_deg))):
-        return None
-    return LocalTangentPlane(intersection.reference_latitude_deg, intersection.reference_longitude_deg)
-
-
 def ingress_lanes(intersection: pb.MapIntersection, plane: LocalTangentPlane) -> list[IngressLane]:
     """The vehicle ingress lanes with at least two nodes whose positions the MAP gives."""
-    nodes = _node_lists(intersection, plane)
+    nodes = lane_points(intersection, plane)
     half_width_m = intersection.lane_width_m / 2.0 if intersection.HasField("lane_width_m") else None
     key = intersection_key(intersection.id)
     lanes = []
@@ -109,32 +91,3 @@ def _movement(connection: pb.LaneConnection, nodes: dict[int, tuple[Point, ...]]
         (x0, y0), (x1, y1) = exit_nodes[0], exit_nodes[1]
         heading = math.atan2(y1 - y0, x1 - x0)
     return Movement(connection.to_lane_id, group, heading)
-
-
-def _node_lists(intersection: pb.MapIntersection, plane: LocalTangentPlane) -> dict[int, tuple[Point, ...]]:
-    """Every lane's nodes as points about the reference point; a computed lane is its reference lane's moved."""
-    points: dict[int, tuple[Point, ...]] = {}
-    for lane in intersection.lanes:
-        if not lane.HasField("computed"):
-            points[lane.lane_id] = _points(lane.nodes, plane)
-    for lane in intersection.lanes:
-        if lane.HasField("computed") and lane.computed.reference_lane_id in points:
-            c = lane.computed
-            points[lane.lane_id] = tuple((x + c.offset_east_m, y + c.offset_north_m)
-                                         for x, y in points[c.reference_lane_id])
-    return points
-
-
-def _points(nodes, plane: LocalTangentPlane) -> tuple[Point, ...]:
-    """Offsets accumulated from the reference point; an absolute node restarts the sum; a node without a position
-    ends the list (the nodes after it cannot be placed)."""
-    x, y, points = 0.0, 0.0, []
-    for node in nodes:
-        if node.HasField("latitude_deg") and node.HasField("longitude_deg"):
-            x, y, _ = plane.to_enu(node.latitude_deg, node.longitude_deg)
-        elif node.HasField("east_m") and node.HasField("north_m"):
-            x, y = x + node.east_m, y + node.north_m
-        else:
-            break
-        points.append((x, y))
-    return tuple(points)

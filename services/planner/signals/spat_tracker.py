@@ -9,10 +9,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from coopdrive.roadmap.intersection_lanes import intersection_key
 from coopdrive.v1 import infrastructure_pb2 as pb
 from coopdrive.v2x.timebase import ItsClock
 
-from .lanes import intersection_key
 from .phases import GroupTiming, group_timing, intersection_failed
 
 GroupKey = tuple[int, int, int]  # region (0: none given), intersection id, signal group
