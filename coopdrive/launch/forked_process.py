@@ -72,8 +72,14 @@ class ForkedProcess:
         return self._process.exitcode
 
     def send_signal(self, signum: int) -> None:
+        """Nothing once the process has ended, as Popen.send_signal: the fork server, its parent, reaps it, and
+        tells us its exit code only a moment later, so a process that ends between the check and the signal is
+        gone (seen: a simulator that gave up at its start timeout, stopped as it ended)."""
         if self._process.exitcode is None:
-            os.kill(self.pid, signum)
+            try:
+                os.kill(self.pid, signum)
+            except ProcessLookupError:
+                pass
 
     def kill(self) -> None:
         self._process.kill()

@@ -116,3 +116,15 @@ def test_a_run_started_by_a_script_without_a_main_guard_runs_the_script_once(tmp
                               timeout=RUN_WAIT_S, input=UNGUARDED_SCRIPT if from_stdin else None, cwd=tmp_path)
     assert finished.stdout.count("the script runs in") == 1, finished.stdout + finished.stderr[-2000:]
     assert "success: True" in finished.stdout, finished.stderr[-2000:]
+
+
+def test_signalling_a_service_that_ended_before_the_fork_server_said_so_does_nothing():
+    """The fork server reaps its children and reports their exit a moment later: in between, the pid is gone while
+    the exit code is still unknown (a stop of a simulator that gave up at its start timeout once raised here)."""
+    ended = subprocess.Popen([sys.executable, "-c", "pass"])
+    ended.wait()  # reaped: its pid names no process
+    process = ForkedProcess.__new__(ForkedProcess)
+    process._process = multiprocessing.Process()  # never started: its exit code is None, as one not yet reported
+    process.pid = ended.pid
+    process.send_signal(15)
+    assert process.poll() is None
