@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import enum
 
-from pydantic import AwareDatetime, BaseModel, ConfigDict, Field
+from pydantic import AwareDatetime, BaseModel, ConfigDict, Field, model_validator
 
 from coopdrive.messages.unknowns import DEFAULT_LENGTH_M
 from coopdrive.runtime.service import ServiceConfig
@@ -154,12 +154,29 @@ class SignalConfig(BaseModel):
     # GLOSA arrives this long after a green starts (the red-amber and the queue's start), never slower than this.
     glosa_margin_s: float = Field(1.0, ge=0)
     glosa_min_speed_mps: float = Field(20.0 * KPH, gt=0)
-    # No SPATEM for the ego's signal group this long is stale SPaT: a safe stop at the line.
+    # No SPATEM for the ego's signal group this long is stale SPaT: a safe stop at the line. A roadside unit that
+    # sends slower is judged at its own pace (the median of its last gaps): stale after spat_stale_periods of them,
+    # so that one lost SPATEM is not, and never later than spat_stale_max_s, so that a slow RSU's silence is not
+    # trusted for long. At 10 Hz the 1 s decides; at 0.5 Hz, 3 gaps (6 s) capped at 5 s.
     spat_stale_s: float = Field(1.0, gt=0)
+    spat_stale_periods: float = Field(3.0, ge=1)
+    spat_stale_max_s: float = Field(5.0, gt=0)
     # SPaT that contradicted itself (minEndTime after maxEndTime, an end time jumping back, a phase ending before
     # its minEndTime) is not trusted for this long after the last contradiction; end times may wander this much.
     contradiction_hold_s: float = Field(5.0, gt=0)
     timing_tolerance_s: float = Field(0.5, ge=0)
+
+    @model_validator(mode="after")
+    def _stale_limits_in_order(self) -> SignalConfig:
+        if self.spat_stale_max_s < self.spat_stale_s:
+            raise ValueError(f"spat_stale_max_s {self.spat_stale_max_s:g} is below spat_stale_s {self.spat_stale_s:g}")
+        return self
+
+    def stale_after_s(self, period_s: float | None) -> float:
+        """How long after its last SPATEM a group's SPaT is stale, for an intersection sending every period_s
+        (None: not known yet)."""
+        paced_s = 0.0 if period_s is None else self.spat_stale_periods * period_s
+        return min(max(self.spat_stale_s, paced_s), self.spat_stale_max_s)
 
 
 class PlannerLogicConfig(BaseModel):

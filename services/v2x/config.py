@@ -136,7 +136,7 @@ class V2xConfig(ServiceConfig):
     clock_epoch_utc: datetime | None = None
     loss_timeout_s: float = Field(0.4, gt=0.0)
     # Rate at which every remote station's CAMs and iCLCMs are expected, for the reception ratio. Unset: the
-    # cam_mode's (gcdc: 25 Hz); with cam_mode etsi, each station's own (services/v2x/expected_period.py),
+    # cam_mode's (gcdc: 25 Hz); with cam_mode etsi, each station's own (coopdrive/v2x/expected_period.py),
     # since EN 302 637-2 lets a CAM come every 100-1000 ms as the sender's dynamics trigger it.
     expected_rate_hz: float | None = Field(None, gt=0.0)
     statistics_window_s: float = Field(5.0, gt=0.0)

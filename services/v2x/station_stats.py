@@ -17,7 +17,7 @@ from collections import deque
 import numpy as np
 
 from coopdrive.services.v2x.clock_offset import ClockOffset, diagnose
-from coopdrive.services.v2x.expected_period import ExpectedPeriod, expected_period
+from coopdrive.v2x.expected_period import ExpectedPeriod, expected_period
 from coopdrive.v2x.its_pdu import ItsMessageId
 from coopdrive.v2x.security_verdict import SecurityVerdict
 from coopdrive.v2x.timebase import MS_PER_S

@@ -79,6 +79,35 @@ def test_spat_older_than_the_stale_limit_is_stale():
     assert view(awareness, 11.05, -100.0).status is SignalStatus.STALE
 
 
+def test_a_roadside_unit_at_0_5_hz_is_judged_at_its_own_pace_so_its_spat_is_stale_only_after_three_of_its_gaps():
+    awareness, config = aware(), SignalConfig()
+    for k in range(4):  # a SPATEM every 2 s
+        awareness.on_spatem(light((RED, 60.0)), 2.0 * k)
+    last_s = 6.0
+    # One SPATEM lost (a 4 s gap) is not stale; three periods (6 s) are capped at spat_stale_max_s.
+    assert view(awareness, last_s + 4.0, -100.0).status is SignalStatus.OK
+    assert view(awareness, last_s + config.spat_stale_max_s, -100.0).status is SignalStatus.OK
+    assert view(awareness, last_s + config.spat_stale_max_s + 0.05, -100.0).status is SignalStatus.STALE
+
+
+def test_a_roadside_unit_at_10_hz_is_stale_after_one_second_as_the_fixed_limit_says():
+    awareness = aware()
+    for k in range(11):
+        awareness.on_spatem(light((RED, 60.0)), 0.1 * k)
+    assert view(awareness, 2.0, -100.0).status is SignalStatus.OK
+    assert view(awareness, 2.05, -100.0).status is SignalStatus.STALE
+
+
+@pytest.mark.parametrize("period_s, stale_after_s", [(None, 1.0), (0.1, 1.0), (0.5, 1.5), (1.0, 3.0), (2.0, 5.0)])
+def test_the_stale_limit_is_three_of_the_intersections_gaps_between_one_and_five_seconds(period_s, stale_after_s):
+    assert SignalConfig().stale_after_s(period_s) == pytest.approx(stale_after_s)
+
+
+def test_a_stale_cap_below_the_stale_floor_is_refused_naming_both():
+    with pytest.raises(ValueError, match="spat_stale_max_s 0.5 is below spat_stale_s 1"):
+        SignalConfig(spat_stale_max_s=0.5)
+
+
 def test_a_contradiction_is_held_for_its_hold_time_then_forgotten():
     awareness = aware()
     awareness.on_spatem(spatem([event(RED, 20.0, 25.0, 30.0)]), 0.0)

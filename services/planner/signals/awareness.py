@@ -124,7 +124,7 @@ class SignalAwareness:
         timing = self.tracker.latest[key]
         contradiction = self.tracker.contradictions.get(key)
         age_s = now_s - timing.received_s
-        if age_s > self.config.spat_stale_s:
+        if age_s > self.config.stale_after_s(self.tracker.period_s(key)):
             return SignalView(SignalStatus.STALE, match, group, timing, f"{where}: SPaT {age_s:.1f} s old")
         if contradiction is not None and now_s - contradiction.at_s <= self.config.contradiction_hold_s:
             return SignalView(SignalStatus.CONTRADICTORY, match, group, timing, f"{where}: {contradiction.why}")

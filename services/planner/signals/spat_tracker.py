@@ -1,4 +1,6 @@
-"""The latest SPaT of every signal group heard, and whether it has contradicted itself.
+"""The latest SPaT of every signal group heard, whether it has contradicted itself, and the pace each intersection's
+SPATEMs come at (the median of its last gaps: coopdrive/v2x/expected_period.py), so that a slow roadside unit's
+silence between two of its SPATEMs is not taken for a lost SPaT.
 
 Checked on each SPATEM, against the group's own phases and against its previous SPATEM: minEndTime after
 maxEndTime, likelyTime outside them, minEndTime moving earlier or maxEndTime later within the same phase (each is
@@ -11,7 +13,8 @@ from dataclasses import dataclass
 
 from coopdrive.roadmap.intersection_lanes import intersection_key
 from coopdrive.v1 import infrastructure_pb2 as pb
-from coopdrive.v2x.timebase import ItsClock
+from coopdrive.v2x.expected_period import ObservedPeriod
+from coopdrive.v2x.timebase import MS_PER_S, ItsClock
 
 from .phases import GroupTiming, group_timing, intersection_failed
 
@@ -30,10 +33,13 @@ class SpatTracker:
         self.tolerance_s = tolerance_s
         self.latest: dict[GroupKey, GroupTiming] = {}
         self.contradictions: dict[GroupKey, Contradiction] = {}
+        self._paces: dict[tuple[int, int], ObservedPeriod] = {}
+        self._heard_s: dict[tuple[int, int], float] = {}
 
     def on_spatem(self, content: pb.SpatemContent, received_s: float) -> None:
         for intersection in content.intersections:
             region, number = intersection_key(intersection.id)
+            self._observe_pace((region, number), received_s)
             failed = intersection_failed(intersection.status)
             for group in intersection.signal_groups:
                 key = (region, number, group.signal_group)
@@ -42,6 +48,18 @@ class SpatTracker:
                 if why:
                     self.contradictions[key] = Contradiction(received_s, why)
                 self.latest[key] = timing
+
+    def period_s(self, key: GroupKey) -> float | None:
+        """How often the group's intersection sends SPATEMs, by their arrivals; None before its second."""
+        pace = self._paces.get(key[:2])
+        period_ms = None if pace is None else pace.period_ms()
+        return None if period_ms is None else period_ms / MS_PER_S
+
+    def _observe_pace(self, intersection: tuple[int, int], received_s: float) -> None:
+        before_s = self._heard_s.get(intersection)
+        self._heard_s[intersection] = received_s
+        if before_s is not None:
+            self._paces.setdefault(intersection, ObservedPeriod()).observe((received_s - before_s) * MS_PER_S)
 
     def _contradiction(self, before: GroupTiming | None, now: GroupTiming) -> str:
         tol = self.tolerance_s

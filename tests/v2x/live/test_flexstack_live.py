@@ -81,7 +81,7 @@ def test_flexstacks_cams_reach_our_station_table_with_its_station_id_and_positio
 
 def test_a_standard_peer_at_its_own_cam_rate_shows_a_reception_ratio_near_one(live):
     """FlexStack sends CAMs by EN 302 637-2's generation rules (about 10 Hz while it moves), not GCDC's 25 Hz: its
-    reception ratio is judged at its own rate (services/v2x/expected_period.py), so a clean wire shows about 1."""
+    reception ratio is judged at its own rate (coopdrive/v2x/expected_period.py), so a clean wire shows about 1."""
     station = station_status(live["ours"], PEER)
     assert 1.0 <= station["expected_cam_rate_hz"] <= 10.5
     assert station["reception_ratio"] >= 0.9

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from coopdrive.services.v2x.config import CamMode, PlausibilityLimits, V2xConfig
-from coopdrive.services.v2x.expected_period import FixedPeriod, ObservedPeriod
+from coopdrive.v2x.expected_period import FixedPeriod, ObservedPeriod
 from coopdrive.services.v2x.reception import OwnIdentity, Reception
 from coopdrive.v1 import v2x_pb2
 

@@ -1,5 +1,6 @@
-"""How often a remote station is expected to send a periodic stream (its CAMs, its iCLCMs), so that a gap in its
-generation times can be counted in missed messages.
+"""How often a remote station is expected to send a periodic stream (its CAMs, its iCLCMs, a roadside unit's
+SPATEMs), so that a gap in its generation times can be counted in missed messages, or its silence told from its
+pace.
 
 - A fixed rate, where a profile sets one: GCDC 2016 sent every CAM and iCLCM at 25 Hz.
 - Otherwise the station's own: EN 302 637-2 (6.1.3) lets a CAM come every 100 to 1000 ms as the vehicle's dynamics
