@@ -68,3 +68,27 @@ def test_a_line_too_close_for_comfort_braking_is_still_not_crossed():
 def test_a_line_already_passed_holds_the_car_at_standstill():
     position_m, speed_mps = drive_to_stop_line(0.0, speed_mps=0.0, duration_s=5.0)
     assert speed_mps == 0.0 and position_m == pytest.approx(0.0, abs=0.05)
+
+
+def peak_deceleration_mps2(line_m, speed_mps, duration_s=25.0):
+    """The largest deceleration the car's driveline gives on the way to a line first seen line_m ahead."""
+    controller = LongitudinalController(CAR)
+    position_m, accel_mps2, peak_mps2 = 0.0, 0.0, 0.0
+    for step in range(int(duration_s / DT_S)):
+        now_s = step * DT_S
+        request = stop_line_request(line_m - position_m, sample_time_s=now_s)
+        command = controller.step(now_s, speed_mps, accel_mps2, [stop_line_target(request, speed_mps, now_s)],
+                                  request.desired_speed_mps, Spacing(6.0, 1.5))
+        accel_mps2 += (command.accel_request_mps2 - accel_mps2) * DT_S / CAR.engine_lag_s
+        speed_mps = max(0.0, speed_mps + accel_mps2 * DT_S)
+        position_m += speed_mps * DT_S
+        peak_mps2 = max(peak_mps2, -accel_mps2)
+    return peak_mps2
+
+
+def test_a_car_above_the_planned_braking_curve_brakes_on_the_curve_through_its_own_state_not_at_the_comfort_limit():
+    """50 km/h, 80 m from the line: the constant deceleration that stops it there is 1.2 m/s2 (eq. S3); the curve
+    of the planned 1 m/s2 alone (S2) asked the comfort limit, 2 m/s2."""
+    speed_mps, stop_m = 50 / 3.6, 80.0 - STOP_LINE_MARGIN_M
+    needed_mps2 = speed_mps ** 2 / (2 * stop_m)
+    assert needed_mps2 < peak_deceleration_mps2(80.0, speed_mps) < 1.2 * needed_mps2
