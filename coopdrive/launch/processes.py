@@ -91,12 +91,17 @@ class ServiceProcesses:
             command.append("--verbose")
             self._log_dir.mkdir(parents=True, exist_ok=True)
             log_path = self._log_dir / f"{name.replace('/', '-')}.log"
-        environment = self._environment_of(name)
+        environment, spool = self._environment_of(name)
         if multiprocessing.current_process().daemon or os.environ.get(NEW_INTERPRETERS_VARIABLE) == "1":
             # A daemonic process (a Dask worker's, by default) may not fork children of its own: a new interpreter.
             self.processes[name] = _new_interpreter(command, environment, log_path, log_mode)
         else:
             self.processes[name] = ForkedProcess(command, environment, log_path, log_mode)
+        if spool is not None:
+            # Only now, with the new process in place: until then exited() (the launcher's thread) still sees the
+            # old one, ended, and would tell the merge that this new spool, still empty, was whole (a restarted
+            # service's messages then never reached the recording, seen when its start took long on a busy machine).
+            self._spool_of[name] = spool
         self._started_with[name] = (specs, arguments)
         for spec in specs:
             self.process_of[spec.participant] = name
@@ -109,18 +114,19 @@ class ServiceProcesses:
         process as its launcher, so that the service ends with it."""
         return {"ZENOH_RUNTIME": SIMULATION_ZENOH_RUNTIME, **os.environ, **launcher_environment()}
 
-    def _environment_of(self, name: str) -> dict[str, str]:
-        """With a spool directory, the spool file of this start of process `name`: named after the process and
-        numbered from 0 by its starts, so that a recording's order is the same in every run."""
+    def _environment_of(self, name: str) -> tuple[dict[str, str], Path | None]:
+        """The environment of this start of process `name` and, with a spool directory, its spool file: named after
+        the process and numbered from 0 by its starts, so that a recording's order is the same in every run."""
         environment = self.environment()
         environment.pop(SPOOL_PATH_ENV, None)
-        if self._spool_dir is not None:
-            start = self._starts[name] = self._starts.get(name, -1) + 1
-            spool = self._spool_of[name] = self._spool_dir / f"{name.replace('/', '-')}-{start}{SPOOL_SUFFIX}"
-            environment[SPOOL_PATH_ENV] = str(spool)
-            if self._spool_merge is not None:
-                self._spool_merge.add(spool)  # before the process can write it
-        return environment
+        if self._spool_dir is None:
+            return environment, None
+        start = self._starts[name] = self._starts.get(name, -1) + 1
+        spool = self._spool_dir / f"{name.replace('/', '-')}-{start}{SPOOL_SUFFIX}"
+        environment[SPOOL_PATH_ENV] = str(spool)
+        if self._spool_merge is not None:
+            self._spool_merge.add(spool)  # before the process can write it
+        return environment, spool
 
     def exited(self) -> dict[str, int]:
         """Processes that have ended, with their exit codes; the merge learns that their spools are whole."""

@@ -58,3 +58,49 @@ def test_a_killed_service_is_started_again_with_the_same_command_and_its_log_goe
         assert log.count("missing.json") >= 2, log
     finally:
         processes.stop_all()
+
+
+class _Ended:
+    """A process that has ended: what exited() and restart() ask of one."""
+
+    returncode = -9
+
+    def poll(self) -> int:
+        return self.returncode
+
+    def wait(self, timeout=None) -> int:
+        return self.returncode
+
+
+class _MergeTold:
+    """What the spool merge is told: spools added and spools whose writer is gone."""
+
+    def __init__(self):
+        self.added, self.gone = [], []
+
+    def add(self, path):
+        self.added.append(path.name)
+
+    def writer_gone(self, path):
+        self.gone.append(path.name)
+
+
+def test_a_restarted_service_s_new_spool_is_not_taken_for_whole_while_its_process_is_still_starting(tmp_path,
+                                                                                                 monkeypatch):
+    """The launcher's thread asks exited() while restart() is forking the new process: it still sees the old one,
+    ended. Its end must close the old spool only: the new one, told whole before its process wrote anything, left
+    the restarted service's messages out of the recording (4 runs of 5 under load, test_service_crash_run.py)."""
+    import coopdrive.launch.processes as processes_module
+
+    merge = _MergeTold()
+    processes = ServiceProcesses("tcp/127.0.0.1:1", spool_dir=tmp_path, spool_merge=merge)
+
+    def started_while_the_launcher_polls(*_arguments):
+        processes.exited()  # the launcher's thread, mid-start
+        return _Ended()
+
+    monkeypatch.setattr(processes_module, "ForkedProcess", started_while_the_launcher_polls)
+    processes.start(ServiceSpec("control", "p1", {}))
+    processes.restart("p1/control")
+    assert merge.added == ["p1-control-0.spool.mcap", "p1-control-1.spool.mcap"]
+    assert "p1-control-1.spool.mcap" not in merge.gone and "p1-control-0.spool.mcap" in merge.gone
