@@ -22,6 +22,11 @@ def intersection_key(reference: pb.IntersectionReference) -> tuple[int, int]:
     return (reference.region if reference.HasField("region") else 0), reference.id
 
 
+def leads_to_another_intersection(connection: pb.LaneConnection, key: tuple[int, int]) -> bool:
+    """The connection's lane is one of another intersection's (whose MAP gives its nodes), not of `key`'s."""
+    return connection.HasField("remote_intersection") and intersection_key(connection.remote_intersection) != key
+
+
 def reference_plane(intersection: pb.MapIntersection) -> LocalTangentPlane | None:
     """The plane about the reference point; None when the MAP left its position unavailable."""
     if not all(map(math.isfinite, (intersection.reference_latitude_deg, intersection.reference_longitude_deg))):

@@ -16,7 +16,8 @@ import json
 from foxglove_schemas_protobuf.GeoJSON_pb2 import GeoJSON
 
 from coopdrive.geodesy import LocalTangentPlane
-from coopdrive.roadmap.intersection_lanes import Point, intersection_key, lane_points, reference_plane
+from coopdrive.roadmap.intersection_lanes import (Point, intersection_key, lane_points, leads_to_another_intersection,
+                                                   reference_plane)
 from coopdrive.v1 import infrastructure_pb2 as pb
 
 IntersectionKey = tuple[int, int]
@@ -93,7 +94,7 @@ def _intersection_features(key: IntersectionKey, intersection: pb.MapIntersectio
 def _across_the_box(points: dict[int, tuple[Point, ...]], lane_id: int, connection: pb.LaneConnection,
                     key: IntersectionKey) -> tuple[Point, Point] | None:
     """From the ingress lane's stop line to the egress lane's first node, when both are in this MAP."""
-    if connection.HasField("remote_intersection") and intersection_key(connection.remote_intersection) != key:
+    if leads_to_another_intersection(connection, key):
         return None
     ingress, egress = points.get(lane_id, ()), points.get(connection.to_lane_id, ())
     return (ingress[0], egress[0]) if ingress and egress else None

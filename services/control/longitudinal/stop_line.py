@@ -25,9 +25,6 @@ class StopLineApproach:
         self.decel_mps2 = decel_mps2
         self.speed_gain_per_s = speed_gain_per_s
 
-    def allowed_speed_mps(self, distance_m: float) -> float:
-        return math.sqrt(2.0 * self.decel_mps2 * max(distance_m, 0.0))  # (eq. S1)
-
     def step(self, distance_m: float, ego_speed_mps: float) -> float:
         """Acceleration request (m/s2) for a stopping point distance_m ahead."""
         decel_mps2 = self.decel_mps2

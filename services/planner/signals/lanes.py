@@ -7,7 +7,7 @@ import math
 from dataclasses import dataclass
 
 from coopdrive.geodesy import LocalTangentPlane
-from coopdrive.roadmap.intersection_lanes import Point, intersection_key, lane_points
+from coopdrive.roadmap.intersection_lanes import Point, intersection_key, lane_points, leads_to_another_intersection
 from coopdrive.v1 import infrastructure_pb2 as pb
 
 from ..config import Intention
@@ -84,8 +84,7 @@ def ingress_lanes(intersection: pb.MapIntersection, plane: LocalTangentPlane) ->
 
 def _movement(connection: pb.LaneConnection, nodes: dict[int, tuple[Point, ...]], key: tuple[int, int]) -> Movement:
     group = connection.signal_group if connection.HasField("signal_group") else None
-    remote = connection.HasField("remote_intersection") and intersection_key(connection.remote_intersection) != key
-    exit_nodes = () if remote else nodes.get(connection.to_lane_id, ())
+    exit_nodes = () if leads_to_another_intersection(connection, key) else nodes.get(connection.to_lane_id, ())
     heading = None
     if len(exit_nodes) >= 2:
         (x0, y0), (x1, y1) = exit_nodes[0], exit_nodes[1]
