@@ -9,8 +9,8 @@ The scenes run turn about, frame by frame, so a load that comes and goes on the 
 objects, run in between, cost ours a tenth to a fifth: the two share the caches and the garbage collector).
 Assoc ms: one frame's association alone, ours (only the gated pairs costed and solved) against every
 measurement-track pair's cost by the pair-by-pair loop with a general inverse (association.polar_cost_loop) and
-one assignment. The last column is how the update time grows from 50 to 200 objects against n log n's growth
-(at most 1 is what the scene issue asks). Seeded; run with:
+one assignment. The last column is how the update time grows from 50 to 200 objects against n log n's growth (at
+most 1 is what the scene issue asks), today's scene alone, the two sizes turn about. Seeded; run with:
 
     .venv/bin/python -m bench.bench_scene
 """
@@ -54,6 +54,8 @@ BRUTE_FORCE_REPEATS = sized(3, 1)
 ASSOCIATION_FRAMES = sized(100, 5)
 # Turns of ours and the brute force (bench/turn_about.py).
 ASSOCIATION_ROUNDS = sized(3, 1)
+# Turns of today's scene alone at the two largest counts, for the growth ratio and its interval.
+GROWTH_ROUNDS = sized(3, 1)
 # Frames of our association whose instructions are counted, and at which sizes: the brute force at 200 objects
 # executes 5.5 billion instructions, 10 minutes under callgrind on this machine.
 INSTRUCTION_FRAMES = 5
@@ -165,6 +167,17 @@ def association_ratios(count: int, by_time: float, instructions: dict[str, float
               guarded_by=None if counted is None else counted.name)]
 
 
+def growth_to_n_log_n(fewer: int, count: int) -> Figure:
+    """How today's scene update, alone, grows from `fewer` to `count` objects over n log n's growth; the two sizes
+    run turn about in GROWTH_ROUNDS rounds, which give the ratio's interval (bench/turn_spread.py)."""
+    fewer_ms, count_ms = turns([lambda: run([fusion_now], fewer)[0][0], lambda: run([fusion_now], count)[0][0]],
+                               GROWTH_ROUNDS)
+    n_log_n = (count * math.log(count)) / (fewer * math.log(fewer))
+    return ratio(f"update growth {fewer} -> {count} objects to n log n's", min(count_ms) / min(fewer_ms) / n_log_n,
+                 f"n log n's growth from {fewer} to {count}", Better.LOWER,
+                 spread=turn_ratio_spread(count_ms, [n_log_n * ms for ms in fewer_ms]))
+
+
 def main() -> list[Figure]:
     instructions = per_call(INSTRUCTION_WORKLOADS)
     before = scene_before.load(BEFORE_REVISION)
@@ -184,12 +197,9 @@ def main() -> list[Figure]:
         assoc_ms, brute_force_ms = min(assoc_turns), min(brute_force_turns)
         growth = ""
         if count == OBJECT_COUNTS[-1]:
-            fewer = OBJECT_COUNTS[-2]
-            n_log_n = (count * math.log(count)) / (fewer * math.log(fewer))
-            growth = f"{now_ms[count] / now_ms[fewer] / n_log_n:.2f}"
-            figures.append(ratio(f"update growth {fewer} -> {count} objects to n log n's",
-                                 now_ms[count] / now_ms[fewer] / n_log_n, f"n log n's growth from {fewer} to {count}",
-                                 Better.LOWER))
+            growth_ratio = growth_to_n_log_n(OBJECT_COUNTS[-2], count)
+            growth = f"{growth_ratio.value:.2f}"
+            figures.append(growth_ratio)
         print(f"{count:>8} {published:>9} {before_ms:>10.2f} {now_ms[count]:>8.2f} {before_ms / now_ms[count]:>9.1f} "
               f"{alone_ms:>9.2f} {assoc_ms:>9.3f} {brute_force_ms:>21.2f} {growth:>17}")
         figures += [Figure(f"{count} objects: update, turn about", now_ms[count], Unit.MS),
