@@ -9,7 +9,7 @@ from pathlib import Path
 from rich.console import Console
 from rich.table import Table
 
-from coopdrive.launch.summary import summary_dict, warn_if_not_deterministic
+from coopdrive.launch.summary import print_fault_reactions, summary_dict, warn_if_not_deterministic
 from coopdrive.v1 import sim_pb2
 
 # How many figures the story shows.
@@ -81,6 +81,7 @@ def tell(result: sim_pb2.RunResult, description: str = "", recording: Path | Non
     console = Console(highlight=False)  # rich's repr highlighter compiles its regexes on first use: 0.3 s
     colour = "green" if result.success else "red"
     console.print(f"[bold {colour}]{verdict_line(summary)}[/]")
+    print_fault_reactions(console, result)
     for sentence in sentences(summary, description):
         console.print(sentence)
     table = Table(show_header=False, box=None, padding=(0, 2))

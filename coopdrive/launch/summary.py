@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 from coopdrive.judging.counts import COUNT_METRICS
@@ -33,6 +34,8 @@ def summary_dict(result: sim_pb2.RunResult) -> dict:
         summary[key] = int(value) if key in COUNT_METRICS else round(value, 6)
     summary.setdefault("collisions", 0)
     summary.setdefault("min_gap_m", -1.0)
+    if result.fault_reactions:
+        summary["fault_reactions"] = list(result.fault_reactions)
     return summary
 
 
@@ -42,8 +45,9 @@ def print_summary(result: sim_pb2.RunResult, recording: Path | None = None, labe
     table.add_column("metric")
     table.add_column("value", justify="right")
     for key, value in summary.items():
-        # The title names the run and the verdict line says why it failed.
-        if key in ("scenario", "seed", "failure_reason"):
+        # The title names the run; the verdict line says why it failed, the lines under it what the stacks did
+        # about the faults.
+        if key in ("scenario", "seed", "failure_reason", "fault_reactions"):
             continue
         table.add_row(key, f"{value:.3f}" if isinstance(value, float) else str(value))
     # No automatic highlighting: rich compiles its repr highlighter's regexes on first use, about 0.3 s of a short run.
@@ -51,9 +55,16 @@ def print_summary(result: sim_pb2.RunResult, recording: Path | None = None, labe
     console.print(table)
     verdict = "[bold green]PASS[/]" if result.success else f"[bold red]FAIL[/]: {result.failure_reason}"
     console.print(verdict)
+    print_fault_reactions(console, result)
     warn_if_not_deterministic(console, summary)
     if recording is not None:
         console.print(f"recording: {recording}")
+
+
+def print_fault_reactions(console: Console, result: sim_pb2.RunResult) -> None:
+    """Under the verdict, what the stacks did about each fault the judge follows, a line each."""
+    for reaction in result.fault_reactions:
+        console.print(f"  {escape(reaction)}")
 
 
 def warn_if_not_deterministic(console: Console, summary: dict) -> None:

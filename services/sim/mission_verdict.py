@@ -14,6 +14,7 @@ from coopdrive.services.sim import metrics as judging
 from coopdrive.services.sim.fault_config import ServiceCrash, V2vLoss
 from coopdrive.services.sim.roadside_unit import RsuEventKind
 from coopdrive.services.sim.scenario_config import Mission, ScenarioConfig, VehicleRole
+from coopdrive.services.sim.signal_fault_reactions import FaultReaction, fault_reactions
 from coopdrive.services.sim.signal_metrics import Crossing, crossings
 from coopdrive.services.sim.truth_series import TruthSeries
 from coopdrive.v1 import actuation_pb2, sim_pb2
@@ -161,8 +162,15 @@ class MissionJudge:
 
     def red_light_crossings(self) -> list[Crossing]:
         """The stacks' crossings of a stop line on red (signal_metrics.py)."""
-        frames = [(t, vehicles, signals) for (t, vehicles), signals in zip(self.frames, self.signals)]
-        return [c for c in crossings(frames) if c.red and c.vehicle_id in self.stack_ids]
+        return [c for c in crossings(self._signal_frames()) if c.red and c.vehicle_id in self.stack_ids]
+
+    def fault_reactions(self) -> list[FaultReaction]:
+        """What each stack did about each fault of a signalised intersection's roadside unit
+        (signal_fault_reactions.py)."""
+        return fault_reactions(self.config.faults, self.config.roadside_units, self._signal_frames(), self.stack_ids)
+
+    def _signal_frames(self) -> list:
+        return [(t, vehicles, signals) for (t, vehicles), signals in zip(self.frames, self.signals)]
 
     def _v2v_cut_while_judging_string(self) -> bool:
         """Every V2V packet of every vehicle lost during the judged oscillation. The platoon then runs on its

@@ -145,6 +145,7 @@ class ScenarioFeed:
                                    clock_started_monotonic_s=self.service.wall_start_s)
         for key, value in self.judge.metrics().items():
             result.metrics[key] = value
+        result.fault_reactions.extend(reaction.describe() for reaction in self.judge.fault_reactions())
         for key, value in self.sim.traffic_metrics().items():
             result.metrics[key] = value
         for counter in ("participants_lost", "service_crashes", "service_restarts"):

@@ -52,7 +52,7 @@ class Crossing:
     positive_accel_mps: float | None
 
 
-def _along_m(vehicle: sim_pb2.VehicleTruth, line: sim_pb2.SignalTruth) -> float | None:
+def along_m(vehicle: sim_pb2.VehicleTruth, line: sim_pb2.SignalTruth) -> float | None:
     """How far the front bumper is past the stop line along its approach (negative before it); None off it."""
     front_m = vehicle.length_m - rear_overhang_m(vehicle.length_m)
     dx = vehicle.x_m + front_m * math.cos(vehicle.heading_rad) - line.stop_x_m
@@ -75,10 +75,10 @@ def crossings(frames: SignalFrames) -> list[Crossing]:
     for time_s, vehicles, signals in frames:
         for line in signals:
             for vehicle in vehicles:
-                along_m = _along_m(vehicle, line)
-                if along_m is not None:
+                along = along_m(vehicle, line)
+                if along is not None:
                     tracks.setdefault((vehicle.vehicle_id, *_approach_key(line)), []).append(
-                        (time_s, along_m, vehicle.speed_mps, line))
+                        (time_s, along, vehicle.speed_mps, line))
     found = []
     for key, track in tracks.items():
         for index in range(1, len(track)):
