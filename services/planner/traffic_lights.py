@@ -4,10 +4,10 @@ whatever the scenario asks for.
 Each step it reads the MAPEMs and SPATEMs heard (services/planner/signals/), matches the ego to an ingress lane and
 its signal group, and asks `advise` what the phases call for. It stops at the line on red and on amber it can stop
 for comfortably, proceeds on amber it cannot (the dilemma zone), goes on green unless the queue ahead leaves no room
-past the box (it would strand there), slows to arrive on green (GLOSA), and
-stops safely when the SPaT of a signalised approach is stale, contradicts itself or gives no rule, and when the ego
-matches no lane of a MAP whose signalised stop line lies ahead near its path. Past the stop
-line it is committed: it clears the box whatever the light.
+past the box (it would strand there), slows to arrive on green (GLOSA), and stops safely when the SPaT of a
+signalised approach is stale, contradicts itself or gives no rule, and when the ego matches no lane of a MAP whose
+signalised stop line lies ahead near its path. Stopping, it lets go a partner already across the line: the platoon
+splits there. Past the stop line it is committed: it clears the box whatever the light.
 """
 
 from __future__ import annotations
@@ -152,6 +152,22 @@ class TrafficLights:
         if stop and distance_m is not None:
             if not request.has_stop_line or distance_m < request.stop_line_distance_m:
                 request.has_stop_line, request.stop_line_distance_m = True, max(distance_m, 0.0)
+            self._split_at_the_line(request, distance_m)
+
+    def _split_at_the_line(self, request: planner_pb2.BehaviourRequest, distance_m: float) -> None:
+        """The light changed between us and the vehicle we follow: a predecessor whose rear is already across the
+        stop line we stop at is let go, so control follows the line and not a partner driving on, and our iCLCM names
+        no forward partner: we head the part of the platoon behind the line."""
+        across = [target for target in request.targets if target.role == planner_pb2.TARGET_ROLE_PREDECESSOR
+                  and (ahead := self.sit.object(target.object_id)) is not None
+                  and ahead.longitudinal_gap_m > distance_m]
+        if not across:
+            return
+        kept = [target for target in request.targets if target not in across]
+        del request.targets[:]
+        request.targets.extend(kept)
+        if request.HasField("iclcm"):
+            request.iclcm.forward_id = 0
 
 
 def build_spec() -> MachineSpec:
@@ -162,7 +178,8 @@ def build_spec() -> MachineSpec:
         StateSpec(S.GO, safe=True, description="green until we arrive: the scenario drives"),
         StateSpec(S.GLOSA, safe=True,
                   description="slow to arrive on the next green; the stop line kept while it is not green"),
-        StateSpec(S.STOP, safe=True, description="red, or amber we can stop for comfortably: stop at the stop line"),
+        StateSpec(S.STOP, safe=True, description="red, or amber we can stop for comfortably: stop at the stop line, "
+                                                 "letting go a predecessor already across it (the platoon splits)"),
         StateSpec(S.COMMITTED, safe=True, description="past the stop line or too close on amber: clear the box"),
         StateSpec(S.SAFE_STOP, safe=True,
                   description="SPaT stale, contradicting itself or without a rule: stop at the stop line"),
