@@ -87,8 +87,8 @@ def peak_deceleration_mps2(line_m, speed_mps, duration_s=25.0):
 
 
 def test_a_car_above_the_planned_braking_curve_brakes_on_the_curve_through_its_own_state_not_at_the_comfort_limit():
-    """50 km/h, 80 m from the line: the constant deceleration that stops it there is 1.2 m/s2 (eq. S3); the curve
-    of the planned 1 m/s2 alone (S2) asked the comfort limit, 2 m/s2."""
+    """50 km/h, 80 m from the line: the constant deceleration that stops it there is 1.2 m/s2 (eq. SL3); the curve
+    of the planned 1 m/s2 alone (SL2) asked the comfort limit, 2 m/s2."""
     speed_mps, stop_m = 50 / 3.6, 80.0 - STOP_LINE_MARGIN_M
     needed_mps2 = speed_mps ** 2 / (2 * stop_m)
     assert needed_mps2 < peak_deceleration_mps2(80.0, speed_mps) < 1.2 * needed_mps2
