@@ -3,8 +3,6 @@ the figures' definitions held to what they mean."""
 
 import json
 import re
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -12,15 +10,12 @@ import pytest
 from coopdrive.judging.consistency import CONSISTENT_TWO_SIGMA_SHARE
 from coopdrive.judging.reference_score import TrackSeries, score_series
 from coopdrive.judging.reference_track import ReferenceTrack
+from tests.command_line import coopdrive
 from tests.shared_data import shared_file
 
 RAV4_ADAPTER = "deploy/vehicles/toyota_rav4_2017.yaml"
 LOGGER_TO_UTC_S = 1533180079.849502  # shared/data/README.md
 REFERENCE = "gnss/comma2k19_rav4_reference_first20s.csv"
-
-
-def coopdrive(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "coopdrive.cli", *args], capture_output=True, text=True, timeout=300)
 
 
 @pytest.fixture(scope="module")

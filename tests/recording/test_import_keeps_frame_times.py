@@ -1,13 +1,11 @@
 """A CAN frame keeps its own time, shifted by its log's --offset (of either sign), through import and replay."""
 
-import subprocess
-import sys
-
 import pytest
 
 from coopdrive.recording.reader import read_messages
 from coopdrive.recording.replay import replay_service
 from coopdrive.services.geolocation.geolocator import Geolocator
+from tests.command_line import coopdrive
 from tests.shared_data import shared_file
 
 RAV4_LOG = "can/comma2k19_rav4_bus0_first20s.candump.log"
@@ -16,10 +14,6 @@ RAV4_ADAPTER = "deploy/vehicles/toyota_rav4_2017.yaml"
 # The data set's offset from the logger's monotonic clock to UTC (shared/data/README.md).
 LOGGER_TO_UTC_S = 1533180079.849502
 WHEEL_SPEEDS = 0x0AA
-
-
-def coopdrive(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "coopdrive.cli", *args], capture_output=True, text=True, timeout=300)
 
 
 def logged_times_s(arbitration_id: int | None = None) -> list[float]:

@@ -2,20 +2,15 @@
 CAN frames replayed without the car's adapter (every frame ignored)."""
 
 import json
-import subprocess
-import sys
 
 import pytest
 
+from tests.command_line import coopdrive
 from tests.shared_data import shared_file
 
 RAV4_ADAPTER = "deploy/vehicles/toyota_rav4_2017.yaml"
 LOGGER_TO_UTC_S = 1533180079.849502  # shared/data/README.md
 RAV4_FRAMES = 17938
-
-
-def coopdrive(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "coopdrive.cli", *args], capture_output=True, text=True, timeout=300)
 
 
 @pytest.fixture(scope="module")
