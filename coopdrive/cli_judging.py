@@ -18,6 +18,10 @@ def add_commands(commands) -> None:
     score.add_argument("--reference", type=Path, metavar="REF.csv",
                        help="judge a replay's ego/state (and its fixes) against this reference trajectory instead: "
                             "CSV of time, lat, lon[, heading, speed]")
+    score.add_argument("--standstill", action="store_true",
+                       help="judge a replay's ego/state (and its fixes) against the mean of the recording's own fixes "
+                            "instead, for a receiver that stood still: the estimate's claimed accuracy against its "
+                            "scatter (the options of --reference apply)")
     score.add_argument("--vehicle", default="ego", help="with --reference: whose estimate (default: ego)")
     score.add_argument("--lever-arm", metavar="X,Y", help="with --reference: the compared point, metres ahead of "
                                                           "and left of the rear axle (default: the GNSS antenna of "
@@ -80,7 +84,10 @@ def _analyze_string(args) -> int:
 def _score(args) -> int:
     from coopdrive.judging.commands import score_command
 
-    if args.reference is not None:
+    if args.reference is not None and args.standstill:
+        print("coopdrive: score: --reference and --standstill: give one of them", file=sys.stderr)
+        return EXIT_USAGE
+    if args.reference is not None or args.standstill:
         return _score_reference(args)
     return score_command(args.file, args.json, args.scenario)
 

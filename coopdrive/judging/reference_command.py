@@ -1,5 +1,7 @@
 """`coopdrive score FILE --reference REF.csv`: a replay's ego states and the fixes it decoded, judged against a
-reference trajectory (reference_score.py); a table, or JSON (printed, or written with --out)."""
+reference trajectory (reference_score.py); a table, or JSON (printed, or written with --out). With --standstill
+instead, the reference is the mean of the recording's own fixes, for a receiver that stood still throughout
+(ReferenceTrack.standing)."""
 
 from __future__ import annotations
 
@@ -30,16 +32,23 @@ from coopdrive.v1 import ego_pb2
 POSE_ROWS = [E, N, HEADING]
 
 
+STANDING_REFERENCE = "the mean of its fixes (standing still)"
+
+
 @dataclass(frozen=True)
 class ReferenceRequest:
     recording: Path
-    reference: Path
+    reference: Path | None  # None: standing, against the mean of the recording's fixes
     vehicle_id: str = "ego"
     lever_arm: LeverArm | None = None  # None: the recorded geolocation config's antenna
     max_offset_s: float = 0.5
     out: Path | None = None
     as_json: bool = False
     report: Path | None = None  # a folder for the report page
+
+    @property
+    def reference_name(self) -> str:
+        return STANDING_REFERENCE if self.reference is None else self.reference.name
 
 
 def recorded_antenna(recording: Path, vehicle_id: str) -> LeverArm:
@@ -74,18 +83,27 @@ def score_against_reference(request: ReferenceRequest) -> tuple[list[ReferenceSc
     """The estimate's score, then the fixes' (when the recording holds them), and the lever arm the estimate was
     moved by. ValueError (ReferenceError, RecordingError among them) says why a recording or reference cannot be
     scored."""
-    reference = ReferenceTrack.load(request.reference)
     messages = RunMessages.from_recording(request.recording)
+    fixes = messages.gnss_fixes.get(request.vehicle_id, [])
+    if request.reference is not None:
+        reference = ReferenceTrack.load(request.reference)
+    elif fixes:
+        standing = fix_series(fixes)
+        reference = ReferenceTrack.standing(standing.time_s, standing.lat_deg, standing.lon_deg)
+    else:
+        raise ValueError(f"{request.recording}: no gnss/fix of vehicle {request.vehicle_id} to take the mean of "
+                         f"(--standstill judges against the recording's own fixes)")
     states = messages.ego_states.get(request.vehicle_id, [])
     lever_arm = request.lever_arm or recorded_antenna(request.recording, request.vehicle_id)
     series = estimate_series(states, lever_arm)
     if not len(series.time_s):
         raise ValueError(f"{request.recording}: no ego/state of vehicle {request.vehicle_id} with a position "
                          f"(replay geolocation with --out first)")
-    scores = [score_series(series, reference, request.max_offset_s)]
-    fixes = messages.gnss_fixes.get(request.vehicle_id, [])
+    # A reference that stands still is the same at every offset: no time offset to fit.
+    max_offset_s = request.max_offset_s if request.reference is not None else 0.0
+    scores = [score_series(series, reference, max_offset_s)]
     if fixes:
-        scores.append(score_series(fix_series(fixes), reference, request.max_offset_s))
+        scores.append(score_series(fix_series(fixes), reference, max_offset_s))
     return scores, lever_arm
 
 
@@ -94,7 +112,7 @@ def _cell(value) -> str:
 
 
 def print_table(request: ReferenceRequest, scores: list[ReferenceScore]) -> None:
-    table = Table(title=f"{request.recording} against {request.reference.name}")
+    table = Table(title=f"{request.recording} against {request.reference_name}")
     table.add_column("figure", no_wrap=True)
     for score in scores:
         table.add_column(f"{score.name}\nbest fit", justify="right")
@@ -114,7 +132,8 @@ def reference_score_command(request: ReferenceRequest) -> int:
     except (ValueError, OSError, McapError, struct.error) as error:  # ReferenceError, RecordingError among them
         print(f"coopdrive: score: {error}", file=sys.stderr)
         return EXIT_USAGE
-    figures = {"recording": str(request.recording), "reference": str(request.reference),
+    figures = {"recording": str(request.recording),
+               "reference": STANDING_REFERENCE if request.reference is None else str(request.reference),
                "lever_arm_m": [lever_arm.x_m, lever_arm.y_m],
                "consistent_two_sigma_share": CONSISTENT_TWO_SIGMA_SHARE,
                "scores": [score.as_dict() for score in scores]}
@@ -127,7 +146,7 @@ def reference_score_command(request: ReferenceRequest) -> int:
     if request.report is not None:
         try:
             page = write_reference_report(request.report,
-                                          f"{request.recording.name} against {request.reference.name}", scores)
+                                          f"{request.recording.name} against {request.reference_name}", scores)
         except OSError as error:
             print(f"coopdrive: score: --report {request.report}: {error.strerror or error}", file=sys.stderr)
             return EXIT_USAGE

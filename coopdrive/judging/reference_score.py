@@ -4,6 +4,8 @@ Figures, as the literature defines them (horizontal = the east-north plane; erro
 - rms_m, mean_abs_m, p95_m, max_m: of the horizontal error's length;
 - along_rms_m, cross_rms_m: its parts along and across the reference's heading;
 - heading_rms_deg, speed_rms_mps: when the reference has them;
+- claimed_drms_m: what the estimate claims of its own horizontal error, the RMS over the samples of its covariance's
+  DRMS, sqrt(sigma_e^2 + sigma_n^2): beside rms_m, how honest it is;
 - two_sigma_share: share of estimates whose own 2-sigma ellipse holds the reference (normalised estimation error
   squared, NEES = e' P^-1 e, at most 2^2 = 4); for a consistent 2-D estimate it is 1 - exp(-2) = 86.5 % (95.45 % is
   the one-dimensional figure); nees_mean: its mean, 2 for a consistent 2-D estimate (Bar-Shalom, Li and Kirubarajan,
@@ -118,6 +120,8 @@ def _figures(errors: ErrorSeries) -> dict[str, float]:
         figures["heading_rms_deg"] = float(np.degrees(np.sqrt(np.mean(errors.heading_error_rad**2))))
     if errors.speed_error_mps is not None:
         figures["speed_rms_mps"] = float(np.sqrt(np.mean(errors.speed_error_mps**2)))
+    if errors.along_std_m is not None:
+        figures["claimed_drms_m"] = float(np.sqrt(np.mean(errors.along_std_m**2 + errors.cross_std_m**2)))
     if errors.nees is not None:
         figures["two_sigma_share"] = float(np.mean(errors.nees <= TWO_SIGMA_NEES))
         figures["nees_mean"] = float(np.mean(errors.nees))

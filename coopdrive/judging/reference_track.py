@@ -77,6 +77,20 @@ class ReferenceTrack:
             raise ReferenceError(f"{path}: needs at least {MIN_ROWS} rows with times increasing")
         return cls(values["time"], values["lat"], values["lon"], values.get("heading"), values.get("speed"))
 
+    @classmethod
+    def standing(cls, time_s: np.ndarray, lat_deg: np.ndarray, lon_deg: np.ndarray) -> ReferenceTrack:
+        """A receiver that stood still: the mean of its fixes, over their times. It is not the truth: it holds what
+        the fixes share (a slow bias), so an estimate judged against it is judged on its scatter, a lower bound of
+        its error. With no direction of travel, along-track is east and across-track north."""
+        if len(time_s) < MIN_ROWS or np.any(np.diff(time_s) <= 0.0):
+            raise ReferenceError(f"a standing reference needs at least {MIN_ROWS} fixes with times increasing")
+        plane = LocalTangentPlane(float(lat_deg[0]), float(lon_deg[0]))
+        enu = np.array([plane.to_enu(float(lat), float(lon))[:2] for lat, lon in zip(lat_deg, lon_deg)])
+        mean_lat, mean_lon, _ = plane.to_geodetic(*enu.mean(axis=0))
+        count = len(time_s)
+        return cls(np.asarray(time_s, float), np.full(count, mean_lat), np.full(count, mean_lon),
+                   speed_mps=np.zeros(count))
+
     @staticmethod
     def _column(path: Path, rows: list[list[str]], index: int, key: str) -> np.ndarray:
         try:
