@@ -2,11 +2,12 @@
 map_lane_offset), judged from the truth alone: one reaction per fault and stack vehicle, which the run's verdict
 names.
 
-While the fault is on, a stack that reaches the intersection either stands still before its stop line (the safe
-stop a planner makes when it cannot trust what the unit says) or crosses the line. A crossing on red fails the run
-by itself (signal_metrics' red-light violation), so a crossing named here was on green or amber, with its margin to
-red. A stack that was nowhere near the intersection while the fault lasted is named so too: a run test then sees
-that its fault went unmet.
+While the fault is on, a stack on one of the intersection's approaches (within 200 m of its stop line) either stands
+still before the line (the safe stop a planner makes when it cannot trust what the unit says), crosses it, or does
+neither (it slowed, say, and the fault ended first): the slowest it went is named. A crossing on red fails the run by
+itself (signal_metrics' red-light violation), so a crossing named here was on green or amber, with its margin to
+red. A stack that was on no approach while the fault lasted is named so too: a run test then sees that its fault
+went unmet.
 """
 
 from __future__ import annotations
@@ -26,12 +27,16 @@ _STATE_PREFIX = "MOVEMENT_PHASE_STATE_"
 class Reaction(enum.Enum):
     STOPPED_BEFORE_LINE = "stopped before the stop line"
     CROSSED = "crossed without stopping"
+    APPROACHED = "on an approach, neither stopped nor crossed while the fault lasted"
     NOT_MET = "not on an approach while the fault lasted"
 
 
 @dataclass(frozen=True)
-class Standstill:
+class Sample:
+    """The vehicle on one of the intersection's approaches, within APPROACH_M before its stop line."""
+
     time_s: float
+    speed_mps: float
     # From the front bumper to the stop line.
     before_line_m: float
     state: int
@@ -42,29 +47,37 @@ class FaultReaction:
     fault: str
     vehicle_id: str
     intersection_id: int
-    standstill: Standstill | None
-    # The first crossing of the intersection's stop line after the fault began: during it, or after the standstill.
+    # The first sample standing still on an approach while the fault lasted.
+    standstill: Sample | None
+    # The first crossing of the intersection's stop line after the fault began (after the standstill, if any).
     crossing: Crossing | None
-    # Crossed without stopping: the least speed from the fault's start to the crossing (how far it slowed).
-    slowest_mps: float | None = None
+    # The least speed on an approach while the fault lasted (before any crossing); None when on none.
+    slowest_mps: float | None
+    during_s: tuple[float, float]
 
     @property
     def reaction(self) -> Reaction:
         if self.standstill is not None:
             return Reaction.STOPPED_BEFORE_LINE
-        return Reaction.CROSSED if self.crossing is not None else Reaction.NOT_MET
+        if self.crossing is not None and self.crossing.time_s < self.during_s[1]:
+            return Reaction.CROSSED
+        return Reaction.APPROACHED if self.slowest_mps is not None else Reaction.NOT_MET
 
     def describe(self) -> str:
         where = f"intersection {self.intersection_id}"
         head = f"{self.fault}: {self.vehicle_id}"
-        if self.reaction is Reaction.NOT_MET:
+        crossing = self.crossing
+        crossed = "" if crossing is None else f", crossed at {crossing.time_s:.1f} s ({_margin(crossing)})"
+        reaction = self.reaction
+        if reaction is Reaction.NOT_MET:
             return f"{head} not on an approach to {where} while the fault lasted"
-        if self.standstill is None:
-            return (f"{head} crossed the stop line of {where} at {self.crossing.time_s:.1f} s without stopping "
-                    f"(slowest {self.slowest_mps:.1f} m/s, {_margin(self.crossing)})")
+        if reaction is Reaction.CROSSED:
+            return (f"{head} crossed the stop line of {where} at {crossing.time_s:.1f} s without stopping "
+                    f"(slowest {self.slowest_mps:.1f} m/s, {_margin(crossing)})")
+        if reaction is Reaction.APPROACHED:
+            return (f"{head} on an approach to {where} while the fault lasted, neither stopping nor crossing "
+                    f"(slowest {self.slowest_mps:.1f} m/s){crossed}")
         stood = self.standstill
-        crossed = ("" if self.crossing is None
-                   else f", crossed at {self.crossing.time_s:.1f} s ({_margin(self.crossing)})")
         return (f"{head} stopped {stood.before_line_m:.1f} m before the stop line of {where} at {stood.time_s:.1f} s "
                 f"({state_name(stood.state)}){crossed}")
 
@@ -91,36 +104,33 @@ def fault_reactions(faults: Sequence, units: Sequence[RoadsideUnitConfig], frame
         intersection_id = intersection_of[fault.unit_id]
         label = f"{fault.type} at {fault.unit_id} ({fault.start_s:.1f}-{fault.end_s:.1f} s)"
         for vehicle_id in stack_ids:
-            standstill = _first_standstill(frames, vehicle_id, intersection_id, fault)
+            ours = [c for c in every if c.vehicle_id == vehicle_id and c.intersection_id == intersection_id
+                    and c.time_s >= fault.start_s]
+            samples = _on_approach(frames, vehicle_id, intersection_id, fault,
+                                   until_s=ours[0].time_s if ours else fault.end_s)
+            standstill = next((sample for sample in samples if sample.speed_mps < STOPPED_MPS), None)
             after_s = fault.start_s if standstill is None else standstill.time_s
-            crossing = next((c for c in every if c.vehicle_id == vehicle_id and c.intersection_id == intersection_id
-                             and c.time_s >= after_s), None)
-            if standstill is None and crossing is not None and crossing.time_s >= fault.end_s:
-                crossing = None
-            slowest_mps = None if standstill is not None or crossing is None else _slowest_mps(
-                frames, vehicle_id, fault.start_s, crossing.time_s)
-            reactions.append(FaultReaction(label, vehicle_id, intersection_id, standstill, crossing, slowest_mps))
+            crossing = next((c for c in ours if c.time_s >= after_s), None)
+            slowest_mps = min((sample.speed_mps for sample in samples), default=None)
+            reactions.append(FaultReaction(label, vehicle_id, intersection_id, standstill, crossing, slowest_mps,
+                                           (fault.start_s, fault.end_s)))
     return reactions
 
 
-def _first_standstill(frames: SignalFrames, vehicle_id: str, intersection_id: int, fault) -> Standstill | None:
-    """The first sample within the fault's time where the vehicle stands on one of the intersection's approaches,
-    within APPROACH_M before its stop line."""
+def _on_approach(frames: SignalFrames, vehicle_id: str, intersection_id: int, fault, until_s: float
+                 ) -> list[Sample]:
+    """The vehicle's samples on one of the intersection's approaches, within APPROACH_M before its stop line, while
+    the fault lasted and before until_s."""
+    found = []
     for time_s, vehicles, signals in frames:
-        if not fault.active(time_s):
+        if not fault.active(time_s) or time_s > until_s:
             continue
         vehicle = next((v for v in vehicles if v.vehicle_id == vehicle_id), None)
-        if vehicle is None or vehicle.speed_mps >= STOPPED_MPS:
+        if vehicle is None:
             continue
         for line in signals:
-            if line.intersection_id != intersection_id:
-                continue
-            along = along_m(vehicle, line)
+            along = along_m(vehicle, line) if line.intersection_id == intersection_id else None
             if along is not None and -APPROACH_M <= along < 0.0:
-                return Standstill(time_s, -along, line.state)
-    return None
-
-
-def _slowest_mps(frames: SignalFrames, vehicle_id: str, from_s: float, until_s: float) -> float:
-    return min(v.speed_mps for time_s, vehicles, _ in frames if from_s <= time_s <= until_s
-               for v in vehicles if v.vehicle_id == vehicle_id)
+                found.append(Sample(time_s, vehicle.speed_mps, -along, line.state))
+                break
+    return found

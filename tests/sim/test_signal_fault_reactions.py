@@ -51,6 +51,15 @@ def test_a_car_crossing_while_the_spat_is_lost_crossed_without_stopping(units):
                                    "at 5.0 s without stopping (slowest 10.0 m/s, 38.0 s before red)")
 
 
+def test_a_car_that_slowed_on_the_approach_and_crossed_after_the_fault_ended_approached_it(units):
+    short = SpatLoss(type="spat_loss", unit_id="rsu_b", start_s=0.0, end_s=4.0)
+    [reaction] = react(units, stop_and_go, faults=(short,))
+    assert reaction.reaction is Reaction.APPROACHED
+    assert reaction.describe() == (
+        "spat_loss at rsu_b (0.0-4.0 s): car1 on an approach to intersection 2 while the fault lasted, neither "
+        "stopping nor crossing (slowest 2.2 m/s), crossed at 14.4 s (28.6 s before red)")
+
+
 def test_a_car_through_before_the_fault_began_did_not_meet_it(units):
     [reaction] = react(units, steady(10.0, 1.0))
     assert reaction.reaction is Reaction.NOT_MET
