@@ -12,8 +12,8 @@ from pathlib import Path
 
 import asn1tools
 
+from coopdrive.v2x.asn1_cache import parsed_cached
 from coopdrive.v2x.its_pdu import default_cache_dir
-from coopdrive.v2x.security.asn import parsed_cached
 
 
 class PackageSpec:

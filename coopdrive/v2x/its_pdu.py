@@ -4,15 +4,12 @@ packet.py, which is the V2X codec's one facade (GeoNetworking + BTP + UPER).
 Parsing the modules takes about a second per set, so the parsed specification is cached on disk
 ($XDG_CACHE_HOME/coopdrive/asn1 or ~/.cache/coopdrive/asn1) and later start-ups take tens of ms.
 asn1tools' own cache_dir needs the optional diskcache package, which the stack does not depend on, so
-it is used when present and otherwise the parsed dict is stored as a Python literal (read back with
-ast.literal_eval: plain data, nothing executed), keyed by the files' hash and the asn1tools version.
+it is used when present and otherwise the parsed dict is cached by coopdrive/v2x/asn1_cache.py.
 """
 
 from __future__ import annotations
 
-import ast
 import enum
-import hashlib
 import os
 import struct
 from importlib import resources
@@ -21,6 +18,7 @@ from typing import NamedTuple
 
 import asn1tools
 
+from coopdrive.v2x.asn1_cache import parsed_cached
 from coopdrive.v2x.reasons import RejectReason, V2xDecodeError, V2xEncodeError
 from coopdrive.v2x.recent_decodes import RECENT_DECODES
 
@@ -97,25 +95,7 @@ class ItsCodec:
     def _compile(self, paths: list[str]) -> asn1tools.compiler.Specification:
         if getattr(asn1tools.compiler, "has_diskcache", False):
             return asn1tools.compile_files(paths, "uper", cache_dir=str(self._cache_dir))
-        digest = hashlib.sha256(asn1tools.__version__.encode())
-        for path in paths:
-            digest.update(Path(path).read_bytes())
-        cached = self._cache_dir / f"parsed-{digest.hexdigest()[:24]}.py-literal"
-        parsed = None
-        if cached.is_file():
-            try:
-                parsed = ast.literal_eval(cached.read_text(encoding="utf-8"))
-            except (ValueError, SyntaxError, MemoryError, RecursionError):
-                parsed = None  # a damaged cache file is rebuilt below
-        if parsed is None:
-            parsed = asn1tools.parse_files(paths)
-            try:
-                self._cache_dir.mkdir(parents=True, exist_ok=True)
-                partial = cached.with_suffix(f".{os.getpid()}.tmp")
-                partial.write_text(repr(parsed), encoding="utf-8")
-                partial.replace(cached)
-            except OSError:
-                pass  # a read-only home only costs start-up time
+        parsed = parsed_cached(paths, self._cache_dir, "parsed")
         return asn1tools.compile_dict(parsed, "uper")
 
     def encode(self, message_id: ItsMessageId, value: dict, check_ranges: bool = True) -> bytes:

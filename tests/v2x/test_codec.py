@@ -1,3 +1,5 @@
+import marshal
+
 import pytest
 
 from coopdrive.v2x.its_pdu import ItsCodec, ItsMessageId, default_cache_dir, peek_its_header
@@ -15,12 +17,12 @@ def test_the_cache_lives_under_xdg_cache_home_when_it_is_set(monkeypatch, tmp_pa
 def test_a_second_codec_loads_the_parsed_schema_from_the_disk_cache(tmp_path):
     ItsCodec(cache_dir=tmp_path).spec(1)
     (cached,) = tmp_path.iterdir()
-    cached.write_text("{'not': 'a schema'")  # damaged: must be rebuilt, not trusted
+    cached.write_bytes(marshal.dumps({"not": "a schema"}))  # damaged: must be rebuilt, not trusted
     codec = ItsCodec(cache_dir=tmp_path)
     uper = codec.encode(ItsMessageId.ICLCM, iclcm_to_asn(iclcm(True)))
     assert codec.decode(uper)[0].station_id == 2**32 - 1
-    assert cached.read_text().startswith("{")
-    assert "IgameCooperativeLaneChangeMessage" in cached.read_text()
+    _, parsed = marshal.loads(cached.read_bytes())
+    assert any("IgameCooperativeLaneChangeMessage" in module["types"] for module in parsed.values())
 
 
 def test_the_its_header_is_read_from_the_first_six_bytes():

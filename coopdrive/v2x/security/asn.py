@@ -1,21 +1,18 @@
 """OER codec of the security envelope (EtsiTs103097Data, certificates), compiled once per process.
 
 Parsing the three modules takes about a second, so the parsed dict is cached on disk next to the ITS
-schemas (same directory and scheme as its_pdu.py: a Python literal keyed by the files' hash and the
-asn1tools version, read back with ast.literal_eval) and the compiled specification is kept per process.
+schemas (coopdrive/v2x/asn1_cache.py) and the compiled specification is kept per process.
 """
 
 from __future__ import annotations
 
-import ast
-import hashlib
-import os
 import threading
 from importlib import resources
 from pathlib import Path
 
 import asn1tools
 
+from coopdrive.v2x.asn1_cache import parsed_cached
 from coopdrive.v2x.its_pdu import default_cache_dir
 
 SECURITY_FILES = ("IEEE1609dot2BaseTypes.asn", "IEEE1609dot2.asn", "TS103097v131.asn")
@@ -31,28 +28,6 @@ _spec: asn1tools.compiler.Specification | None = None
 def _paths() -> list[str]:
     package = resources.files("coopdrive.v2x.asn1.security")
     return [str(package.joinpath(name)) for name in SECURITY_FILES]
-
-
-def parsed_cached(paths: list[str], cache_dir: Path, name: str) -> dict:
-    """asn1tools.parse_files(paths), cached on disk as `<name>-<hash>.py-literal` in cache_dir."""
-    digest = hashlib.sha256(asn1tools.__version__.encode())
-    for path in paths:
-        digest.update(Path(path).read_bytes())
-    cached = cache_dir / f"{name}-{digest.hexdigest()[:24]}.py-literal"
-    if cached.is_file():
-        try:
-            return ast.literal_eval(cached.read_text(encoding="utf-8"))
-        except (ValueError, SyntaxError, MemoryError, RecursionError):
-            pass  # a damaged cache file is rebuilt below
-    parsed = asn1tools.parse_files(paths)
-    try:
-        cache_dir.mkdir(parents=True, exist_ok=True)
-        partial = cached.with_suffix(f".{os.getpid()}.tmp")
-        partial.write_text(repr(parsed), encoding="utf-8")
-        partial.replace(cached)
-    except OSError:
-        pass  # a read-only home only costs start-up time
-    return parsed
 
 
 def security_spec(cache_dir: Path | None = None) -> asn1tools.compiler.Specification:
