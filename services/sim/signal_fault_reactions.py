@@ -25,10 +25,11 @@ _STATE_PREFIX = "MOVEMENT_PHASE_STATE_"
 
 
 class Reaction(enum.Enum):
-    STOPPED_BEFORE_LINE = "stopped before the stop line"
-    CROSSED = "crossed without stopping"
-    APPROACHED = "on an approach, neither stopped nor crossed while the fault lasted"
-    NOT_MET = "not on an approach while the fault lasted"
+    STOPPED_BEFORE_LINE = enum.auto()
+    CROSSED = enum.auto()
+    # On an approach, neither stopped nor crossed while the fault lasted.
+    APPROACHED = enum.auto()
+    NOT_MET = enum.auto()
 
 
 @dataclass(frozen=True)
@@ -53,13 +54,13 @@ class FaultReaction:
     crossing: Crossing | None
     # The least speed on an approach while the fault lasted (before any crossing); None when on none.
     slowest_mps: float | None
-    during_s: tuple[float, float]
+    fault_end_s: float
 
     @property
     def reaction(self) -> Reaction:
         if self.standstill is not None:
             return Reaction.STOPPED_BEFORE_LINE
-        if self.crossing is not None and self.crossing.time_s < self.during_s[1]:
+        if self.crossing is not None and self.crossing.time_s < self.fault_end_s:
             return Reaction.CROSSED
         return Reaction.APPROACHED if self.slowest_mps is not None else Reaction.NOT_MET
 
@@ -113,7 +114,7 @@ def fault_reactions(faults: Sequence, units: Sequence[RoadsideUnitConfig], frame
             crossing = next((c for c in ours if c.time_s >= after_s), None)
             slowest_mps = min((sample.speed_mps for sample in samples), default=None)
             reactions.append(FaultReaction(label, vehicle_id, intersection_id, standstill, crossing, slowest_mps,
-                                           (fault.start_s, fault.end_s)))
+                                           fault.end_s))
     return reactions
 
 
