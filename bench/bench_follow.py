@@ -11,6 +11,8 @@ the default layout as it was before a vehicle's services shared one worker threa
 
 from __future__ import annotations
 
+from statistics import fmean
+
 import numpy as np
 from rich.console import Console
 from rich.table import Table
@@ -20,6 +22,8 @@ from bench.failure import require_success
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
 from bench.step_latency import StepLatency
+from bench.turn_about import turns
+from bench.turn_spread import turn_ratio_spread
 from coopdrive.launch.process_layout import ProcessLayout
 from coopdrive.launch.run import RunOptions, run_scenario
 
@@ -28,15 +32,23 @@ DURATION_S = sized(60.0, 1.0)
 REALTIME_DURATION_S = sized(20.0, 1.0)
 REQUIRED_REALTIME_FACTOR = 20.0
 STEP_S = 0.02
-# The ratio's two layouts: a vehicle's services on one worker thread, and each on its own as before.
+# The ratio's two layouts: a vehicle's services on one worker thread, and each on its own as before. The ratio comes
+# from RATIO_ROUNDS rounds of both, turn about, of RATIO_DURATION_S each, and gets its interval from them
+# (bench/turn_spread.py): from one run of each, two quiet runs of one commit can differ by the machine alone.
 NOW, BEFORE = "one per vehicle", "one per vehicle, a thread per service (before)"
+RATIO_ROUNDS = sized(3, 1)
+RATIO_DURATION_S = sized(20.0, 1.0)
 
 
-def run(processes: ProcessLayout, realtime: bool = False, thread_per_service: bool = False):
-    """`thread_per_service`: a vehicle's group gives each service its own thread, as before the shared worker."""
+def run(processes: ProcessLayout, realtime: bool = False, thread_per_service: bool = False,
+        duration_s: float | None = None):
+    """`thread_per_service`: a vehicle's group gives each service its own thread, as before the shared worker.
+    `duration_s`: simulated seconds, by default DURATION_S (REALTIME_DURATION_S paced to the wall clock)."""
     latency = StepLatency()
+    if duration_s is None:
+        duration_s = REALTIME_DURATION_S if realtime else DURATION_S
     with baselines.thread_per_service(thread_per_service):
-        result = run_scenario(RunOptions(duration_s=REALTIME_DURATION_S if realtime else DURATION_S,
+        result = run_scenario(RunOptions(duration_s=duration_s,
                                          realtime=realtime, observer=latency.observe,
                                          processes=processes))
     return result, latency
@@ -78,8 +90,20 @@ def main() -> list[Figure]:
         figures += [Figure(f"{label}: sensor -> command p{q}", _percentile(latency.latencies_ms(), q), Unit.MS)
                     for q in (50, 99)]
     Console().print(table)
-    return figures + [ratio(f"{NOW}: real-time factor to a thread per service", factors[NOW] / factors[BEFORE],
-                            f"{BEFORE}: real-time factor", Better.HIGHER)]
+    return figures + [shared_worker_to_threads()]
+
+
+def shared_worker_to_threads() -> Figure:
+    """NOW's real-time factor to BEFORE's, from RATIO_ROUNDS rounds of both, turn about."""
+    def factor(thread_per_service: bool) -> float:
+        result, _ = run(ProcessLayout.VEHICLE, thread_per_service=thread_per_service, duration_s=RATIO_DURATION_S)
+        require_success(result, f"the {RATIO_DURATION_S:g} s run {BEFORE if thread_per_service else NOW!r}")
+        return result.sim_time_s / result.wall_time_s
+    now_turns, before_turns = turns([lambda: factor(False), lambda: factor(True)], RATIO_ROUNDS)
+    print(f"{NOW} to a thread per service, {RATIO_ROUNDS} rounds of {RATIO_DURATION_S:g} s: real-time factors "
+          f"{', '.join(f'{n:.1f}/{b:.1f}' for n, b in zip(now_turns, before_turns))}")
+    return ratio(f"{NOW}: real-time factor to a thread per service", fmean(now_turns) / fmean(before_turns),
+                 f"{BEFORE}: real-time factor", Better.HIGHER, spread=turn_ratio_spread(now_turns, before_turns))
 
 
 def _percentile(latencies_ms: np.ndarray, q: int) -> float:

@@ -21,6 +21,7 @@ import cProfile
 import hashlib
 import pstats
 import socket
+import statistics
 import time
 
 from rich.console import Console
@@ -29,6 +30,7 @@ from rich.table import Table
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
 from bench.turn_about import cpu_seconds
+from bench.turn_spread import turn_ratio_spread
 from coopdrive.launch.ports import free_udp_ports
 from coopdrive.runtime.testing import MemoryContext
 from coopdrive.services.sim.config import SimConfig
@@ -49,7 +51,7 @@ class SimulatorAlone:
     memory; each stack's radio box port has a socket that is never read (the kernel drops what overflows it, as a
     busy stack would not)."""
 
-    def __init__(self, stacks: int, scenario: str = SCENARIO, scenario_file: str = ""):
+    def __init__(self, stacks: int, scenario: str = SCENARIO, scenario_file: str = "", duration_s: float = DURATION_S):
         config = SimConfig(scenario=scenario, scenario_file=scenario_file)
         scenario = load_scenario(config.scenario_path())
         stack_ids = [v.vehicle_id for v in scenario.vehicles if v.role.value == "stack"][:stacks]
@@ -61,7 +63,7 @@ class SimulatorAlone:
             sock.bind(("127.0.0.1", link["stack_port"]))
             self._stack_sockets.append(sock)
         self.config = config.model_copy(update={"stacks": stack_ids, "radio_links": links,
-                                                "duration_s": DURATION_S + 1.0})
+                                                "duration_s": duration_s + 1.0})
         self.ctx = MemoryContext("world", "sim")
         self.service = SimService(self.config, self.ctx)
         self.service.start()
@@ -88,10 +90,10 @@ class SimulatorAlone:
             sock.close()
 
 
-def cpu_ms_per_simulated_s(stack_counts: tuple[int, ...]) -> list[float]:
-    """Each world's CPU ms per simulated second, the worlds stepping DURATION_S in TURNS turns about (a load that
-    comes and goes weighs on all alike; one world after the other moved the 8-to-1 ratio by 21 % between two
-    quiet runs of the same code)."""
+def cpu_ms_per_simulated_s(stack_counts: tuple[int, ...]) -> list[list[float]]:
+    """Each world's CPU ms per simulated second in each turn, the worlds stepping DURATION_S in TURNS turns about
+    (a load that comes and goes weighs on all alike; one world after the other moved the 8-to-1 ratio by 21 %
+    between two quiet runs of the same code)."""
     simulators = [SimulatorAlone(stacks) for stacks in stack_counts]
     try:
         return cpu_ms_in_turns(simulators, DURATION_S, TURNS)
@@ -100,15 +102,29 @@ def cpu_ms_per_simulated_s(stack_counts: tuple[int, ...]) -> list[float]:
             simulator.close()
 
 
-def cpu_ms_in_turns(simulators: list[SimulatorAlone], duration_s: float, turns: int) -> list[float]:
-    """Each simulator's CPU ms per simulated second over duration_s, stepped in `turns` turns about."""
-    spent_s = [0.0] * len(simulators)
+def cpu_ms_in_turns(simulators: list[SimulatorAlone], duration_s: float, turns: int,
+                    warmup_s: float = 0.0) -> list[list[float]]:
+    """Each simulator's CPU ms per simulated second in each of `turns` turns about over duration_s: [simulator][turn].
+    The turns step the same simulated seconds in every world, so each turn gives one ratio between worlds; a turn
+    that steps a busier part of the scenario is busier in all of them. The first warmup_s are stepped untimed, so
+    that a scenario whose traffic is still arriving does not make its first turn unlike the others."""
+    warm_steps = simulators[0].steps_in(warmup_s) - 1 if warmup_s > 0 else 0
+    for simulator in simulators:
+        simulator.run(0, warm_steps)
     steps = simulators[0].steps_in(duration_s)
-    bounds = [round(turn * steps / turns) for turn in range(turns + 1)]
+    step_s = duration_s / steps
+    bounds = [warm_steps + round(turn * steps / turns) for turn in range(turns + 1)]
+    spent_ms: list[list[float]] = [[] for _ in simulators]
     for first_step, end_step in zip(bounds, bounds[1:]):
         for index, simulator in enumerate(simulators):
-            spent_s[index] += cpu_seconds(lambda s=simulator: s.run(first_step, end_step))
-    return [1000.0 * spent / duration_s for spent in spent_s]
+            spent_s = cpu_seconds(lambda s=simulator: s.run(first_step, end_step))
+            spent_ms[index].append(1000.0 * spent_s / ((end_step - first_step) * step_s))
+    return spent_ms
+
+
+def over_the_run(per_turn_ms: list[float]) -> float:
+    """A world's CPU ms per simulated second over all its turns (they step equal shares of the run)."""
+    return statistics.fmean(per_turn_ms)
 
 
 def main(argv: list[str] | None = None) -> list[Figure] | None:
@@ -133,8 +149,9 @@ def main(argv: list[str] | None = None) -> list[Figure] | None:
                         f"(target: below {TARGET_MS_PER_SIMULATED_S:.0f} ms per simulated s with 8 stacks)")
     for column in ("stacks", "CPU ms per simulated s", "per stack"):
         table.add_column(column, justify="right")
-    figures = []
-    for stacks, cpu_ms in zip(STACK_COUNTS, cpu_ms_per_simulated_s(STACK_COUNTS)):
+    figures, per_turn_ms = [], cpu_ms_per_simulated_s(STACK_COUNTS)
+    for stacks, turns_ms in zip(STACK_COUNTS, per_turn_ms):
+        cpu_ms = over_the_run(turns_ms)
         table.add_row(str(stacks), f"{cpu_ms:.0f}", f"{cpu_ms / stacks:.0f}")
         figures.append(Figure(f"{stacks} stacks: simulator CPU", cpu_ms, Unit.MS_PER_SIMULATED_S))
     console = Console()
@@ -142,8 +159,10 @@ def main(argv: list[str] | None = None) -> list[Figure] | None:
     console.print(f"before issue 27: {BEFORE_ISSUE_MS_PER_SIMULATED_S:,.0f} ms per simulated s with 8 stacks, the "
                   f"simulator's process in a whole run; in a whole run now, see its worker_cpu_s (docs/performance.md)")
     fewest, most = STACK_COUNTS[0], STACK_COUNTS[-1]
+    per_stack_ms = [turn_ms / most for turn_ms in per_turn_ms[-1]]
     return figures + [ratio(f"{most} stacks: CPU per stack to {fewest} stack's", figures[-1].value / most / figures[0].value,
-                            f"{fewest} stacks: simulator CPU", Better.LOWER)]
+                            f"{fewest} stacks: simulator CPU", Better.LOWER,
+                            spread=turn_ratio_spread(per_stack_ms, per_turn_ms[0]))]
 
 
 if __name__ == "__main__":

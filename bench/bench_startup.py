@@ -23,6 +23,7 @@ from rich.table import Table
 from bench.failure import BenchFailed
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
+from bench.turn_spread import turn_ratio_spread
 
 from coopdrive.launch.processes import NEW_INTERPRETERS_VARIABLE
 
@@ -31,7 +32,8 @@ LAYOUTS = sized(("service", "vehicle"), ("vehicle",))
 DURATIONS_S = sized((5.0, 60.0), (1.0,))
 STACKS = sized(8, 1)
 STACKS_DURATION_S = sized(5.0, 0.5)
-ROUNDS = sized(2, 1)
+# Rounds of the two 8-stack commands, turn about: each round gives one ratio, and their spread its interval.
+ROUNDS = sized(3, 1)
 
 
 def command_time(arguments: list[str], new_interpreters: bool = False) -> tuple[float, dict]:
@@ -64,8 +66,10 @@ def forked_against_new_interpreters() -> list[Figure]:
         figures += [Figure(f"{STACKS} stacks, {name}: command", total_s, Unit.S),
                     Figure(f"{STACKS} stacks, {name}: start-up", startup_s, Unit.S)]
     Console().print(table)
+    forked_turns_s, new_turns_s = ([total for total, _, _ in times[new]] for new in (False, True))
     return figures + [ratio(f"{STACKS} stacks: forked command to new interpreters'", figures[2].value / baseline_s,
-                            f"{STACKS} stacks, new interpreters: command", Better.LOWER)]
+                            f"{STACKS} stacks, new interpreters: command", Better.LOWER,
+                            spread=turn_ratio_spread(forked_turns_s, new_turns_s))]
 
 
 def main() -> list[Figure]:

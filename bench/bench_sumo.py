@@ -17,9 +17,10 @@ import yaml
 from rich.console import Console
 from rich.table import Table
 
-from bench.bench_sim import SimulatorAlone, cpu_ms_in_turns
+from bench.bench_sim import SimulatorAlone, cpu_ms_in_turns, over_the_run
 from bench.figure import Better, Figure, Unit, ratio
 from bench.sizes import sized
+from bench.turn_spread import turn_ratio_spread
 from coopdrive.services.sim.config import packaged_scenario_file
 from coopdrive.services.sim.scenario_config import load_scenario
 
@@ -28,6 +29,9 @@ STACKS = 4
 # SUMO's vehicles of the scenario are all on the road from its third second: a quick size of one second still steps
 # SUMO with its first ones.
 DURATION_S = sized(10.0, 1.0)
+# The timed turns begin once SUMO's vehicles are all on the road, so that each turn is like the others and their
+# ratios give the figure's interval (bench/turn_spread.py).
+WARMUP_S = sized(3.0, 0.0)
 TURNS = sized(5, 1)
 
 
@@ -42,12 +46,14 @@ def without_traffic(folder: Path) -> str:
     return str(path)
 
 
-def cpu_ms_per_simulated_s(folder: Path) -> tuple[list[float], float]:
-    """(with SUMO's traffic, without it) CPU ms per simulated second, stepping DURATION_S in TURNS turns about, and
+def cpu_ms_per_simulated_s(folder: Path) -> tuple[list[list[float]], float]:
+    """(with SUMO's traffic, without it) CPU ms per simulated second in each of TURNS turns about over DURATION_S, and
     how many SUMO vehicles drove in the world with it (one SUMO per process: only one world has it)."""
-    simulators = [SimulatorAlone(STACKS, SCENARIO), SimulatorAlone(STACKS, SCENARIO, without_traffic(folder))]
+    simulated_s = WARMUP_S + DURATION_S
+    simulators = [SimulatorAlone(STACKS, SCENARIO, duration_s=simulated_s),
+                  SimulatorAlone(STACKS, SCENARIO, without_traffic(folder), duration_s=simulated_s)]
     try:
-        spent_ms = cpu_ms_in_turns(simulators, DURATION_S, TURNS)
+        spent_ms = cpu_ms_in_turns(simulators, DURATION_S, TURNS, WARMUP_S)
         return spent_ms, simulators[0].service.feed.sim.traffic_metrics()["sumo_vehicles"]
     finally:
         for simulator in simulators:
@@ -56,7 +62,8 @@ def cpu_ms_per_simulated_s(folder: Path) -> tuple[list[float], float]:
 
 def main(argv: list[str] | None = None) -> list[Figure]:
     with tempfile.TemporaryDirectory() as folder:
-        (with_ms, without_ms), vehicles = cpu_ms_per_simulated_s(Path(folder))
+        (with_turns_ms, without_turns_ms), vehicles = cpu_ms_per_simulated_s(Path(folder))
+    with_ms, without_ms = over_the_run(with_turns_ms), over_the_run(without_turns_ms)
     table = Table(title=f"simulator alone, {SCENARIO}, {STACKS} stacks, {DURATION_S:.0f} s simulated, real world")
     for column in ("world", "SUMO vehicles", "CPU ms per simulated s"):
         table.add_column(column, justify="right")
@@ -67,7 +74,7 @@ def main(argv: list[str] | None = None) -> list[Figure]:
     return [Figure(with_name, with_ms, Unit.MS_PER_SIMULATED_S),
             Figure(without_name, without_ms, Unit.MS_PER_SIMULATED_S),
             ratio("SUMO's traffic: simulator CPU with it to without", with_ms / without_ms, without_name,
-                  Better.LOWER)]
+                  Better.LOWER, spread=turn_ratio_spread(with_turns_ms, without_turns_ms))]
 
 
 if __name__ == "__main__":

@@ -121,6 +121,14 @@ def compare(old: BenchResults, new: BenchResults) -> list[Change]:
     return changes
 
 
+def unguarded_ratios(results: BenchResults) -> list[tuple[str, str]]:
+    """(bench, figure) of every ratio with neither an interval (`spread`) nor an instruction count that guards it,
+    and not a count itself: a ratio that only NOISE guards, which the machine's load alone may flag."""
+    return [(bench, name) for (bench, name), figure in results.figures().items()
+            if figure.is_ratio and figure.spread is None and figure.guarded_by is None
+            and not name.endswith(", instructions")]
+
+
 def print_changes(old: BenchResults, new: BenchResults, changes: list[Change], console: Console) -> None:
     for label, results in (("OLD", old), ("NEW", new)):
         console.print(f"{label}: {results.commit.describe()} on {results.machine.describe()}", highlight=False)
@@ -139,6 +147,10 @@ def print_changes(old: BenchResults, new: BenchResults, changes: list[Change], c
     ratios = sum(1 for change in changes if change.unit == Unit.RATIO.value)
     console.print(f"{len(changes)} figures, {ratios} of them ratios; {len(flagged)} flagged"
                   + "".join(f"\n  {c.verdict.value}: {c.bench} {c.figure}" for c in flagged), highlight=False)
+    bare = unguarded_ratios(new)
+    if bare:
+        console.print(f"{len(bare)} ratios of NEW have neither an interval nor an instruction count, only the 10 % "
+                      "guards them:" + "".join(f"\n  {bench} {name}" for bench, name in bare), highlight=False)
 
 
 def main(argv: list[str]) -> int:

@@ -50,11 +50,15 @@ def rate_per_s(operation: Callable[[], object], seconds: float, batch: int = DEF
             return count / (now - start)
 
 
+def seconds_per_call_in_turns(operations: Sequence[Callable[[], object]], seconds: float, rounds: int,
+                              batch: int = DEFAULT_BATCH) -> list[list[float]]:
+    """Each operation's CPU seconds per call in each of `rounds` turns of seconds / rounds each: [operation][round]."""
+    for operation in operations:
+        operation()  # the first call fills caches (schemas, certificates) that later calls find ready
+    return turns([lambda op=op: 1.0 / rate_per_s(op, seconds / rounds, batch) for op in operations], rounds)
+
+
 def best_rates_per_s(operations: Sequence[Callable[[], object]], seconds: float, rounds: int,
                      batch: int = DEFAULT_BATCH) -> list[float]:
     """Each operation's best rate per CPU second over `rounds` turns of seconds / rounds each."""
-    for operation in operations:
-        operation()  # the first call fills caches (schemas, certificates) that later calls find ready
-    seconds_each = least_of_turns([lambda op=op: 1.0 / rate_per_s(op, seconds / rounds, batch) for op in operations],
-                               rounds)
-    return [1.0 / s for s in seconds_each]
+    return [1.0 / min(each) for each in seconds_per_call_in_turns(operations, seconds, rounds, batch)]

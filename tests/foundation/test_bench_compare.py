@@ -182,3 +182,13 @@ def test_a_time_ratio_guarded_by_its_instruction_count_is_flagged_only_through_t
 def test_a_guarded_time_ratio_whose_count_is_missing_is_flagged_by_itself(tmp_path):
     assert verdicts(tmp_path, {"bench_world_parts": world_parts(21.1, 12.3)},
                     {"bench_world_parts": world_parts(14.0, None)})["intersection: speed-up"] is Verdict.WORSE
+
+
+def test_ratios_with_neither_an_interval_nor_an_instruction_count_are_named_after_the_comparison(tmp_path, capsys):
+    with_interval = {**figure("scene: association to brute force", 0.02, "ratio", "brute force"), "spread": 0.2}
+    new = {"bench_bus": bus(100.0, 1.5), "bench_world_parts": world_parts(21.1, 12.3),
+           "bench_scene": {"seconds": 5.0, "failure": None, "figures": [with_interval]}}
+    old_path, new_path = results(tmp_path, "old", new), results(tmp_path, "new", new)
+    assert bench_compare.unguarded_ratios(BenchResults.load(new_path)) == [("bench_bus", "coopdrive typed p50 to raw")]
+    assert bench_compare.main([str(old_path), str(new_path)]) == 0
+    assert "1 ratios of NEW have neither an interval nor an instruction count" in capsys.readouterr().out
