@@ -20,6 +20,9 @@ CAN_IDS_IGNORED = "can_ids_ignored"
 CAN_REJECTED_PREFIX = "can_rejected_"
 CAN_ERROR_FRAMES = "can_error_frames"
 CAN_COUNTERS = (CAN_USED, CAN_IGNORED, CAN_IDS_IGNORED, CAN_ERROR_FRAMES)
+# A value the service estimated, `estimated_<what>`, and its one-sigma std, `estimated_<what>_std`.
+ESTIMATED_PREFIX = "estimated_"
+STD_SUFFIX = "_std"
 
 
 def _label(kind: str) -> str:
@@ -54,10 +57,22 @@ def _can_line(counters: Mapping[str, float]) -> list[str]:
             f"frames, refused: {reasons}"]
 
 
+def _estimated_lines(counters: Mapping[str, float]) -> list[str]:
+    names = sorted(name for name in counters if name.startswith(ESTIMATED_PREFIX) and not name.endswith(STD_SUFFIX))
+    lines = []
+    for name in names:
+        std = counters.get(name + STD_SUFFIX)
+        spread = "" if std is None else f" +- {std:.2g} (1 sigma)"
+        lines.append(f"{_label(name)}: {counters[name]:.5g}{spread}")
+    return lines
+
+
 def counter_lines(counters: Mapping[str, float]) -> list[str]:
-    """One line per input the counters describe, then every other counter as `name value`."""
-    lines = _gated_lines(counters) + _can_line(counters)
-    described = {name for name in counters if name.startswith((USED_PREFIX, GATED_PREFIX, CAN_REJECTED_PREFIX))}
+    """One line per input the counters describe, one per value the service estimated (with its std), then every
+    other counter as `name value`."""
+    lines = _gated_lines(counters) + _can_line(counters) + _estimated_lines(counters)
+    described = {name for name in counters
+                 if name.startswith((USED_PREFIX, GATED_PREFIX, CAN_REJECTED_PREFIX, ESTIMATED_PREFIX))}
     others = sorted(name for name in counters if name not in described and name not in CAN_COUNTERS)
     lines += [f"{name} {_count(counters[name])}" for name in others]
     return lines

@@ -126,7 +126,7 @@ class GeolocatorConfig(BaseModel):
     gnss_course_std_deg: float = Field(3.0, gt=0.0)
     # With the wheels too, the receiver's course over ground (above min_course_speed_mps) is fused as well: it
     # holds the heading where the fixes alone tell it slowly, and teaches the yaw-rate sensor's bias in seconds
-    # (on the RAV4 drive, heading RMS 0.25 -> 0.19 deg, docs/tutorials/score-a-drive.md).
+    # (on the RAV4 drive, heading RMS 0.24 -> 0.18 deg, docs/tutorials/score-a-drive.md).
     course_with_odometry: bool = False
     gnss_heading_std_deg: float = Field(0.5, gt=0.0)
     # Fixes farther than this from the local frame's origin are refused (a wrong origin, not a drive).

@@ -46,6 +46,12 @@ FIX_INTERVALS_FRESH = 1.5  # a fix is fresh until this many receiver intervals a
 ASSUMED_FIX_INTERVAL_S = 1.0
 
 
+# The estimated nuisances' counter names (estimated_nuisances), each with its std under the name + STD_SUFFIX.
+ESTIMATED_FIX_STAMP_LATE_MS = "estimated_fix_stamp_late_ms"
+ESTIMATED_WHEEL_SCALE = "estimated_wheel_scale"
+STD_SUFFIX = "_std"
+
+
 class InputEvent(enum.Enum):
     FIX_FUSED = "fix_fused"
     FIX_GATED = "fix_gated"
@@ -352,14 +358,30 @@ class Geolocator:
     def last_fix_mode(self) -> int:
         return self._book.last_fix_mode
 
-    def stats(self) -> dict[str, int]:
-        """Counters for diagnostics: inputs by outcome, gated and accepted updates, replays."""
+    def stats(self) -> dict[str, float]:
+        """Counters for diagnostics: inputs by outcome, gated and accepted updates, replays, estimated nuisances."""
         counts = {f"input_{event.value}": n for event, n in self.counters.items()}
         counts.update(self.ekf.update_counts())
         counts.update({f"insertion_{kind.value}": n for kind, n in self._buffer.counts.items()})
         counts["replayed_events"] = self._buffer.replayed_events
         counts.update(self.odometry.stats())
+        counts.update(self.estimated_nuisances())
         return counts
+
+    def estimated_nuisances(self) -> dict[str, float]:
+        """What the filter learnt of its inputs beside the vehicle's state, with its std: how late the fixes are
+        stamped against the other inputs (the stamp-error state, when it is modelled) and the wheels' scale (when
+        the car's file has it estimated). Names say the unit; a replay prints them (recording/replay_counts.py)."""
+        found: dict[str, float] = {}
+        if self.ekf.initialised and self.config.gnss_time_error_std_s > 0.0:
+            found[ESTIMATED_FIX_STAMP_LATE_MS] = 1000.0 * float(self.ekf.x[GNSS_TIME_ERROR])
+            found[ESTIMATED_FIX_STAMP_LATE_MS + STD_SUFFIX] = 1000.0 * math.sqrt(
+                float(self.ekf.P[GNSS_TIME_ERROR, GNSS_TIME_ERROR]))
+        scale = self.odometry.wheel_scale
+        if scale is not None:
+            found[ESTIMATED_WHEEL_SCALE] = scale.scale
+            found[ESTIMATED_WHEEL_SCALE + STD_SUFFIX] = scale.std
+        return found
 
     def estimate(self, time_s: float) -> ego_pb2.EgoState:
         """The ego state predicted to time_s (the filter itself is not moved)."""

@@ -3,8 +3,11 @@
 A wheel-speed sensor counts wheel revolutions; the speed it reports assumes a nominal rolling radius, which
 tyre wear, pressure and temperature change by a percent or two. The scale s (true = s x reported) is modelled as
 a slowly varying random walk and estimated by a scalar Kalman filter: each GNSS fix moving fast enough gives a
-measurement v_gnss = s * v_wheels + noise, with v_wheels the reported speed at the fix's time. Measurements far
-from the prediction (wheel slip, a GNSS outlier) are gated out and counted, so one bad fix cannot pull the scale.
+measurement v_gnss = s * v_wheels + noise, with v_wheels the reported speed at the fix's time, interpolated between
+the wheel samples either side of it. A fix waits for the wheel sample after its time: the wheels' frames may reach
+the service later than the fix (their latency, a log's clock), and the speed before the fix's time alone is the
+speed of up to a sample period earlier, at 20 m/s2 of braking 0.2 m/s off. Measurements far from the prediction
+(wheel slip, a GNSS outlier) are gated out and counted, so one bad fix cannot pull the scale.
 """
 
 from __future__ import annotations
@@ -15,8 +18,10 @@ from collections import Counter, deque
 
 # Below this speed a percent of scale is lost in the GNSS speed noise.
 MIN_SPEED_MPS = 3.0
-# How far a fix may be from the nearest wheel-speed sample (wheel speeds arrive at 50-100 Hz).
+# How far apart the wheel-speed samples either side of a fix may be (wheel speeds arrive at 50-100 Hz).
 MAX_PAIRING_GAP_S = 0.05
+# Fixes waiting for the wheel sample after their time; older ones are dropped (the wheels have stopped reporting).
+MAX_WAITING_FIXES = 20
 WHEEL_HISTORY = 200
 # Scale drift: tyres warm up and lose pressure over minutes (one sigma per square-root second).
 SCALE_DRIFT_PER_SQRT_S = 1e-4
@@ -38,6 +43,7 @@ class WheelScaleEstimator:
         self._time_s: float | None = None
         self._wheel_times_s: deque[float] = deque(maxlen=WHEEL_HISTORY)
         self._wheel_speeds_mps: deque[float] = deque(maxlen=WHEEL_HISTORY)
+        self._waiting: deque[tuple[float, float]] = deque()
 
     @property
     def std(self) -> float:
@@ -49,9 +55,21 @@ class WheelScaleEstimator:
             return
         self._wheel_times_s.append(time_s)
         self._wheel_speeds_mps.append(reported_speed_mps)
+        while self._waiting and self._waiting[0][0] <= time_s:
+            self._update(*self._waiting.popleft())
 
-    def on_gnss_speed(self, time_s: float, gnss_speed_mps: float) -> bool:
-        """Updates the scale with a fix's speed over ground; False when the fix could not be used."""
+    def on_gnss_speed(self, time_s: float, gnss_speed_mps: float) -> None:
+        """A fix's speed over ground: updates the scale once the wheels have reported past the fix's time."""
+        if self._wheel_times_s and time_s <= self._wheel_times_s[-1]:
+            self._update(time_s, gnss_speed_mps)
+            return
+        if len(self._waiting) == MAX_WAITING_FIXES:
+            self._waiting.popleft()
+            self.counts["wheel_scale_unused"] += 1
+        self._waiting.append((time_s, gnss_speed_mps))
+
+    def _update(self, time_s: float, gnss_speed_mps: float) -> bool:
+        """False when the fix could not be used."""
         reported = self._reported_at(time_s)
         if reported is None or abs(reported) < MIN_SPEED_MPS or gnss_speed_mps < MIN_SPEED_MPS:
             self.counts["wheel_scale_unused"] += 1
@@ -72,11 +90,16 @@ class WheelScaleEstimator:
         return True
 
     def _reported_at(self, time_s: float) -> float | None:
+        """The reported speed at time_s, interpolated between the samples either side; None without both, or
+        with them too far apart."""
         times = self._wheel_times_s
-        if not times:
+        after = bisect.bisect_left(times, time_s)
+        if after == len(times):
             return None
-        i = bisect.bisect_left(times, time_s)
-        nearest = min((j for j in (i - 1, i) if 0 <= j < len(times)), key=lambda j: abs(times[j] - time_s))
-        if abs(times[nearest] - time_s) > MAX_PAIRING_GAP_S:
+        if times[after] == time_s:
+            return self._wheel_speeds_mps[after]
+        if after == 0 or times[after] - times[after - 1] > MAX_PAIRING_GAP_S:
             return None
-        return self._wheel_speeds_mps[nearest]
+        before_s, after_s = times[after - 1], times[after]
+        share = (time_s - before_s) / (after_s - before_s)
+        return self._wheel_speeds_mps[after - 1] + share * (self._wheel_speeds_mps[after] - self._wheel_speeds_mps[after - 1])

@@ -46,12 +46,30 @@ def test_a_fix_far_off_the_wheels_is_gated_out_and_does_not_pull_the_scale():
     assert estimator.scale == pytest.approx(TRUE_SCALE, abs=1e-3)
 
 
-def test_below_walking_pace_or_without_a_wheel_speed_near_the_fix_nothing_is_learnt():
+def test_below_walking_pace_or_without_wheel_speeds_either_side_of_the_fix_nothing_is_learnt():
     estimator = WheelScaleEstimator()
-    assert not estimator.on_gnss_speed(1.0, 10.0)
-    estimator.on_wheel_speed(2.0, 1.0)
-    assert not estimator.on_gnss_speed(2.0, 1.0)
-    assert estimator.scale == 1.0 and estimator.counts["wheel_scale_unused"] == 2
+    estimator.on_gnss_speed(1.0, 10.0)  # waits for a wheel sample after 1.0 s
+    estimator.on_wheel_speed(2.0, 1.0)  # none before it: the fix is not used
+    estimator.on_gnss_speed(2.0, 1.0)  # walking pace
+    estimator.on_wheel_speed(2.5, 20.0)
+    estimator.on_gnss_speed(2.2, 20.0)  # the samples either side are 0.5 s apart
+    assert estimator.scale == 1.0 and estimator.counts["wheel_scale_unused"] == 3
+
+
+def test_a_fix_that_arrives_before_the_wheels_report_its_time_is_paired_when_they_do():
+    """The wheel frames reach the service 65 ms after the fix showing the same moment (their latency): each fix is
+    paired with the wheels' speed at its own time, interpolated, once the sample after it has come."""
+    estimator = WheelScaleEstimator()
+    latency_s = 0.065
+    for k in range(3000):
+        now_s = k * WHEEL_PERIOD_S
+        true_speed_mps = 5.0 + 20.0 * now_s / 30.0  # 0.67 m/s2: at 65 ms off, the scale would be 0.2-0.9 % off
+        wheel_time_s = now_s - latency_s
+        estimator.on_wheel_speed(wheel_time_s, (5.0 + 20.0 * wheel_time_s / 30.0) / TRUE_SCALE)
+        if k % 10 == 5:
+            estimator.on_gnss_speed(now_s, true_speed_mps)
+    assert estimator.counts["wheel_scale_updates"] > 290 and estimator.counts["wheel_scale_unused"] == 0
+    assert estimator.scale == pytest.approx(TRUE_SCALE, abs=2e-4)
 
 
 def test_the_odometry_reports_the_four_wheels_times_the_learnt_scale():

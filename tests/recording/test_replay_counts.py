@@ -51,3 +51,10 @@ def test_replay_json_holds_the_counters_and_a_fix_fused_again_after_a_late_input
     assert summary["warnings"] == []
     assert counters["insertion_replayed"] > 0  # late CAN frames made the filter fuse fixes again
     assert counters["input_fix_fused"] + counters.get("input_fix_gated", 0) == counters["nmea_fixes"] == 192
+
+
+def test_a_value_the_service_estimated_is_one_line_with_its_std():
+    from coopdrive.recording.replay_counts import counter_lines
+
+    assert counter_lines({"estimated_wheel_scale": 1.0106, "estimated_wheel_scale_std": 0.00048, "nmea_fixes": 192}) == [
+        "estimated wheel scale: 1.0106 +- 0.00048 (1 sigma)", "nmea_fixes 192"]
