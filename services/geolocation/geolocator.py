@@ -27,6 +27,7 @@ from coopdrive.services.geolocation.gated_fixes import GatedFixes
 from coopdrive.services.geolocation.initial_heading import UNKNOWN_HEADING_STD_RAD, enu_heading_rad, initial_heading
 from coopdrive.services.geolocation.frames import RTK_FIX_MODES, LeverArm, ModeThresholds
 from coopdrive.services.geolocation.latency import Insertion, ReplayBuffer
+from coopdrive.services.geolocation.nuisances import estimated_nuisances
 from coopdrive.services.geolocation.motion_models import (
     GNSS_ERROR_E, GNSS_ERROR_N, GNSS_TIME_ERROR, HEADING, SPEED, STATE_DIM, CtraModel, E, KinematicBicycleModel,
     MotionModelKind, N,
@@ -44,12 +45,6 @@ FIX_INTERVALS_FRESH = 1.5  # a fix is fresh until this many receiver intervals a
 # Until a second fix shows the receiver's rate, it is taken to be the slowest common one: a 1 Hz receiver's
 # first fix must not be stale before its second can come.
 ASSUMED_FIX_INTERVAL_S = 1.0
-
-
-# The estimated nuisances' counter names (estimated_nuisances), each with its std under the name + STD_SUFFIX.
-ESTIMATED_FIX_STAMP_LATE_MS = "estimated_fix_stamp_late_ms"
-ESTIMATED_WHEEL_SCALE = "estimated_wheel_scale"
-STD_SUFFIX = "_std"
 
 
 class InputEvent(enum.Enum):
@@ -365,23 +360,8 @@ class Geolocator:
         counts.update({f"insertion_{kind.value}": n for kind, n in self._buffer.counts.items()})
         counts["replayed_events"] = self._buffer.replayed_events
         counts.update(self.odometry.stats())
-        counts.update(self.estimated_nuisances())
+        counts.update(estimated_nuisances(self.ekf, self.config.gnss_time_error_std_s, self.odometry.wheel_scale))
         return counts
-
-    def estimated_nuisances(self) -> dict[str, float]:
-        """What the filter learnt of its inputs beside the vehicle's state, with its std: how late the fixes are
-        stamped against the other inputs (the stamp-error state, when it is modelled) and the wheels' scale (when
-        the car's file has it estimated). Names say the unit; a replay prints them (recording/replay_counts.py)."""
-        found: dict[str, float] = {}
-        if self.ekf.initialised and self.config.gnss_time_error_std_s > 0.0:
-            found[ESTIMATED_FIX_STAMP_LATE_MS] = 1000.0 * float(self.ekf.x[GNSS_TIME_ERROR])
-            found[ESTIMATED_FIX_STAMP_LATE_MS + STD_SUFFIX] = 1000.0 * math.sqrt(
-                float(self.ekf.P[GNSS_TIME_ERROR, GNSS_TIME_ERROR]))
-        scale = self.odometry.wheel_scale
-        if scale is not None:
-            found[ESTIMATED_WHEEL_SCALE] = scale.scale
-            found[ESTIMATED_WHEEL_SCALE + STD_SUFFIX] = scale.std
-        return found
 
     def estimate(self, time_s: float) -> ego_pb2.EgoState:
         """The ego state predicted to time_s (the filter itself is not moved)."""

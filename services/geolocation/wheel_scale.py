@@ -101,5 +101,5 @@ class WheelScaleEstimator:
         if after == 0 or times[after] - times[after - 1] > MAX_PAIRING_GAP_S:
             return None
         before_s, after_s = times[after - 1], times[after]
-        share = (time_s - before_s) / (after_s - before_s)
-        return self._wheel_speeds_mps[after - 1] + share * (self._wheel_speeds_mps[after] - self._wheel_speeds_mps[after - 1])
+        before_mps, after_mps = self._wheel_speeds_mps[after - 1], self._wheel_speeds_mps[after]
+        return before_mps + (time_s - before_s) / (after_s - before_s) * (after_mps - before_mps)
