@@ -53,15 +53,46 @@ def test_without_delays_our_cacc_fed_the_command_is_the_ideal_transfer_for_any_l
     assert np.abs(h) == pytest.approx(1 / np.sqrt(1 + (0.5 * omega) ** 2))
 
 
-def test_a_request_lead_as_long_as_the_communication_delay_nearly_restores_the_ideal_transfer():
+# The request's age at our control in the simulated platoons (profiles.CaccGains.request_lead_s): 0.10 s to the
+# scene, and the 50 Hz control's wait for the 25 Hz scene.
+REQUEST_AGE_S = 0.12
+
+
+def test_a_request_lead_as_long_as_the_requests_age_nearly_restores_the_ideal_transfer():
     wave = np.array([2 * np.pi * 0.2])  # the string scenario's 0.2 Hz
     profile = with_lag(0.5).with_driveline(dead_time_s=0.0)
     ideal = 1 / np.sqrt(1 + (0.5 * wave) ** 2)
-    led = np.abs(speed_transfer(FollowingLaw.OURS_CACC_COMMANDED, profile, 0.5, wave, comm_delay_s=0.1))
+    led = np.abs(speed_transfer(FollowingLaw.OURS_CACC_COMMANDED, profile, 0.5, wave, comm_delay_s=REQUEST_AGE_S))
     late = np.abs(speed_transfer(FollowingLaw.OURS_CACC_COMMANDED, without_request_lead(profile), 0.5, wave,
-                                 comm_delay_s=0.1))
-    assert profile.cacc.request_lead_s == pytest.approx(0.1)
+                                 comm_delay_s=REQUEST_AGE_S))
+    assert profile.cacc.request_lead_s == pytest.approx(REQUEST_AGE_S)
     assert abs(led - ideal)[0] < 0.25 * abs(late - ideal)[0]
+
+
+def test_fed_the_request_the_string_gain_is_the_ideal_times_the_feedforwards_error_through_the_loop():
+    # eq. SS2: H = (1 / (1 + h s)) (L + rho) / (1 + L), L = Cp (1 + h s) G, rho = (1 + lead s) e^{-theta s}
+    omega = np.array([0.3, 2 * np.pi * 0.2, 3.0])
+    s, h, lag, dead, age = 1j * omega, 0.5, 0.5, 0.1, 0.12
+    gains = CAR.cacc
+    plant = np.exp(-dead * s) / (s**2 * (1 + lag * s))
+    loop = (gains.kp_1ps2 + gains.kd_1ps * s) / (1 + gains.feedback_time_constant_s * s) * (1 + h * s) * plant
+    rho = (1 + gains.request_lead_s * s) * np.exp(-age * s)
+    expected = (loop + rho) / (1 + loop) / (1 + h * s)
+    h_ours = speed_transfer(FollowingLaw.OURS_CACC_COMMANDED, CAR, h, omega, comm_delay_s=age, engine_lag_s=lag,
+                            actuation_delay_s=dead)
+    assert h_ours == pytest.approx(expected)
+
+
+def test_at_the_wave_frequency_a_lead_short_of_the_requests_age_raises_the_string_gain():
+    # eq. SS2: at 0.2 Hz 1 / (1 + L) is nearly imaginary, so rho's phase lag w (theta - lead) counts, its size not.
+    def gain(lead_s):
+        profile = CAR.model_copy(update={"cacc": CAR.cacc.model_copy(update={"request_lead_s": lead_s})})
+        return analyze(FollowingLaw.OURS_CACC_COMMANDED, profile, 0.5, comm_delay_s=REQUEST_AGE_S, engine_lag_s=0.5,
+                       actuation_delay_s=0.1).gain_at_hz(0.2)
+
+    ideal = 1 / np.sqrt(1 + (0.5 * 2 * np.pi * 0.2) ** 2)
+    assert gain(REQUEST_AGE_S) == pytest.approx(ideal, abs=0.002)
+    assert gain(REQUEST_AGE_S - 0.02) - gain(REQUEST_AGE_S) == pytest.approx(0.012, abs=0.002)
 
 
 def test_without_delays_ploeg_fed_the_command_is_the_ideal_transfer_for_any_lag():

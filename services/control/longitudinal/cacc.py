@@ -16,9 +16,13 @@ a_p = G(s) u_p and a = G(s) u, so the same ideal a = a_p / (1 + h s) needs
 which differentiates nothing (a measured a_p is noisy, and C1 amplifies it by tau/h), needs no lag estimate,
 and leads the measured acceleration by the predecessor's dead time and lag.
 
-The request arrives late by its age theta (V2V, the sender's and our own pipeline); a first-order lead
-makes up for most of it at platoon-wave frequencies, e^(theta s) ~ 1 + theta s:
+The request arrives late by its age theta (V2V, the sender's and our own pipeline, and the wait of the 25 Hz
+scene for the 50 Hz control: 0.11-0.12 s); a first-order lead makes up for most of it at platoon-wave
+frequencies, e^(theta s) ~ 1 + theta s:
       u_ff = (1 + theta s) z_u = z_u + (theta / h) (u_p - z_u)                               (eq. C5)
+The lead's theta must be the age at our control, not at the scene: the string gain is
+H = (1 / (1 + h s)) (L + rho) / (1 + L) with rho = (1 + theta s) e^(-age s) (eq. SS2, string_stability.py), and
+at the 0.2 Hz wave 1 / (1 + L) is almost imaginary, so a phase lag of rho raises |H| while its size hardly counts.
 
 The PD acts through a first-order filter,
       tau_fb w' + w = kp e + kd e'                                                        (eq. C4)
