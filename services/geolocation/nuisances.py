@@ -5,14 +5,15 @@ from __future__ import annotations
 
 import math
 
+from coopdrive.recording.replay_counts import ESTIMATED_PREFIX, STD_SUFFIX
 from coopdrive.services.geolocation.ekf import GeolocationEkf
 from coopdrive.services.geolocation.motion_models import GNSS_TIME_ERROR
 from coopdrive.services.geolocation.wheel_scale import WheelScaleEstimator
 
-# Counter names; each one's std goes under the name + STD_SUFFIX. Names say the unit.
-ESTIMATED_FIX_STAMP_LATE_MS = "estimated_fix_stamp_late_ms"
-ESTIMATED_WHEEL_SCALE = "estimated_wheel_scale"
-STD_SUFFIX = "_std"
+# Counter names, in the replay's convention for an estimated value (its std under the name + STD_SUFFIX); names
+# say the unit.
+ESTIMATED_FIX_STAMP_LATE_MS = f"{ESTIMATED_PREFIX}fix_stamp_late_ms"
+ESTIMATED_WHEEL_SCALE = f"{ESTIMATED_PREFIX}wheel_scale"
 
 
 def estimated_nuisances(ekf: GeolocationEkf, time_error_std_s: float,

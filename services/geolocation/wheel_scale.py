@@ -68,12 +68,12 @@ class WheelScaleEstimator:
             self.counts["wheel_scale_unused"] += 1
         self._waiting.append((time_s, gnss_speed_mps))
 
-    def _update(self, time_s: float, gnss_speed_mps: float) -> bool:
-        """False when the fix could not be used."""
+    def _update(self, time_s: float, gnss_speed_mps: float) -> None:
+        """One fix's speed against the wheels' at its time; counted as unused, gated or an update."""
         reported = self._reported_at(time_s)
         if reported is None or abs(reported) < MIN_SPEED_MPS or gnss_speed_mps < MIN_SPEED_MPS:
             self.counts["wheel_scale_unused"] += 1
-            return False
+            return
         if self._time_s is not None and time_s > self._time_s:
             self.variance += SCALE_DRIFT_PER_SQRT_S**2 * (time_s - self._time_s)
         self._time_s = time_s if self._time_s is None else max(self._time_s, time_s)
@@ -82,12 +82,11 @@ class WheelScaleEstimator:
         innovation_variance = v * v * self.variance + self.gnss_speed_std_mps**2
         if innovation * innovation > GATE_SIGMAS**2 * innovation_variance:
             self.counts["wheel_scale_gated"] += 1
-            return False
+            return
         gain = v * self.variance / innovation_variance
         self.scale = min(max(self.scale + gain * innovation, SCALE_BOUNDS[0]), SCALE_BOUNDS[1])
         self.variance *= 1.0 - gain * v
         self.counts["wheel_scale_updates"] += 1
-        return True
 
     def _reported_at(self, time_s: float) -> float | None:
         """The reported speed at time_s, interpolated between the samples either side; None without both, or
